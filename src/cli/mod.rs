@@ -1,0 +1,73 @@
+//! The `pirqa` command line: parses arguments (clap) and turns library results into text, JSON,
+//! CSV and SVG files. Errors come back to `main` as typed library errors.
+
+mod check;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+/// Exact event-driven dynamics of dry-stone block walls under earthquakes.
+#[derive(Parser, Debug)]
+#[command(name = "pirqa", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Check a wall file and print its topology: blocks, supports with loads and friction
+    /// capacities, vertical joints.
+    Check {
+        /// Wall description (RON).
+        wall: PathBuf,
+        /// Print JSON instead of tables.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Draw a wall's elevation as SVG with block names and joint friction.
+    Draw {
+        /// Wall description (RON).
+        wall: PathBuf,
+        /// Output SVG file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Also draw the support graph (block to support) and the vertical joints.
+        #[arg(long)]
+        graph: bool,
+    },
+}
+
+/// Runs the command line; returns the process exit code.
+pub fn run() -> Result<(), pirqa::Error> {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Check { wall, json } => check::check(&wall, json),
+        Command::Draw {
+            wall,
+            output,
+            graph,
+        } => check::draw(&wall, &output, graph),
+    }
+}
+
+/// Writes a file, naming it in the error.
+pub fn write_file(path: &std::path::Path, contents: &str) -> Result<(), pirqa::Error> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|source| pirqa::Error::Io {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+    }
+    std::fs::write(path, contents).map_err(|source| pirqa::Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Prints to stdout; a closed pipe (`pirqa check ... | head`) ends the output quietly.
+pub fn print_out(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+}

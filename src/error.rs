@@ -1,0 +1,253 @@
+//! Typed errors. Every error names what to fix: the file, the line or block, the rule broken.
+//! The library never prints; the binary turns these into messages.
+
+use std::path::PathBuf;
+
+/// Any error pirqa's library returns.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A wall description is malformed or describes an impossible wall.
+    #[error("{}: {source}", path.display())]
+    Wall {
+        /// The wall file (or `<string>`).
+        path: PathBuf,
+        /// What is wrong.
+        #[source]
+        source: WallError,
+    },
+    /// A quantity with units could not be read (command-line values such as `400gal`).
+    #[error(transparent)]
+    Unit(#[from] UnitError),
+    /// A ground-motion file or description is unusable.
+    #[error("{}: {source}", path.display())]
+    Motion {
+        /// The record file (or the option that described the motion).
+        path: PathBuf,
+        /// What is wrong.
+        #[source]
+        source: MotionError,
+    },
+    /// The simulation could not continue.
+    #[error(transparent)]
+    Simulation(#[from] SimulationError),
+}
+
+/// What is wrong with a wall description.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum WallError {
+    /// RON syntax error or a field serde rejects (unknown field, wrong type).
+    #[error("line {line}, column {col}: {message}")]
+    Syntax {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        col: usize,
+        /// RON's message.
+        message: String,
+    },
+    /// The `version` field names a format this pirqa does not read.
+    #[error(
+        "version {found} is not supported: this pirqa reads wall files of version {supported}"
+    )]
+    Version {
+        /// Version in the file.
+        found: u32,
+        /// Version this build reads.
+        supported: u32,
+    },
+    /// A wall-level number is out of range.
+    #[error("{field} = {value}: {rule}")]
+    Field {
+        /// Field name.
+        field: String,
+        /// Offending value.
+        value: f64,
+        /// The rule it breaks.
+        rule: &'static str,
+    },
+    /// Density and unit weight: exactly one must be given.
+    #[error(
+        "give the material as either density_kg_m3 or unit_weight_kn_m3 (exactly one of them)"
+    )]
+    Material,
+    /// The wall has no blocks.
+    #[error("the wall has no blocks: give `rows` or `rectangles`")]
+    Empty,
+    /// A block's number is out of range.
+    #[error("block {block} ({origin}): {field} = {value}: {rule}")]
+    BlockField {
+        /// Block name.
+        block: String,
+        /// Where it is in the file.
+        origin: String,
+        /// Field name.
+        field: &'static str,
+        /// Offending value.
+        value: f64,
+        /// The rule it breaks.
+        rule: &'static str,
+    },
+    /// Two blocks share a name.
+    #[error("block name {name} is used twice: by {first} and by {second}")]
+    DuplicateName {
+        /// The name.
+        name: String,
+        /// Where it is first used.
+        first: String,
+        /// Where it is used again.
+        second: String,
+    },
+    /// Two blocks overlap.
+    #[error("blocks {a} and {b} overlap by {dx_m} m x {dy_m} m: move or resize one of them")]
+    Overlap {
+        /// First block.
+        a: String,
+        /// Second block.
+        b: String,
+        /// Horizontal overlap (m).
+        dx_m: f64,
+        /// Vertical overlap (m).
+        dy_m: f64,
+    },
+    /// A block rests on nothing.
+    #[error(
+        "block {block} ({origin}) has no support: nothing ends at its bottom y = {y_m} m under \
+         x = {x0_m}..{x1_m} m; lower it onto a block top, or mark it `fixed: true`"
+    )]
+    Floating {
+        /// Block.
+        block: String,
+        /// Where it is in the file.
+        origin: String,
+        /// Bottom of the block (m).
+        y_m: f64,
+        /// Left edge (m).
+        x0_m: f64,
+        /// Right edge (m).
+        x1_m: f64,
+    },
+    /// A block's centroid is outside the stretch its supports give it: it would topple at rest.
+    #[error(
+        "block {block} ({origin}) would topple at rest: its centroid x = {centroid_m} m lies \
+         outside its support span {lo_m}..{hi_m} m"
+    )]
+    Topples {
+        /// Block.
+        block: String,
+        /// Where it is in the file.
+        origin: String,
+        /// Centroid (m).
+        centroid_m: f64,
+        /// Left end of the support span (m).
+        lo_m: f64,
+        /// Right end of the support span (m).
+        hi_m: f64,
+    },
+    /// An abutment rests on a block that can move.
+    #[error("fixed block {fixed} rests on movable block {movable}: an abutment must stand on the ground or on another fixed block")]
+    FixedOnMovable {
+        /// The fixed block.
+        fixed: String,
+        /// The block under it.
+        movable: String,
+    },
+    /// A `joint_friction` key is not of the form `"upper/lower"`.
+    #[error("joint_friction key \"{key}\": write it as \"upper/lower\", e.g. \"B3/B1\" or \"B1/ground\"")]
+    JointKeyForm {
+        /// The key.
+        key: String,
+    },
+    /// A `joint_friction` key names a block that does not exist.
+    #[error("joint_friction key \"{key}\": there is no block named {name} (blocks: {known})")]
+    JointKeyUnknownBlock {
+        /// The key.
+        key: String,
+        /// The unknown name.
+        name: String,
+        /// Names that exist.
+        known: String,
+    },
+    /// A `joint_friction` key names two blocks that do not rest on one another.
+    #[error("joint_friction key \"{key}\": {upper} does not rest on {lower} ({upper} rests on {actual})")]
+    JointKeyNotSupport {
+        /// The key.
+        key: String,
+        /// Upper block of the key.
+        upper: String,
+        /// Lower block of the key.
+        lower: String,
+        /// What the upper block does rest on.
+        actual: String,
+    },
+}
+
+/// A quantity with units could not be read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum UnitError {
+    /// Not a number followed by a known unit.
+    #[error("cannot read {what} \"{text}\": write a number and a unit, one of {units}")]
+    Unreadable {
+        /// What was expected (acceleration, length...).
+        what: &'static str,
+        /// The text given.
+        text: String,
+        /// The units accepted.
+        units: &'static str,
+    },
+}
+
+/// What is wrong with a ground motion.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MotionError {
+    /// A value in a record file is not a number.
+    #[error("line {line}: {message}")]
+    Line {
+        /// 1-based line.
+        line: usize,
+        /// What was expected.
+        message: String,
+    },
+    /// The record or motion as a whole is unusable.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// The simulation stopped with an error (a model-validity limit or an internal inconsistency).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimulationError {
+    /// The integrator found events piling up at one instant without progress.
+    #[error("at t = {time_s} s: {count} events at one instant without progress ({detail})")]
+    NoProgress {
+        /// Time (s).
+        time_s: f64,
+        /// Events processed at that instant.
+        count: usize,
+        /// The last event.
+        detail: String,
+    },
+    /// A chain of impacts did not settle.
+    #[error("at t = {time_s} s: the impact chain among {blocks} did not settle after {count} pairwise collisions")]
+    ImpactChain {
+        /// Time (s).
+        time_s: f64,
+        /// Blocks involved.
+        blocks: String,
+        /// Collisions resolved.
+        count: usize,
+    },
+    /// The scenario asks for something the model cannot represent.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// Convenience alias.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

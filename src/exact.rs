@@ -1,0 +1,523 @@
+//! Exact rational numbers: the wall's geometry, masses, loads and friction capacities, and every
+//! mode decision of the event-driven integrator are computed with them.
+//!
+//! Why: a joint exactly at its friction limit (the paper's uniform-friction wall) is a tie that
+//! floating point decides at random; in exact arithmetic it is an equality. Inputs written as
+//! decimals (`0.3`, `1.2`) are read back to the decimal the user wrote ([`Q::from_decimal`]), so
+//! `0.1 + 0.2 == 0.3` holds here.
+//!
+//! `Q` keeps numerator and denominator in `i128` while they fit and moves to big integers when an
+//! operation would overflow, so results are always exact; the representation is canonical
+//! (reduced, positive denominator, small whenever it fits), so `==` and `Hash` are structural.
+
+use num_bigint::{BigInt, Sign};
+use num_integer::Integer;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cmp::Ordering;
+use std::fmt;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// An exact rational number.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub struct Q(Repr);
+
+#[derive(Clone, PartialEq, Eq, Hash)]
+enum Repr {
+    /// Reduced, denominator > 0, numerator != i128::MIN.
+    Small(i128, i128),
+    /// Reduced, denominator > 0, does not fit `Small`.
+    Big(Box<(BigInt, BigInt)>),
+}
+
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+fn gcd_i128(a: i128, b: i128) -> i128 {
+    // Callers never pass i128::MIN, so unsigned_abs fits and the result fits i128.
+    gcd_u128(a.unsigned_abs(), b.unsigned_abs()) as i128
+}
+
+impl Q {
+    /// Zero.
+    pub fn zero() -> Q {
+        Q(Repr::Small(0, 1))
+    }
+
+    /// One.
+    pub fn one() -> Q {
+        Q(Repr::Small(1, 1))
+    }
+
+    /// An integer.
+    pub fn int(n: i64) -> Q {
+        Q(Repr::Small(n as i128, 1))
+    }
+
+    /// The fraction `n / d` (d != 0).
+    pub fn frac(n: i64, d: i64) -> Q {
+        assert!(d != 0, "Q::frac with zero denominator");
+        Q::from_parts(n as i128, d as i128)
+    }
+
+    fn from_parts(n: i128, d: i128) -> Q {
+        if n == i128::MIN || d == i128::MIN {
+            return Q::from_big(BigInt::from(n), BigInt::from(d));
+        }
+        let (mut n, mut d) = if d < 0 { (-n, -d) } else { (n, d) };
+        let g = gcd_i128(n, d);
+        if g > 1 {
+            n /= g;
+            d /= g;
+        }
+        Q(Repr::Small(n, d))
+    }
+
+    fn from_big(n: BigInt, d: BigInt) -> Q {
+        let (n, d) = if d.is_negative() { (-n, -d) } else { (n, d) };
+        let g = n.gcd(&d);
+        let (n, d) = if g.is_one() { (n, d) } else { (n / &g, d / &g) };
+        match (n.to_i128(), d.to_i128()) {
+            (Some(a), Some(b)) if a != i128::MIN => Q(Repr::Small(a, b)),
+            _ => Q(Repr::Big(Box::new((n, d)))),
+        }
+    }
+
+    fn big_parts(&self) -> (BigInt, BigInt) {
+        match &self.0 {
+            Repr::Small(n, d) => (BigInt::from(*n), BigInt::from(*d)),
+            Repr::Big(b) => (b.0.clone(), b.1.clone()),
+        }
+    }
+
+    /// The exact value of a binary floating-point number; `None` for NaN or infinity.
+    pub fn from_f64_exact(x: f64) -> Option<Q> {
+        if !x.is_finite() {
+            return None;
+        }
+        if x == 0.0 {
+            return Some(Q::zero());
+        }
+        let bits = x.to_bits();
+        let negative = bits >> 63 == 1;
+        let exp_bits = ((bits >> 52) & 0x7ff) as i32;
+        let frac = bits & ((1u64 << 52) - 1);
+        let (mut mantissa, mut exp) = if exp_bits == 0 {
+            (frac, -1074)
+        } else {
+            (frac | (1u64 << 52), exp_bits - 1075)
+        };
+        let tz = mantissa.trailing_zeros() as i32;
+        if exp < 0 {
+            let s = tz.min(-exp);
+            mantissa >>= s;
+            exp += s;
+        }
+        let m = if negative {
+            -(mantissa as i128)
+        } else {
+            mantissa as i128
+        };
+        Some(if exp >= 0 {
+            if exp <= 70 {
+                Q(Repr::Small(m << exp, 1))
+            } else {
+                Q::from_big(BigInt::from(m) << exp as usize, BigInt::one())
+            }
+        } else if -exp <= 126 {
+            Q(Repr::Small(m, 1i128 << (-exp)))
+        } else {
+            Q::from_big(BigInt::from(m), BigInt::one() << (-exp) as usize)
+        })
+    }
+
+    /// The decimal a person meant when they wrote `x`: the shortest decimal that reads back as
+    /// `x` (so `0.3` gives 3/10, not the binary value nearest to it). `None` for NaN or infinity.
+    pub fn from_decimal(x: f64) -> Option<Q> {
+        if !x.is_finite() {
+            return None;
+        }
+        Q::parse_decimal(&format!("{x:e}"))
+    }
+
+    /// Parses a decimal such as `-12.5`, `.1181069E-02` or `3e-1` exactly.
+    pub fn parse_decimal(s: &str) -> Option<Q> {
+        let s = s.trim();
+        let (mantissa, exponent) = match s.find(['e', 'E']) {
+            Some(i) => (&s[..i], s[i + 1..].parse::<i32>().ok()?),
+            None => (s, 0),
+        };
+        let (negative, digits) = match mantissa.as_bytes().first()? {
+            b'-' => (true, &mantissa[1..]),
+            b'+' => (false, &mantissa[1..]),
+            _ => (false, mantissa),
+        };
+        let (int_part, frac_part) = match digits.find('.') {
+            Some(i) => (&digits[..i], &digits[i + 1..]),
+            None => (digits, ""),
+        };
+        if int_part.is_empty() && frac_part.is_empty() {
+            return None;
+        }
+        if !int_part
+            .bytes()
+            .chain(frac_part.bytes())
+            .all(|c| c.is_ascii_digit())
+        {
+            return None;
+        }
+        let all: String = format!("{int_part}{frac_part}");
+        let mut n: BigInt = all.parse().ok()?;
+        if negative {
+            n = -n;
+        }
+        let scale = exponent - frac_part.len() as i32;
+        let ten = BigInt::from(10);
+        Some(if scale >= 0 {
+            Q::from_big(n * num_traits::pow(ten, scale as usize), BigInt::one())
+        } else {
+            Q::from_big(n, num_traits::pow(ten, (-scale) as usize))
+        })
+    }
+
+    /// The nearest `f64` (round half to even).
+    pub fn to_f64(&self) -> f64 {
+        const EXACT: i128 = 1 << 53;
+        match &self.0 {
+            Repr::Small(n, d) if n.abs() <= EXACT && *d <= EXACT => *n as f64 / *d as f64,
+            _ => {
+                let (n, d) = self.big_parts();
+                big_ratio_to_f64(&n, &d)
+            }
+        }
+    }
+
+    /// True for zero.
+    pub fn is_zero(&self) -> bool {
+        matches!(self.0, Repr::Small(0, _))
+    }
+
+    /// The sign: -1, 0 or 1.
+    pub fn signum(&self) -> i32 {
+        match &self.0 {
+            Repr::Small(n, _) => n.signum() as i32,
+            Repr::Big(b) => match b.0.sign() {
+                Sign::Minus => -1,
+                Sign::NoSign => 0,
+                Sign::Plus => 1,
+            },
+        }
+    }
+
+    /// True when strictly positive.
+    pub fn is_positive(&self) -> bool {
+        self.signum() > 0
+    }
+
+    /// True when strictly negative.
+    pub fn is_negative(&self) -> bool {
+        self.signum() < 0
+    }
+
+    /// Absolute value.
+    pub fn abs(&self) -> Q {
+        if self.is_negative() {
+            -self
+        } else {
+            self.clone()
+        }
+    }
+
+    /// The smaller of two values.
+    pub fn min(self, other: Q) -> Q {
+        if other < self {
+            other
+        } else {
+            self
+        }
+    }
+
+    /// The larger of two values.
+    pub fn max(self, other: Q) -> Q {
+        if other > self {
+            other
+        } else {
+            self
+        }
+    }
+
+    fn add_impl(&self, o: &Q) -> Q {
+        if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &o.0) {
+            if *b == *d {
+                if let Some(n) = a.checked_add(*c) {
+                    return Q::from_parts(n, *b);
+                }
+            } else {
+                let g = gcd_i128(*b, *d);
+                let (bg, dg) = (b / g, d / g);
+                if let (Some(x), Some(y), Some(den)) =
+                    (a.checked_mul(dg), c.checked_mul(bg), bg.checked_mul(*d))
+                {
+                    if let Some(n) = x.checked_add(y) {
+                        return Q::from_parts(n, den);
+                    }
+                }
+            }
+        }
+        let (a, b) = self.big_parts();
+        let (c, d) = o.big_parts();
+        Q::from_big(a * &d + c * &b, b * d)
+    }
+
+    fn mul_impl(&self, o: &Q) -> Q {
+        if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &o.0) {
+            if *a == 0 || *c == 0 {
+                return Q::zero();
+            }
+            let g1 = gcd_i128(*a, *d);
+            let g2 = gcd_i128(*c, *b);
+            if let (Some(n), Some(den)) =
+                ((a / g1).checked_mul(c / g2), (b / g2).checked_mul(d / g1))
+            {
+                if n != i128::MIN {
+                    return Q(Repr::Small(n, den));
+                }
+            }
+        }
+        let (a, b) = self.big_parts();
+        let (c, d) = o.big_parts();
+        Q::from_big(a * c, b * d)
+    }
+
+    /// The reciprocal (panics on zero, which callers exclude).
+    pub fn recip(&self) -> Q {
+        match &self.0 {
+            Repr::Small(n, d) => {
+                assert!(*n != 0, "reciprocal of zero");
+                Q::from_parts(*d, *n)
+            }
+            Repr::Big(b) => Q::from_big(b.1.clone(), b.0.clone()),
+        }
+    }
+}
+
+fn big_ratio_to_f64(n: &BigInt, d: &BigInt) -> f64 {
+    if n.is_zero() {
+        return 0.0;
+    }
+    let negative = n.is_negative();
+    let n = n.abs();
+    // Scale so the integer quotient carries 54 or 55 bits: 53 for the mantissa, one to round.
+    let mut shift = 54 + d.bits() as i64 - n.bits() as i64;
+    let (num, den) = if shift >= 0 {
+        (n << shift as usize, d.clone())
+    } else {
+        (n, d << (-shift) as usize)
+    };
+    let (mut q, r) = num.div_rem(&den);
+    let mut sticky = !r.is_zero();
+    if q.bits() > 54 {
+        sticky |= q.bit(0);
+        q >>= 1;
+        shift -= 1;
+    }
+    let round = q.bit(0);
+    q >>= 1;
+    let mut m = q.to_u64().unwrap_or(u64::MAX);
+    if round && (sticky || m & 1 == 1) {
+        m += 1;
+    }
+    let value = scale_by_power_of_two(m as f64, 1 - shift);
+    if negative {
+        -value
+    } else {
+        value
+    }
+}
+
+/// x * 2^e in steps that stay exact while the result is a normal number (powi alone under- or
+/// overflows its intermediate for |e| > 1022).
+fn scale_by_power_of_two(mut x: f64, mut e: i64) -> f64 {
+    while e > 1000 {
+        x *= 2f64.powi(1000);
+        e -= 1000;
+    }
+    while e < -1000 {
+        x *= 2f64.powi(-1000);
+        e += 1000;
+    }
+    x * 2f64.powi(e as i32)
+}
+
+impl Ord for Q {
+    fn cmp(&self, o: &Q) -> Ordering {
+        if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &o.0) {
+            if b == d {
+                return a.cmp(c);
+            }
+            if let (Some(x), Some(y)) = (a.checked_mul(*d), c.checked_mul(*b)) {
+                return x.cmp(&y);
+            }
+        }
+        let (a, b) = self.big_parts();
+        let (c, d) = o.big_parts();
+        (a * d).cmp(&(c * b))
+    }
+}
+
+impl PartialOrd for Q {
+    fn partial_cmp(&self, o: &Q) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+macro_rules! binop {
+    ($tr:ident, $method:ident, $body:expr) => {
+        impl $tr<&Q> for &Q {
+            type Output = Q;
+            fn $method(self, o: &Q) -> Q {
+                let f: fn(&Q, &Q) -> Q = $body;
+                f(self, o)
+            }
+        }
+        impl $tr<Q> for Q {
+            type Output = Q;
+            fn $method(self, o: Q) -> Q {
+                (&self).$method(&o)
+            }
+        }
+        impl $tr<&Q> for Q {
+            type Output = Q;
+            fn $method(self, o: &Q) -> Q {
+                (&self).$method(o)
+            }
+        }
+        impl $tr<Q> for &Q {
+            type Output = Q;
+            fn $method(self, o: Q) -> Q {
+                self.$method(&o)
+            }
+        }
+    };
+}
+
+binop!(Add, add, |a, b| a.add_impl(b));
+binop!(Sub, sub, |a, b| a.add_impl(&-b));
+binop!(Mul, mul, |a, b| a.mul_impl(b));
+binop!(Div, div, |a, b| a.mul_impl(&b.recip()));
+
+impl Neg for &Q {
+    type Output = Q;
+    fn neg(self) -> Q {
+        match &self.0 {
+            Repr::Small(n, d) => Q(Repr::Small(-n, *d)),
+            Repr::Big(b) => Q::from_big(-b.0.clone(), b.1.clone()),
+        }
+    }
+}
+
+impl Neg for Q {
+    type Output = Q;
+    fn neg(self) -> Q {
+        -&self
+    }
+}
+
+impl std::iter::Sum for Q {
+    fn sum<I: Iterator<Item = Q>>(iter: I) -> Q {
+        iter.fold(Q::zero(), |a, b| a + b)
+    }
+}
+
+impl fmt::Debug for Q {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.0 {
+            Repr::Small(n, 1) => write!(f, "{n}"),
+            Repr::Small(n, d) => write!(f, "{n}/{d}"),
+            Repr::Big(b) => write!(f, "{}/{}", b.0, b.1),
+        }
+    }
+}
+
+impl fmt::Display for Q {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.to_f64())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimals_are_read_as_written() {
+        let a = Q::from_decimal(0.1).unwrap() + Q::from_decimal(0.2).unwrap();
+        assert_eq!(a, Q::from_decimal(0.3).unwrap());
+        assert_eq!(
+            Q::parse_decimal(".1181069E-02").unwrap(),
+            Q::frac(1181069, 1_000_000_000)
+        );
+        assert_eq!(Q::parse_decimal("-12.5").unwrap(), Q::frac(-25, 2));
+        assert!(Q::parse_decimal("1.2.3").is_none());
+        assert!(Q::parse_decimal("").is_none());
+        assert!(Q::from_decimal(f64::NAN).is_none());
+    }
+
+    #[test]
+    fn binary_values_round_trip_exactly() {
+        for x in [0.1, -2.5e-300, 1e300, 3.0, f64::MIN_POSITIVE, 0.0] {
+            assert_eq!(Q::from_f64_exact(x).unwrap().to_f64(), x);
+        }
+    }
+
+    #[test]
+    fn conversion_to_f64_is_correctly_rounded() {
+        // 1/3 and 2/3 and large ratios that force the big-integer path.
+        assert_eq!(Q::frac(1, 3).to_f64(), 1.0 / 3.0);
+        let big = Q::from_f64_exact(1e200).unwrap() / Q::from_f64_exact(3e-150).unwrap();
+        assert_eq!(big.to_f64(), 1e200 / 3e-150);
+        let third = Q::from_big(
+            BigInt::from(10).pow(40),
+            BigInt::from(3) * BigInt::from(10).pow(40),
+        );
+        assert_eq!(third.to_f64(), 1.0 / 3.0);
+    }
+
+    #[test]
+    fn overflow_moves_to_big_integers_and_back() {
+        let big = Q::from_parts(i128::MAX / 3, 7);
+        let sq = &big * &big;
+        let back = &sq / &big;
+        assert_eq!(back, big);
+        assert!(matches!(back.0, Repr::Small(..)));
+        assert!(sq > big);
+        assert_eq!((&sq - &sq), Q::zero());
+    }
+
+    #[test]
+    fn ordering_and_arithmetic() {
+        let a = Q::frac(3, 10);
+        let b = Q::frac(981, 100);
+        assert_eq!(&a * &b, Q::frac(2943, 1000));
+        assert!(Q::frac(-1, 2) < Q::zero());
+        assert_eq!(Q::frac(6, -4), Q::frac(-3, 2));
+        assert_eq!(Q::frac(1, 2).min(Q::frac(1, 3)), Q::frac(1, 3));
+    }
+}

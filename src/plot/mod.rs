@@ -1,0 +1,7 @@
+//! Pictures: wall elevations (initial, displaced, collapsed) written as plain SVG, and charts.
+
+mod svg;
+mod wall_drawing;
+
+pub use svg::{Style, Svg};
+pub use wall_drawing::{draw_wall, WallDrawing};

@@ -1,0 +1,199 @@
+//! Elevation drawings of a wall: block names, joint friction, the support graph, and a
+//! displaced or collapsed state from a run.
+
+use super::svg::{Style, Svg};
+use crate::topology::{Base, Topology};
+use crate::wall::Wall;
+
+/// What to draw on top of the blocks.
+#[derive(Debug, Clone, Default)]
+pub struct WallDrawing {
+    /// Title line.
+    pub title: String,
+    /// Horizontal displacement of each block relative to the ground (m); `None` draws the wall
+    /// as built.
+    pub displacement_m: Option<Vec<f64>>,
+    /// Blocks that fell (drawn hatched red at their last position).
+    pub fallen: Vec<bool>,
+    /// Label each horizontal joint with its friction coefficient.
+    pub friction_labels: bool,
+    /// Draw the support graph: a line from each block's centroid to each of its supports.
+    pub support_graph: bool,
+    /// A note under the drawing (what it shows, which command made it).
+    pub note: Option<String>,
+}
+
+const MARGIN_PX: f64 = 40.0;
+const MAX_W_PX: f64 = 960.0;
+const MAX_H_PX: f64 = 560.0;
+
+/// Draws the wall as an SVG document.
+pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
+    let du = |i: usize| d.displacement_m.as_ref().map_or(0.0, |u| u[i]);
+    let fallen = |i: usize| d.fallen.get(i).copied().unwrap_or(false);
+    let (mut x0, mut x1, mut top) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+    for (i, b) in wall.blocks.iter().enumerate() {
+        for x in [b.x.to_f64(), b.right().to_f64()] {
+            x0 = x0.min(x).min(x + du(i));
+            x1 = x1.max(x).max(x + du(i));
+        }
+        top = top.max(b.top().to_f64());
+    }
+    let span = (x1 - x0).max(1e-9);
+    let scale = (MAX_W_PX / span).min(MAX_H_PX / top.max(1e-9));
+    let header = if d.title.is_empty() { 0.0 } else { 28.0 };
+    let footer = if d.note.is_some() { 26.0 } else { 0.0 };
+    let width = span * scale + 2.0 * MARGIN_PX;
+    let height = top * scale + 2.0 * MARGIN_PX + header + footer;
+    let px = |x: f64| MARGIN_PX + (x - x0) * scale;
+    let py = |y: f64| MARGIN_PX + header + (top - y) * scale;
+    let mut svg = Svg::new(width, height);
+    if !d.title.is_empty() {
+        svg.text(MARGIN_PX, 26.0, 16.0, "start", "#222", &d.title);
+    }
+    let ground_y = py(0.0);
+    let ground = Style {
+        fill: "none",
+        stroke: "#553",
+        width: 3.0,
+        dash: "",
+    };
+    svg.line(
+        (px(x0) - 20.0, ground_y),
+        (px(x1) + 20.0, ground_y),
+        &ground,
+    );
+    let name_size = (scale * 0.12).clamp(9.0, 18.0);
+    for (i, b) in wall.blocks.iter().enumerate() {
+        let (bx, by, bw, bh) = (
+            b.x.to_f64() + du(i),
+            b.y.to_f64(),
+            b.width.to_f64(),
+            b.height.to_f64(),
+        );
+        let style = if fallen(i) {
+            Style {
+                fill: "#f4c7c3",
+                stroke: "#b3261e",
+                width: 2.0,
+                dash: "6 3",
+            }
+        } else if b.fixed {
+            Style {
+                fill: "#b8b8b8",
+                stroke: "#333",
+                width: 1.5,
+                dash: "",
+            }
+        } else {
+            Style {
+                fill: "#e9dcc3",
+                stroke: "#5b4a2f",
+                width: 1.5,
+                dash: "",
+            }
+        };
+        svg.rect(px(bx), py(by + bh), bw * scale, bh * scale, &style);
+        let mut label = b.name.clone();
+        if fallen(i) {
+            label.push_str(" (fell)");
+        } else if b.fixed {
+            label.push_str(" (fixed)");
+        }
+        svg.text(
+            px(bx + bw / 2.0),
+            py(by + bh / 2.0) + name_size * 0.35,
+            name_size,
+            "middle",
+            "#222",
+            &label,
+        );
+    }
+    if d.support_graph {
+        for s in &topo.supports {
+            let u = s.upper.0;
+            let b = &wall.blocks[u];
+            let (cx, cy) = (
+                b.centroid_x().to_f64() + du(u),
+                (b.y.to_f64() + b.top().to_f64()) / 2.0,
+            );
+            let (lx, ly) = match s.lower {
+                Base::Ground => (cx, 0.0),
+                Base::Block(l) => {
+                    let lb = &wall.blocks[l.0];
+                    (
+                        lb.centroid_x().to_f64() + du(l.0),
+                        (lb.y.to_f64() + lb.top().to_f64()) / 2.0,
+                    )
+                }
+            };
+            let edge = Style {
+                fill: "none",
+                stroke: "#1f5fa8",
+                width: 1.5,
+                dash: "",
+            };
+            svg.line((px(cx), py(cy)), (px(lx), py(ly)), &edge);
+            svg.circle(px(cx), py(cy), 3.0, "#1f5fa8");
+        }
+        for j in &topo.joints {
+            let (l, r) = (&wall.blocks[j.left.0], &wall.blocks[j.right.0]);
+            let y = (l.y.clone().max(r.y.clone()).to_f64() + l.top().min(r.top()).to_f64()) / 2.0;
+            let (xa, xb) = (
+                l.right().to_f64() + du(j.left.0),
+                r.x.to_f64() + du(j.right.0),
+            );
+            let joint = Style {
+                fill: "none",
+                stroke: "#c2571a",
+                width: 2.5,
+                dash: "",
+            };
+            svg.line((px(xa) - 6.0, py(y)), (px(xb) + 6.0, py(y)), &joint);
+        }
+    }
+    if d.friction_labels {
+        let size = (name_size * 0.75).max(8.0);
+        for s in &topo.supports {
+            let u = s.upper.0;
+            let b = &wall.blocks[u];
+            let (lo, hi) = match s.lower {
+                Base::Ground => (b.x.to_f64(), b.right().to_f64()),
+                Base::Block(l) => {
+                    let lb = &wall.blocks[l.0];
+                    (
+                        b.x.to_f64().max(lb.x.to_f64()),
+                        b.right().to_f64().min(lb.right().to_f64()),
+                    )
+                }
+            };
+            let x = (lo + hi) / 2.0 + du(u);
+            svg.text(
+                px(x),
+                py(b.y.to_f64()) - 4.0,
+                size,
+                "middle",
+                "#1f5fa8",
+                &format!("\u{3bc} {}", s.friction),
+            );
+        }
+        for j in &topo.joints {
+            if j.gap_m.is_positive() {
+                let l = &wall.blocks[j.left.0];
+                let y = l.y.to_f64() + l.height.to_f64() * 0.8;
+                svg.text(
+                    px(l.right().to_f64() + du(j.left.0)) + 2.0,
+                    py(y),
+                    size,
+                    "start",
+                    "#c2571a",
+                    &format!("gap {} m", j.gap_m),
+                );
+            }
+        }
+    }
+    if let Some(note) = &d.note {
+        svg.text(MARGIN_PX, height - 12.0, 12.0, "start", "#555", note);
+    }
+    svg.finish()
+}

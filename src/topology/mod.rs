@@ -1,0 +1,533 @@
+//! The wall's graph: support edges (who rests on whom, with which overlap, load and friction
+//! capacity) and vertical-joint edges (who can hit whom, across which gap). Loads follow the
+//! tributary rule of the paper's eq. (3); everything here is exact.
+
+use crate::error::WallError;
+use crate::exact::Q;
+use crate::wall::Wall;
+use std::collections::BTreeMap;
+
+/// Index of a block in [`Wall::blocks`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+pub struct BlockId(pub usize);
+
+/// Index of a support edge in [`Topology::supports`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct SupportId(pub usize);
+
+/// Index of a vertical joint in [`Topology::joints`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct JointId(pub usize);
+
+/// What a block rests on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Base {
+    /// The foundation.
+    Ground,
+    /// Another block (possibly a fixed abutment).
+    Block(BlockId),
+}
+
+/// A horizontal joint: `upper` rests on `lower` along `overlap_m`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Support {
+    /// The block on top.
+    pub upper: BlockId,
+    /// What it rests on.
+    pub lower: Base,
+    /// Length of the contact (m).
+    pub overlap_m: Q,
+    /// Normal load carried (N): the upper block's load P times its share of the contact length.
+    pub load_n: Q,
+    /// Friction coefficient.
+    pub friction: Q,
+    /// Friction capacity F = friction * load (N).
+    pub capacity_n: Q,
+}
+
+/// A vertical joint: `left`'s right face looks at `right`'s left face across `gap_m`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VerticalJoint {
+    /// Block on the left.
+    pub left: BlockId,
+    /// Block on the right.
+    pub right: BlockId,
+    /// Open gap (m, 0 = touching).
+    pub gap_m: Q,
+    /// Height the two faces share (m).
+    pub height_m: Q,
+}
+
+/// Per-block data derived from the wall.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockData {
+    /// Mass (kg).
+    pub mass_kg: Q,
+    /// Own weight (N).
+    pub weight_n: Q,
+    /// Total load P passed to its supports: own weight plus what rests on it (N).
+    pub load_n: Q,
+}
+
+/// The support and vertical-joint graph of a wall.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Topology {
+    /// Per block, in wall order.
+    pub blocks: Vec<BlockData>,
+    /// Horizontal joints, ordered by upper block then by position.
+    pub supports: Vec<Support>,
+    /// Vertical joints, ordered by left block then by position.
+    pub joints: Vec<VerticalJoint>,
+    /// Per block: the supports it rests on.
+    pub below: Vec<Vec<SupportId>>,
+    /// Per block: the supports resting on it.
+    pub above: Vec<Vec<SupportId>>,
+    /// Per block: vertical joints on its left and right faces.
+    pub sides: Vec<Vec<JointId>>,
+}
+
+impl Topology {
+    /// Builds the graph and checks what needs it: every movable block rests on something, no
+    /// block would topple at rest, abutments stand on fixed ground, and every friction override
+    /// names a real support edge.
+    pub fn new(wall: &Wall) -> Result<Topology, WallError> {
+        let n = wall.blocks.len();
+        let mut by_top: BTreeMap<&Q, Vec<usize>> = BTreeMap::new();
+        let tops: Vec<Q> = wall.blocks.iter().map(|b| b.top()).collect();
+        for (i, t) in tops.iter().enumerate() {
+            by_top.entry(t).or_default().push(i);
+        }
+
+        let mut supports = Vec::new();
+        let mut below = vec![Vec::new(); n];
+        let mut above = vec![Vec::new(); n];
+        for (i, b) in wall.blocks.iter().enumerate() {
+            let mut found: Vec<(Base, Q)> = Vec::new();
+            if b.y.is_zero() {
+                found.push((Base::Ground, b.width.clone()));
+            } else if let Some(cands) = by_top.get(&b.y) {
+                let mut cands = cands.clone();
+                cands.sort_by(|&p, &q| wall.blocks[p].x.cmp(&wall.blocks[q].x));
+                for j in cands {
+                    let l = &wall.blocks[j];
+                    let overlap = l.right().min(b.right()) - l.x.clone().max(b.x.clone());
+                    if overlap.is_positive() {
+                        if b.fixed && !l.fixed {
+                            return Err(WallError::FixedOnMovable {
+                                fixed: b.name.clone(),
+                                movable: l.name.clone(),
+                            });
+                        }
+                        found.push((Base::Block(BlockId(j)), overlap));
+                    }
+                }
+            }
+            if b.fixed {
+                continue;
+            }
+            if found.is_empty() {
+                return Err(WallError::Floating {
+                    block: b.name.clone(),
+                    origin: b.origin.clone(),
+                    y_m: b.y.to_f64(),
+                    x0_m: b.x.to_f64(),
+                    x1_m: b.right().to_f64(),
+                });
+            }
+            for (lower, overlap_m) in found {
+                let id = SupportId(supports.len());
+                below[i].push(id);
+                if let Base::Block(j) = lower {
+                    above[j.0].push(id);
+                }
+                supports.push(Support {
+                    upper: BlockId(i),
+                    lower,
+                    overlap_m,
+                    load_n: Q::zero(),
+                    friction: wall.friction.clone(),
+                    capacity_n: Q::zero(),
+                });
+            }
+        }
+
+        let mut blocks: Vec<BlockData> = (0..n)
+            .map(|i| {
+                let mass_kg = wall.mass_kg(i);
+                let weight_n = &mass_kg * &wall.g_m_s2;
+                BlockData {
+                    mass_kg,
+                    load_n: weight_n.clone(),
+                    weight_n,
+                }
+            })
+            .collect();
+        // Tributary rule: top down, each block passes its load P to its supports in proportion
+        // to contact length (eq. 3).
+        let mut order: Vec<usize> = (0..n).filter(|&i| !wall.blocks[i].fixed).collect();
+        order.sort_by(|&a, &b| wall.blocks[b].y.cmp(&wall.blocks[a].y));
+        for &i in &order {
+            let p = blocks[i].weight_n.clone()
+                + above[i]
+                    .iter()
+                    .map(|s| supports[s.0].load_n.clone())
+                    .sum::<Q>();
+            blocks[i].load_n = p.clone();
+            let total: Q = below[i]
+                .iter()
+                .map(|s| supports[s.0].overlap_m.clone())
+                .sum();
+            for s in &below[i] {
+                supports[s.0].load_n = &p * &supports[s.0].overlap_m / &total;
+            }
+        }
+
+        for o in &wall.joint_friction {
+            let (upper, lower) = resolve_key(wall, &supports, &below, &o.key)?;
+            let s = below[upper]
+                .iter()
+                .find(|s| supports[s.0].lower == lower)
+                .expect("resolve_key checks the edge exists");
+            supports[s.0].friction = o.value.clone();
+        }
+        for s in &mut supports {
+            s.capacity_n = &s.friction * &s.load_n;
+        }
+
+        for (i, b) in wall.blocks.iter().enumerate() {
+            if b.fixed || below[i].iter().any(|s| supports[s.0].lower == Base::Ground) {
+                continue;
+            }
+            let (lo, hi) = contact_hull(wall, &supports, &below[i], &Q::zero(), |_| Q::zero())
+                .expect("a movable block has supports");
+            let c = b.centroid_x();
+            if c < lo || c > hi {
+                return Err(WallError::Topples {
+                    block: b.name.clone(),
+                    origin: b.origin.clone(),
+                    centroid_m: c.to_f64(),
+                    lo_m: lo.to_f64(),
+                    hi_m: hi.to_f64(),
+                });
+            }
+        }
+
+        let joints = vertical_joints(wall);
+        let mut sides = vec![Vec::new(); n];
+        for (k, j) in joints.iter().enumerate() {
+            sides[j.left.0].push(JointId(k));
+            sides[j.right.0].push(JointId(k));
+        }
+        Ok(Topology {
+            blocks,
+            supports,
+            joints,
+            below,
+            above,
+            sides,
+        })
+    }
+
+    /// Name of a base: the block's name or `ground`.
+    pub fn base_name<'a>(&self, wall: &'a Wall, base: Base) -> &'a str {
+        match base {
+            Base::Ground => "ground",
+            Base::Block(b) => &wall.blocks[b.0].name,
+        }
+    }
+
+    /// True when the base cannot move relative to the ground (the ground or a fixed block).
+    pub fn is_grounded(&self, wall: &Wall, base: Base) -> bool {
+        match base {
+            Base::Ground => true,
+            Base::Block(b) => wall.blocks[b.0].fixed,
+        }
+    }
+}
+
+/// The support span of a block whose supports are displaced: from the leftmost to the rightmost
+/// point where its bottom face touches a support's top face. `du` is the block's own horizontal
+/// displacement and `du_of` gives each support's. `None` when no support touches any more.
+pub fn contact_hull(
+    wall: &Wall,
+    supports: &[Support],
+    below: &[SupportId],
+    du: &Q,
+    du_of: impl Fn(BlockId) -> Q,
+) -> Option<(Q, Q)> {
+    let mut hull: Option<(Q, Q)> = None;
+    for s in below {
+        let sup = &supports[s.0];
+        let b = &wall.blocks[sup.upper.0];
+        let (x0, x1) = (&b.x + du, b.right() + du);
+        let (l0, l1) = match sup.lower {
+            Base::Ground => return Some((x0, x1)),
+            Base::Block(j) => {
+                let l = &wall.blocks[j.0];
+                let d = du_of(j);
+                (&l.x + &d, l.right() + &d)
+            }
+        };
+        let lo = x0.clone().max(l0);
+        let hi = x1.clone().min(l1);
+        if hi > lo {
+            hull = Some(match hull {
+                None => (lo, hi),
+                Some((a, b)) => (a.min(lo), b.max(hi)),
+            });
+        }
+    }
+    hull
+}
+
+fn resolve_key(
+    wall: &Wall,
+    supports: &[Support],
+    below: &[Vec<SupportId>],
+    key: &str,
+) -> Result<(usize, Base), WallError> {
+    let parts: Vec<&str> = key.split('/').map(str::trim).collect();
+    let [upper_name, lower_name] = parts[..] else {
+        return Err(WallError::JointKeyForm { key: key.into() });
+    };
+    let known = || {
+        let names: Vec<&str> = wall.blocks.iter().map(|b| b.name.as_str()).collect();
+        if names.len() > 12 {
+            format!("{}, ... {}", names[..10].join(", "), names[names.len() - 1])
+        } else {
+            names.join(", ")
+        }
+    };
+    let upper = wall
+        .block_index(upper_name)
+        .ok_or_else(|| WallError::JointKeyUnknownBlock {
+            key: key.into(),
+            name: upper_name.into(),
+            known: known(),
+        })?;
+    let lower = if lower_name == "ground" {
+        Base::Ground
+    } else {
+        Base::Block(BlockId(wall.block_index(lower_name).ok_or_else(|| {
+            WallError::JointKeyUnknownBlock {
+                key: key.into(),
+                name: lower_name.into(),
+                known: known(),
+            }
+        })?))
+    };
+    if below[upper].iter().any(|s| supports[s.0].lower == lower) {
+        return Ok((upper, lower));
+    }
+    let actual: Vec<String> = below[upper]
+        .iter()
+        .map(|s| match supports[s.0].lower {
+            Base::Ground => "ground".to_string(),
+            Base::Block(b) => wall.blocks[b.0].name.clone(),
+        })
+        .collect();
+    Err(WallError::JointKeyNotSupport {
+        key: key.into(),
+        upper: upper_name.into(),
+        lower: lower_name.into(),
+        actual: if actual.is_empty() {
+            "nothing: it is fixed".into()
+        } else {
+            actual.join(" and ")
+        },
+    })
+}
+
+/// Pairs of blocks that face each other: `i` can hit `j` if a horizontal line through both meets
+/// no other block between them. Found by walking right from each block in order of left edges and
+/// removing from its height band whatever each block met covers.
+fn vertical_joints(wall: &Wall) -> Vec<VerticalJoint> {
+    let blocks = &wall.blocks;
+    let mut order: Vec<usize> = (0..blocks.len()).collect();
+    order.sort_by(|&a, &b| {
+        blocks[a]
+            .x
+            .cmp(&blocks[b].x)
+            .then(blocks[a].y.cmp(&blocks[b].y))
+    });
+    let lefts: Vec<&Q> = order.iter().map(|&k| &blocks[k].x).collect();
+    let mut joints = Vec::new();
+    for (i, b) in blocks.iter().enumerate() {
+        let right = b.right();
+        let start = lefts.partition_point(|x| **x < right);
+        let mut band: Vec<(Q, Q)> = vec![(b.y.clone(), b.top())];
+        for &j in &order[start..] {
+            if band.is_empty() {
+                break;
+            }
+            let o = &blocks[j];
+            let (o0, o1) = (o.y.clone(), o.top());
+            if !band.iter().any(|(a, c)| o1 > *a && o0 < *c) {
+                continue;
+            }
+            if !(b.fixed && o.fixed) {
+                joints.push(VerticalJoint {
+                    left: BlockId(i),
+                    right: BlockId(j),
+                    gap_m: &o.x - &right,
+                    height_m: b.top().min(o.top()) - b.y.clone().max(o.y.clone()),
+                });
+            }
+            band = band
+                .into_iter()
+                .flat_map(|(a, c)| {
+                    let mut pieces = Vec::with_capacity(2);
+                    if o0 > a {
+                        pieces.push((a.clone(), o0.clone().min(c.clone())));
+                    }
+                    if o1 < c {
+                        pieces.push((o1.clone().max(a), c));
+                    }
+                    pieces.into_iter().filter(|(p, q)| q > p)
+                })
+                .collect();
+        }
+    }
+    joints.sort_by(|p, q| {
+        p.left
+            .cmp(&q.left)
+            .then(blocks[p.right.0].y.cmp(&blocks[q.right.0].y))
+    });
+    joints
+}
+
+/// Reads a wall file and builds its graph; errors name the file.
+pub fn load(path: &std::path::Path) -> Result<(Wall, Topology), crate::Error> {
+    let wall = Wall::load(path)?;
+    let topo = Topology::new(&wall).map_err(|source| crate::Error::Wall {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok((wall, topo))
+}
+
+/// The topology as plain numbers, for `pirqa check --json` and for people.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct TopologyReport {
+    /// Wall name.
+    pub name: String,
+    /// Gravity (m/s2).
+    pub g_m_s2: f64,
+    /// Thickness (m).
+    pub thickness_m: f64,
+    /// Density (kg/m3).
+    pub density_kg_m3: f64,
+    /// Restitution of vertical joints.
+    pub restitution: f64,
+    /// Blocks.
+    pub blocks: Vec<BlockReport>,
+    /// Horizontal joints.
+    pub supports: Vec<SupportReport>,
+    /// Vertical joints.
+    pub joints: Vec<JointReport>,
+}
+
+/// One block in a [`TopologyReport`].
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct BlockReport {
+    /// Name.
+    pub name: String,
+    /// Mass (kg).
+    pub mass_kg: f64,
+    /// Left edge (m).
+    pub x_m: f64,
+    /// Bottom edge (m).
+    pub y_m: f64,
+    /// Width (m).
+    pub width_m: f64,
+    /// Height (m).
+    pub height_m: f64,
+    /// Abutment moving with the ground.
+    pub fixed: bool,
+    /// Own weight (N).
+    pub weight_n: f64,
+    /// Load passed to its supports (N).
+    pub load_n: f64,
+}
+
+/// One support edge in a [`TopologyReport`].
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct SupportReport {
+    /// Upper block.
+    pub upper: String,
+    /// Lower block or `ground`.
+    pub lower: String,
+    /// Contact length (m).
+    pub overlap_m: f64,
+    /// Normal load (N).
+    pub load_n: f64,
+    /// Friction coefficient.
+    pub friction: f64,
+    /// Friction capacity (N).
+    pub capacity_n: f64,
+}
+
+/// One vertical joint in a [`TopologyReport`].
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct JointReport {
+    /// Left block.
+    pub left: String,
+    /// Right block.
+    pub right: String,
+    /// Gap (m).
+    pub gap_m: f64,
+    /// Shared height (m).
+    pub height_m: f64,
+}
+
+impl Topology {
+    /// Plain-number report of the graph.
+    pub fn report(&self, wall: &Wall) -> TopologyReport {
+        let name = |b: BlockId| wall.blocks[b.0].name.clone();
+        TopologyReport {
+            name: wall.name.clone(),
+            g_m_s2: wall.g_m_s2.to_f64(),
+            thickness_m: wall.thickness_m.to_f64(),
+            density_kg_m3: wall.density_kg_m3.to_f64(),
+            restitution: wall.restitution.to_f64(),
+            blocks: wall
+                .blocks
+                .iter()
+                .zip(&self.blocks)
+                .map(|(b, d)| BlockReport {
+                    name: b.name.clone(),
+                    mass_kg: d.mass_kg.to_f64(),
+                    x_m: b.x.to_f64(),
+                    y_m: b.y.to_f64(),
+                    width_m: b.width.to_f64(),
+                    height_m: b.height.to_f64(),
+                    fixed: b.fixed,
+                    weight_n: d.weight_n.to_f64(),
+                    load_n: if b.fixed { 0.0 } else { d.load_n.to_f64() },
+                })
+                .collect(),
+            supports: self
+                .supports
+                .iter()
+                .map(|s| SupportReport {
+                    upper: name(s.upper),
+                    lower: self.base_name(wall, s.lower).to_string(),
+                    overlap_m: s.overlap_m.to_f64(),
+                    load_n: s.load_n.to_f64(),
+                    friction: s.friction.to_f64(),
+                    capacity_n: s.capacity_n.to_f64(),
+                })
+                .collect(),
+            joints: self
+                .joints
+                .iter()
+                .map(|j| JointReport {
+                    left: name(j.left),
+                    right: name(j.right),
+                    gap_m: j.gap_m.to_f64(),
+                    height_m: j.height_m.to_f64(),
+                })
+                .collect(),
+        }
+    }
+}

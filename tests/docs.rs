@@ -1,0 +1,43 @@
+//! Examples in the documentation are tests: every ```ron block in docs/ must parse and check.
+
+use pirqa::{Topology, Wall};
+
+#[test]
+fn ron_examples_in_docs_are_valid_walls() {
+    let mut found = 0;
+    for entry in std::fs::read_dir("docs").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "md") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        for block in text.split("```ron").skip(1) {
+            let body = block.split("```").next().unwrap();
+            let wall =
+                Wall::from_ron_str(body).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            Topology::new(&wall).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            found += 1;
+        }
+    }
+    assert!(found >= 1, "no ```ron examples found in docs/");
+}
+
+#[test]
+fn every_shipped_wall_checks() {
+    let mut n = 0;
+    let mut stack = vec![std::path::PathBuf::from("walls")];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "ron")
+                && !path.to_string_lossy().contains("studies")
+            {
+                pirqa::topology::load(&path).unwrap_or_else(|e| panic!("{e}"));
+                n += 1;
+            }
+        }
+    }
+    assert!(n >= 3);
+}
