@@ -50,9 +50,34 @@ fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
     }
 }
 
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
 fn gcd_i128(a: i128, b: i128) -> i128 {
     // Callers never pass i128::MIN, so unsigned_abs fits and the result fits i128.
-    gcd_u128(a.unsigned_abs(), b.unsigned_abs()) as i128
+    let (a, b) = (a.unsigned_abs(), b.unsigned_abs());
+    match (u64::try_from(a), u64::try_from(b)) {
+        (Ok(a), Ok(b)) => gcd_u64(a, b) as i128,
+        _ => gcd_u128(a, b) as i128,
+    }
 }
 
 impl Q {
@@ -81,13 +106,16 @@ impl Q {
         if n == i128::MIN || d == i128::MIN {
             return Q::from_big(BigInt::from(n), BigInt::from(d));
         }
-        let (mut n, mut d) = if d < 0 { (-n, -d) } else { (n, d) };
+        let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
         let g = gcd_i128(n, d);
-        if g > 1 {
-            n /= g;
-            d /= g;
+        if g <= 1 {
+            return Q(Repr::Small(n, d));
         }
-        Q(Repr::Small(n, d))
+        // Division is much cheaper in 64 bits.
+        match (i64::try_from(n), i64::try_from(d), i64::try_from(g)) {
+            (Ok(n), Ok(d), Ok(g)) => Q(Repr::Small((n / g) as i128, (d / g) as i128)),
+            _ => Q(Repr::Small(n / g, d / g)),
+        }
     }
 
     fn from_big(n: BigInt, d: BigInt) -> Q {

@@ -9,7 +9,11 @@
 
 pub mod error;
 pub mod exact;
+pub mod integrate;
+pub mod motion;
 pub mod plot;
+pub mod response;
+pub mod samples;
 pub mod topology;
 pub mod units;
 pub mod wall;

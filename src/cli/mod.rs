@@ -2,6 +2,7 @@
 //! CSV and SVG files. Errors come back to `main` as typed library errors.
 
 mod check;
+mod run;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -36,6 +37,8 @@ enum Command {
         #[arg(long)]
         graph: bool,
     },
+    /// Simulate a wall under a ground motion with the exact event-driven integrator.
+    Run(run::RunArgs),
 }
 
 /// Runs the command line; returns the process exit code.
@@ -48,6 +51,7 @@ pub fn run() -> Result<(), pirqa::Error> {
             output,
             graph,
         } => check::draw(&wall, &output, graph),
+        Command::Run(args) => run::run(&args),
     }
 }
 

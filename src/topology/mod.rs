@@ -228,6 +228,36 @@ impl Topology {
         })
     }
 
+    /// Support loads (N) once the `removed` blocks are gone: the tributary rule applied to what
+    /// is left. Supports touching a removed block carry nothing.
+    pub fn loads_without(&self, wall: &Wall, removed: &[bool]) -> Vec<Q> {
+        let n = wall.blocks.len();
+        let gone =
+            |s: &Support| removed[s.upper.0] || matches!(s.lower, Base::Block(b) if removed[b.0]);
+        let mut loads = vec![Q::zero(); self.supports.len()];
+        let mut order: Vec<usize> = (0..n)
+            .filter(|&i| !wall.blocks[i].fixed && !removed[i])
+            .collect();
+        order.sort_by(|&a, &b| wall.blocks[b].y.cmp(&wall.blocks[a].y));
+        for &i in &order {
+            let p = self.blocks[i].weight_n.clone()
+                + self.above[i].iter().map(|s| loads[s.0].clone()).sum::<Q>();
+            let live: Vec<SupportId> = self.below[i]
+                .iter()
+                .copied()
+                .filter(|s| !gone(&self.supports[s.0]))
+                .collect();
+            let total: Q = live
+                .iter()
+                .map(|s| self.supports[s.0].overlap_m.clone())
+                .sum();
+            for s in live {
+                loads[s.0] = &p * &self.supports[s.0].overlap_m / &total;
+            }
+        }
+        loads
+    }
+
     /// Name of a base: the block's name or `ground`.
     pub fn base_name<'a>(&self, wall: &'a Wall, base: Base) -> &'a str {
         match base {

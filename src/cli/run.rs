@@ -1,0 +1,226 @@
+//! `pirqa run`: one simulation, written as summary.json, history.csv and events.jsonl.
+
+use super::{print_out, write_file};
+use pirqa::integrate::event::EventDriven;
+use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
+use pirqa::motion::{read_plain, Motion, PlainOptions, Sine};
+use pirqa::response::Response;
+use pirqa::topology;
+use pirqa::units::{parse_acceleration, AccelUnit};
+use pirqa::Error;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+/// Ground motion options shared by the commands that run simulations.
+#[derive(clap::Args, Debug, Clone)]
+pub struct MotionArgs {
+    /// Sine amplitude with units: 400gal, 0.41g, 4.0m/s2.
+    #[arg(long, value_name = "AMP", conflicts_with = "record", requires = "freq")]
+    pub sine: Option<String>,
+    /// Sine frequency (Hz).
+    #[arg(long, value_name = "HZ")]
+    pub freq: Option<f64>,
+    /// Sine phase at t = 0 (degrees).
+    #[arg(long, value_name = "DEG", default_value_t = 0.0)]
+    pub phase: f64,
+    /// Acceleration record: plain text or CSV, one column (with --dt) or time and acceleration.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
+    /// Units of the record's values when its header does not say: gal, g, m/s2.
+    #[arg(long, value_name = "UNITS")]
+    pub units: Option<String>,
+    /// Sample interval of a one-column record (s).
+    #[arg(long, value_name = "S")]
+    pub dt: Option<f64>,
+    /// Scale factor applied to the motion (the paper's "amplified by 5").
+    #[arg(long, default_value_t = 1.0)]
+    pub scale: f64,
+}
+
+/// Options of `pirqa run`.
+#[derive(clap::Args, Debug)]
+pub struct RunArgs {
+    /// Wall description (RON).
+    pub wall: PathBuf,
+    #[command(flatten)]
+    pub motion: MotionArgs,
+    /// Simulated time (s); default: the sine's duration is required, a record's length.
+    #[arg(long, value_name = "S")]
+    pub duration: Option<f64>,
+    /// Directory for summary.json, history.csv and events.jsonl.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Write only the summary, to this file.
+    #[arg(long, value_name = "FILE")]
+    pub summary: Option<PathBuf>,
+    /// History sampling interval (s); every event time is added.
+    #[arg(long, value_name = "S", default_value_t = 0.01)]
+    pub output_dt: f64,
+    /// What to do when a block falls.
+    #[arg(long, value_enum, default_value_t = AfterCollapse::Stop)]
+    pub after_collapse: AfterCollapse,
+}
+
+fn bad(what: &str, message: String) -> Error {
+    Error::Motion {
+        path: PathBuf::from(what),
+        source: pirqa::error::MotionError::Invalid(message),
+    }
+}
+
+/// Builds the ground motion described by the options; `duration` is needed for a sine.
+pub fn build_motion(m: &MotionArgs, duration: Option<f64>) -> Result<Motion, Error> {
+    if !(m.scale.is_finite()) {
+        return Err(bad(
+            "--scale",
+            format!("scale factor {} is not a finite number", m.scale),
+        ));
+    }
+    match (&m.sine, &m.record) {
+        (Some(amp), None) => {
+            let a = parse_acceleration(amp)?;
+            let freq = m
+                .freq
+                .ok_or_else(|| bad("--freq", "a sine needs --freq HZ".into()))?;
+            let duration =
+                duration.ok_or_else(|| bad("--duration", "a sine needs --duration S".into()))?;
+            let sine =
+                Sine::new(a * m.scale, freq, m.phase.to_radians(), duration).map_err(|source| {
+                    Error::Motion {
+                        path: PathBuf::from("--sine"),
+                        source,
+                    }
+                })?;
+            Ok(Motion::Sine(sine))
+        }
+        (None, Some(path)) => {
+            let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+                path: path.clone(),
+                source,
+            })?;
+            let units = match &m.units {
+                Some(u) => Some(AccelUnit::parse(u).ok_or_else(|| {
+                    bad(
+                        "--units",
+                        format!("unknown units \"{u}\": use gal, g or m/s2"),
+                    )
+                })?),
+                None => None,
+            };
+            let opts = PlainOptions {
+                dt_s: m.dt,
+                units,
+                column: None,
+            };
+            let name = path.file_name().map_or_else(
+                || path.display().to_string(),
+                |f| f.to_string_lossy().into_owned(),
+            );
+            let record = read_plain(&name, &text, &opts).map_err(|source| Error::Motion {
+                path: path.clone(),
+                source,
+            })?;
+            Ok(Motion::Record(if m.scale == 1.0 {
+                record
+            } else {
+                record.scaled(m.scale)
+            }))
+        }
+        _ => Err(bad(
+            "motion",
+            "give the ground motion: --sine AMP --freq HZ, or --record FILE".into(),
+        )),
+    }
+}
+
+pub fn run(args: &RunArgs) -> Result<(), Error> {
+    let (wall, topo) = topology::load(&args.wall)?;
+    let motion = build_motion(&args.motion, args.duration)?;
+    let duration = args.duration.unwrap_or_else(|| motion.duration_s());
+    let settings = Settings {
+        duration_s: duration,
+        output_dt_s: args.out.as_ref().map(|_| args.output_dt),
+        log_events: args.out.is_some(),
+        after_collapse: args.after_collapse,
+    };
+    let scenario = Scenario {
+        wall: &wall,
+        topology: &topo,
+        motion: &motion,
+        settings: &settings,
+    };
+    let response = EventDriven::default().run(&scenario)?;
+    if let Some(dir) = &args.out {
+        write_outputs(dir, &response)?;
+    }
+    if let Some(path) = &args.summary {
+        write_file(path, &response.summary_json())?;
+    }
+    print_out(&terminal_summary(&response, args.out.as_deref()));
+    Ok(())
+}
+
+pub fn write_outputs(dir: &Path, r: &Response) -> Result<(), Error> {
+    write_file(&dir.join("summary.json"), &r.summary_json())?;
+    write_file(&dir.join("events.jsonl"), &r.events_jsonl())?;
+    if let Some(csv) = r.history_csv() {
+        write_file(&dir.join("history.csv"), &csv)?;
+    }
+    Ok(())
+}
+
+fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
+    let s = &r.summary;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "{} | {} | {} | {} s",
+        s.wall, s.method, s.motion, s.duration_s
+    );
+    let _ = writeln!(
+        t,
+        "  {:<8} {:>12} {:>12} {:>12}",
+        "block", "max|u| m", "final u m", "max|v| m/s"
+    );
+    for b in &s.blocks {
+        let _ = writeln!(
+            t,
+            "  {:<8} {:>12.6} {:>12.6} {:>12.6}{}",
+            b.name,
+            b.max_abs_displacement_m,
+            b.final_displacement_m,
+            b.max_abs_velocity_m_s,
+            if b.fell { "  fell" } else { "" }
+        );
+    }
+    let _ = writeln!(
+        t,
+        "  impacts {}, touches {}, stick-slip transitions {}, events {}",
+        s.impacts, s.touches, s.stick_slip_transitions, s.stats.events
+    );
+    match &s.collapse {
+        Some(c) => {
+            let _ = writeln!(t, "  COLLAPSE: {} fell at t = {:.6} s", c.block, c.time_s);
+        }
+        None => {
+            let _ = writeln!(t, "  no collapse");
+        }
+    }
+    let e = &s.energy;
+    let _ = writeln!(
+        t,
+        "  energy J: input {:.6e}, friction {:.6e}, impacts {:.6e}, kinetic {:.6e}, residual {:.2e}",
+        e.input_j, e.friction_j, e.impact_loss_j, e.kinetic_j, e.residual_j
+    );
+    for w in &s.warnings {
+        let _ = writeln!(t, "  warning: {w}");
+    }
+    if let Some(dir) = out {
+        let _ = writeln!(
+            t,
+            "  wrote {}/summary.json, history.csv, events.jsonl",
+            dir.display()
+        );
+    }
+    t
+}

@@ -1,0 +1,165 @@
+//! Clusters: blocks that move as one rigid body in the current mode, and their motion in closed
+//! form. A cluster is either stuck to the ground (its blocks do not move relative to it) or slides
+//! with a constant absolute acceleration c, so relative to the ground on a segment
+//!
+//!   v(s) = v0 + c s - dv(s),     du(s) = x0 + v0 s + c s^2/2 - dd(s),
+//!
+//! with dv, dd the ground's velocity and displacement gained since the segment start (eq. 1 with
+//! constant friction forces).
+
+use crate::exact::Q;
+use crate::motion::Segment;
+
+/// How a cluster moves.
+#[derive(Debug, Clone)]
+pub enum Motion {
+    /// Stuck to the ground while lo <= a_g <= hi (m/s2; infinite where no a_g would move it).
+    Stuck {
+        /// Lower limit of a_g, rounded to the nearest float.
+        lo: f64,
+        /// Upper limit of a_g, rounded to the nearest float.
+        hi: f64,
+        /// Exact lower limit.
+        lo_q: Option<Q>,
+        /// Exact upper limit.
+        hi_q: Option<Q>,
+    },
+    /// Sliding with constant absolute acceleration.
+    Sliding(Slide),
+}
+
+/// Closed-form motion of a sliding cluster, measured from an anchor instant (its formation, or
+/// the start of the current segment): with sigma = t - anchor,
+///
+///   v = v_a + (c - a_a) sigma - dv_beyond(sigma),
+///   u = u_a + v_a sigma + (c - a_a) sigma^2/2 - dd_beyond(sigma),
+///
+/// where a_a is a_g at the anchor. Every term is small near the anchor, so the velocity of a
+/// cluster that has just formed at rest is computed without cancellation noise.
+#[derive(Debug, Clone)]
+pub struct Slide {
+    /// The ground motion, re-described from the anchor instant on.
+    pub anchor: Segment,
+    /// Displacement gained since formation, at the anchor (m).
+    pub x_a: f64,
+    /// Velocity relative to the ground at the anchor (m/s).
+    pub v_a: f64,
+    /// Absolute acceleration (m/s2), the nearest float to `c_q`.
+    pub c: f64,
+    /// Absolute acceleration, exact.
+    pub c_q: Q,
+    /// c - a_g at the anchor (m/s2).
+    rel: f64,
+}
+
+impl Slide {
+    /// A cluster formed at time t with velocity v relative to the ground.
+    pub fn formed(seg: &Segment, t: f64, v: f64, c_q: Q) -> Slide {
+        let anchor = seg.anchored(t - seg.t0);
+        let c = c_q.to_f64();
+        Slide {
+            rel: c - anchor.accel(0.0),
+            anchor,
+            x_a: 0.0,
+            v_a: v,
+            c,
+            c_q,
+        }
+    }
+
+    /// Displacement gained since formation at time t (m).
+    pub fn disp(&self, t: f64) -> f64 {
+        let s = t - self.anchor.t0;
+        self.x_a + s * (self.v_a + 0.5 * self.rel * s) - self.anchor.dd_beyond(s)
+    }
+
+    /// Velocity relative to the ground at time t (m/s).
+    pub fn vel(&self, t: f64) -> f64 {
+        let s = t - self.anchor.t0;
+        self.v_a + self.rel * s - self.anchor.dv_beyond(s)
+    }
+
+    /// Acceleration relative to the ground at time t (m/s2).
+    pub fn acc(&self, t: f64) -> f64 {
+        self.rel - self.anchor.da(t - self.anchor.t0)
+    }
+
+    /// Displacement, velocity and acceleration at time t, from one evaluation of the ground
+    /// motion (bit for bit what `disp`, `vel` and `acc` give).
+    pub fn state(&self, t: f64) -> (f64, f64, f64) {
+        let s = t - self.anchor.t0;
+        let (da, dv, dd) = self.anchor.beyond(s);
+        (
+            self.x_a + s * (self.v_a + 0.5 * self.rel * s) - dd,
+            self.v_a + self.rel * s - dv,
+            self.rel - da,
+        )
+    }
+
+    /// Re-anchors at the start of the next segment.
+    pub fn rebase(&mut self, next: &Segment) {
+        let t = next.t0;
+        let (x, v) = (self.disp(t), self.vel(t));
+        self.anchor = *next;
+        self.x_a = x;
+        self.v_a = v;
+        self.rel = self.c - next.accel(0.0);
+    }
+
+    /// Work of the inertial forces -m a_g on the cluster from t_a to t_b, per unit mass (J/kg):
+    /// minus the integral of a_g v, in closed form.
+    pub fn input_work_per_kg(&self, t_a: f64, t_b: f64) -> f64 {
+        let seg = &self.anchor;
+        let i = |t: f64| {
+            let s = t - seg.t0;
+            let dv = seg.dv(s);
+            self.v_a * dv + self.c * seg.moment(s) - 0.5 * dv * dv
+        };
+        -(i(t_b) - i(t_a))
+    }
+}
+
+/// Where, on the current segment from `from` on, a sliding cluster's acceleration relative to
+/// the ground vanishes (`a_zero`) and its velocity does (`v_zero`): found once when its events are
+/// scheduled, reused for its energy and extremes.
+#[derive(Debug, Clone, Default)]
+pub struct Roots {
+    /// Start of the interval searched (s).
+    pub from: f64,
+    /// End of the interval searched (s).
+    pub to: f64,
+    /// Zeros of the relative acceleration (s).
+    pub a_zero: Vec<f64>,
+    /// Zeros of the relative velocity (s).
+    pub v_zero: Vec<f64>,
+}
+
+/// A cluster.
+#[derive(Debug, Clone)]
+pub struct Cluster {
+    /// Its blocks.
+    pub blocks: Vec<usize>,
+    /// Total mass (kg).
+    pub mass: f64,
+    /// Total mass, exact.
+    pub mass_q: Q,
+    /// Changes whenever its motion changes; events computed for an older version are stale.
+    pub version: u64,
+    /// How it moves.
+    pub motion: Motion,
+    /// Energy and extremes are accounted up to this time (s).
+    pub accounted_to: f64,
+    /// Zeros found on the current segment; `None` until scheduled, and whenever the motion
+    /// changes.
+    pub roots: Option<Roots>,
+}
+
+impl Cluster {
+    /// The sliding motion, if sliding.
+    pub fn slide(&self) -> Option<&Slide> {
+        match &self.motion {
+            Motion::Sliding(s) => Some(s),
+            Motion::Stuck { .. } => None,
+        }
+    }
+}

@@ -1,0 +1,725 @@
+//! Deciding the mode at an event, exactly.
+//!
+//! At an event some blocks move with equal velocity across some joints (relative velocity zero):
+//! those joints may stick or slip, those touching faces may press or open. Their accelerations
+//! solve Gauss' principle with Coulomb friction (design note, section 4):
+//!
+//!   minimise  sum_i m_i/2 (b_i - e_i/m_i)^2 + sum_joints F |b_p - b_q|
+//!   subject to b_right >= b_left at touching faces, b_ground = a_g,
+//!
+//! where b_i is block i's absolute acceleration and e_i the constant friction of joints that
+//! already slide. This is a total-variation problem on the joint graph; its solution is constant
+//! on clusters (blocks that stick together move as one body). Its level sets {b > theta} are
+//! minimum cuts, so the clusters are found by divide and conquer: cut at the mean acceleration,
+//! recurse on both sides. Everything is exact rational arithmetic; at the ground, theta is the
+//! ground acceleration "just after" the instant ([`Lex`]), which decides joints exactly at their
+//! limit by what happens next.
+
+use super::flow::{Amount, Lex, Network};
+use crate::exact::Q;
+use std::collections::VecDeque;
+
+/// The other end of a joint: a block of the problem, or the ground (and fixed blocks).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum End {
+    /// Local index of a block in the problem.
+    Node(usize),
+    /// The ground, moving with a_g.
+    Ground,
+}
+
+/// One decision problem: the blocks whose joints are undecided, and those joints. Problems are
+/// compared and hashed as values, so a run can remember the answers it has already worked out.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Hash)]
+pub struct Problem {
+    /// Mass of each block (kg).
+    pub mass: Vec<Q>,
+    /// Constant horizontal force on each block from joints that slide (N, +x positive).
+    pub external: Vec<Q>,
+    /// Undecided friction joints: (block, other end, capacity N).
+    pub friction: Vec<(usize, End, Q)>,
+    /// Touching faces with zero relative velocity: (left, right); the right face may not
+    /// accelerate into the left one.
+    pub contacts: Vec<(End, End)>,
+}
+
+/// A cluster in the solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// Local block indices.
+    pub nodes: Vec<usize>,
+    /// Absolute acceleration (m/s2); for a grounded group, a_g at the instant.
+    pub accel: Q,
+    /// Stuck to the ground.
+    pub grounded: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Side {
+    /// Super-level set {b > theta}: a contact (l, r) forces r in when l is in.
+    Upper,
+    /// Sub-level set {b < theta}: a contact (l, r) forces l in when r is in.
+    Lower,
+}
+
+impl Problem {
+    fn n(&self) -> usize {
+        self.mass.len()
+    }
+
+    /// Touches the ground through an undecided joint or face.
+    pub fn touches_ground(&self) -> bool {
+        self.friction.iter().any(|(_, j, _)| *j == End::Ground)
+            || self
+                .contacts
+                .iter()
+                .any(|(l, r)| *l == End::Ground || *r == End::Ground)
+    }
+
+    /// The same problem with its joint lists in a canonical order.
+    pub fn canonical(mut self) -> Problem {
+        self.friction.sort();
+        self.contacts.sort();
+        self
+    }
+
+    /// The sub-problem of `nodes` (renumbered in the order given): their undecided joints among
+    /// themselves and with the ground. Joints to other nodes must not exist (callers split along
+    /// the pieces of the joint graph).
+    pub fn restrict(&self, nodes: &[usize]) -> Problem {
+        let mut index = vec![usize::MAX; self.n()];
+        for (k, &i) in nodes.iter().enumerate() {
+            index[i] = k;
+        }
+        let map = |e: End| match e {
+            End::Ground => Some(End::Ground),
+            End::Node(i) => (index[i] != usize::MAX).then(|| End::Node(index[i])),
+        };
+        Problem {
+            mass: nodes.iter().map(|&i| self.mass[i].clone()).collect(),
+            external: nodes.iter().map(|&i| self.external[i].clone()).collect(),
+            friction: self
+                .friction
+                .iter()
+                .filter(|(i, _, _)| index[*i] != usize::MAX)
+                .filter_map(|(i, j, f)| Some((index[*i], map(*j)?, f.clone())))
+                .collect(),
+            contacts: self
+                .contacts
+                .iter()
+                .filter_map(|(l, r)| match (map(*l)?, map(*r)?) {
+                    (End::Ground, End::Ground) => None,
+                    pair => Some(pair),
+                })
+                .collect(),
+        }
+        .canonical()
+    }
+
+    /// Connected pieces of the joint graph without passing through the ground, each sorted, and
+    /// whether each touches the ground.
+    pub fn ground_pieces(&self) -> Vec<(Vec<usize>, bool)> {
+        let adj = self.adjacency();
+        let all: Vec<usize> = (0..self.n()).collect();
+        let mut on_ground = vec![false; self.n()];
+        for (i, j, _) in &self.friction {
+            if *j == End::Ground {
+                on_ground[*i] = true;
+            }
+        }
+        for (l, r) in &self.contacts {
+            match (l, r) {
+                (End::Ground, End::Node(i)) | (End::Node(i), End::Ground) => on_ground[*i] = true,
+                _ => {}
+            }
+        }
+        self.pieces(&all, &adj)
+            .into_iter()
+            .map(|p| {
+                let g = p.iter().any(|&i| on_ground[i]);
+                (p, g)
+            })
+            .collect()
+    }
+
+    fn adjacency(&self) -> Vec<Vec<usize>> {
+        let mut adj = vec![Vec::new(); self.n()];
+        for &(i, j, _) in &self.friction {
+            if let End::Node(j) = j {
+                adj[i].push(j);
+                adj[j].push(i);
+            }
+        }
+        for &(l, r) in &self.contacts {
+            if let (End::Node(l), End::Node(r)) = (l, r) {
+                adj[l].push(r);
+                adj[r].push(l);
+            }
+        }
+        adj
+    }
+
+    /// For each node of `set`, "in S implies that node in S" arcs and nodes that may not be in S
+    /// (they would have to push into the ground), for the given side. Faces against the ground
+    /// only constrain the cut where the ground is pinned at theta (`pinned`); inside a part
+    /// already known to move away from the ground they are slack.
+    fn constraints(
+        &self,
+        set: &[bool],
+        side: Side,
+        pinned: bool,
+    ) -> (Vec<(usize, usize)>, Vec<usize>) {
+        let mut implies = Vec::new();
+        let mut forbidden = Vec::new();
+        for &(l, r) in &self.contacts {
+            let (from, to) = match side {
+                Side::Upper => (l, r),
+                Side::Lower => (r, l),
+            };
+            match (from, to) {
+                (End::Node(a), End::Node(b)) if set[a] && set[b] => implies.push((a, b)),
+                (End::Node(a), End::Ground) if set[a] && pinned => forbidden.push(a),
+                _ => {}
+            }
+        }
+        (implies, forbidden)
+    }
+
+    /// Minimises sum_{i in S} w_i + cut(S) over S within `set` (subject to the side's contact
+    /// constraints) and returns the minimal and the maximal minimiser. `cut` counts joints with
+    /// both ends in `set` and, when the ground is `pinned` at theta, joints to the ground; joints
+    /// to blocks outside `set` already slide and are in the weights.
+    fn min_cut<T: Amount>(
+        &self,
+        set: &[bool],
+        weight: &[T],
+        side: Side,
+        pinned: bool,
+    ) -> (Vec<bool>, Vec<bool>) {
+        let n = self.n();
+        let (s, t) = (n, n + 1);
+        let mut net: Network<T> = Network::new(n + 2);
+        let mut big = T::from_q(Q::one());
+        for (i, w) in weight.iter().enumerate() {
+            if !set[i] {
+                continue;
+            }
+            if w.positive() {
+                big = big.plus(w);
+                net.arc(i, t, w.clone());
+            } else if *w < T::zero() {
+                let c = T::zero().minus(w);
+                big = big.plus(&c);
+                net.arc(s, i, c);
+            }
+        }
+        for (i, j, f) in &self.friction {
+            if !set[*i] {
+                continue;
+            }
+            let f = T::from_q(f.clone());
+            match j {
+                End::Node(j) if set[*j] => net.edge(*i, *j, f.clone()),
+                // Joint to the pinned ground: cut whenever i is in S.
+                End::Ground if pinned => net.arc(*i, t, f.clone()),
+                _ => continue,
+            }
+            big = big.plus(&f);
+        }
+        let (implies, forbidden) = self.constraints(set, side, pinned);
+        for (a, b) in implies {
+            net.arc(a, b, big.clone());
+        }
+        for a in forbidden {
+            net.arc(a, t, big.clone());
+        }
+        net.max_flow(s, t, &big);
+        let minimal = net.reachable_from(s);
+        let reach_t = net.reaching(t);
+        let maximal: Vec<bool> = (0..n).map(|i| set[i] && !reach_t[i]).collect();
+        ((0..n).map(|i| set[i] && minimal[i]).collect(), maximal)
+    }
+
+    /// Connected pieces of `members` through undecided joints between members.
+    fn pieces(&self, members: &[usize], adj: &[Vec<usize>]) -> Vec<Vec<usize>> {
+        let mut inside = vec![false; self.n()];
+        for &i in members {
+            inside[i] = true;
+        }
+        let mut seen = vec![false; self.n()];
+        let mut out = Vec::new();
+        for &i in members {
+            if seen[i] {
+                continue;
+            }
+            seen[i] = true;
+            let mut piece = vec![i];
+            let mut queue = VecDeque::from([i]);
+            while let Some(u) = queue.pop_front() {
+                for &v in &adj[u] {
+                    if inside[v] && !seen[v] {
+                        seen[v] = true;
+                        piece.push(v);
+                        queue.push_back(v);
+                    }
+                }
+            }
+            piece.sort_unstable();
+            out.push(piece);
+        }
+        out
+    }
+
+    /// External force on each member of `part` once the joints between it and the rest of `set`
+    /// slide: a part above the rest is pulled down by F, below it pushed up. Joints to the
+    /// ground count only where the ground belongs to the set (the top split); joints leaving
+    /// `set` are already in `external`.
+    fn boundary_forces(
+        &self,
+        set: &[bool],
+        part: &[bool],
+        ground_in_set: bool,
+        external: &[Q],
+        upper: bool,
+    ) -> Vec<Q> {
+        let mut e = external.to_vec();
+        let pull = |x: &Q, f: &Q| if upper { x - f } else { x + f };
+        for (i, j, f) in &self.friction {
+            match *j {
+                End::Node(j) => {
+                    if part[*i] && set[j] && !part[j] {
+                        e[*i] = pull(&e[*i], f);
+                    } else if part[j] && set[*i] && !part[*i] {
+                        e[j] = pull(&e[j], f);
+                    }
+                }
+                End::Ground => {
+                    if ground_in_set && part[*i] {
+                        e[*i] = pull(&e[*i], f);
+                    }
+                }
+            }
+        }
+        e
+    }
+
+    /// Clusters of blocks that share no joint with the ground (the ground does not appear).
+    fn solve_free(&self, set: &[bool], external: &[Q], adj: &[Vec<usize>], out: &mut Vec<Group>) {
+        let members: Vec<usize> = (0..self.n()).filter(|&i| set[i]).collect();
+        let mass: Q = members.iter().map(|&i| self.mass[i].clone()).sum();
+        let total: Q = members.iter().map(|&i| external[i].clone()).sum();
+        let theta = total / mass;
+        let weight: Vec<Q> = (0..self.n())
+            .map(|i| {
+                if set[i] {
+                    &self.mass[i] * &theta - &external[i]
+                } else {
+                    Q::zero()
+                }
+            })
+            .collect();
+        let (upper, at_or_above) = self.min_cut(set, &weight, Side::Upper, false);
+        let lower: Vec<bool> = (0..self.n()).map(|i| set[i] && !at_or_above[i]).collect();
+        let level: Vec<usize> = (0..self.n())
+            .filter(|&i| at_or_above[i] && !upper[i])
+            .collect();
+        for piece in self.pieces(&level, adj) {
+            out.push(Group {
+                nodes: piece,
+                accel: theta.clone(),
+                grounded: false,
+            });
+        }
+        for (part, is_upper) in [(upper, true), (lower, false)] {
+            if part.iter().any(|&b| b) {
+                let e = self.boundary_forces(set, &part, false, external, is_upper);
+                self.solve_free(&part, &e, adj, out);
+            }
+        }
+    }
+
+    /// Solves the decision problem. `ground` is the ground acceleration just after the instant
+    /// (exact, with its derivatives) when some joint reaches the ground; it is ignored otherwise.
+    pub fn solve(&self, ground: &Lex) -> Vec<Group> {
+        let n = self.n();
+        let adj = self.adjacency();
+        let all = vec![true; n];
+        let mut out = Vec::new();
+        if !self.touches_ground() {
+            self.solve_free(&all, &self.external, &adj, &mut out);
+            return out;
+        }
+        // {b > a_g} and {b < a_g}: two cuts, the ground pinned at a_g and never in either set.
+        let up_w: Vec<Lex> = (0..n)
+            .map(|i| {
+                ground
+                    .scale(&self.mass[i])
+                    .minus(&Lex::constant(self.external[i].clone()))
+            })
+            .collect();
+        let down_w: Vec<Lex> = up_w.iter().map(|w| Lex::zero().minus(w)).collect();
+        let (upper, _) = self.min_cut(&all, &up_w, Side::Upper, true);
+        let (lower, _) = self.min_cut(&all, &down_w, Side::Lower, true);
+        let level: Vec<usize> = (0..n).filter(|&i| !upper[i] && !lower[i]).collect();
+        // The blocks left at a_g: those joined to the ground through undecided joints are stuck;
+        // any other piece moves freely with acceleration a_g (possible only when a_g is locally
+        // constant).
+        let mut grounded = vec![false; n];
+        let mut queue: VecDeque<usize> = VecDeque::new();
+        let on_level: Vec<bool> = (0..n).map(|i| !upper[i] && !lower[i]).collect();
+        for (i, j, _) in &self.friction {
+            if *j == End::Ground && on_level[*i] && !grounded[*i] {
+                grounded[*i] = true;
+                queue.push_back(*i);
+            }
+        }
+        for (l, r) in &self.contacts {
+            for (a, b) in [(l, r), (r, l)] {
+                if let (End::Node(a), End::Ground) = (a, b) {
+                    if on_level[*a] && !grounded[*a] {
+                        grounded[*a] = true;
+                        queue.push_back(*a);
+                    }
+                }
+            }
+        }
+        while let Some(u) = queue.pop_front() {
+            for &v in &adj[u] {
+                if on_level[v] && !grounded[v] {
+                    grounded[v] = true;
+                    queue.push_back(v);
+                }
+            }
+        }
+        let stuck: Vec<usize> = level.iter().copied().filter(|&i| grounded[i]).collect();
+        for piece in self.pieces(&stuck, &adj) {
+            out.push(Group {
+                nodes: piece,
+                accel: ground.0[0].clone(),
+                grounded: true,
+            });
+        }
+        let floating: Vec<usize> = level.iter().copied().filter(|&i| !grounded[i]).collect();
+        for piece in self.pieces(&floating, &adj) {
+            out.push(Group {
+                nodes: piece,
+                accel: ground.0[0].clone(),
+                grounded: false,
+            });
+        }
+        for (part, is_upper) in [(upper, true), (lower, false)] {
+            if part.iter().any(|&b| b) {
+                let e = self.boundary_forces(&all, &part, true, &self.external, is_upper);
+                self.solve_free(&part, &e, &adj, &mut out);
+            }
+        }
+        out
+    }
+
+    /// For blocks that are all stuck to the ground: the interval of ground accelerations
+    /// [a_lo, a_hi] over which they can stay stuck, `None` where no ground acceleration would
+    /// move them (a block wedged against an abutment). a_hi is the smallest ratio
+    /// (cut(S) + e(S)) / m(S) over the sets S that could lag behind the ground (Dinkelbach's
+    /// iteration on minimum cuts, exact, a few cuts); a_lo the mirror image.
+    pub fn stick_interval(&self) -> (Option<Q>, Option<Q>) {
+        let neg: Vec<Q> = self.external.iter().map(|e| -e).collect();
+        let hi = self.min_ratio(&self.external, Side::Lower);
+        let lo = self.min_ratio(&neg, Side::Upper).map(|r| -r);
+        (lo, hi)
+    }
+
+    fn min_ratio(&self, external: &[Q], side: Side) -> Option<Q> {
+        let n = self.n();
+        let all = vec![true; n];
+        // Start from every block that may move this way at all.
+        let (implies, forbidden) = self.constraints(&all, side, true);
+        let mut allowed = vec![true; n];
+        let mut stack = forbidden;
+        while let Some(b) = stack.pop() {
+            if !allowed[b] {
+                continue;
+            }
+            allowed[b] = false;
+            for &(x, y) in &implies {
+                if y == b && allowed[x] {
+                    stack.push(x);
+                }
+            }
+        }
+        let ratio = |s: &[bool]| -> Option<Q> {
+            let members: Vec<usize> = (0..n).filter(|&i| s[i]).collect();
+            if members.is_empty() {
+                return None;
+            }
+            let mut cut = Q::zero();
+            for (i, j, f) in &self.friction {
+                let j_in = matches!(j, End::Node(j) if s[*j]);
+                if s[*i] != j_in {
+                    cut = cut + f;
+                }
+            }
+            let e: Q = members.iter().map(|&i| external[i].clone()).sum();
+            let m: Q = members.iter().map(|&i| self.mass[i].clone()).sum();
+            Some((cut + e) / m)
+        };
+        let mut lambda = ratio(&allowed)?;
+        loop {
+            let weight: Vec<Q> = (0..n)
+                .map(|i| &external[i] - &self.mass[i] * &lambda)
+                .collect();
+            let (minimal, _) = self.min_cut(&all, &weight, side, true);
+            match ratio(&minimal) {
+                Some(r) if r < lambda => lambda = r,
+                _ => return Some(lambda),
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(x: f64) -> Q {
+        Q::from_decimal(x).unwrap()
+    }
+
+    /// One block of 1 kg on the ground with capacity mu g.
+    fn one_block(mu: f64) -> Problem {
+        Problem {
+            mass: vec![Q::one()],
+            external: vec![Q::zero()],
+            friction: vec![(0, End::Ground, q(mu) * q(9.81))],
+            contacts: vec![],
+        }
+    }
+
+    fn just_after(a: Q, rate: i64) -> Lex {
+        Lex([a, Q::int(rate), Q::zero()])
+    }
+
+    #[test]
+    fn one_block_sticks_within_mu_g_and_slides_beyond() {
+        let p = one_block(0.3);
+        let mug = q(0.3) * q(9.81);
+        assert_eq!(p.stick_interval(), (Some(-&mug), Some(mug.clone())));
+        let g = p.solve(&just_after(q(1.0), 0));
+        assert_eq!(
+            g,
+            vec![Group {
+                nodes: vec![0],
+                accel: q(1.0),
+                grounded: true
+            }]
+        );
+        // Exactly at the limit: rising ground acceleration makes it slide, falling keeps it.
+        let g = p.solve(&just_after(mug.clone(), 1));
+        assert_eq!(
+            g,
+            vec![Group {
+                nodes: vec![0],
+                accel: mug.clone(),
+                grounded: false
+            }]
+        );
+        let g = p.solve(&just_after(mug.clone(), -1));
+        assert!(g[0].grounded);
+        // Beyond: slides with friction mu g pulling it along.
+        let g = p.solve(&just_after(q(5.0), 0));
+        assert_eq!(g[0].accel, mug);
+        assert!(!g[0].grounded);
+    }
+
+    /// The paper's wall with uniform friction: B1..B5, masses in units of B3's mass.
+    fn five_block(mu: [f64; 6]) -> Problem {
+        let g = q(9.81);
+        let m = [Q::int(2), Q::int(2), Q::int(1), Q::int(2), Q::int(1)];
+        let load = [
+            Q::int(4),
+            Q::int(4),
+            Q::int(1),
+            Q::int(1),
+            Q::int(1),
+            Q::int(1),
+        ];
+        let cap = |k: usize| q(mu[k]) * &load[k] * &g;
+        Problem {
+            mass: m.to_vec(),
+            external: vec![Q::zero(); 5],
+            friction: vec![
+                (0, End::Ground, cap(0)),
+                (1, End::Ground, cap(1)),
+                (2, End::Node(0), cap(2)),
+                (3, End::Node(0), cap(3)),
+                (3, End::Node(1), cap(4)),
+                (4, End::Node(1), cap(5)),
+            ],
+            contacts: vec![
+                (End::Node(0), End::Node(1)),
+                (End::Node(2), End::Node(3)),
+                (End::Node(3), End::Node(4)),
+            ],
+        }
+    }
+
+    #[test]
+    fn uniform_wall_breaks_away_as_one_body() {
+        let p = five_block([0.3; 6]);
+        let mug = q(0.3) * q(9.81);
+        assert_eq!(p.stick_interval(), (Some(-&mug), Some(mug.clone())));
+        // At the threshold, rising: the whole wall moves, every upper joint exactly at its limit
+        // and sticking.
+        let g = p.solve(&just_after(mug.clone(), 1));
+        assert_eq!(
+            g,
+            vec![Group {
+                nodes: vec![0, 1, 2, 3, 4],
+                accel: mug.clone(),
+                grounded: false
+            }]
+        );
+        // Falling back: everything stuck, one cluster through the touching faces.
+        let g = p.solve(&just_after(mug.clone(), -1));
+        assert_eq!(g.len(), 1);
+        assert!(g[0].grounded);
+        // Well beyond: still one body.
+        let g = p.solve(&just_after(q(-7.0), 0));
+        assert_eq!(
+            g,
+            vec![Group {
+                nodes: vec![0, 1, 2, 3, 4],
+                accel: -mug,
+                grounded: false
+            }]
+        );
+    }
+
+    #[test]
+    fn variable_wall_first_break_is_the_weakest_set() {
+        let p = five_block([0.29, 0.31, 0.28, 0.30, 0.30, 0.28]);
+        let (lo, hi) = p.stick_interval();
+        // B3 and B5 on 0.28 go first: a_hi = 0.28 g; leftward the faces hold B3 against B4 and
+        // B5 is the one that lags: also 0.28 g.
+        assert_eq!(hi, Some(q(0.28) * q(9.81)));
+        assert_eq!(lo, Some(-(q(0.28) * q(9.81))));
+        let a = q(0.28) * q(9.81);
+        let g = p.solve(&just_after(a.clone(), 1));
+        // Pushed rightward by the ground, B3 lags behind (moves -x relative) and opens from B4;
+        // B5 would have to push B4: it stays.
+        let moving: Vec<&Group> = g.iter().filter(|g| !g.grounded).collect();
+        assert_eq!(moving.len(), 1);
+        assert_eq!(moving[0].nodes, vec![2]);
+        assert_eq!(moving[0].accel, a);
+    }
+
+    #[test]
+    fn a_free_stack_splits_where_friction_cannot_hold() {
+        // Two blocks sliding on a moving base: lower one (1 kg) gets +10 N, upper one (1 kg) is
+        // held by a joint of capacity 2 N: it lags at 2 m/s2 while the lower goes at 8 m/s2.
+        let p = Problem {
+            mass: vec![Q::one(), Q::one()],
+            external: vec![Q::int(10), Q::zero()],
+            friction: vec![(1, End::Node(0), Q::int(2))],
+            contacts: vec![],
+        };
+        let mut g = p.solve(&Lex::zero());
+        g.sort_by(|a, b| a.accel.cmp(&b.accel));
+        assert_eq!(
+            g[0],
+            Group {
+                nodes: vec![1],
+                accel: Q::int(2),
+                grounded: false
+            }
+        );
+        assert_eq!(
+            g[1],
+            Group {
+                nodes: vec![0],
+                accel: Q::int(8),
+                grounded: false
+            }
+        );
+        // With capacity 6 N it holds: one body at 5 m/s2, the joint needing 5 N.
+        let mut p = p;
+        p.friction[0].2 = Q::int(6);
+        assert_eq!(
+            p.solve(&Lex::zero()),
+            vec![Group {
+                nodes: vec![0, 1],
+                accel: Q::int(5),
+                grounded: false
+            }]
+        );
+    }
+
+    #[test]
+    fn a_stack_on_the_ground_splits_with_each_joint_counted_once() {
+        // 1000 kg each, ground joint 9810 N, top joint 1962 N, a_g = 8: the bottom block lags
+        // at 7.848 m/s2 absolute, the top at 1.962.
+        let p = Problem {
+            mass: vec![Q::int(1000), Q::int(1000)],
+            external: vec![Q::zero(), Q::zero()],
+            friction: vec![
+                (0, End::Ground, Q::int(9810)),
+                (1, End::Node(0), Q::int(1962)),
+            ],
+            contacts: vec![],
+        };
+        let mut g = p.solve(&just_after(Q::int(8), 0));
+        g.sort_by(|a, b| a.nodes.cmp(&b.nodes));
+        assert_eq!(
+            g[0],
+            Group {
+                nodes: vec![0],
+                accel: q(7.848),
+                grounded: false
+            }
+        );
+        assert_eq!(
+            g[1],
+            Group {
+                nodes: vec![1],
+                accel: q(1.962),
+                grounded: false
+            }
+        );
+    }
+
+    #[test]
+    fn faces_push_but_never_pull() {
+        // Two blocks side by side, left pushed +10 N, right free: pressing, they move together.
+        let mut p = Problem {
+            mass: vec![Q::one(), Q::one()],
+            external: vec![Q::int(10), Q::zero()],
+            friction: vec![],
+            contacts: vec![(End::Node(0), End::Node(1))],
+        };
+        assert_eq!(
+            p.solve(&Lex::zero()),
+            vec![Group {
+                nodes: vec![0, 1],
+                accel: Q::int(5),
+                grounded: false
+            }]
+        );
+        // Pushed the other way they separate.
+        p.external[0] = Q::int(-10);
+        let mut g = p.solve(&Lex::zero());
+        g.sort_by(|a, b| a.accel.cmp(&b.accel));
+        assert_eq!(g[0].accel, Q::int(-10));
+        assert_eq!(g[1].accel, Q::zero());
+    }
+
+    #[test]
+    fn a_block_against_an_abutment_cannot_be_pushed_into_it() {
+        // Block on the ground, abutment (ground) on its left, face touching.
+        let mut p = one_block(0.3);
+        p.contacts.push((End::Ground, End::Node(0)));
+        let (lo, hi) = p.stick_interval();
+        assert_eq!(hi, None, "lagging behind means pushing into the abutment");
+        assert_eq!(lo, Some(-(q(0.3) * q(9.81))));
+        let g = p.solve(&just_after(q(50.0), 0));
+        assert!(g[0].grounded);
+    }
+}

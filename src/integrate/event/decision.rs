@@ -1,0 +1,721 @@
+//! Re-deciding the mode around an event: gather the blocks whose joints became undecided, solve
+//! their decision problem exactly, install the new clusters, and update the neighbours whose
+//! friction forces changed.
+
+use super::cluster::{Cluster, Motion, Slide};
+use super::decide::{End, Group, Problem};
+use super::flow::{Amount, Lex};
+use super::{Engine, NONE};
+use crate::error::SimulationError;
+use crate::exact::Q;
+use crate::response::EventKind;
+use crate::topology::Base;
+use std::collections::{BTreeSet, HashMap};
+
+/// A ground acceleration within rounding of a breakpoint of the decision is snapped to it; the
+/// snap can move the breakpoint that matters at most this many times.
+const MAX_SNAPS: usize = 8;
+
+impl Engine<'_> {
+    /// Velocity of block i with the given overrides.
+    fn vel_with(&self, i: usize, snap: &HashMap<usize, f64>) -> f64 {
+        snap.get(&i).copied().unwrap_or_else(|| self.block_vel(i))
+    }
+
+    /// The ground acceleration just after now: exact value (or `snap`) with its derivatives.
+    fn ground_lex(&self, snap: Option<Q>) -> Lex {
+        let s = self.s();
+        let a0 = snap.unwrap_or_else(|| {
+            Q::from_f64_exact(self.seg.accel(s)).expect("finite ground acceleration")
+        });
+        let (r1, r2) = self.seg.accel_rates(s);
+        let q = |x: f64| Q::from_f64_exact(x).expect("finite rate");
+        Lex([a0, q(r1), q(r2)])
+    }
+
+    /// Re-decides the mode of the clusters of `seeds` and of every cluster joined to them by a
+    /// joint with zero relative velocity. `snap` overrides block velocities (set to exactly zero at
+    /// a stop, to a common value where two clusters meet, after an impact); `theta` is the exact
+    /// ground acceleration when the event is a stick threshold.
+    pub(super) fn decide_from(
+        &mut self,
+        seeds: &[usize],
+        snap: &[(usize, f64)],
+        theta: Option<Q>,
+    ) -> Result<(), SimulationError> {
+        self.rec.stats.mode_decisions += 1;
+        let snap: HashMap<usize, f64> = snap.iter().copied().collect();
+        let t = self.t;
+
+        // 1. The component: whole clusters joined through joints with equal velocities.
+        let mut local: HashMap<usize, usize> = HashMap::new();
+        let mut blocks: Vec<usize> = Vec::new();
+        let mut old_clusters: BTreeSet<usize> = BTreeSet::new();
+        let mut queue: Vec<usize> = Vec::new();
+        let add = |b: usize,
+                   this: &Engine,
+                   local: &mut HashMap<usize, usize>,
+                   blocks: &mut Vec<usize>,
+                   old: &mut BTreeSet<usize>,
+                   queue: &mut Vec<usize>| {
+            let members: Vec<usize> = match this.of[b] {
+                NONE => vec![b],
+                k => {
+                    old.insert(k);
+                    this.clusters[k].blocks.clone()
+                }
+            };
+            for m in members {
+                if let std::collections::hash_map::Entry::Vacant(e) = local.entry(m) {
+                    e.insert(blocks.len());
+                    blocks.push(m);
+                    queue.push(m);
+                }
+            }
+        };
+        for &b in seeds {
+            if !self.fixed[b] && !self.fallen[b] && !local.contains_key(&b) {
+                add(
+                    b,
+                    self,
+                    &mut local,
+                    &mut blocks,
+                    &mut old_clusters,
+                    &mut queue,
+                );
+            }
+        }
+        while let Some(i) = queue.pop() {
+            let vi = self.vel_with(i, &snap);
+            let mut next = Vec::new();
+            for &s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
+                if !self.live_support(s.0) {
+                    continue;
+                }
+                let sup = &self.topo.supports[s.0];
+                let other = if sup.upper.0 == i {
+                    self.lower_block(s.0)
+                } else {
+                    Some(sup.upper.0)
+                };
+                if let Some(o) = other.filter(|&o| !self.fixed[o]) {
+                    if !local.contains_key(&o) && self.vel_with(o, &snap) == vi {
+                        next.push(o);
+                    }
+                }
+            }
+            for &j in &self.topo.sides[i] {
+                if !self.live_joint(j.0) || !self.is_touching(j.0) {
+                    continue;
+                }
+                let jt = &self.topo.joints[j.0];
+                let o = if jt.left.0 == i {
+                    jt.right.0
+                } else {
+                    jt.left.0
+                };
+                if !self.fixed[o] && !local.contains_key(&o) && self.vel_with(o, &snap) == vi {
+                    next.push(o);
+                }
+            }
+            for o in next {
+                if !local.contains_key(&o) {
+                    add(
+                        o,
+                        self,
+                        &mut local,
+                        &mut blocks,
+                        &mut old_clusters,
+                        &mut queue,
+                    );
+                }
+            }
+        }
+
+        // Canonical order (by block index), so a configuration met again is the same problem.
+        blocks.sort_unstable();
+        for (k, &b) in blocks.iter().enumerate() {
+            local.insert(b, k);
+        }
+
+        // 2. Account what the old clusters did up to now, and the joints around them.
+        for &k in &old_clusters {
+            self.account(k, t);
+        }
+        let mut touched_supports: BTreeSet<usize> = BTreeSet::new();
+        let mut touched_joints: BTreeSet<usize> = BTreeSet::new();
+        for &i in &blocks {
+            touched_supports.extend(
+                self.topo.below[i]
+                    .iter()
+                    .chain(&self.topo.above[i])
+                    .map(|s| s.0),
+            );
+            touched_joints.extend(self.topo.sides[i].iter().map(|j| j.0));
+        }
+        for &s in &touched_supports {
+            self.account_support(s);
+        }
+        let u_now: Vec<f64> = blocks.iter().map(|&i| self.block_disp(i)).collect();
+        let v_now: Vec<f64> = blocks.iter().map(|&i| self.vel_with(i, &snap)).collect();
+
+        // 3. The decision problem.
+        let mut p = Problem {
+            mass: blocks.iter().map(|&i| self.mass_q[i].clone()).collect(),
+            external: vec![Q::zero(); blocks.len()],
+            ..Problem::default()
+        };
+        for &s in &touched_supports {
+            if !self.live_support(s) {
+                continue;
+            }
+            let sup = &self.topo.supports[s];
+            let up = sup.upper.0;
+            let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
+            let (vu, vl) = (
+                self.vel_with(up, &snap),
+                lo.map_or(0.0, |l| self.vel_with(l, &snap)),
+            );
+            let (lu, ll) = (
+                local.get(&up).copied(),
+                lo.and_then(|l| local.get(&l).copied()),
+            );
+            let lower_is_ground = lo.is_none();
+            let undecided = match lu {
+                Some(u) if vu == vl && (ll.is_some() || lower_is_ground) => Some(u),
+                _ => None,
+            };
+            if let Some(u) = undecided {
+                let end = ll.map_or(End::Ground, End::Node);
+                p.friction.push((u, end, self.cap_q[s].clone()));
+            } else {
+                // Sliding: friction opposes the relative velocity (or, when the far side is
+                // outside and moving with it, its recorded direction).
+                let dir = if vu != vl {
+                    if vu > vl {
+                        1
+                    } else {
+                        -1
+                    }
+                } else {
+                    self.dir[s]
+                };
+                let f = &self.cap_q[s];
+                if let Some(k) = lu {
+                    p.external[k] = if dir > 0 {
+                        &p.external[k] - f
+                    } else {
+                        &p.external[k] + f
+                    };
+                }
+                if let Some(k) = ll {
+                    p.external[k] = if dir > 0 {
+                        &p.external[k] + f
+                    } else {
+                        &p.external[k] - f
+                    };
+                }
+            }
+        }
+        for &j in &touched_joints {
+            if !self.live_joint(j) || !self.is_touching(j) {
+                continue;
+            }
+            let jt = &self.topo.joints[j];
+            let (l, r) = (jt.left.0, jt.right.0);
+            let end = |b: usize| {
+                if self.fixed[b] {
+                    Some(End::Ground)
+                } else {
+                    local.get(&b).map(|&k| End::Node(k))
+                }
+            };
+            let (vl, vr) = (self.vel_with(l, &snap), self.vel_with(r, &snap));
+            if let (Some(el), Some(er)) = (end(l), end(r)) {
+                if vl == vr {
+                    p.contacts.push((el, er));
+                }
+            }
+        }
+
+        // 4. Solve: the common case first (everything stuck, inside its stick intervals), then
+        //    the general decision, snapping the ground acceleration to a breakpoint that rounding
+        //    hides.
+        let mut theta_lex = self.ground_lex(theta.clone());
+        let (groups, intervals) = match self.all_stuck(&p, &theta_lex, theta.is_some()) {
+            Some(found) => found,
+            None => {
+                let mut groups = self.solve(&p, &theta_lex, theta.is_some());
+                for _ in 0..MAX_SNAPS {
+                    let a0 = theta_lex.0[0].to_f64();
+                    let hidden = groups.iter().find(|g| {
+                        !g.grounded
+                            && g.accel != theta_lex.0[0]
+                            && g.accel.to_f64() == a0
+                            && touches_ground(&p, &groups, g)
+                    });
+                    match hidden {
+                        Some(g) => {
+                            theta_lex.0[0] = g.accel.clone();
+                            groups = self.solve(&p, &theta_lex, false);
+                        }
+                        None => break,
+                    }
+                }
+                let n = groups.len();
+                (groups, vec![None; n])
+            }
+        };
+
+        // 5. Install the new clusters.
+        for &k in &old_clusters {
+            self.clusters[k].blocks.clear();
+            self.clusters[k].version = self.new_version();
+            self.free.push(k);
+        }
+        let mut group_of = vec![usize::MAX; blocks.len()];
+        let mut new_clusters = Vec::with_capacity(groups.len());
+        let mut needs_interval = Vec::new();
+        for (g_idx, g) in groups.iter().enumerate() {
+            let members: Vec<usize> = g.nodes.iter().map(|&k| blocks[k]).collect();
+            for &k in &g.nodes {
+                group_of[k] = g_idx;
+            }
+            let mass_q: Q = members.iter().map(|&i| self.mass_q[i].clone()).sum();
+            let motion = if g.grounded {
+                let (lo_q, hi_q) = intervals[g_idx].clone().unwrap_or((None, None));
+                stuck(lo_q, hi_q)
+            } else {
+                let v = v_now[g.nodes[0]];
+                Motion::Sliding(Slide::formed(&self.seg, self.t, v, g.accel.clone()))
+            };
+            let k = self.alloc(Cluster {
+                mass: mass_q.to_f64(),
+                mass_q,
+                blocks: members.clone(),
+                version: 0,
+                motion,
+                accounted_to: t,
+                roots: None,
+            });
+            for (&i, &node) in members.iter().zip(&g.nodes) {
+                self.of[i] = k;
+                self.u_ref[i] = u_now[node];
+            }
+            if g.grounded && intervals[g_idx].is_none() {
+                needs_interval.push(k);
+            }
+            new_clusters.push(k);
+        }
+
+        // 6. Joint directions, stick-slip transitions and separations.
+        let accel_of = |b: usize| -> Option<Lex> {
+            let k = *local.get(&b)?;
+            let g = &groups[group_of[k]];
+            Some(if g.grounded {
+                theta_lex.clone()
+            } else {
+                Lex::constant(g.accel.clone())
+            })
+        };
+        let mut neighbours: BTreeSet<usize> = BTreeSet::new();
+        for &s in &touched_supports {
+            if !self.live_support(s) {
+                continue;
+            }
+            let sup = &self.topo.supports[s];
+            let up = sup.upper.0;
+            let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
+            for b in std::iter::once(up).chain(lo) {
+                if !local.contains_key(&b) && self.of[b] != NONE {
+                    neighbours.insert(self.of[b]);
+                }
+            }
+            let same = lo.is_some_and(|l| self.of[l] == self.of[up]);
+            let (vu, vl) = (
+                self.vel_with(up, &snap),
+                lo.map_or(0.0, |l| self.vel_with(l, &snap)),
+            );
+            let new_dir: i8 = if same || (lo.is_none() && self.grounded(up)) {
+                0
+            } else if vu != vl {
+                if vu > vl {
+                    1
+                } else {
+                    -1
+                }
+            } else {
+                let au = accel_of(up).unwrap_or_else(|| theta_lex.clone());
+                let al = lo.and_then(accel_of).unwrap_or_else(|| theta_lex.clone());
+                match au.cmp(&al) {
+                    std::cmp::Ordering::Greater => 1,
+                    std::cmp::Ordering::Less => -1,
+                    std::cmp::Ordering::Equal => self.dir[s],
+                }
+            };
+            let old_dir = self.dir[s];
+            self.dir[s] = new_dir;
+            if (old_dir == 0) != (new_dir == 0) {
+                self.rec.transitions += 1;
+                let kind = if new_dir == 0 {
+                    EventKind::Stick
+                } else {
+                    EventKind::Slip
+                };
+                let mut who = vec![up];
+                who.extend(lo);
+                let label = self.rec.joint_name(s);
+                self.rec.event(t, kind, &who, Some(label), None);
+            }
+        }
+        for &j in &touched_joints {
+            if !self.live_joint(j) {
+                continue;
+            }
+            let jt = &self.topo.joints[j];
+            let (l, r) = (jt.left.0, jt.right.0);
+            for b in [l, r] {
+                if !local.contains_key(&b) && self.of[b] != NONE {
+                    neighbours.insert(self.of[b]);
+                }
+            }
+            let together = (self.of[l] == self.of[r] && self.of[l] != NONE)
+                || (self.grounded(l) && self.grounded(r));
+            if self.touching[j] && !together && self.is_touching(j) {
+                self.touching[j] = false;
+                self.rec.event(
+                    t,
+                    EventKind::Separation,
+                    &[l, r],
+                    Some(self.joint_label(j)),
+                    None,
+                );
+            } else if together && self.is_touching(j) {
+                self.touching[j] = true;
+            }
+        }
+        for &k in &new_clusters {
+            neighbours.remove(&k);
+        }
+
+        // 7. Stuck clusters get their threshold interval; neighbours whose friction changed move
+        //    on with their new forces.
+        for &k in &needs_interval {
+            self.set_thresholds(k);
+        }
+        for &k in &new_clusters {
+            self.clusters[k].version = self.new_version();
+        }
+        for &k in &neighbours {
+            self.refresh(k);
+        }
+        let mut all: Vec<usize> = new_clusters;
+        all.extend(neighbours);
+        self.schedule(&all);
+        Ok(())
+    }
+
+    /// Faces of joint j touch (their gap is zero within round-off).
+    pub(super) fn is_touching(&self, j: usize) -> bool {
+        let jt = &self.topo.joints[j];
+        let (ul, ur) = (self.block_disp(jt.left.0), self.block_disp(jt.right.0));
+        (self.gap0[j] + ur - ul).abs() <= self.len_tol(ul, ur)
+    }
+
+    fn alloc(&mut self, c: Cluster) -> usize {
+        match self.free.pop() {
+            Some(k) => {
+                self.clusters[k] = c;
+                k
+            }
+            None => {
+                self.clusters.push(c);
+                self.clusters.len() - 1
+            }
+        }
+    }
+
+    /// Constant external friction on each block of cluster k from joints that slide.
+    fn external_forces(&self, k: usize) -> Vec<Q> {
+        let members = &self.clusters[k].blocks;
+        let mut out = Vec::with_capacity(members.len());
+        for &i in members {
+            let mut e = Q::zero();
+            for &s in &self.topo.below[i] {
+                if self.live_support(s.0) && self.dir[s.0] != 0 {
+                    e = if self.dir[s.0] > 0 {
+                        e - &self.cap_q[s.0]
+                    } else {
+                        e + &self.cap_q[s.0]
+                    };
+                }
+            }
+            for &s in &self.topo.above[i] {
+                if self.live_support(s.0) && self.dir[s.0] != 0 {
+                    e = if self.dir[s.0] > 0 {
+                        e + &self.cap_q[s.0]
+                    } else {
+                        e - &self.cap_q[s.0]
+                    };
+                }
+            }
+            out.push(e);
+        }
+        out
+    }
+
+    /// The stick interval of stuck cluster k.
+    fn set_thresholds(&mut self, k: usize) {
+        self.clusters[k].blocks.sort_unstable();
+        let members = self.clusters[k].blocks.clone();
+        let local: HashMap<usize, usize> =
+            members.iter().enumerate().map(|(n, &b)| (b, n)).collect();
+        let mut p = Problem {
+            mass: members.iter().map(|&i| self.mass_q[i].clone()).collect(),
+            external: self.external_forces(k),
+            ..Problem::default()
+        };
+        for &i in &members {
+            for &s in &self.topo.below[i] {
+                if !self.live_support(s.0) || self.dir[s.0] != 0 {
+                    continue;
+                }
+                let end = match self.topo.supports[s.0].lower {
+                    Base::Ground => End::Ground,
+                    Base::Block(b) if self.fixed[b.0] => End::Ground,
+                    Base::Block(b) => match local.get(&b.0) {
+                        Some(&n) => End::Node(n),
+                        None => continue,
+                    },
+                };
+                p.friction.push((local[&i], end, self.cap_q[s.0].clone()));
+            }
+            for &j in &self.topo.sides[i] {
+                let jt = &self.topo.joints[j.0];
+                if jt.left.0 != i || !self.live_joint(j.0) || !self.is_touching(j.0) {
+                    continue;
+                }
+                let end = |b: usize| {
+                    if self.fixed[b] {
+                        Some(End::Ground)
+                    } else {
+                        local.get(&b).map(|&n| End::Node(n))
+                    }
+                };
+                if let (Some(l), Some(r)) = (end(jt.left.0), end(jt.right.0)) {
+                    p.contacts.push((l, r));
+                }
+            }
+            // Faces against an abutment on the block's left.
+            for &j in &self.topo.sides[i] {
+                let jt = &self.topo.joints[j.0];
+                if jt.right.0 == i
+                    && self.fixed[jt.left.0]
+                    && self.live_joint(j.0)
+                    && self.is_touching(j.0)
+                {
+                    p.contacts.push((End::Ground, End::Node(local[&i])));
+                }
+            }
+        }
+        let (lo_q, hi_q) = self.stick_interval(p.canonical());
+        self.clusters[k].motion = stuck(lo_q, hi_q);
+    }
+
+    /// The stick interval of a problem whose blocks are all stuck, remembered per run.
+    fn stick_interval(&mut self, p: Problem) -> (Option<Q>, Option<Q>) {
+        if let Some(found) = self.stick_memo.get(&p) {
+            return found.clone();
+        }
+        let found = p.stick_interval();
+        self.stick_memo.insert(p, found.clone());
+        found
+    }
+
+    /// The general decision. Only the signs of the ground acceleration's derivatives matter
+    /// (they order ties, and every tie compares the same mass combination), so theta is
+    /// normalised to them; decisions away from the ground, or at a stick threshold (an exact
+    /// value met again cycle after cycle), are remembered per run.
+    fn solve(&mut self, p: &Problem, theta: &Lex, remember: bool) -> Vec<Group> {
+        let sign = |q: &Q| Q::int(i64::from(q.signum()));
+        let theta = if p.touches_ground() {
+            let second = if theta.0[1].is_zero() {
+                sign(&theta.0[2])
+            } else {
+                Q::zero()
+            };
+            Lex([theta.0[0].clone(), sign(&theta.0[1]), second])
+        } else {
+            Lex::zero()
+        };
+        if !remember && p.touches_ground() {
+            return p.solve(&theta);
+        }
+        let key = (p.clone(), theta);
+        if let Some(found) = self.free_memo.get(&key) {
+            return found.clone();
+        }
+        let found = p.solve(&key.1);
+        self.free_memo.insert(key, found.clone());
+        found
+    }
+
+    /// The common outcome at a stop: every block joined to the ground, the ground acceleration
+    /// strictly inside the stick interval of every piece. Returns the stuck groups with their
+    /// intervals, or `None` when the general decision is needed (a threshold event, a piece not
+    /// joined to the ground, a_g on or beyond a limit).
+    #[allow(clippy::type_complexity)]
+    fn all_stuck(
+        &mut self,
+        p: &Problem,
+        theta: &Lex,
+        snapped: bool,
+    ) -> Option<(Vec<Group>, Vec<Option<(Option<Q>, Option<Q>)>>)> {
+        if snapped || !p.touches_ground() {
+            return None;
+        }
+        let a0 = &theta.0[0];
+        let mut groups = Vec::new();
+        let mut intervals = Vec::new();
+        for (piece, on_ground) in p.ground_pieces() {
+            if !on_ground {
+                return None;
+            }
+            let (lo, hi) = self.stick_interval(p.restrict(&piece));
+            if lo.as_ref().is_some_and(|lo| a0 <= lo) || hi.as_ref().is_some_and(|hi| a0 >= hi) {
+                return None;
+            }
+            groups.push(Group {
+                nodes: piece,
+                accel: a0.clone(),
+                grounded: true,
+            });
+            intervals.push(Some((lo, hi)));
+        }
+        Some((groups, intervals))
+    }
+
+    /// A cluster next to a re-decided one: its friction forces may have changed (after an
+    /// impact) and its neighbourhood has; it gets a new version and fresh events.
+    fn refresh(&mut self, k: usize) {
+        let t = self.t;
+        match &self.clusters[k].motion {
+            Motion::Stuck { .. } => self.set_thresholds(k),
+            Motion::Sliding(sl) => {
+                let force: Q = self.external_forces(k).into_iter().sum();
+                let c_q = force / &self.clusters[k].mass_q;
+                if c_q != sl.c_q {
+                    self.account(k, t);
+                    let v = self.cluster_vel(k);
+                    let members = self.clusters[k].blocks.clone();
+                    for &i in &members {
+                        self.u_ref[i] = self.block_disp(i);
+                    }
+                    self.clusters[k].motion =
+                        Motion::Sliding(Slide::formed(&self.seg, self.t, v, c_q));
+                    self.clusters[k].roots = None;
+                }
+            }
+        }
+        self.clusters[k].version = self.new_version();
+    }
+
+    /// Block i has fallen (`--after-collapse continue`): remove it and its load, let whatever
+    /// rested only on it fall too, and re-decide the whole wall.
+    pub(super) fn remove_fallen(&mut self, first: usize) -> Result<(), SimulationError> {
+        let mut falling = vec![first];
+        while let Some(i) = falling.pop() {
+            if self.fallen[i] {
+                continue;
+            }
+            let v = self.block_vel(i);
+            self.rec.energy.fallen_j += 0.5 * self.mass[i] * v * v;
+            for s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
+                self.account_support(s.0);
+            }
+            if self.of[i] != NONE {
+                let k = self.of[i];
+                self.account(k, self.t);
+            }
+            self.u_ref[i] = self.block_disp(i);
+            self.fallen[i] = true;
+            self.rec.fell(i);
+            for &s in &self.topo.above[i] {
+                let up = self.topo.supports[s.0].upper.0;
+                if !self.fallen[up] && !self.stands(up) {
+                    self.rec
+                        .event(self.t, EventKind::Collapse, &[up], None, None);
+                    falling.push(up);
+                }
+            }
+        }
+        let loads = self.topo.loads_without(self.wall, &self.fallen);
+        for (s, load) in loads.into_iter().enumerate() {
+            self.cap_q[s] = &self.topo.supports[s].friction * &load;
+            self.cap[s] = self.cap_q[s].to_f64();
+        }
+        // Dissolve every cluster; blocks keep their velocities.
+        let live: Vec<usize> = (0..self.n)
+            .filter(|&i| !self.fixed[i] && !self.fallen[i])
+            .collect();
+        let snap: Vec<(usize, f64)> = live.iter().map(|&i| (i, self.block_vel(i))).collect();
+        for k in 0..self.clusters.len() {
+            if self.clusters[k].blocks.is_empty() {
+                continue;
+            }
+            self.account(k, self.t);
+            let moved = self.cluster_disp(k);
+            let members = std::mem::take(&mut self.clusters[k].blocks);
+            for i in members {
+                self.u_ref[i] += moved;
+                self.of[i] = NONE;
+            }
+            self.clusters[k].version = self.new_version();
+            self.free.push(k);
+        }
+        for &(i, v) in &snap {
+            // Each block alone for a moment, with its own velocity, until the decision regroups.
+            let k = self.alloc(Cluster {
+                mass: self.mass[i],
+                mass_q: self.mass_q[i].clone(),
+                blocks: vec![i],
+                version: 0,
+                motion: Motion::Sliding(Slide::formed(&self.seg, self.t, v, Q::zero())),
+                accounted_to: self.t,
+                roots: None,
+            });
+            self.of[i] = k;
+        }
+        for s in 0..self.dir.len() {
+            if !self.live_support(s) {
+                self.dir[s] = 0;
+            }
+        }
+        self.decide_from(&live, &snap, None)
+    }
+}
+
+fn stuck(lo_q: Option<Q>, hi_q: Option<Q>) -> Motion {
+    Motion::Stuck {
+        lo: lo_q.as_ref().map_or(f64::NEG_INFINITY, Q::to_f64),
+        hi: hi_q.as_ref().map_or(f64::INFINITY, Q::to_f64),
+        lo_q,
+        hi_q,
+    }
+}
+
+/// Does group g share an undecided joint with the ground or a stuck group?
+fn touches_ground(p: &Problem, groups: &[Group], g: &Group) -> bool {
+    let grounded_node = |n: usize| groups.iter().any(|h| h.grounded && h.nodes.contains(&n));
+    let inside = |n: usize| g.nodes.contains(&n);
+    p.friction.iter().any(|(i, j, _)| match j {
+        End::Ground => inside(*i),
+        End::Node(j) => (inside(*i) && grounded_node(*j)) || (inside(*j) && grounded_node(*i)),
+    }) || p.contacts.iter().any(|(l, r)| match (l, r) {
+        (End::Ground, End::Node(n)) | (End::Node(n), End::Ground) => inside(*n),
+        (End::Node(a), End::Node(b)) => {
+            (inside(*a) && grounded_node(*b)) || (inside(*b) && grounded_node(*a))
+        }
+        _ => false,
+    })
+}

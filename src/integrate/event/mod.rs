@@ -1,0 +1,1021 @@
+//! The exact event-driven integrator (design note `event-driven.md`).
+//!
+//! No time step: between events every cluster moves in closed form ([`cluster`]); events are
+//! roots of closed-form functions, located to round-off ([`roots`]); at each event the new mode
+//! is decided exactly ([`decide`]) and impacts are resolved exactly ([`impact`]). Work per event
+//! touches only the clusters whose mode changed and their neighbours; a stuck cluster costs one
+//! threshold check per segment of the ground motion.
+
+mod cluster;
+pub mod decide;
+mod decision;
+pub mod flow;
+pub mod impact;
+pub mod roots;
+mod schedule;
+
+use crate::error::SimulationError;
+use crate::exact::Q;
+use crate::integrate::{AfterCollapse, Integrator, Scenario};
+use crate::motion::{Motion, Segment};
+use crate::response::{Collapse, EventKind, Recorder, Response};
+use crate::topology::{Base, Topology};
+use crate::wall::Wall;
+use cluster::{Cluster, Motion as ClusterMotion};
+use roots::{Counter, Fun};
+use std::cmp::{Ordering, Reverse};
+use std::collections::{BinaryHeap, HashMap};
+
+/// Safeguards of the event-driven integrator. Neither is a tolerance: they only stop a run that
+/// would otherwise never end, with an error that says where.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Params {
+    /// Events allowed at one instant.
+    pub max_events_per_instant: usize,
+    /// Pairwise collisions allowed in one impact chain.
+    pub max_collisions_per_chain: usize,
+}
+
+impl Default for Params {
+    fn default() -> Params {
+        Params {
+            max_events_per_instant: 10_000,
+            max_collisions_per_chain: 100_000,
+        }
+    }
+}
+
+/// The exact event-driven integrator.
+#[derive(Debug, Clone, Default)]
+pub struct EventDriven {
+    /// Safeguards.
+    pub params: Params,
+}
+
+impl Integrator for EventDriven {
+    fn method(&self) -> &'static str {
+        "event"
+    }
+
+    fn run(&self, scenario: &Scenario) -> Result<Response, SimulationError> {
+        Engine::new(scenario, &self.params)?.run()
+    }
+}
+
+/// Positions and velocities carry round-off of a few ulps of the largest magnitudes that enter
+/// them (block coordinates, ground displacement, block displacement). Quantities within this many
+/// ulps of zero are zero: a gap that closes to within it is touching, an approach speed within it
+/// is a touch, not an impact.
+const ROUNDOFF_ULPS: f64 = 1024.0;
+
+/// Marks a block that belongs to no cluster (fixed or fallen).
+const NONE: usize = usize::MAX;
+
+/// What limits a cluster's displacement relative to a neighbour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Constraint {
+    /// A vertical joint closing.
+    Gap(usize),
+    /// A support's relative displacement crossing a collapse threshold.
+    Collapse(usize),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Ev {
+    Threshold {
+        k: usize,
+        ver: u64,
+        upper: bool,
+    },
+    Stop {
+        k: usize,
+        ver: u64,
+    },
+    GroundBound {
+        k: usize,
+        ver: u64,
+        c: Constraint,
+    },
+    Meet {
+        a: usize,
+        va: u64,
+        b: usize,
+        vb: u64,
+    },
+    PairBound {
+        a: usize,
+        va: u64,
+        b: usize,
+        vb: u64,
+        c: Constraint,
+    },
+}
+
+impl Ev {
+    /// Simultaneous events are handled contacts and collapse first, then joints stopping, then
+    /// thresholds, then in the order they were found.
+    fn priority(&self) -> u8 {
+        match self {
+            Ev::GroundBound { .. } | Ev::PairBound { .. } => 0,
+            Ev::Stop { .. } | Ev::Meet { .. } => 1,
+            Ev::Threshold { .. } => 2,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Pending {
+    t: f64,
+    seq: u64,
+    ev: Ev,
+}
+
+impl PartialEq for Pending {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Pending {}
+impl PartialOrd for Pending {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Pending {
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.t
+            .total_cmp(&o.t)
+            .then(self.ev.priority().cmp(&o.ev.priority()))
+            .then(self.seq.cmp(&o.seq))
+    }
+}
+
+pub(crate) struct Engine<'a> {
+    wall: &'a Wall,
+    topo: &'a Topology,
+    motion: &'a Motion,
+    after_collapse: AfterCollapse,
+    params: &'a Params,
+    n: usize,
+    mass: Vec<f64>,
+    mass_q: Vec<Q>,
+    cap: Vec<f64>,
+    cap_q: Vec<Q>,
+    fixed: Vec<bool>,
+    fallen: Vec<bool>,
+    xl: Vec<f64>,
+    xr: Vec<f64>,
+    xc: Vec<f64>,
+    gap0: Vec<f64>,
+    restitution: Q,
+    t: f64,
+    t_end: f64,
+    seg: Segment,
+    of: Vec<usize>,
+    clusters: Vec<Cluster>,
+    free: Vec<usize>,
+    u_ref: Vec<f64>,
+    /// Per support: sliding direction of the upper block relative to the lower (+1, -1), 0 = stuck.
+    dir: Vec<i8>,
+    /// Per vertical joint: the faces touch.
+    touching: Vec<bool>,
+    /// Per support: relative displacement when friction work was last accounted.
+    d_last: Vec<f64>,
+    heap: BinaryHeap<Reverse<Pending>>,
+    seq: u64,
+    version: u64,
+    rec: Recorder,
+    output_dt: Option<f64>,
+    output_k: u64,
+    instant: (f64, usize),
+    len_scale: f64,
+    vel_scale: f64,
+    count: Counter,
+    stopped: bool,
+    /// Stick intervals already worked out, by problem.
+    stick_memo: HashMap<decide::Problem, (Option<Q>, Option<Q>)>,
+    /// Decisions already worked out, by problem and ground acceleration.
+    free_memo: HashMap<(decide::Problem, flow::Lex), Vec<decide::Group>>,
+}
+
+impl<'a> Engine<'a> {
+    fn new(sc: &Scenario<'a>, params: &'a Params) -> Result<Engine<'a>, SimulationError> {
+        let (wall, topo) = (sc.wall, sc.topology);
+        let n = wall.blocks.len();
+        let t_end = sc.settings.duration_s;
+        if !(t_end.is_finite() && t_end > 0.0) {
+            return Err(SimulationError::Invalid(format!(
+                "duration {t_end} s: it must be positive"
+            )));
+        }
+        if let Some(dt) = sc.settings.output_dt_s {
+            if !(dt.is_finite() && dt > 0.0) {
+                return Err(SimulationError::Invalid(format!(
+                    "output interval {dt} s: it must be positive"
+                )));
+            }
+        }
+        let mass_q: Vec<Q> = topo.blocks.iter().map(|b| b.mass_kg.clone()).collect();
+        let cap_q: Vec<Q> = topo.supports.iter().map(|s| s.capacity_n.clone()).collect();
+        let f = |v: &[Q]| v.iter().map(Q::to_f64).collect::<Vec<f64>>();
+        let (v_max, d_max) = motion_bounds(sc.motion, t_end);
+        let extent: f64 = wall
+            .blocks
+            .iter()
+            .map(|b| b.right().to_f64().abs().max(b.top().to_f64()))
+            .fold(1.0, f64::max);
+        let seg = sc.motion.segment_at(0.0);
+        Ok(Engine {
+            wall,
+            topo,
+            motion: sc.motion,
+            after_collapse: sc.settings.after_collapse,
+            params,
+            n,
+            mass: f(&mass_q),
+            mass_q,
+            cap: f(&cap_q),
+            cap_q,
+            fixed: wall.blocks.iter().map(|b| b.fixed).collect(),
+            fallen: vec![false; n],
+            xl: wall.blocks.iter().map(|b| b.x.to_f64()).collect(),
+            xr: wall.blocks.iter().map(|b| b.right().to_f64()).collect(),
+            xc: wall
+                .blocks
+                .iter()
+                .map(|b| b.centroid_x().to_f64())
+                .collect(),
+            gap0: topo.joints.iter().map(|j| j.gap_m.to_f64()).collect(),
+            restitution: wall.restitution.clone(),
+            t: 0.0,
+            t_end,
+            seg,
+            of: vec![NONE; n],
+            clusters: Vec::new(),
+            free: Vec::new(),
+            u_ref: vec![0.0; n],
+            dir: vec![0; topo.supports.len()],
+            touching: topo.joints.iter().map(|j| j.gap_m.is_zero()).collect(),
+            d_last: vec![0.0; topo.supports.len()],
+            heap: BinaryHeap::new(),
+            seq: 0,
+            version: 0,
+            rec: Recorder::new(
+                wall,
+                topo,
+                sc.settings.output_dt_s.is_some(),
+                sc.settings.log_events,
+            ),
+            output_dt: sc.settings.output_dt_s,
+            output_k: 0,
+            instant: (f64::NAN, 0),
+            len_scale: extent + d_max,
+            vel_scale: v_max + 1e-3,
+            count: Counter::default(),
+            stopped: false,
+            stick_memo: HashMap::new(),
+            free_memo: HashMap::new(),
+        })
+    }
+
+    fn run(mut self) -> Result<Response, SimulationError> {
+        // At rest at t = 0: every block is undecided against the ground.
+        let seeds: Vec<usize> = (0..self.n).filter(|&i| !self.fixed[i]).collect();
+        self.decide_from(&seeds, &[], None)?;
+        loop {
+            let seg_end = self.seg.t1.min(self.t_end);
+            match self.pop_until(seg_end) {
+                Some(p) => {
+                    self.output_until(p.t);
+                    self.t = p.t;
+                    self.rec.stats.events += 1;
+                    self.progress_guard(&p)?;
+                    self.handle(p.ev)?;
+                    if self.stopped {
+                        break;
+                    }
+                }
+                None => {
+                    self.output_until(seg_end);
+                    self.t = seg_end;
+                    self.account_all(seg_end);
+                    if seg_end >= self.t_end {
+                        break;
+                    }
+                    self.enter_segment(seg_end);
+                }
+            }
+        }
+        Ok(self.finish())
+    }
+
+    fn progress_guard(&mut self, p: &Pending) -> Result<(), SimulationError> {
+        if p.t == self.instant.0 {
+            self.instant.1 += 1;
+            if self.instant.1 > self.params.max_events_per_instant {
+                return Err(SimulationError::NoProgress {
+                    time_s: p.t,
+                    count: self.instant.1,
+                    detail: format!("{:?}", p.ev),
+                });
+            }
+        } else {
+            self.instant = (p.t, 1);
+        }
+        Ok(())
+    }
+
+    fn pop_until(&mut self, limit: f64) -> Option<Pending> {
+        while let Some(Reverse(p)) = self.heap.peek().copied() {
+            if p.t > limit {
+                return None;
+            }
+            self.heap.pop();
+            if self.is_current(&p.ev) {
+                return Some(p);
+            }
+        }
+        None
+    }
+
+    fn is_current(&self, ev: &Ev) -> bool {
+        let ok = |k: usize, v: u64| {
+            self.clusters
+                .get(k)
+                .is_some_and(|c| c.version == v && !c.blocks.is_empty())
+        };
+        match *ev {
+            Ev::Threshold { k, ver, .. } | Ev::Stop { k, ver } | Ev::GroundBound { k, ver, .. } => {
+                ok(k, ver)
+            }
+            Ev::Meet { a, va, b, vb } | Ev::PairBound { a, va, b, vb, .. } => {
+                ok(a, va) && ok(b, vb)
+            }
+        }
+    }
+
+    fn push(&mut self, t: f64, ev: Ev) {
+        self.seq += 1;
+        self.heap.push(Reverse(Pending {
+            t,
+            seq: self.seq,
+            ev,
+        }));
+    }
+
+    fn s(&self) -> f64 {
+        self.t - self.seg.t0
+    }
+
+    /// Displacement gained by cluster k since it formed (m), at the current time.
+    fn cluster_disp(&self, k: usize) -> f64 {
+        self.clusters[k].slide().map_or(0.0, |sl| sl.disp(self.t))
+    }
+
+    /// Velocity of cluster k relative to the ground (m/s), at the current time.
+    fn cluster_vel(&self, k: usize) -> f64 {
+        self.clusters[k].slide().map_or(0.0, |sl| sl.vel(self.t))
+    }
+
+    fn block_disp(&self, i: usize) -> f64 {
+        match self.of[i] {
+            NONE => self.u_ref[i],
+            k => self.u_ref[i] + self.cluster_disp(k),
+        }
+    }
+
+    fn block_vel(&self, i: usize) -> f64 {
+        match self.of[i] {
+            NONE => 0.0,
+            k => self.cluster_vel(k),
+        }
+    }
+
+    /// True for the ground side of a joint: the ground, an abutment, or a block stuck to the
+    /// ground.
+    fn grounded(&self, i: usize) -> bool {
+        self.of[i] == NONE
+            || matches!(
+                self.clusters[self.of[i]].motion,
+                ClusterMotion::Stuck { .. }
+            )
+    }
+
+    fn len_tol(&self, a: f64, b: f64) -> f64 {
+        ROUNDOFF_ULPS * f64::EPSILON * (self.len_scale + a.abs() + b.abs())
+    }
+
+    fn vel_tol(&self, a: f64, b: f64) -> f64 {
+        ROUNDOFF_ULPS * f64::EPSILON * (self.vel_scale + a.abs() + b.abs())
+    }
+
+    /// The lower block of a support, if it is a block that can move.
+    fn lower_block(&self, s: usize) -> Option<usize> {
+        match self.topo.supports[s].lower {
+            Base::Ground => None,
+            Base::Block(b) => Some(b.0),
+        }
+    }
+
+    /// A support still in the model (neither end fell).
+    fn live_support(&self, s: usize) -> bool {
+        let sup = &self.topo.supports[s];
+        !self.fallen[sup.upper.0] && self.lower_block(s).is_none_or(|l| !self.fallen[l])
+    }
+
+    fn live_joint(&self, j: usize) -> bool {
+        let jt = &self.topo.joints[j];
+        !self.fallen[jt.left.0] && !self.fallen[jt.right.0]
+    }
+
+    fn gap(&self, j: usize) -> f64 {
+        let jt = &self.topo.joints[j];
+        self.gap0[j] + self.block_disp(jt.right.0) - self.block_disp(jt.left.0)
+    }
+
+    fn support_d(&self, s: usize) -> f64 {
+        let sup = &self.topo.supports[s];
+        self.block_disp(sup.upper.0) - self.lower_block(s).map_or(0.0, |l| self.block_disp(l))
+    }
+
+    fn new_version(&mut self) -> u64 {
+        self.version += 1;
+        self.version
+    }
+
+    fn enter_segment(&mut self, t: f64) {
+        self.seg = self.motion.segment_at(t);
+        self.rec.stats.segments += 1;
+        let seg = self.seg;
+        for c in &mut self.clusters {
+            if let ClusterMotion::Sliding(sl) = &mut c.motion {
+                if !c.blocks.is_empty() {
+                    sl.rebase(&seg);
+                    c.roots = None;
+                }
+            }
+        }
+        for k in 0..self.clusters.len() {
+            if !self.clusters[k].blocks.is_empty() {
+                self.schedule_segment(k);
+            }
+        }
+    }
+
+    /// Energy input and displacement/velocity extremes of every sliding cluster up to t.
+    fn account_all(&mut self, t: f64) {
+        for k in 0..self.clusters.len() {
+            if !self.clusters[k].blocks.is_empty() {
+                self.account(k, t);
+            }
+        }
+    }
+
+    /// Energy input and extremes of cluster k from where it was accounted to t (same segment).
+    fn account(&mut self, k: usize, t: f64) {
+        let t_a = self.clusters[k].accounted_to;
+        self.clusters[k].accounted_to = t;
+        let Some(sl) = self.clusters[k].slide().cloned() else {
+            return;
+        };
+        if t <= t_a {
+            return;
+        }
+        self.rec.energy.input_j += self.clusters[k].mass * sl.input_work_per_kg(t_a, t);
+        let roots = match &self.clusters[k].roots {
+            Some(r) if r.from <= t_a && t <= r.to => r.clone(),
+            _ => self.zeros(&sl, t_a, t),
+        };
+        let inside = |x: &&f64| **x > t_a && **x < t;
+        let a_split: Vec<f64> = roots.a_zero.iter().filter(inside).copied().collect();
+        let v_roots: Vec<f64> = roots.v_zero.iter().filter(inside).copied().collect();
+        let vel = |x: f64| sl.vel(x);
+        let mut lo = sl.disp(t_a).min(sl.disp(t));
+        let mut hi = sl.disp(t_a).max(sl.disp(t));
+        for &r in &v_roots {
+            let x = sl.disp(r);
+            lo = lo.min(x);
+            hi = hi.max(x);
+        }
+        let mut vmax = vel(t_a).abs().max(vel(t).abs());
+        for &r in &a_split {
+            vmax = vmax.max(vel(r).abs());
+        }
+        for &i in &self.clusters[k].blocks {
+            let u = (self.u_ref[i] + lo).abs().max((self.u_ref[i] + hi).abs());
+            self.rec.block_extremes(i, u, vmax);
+        }
+    }
+
+    /// Zeros of a sliding cluster's relative acceleration and velocity in [t_a, t_b], to the last
+    /// bit (they are split points of its event functions).
+    fn zeros(&mut self, sl: &cluster::Slide, t_a: f64, t_b: f64) -> cluster::Roots {
+        let acc = |x: f64| sl.acc(x);
+        let acc_jerk = |x: f64| (sl.acc(x), -sl.anchor.accel_rates(x - sl.anchor.t0).0);
+        let vel = |x: f64| sl.vel(x);
+        let vel_acc = |x: f64| {
+            let (_, v, a) = sl.state(x);
+            (v, a)
+        };
+        let a_zero = roots::sign_changes(
+            Fun::with(&acc, &acc_jerk),
+            t_a,
+            t_b,
+            &[],
+            0.0,
+            &mut self.count,
+        );
+        let v_zero = roots::sign_changes(
+            Fun::with(&vel, &vel_acc),
+            t_a,
+            t_b,
+            &a_zero,
+            0.0,
+            &mut self.count,
+        );
+        cluster::Roots {
+            from: t_a,
+            to: t_b,
+            a_zero,
+            v_zero,
+        }
+    }
+
+    /// Friction work on support s since it was last accounted, and its displacement extreme.
+    fn account_support(&mut self, s: usize) {
+        if !self.live_support(s) {
+            return;
+        }
+        let d = self.support_d(s);
+        self.rec.energy.friction_j += self.cap[s] * (d - self.d_last[s]).abs();
+        self.d_last[s] = d;
+        self.rec.joint_extreme(s, d.abs());
+    }
+
+    fn output_until(&mut self, t: f64) {
+        let Some(dt) = self.output_dt else { return };
+        loop {
+            let tk = self.output_k as f64 * dt;
+            if tk > t || tk > self.t_end {
+                return;
+            }
+            let saved = self.t;
+            self.t = tk;
+            self.sample();
+            self.t = saved;
+            self.output_k += 1;
+        }
+    }
+
+    fn sample(&mut self) {
+        if !self.rec.wants_history() {
+            return;
+        }
+        let u: Vec<f64> = (0..self.n).map(|i| self.block_disp(i)).collect();
+        let v: Vec<f64> = (0..self.n)
+            .map(|i| {
+                if self.fallen[i] {
+                    0.0
+                } else {
+                    self.block_vel(i)
+                }
+            })
+            .collect();
+        self.rec.sample(self.t, &u, &v);
+    }
+
+    fn handle(&mut self, ev: Ev) -> Result<(), SimulationError> {
+        match ev {
+            Ev::Threshold { k, upper, .. } => {
+                let snap = match &self.clusters[k].motion {
+                    ClusterMotion::Stuck { lo_q, hi_q, .. } => {
+                        if upper {
+                            hi_q.clone()
+                        } else {
+                            lo_q.clone()
+                        }
+                    }
+                    ClusterMotion::Sliding(_) => None,
+                };
+                let seeds = self.clusters[k].blocks.clone();
+                self.decide_from(&seeds, &[], snap)?;
+            }
+            Ev::Stop { k, .. } => {
+                let seeds = self.clusters[k].blocks.clone();
+                let snap: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, 0.0)).collect();
+                self.decide_from(&seeds, &snap, None)?;
+            }
+            Ev::Meet { a, b, .. } => {
+                let (ma, mb) = (self.clusters[a].mass, self.clusters[b].mass);
+                let v = (ma * self.cluster_vel(a) + mb * self.cluster_vel(b)) / (ma + mb);
+                let seeds: Vec<usize> = self.clusters[a]
+                    .blocks
+                    .iter()
+                    .chain(&self.clusters[b].blocks)
+                    .copied()
+                    .collect();
+                let snap: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, v)).collect();
+                self.decide_from(&seeds, &snap, None)?;
+            }
+            Ev::GroundBound { k, c, .. } => self.constraint_reached(k, None, c)?,
+            Ev::PairBound { a, b, c, .. } => self.constraint_reached(a, Some(b), c)?,
+        }
+        if self.rec.wants_history() {
+            self.sample();
+        }
+        Ok(())
+    }
+
+    fn constraint_reached(
+        &mut self,
+        a: usize,
+        b: Option<usize>,
+        c: Constraint,
+    ) -> Result<(), SimulationError> {
+        match c {
+            Constraint::Gap(j) => self.faces_meet(j),
+            Constraint::Collapse(s) => {
+                let upper = self.topo.supports[s].upper.0;
+                if self.stands(upper) {
+                    // A threshold of the support span passed without toppling: look further.
+                    for k in std::iter::once(a).chain(b) {
+                        let v = self.new_version();
+                        self.clusters[k].version = v;
+                    }
+                    let ks: Vec<usize> = std::iter::once(a).chain(b).collect();
+                    self.schedule(&ks);
+                    Ok(())
+                } else {
+                    self.collapse(upper)
+                }
+            }
+        }
+    }
+
+    /// A vertical joint closes: an impact if the faces approach, a touch otherwise.
+    fn faces_meet(&mut self, j: usize) -> Result<(), SimulationError> {
+        let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
+        let (vl, vr) = (self.block_vel(l), self.block_vel(r));
+        self.touching[j] = true;
+        if vl - vr > self.vel_tol(vl, vr) {
+            return self.impact(j);
+        }
+        self.rec.touches += 1;
+        self.rec.event(
+            self.t,
+            EventKind::Touch,
+            &[l, r],
+            Some(self.joint_label(j)),
+            None,
+        );
+        let v = match (self.grounded(l), self.grounded(r)) {
+            (true, _) | (_, true) => 0.0,
+            _ => {
+                let (ml, mr) = (
+                    self.clusters[self.of[l]].mass,
+                    self.clusters[self.of[r]].mass,
+                );
+                (ml * vl + mr * vr) / (ml + mr)
+            }
+        };
+        let mut seeds = Vec::new();
+        for i in [l, r] {
+            if self.of[i] != NONE {
+                seeds.extend(self.clusters[self.of[i]].blocks.iter().copied());
+            }
+        }
+        let snap: Vec<(usize, f64)> = seeds
+            .iter()
+            .filter(|&&i| !self.grounded(i))
+            .map(|&i| (i, v))
+            .collect();
+        self.decide_from(&seeds, &snap, None)
+    }
+
+    fn joint_label(&self, j: usize) -> String {
+        let jt = &self.topo.joints[j];
+        format!(
+            "{}|{}",
+            self.wall.blocks[jt.left.0].name, self.wall.blocks[jt.right.0].name
+        )
+    }
+
+    /// Resolves the impact at joint j and the chain of touching blocks around it, exactly.
+    fn impact(&mut self, j: usize) -> Result<(), SimulationError> {
+        // The chain: blocks reachable from the joint through touching faces.
+        let mut bodies_of = HashMap::new();
+        let mut bodies = Vec::new();
+        let mut faces: Vec<(usize, usize, usize)> = Vec::new();
+        let mut queue = vec![j];
+        let mut seen_joint = vec![false; self.topo.joints.len()];
+        seen_joint[j] = true;
+        while let Some(jj) = queue.pop() {
+            let jt = &self.topo.joints[jj];
+            let mut ids = [0usize; 2];
+            for (slot, blk) in [jt.left.0, jt.right.0].into_iter().enumerate() {
+                let key = if self.fixed[blk] {
+                    usize::MAX - blk
+                } else {
+                    blk
+                };
+                let id = *bodies_of.entry(key).or_insert_with(|| {
+                    bodies.push((
+                        blk,
+                        impact::Body {
+                            mass: (!self.fixed[blk]).then(|| self.mass_q[blk].clone()),
+                            velocity: Q::from_f64_exact(self.block_vel(blk))
+                                .expect("velocities are finite"),
+                        },
+                    ));
+                    bodies.len() - 1
+                });
+                ids[slot] = id;
+                if !self.fixed[blk] {
+                    for &side in &self.topo.sides[blk] {
+                        if !seen_joint[side.0]
+                            && self.live_joint(side.0)
+                            && self.gap(side.0).abs() <= self.len_tol(self.block_disp(blk), 0.0)
+                        {
+                            seen_joint[side.0] = true;
+                            queue.push(side.0);
+                        }
+                    }
+                }
+            }
+            faces.push((ids[0], ids[1], jj));
+        }
+        faces.sort_by(|p, q| {
+            self.xl[self.topo.joints[p.2].right.0]
+                .total_cmp(&self.xl[self.topo.joints[q.2].right.0])
+        });
+        let pairs: Vec<(usize, usize)> = faces.iter().map(|f| (f.0, f.1)).collect();
+        let mut exact: Vec<impact::Body> = bodies.iter().map(|b| b.1.clone()).collect();
+        let Some((collisions, loss)) = impact::resolve(
+            &mut exact,
+            &pairs,
+            &self.restitution,
+            self.params.max_collisions_per_chain,
+        ) else {
+            let names: Vec<&str> = bodies
+                .iter()
+                .map(|b| self.wall.blocks[b.0].name.as_str())
+                .collect();
+            return Err(SimulationError::ImpactChain {
+                time_s: self.t,
+                blocks: names.join(", "),
+                count: self.params.max_collisions_per_chain,
+            });
+        };
+        for c in &collisions {
+            let jj = faces[c.face].2;
+            let (l, r) = (self.topo.joints[jj].left.0, self.topo.joints[jj].right.0);
+            self.touching[jj] = true;
+            let pair = |v: &[Q; 2]| [v[0].to_f64(), v[1].to_f64()];
+            self.rec.impact(
+                self.t,
+                l,
+                r,
+                self.joint_label(jj),
+                pair(&c.before),
+                pair(&c.after),
+            );
+        }
+        if let Some(single) = (collisions.len() == 1).then(|| faces[collisions[0].face]) {
+            if let Some(t_acc) = self.zeno_accumulation(single.2, &collisions[0].approach) {
+                // Every bounce of the series happens within (t, t_acc) under the same forces: the
+                // pair's centre of mass moves as if they had stuck now, and from t_acc on they
+                // do. Merge them now with their common velocity; all of the relative kinetic
+                // energy is lost to the series.
+                let (bl, br, jj) = single;
+                let (ml, mr) = (
+                    bodies[bl].1.mass.clone().expect("sliding"),
+                    bodies[br].1.mass.clone().expect("sliding"),
+                );
+                let c = &collisions[0];
+                let common = (&ml * &c.before[0] + &mr * &c.before[1]) / (&ml + &mr);
+                let total_loss =
+                    Q::frac(1, 2) * &ml * &mr / (&ml + &mr) * &c.approach * &c.approach;
+                self.rec.energy.impact_loss_j += total_loss.to_f64();
+                let (l, r) = (self.topo.joints[jj].left.0, self.topo.joints[jj].right.0);
+                self.rec.event(
+                    t_acc,
+                    EventKind::Zeno,
+                    &[l, r],
+                    Some(self.joint_label(jj)),
+                    None,
+                );
+                self.rec.zeno += 1;
+                let v = common.to_f64();
+                return self.decide_from(&[l, r], &[(l, v), (r, v)], None);
+            }
+        }
+        self.rec.energy.impact_loss_j += loss.to_f64();
+        let mut seeds = Vec::new();
+        let mut snap = Vec::new();
+        for (k, (blk, _)) in bodies.iter().enumerate() {
+            if self.fixed[*blk] {
+                continue;
+            }
+            let v = exact[k].velocity.to_f64();
+            if v != self.block_vel(*blk) {
+                snap.push((*blk, v));
+            }
+            seeds.push(*blk);
+        }
+        self.decide_from(&seeds, &snap, None)
+    }
+
+    /// Zeno: after an impact with 0 < e < 1 between two blocks that slide alone under forces the
+    /// impact does not change (no joint reverses within the bounces), the relative acceleration
+    /// is a constant a pushing them together, the rebound speeds are e^k v_r and the bounces
+    /// accumulate at t + 2 v_r / (|a| (1 - e)) (design note, section 5). Returns that time when
+    /// the conditions hold and nothing else happens before it.
+    fn zeno_accumulation(&self, j: usize, approach: &Q) -> Option<f64> {
+        let e = &self.restitution;
+        if !(e.is_positive() && *e < Q::one()) {
+            return None;
+        }
+        let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
+        let (kl, kr) = (self.of[l], self.of[r]);
+        if kl == NONE
+            || kr == NONE
+            || self.clusters[kl].blocks.len() != 1
+            || self.clusters[kr].blocks.len() != 1
+        {
+            return None;
+        }
+        let (sl, sr) = (self.clusters[kl].slide()?, self.clusters[kr].slide()?);
+        let closing = &sr.c_q - &sl.c_q;
+        if !closing.is_negative() {
+            return None;
+        }
+        let rebound = e * approach;
+        let dt = (Q::int(2) * &rebound / (-&closing * (Q::one() - e))).to_f64();
+        let t_acc = self.t + dt;
+        // No joint of either block may reverse within the bounces, whatever the ground does:
+        // the series changes a velocity by at most (1 + e) v0 <= 2 v0 (the first bounce), and
+        // in dt a relative velocity drifts towards zero by at most its worst-case acceleration
+        // that way times dt.
+        let v0 = approach.to_f64();
+        let (a_min, a_max) = self.motion.accel_range(self.t, t_acc);
+        for b in [l, r] {
+            let vb = self.block_vel(b);
+            let cb = self.clusters[self.of[b]].slide()?.c;
+            for &s in self.topo.below[b].iter().chain(&self.topo.above[b]) {
+                if !self.live_support(s.0) {
+                    continue;
+                }
+                let sup = &self.topo.supports[s.0];
+                let other = if sup.upper.0 == b {
+                    self.lower_block(s.0)
+                } else {
+                    Some(sup.upper.0)
+                };
+                let w = vb - other.map_or(0.0, |o| self.block_vel(o));
+                let (dw_lo, dw_hi) = match other
+                    .filter(|&o| self.of[o] != NONE)
+                    .and_then(|o| self.clusters[self.of[o]].slide())
+                {
+                    Some(so) => (cb - so.c, cb - so.c),
+                    None => (cb - a_max, cb - a_min),
+                };
+                let drift = if w < 0.0 {
+                    dw_hi.max(0.0)
+                } else {
+                    (-dw_lo).max(0.0)
+                } * dt;
+                if w.abs() <= 2.0 * v0 + drift {
+                    return None;
+                }
+            }
+        }
+        let earliest = self
+            .heap
+            .iter()
+            .filter(|p| self.is_current(&p.0.ev))
+            .map(|p| p.0.t)
+            .fold(f64::INFINITY, f64::min);
+        (t_acc < earliest && t_acc < self.t_end).then_some(t_acc)
+    }
+
+    /// Does block i still stand on its supports? Its centroid must lie in the span from the
+    /// leftmost to the rightmost point where its bottom face touches a support's top face; on the
+    /// edge of the span, it falls if it is moving out (velocity, then acceleration).
+    fn stands(&self, i: usize) -> bool {
+        let state = |b: usize| -> [f64; 3] {
+            if self.of[b] == NONE {
+                return [self.u_ref[b], 0.0, 0.0];
+            }
+            let k = self.of[b];
+            match self.clusters[k].slide() {
+                Some(sl) => [
+                    self.u_ref[b] + sl.disp(self.t),
+                    sl.vel(self.t),
+                    sl.acc(self.t),
+                ],
+                None => [self.u_ref[b], 0.0, 0.0],
+            }
+        };
+        let add = |p: [f64; 3], x: f64| [p[0] + x, p[1], p[2]];
+        let tol = self.len_tol(self.block_disp(i), 0.0);
+        let cmp = |a: [f64; 3], b: [f64; 3]| -> Ordering {
+            if (a[0] - b[0]).abs() > tol {
+                return a[0].total_cmp(&b[0]);
+            }
+            a[1].total_cmp(&b[1]).then(a[2].total_cmp(&b[2]))
+        };
+        let lex_max = |a: [f64; 3], b: [f64; 3]| if cmp(a, b) == Ordering::Less { b } else { a };
+        let lex_min = |a: [f64; 3], b: [f64; 3]| if cmp(a, b) == Ordering::Greater { b } else { a };
+        let ui = state(i);
+        let centroid = add(ui, self.xc[i]);
+        let mut hull: Option<([f64; 3], [f64; 3])> = None;
+        for &s in &self.topo.below[i] {
+            if !self.live_support(s.0) {
+                continue;
+            }
+            let Some(j) = self.lower_block(s.0) else {
+                return true;
+            };
+            let uj = state(j);
+            let lo = lex_max(add(ui, self.xl[i]), add(uj, self.xl[j]));
+            let hi = lex_min(add(ui, self.xr[i]), add(uj, self.xr[j]));
+            if cmp(hi, lo) == Ordering::Greater {
+                hull = Some(match hull {
+                    None => (lo, hi),
+                    Some((a, b)) => (lex_min(a, lo), lex_max(b, hi)),
+                });
+            }
+        }
+        match hull {
+            None => false,
+            Some((lo, hi)) => {
+                cmp(centroid, lo) != Ordering::Less && cmp(centroid, hi) != Ordering::Greater
+            }
+        }
+    }
+
+    fn collapse(&mut self, i: usize) -> Result<(), SimulationError> {
+        if self.rec.collapse.is_none() {
+            self.rec.collapse = Some(Collapse {
+                time_s: self.t,
+                block: self.wall.blocks[i].name.clone(),
+            });
+        }
+        self.rec
+            .event(self.t, EventKind::Collapse, &[i], None, None);
+        self.rec.fell(i);
+        if self.after_collapse == AfterCollapse::Stop {
+            self.stopped = true;
+            return Ok(());
+        }
+        self.remove_fallen(i)
+    }
+
+    fn finish(mut self) -> Response {
+        let t = self.t.min(self.t_end);
+        self.t = t;
+        self.account_all(t);
+        for s in 0..self.topo.supports.len() {
+            self.account_support(s);
+        }
+        let u: Vec<f64> = (0..self.n).map(|i| self.block_disp(i)).collect();
+        let v: Vec<f64> = (0..self.n)
+            .map(|i| {
+                if self.fallen[i] {
+                    0.0
+                } else {
+                    self.block_vel(i)
+                }
+            })
+            .collect();
+        self.rec.energy.kinetic_j = (0..self.n)
+            .filter(|&i| !self.fallen[i])
+            .map(|i| 0.5 * self.mass[i] * v[i] * v[i])
+            .sum();
+        self.rec.stats.root_evaluations = self.count.0;
+        let motion = self.motion.describe();
+        self.rec.finish("event", self.wall, motion, t, &u, &v)
+    }
+}
+
+/// Bounds on |V_g| and |D_g| over [0, t_end], for round-off scales.
+fn motion_bounds(m: &Motion, t_end: f64) -> (f64, f64) {
+    match m {
+        Motion::Sine(s) => {
+            let w = 2.0 * std::f64::consts::PI * s.frequency_hz;
+            let a = s.amplitude_m_s2.abs();
+            (2.0 * a / w, a / w * t_end + 2.0 * a / (w * w))
+        }
+        Motion::Record(_) => {
+            let mut v: f64 = 0.0;
+            let mut d: f64 = 0.0;
+            let steps = 2000;
+            for k in 0..=steps {
+                let t = t_end * k as f64 / steps as f64;
+                v = v.max(m.velocity(t).abs());
+                d = d.max(m.displacement(t).abs());
+            }
+            (2.0 * v, 2.0 * d + v * t_end / steps as f64)
+        }
+    }
+}

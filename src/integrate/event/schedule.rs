@@ -1,0 +1,433 @@
+//! Event functions of the current mode and their next roots.
+//!
+//! - A stuck cluster: a_g leaving its stick interval [lo, hi] (per segment: a_g is monotone on
+//!   one, so one comparison per bound and segment is all a stuck wall costs).
+//! - A sliding cluster against the ground side (ground, abutments, stuck blocks): its velocity
+//!   reaching zero where it slides on them, its displacement reaching a gap or a collapse
+//!   threshold (per segment: these involve a_g).
+//! - Two sliding clusters: their relative velocity reaching zero where one slides on the other,
+//!   their relative displacement reaching a gap or collapse threshold. a_g cancels: these are
+//!   polynomials, found once per mode, whatever the segments.
+
+use super::cluster::Motion;
+use super::roots::{first_violation, valid_after, Fun};
+use super::{Constraint, Engine, Ev};
+use std::collections::BTreeSet;
+
+/// Bounds on a relative displacement, each with what it stands for.
+#[derive(Default)]
+struct Bounds {
+    lo: Option<(f64, Constraint)>,
+    hi: Option<(f64, Constraint)>,
+}
+
+impl Bounds {
+    fn lower(&mut self, value: f64, c: Constraint) {
+        if self.lo.is_none_or(|(v, _)| value > v) {
+            self.lo = Some((value, c));
+        }
+    }
+    fn upper(&mut self, value: f64, c: Constraint) {
+        if self.hi.is_none_or(|(v, _)| value < v) {
+            self.hi = Some((value, c));
+        }
+    }
+    /// A collapse threshold on the relative displacement r (now `r_now`): whichever side of
+    /// `r_now` it lies on bounds r there. Thresholds at the current value were just checked.
+    fn threshold(&mut self, value: f64, r_now: f64, tol: f64, s: usize) {
+        if value > r_now + tol {
+            self.upper(value, Constraint::Collapse(s));
+        } else if value < r_now - tol {
+            self.lower(value, Constraint::Collapse(s));
+        }
+    }
+}
+
+impl Engine<'_> {
+    /// Schedules the next events of the given clusters and of every pair of sliding clusters
+    /// among them and their neighbours.
+    pub(super) fn schedule(&mut self, ks: &[usize]) {
+        let mut pairs = BTreeSet::new();
+        for &k in ks {
+            if self.clusters[k].blocks.is_empty() {
+                continue;
+            }
+            self.schedule_segment(k);
+            if self.clusters[k].slide().is_some() {
+                for m in self.sliding_neighbours(k) {
+                    pairs.insert((k.min(m), k.max(m)));
+                }
+            }
+        }
+        for (a, b) in pairs {
+            self.schedule_pair(a, b);
+        }
+    }
+
+    /// Events of cluster k that involve a_g, up to the end of the current segment.
+    pub(super) fn schedule_segment(&mut self, k: usize) {
+        let seg = self.seg;
+        let (t0, t1) = (self.t, seg.t1.min(self.t_end));
+        let ver = self.clusters[k].version;
+        let (r1, r2) = seg.accel_rates(self.s());
+        let ag = move |x: f64| seg.accel(x - seg.t0);
+        let rate = move |x: f64| seg.accel_rates(x - seg.t0).0;
+        match &self.clusters[k].motion {
+            Motion::Stuck { lo, hi, .. } => {
+                let (lo, hi) = (*lo, *hi);
+                if hi.is_finite() {
+                    let f = |x: f64| hi - ag(x);
+                    let df = |x: f64| (hi - ag(x), -rate(x));
+                    let start = valid_after(f(t0), 0.0, &[-r1, -r2]);
+                    if let Some(h) = first_violation(
+                        Fun::with(&f, &df),
+                        t0,
+                        t1,
+                        &[],
+                        start,
+                        0.0,
+                        &mut self.count,
+                    ) {
+                        self.push(
+                            h.t,
+                            Ev::Threshold {
+                                k,
+                                ver,
+                                upper: true,
+                            },
+                        );
+                    }
+                }
+                if lo.is_finite() {
+                    let f = |x: f64| ag(x) - lo;
+                    let df = |x: f64| (ag(x) - lo, rate(x));
+                    let start = valid_after(f(t0), 0.0, &[r1, r2]);
+                    if let Some(h) = first_violation(
+                        Fun::with(&f, &df),
+                        t0,
+                        t1,
+                        &[],
+                        start,
+                        0.0,
+                        &mut self.count,
+                    ) {
+                        self.push(
+                            h.t,
+                            Ev::Threshold {
+                                k,
+                                ver,
+                                upper: false,
+                            },
+                        );
+                    }
+                }
+            }
+            Motion::Sliding(sl) => {
+                let sl = sl.clone();
+                let (sigma, bounds) = self.ground_constraints(k);
+                let acc = |x: f64| sl.acc(x);
+                let vel = |x: f64| sl.vel(x);
+                let disp = |x: f64| sl.disp(x);
+                let zeros = match self.clusters[k].roots.take() {
+                    Some(r) if r.from <= t0 && t1 <= r.to => r,
+                    _ => self.zeros(&sl, t0, t1),
+                };
+                let (a_split, v_roots) = (zeros.a_zero.clone(), zeros.v_zero.clone());
+                self.clusters[k].roots = Some(zeros);
+                if sigma != 0 {
+                    let s = f64::from(sigma);
+                    let f = |x: f64| s * vel(x);
+                    let df = |x: f64| {
+                        let (_, v, a) = sl.state(x);
+                        (s * v, s * a)
+                    };
+                    let start = valid_after(f(t0), 0.0, &[s * acc(t0), -s * r1, -s * r2]);
+                    if let Some(h) = first_violation(
+                        Fun::with(&f, &df),
+                        t0,
+                        t1,
+                        &a_split,
+                        start,
+                        0.0,
+                        &mut self.count,
+                    ) {
+                        self.push(h.t, Ev::Stop { k, ver });
+                    }
+                }
+                if bounds.lo.is_none() && bounds.hi.is_none() {
+                    return;
+                }
+                let x0 = disp(t0);
+                let tol = self.len_tol(x0, 0.0);
+                if let Some((lo, c)) = bounds.lo {
+                    let f = |x: f64| disp(x) - lo;
+                    let df = |x: f64| {
+                        let (u, v, _) = sl.state(x);
+                        (u - lo, v)
+                    };
+                    let start = valid_after(f(t0), tol, &[vel(t0), acc(t0), -r1]);
+                    if let Some(h) = first_violation(
+                        Fun::with(&f, &df),
+                        t0,
+                        t1,
+                        &v_roots,
+                        start,
+                        tol,
+                        &mut self.count,
+                    ) {
+                        self.push(h.t, Ev::GroundBound { k, ver, c });
+                    }
+                }
+                if let Some((hi, c)) = bounds.hi {
+                    let f = |x: f64| hi - disp(x);
+                    let df = |x: f64| {
+                        let (u, v, _) = sl.state(x);
+                        (hi - u, -v)
+                    };
+                    let start = valid_after(f(t0), tol, &[-vel(t0), -acc(t0), r1]);
+                    if let Some(h) = first_violation(
+                        Fun::with(&f, &df),
+                        t0,
+                        t1,
+                        &v_roots,
+                        start,
+                        tol,
+                        &mut self.count,
+                    ) {
+                        self.push(h.t, Ev::GroundBound { k, ver, c });
+                    }
+                }
+            }
+        }
+    }
+
+    /// Sliding clusters sharing a joint with cluster k.
+    fn sliding_neighbours(&self, k: usize) -> BTreeSet<usize> {
+        let mut out = BTreeSet::new();
+        for &i in &self.clusters[k].blocks {
+            let supports = self.topo.below[i].iter().chain(&self.topo.above[i]);
+            let others = supports.filter(|s| self.live_support(s.0)).filter_map(|s| {
+                let sup = &self.topo.supports[s.0];
+                if sup.upper.0 == i {
+                    self.lower_block(s.0)
+                } else {
+                    Some(sup.upper.0)
+                }
+            });
+            let sides = self.topo.sides[i]
+                .iter()
+                .filter(|j| self.live_joint(j.0))
+                .map(|j| {
+                    let jt = &self.topo.joints[j.0];
+                    if jt.left.0 == i {
+                        jt.right.0
+                    } else {
+                        jt.left.0
+                    }
+                });
+            for o in others.chain(sides) {
+                let m = self.of[o];
+                if m != super::NONE && m != k && self.clusters[m].slide().is_some() {
+                    out.insert(m);
+                }
+            }
+        }
+        out
+    }
+
+    /// The four relative displacements d = u_upper - u_lower at which the standing of `upper`
+    /// on `lower` can change: its centroid passing either end of the lower block, or the contact
+    /// ending on either side.
+    fn collapse_thresholds(&self, upper: usize, lower: usize) -> [f64; 4] {
+        [
+            self.xl[lower] - self.xc[upper],
+            self.xr[lower] - self.xc[upper],
+            self.xr[lower] - self.xl[upper],
+            self.xl[lower] - self.xr[upper],
+        ]
+    }
+
+    /// For sliding cluster k against the ground side: the direction it slides on it (0 if it
+    /// slides on nothing grounded) and the bounds on its displacement since formation.
+    fn ground_constraints(&self, k: usize) -> (i8, Bounds) {
+        let du = self.cluster_disp(k);
+        let tol = self.len_tol(du, 0.0);
+        let mut sigma = 0i8;
+        let mut b = Bounds::default();
+        for &i in &self.clusters[k].blocks {
+            for &s in &self.topo.below[i] {
+                if !self.live_support(s.0) {
+                    continue;
+                }
+                match self.lower_block(s.0) {
+                    None => {
+                        sigma = if self.dir[s.0] != 0 {
+                            self.dir[s.0]
+                        } else {
+                            sigma
+                        }
+                    }
+                    Some(j) if self.grounded(j) => {
+                        if self.dir[s.0] != 0 {
+                            sigma = self.dir[s.0];
+                        }
+                        for th in self.collapse_thresholds(i, j) {
+                            b.threshold(th - self.u_ref[i] + self.u_ref[j], du, tol, s.0);
+                        }
+                    }
+                    Some(_) => {}
+                }
+            }
+            for &s in &self.topo.above[i] {
+                let up = self.topo.supports[s.0].upper.0;
+                if !self.live_support(s.0) || !self.grounded(up) {
+                    continue;
+                }
+                if self.dir[s.0] != 0 {
+                    sigma = -self.dir[s.0];
+                }
+                for th in self.collapse_thresholds(up, i) {
+                    b.threshold(self.u_ref[up] - self.u_ref[i] - th, du, tol, s.0);
+                }
+            }
+            for &j in &self.topo.sides[i] {
+                let jt = &self.topo.joints[j.0];
+                if !self.live_joint(j.0) {
+                    continue;
+                }
+                let (o, left) = if jt.left.0 == i {
+                    (jt.right.0, true)
+                } else {
+                    (jt.left.0, false)
+                };
+                if !self.grounded(o) {
+                    continue;
+                }
+                if left {
+                    b.upper(
+                        self.gap0[j.0] + self.u_ref[o] - self.u_ref[i],
+                        Constraint::Gap(j.0),
+                    );
+                } else {
+                    b.lower(
+                        -(self.gap0[j.0] + self.u_ref[i] - self.u_ref[o]),
+                        Constraint::Gap(j.0),
+                    );
+                }
+            }
+        }
+        (sigma, b)
+    }
+
+    /// Events between sliding clusters a and b: polynomials in time, found once for the mode.
+    fn schedule_pair(&mut self, a: usize, b: usize) {
+        let (ca, cb) = (&self.clusters[a], &self.clusters[b]);
+        let (Some(sa), Some(sb)) = (ca.slide(), cb.slide()) else {
+            return;
+        };
+        let (va, vb) = (ca.version, cb.version);
+        let r0 = self.cluster_disp(b) - self.cluster_disp(a);
+        let r1 = self.cluster_vel(b) - self.cluster_vel(a);
+        let r2 = sb.c - sa.c;
+        let tol = self.len_tol(r0, self.cluster_disp(a));
+        let mut bounds = Bounds::default();
+        let mut slides_on = false;
+        let in_b = |x: usize| self.of[x] == b;
+        for &i in &self.clusters[a].blocks {
+            for &s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
+                if !self.live_support(s.0) {
+                    continue;
+                }
+                let sup = &self.topo.supports[s.0];
+                let (up, low) = (sup.upper.0, self.lower_block(s.0));
+                let Some(low) = low else { continue };
+                if up == i && in_b(low) {
+                    slides_on = true;
+                    // d = u_up - u_low = (u_ref[up] - u_ref[low]) - r.
+                    for th in self.collapse_thresholds(up, low) {
+                        bounds.threshold(self.u_ref[up] - self.u_ref[low] - th, r0, tol, s.0);
+                    }
+                } else if low == i && in_b(up) {
+                    slides_on = true;
+                    for th in self.collapse_thresholds(up, low) {
+                        bounds.threshold(th - (self.u_ref[up] - self.u_ref[low]), r0, tol, s.0);
+                    }
+                }
+            }
+            for &j in &self.topo.sides[i] {
+                let jt = &self.topo.joints[j.0];
+                if !self.live_joint(j.0) {
+                    continue;
+                }
+                let (l, r) = (jt.left.0, jt.right.0);
+                if l == i && in_b(r) {
+                    bounds.lower(
+                        -(self.gap0[j.0] + self.u_ref[r] - self.u_ref[l]),
+                        Constraint::Gap(j.0),
+                    );
+                } else if r == i && in_b(l) {
+                    bounds.upper(
+                        self.gap0[j.0] + self.u_ref[r] - self.u_ref[l],
+                        Constraint::Gap(j.0),
+                    );
+                }
+            }
+        }
+        let (t0, t1) = (self.t, self.t_end);
+        let rel = |x: f64| {
+            let tau = x - t0;
+            r0 + tau * (r1 + 0.5 * r2 * tau)
+        };
+        let w = |x: f64| r1 + r2 * (x - t0);
+        let vertex = if r2 != 0.0 {
+            vec![t0 - r1 / r2]
+        } else {
+            Vec::new()
+        };
+        if slides_on {
+            let sigma = if r1 != 0.0 { r1.signum() } else { r2.signum() };
+            if sigma != 0.0 {
+                let f = |x: f64| sigma * w(x);
+                let df = |x: f64| (sigma * w(x), sigma * r2);
+                let start = valid_after(sigma * r1, 0.0, &[sigma * r2]);
+                if let Some(h) =
+                    first_violation(Fun::with(&f, &df), t0, t1, &[], start, 0.0, &mut self.count)
+                {
+                    self.push(h.t, Ev::Meet { a, va, b, vb });
+                }
+            }
+        }
+        if let Some((lo, c)) = bounds.lo {
+            let f = |x: f64| rel(x) - lo;
+            let df = |x: f64| (rel(x) - lo, w(x));
+            let start = valid_after(r0 - lo, tol, &[r1, r2]);
+            if let Some(h) = first_violation(
+                Fun::with(&f, &df),
+                t0,
+                t1,
+                &vertex,
+                start,
+                tol,
+                &mut self.count,
+            ) {
+                self.push(h.t, Ev::PairBound { a, va, b, vb, c });
+            }
+        }
+        if let Some((hi, c)) = bounds.hi {
+            let f = |x: f64| hi - rel(x);
+            let df = |x: f64| (hi - rel(x), -w(x));
+            let start = valid_after(hi - r0, tol, &[-r1, -r2]);
+            if let Some(h) = first_violation(
+                Fun::with(&f, &df),
+                t0,
+                t1,
+                &vertex,
+                start,
+                tol,
+                &mut self.count,
+            ) {
+                self.push(h.t, Ev::PairBound { a, va, b, vb, c });
+            }
+        }
+    }
+}

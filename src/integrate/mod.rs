@@ -1,0 +1,68 @@
+//! Integrators: the exact event-driven one ([`event::EventDriven`]) and time-stepping baselines,
+//! all behind [`Integrator`]. A run takes a [`Scenario`] (wall, graph, ground motion, settings)
+//! and returns a [`Response`].
+
+pub mod event;
+
+use crate::error::SimulationError;
+use crate::motion::Motion;
+use crate::response::Response;
+use crate::topology::Topology;
+use crate::wall::Wall;
+
+/// What to do once a block falls.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AfterCollapse {
+    /// Stop the run at the first collapse.
+    #[default]
+    Stop,
+    /// Remove the fallen block and its load and go on.
+    Continue,
+}
+
+/// Settings common to every integrator.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Simulated time (s).
+    pub duration_s: f64,
+    /// History sampling interval (s); `None` for summary only.
+    pub output_dt_s: Option<f64>,
+    /// Keep the event log.
+    pub log_events: bool,
+    /// What to do after a collapse.
+    pub after_collapse: AfterCollapse,
+}
+
+impl Settings {
+    /// Summary only, for `duration_s`.
+    pub fn summary_only(duration_s: f64) -> Settings {
+        Settings {
+            duration_s,
+            output_dt_s: None,
+            log_events: false,
+            after_collapse: AfterCollapse::Stop,
+        }
+    }
+}
+
+/// One run: a wall, its graph, a ground motion and settings.
+#[derive(Debug, Clone, Copy)]
+pub struct Scenario<'a> {
+    /// The wall.
+    pub wall: &'a Wall,
+    /// Its support and contact graph.
+    pub topology: &'a Topology,
+    /// Horizontal ground acceleration.
+    pub motion: &'a Motion,
+    /// Duration, outputs, collapse policy.
+    pub settings: &'a Settings,
+}
+
+/// An integrator of the sliding-block wall.
+pub trait Integrator {
+    /// Name written into `summary.json` (`"event"`, `"paper"`, ...).
+    fn method(&self) -> &'static str;
+    /// Runs the scenario.
+    fn run(&self, scenario: &Scenario) -> Result<Response, SimulationError>;
+}

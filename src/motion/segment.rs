@@ -1,0 +1,374 @@
+//! One piece of a ground motion on which a_g, its integrals and its derivatives are closed-form
+//! functions of s = t - t0, and a_g is monotone.
+
+/// The closed form of a_g on a segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// a_g = a0 + slope * s.
+    Linear {
+        /// a_g at the start (m/s2).
+        a0: f64,
+        /// Rate (m/s3).
+        slope: f64,
+    },
+    /// a_g = amplitude * sin(theta0 + omega * s), monotone on the segment.
+    Sine {
+        /// Amplitude (m/s2).
+        amplitude: f64,
+        /// Angular frequency (rad/s).
+        omega: f64,
+        /// Phase at the start (rad).
+        theta0: f64,
+        /// sin(theta0), cached: every evaluation needs it.
+        sin0: f64,
+        /// cos(theta0), cached.
+        cos0: f64,
+    },
+}
+
+impl Shape {
+    /// A sine arc starting at phase theta0.
+    pub fn sine(amplitude: f64, omega: f64, theta0: f64) -> Shape {
+        let (sin0, cos0) = theta0.sin_cos();
+        Shape::Sine {
+            amplitude,
+            omega,
+            theta0,
+            sin0,
+            cos0,
+        }
+    }
+}
+
+/// A segment [t0, t1) of a ground motion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    /// Start (s).
+    pub t0: f64,
+    /// End (s); infinite for the quiet tail after the motion.
+    pub t1: f64,
+    /// Ground velocity at t0 (m/s).
+    pub v0: f64,
+    /// Ground displacement at t0 (m).
+    pub d0: f64,
+    /// a_g on the segment.
+    pub shape: Shape,
+}
+
+/// sin(x) - x without cancellation for small x.
+fn sin_minus_x(x: f64) -> f64 {
+    if x.abs() < 0.25 {
+        let x2 = x * x;
+        // Taylor series to x^13: the next term is below 1e-17 relative for |x| < 0.25.
+        -x * x2
+            * (1.0 / 6.0
+                - x2 * (1.0 / 120.0
+                    - x2 * (1.0 / 5040.0
+                        - x2 * (1.0 / 362_880.0
+                            - x2 * (1.0 / 39_916_800.0 - x2 / 6_227_020_800.0)))))
+    } else {
+        x.sin() - x
+    }
+}
+
+/// sin(x) - x given sin(x/2) and cos(x/2), which callers have already computed.
+fn sin_minus_x_from_half(x: f64, h: f64, ch: f64) -> f64 {
+    if x.abs() < 0.25 {
+        sin_minus_x(x)
+    } else {
+        2.0 * h * ch - x
+    }
+}
+
+/// cos(x) - 1 + x^2/2 without cancellation for small x.
+fn cos_minus_1_plus_half_x2(x: f64) -> f64 {
+    if x.abs() < 0.25 {
+        let x2 = x * x;
+        x2 * x2
+            * (1.0 / 24.0
+                - x2 * (1.0 / 720.0
+                    - x2 * (1.0 / 40_320.0 - x2 * (1.0 / 3_628_800.0 - x2 / 479_001_600.0))))
+    } else {
+        x.cos() - 1.0 + 0.5 * x * x
+    }
+}
+
+impl Segment {
+    /// The same motion described from s_a on: a segment starting at t0 + s_a. Closed forms
+    /// measured from the new start stay free of cancellation near it.
+    pub fn anchored(&self, s_a: f64) -> Segment {
+        let shape = match self.shape {
+            Shape::Linear { slope, .. } => Shape::Linear {
+                a0: self.accel(s_a),
+                slope,
+            },
+            Shape::Sine {
+                amplitude,
+                omega,
+                theta0,
+                sin0,
+                cos0,
+            } => {
+                // Rotate exactly as `accel` does, so the new start's a_g is bit for bit the
+                // value the parent gives at s_a: decisions made with one and motion computed
+                // with the other must agree on ties.
+                let (sn, cs) = (omega * s_a).sin_cos();
+                Shape::Sine {
+                    amplitude,
+                    omega,
+                    theta0: theta0 + omega * s_a,
+                    sin0: sin0 * cs + cos0 * sn,
+                    cos0: cos0 * cs - sin0 * sn,
+                }
+            }
+        };
+        Segment {
+            t0: self.t0 + s_a,
+            t1: self.t1,
+            v0: self.v0 + self.dv(s_a),
+            d0: self.d0 + self.v0 * s_a + self.dd(s_a),
+            shape,
+        }
+    }
+
+    /// a_g(s) - a_g(0), dv_beyond(s) and dd_beyond(s) together, from one sine evaluation.
+    pub fn beyond(&self, s: f64) -> (f64, f64, f64) {
+        match self.shape {
+            Shape::Linear { slope, .. } => {
+                (slope * s, 0.5 * slope * s * s, slope * s * s * s / 6.0)
+            }
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                let x = omega * s;
+                let (h, ch) = (0.5 * x).sin_cos();
+                let smx = sin_minus_x_from_half(x, h, ch);
+                let cos_part = if x.abs() < 0.25 {
+                    cos_minus_1_plus_half_x2(x)
+                } else {
+                    0.5 * x * x - 2.0 * h * h
+                };
+                (
+                    2.0 * amplitude * (cos0 * ch - sin0 * h) * h,
+                    amplitude / omega * (2.0 * cos0 * h * h + sin0 * smx),
+                    -amplitude / (omega * omega) * (sin0 * cos_part + cos0 * smx),
+                )
+            }
+        }
+    }
+
+    /// a_g(s) - a_g(0) (m/s2), without cancellation.
+    pub fn da(&self, s: f64) -> f64 {
+        match self.shape {
+            Shape::Linear { slope, .. } => slope * s,
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                let (sh, ch) = (0.5 * omega * s).sin_cos();
+                2.0 * amplitude * (cos0 * ch - sin0 * sh) * sh
+            }
+        }
+    }
+
+    /// Ground velocity gained beyond the tangent: dv(s) - a_g(0) s (m/s), without cancellation.
+    pub fn dv_beyond(&self, s: f64) -> f64 {
+        match self.shape {
+            Shape::Linear { slope, .. } => 0.5 * slope * s * s,
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                let x = omega * s;
+                let (h, ch) = (0.5 * x).sin_cos();
+                amplitude / omega * (2.0 * cos0 * h * h + sin0 * sin_minus_x_from_half(x, h, ch))
+            }
+        }
+    }
+
+    /// Ground displacement gained beyond the tangent parabola: dd(s) - a_g(0) s^2/2 (m).
+    pub fn dd_beyond(&self, s: f64) -> f64 {
+        match self.shape {
+            Shape::Linear { slope, .. } => slope * s * s * s / 6.0,
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                let x = omega * s;
+                let (h, ch) = (0.5 * x).sin_cos();
+                let cos_part = if x.abs() < 0.25 {
+                    cos_minus_1_plus_half_x2(x)
+                } else {
+                    0.5 * x * x - 2.0 * h * h
+                };
+                -amplitude / (omega * omega)
+                    * (sin0 * cos_part + cos0 * sin_minus_x_from_half(x, h, ch))
+            }
+        }
+    }
+
+    /// a_g at s (m/s2).
+    pub fn accel(&self, s: f64) -> f64 {
+        match self.shape {
+            Shape::Linear { a0, slope } => a0 + slope * s,
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                let (sn, cs) = (omega * s).sin_cos();
+                amplitude * (sin0 * cs + cos0 * sn)
+            }
+        }
+    }
+
+    /// First and second time derivatives of a_g at s, from the right.
+    pub fn accel_rates(&self, s: f64) -> (f64, f64) {
+        match self.shape {
+            Shape::Linear { slope, .. } => (slope, 0.0),
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                let (sn, cs) = (omega * s).sin_cos();
+                let (sin_th, cos_th) = (sin0 * cs + cos0 * sn, cos0 * cs - sin0 * sn);
+                (
+                    amplitude * omega * cos_th,
+                    -amplitude * omega * omega * sin_th,
+                )
+            }
+        }
+    }
+
+    /// Ground velocity gained since t0: V_g(t0 + s) - V_g(t0) (m/s).
+    pub fn dv(&self, s: f64) -> f64 {
+        match self.shape {
+            Shape::Linear { a0, slope } => s * (a0 + 0.5 * slope * s),
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                // cos a - cos b = 2 sin((a+b)/2) sin((b-a)/2), free of cancellation.
+                let (sh, ch) = (0.5 * omega * s).sin_cos();
+                2.0 * amplitude / omega * (sin0 * ch + cos0 * sh) * sh
+            }
+        }
+    }
+
+    /// Ground displacement since t0 beyond moving on at V_g(t0):
+    /// D_g(t0 + s) - D_g(t0) - V_g(t0) s (m).
+    pub fn dd(&self, s: f64) -> f64 {
+        match self.shape {
+            Shape::Linear { a0, slope } => s * s * (0.5 * a0 + slope * s / 6.0),
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                // A/w^2 [w s cos th0 - sin(th0 + w s) + sin th0]
+                //   = A/w^2 [2 sin th0 sin^2(w s / 2) - cos th0 (sin(w s) - w s)].
+                let x = omega * s;
+                let (h, ch) = (0.5 * x).sin_cos();
+                amplitude / (omega * omega)
+                    * (2.0 * sin0 * h * h - cos0 * sin_minus_x_from_half(x, h, ch))
+            }
+        }
+    }
+
+    /// Integral of a_g times s from 0 to s: s dv(s) - (displacement gained beyond v0), used for
+    /// the work of inertial forces.
+    pub fn moment(&self, s: f64) -> f64 {
+        s * self.dv(s) - self.dd(s)
+    }
+
+    /// Length of the segment (s); infinite for the tail.
+    pub fn len(&self) -> f64 {
+        self.t1 - self.t0
+    }
+
+    /// True when a_g is identically zero here (the quiet tail after the motion).
+    pub fn is_quiet(&self) -> bool {
+        matches!(self.shape, Shape::Linear { a0, slope } if a0 == 0.0 && slope == 0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn sine_increments_match_direct_formulas() {
+        let seg = Segment {
+            t0: 0.0,
+            t1: 1.0,
+            v0: 0.0,
+            d0: 0.0,
+            shape: Shape::sine(3.0, 5.0, 0.4),
+        };
+        for s in [1e-7f64, 1e-3, 0.1, 0.3] {
+            let dv = 3.0 / 5.0 * (0.4f64.cos() - (0.4 + 5.0 * s).cos());
+            let dd = 3.0 / 25.0 * (5.0 * s * 0.4f64.cos() - (0.4 + 5.0 * s).sin() + 0.4f64.sin());
+            assert_relative_eq!(seg.dv(s), dv, max_relative = 1e-12);
+            assert_relative_eq!(seg.dd(s), dd, max_relative = 1e-6, epsilon = 1e-18);
+        }
+        // Small s: dd ~ a(0) s^2 / 2 to leading order, computed without cancellation.
+        let s = 1e-6;
+        assert_relative_eq!(seg.dd(s), 0.5 * seg.accel(0.0) * s * s, max_relative = 1e-5);
+    }
+
+    #[test]
+    fn increments_beyond_the_tangent() {
+        let seg = Segment {
+            t0: 2.0,
+            t1: 3.0,
+            v0: 0.1,
+            d0: 0.2,
+            shape: Shape::sine(3.0, 5.0, 0.4),
+        };
+        let b = seg.anchored(0.3);
+        assert_eq!(b.t0, 2.3);
+        assert_eq!(b.accel(0.0), seg.accel(0.3), "bit for bit");
+        for s in [0.05f64, 0.2] {
+            assert_relative_eq!(b.accel(s), seg.accel(0.3 + s), max_relative = 1e-14);
+            assert_relative_eq!(b.da(s), b.accel(s) - b.accel(0.0), max_relative = 1e-12);
+            assert_relative_eq!(
+                b.dv_beyond(s),
+                b.dv(s) - b.accel(0.0) * s,
+                max_relative = 1e-9
+            );
+            assert_relative_eq!(
+                b.dd_beyond(s),
+                b.dd(s) - 0.5 * b.accel(0.0) * s * s,
+                max_relative = 1e-8
+            );
+        }
+        // Tiny s: the leading terms A w cos(th) s^2 / 2 and A w cos(th) s^3 / 6.
+        let (s, rate) = (1e-9, 3.0 * 5.0 * (0.4f64 + 1.5).cos());
+        assert_relative_eq!(b.dv_beyond(s), 0.5 * rate * s * s, max_relative = 1e-6);
+        assert_relative_eq!(b.dd_beyond(s), rate * s * s * s / 6.0, max_relative = 1e-6);
+    }
+}

@@ -1,0 +1,300 @@
+//! The exact event-driven integrator against closed forms, hand derivations, conservation laws
+//! and the paper's findings.
+
+use pirqa::integrate::event::EventDriven;
+use pirqa::integrate::{Integrator, Scenario, Settings};
+use pirqa::motion::{Motion, Record, Sine};
+use pirqa::response::{EventKind, Response};
+use pirqa::samples::{self, SlidingBlockReference};
+use pirqa::{Topology, Wall};
+
+fn run(wall: &Wall, motion: &Motion, duration: f64, output_dt: Option<f64>) -> Response {
+    let topo = Topology::new(wall).unwrap();
+    let settings = Settings {
+        duration_s: duration,
+        output_dt_s: output_dt,
+        log_events: true,
+        after_collapse: Default::default(),
+    };
+    let sc = Scenario {
+        wall,
+        topology: &topo,
+        motion,
+        settings: &settings,
+    };
+    EventDriven::default().run(&sc).unwrap()
+}
+
+fn sine(amp: f64, freq: f64, phase_deg: f64, duration: f64) -> Motion {
+    Motion::Sine(Sine::new(amp, freq, phase_deg.to_radians(), duration).unwrap())
+}
+
+fn constant(a: f64, duration: f64) -> Motion {
+    let dt = 0.01;
+    let n = (duration / dt).round() as usize + 2;
+    Motion::Record(Record::new("constant", dt, vec![a; n]).unwrap())
+}
+
+fn load(path: &str) -> Wall {
+    Wall::load(std::path::Path::new(path)).unwrap()
+}
+
+/// Largest |event-driven u - reference u| over the sampled history of block `i`.
+fn history_error(r: &Response, i: usize, reference: impl Fn(f64) -> f64) -> f64 {
+    let h = r.history.as_ref().unwrap();
+    h.time_s
+        .iter()
+        .zip(&h.displacement_m)
+        .map(|(&t, u)| (u[i] - reference(t)).abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn one_block_above_threshold_follows_the_closed_form() {
+    for (amp, freq, phase) in [(4.0, 1.0, 0.0), (6.0, 2.5, 30.0), (3.5, 0.7, 200.0)] {
+        let duration = 20.0;
+        let r = run(
+            &samples::one_block(0.3),
+            &sine(amp, freq, phase, duration),
+            duration,
+            Some(0.01),
+        );
+        let reference =
+            SlidingBlockReference::new(0.3, 9.81, amp, freq, phase.to_radians(), duration);
+        assert!(reference.phase_count() > 20, "many cycles of stick-slip");
+        let err = history_error(&r, 0, |t| reference.displacement(t));
+        assert!(
+            err < 1e-10,
+            "{amp} m/s2 {freq} Hz: |u - u_ref| up to {err:e} m"
+        );
+        let b = &r.summary.blocks[0];
+        assert!((b.max_abs_displacement_m - reference.max_abs_displacement()).abs() < 1e-10);
+        assert!((b.final_displacement_m - reference.displacement(duration)).abs() < 1e-10);
+    }
+}
+
+#[test]
+fn one_block_below_threshold_does_not_move_at_all() {
+    let r = run(
+        &samples::one_block(0.3),
+        &sine(2.9, 1.0, 0.0, 10.0),
+        10.0,
+        Some(0.01),
+    );
+    let h = r.history.as_ref().unwrap();
+    assert!(h.displacement_m.iter().all(|u| u[0] == 0.0));
+    assert!(h.velocity_m_s.iter().all(|v| v[0] == 0.0));
+    assert_eq!(r.summary.blocks[0].max_abs_displacement_m, 0.0);
+    assert_eq!(r.summary.stick_slip_transitions, 0);
+    assert_eq!(r.summary.stats.events, 0);
+}
+
+#[test]
+fn two_stacked_blocks_match_the_hand_derivation() {
+    // 1000 kg each; top on bottom mu = 0.2 (F = 1962 N), bottom on ground mu = 0.5 (F = 9810 N).
+    // Constant a_g = a from rest:
+    //  - a <= 1.962: nothing moves;
+    //  - 1.962 < a <= (9810 - 1962)/1000 = 7.848: the top slides, u2 = (0.2 g - a) t^2/2;
+    //  - a > 7.848: both slide, u1 = (7.848 - a) t^2/2, u2 = (1.962 - a) t^2/2.
+    let wall = samples::stacked_pair(0.5, 0.2);
+    for (a, c1, c2) in [
+        (1.9, None, None),
+        (3.0, None, Some(1.962)),
+        (7.5, None, Some(1.962)),
+        (8.0, Some(7.848), Some(1.962)),
+    ] {
+        let r = run(&wall, &constant(a, 1.0), 1.0, Some(0.05));
+        for (i, c) in [(0, c1), (1, c2)] {
+            let expect = |t: f64| c.map_or(0.0, |c: f64| (c - a) * t * t / 2.0);
+            let err = history_error(&r, i, expect);
+            assert!(err < 1e-12, "a = {a}, block {i}: error {err:e}");
+        }
+    }
+}
+
+#[test]
+fn side_by_side_blocks_touch_at_phase_0_and_collide_at_phase_135() {
+    let wall = samples::course(&[0.25, 0.3], &[0.0, 0.0], 1.0);
+    let r = run(&wall, &sine(4.0, 1.0, 0.0, 10.0), 10.0, None);
+    assert_eq!(
+        r.summary.impacts, 0,
+        "a symmetric sine brings them back together at rest"
+    );
+    assert_eq!(r.summary.touches, 9, "one touch per cycle after the first");
+    let r = run(&wall, &sine(4.0, 1.0, 135.0, 10.0), 10.0, None);
+    assert!(r.summary.impacts >= 5, "{} impacts", r.summary.impacts);
+    assert_eq!(r.summary.energy.impact_loss_j, 0.0, "e = 1 loses nothing");
+    let m = 1000.0;
+    for e in r.events.iter().filter(|e| e.kind == EventKind::Impact) {
+        let (b, a) = (e.before_m_s.unwrap(), e.after_m_s.unwrap());
+        let scale = b[0].abs() + b[1].abs();
+        assert!(
+            (m * (b[0] + b[1]) - m * (a[0] + a[1])).abs() <= 4.0 * f64::EPSILON * m * scale,
+            "momentum"
+        );
+        let ke = |v: [f64; 2]| 0.5 * m * (v[0] * v[0] + v[1] * v[1]);
+        assert!(
+            (ke(b) - ke(a)).abs() <= 8.0 * f64::EPSILON * ke(b),
+            "energy"
+        );
+        assert!(a[1] - a[0] > 0.0, "they separate after the impact");
+    }
+}
+
+#[test]
+fn energy_balances_on_every_shipped_wall() {
+    for path in [
+        "walls/five-block-uniform.ron",
+        "walls/five-block-variable.ron",
+        "walls/inca-coursed.ron",
+    ] {
+        for (amp, freq, phase) in [(4.0, 1.0, 0.0), (5.0, 3.0, 45.0)] {
+            let r = run(&load(path), &sine(amp, freq, phase, 10.0), 10.0, None);
+            let e = r.summary.energy;
+            assert!(e.input_j > 0.0);
+            assert!(
+                e.residual_j.abs() <= 1e-9 * e.input_j,
+                "{path}: residual {:e} of {:e}",
+                e.residual_j,
+                e.input_j
+            );
+        }
+    }
+}
+
+#[test]
+fn uniform_friction_wall_moves_as_one_rigid_body() {
+    let wall = load("walls/five-block-uniform.ron");
+    for freq in [0.5, 1.0, 2.0, 5.0] {
+        let motion = sine(4.0, freq, 0.0, 10.0);
+        let r = run(&wall, &motion, 10.0, Some(0.01));
+        assert_eq!(r.summary.impacts, 0);
+        for j in &r.summary.joints {
+            if j.lower != "ground" {
+                assert_eq!(
+                    j.max_abs_relative_displacement_m, 0.0,
+                    "{}/{} slid",
+                    j.upper, j.lower
+                );
+            }
+        }
+        let h = r.history.as_ref().unwrap();
+        assert!(
+            h.displacement_m
+                .iter()
+                .all(|u| u.iter().all(|&x| x == u[0])),
+            "every block moves identically"
+        );
+        // ... and exactly as one block with the same friction.
+        let one = run(&samples::one_block(0.3), &motion, 10.0, Some(0.01));
+        assert_eq!(
+            r.summary.blocks[0].max_abs_displacement_m,
+            one.summary.blocks[0].max_abs_displacement_m
+        );
+        let reference = SlidingBlockReference::new(0.3, 9.81, 4.0, freq, 0.0, 10.0);
+        assert!(history_error(&r, 3, |t| reference.displacement(t)) < 1e-10);
+    }
+}
+
+#[test]
+fn variable_friction_gives_relative_slip_impacts_and_larger_maxima() {
+    let uniform = load("walls/five-block-uniform.ron");
+    let variable = load("walls/five-block-variable.ron");
+    let motion = sine(4.0, 1.0, 0.0, 20.0);
+    let u = run(&uniform, &motion, 20.0, None);
+    let v = run(&variable, &motion, 20.0, None);
+    let max = |r: &Response| {
+        r.summary
+            .blocks
+            .iter()
+            .map(|b| b.max_abs_displacement_m)
+            .fold(0.0, f64::max)
+    };
+    assert!(
+        max(&v) > 1.2 * max(&u),
+        "variable {} vs uniform {}",
+        max(&v),
+        max(&u)
+    );
+    assert!(v.summary.impacts > 0);
+    let b3b1 = v
+        .summary
+        .joints
+        .iter()
+        .find(|j| j.upper == "B3" && j.lower == "B1")
+        .unwrap();
+    assert!(b3b1.max_abs_relative_displacement_m > 1e-3);
+}
+
+#[test]
+fn newtons_cradle_passes_the_velocity_down_the_row() {
+    // C B (gap 0.1) A: A alone can slide (mu 0.1), B and C are held (mu 0.5 > 3 / 9.81).
+    let wall = samples::course(&[0.5, 0.5, 0.1], &[0.0, 0.0, 0.1], 1.0);
+    let r = run(&wall, &constant(3.0, 0.6), 0.6, Some(0.1));
+    let impacts: Vec<_> = r
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Impact)
+        .collect();
+    assert_eq!(impacts.len(), 2, "A hits B, B hits C, at one instant");
+    assert_eq!(impacts[0].time_s, impacts[1].time_s);
+    let t = impacts[0].time_s;
+    let v_a = impacts[0].before_m_s.unwrap()[1];
+    assert!((t - (2.0f64 * 0.1 / (3.0 - 0.981)).sqrt()).abs() < 1e-12);
+    let h = r.history.as_ref().unwrap();
+    let row = h.time_s.iter().rposition(|&x| x == t).unwrap();
+    assert_eq!(
+        h.velocity_m_s[row],
+        vec![v_a, 0.0, 0.0],
+        "C leaves with A's velocity, A and B stop"
+    );
+}
+
+#[test]
+fn zeno_bounces_end_at_the_closed_form_accumulation_time() {
+    // Both blocks slide left under a_g = 5; the right one (mu 0.2) gains on the left one (mu 0.3)
+    // at a = (0.3 - 0.2) g, closes the 5 cm gap, and bounces with e = 0.5.
+    let wall = samples::course(&[0.3, 0.2], &[0.0, 0.05], 0.5);
+    let r = run(&wall, &constant(5.0, 2.0), 2.0, None);
+    let a = (0.3 - 0.2) * 9.81;
+    let t1 = (2.0f64 * 0.05 / a).sqrt();
+    let rebound = 0.5 * a * t1;
+    let t_acc = t1 + 2.0 * rebound / (a * (1.0 - 0.5));
+    let zeno: Vec<_> = r
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Zeno)
+        .collect();
+    assert_eq!(zeno.len(), 1);
+    assert!(
+        (zeno[0].time_s - t_acc).abs() < 1e-12,
+        "{} vs {t_acc}",
+        zeno[0].time_s
+    );
+    assert_eq!(r.summary.impacts, 1);
+    let e = r.summary.energy;
+    assert!(e.residual_j.abs() <= 1e-9 * e.input_j);
+    // From then on they slide together: equal final velocities.
+    let h = &r.summary.blocks;
+    assert!((h[0].final_displacement_m - h[1].final_displacement_m).abs() < 0.06);
+}
+
+#[test]
+fn mirrored_wall_and_motion_give_the_mirrored_answer() {
+    let wall = load("walls/five-block-variable.ron");
+    let r = run(&wall, &sine(4.0, 1.0, 0.0, 10.0), 10.0, None);
+    let m = run(&wall.mirrored(), &sine(4.0, 1.0, 180.0, 10.0), 10.0, None);
+    for (a, b) in r.summary.blocks.iter().zip(&m.summary.blocks) {
+        assert!(
+            (a.final_displacement_m + b.final_displacement_m).abs() < 1e-9,
+            "{}",
+            a.name
+        );
+        assert!(
+            (a.max_abs_displacement_m - b.max_abs_displacement_m).abs() < 1e-9,
+            "{}",
+            a.name
+        );
+    }
+    assert_eq!(r.summary.impacts, m.summary.impacts);
+}
