@@ -240,3 +240,39 @@ impl SlidingBlockReference {
         self.phases.len()
     }
 }
+
+/// A deterministic broadband record for benchmarks and tests: a sum of 40 sines with
+/// frequencies between 0.3 and 12 Hz and fixed pseudo-random phases, under a rise-hold-decay
+/// envelope, scaled to the given peak (m/s2), sampled at `dt_s` for `duration_s`.
+pub fn broadband_record(duration_s: f64, dt_s: f64, pga_m_s2: f64) -> crate::motion::Record {
+    let n = (duration_s / dt_s).round() as usize + 1;
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let waves: Vec<(f64, f64)> = (0..40)
+        .map(|k| {
+            let f = 0.3 * (40.0f64).powf(k as f64 / 39.0);
+            (
+                2.0 * std::f64::consts::PI * f,
+                2.0 * std::f64::consts::PI * next(),
+            )
+        })
+        .collect();
+    let mut a: Vec<f64> = (0..n)
+        .map(|i| {
+            let t = i as f64 * dt_s;
+            let envelope = (t / 2.0).min(1.0)
+                * (-((t - 0.5 * duration_s).max(0.0)) / (0.2 * duration_s)).exp();
+            envelope * waves.iter().map(|(w, p)| (w * t + p).sin()).sum::<f64>()
+        })
+        .collect();
+    let peak = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for x in &mut a {
+        *x *= pga_m_s2 / peak;
+    }
+    crate::motion::Record::new("broadband", dt_s, a).expect("finite samples")
+}

@@ -75,3 +75,162 @@ fn draw_writes_an_svg_with_names_and_friction() {
         assert!(svg.contains(text), "missing {text}");
     }
 }
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("pirqa-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+#[test]
+fn run_writes_summary_history_and_events() {
+    let out = temp_dir("run");
+    let (ok, stdout, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        stdout.contains("B3") && stdout.contains("residual"),
+        "{stdout}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["method"], "event");
+    assert_eq!(summary["duration_s"], 5.0);
+    assert_eq!(summary["blocks"].as_array().unwrap().len(), 5);
+    for key in [
+        "max_abs_displacement_m",
+        "final_displacement_m",
+        "max_abs_velocity_m_s",
+    ] {
+        assert!(summary["blocks"][0][key].is_number(), "{key}");
+    }
+    for key in [
+        "upper",
+        "lower",
+        "max_abs_relative_displacement_m",
+        "final_relative_displacement_m",
+    ] {
+        assert!(!summary["joints"][0][key].is_null(), "{key}");
+    }
+    for key in [
+        "input_j",
+        "friction_j",
+        "impact_loss_j",
+        "kinetic_j",
+        "residual_j",
+    ] {
+        assert!(summary["energy"][key].is_number(), "{key}");
+    }
+    assert!(summary["collapse"].is_null());
+    assert!(summary["impacts"].is_number() && summary["stick_slip_transitions"].is_number());
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let mut lines = history.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "time_s,u_B1_m,u_B2_m,u_B3_m,u_B4_m,u_B5_m,v_B1_m_s,v_B2_m_s,v_B3_m_s,v_B4_m_s,v_B5_m_s"
+    );
+    assert!(lines.count() > 500, "every 0.01 s plus every event");
+    let events = std::fs::read_to_string(out.join("events.jsonl")).unwrap();
+    let first: serde_json::Value = serde_json::from_str(events.lines().next().unwrap()).unwrap();
+    assert_eq!(first["kind"], "slip");
+    assert!(first["time_s"].is_number());
+}
+
+#[test]
+fn amplitudes_in_gal_g_and_m_s2_give_the_same_run() {
+    let mut maxima = Vec::new();
+    for amp in ["400gal", "4m/s2", "4.0 m/s^2"] {
+        let file = temp_dir("units").with_extension("json");
+        let (ok, _, err) = pirqa(&[
+            "run",
+            "walls/five-block-uniform.ron",
+            "--sine",
+            amp,
+            "--freq",
+            "2",
+            "--duration",
+            "3",
+            "--summary",
+            file.to_str().unwrap(),
+        ]);
+        assert!(ok, "{err}");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        maxima.push(s["blocks"][0]["max_abs_displacement_m"].as_f64().unwrap());
+    }
+    assert!(
+        maxima.windows(2).all(|w| (w[0] - w[1]).abs() < 1e-15),
+        "{maxima:?}"
+    );
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-uniform.ron",
+        "--sine",
+        "0.41g",
+        "--freq",
+        "2",
+        "--duration",
+        "1",
+    ]);
+    assert!(ok, "{err}");
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-uniform.ron",
+        "--sine",
+        "400",
+        "--freq",
+        "2",
+        "--duration",
+        "1",
+    ]);
+    assert!(!ok && err.contains("gal, g, m/s2"), "{err}");
+}
+
+#[test]
+fn run_takes_a_plain_record_with_a_scale_factor() {
+    let dir = temp_dir("record");
+    std::fs::create_dir_all(&dir).unwrap();
+    let rec = dir.join("pulse.txt");
+    let values: Vec<String> = (0..300)
+        .map(|k| format!("{}", 300.0 * (k as f64 * 0.05).sin()))
+        .collect();
+    std::fs::write(
+        &rec,
+        format!("# units: gal\n# dt_s: 0.01\n{}\n", values.join("\n")),
+    )
+    .unwrap();
+    let (ok, out, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--record",
+        rec.to_str().unwrap(),
+        "--scale",
+        "1.5",
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("record pulse.txt") && out.contains("PGA 4.5"),
+        "{out}"
+    );
+    std::fs::write(&rec, "1\n2\n3\n").unwrap();
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--record",
+        rec.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && err.contains("pulse.txt") && err.contains("units"),
+        "{err}"
+    );
+}

@@ -161,6 +161,37 @@ impl Segment {
         }
     }
 
+    /// Where on [s_a, s_b] a_g equals `target`, in closed form (a_g is monotone on a segment):
+    /// `None` if it does not. Accurate to a few ulps; callers polish it to the exact float.
+    pub fn time_of_accel(&self, target: f64, s_a: f64, s_b: f64) -> Option<f64> {
+        let (fa, fb) = (self.accel(s_a) - target, self.accel(s_b) - target);
+        if (fa > 0.0) == (fb > 0.0) && fa != 0.0 && fb != 0.0 {
+            return None;
+        }
+        let s = match self.shape {
+            Shape::Linear { a0, slope } => (target - a0) / slope,
+            Shape::Sine {
+                amplitude,
+                omega,
+                theta0,
+                ..
+            } => {
+                // The arc runs between crests at pi/2 + k pi: rising for odd k... pick the
+                // solution of sin(theta) = target/A on the arc containing theta0.
+                let y = (target / amplitude).clamp(-1.0, 1.0).asin();
+                let k = ((theta0 - std::f64::consts::FRAC_PI_2) / std::f64::consts::PI).floor();
+                let base = std::f64::consts::FRAC_PI_2 + k * std::f64::consts::PI;
+                let rising = (k as i64).rem_euclid(2) == 1;
+                // On a rising arc theta - 2m pi = y; on a falling one theta - 2m pi = pi - y.
+                let principal = if rising { y } else { std::f64::consts::PI - y };
+                let turns = ((base - principal) / (2.0 * std::f64::consts::PI)).ceil();
+                let theta = principal + turns * 2.0 * std::f64::consts::PI;
+                (theta - theta0) / omega
+            }
+        };
+        s.is_finite().then(|| s.clamp(s_a, s_b))
+    }
+
     /// a_g(s) - a_g(0) (m/s2), without cancellation.
     pub fn da(&self, s: f64) -> f64 {
         match self.shape {
@@ -338,6 +369,38 @@ mod tests {
         // Small s: dd ~ a(0) s^2 / 2 to leading order, computed without cancellation.
         let s = 1e-6;
         assert_relative_eq!(seg.dd(s), 0.5 * seg.accel(0.0) * s * s, max_relative = 1e-5);
+    }
+
+    #[test]
+    fn closed_form_time_of_an_acceleration() {
+        for theta0 in [-1.5, -0.2, 1.6, 2.0, 4.0, 7.9] {
+            let seg = Segment {
+                t0: 0.0,
+                t1: 1.0,
+                v0: 0.0,
+                d0: 0.0,
+                shape: Shape::sine(3.0, 2.0, theta0),
+            };
+            // Monotone arc: from theta0 to the next crest.
+            let k = ((theta0 - std::f64::consts::FRAC_PI_2) / std::f64::consts::PI).floor();
+            let end =
+                (std::f64::consts::FRAC_PI_2 + (k + 1.0) * std::f64::consts::PI - theta0) / 2.0;
+            let target = 0.5 * (seg.accel(0.0) + seg.accel(end));
+            let s = seg.time_of_accel(target, 0.0, end).unwrap();
+            assert!((seg.accel(s) - target).abs() < 1e-12, "theta0 {theta0}");
+        }
+        let lin = Segment {
+            t0: 0.0,
+            t1: 1.0,
+            v0: 0.0,
+            d0: 0.0,
+            shape: Shape::Linear {
+                a0: 1.0,
+                slope: -2.0,
+            },
+        };
+        assert_eq!(lin.time_of_accel(0.0, 0.0, 1.0), Some(0.5));
+        assert_eq!(lin.time_of_accel(5.0, 0.0, 1.0), None);
     }
 
     #[test]

@@ -134,6 +134,19 @@ pub struct Roots {
     pub v_zero: Vec<f64>,
 }
 
+/// The roots of a sliding cluster's event functions against the ground side on the current
+/// segment, and what they were computed for: a neighbour re-deciding its mode changes nothing
+/// here unless it changes the sliding direction or the bounds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundHits {
+    /// Direction of sliding on the ground side, and the bounds with their bit patterns.
+    pub key: (i8, Option<(u64, u64)>, Option<(u64, u64)>),
+    /// Earliest start time the hits are valid from (s).
+    pub from: f64,
+    /// Stop time, and the times the lower and upper bounds are reached.
+    pub hits: [Option<f64>; 3],
+}
+
 /// A cluster.
 #[derive(Debug, Clone)]
 pub struct Cluster {
@@ -152,6 +165,8 @@ pub struct Cluster {
     /// Zeros found on the current segment; `None` until scheduled, and whenever the motion
     /// changes.
     pub roots: Option<Roots>,
+    /// Event times against the ground side on the current segment (reset with `roots`).
+    pub ground_hits: Option<GroundHits>,
 }
 
 impl Cluster {

@@ -297,6 +297,7 @@ impl Engine<'_> {
                 motion,
                 accounted_to: t,
                 roots: None,
+                ground_hits: None,
             });
             for (&i, &node) in members.iter().zip(&g.nodes) {
                 self.of[i] = k;
@@ -614,6 +615,7 @@ impl Engine<'_> {
                     self.clusters[k].motion =
                         Motion::Sliding(Slide::formed(&self.seg, self.t, v, c_q));
                     self.clusters[k].roots = None;
+                    self.clusters[k].ground_hits = None;
                 }
             }
         }
@@ -649,6 +651,10 @@ impl Engine<'_> {
                 }
             }
         }
+        // Capacities change with the loads: friction work so far is owed at the old ones.
+        for s in 0..self.topo.supports.len() {
+            self.account_support(s);
+        }
         let loads = self.topo.loads_without(self.wall, &self.fallen);
         for (s, load) in loads.into_iter().enumerate() {
             self.cap_q[s] = &self.topo.supports[s].friction * &load;
@@ -683,6 +689,7 @@ impl Engine<'_> {
                 motion: Motion::Sliding(Slide::formed(&self.seg, self.t, v, Q::zero())),
                 accounted_to: self.t,
                 roots: None,
+                ground_hits: None,
             });
             self.of[i] = k;
         }

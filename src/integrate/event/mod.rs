@@ -452,6 +452,7 @@ impl<'a> Engine<'a> {
                 if !c.blocks.is_empty() {
                     sl.rebase(&seg);
                     c.roots = None;
+                    c.ground_hits = None;
                 }
             }
         }
@@ -511,20 +512,29 @@ impl<'a> Engine<'a> {
     /// bit (they are split points of its event functions).
     fn zeros(&mut self, sl: &cluster::Slide, t_a: f64, t_b: f64) -> cluster::Roots {
         let acc = |x: f64| sl.acc(x);
-        let acc_jerk = |x: f64| (sl.acc(x), -sl.anchor.accel_rates(x - sl.anchor.t0).0);
         let vel = |x: f64| sl.vel(x);
         let vel_acc = |x: f64| {
             let (_, v, a) = sl.state(x);
             (v, a)
         };
-        let a_zero = roots::sign_changes(
-            Fun::with(&acc, &acc_jerk),
-            t_a,
-            t_b,
-            &[],
-            0.0,
-            &mut self.count,
-        );
+        // The relative acceleration c - a_g vanishes where a_g = c: closed form on the
+        // monotone arc, then the exact float.
+        let (fa, fb) = (acc(t_a), acc(t_b));
+        let mut a_zero = Vec::new();
+        if (fa > 0.0 && fb <= 0.0) || (fa < 0.0 && fb >= 0.0) {
+            let seg = &sl.anchor;
+            let guess = seg
+                .time_of_accel(sl.c, t_a - seg.t0, t_b - seg.t0)
+                .map_or(0.5 * (t_a + t_b), |s| seg.t0 + s);
+            let t = if fa > 0.0 {
+                roots::polish(&acc, guess, t_a, t_b, &mut self.count)
+            } else {
+                roots::polish(&|x| -acc(x), guess, t_a, t_b, &mut self.count)
+            };
+            if t < t_b {
+                a_zero.push(t);
+            }
+        }
         let v_zero = roots::sign_changes(
             Fun::with(&vel, &vel_acc),
             t_a,

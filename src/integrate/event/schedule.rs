@@ -9,10 +9,17 @@
 //!   their relative displacement reaching a gap or collapse threshold. a_g cancels: these are
 //!   polynomials, found once per mode, whatever the segments.
 
-use super::cluster::Motion;
-use super::roots::{first_violation, valid_after, Fun};
+use super::cluster::{GroundHits, Motion, Slide};
+use super::roots::{first_violation, polish, valid_after, Fun};
 use super::{Constraint, Engine, Ev};
 use std::collections::BTreeSet;
+
+fn constraint_bits(c: Constraint) -> u64 {
+    match c {
+        Constraint::Gap(j) => 2 * j as u64,
+        Constraint::Collapse(s) => 2 * s as u64 + 1,
+    }
+}
 
 /// Bounds on a relative displacement, each with what it stands for.
 #[derive(Default)]
@@ -71,134 +78,141 @@ impl Engine<'_> {
         let ver = self.clusters[k].version;
         let (r1, r2) = seg.accel_rates(self.s());
         let ag = move |x: f64| seg.accel(x - seg.t0);
-        let rate = move |x: f64| seg.accel_rates(x - seg.t0).0;
         match &self.clusters[k].motion {
             Motion::Stuck { lo, hi, .. } => {
                 let (lo, hi) = (*lo, *hi);
-                if hi.is_finite() {
-                    let f = |x: f64| hi - ag(x);
-                    let df = |x: f64| (hi - ag(x), -rate(x));
-                    let start = valid_after(f(t0), 0.0, &[-r1, -r2]);
-                    if let Some(h) = first_violation(
-                        Fun::with(&f, &df),
-                        t0,
-                        t1,
-                        &[],
-                        start,
-                        0.0,
-                        &mut self.count,
-                    ) {
-                        self.push(
-                            h.t,
-                            Ev::Threshold {
-                                k,
-                                ver,
-                                upper: true,
-                            },
-                        );
+                for (limit, upper) in [(hi, true), (lo, false)] {
+                    if !limit.is_finite() {
+                        continue;
                     }
-                }
-                if lo.is_finite() {
-                    let f = |x: f64| ag(x) - lo;
-                    let df = |x: f64| (ag(x) - lo, rate(x));
-                    let start = valid_after(f(t0), 0.0, &[r1, r2]);
-                    if let Some(h) = first_violation(
-                        Fun::with(&f, &df),
-                        t0,
-                        t1,
-                        &[],
-                        start,
-                        0.0,
-                        &mut self.count,
-                    ) {
-                        self.push(
-                            h.t,
-                            Ev::Threshold {
-                                k,
-                                ver,
-                                upper: false,
-                            },
-                        );
+                    let s = if upper { 1.0 } else { -1.0 };
+                    let f = |x: f64| s * (limit - ag(x));
+                    let hit = if !valid_after(f(t0), 0.0, &[-s * r1, -s * r2]) {
+                        Some(t0)
+                    } else if f(t1) <= 0.0 {
+                        // a_g is monotone on the segment: one crossing, in closed form.
+                        let guess = seg
+                            .time_of_accel(limit, t0 - seg.t0, t1 - seg.t0)
+                            .map_or(t1, |x| seg.t0 + x);
+                        Some(polish(&f, guess, t0, t1, &mut self.count))
+                    } else {
+                        None
+                    };
+                    if let Some(t) = hit {
+                        self.push(t, Ev::Threshold { k, ver, upper });
                     }
                 }
             }
             Motion::Sliding(sl) => {
                 let sl = sl.clone();
                 let (sigma, bounds) = self.ground_constraints(k);
-                let acc = |x: f64| sl.acc(x);
-                let vel = |x: f64| sl.vel(x);
-                let disp = |x: f64| sl.disp(x);
-                let zeros = match self.clusters[k].roots.take() {
-                    Some(r) if r.from <= t0 && t1 <= r.to => r,
-                    _ => self.zeros(&sl, t0, t1),
+                let key = (
+                    sigma,
+                    bounds.lo.map(|(v, c)| (v.to_bits(), constraint_bits(c))),
+                    bounds.hi.map(|(v, c)| (v.to_bits(), constraint_bits(c))),
+                );
+                let hits = match &self.clusters[k].ground_hits {
+                    Some(g)
+                        if g.key == key
+                            && g.from <= t0
+                            && g.hits.iter().flatten().all(|&h| h >= t0) =>
+                    {
+                        g.hits
+                    }
+                    _ => {
+                        let hits = self.ground_hits(k, &sl, sigma, &bounds, t0, t1, (r1, r2));
+                        self.clusters[k].ground_hits = Some(GroundHits {
+                            key,
+                            from: t0,
+                            hits,
+                        });
+                        hits
+                    }
                 };
-                let (a_split, v_roots) = (zeros.a_zero.clone(), zeros.v_zero.clone());
-                self.clusters[k].roots = Some(zeros);
-                if sigma != 0 {
-                    let s = f64::from(sigma);
-                    let f = |x: f64| s * vel(x);
-                    let df = |x: f64| {
-                        let (_, v, a) = sl.state(x);
-                        (s * v, s * a)
-                    };
-                    let start = valid_after(f(t0), 0.0, &[s * acc(t0), -s * r1, -s * r2]);
-                    if let Some(h) = first_violation(
-                        Fun::with(&f, &df),
-                        t0,
-                        t1,
-                        &a_split,
-                        start,
-                        0.0,
-                        &mut self.count,
-                    ) {
-                        self.push(h.t, Ev::Stop { k, ver });
-                    }
+                if let Some(t) = hits[0] {
+                    self.push(t, Ev::Stop { k, ver });
                 }
-                if bounds.lo.is_none() && bounds.hi.is_none() {
-                    return;
-                }
-                let x0 = disp(t0);
-                let tol = self.len_tol(x0, 0.0);
-                if let Some((lo, c)) = bounds.lo {
-                    let f = |x: f64| disp(x) - lo;
-                    let df = |x: f64| {
-                        let (u, v, _) = sl.state(x);
-                        (u - lo, v)
-                    };
-                    let start = valid_after(f(t0), tol, &[vel(t0), acc(t0), -r1]);
-                    if let Some(h) = first_violation(
-                        Fun::with(&f, &df),
-                        t0,
-                        t1,
-                        &v_roots,
-                        start,
-                        tol,
-                        &mut self.count,
-                    ) {
-                        self.push(h.t, Ev::GroundBound { k, ver, c });
-                    }
-                }
-                if let Some((hi, c)) = bounds.hi {
-                    let f = |x: f64| hi - disp(x);
-                    let df = |x: f64| {
-                        let (u, v, _) = sl.state(x);
-                        (hi - u, -v)
-                    };
-                    let start = valid_after(f(t0), tol, &[-vel(t0), -acc(t0), r1]);
-                    if let Some(h) = first_violation(
-                        Fun::with(&f, &df),
-                        t0,
-                        t1,
-                        &v_roots,
-                        start,
-                        tol,
-                        &mut self.count,
-                    ) {
-                        self.push(h.t, Ev::GroundBound { k, ver, c });
+                for (hit, bound) in [(hits[1], bounds.lo), (hits[2], bounds.hi)] {
+                    if let (Some(t), Some((_, c))) = (hit, bound) {
+                        self.push(t, Ev::GroundBound { k, ver, c });
                     }
                 }
             }
         }
+    }
+
+    /// Roots of sliding cluster k's functions against the ground side in [t0, t1]: its stop,
+    /// and its displacement reaching the lower and upper bounds.
+    #[allow(clippy::too_many_arguments)]
+    fn ground_hits(
+        &mut self,
+        k: usize,
+        sl: &Slide,
+        sigma: i8,
+        bounds: &Bounds,
+        t0: f64,
+        t1: f64,
+        (r1, r2): (f64, f64),
+    ) -> [Option<f64>; 3] {
+        let acc = |x: f64| sl.acc(x);
+        let vel = |x: f64| sl.vel(x);
+        let disp = |x: f64| sl.disp(x);
+        let zeros = match self.clusters[k].roots.take() {
+            Some(r) if r.from <= t0 && t1 <= r.to => r,
+            _ => self.zeros(sl, t0, t1),
+        };
+        let v_roots = zeros.v_zero.clone();
+        self.clusters[k].roots = Some(zeros);
+        let mut hits = [None; 3];
+        if sigma != 0 {
+            // The stop is the first zero of the velocity: the same function, found on the same
+            // pieces, so a touch at the velocity's zero and the stop agree to the bit.
+            let s = f64::from(sigma);
+            let start = valid_after(s * vel(t0), 0.0, &[s * acc(t0), -s * r1, -s * r2]);
+            hits[0] = if start {
+                v_roots.iter().copied().find(|&t| t > t0)
+            } else {
+                Some(t0)
+            };
+        }
+        let tol = self.len_tol(disp(t0), 0.0);
+        if let Some((lo, _)) = bounds.lo {
+            let f = |x: f64| disp(x) - lo;
+            let df = |x: f64| {
+                let (u, v, _) = sl.state(x);
+                (u - lo, v)
+            };
+            let start = valid_after(f(t0), tol, &[vel(t0), acc(t0), -r1]);
+            hits[1] = first_violation(
+                Fun::with(&f, &df),
+                t0,
+                t1,
+                &v_roots,
+                start,
+                tol,
+                &mut self.count,
+            )
+            .map(|h| h.t);
+        }
+        if let Some((hi, _)) = bounds.hi {
+            let f = |x: f64| hi - disp(x);
+            let df = |x: f64| {
+                let (u, v, _) = sl.state(x);
+                (hi - u, -v)
+            };
+            let start = valid_after(f(t0), tol, &[-vel(t0), -acc(t0), r1]);
+            hits[2] = first_violation(
+                Fun::with(&f, &df),
+                t0,
+                t1,
+                &v_roots,
+                start,
+                tol,
+                &mut self.count,
+            )
+            .map(|h| h.t);
+        }
+        hits
     }
 
     /// Sliding clusters sharing a joint with cluster k.

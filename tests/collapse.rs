@@ -1,0 +1,109 @@
+//! Collapse: a block falls when its centroid leaves the span its supports give it.
+
+use pirqa::integrate::event::EventDriven;
+use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
+use pirqa::motion::{Motion, Record};
+use pirqa::response::Response;
+use pirqa::{samples, Topology, Wall};
+
+fn run(wall: &Wall, motion: &Motion, duration: f64, after: AfterCollapse) -> Response {
+    let topo = Topology::new(wall).unwrap();
+    let settings = Settings {
+        duration_s: duration,
+        output_dt_s: None,
+        log_events: true,
+        after_collapse: after,
+    };
+    EventDriven::default()
+        .run(&Scenario {
+            wall,
+            topology: &topo,
+            motion,
+            settings: &settings,
+        })
+        .unwrap()
+}
+
+fn constant(a: f64, duration: f64) -> Motion {
+    let n = (duration / 0.01).round() as usize + 2;
+    Motion::Record(Record::new("constant", 0.01, vec![a; n]).unwrap())
+}
+
+#[test]
+fn a_block_sliding_off_its_support_falls_at_half_its_width() {
+    // Top block (1 m wide) slides on the bottom one (held by mu 0.5) at (0.2 g - 3) m/s2
+    // relative: its centroid leaves the bottom block's top after 0.5 m.
+    let r = run(
+        &samples::stacked_pair(0.5, 0.2),
+        &constant(3.0, 2.0),
+        2.0,
+        AfterCollapse::Stop,
+    );
+    let c = r.summary.collapse.as_ref().expect("it falls");
+    assert_eq!(c.block, "B2");
+    let expect = (2.0f64 * 0.5 / (3.0 - 0.2 * 9.81)).sqrt();
+    assert!(
+        (c.time_s - expect).abs() < 1e-12,
+        "{} vs {expect}",
+        c.time_s
+    );
+    assert_eq!(
+        r.summary.duration_s, c.time_s,
+        "the run stops at the first collapse by default"
+    );
+    assert!(r.summary.blocks[1].fell);
+}
+
+fn bridge() -> Wall {
+    // Two abutments with a 0.2 m gap between them; a block bridges it.
+    Wall::from_ron_str(
+        r#"(version: 1, thickness_m: 1, density_kg_m3: 2000, friction: 0.2, rectangles: [
+            (x_m: 0, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
+            (x_m: 1.2, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
+            (x_m: 0.2, y_m: 0.5, width_m: 1.2, height_m: 0.5, name: "Top"),
+        ])"#,
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_block_bridging_a_gap_stands_until_its_centroid_leaves_the_far_support() {
+    // Ground acceleration -3 m/s2: the top block slides +x at 3 - 0.2 g. Its centroid (x = 0.8)
+    // crosses the gap (1.0..1.2) without falling and falls past the right support's edge
+    // (x = 2.2), after 1.4 m.
+    let r = run(&bridge(), &constant(-3.0, 3.0), 3.0, AfterCollapse::Stop);
+    let c = r.summary.collapse.as_ref().expect("it falls eventually");
+    let expect = (2.0f64 * 1.4 / (3.0 - 0.2 * 9.81)).sqrt();
+    assert!(
+        (c.time_s - expect).abs() < 1e-12,
+        "{} vs {expect}",
+        c.time_s
+    );
+}
+
+#[test]
+fn after_collapse_continue_runs_on_without_the_fallen_block() {
+    let wall = Wall::load(std::path::Path::new("walls/five-block-variable.ron")).unwrap();
+    let motion = Motion::Sine(pirqa::motion::Sine::new(5.0, 0.2, 0.0, 10.0).unwrap());
+    let stop = run(&wall, &motion, 10.0, AfterCollapse::Stop);
+    let first = stop
+        .summary
+        .collapse
+        .clone()
+        .expect("a strong slow sine topples the wall");
+    let go_on = run(&wall, &motion, 10.0, AfterCollapse::Continue);
+    assert_eq!(
+        go_on.summary.collapse,
+        Some(first.clone()),
+        "same first collapse"
+    );
+    assert_eq!(go_on.summary.duration_s, 10.0);
+    let e = go_on.summary.energy;
+    assert!(
+        e.residual_j.abs() <= 1e-9 * e.input_j,
+        "residual {:e} of {:e}",
+        e.residual_j,
+        e.input_j
+    );
+    assert!(go_on.summary.blocks.iter().any(|b| b.fell));
+}

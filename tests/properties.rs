@@ -1,0 +1,119 @@
+//! Invariants on random small walls and motions: no penetration, energy balance, momentum at
+//! every impact.
+
+use pirqa::integrate::event::EventDriven;
+use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
+use pirqa::motion::{Motion, Sine};
+use pirqa::response::EventKind;
+use pirqa::wall::{BlockDescription, RowDescription, WallDescription};
+use pirqa::{Topology, Wall};
+use proptest::prelude::*;
+use std::collections::BTreeMap;
+
+/// Two courses over the same length, cut at random; random friction per block and gaps.
+fn wall_strategy() -> impl Strategy<Value = WallDescription> {
+    (
+        prop::collection::vec(0.5f64..1.5, 1..4),
+        prop::collection::vec(0.4f64..1.2, 1..4),
+        prop::collection::vec(0.15f64..0.6, 8),
+        0.0f64..=1.0,
+        prop::option::of(0.0f64..0.05),
+    )
+        .prop_map(|(lower, upper_raw, mu, e, gap)| {
+            let total: f64 = lower.iter().sum();
+            let scale = total / upper_raw.iter().sum::<f64>();
+            let block = |w: f64, gap_m: f64| BlockDescription {
+                width_m: (w * 1000.0).round() / 1000.0,
+                gap_m,
+                name: None,
+                height_m: None,
+                fixed: false,
+            };
+            let mut lower_blocks: Vec<BlockDescription> =
+                lower.iter().map(|&w| block(w, 0.0)).collect();
+            if let (Some(g), true) = (gap, lower_blocks.len() > 1) {
+                lower_blocks[1].gap_m = (g * 1000.0).round() / 1000.0;
+            }
+            let lower_len: f64 = lower_blocks.iter().map(|b| b.width_m + b.gap_m).sum();
+            let mut upper_blocks: Vec<BlockDescription> =
+                upper_raw.iter().map(|&w| block(w * scale, 0.0)).collect();
+            // The upper course ends where the lower one does.
+            let used: f64 = upper_blocks[..upper_blocks.len() - 1]
+                .iter()
+                .map(|b| b.width_m)
+                .sum();
+            let last = upper_blocks.len() - 1;
+            upper_blocks[last].width_m = ((lower_len - used) * 1000.0).round() / 1000.0;
+            let mut joint_friction = BTreeMap::new();
+            for (k, &m) in mu.iter().take(lower_blocks.len()).enumerate() {
+                joint_friction.insert(format!("B{}/ground", k + 1), (m * 100.0).round() / 100.0);
+            }
+            WallDescription {
+                version: 1,
+                name: Some("random".into()),
+                thickness_m: 1.0,
+                density_kg_m3: Some(2000.0),
+                unit_weight_kn_m3: None,
+                friction: (mu[7] * 100.0).round() / 100.0,
+                restitution: (e * 10.0).round() / 10.0,
+                g_m_s2: 9.81,
+                rows: vec![
+                    RowDescription {
+                        height_m: 0.5,
+                        x_m: 0.0,
+                        blocks: lower_blocks,
+                    },
+                    RowDescription {
+                        height_m: 0.4,
+                        x_m: 0.0,
+                        blocks: upper_blocks,
+                    },
+                ],
+                rectangles: vec![],
+                joint_friction,
+            }
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    #[test]
+    fn invariants_hold_on_random_walls(d in wall_strategy(), amp in 1.0f64..9.0, freq in 0.3f64..5.0, phase in 0.0f64..360.0) {
+        let wall = Wall::from_description(&d);
+        prop_assume!(wall.is_ok());
+        let wall = wall.unwrap();
+        let topo = Topology::new(&wall);
+        prop_assume!(topo.is_ok());
+        let topo = topo.unwrap();
+        let motion = Motion::Sine(Sine::new(amp, freq, phase.to_radians(), 4.0).unwrap());
+        let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), log_events: true, after_collapse: AfterCollapse::Continue };
+        let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings }).unwrap();
+
+        let e = r.summary.energy;
+        prop_assert!(e.residual_j.abs() <= 1e-9 * e.input_j.max(1.0), "energy residual {:e} of {:e}", e.residual_j, e.input_j);
+
+        let h = r.history.as_ref().unwrap();
+        for j in &topo.joints {
+            let (l, rr) = (j.left.0, j.right.0);
+            let fell = r.summary.blocks[l].fell || r.summary.blocks[rr].fell;
+            if fell { continue; }
+            let g0 = j.gap_m.to_f64();
+            for (t, u) in h.time_s.iter().zip(&h.displacement_m) {
+                let gap = g0 + u[rr] - u[l];
+                prop_assert!(gap >= -1e-9, "penetration {gap:e} m between blocks {l} and {rr} at t = {t}");
+            }
+        }
+
+        let mass: Vec<f64> = topo.blocks.iter().map(|b| b.mass_kg.to_f64()).collect();
+        for ev in r.events.iter().filter(|ev| ev.kind == EventKind::Impact) {
+            let idx = |name: &str| wall.block_index(name).unwrap();
+            let (l, rr) = (idx(&ev.blocks[0]), idx(&ev.blocks[1]));
+            let (b, a) = (ev.before_m_s.unwrap(), ev.after_m_s.unwrap());
+            let scale = mass[l] * b[0].abs() + mass[rr] * b[1].abs();
+            let dp = mass[l] * (a[0] - b[0]) + mass[rr] * (a[1] - b[1]);
+            prop_assert!(dp.abs() <= 1e-12 * scale.max(1e-300), "momentum changed by {dp:e}");
+            prop_assert!(a[1] - a[0] >= -1e-12, "faces still approach after the impact");
+        }
+    }
+}
