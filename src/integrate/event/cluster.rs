@@ -134,13 +134,16 @@ pub struct Roots {
     pub v_zero: Vec<f64>,
 }
 
+/// A bound on a relative displacement as bits: value and what it stands for.
+pub type BoundKey = Option<(u64, u64)>;
+
 /// The roots of a sliding cluster's event functions against the ground side on the current
 /// segment, and what they were computed for: a neighbour re-deciding its mode changes nothing
 /// here unless it changes the sliding direction or the bounds.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundHits {
     /// Direction of sliding on the ground side, and the bounds with their bit patterns.
-    pub key: (i8, Option<(u64, u64)>, Option<(u64, u64)>),
+    pub key: (i8, BoundKey, BoundKey),
     /// Earliest start time the hits are valid from (s).
     pub from: f64,
     /// Stop time, and the times the lower and upper bounds are reached.
