@@ -13,9 +13,11 @@ pub mod integrate;
 pub mod motion;
 pub mod plot;
 pub mod response;
+pub mod rng;
 pub mod samples;
 pub mod topology;
 pub mod units;
+pub mod validity;
 pub mod wall;
 
 pub use error::{Error, Result};

@@ -234,3 +234,171 @@ fn run_takes_a_plain_record_with_a_scale_factor() {
         "{err}"
     );
 }
+
+#[test]
+fn motion_info_json_has_units_in_its_keys() {
+    let (ok, out, err) = pirqa(&[
+        "motion",
+        "info",
+        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in [
+        "pga_m_s2",
+        "pgv_m_s",
+        "pgd_m",
+        "arias_m_s",
+        "d5_95_s",
+        "tm_s",
+        "npts",
+        "dt_s",
+    ] {
+        assert!(v[key].is_number(), "{key}");
+    }
+    assert_eq!(v["npts"], 4000);
+    assert!((v["pga_m_s2"].as_f64().unwrap() / 9.81 - 0.3129).abs() < 1e-4);
+    // El Centro 1940: Arias intensity about 1.7 m/s, D5-95 about 24 s.
+    assert!((v["arias_m_s"].as_f64().unwrap() - 1.68).abs() < 0.05);
+    assert!((v["d5_95_s"].as_f64().unwrap() - 24.1).abs() < 0.5);
+    let svg = temp_dir("info").with_extension("svg");
+    let (ok, _, err) = pirqa(&[
+        "motion",
+        "info",
+        "../shared/records/elcentro1940_ns_peknold_dt0p02_g.AT2",
+        "--plot",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(std::fs::read_to_string(&svg)
+        .unwrap()
+        .contains("Fourier amplitude spectrum"));
+    assert!(std::fs::read_to_string(svg.with_extension("csv"))
+        .unwrap()
+        .starts_with("chart,series,x,y"));
+}
+
+#[test]
+fn generated_motions_read_back_and_run() {
+    let dir = temp_dir("generate");
+    let file = dir.join("miyagi-like.txt");
+    let (ok, _, err) = pirqa(&[
+        "motion",
+        "generate",
+        "miyagi-like",
+        "-o",
+        file.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let (ok, out, err) = pirqa(&["motion", "info", file.to_str().unwrap(), "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!((v["pga_m_s2"].as_f64().unwrap() - 2.58).abs() < 1e-6);
+    let (ok, out, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--record",
+        file.to_str().unwrap(),
+        "--scale",
+        "5",
+    ]);
+    assert!(ok && out.contains("B3"), "{err}");
+    for kind in [
+        vec![
+            "sine",
+            "--amp",
+            "300gal",
+            "--freq",
+            "2",
+            "--duration",
+            "5",
+            "--ramp",
+            "1",
+            "--taper",
+            "1",
+        ],
+        vec![
+            "chirp",
+            "--amp",
+            "0.2g",
+            "--f0",
+            "0.5",
+            "--f1",
+            "8",
+            "--duration",
+            "20",
+        ],
+        vec![
+            "ricker",
+            "--amp",
+            "3m/s2",
+            "--freq",
+            "1.5",
+            "--duration",
+            "4",
+        ],
+        vec!["pulse", "--amp", "3m/s2", "--freq", "1", "--duration", "3"],
+        vec![
+            "kanai-tajimi",
+            "--pga",
+            "0.3g",
+            "--fg",
+            "2.5",
+            "--duration",
+            "20",
+            "--seed",
+            "7",
+        ],
+    ] {
+        let f = dir.join(format!("{}.txt", kind[0]));
+        let mut args = vec!["motion", "generate"];
+        args.extend(kind.iter().copied());
+        args.extend(["-o", f.to_str().unwrap()]);
+        let (ok, _, err) = pirqa(&args);
+        assert!(ok, "{kind:?}: {err}");
+        let text = std::fs::read_to_string(&f).unwrap();
+        assert!(text.contains("# units: m/s2") && text.contains("# dt_s: 0.01"));
+    }
+}
+
+#[test]
+fn a_tall_block_gets_a_rocking_warning() {
+    let dir = temp_dir("tall");
+    std::fs::create_dir_all(&dir).unwrap();
+    let wall = dir.join("tall.ron");
+    std::fs::write(&wall, "(version: 1, thickness_m: 1, density_kg_m3: 2000, friction: 0.6, rows: [(height_m: 2.0, blocks: [(width_m: 0.5)])])").unwrap();
+    let summary = dir.join("s.json");
+    let (ok, out, err) = pirqa(&[
+        "run",
+        wall.to_str().unwrap(),
+        "--sine",
+        "0.3g",
+        "--freq",
+        "1",
+        "--duration",
+        "3",
+        "--summary",
+        summary.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("warning: B1") && out.contains("Housner"),
+        "{out}"
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
+    assert_eq!(s["warnings"].as_array().unwrap().len(), 1);
+    // The squat five-block wall under the same motion gets none.
+    let (ok, out, _) = pirqa(&[
+        "run",
+        "walls/five-block-uniform.ron",
+        "--sine",
+        "0.3g",
+        "--freq",
+        "1",
+        "--duration",
+        "3",
+    ]);
+    assert!(ok && !out.contains("warning"), "{out}");
+}

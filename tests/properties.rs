@@ -76,7 +76,7 @@ fn wall_strategy() -> impl Strategy<Value = WallDescription> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(64), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261122)), ..ProptestConfig::default() })]
 
     #[test]
     fn invariants_hold_on_random_walls(d in wall_strategy(), amp in 1.0f64..9.0, freq in 0.3f64..5.0, phase in 0.0f64..360.0) {

@@ -2,6 +2,7 @@
 //! CSV and SVG files. Errors come back to `main` as typed library errors.
 
 mod check;
+mod motion;
 mod run;
 
 use clap::{Parser, Subcommand};
@@ -39,6 +40,9 @@ enum Command {
     },
     /// Simulate a wall under a ground motion with the exact event-driven integrator.
     Run(run::RunArgs),
+    /// Ground motions: measures of a record, synthetic motions.
+    #[command(subcommand)]
+    Motion(motion::MotionCommand),
 }
 
 /// Runs the command line; returns the process exit code.
@@ -52,6 +56,7 @@ pub fn run() -> Result<(), pirqa::Error> {
             graph,
         } => check::draw(&wall, &output, graph),
         Command::Run(args) => run::run(&args),
+        Command::Motion(cmd) => motion::run(&cmd),
     }
 }
 

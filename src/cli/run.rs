@@ -3,7 +3,7 @@
 use super::{print_out, write_file};
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
-use pirqa::motion::{read_plain, Motion, PlainOptions, Sine};
+use pirqa::motion::{process, read_record, Baseline, Motion, Processing, ReadOptions, Sine};
 use pirqa::response::Response;
 use pirqa::topology;
 use pirqa::units::{parse_acceleration, AccelUnit};
@@ -23,18 +23,109 @@ pub struct MotionArgs {
     /// Sine phase at t = 0 (degrees).
     #[arg(long, value_name = "DEG", default_value_t = 0.0)]
     pub phase: f64,
-    /// Acceleration record: plain text or CSV, one column (with --dt) or time and acceleration.
+    /// Acceleration record: PEER AT2, K-NET/KiK-net, COSMOS V2, or plain text/CSV.
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
-    /// Units of the record's values when its header does not say: gal, g, m/s2.
+    /// Record format: at2, knet, cosmos, plain (default: recognised from the content).
+    #[arg(long, value_name = "FORMAT")]
+    pub format: Option<String>,
+    /// Component: the column after time in a plain multi-column file (1-based), the channel of
+    /// a multi-channel COSMOS file (0-based).
+    #[arg(long, value_name = "N")]
+    pub component: Option<usize>,
+    /// Units of a plain record whose header does not say: gal, g, m/s2.
     #[arg(long, value_name = "UNITS")]
     pub units: Option<String>,
-    /// Sample interval of a one-column record (s).
+    /// Sample interval of a one-column plain record (s).
     #[arg(long, value_name = "S")]
     pub dt: Option<f64>,
-    /// Scale factor applied to the motion (the paper's "amplified by 5").
-    #[arg(long, default_value_t = 1.0)]
-    pub scale: f64,
+    /// Keep the record from this time (s).
+    #[arg(long, value_name = "S")]
+    pub start: Option<f64>,
+    /// Keep the record up to this time (s).
+    #[arg(long, value_name = "S")]
+    pub end: Option<f64>,
+    /// Baseline correction of the record.
+    #[arg(long, value_enum, default_value_t = Baseline::None)]
+    pub baseline: Baseline,
+    /// Scale the record (or the sine) to this peak: 258gal, 0.3g.
+    #[arg(long, value_name = "PGA")]
+    pub pga: Option<String>,
+    /// Then multiply by this factor (the paper's "amplified by 5").
+    #[arg(long, value_name = "X")]
+    pub scale: Option<f64>,
+}
+
+fn bad(what: &str, message: String) -> Error {
+    Error::Motion {
+        path: PathBuf::from(what),
+        source: pirqa::error::MotionError::Invalid(message),
+    }
+}
+
+/// Builds the ground motion described by the options (`duration` is needed for a sine), with a
+/// log of the processing applied.
+pub fn build_motion(m: &MotionArgs, duration: Option<f64>) -> Result<(Motion, Vec<String>), Error> {
+    let pga = m.pga.as_deref().map(parse_acceleration).transpose()?;
+    match (&m.sine, &m.record) {
+        (Some(amp), None) => {
+            let mut a = parse_acceleration(amp)?;
+            let mut notes = Vec::new();
+            if let Some(p) = pga {
+                notes.push(format!("amplitude set to PGA {p} m/s2"));
+                a = p;
+            }
+            if let Some(k) = m.scale {
+                notes.push(format!("scaled by {k}"));
+                a *= k;
+            }
+            let freq = m
+                .freq
+                .ok_or_else(|| bad("--freq", "a sine needs --freq HZ".into()))?;
+            let duration =
+                duration.ok_or_else(|| bad("--duration", "a sine needs --duration S".into()))?;
+            let sine = Sine::new(a, freq, m.phase.to_radians(), duration).map_err(|source| {
+                Error::Motion {
+                    path: PathBuf::from("--sine"),
+                    source,
+                }
+            })?;
+            Ok((Motion::Sine(sine), notes))
+        }
+        (None, Some(path)) => {
+            let units = match &m.units {
+                Some(u) => Some(AccelUnit::parse(u).ok_or_else(|| {
+                    bad(
+                        "--units",
+                        format!("unknown units \"{u}\": use gal, g or m/s2"),
+                    )
+                })?),
+                None => None,
+            };
+            let opts = ReadOptions {
+                dt_s: m.dt,
+                units,
+                component: m.component,
+            };
+            let record = read_record(path, m.format.as_deref(), &opts)?;
+            let p = Processing {
+                start_s: m.start,
+                end_s: m.end,
+                baseline: m.baseline,
+                pga_m_s2: pga,
+                scale: m.scale,
+            };
+            let (record, notes) = process(&record, &p).map_err(|source| Error::Motion {
+                path: path.clone(),
+                source,
+            })?;
+            Ok((Motion::Record(record), notes))
+        }
+        _ => Err(bad(
+            "motion",
+            "give the ground motion: --sine AMP --freq HZ, or --record FILE".into(),
+        )),
+    }
 }
 
 /// Options of `pirqa run`.
@@ -61,81 +152,9 @@ pub struct RunArgs {
     pub after_collapse: AfterCollapse,
 }
 
-fn bad(what: &str, message: String) -> Error {
-    Error::Motion {
-        path: PathBuf::from(what),
-        source: pirqa::error::MotionError::Invalid(message),
-    }
-}
-
-/// Builds the ground motion described by the options; `duration` is needed for a sine.
-pub fn build_motion(m: &MotionArgs, duration: Option<f64>) -> Result<Motion, Error> {
-    if !(m.scale.is_finite()) {
-        return Err(bad(
-            "--scale",
-            format!("scale factor {} is not a finite number", m.scale),
-        ));
-    }
-    match (&m.sine, &m.record) {
-        (Some(amp), None) => {
-            let a = parse_acceleration(amp)?;
-            let freq = m
-                .freq
-                .ok_or_else(|| bad("--freq", "a sine needs --freq HZ".into()))?;
-            let duration =
-                duration.ok_or_else(|| bad("--duration", "a sine needs --duration S".into()))?;
-            let sine =
-                Sine::new(a * m.scale, freq, m.phase.to_radians(), duration).map_err(|source| {
-                    Error::Motion {
-                        path: PathBuf::from("--sine"),
-                        source,
-                    }
-                })?;
-            Ok(Motion::Sine(sine))
-        }
-        (None, Some(path)) => {
-            let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-                path: path.clone(),
-                source,
-            })?;
-            let units = match &m.units {
-                Some(u) => Some(AccelUnit::parse(u).ok_or_else(|| {
-                    bad(
-                        "--units",
-                        format!("unknown units \"{u}\": use gal, g or m/s2"),
-                    )
-                })?),
-                None => None,
-            };
-            let opts = PlainOptions {
-                dt_s: m.dt,
-                units,
-                column: None,
-            };
-            let name = path.file_name().map_or_else(
-                || path.display().to_string(),
-                |f| f.to_string_lossy().into_owned(),
-            );
-            let record = read_plain(&name, &text, &opts).map_err(|source| Error::Motion {
-                path: path.clone(),
-                source,
-            })?;
-            Ok(Motion::Record(if m.scale == 1.0 {
-                record
-            } else {
-                record.scaled(m.scale)
-            }))
-        }
-        _ => Err(bad(
-            "motion",
-            "give the ground motion: --sine AMP --freq HZ, or --record FILE".into(),
-        )),
-    }
-}
-
 pub fn run(args: &RunArgs) -> Result<(), Error> {
     let (wall, topo) = topology::load(&args.wall)?;
-    let motion = build_motion(&args.motion, args.duration)?;
+    let (motion, notes) = build_motion(&args.motion, args.duration)?;
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
     let settings = Settings {
         duration_s: duration,
@@ -149,7 +168,8 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         motion: &motion,
         settings: &settings,
     };
-    let response = EventDriven::default().run(&scenario)?;
+    let mut response = EventDriven::default().run(&scenario)?;
+    response.summary.motion_processing = notes;
     if let Some(dir) = &args.out {
         write_outputs(dir, &response)?;
     }

@@ -3,10 +3,14 @@
 //! linear a_g on a record's sample interval, monotone sine arcs between a sine's peaks. The exact
 //! integrator finds events segment by segment; time-stepping integrators just sample a_g.
 
-mod plain;
+pub mod formats;
+pub mod measures;
+mod process;
 mod segment;
+pub mod synthetic;
 
-pub use plain::{read_plain, PlainOptions};
+pub use formats::{read_record, ReadOptions};
+pub use process::{process, Baseline, Processing};
 pub use segment::{Segment, Shape};
 
 use crate::error::MotionError;

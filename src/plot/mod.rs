@@ -1,5 +1,6 @@
 //! Pictures: wall elevations (initial, displaced, collapsed) written as plain SVG, and charts.
 
+pub mod chart;
 mod svg;
 mod wall_drawing;
 

@@ -61,6 +61,8 @@ pub struct BlockSummary {
     pub final_displacement_m: f64,
     /// Largest |v| relative to the ground (m/s).
     pub max_abs_velocity_m_s: f64,
+    /// Largest absolute acceleration (m/s2), for the rocking check.
+    pub max_abs_accel_m_s2: f64,
     /// The block fell.
     pub fell: bool,
 }
@@ -129,6 +131,8 @@ pub struct Summary {
     pub wall: String,
     /// Ground motion.
     pub motion: String,
+    /// What was done to the record before the run (window, baseline, scaling).
+    pub motion_processing: Vec<String>,
     /// Simulated time (s).
     pub duration_s: f64,
     /// Per block.
@@ -184,6 +188,7 @@ pub struct Recorder {
     max_u: Vec<f64>,
     max_v: Vec<f64>,
     max_d: Vec<f64>,
+    max_a: Vec<f64>,
     fell: Vec<bool>,
     history: Option<History>,
     /// Logged events.
@@ -233,6 +238,7 @@ impl Recorder {
             max_u: vec![0.0; n],
             max_v: vec![0.0; n],
             max_d: vec![0.0; topo.supports.len()],
+            max_a: vec![0.0; n],
             fell: vec![false; n],
             history: history.then(History::default),
             events: Vec::new(),
@@ -270,6 +276,16 @@ impl Recorder {
             let d = u[*upper] - lower.map_or(0.0, |l| u[l]);
             self.max_d[k] = self.max_d[k].max(d.abs());
         }
+    }
+
+    /// Notes that block i reached an absolute acceleration of magnitude `a_abs` (m/s2).
+    pub fn block_accel(&mut self, i: usize, a_abs: f64) {
+        self.max_a[i] = self.max_a[i].max(a_abs);
+    }
+
+    /// Peak absolute acceleration of each block so far (m/s2).
+    pub fn peak_accel(&self) -> &[f64] {
+        &self.max_a
     }
 
     /// Notes that support k reached |u_upper - u_lower| = `d_abs`.
@@ -365,6 +381,7 @@ impl Recorder {
                 max_abs_displacement_m: self.max_u[i],
                 final_displacement_m: u[i],
                 max_abs_velocity_m_s: self.max_v[i],
+                max_abs_accel_m_s2: self.max_a[i],
                 fell: self.fell[i],
             })
             .collect();
@@ -384,6 +401,7 @@ impl Recorder {
                 method: method.to_string(),
                 wall: wall.name.clone(),
                 motion,
+                motion_processing: Vec::new(),
                 duration_s: t_end,
                 blocks,
                 joints,

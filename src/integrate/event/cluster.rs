@@ -55,7 +55,7 @@ pub struct Slide {
 impl Slide {
     /// A cluster formed at time t with velocity v relative to the ground.
     pub fn formed(seg: &Segment, t: f64, v: f64, c_q: Q) -> Slide {
-        let anchor = seg.anchored(t - seg.t0);
+        let anchor = seg.anchored(t);
         let c = c_q.to_f64();
         Slide {
             rel: c - anchor.accel(0.0),

@@ -477,8 +477,18 @@ impl<'a> Engine<'a> {
         let t_a = self.clusters[k].accounted_to;
         self.clusters[k].accounted_to = t;
         let Some(sl) = self.clusters[k].slide().cloned() else {
+            // Stuck blocks move with the ground.
+            if t > t_a {
+                let (lo, hi) = self.motion.accel_range(t_a, t);
+                for &i in &self.clusters[k].blocks {
+                    self.rec.block_accel(i, lo.abs().max(hi.abs()));
+                }
+            }
             return;
         };
+        for &i in &self.clusters[k].blocks {
+            self.rec.block_accel(i, sl.c.abs());
+        }
         if t <= t_a {
             return;
         }
@@ -760,10 +770,16 @@ impl<'a> Engine<'a> {
         });
         let pairs: Vec<(usize, usize)> = faces.iter().map(|f| (f.0, f.1)).collect();
         let mut exact: Vec<impact::Body> = bodies.iter().map(|b| b.1.clone()).collect();
+        let scale = bodies
+            .iter()
+            .map(|b| b.1.velocity.abs().to_f64())
+            .fold(0.0, f64::max);
+        let negligible = Q::from_f64_exact(self.vel_tol(scale, 0.0)).expect("finite tolerance");
         let Some((collisions, loss)) = impact::resolve(
             &mut exact,
             &pairs,
             &self.restitution,
+            &negligible,
             self.params.max_collisions_per_chain,
         ) else {
             let names: Vec<&str> = bodies
@@ -1003,6 +1019,8 @@ impl<'a> Engine<'a> {
             .map(|i| 0.5 * self.mass[i] * v[i] * v[i])
             .sum();
         self.rec.stats.root_evaluations = self.count.0;
+        self.rec.warnings =
+            crate::validity::rocking_warnings(self.wall, self.topo, self.rec.peak_accel());
         let motion = self.motion.describe();
         self.rec.finish("event", self.wall, motion, t, &u, &v)
     }

@@ -2,27 +2,36 @@
 //! and acceleration. Units are never guessed: they come from a `# units: gal` header line or the
 //! caller.
 
-use super::Record;
+use super::{ReadOptions, RecordFormat};
 use crate::error::MotionError;
+use crate::motion::Record;
 use crate::units::AccelUnit;
 
-/// What the caller knows about a plain file.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct PlainOptions {
-    /// Sample interval (s) for one-column files without a `# dt_s:` header.
-    pub dt_s: Option<f64>,
-    /// Units of the values, when the file has no `# units:` header.
-    pub units: Option<AccelUnit>,
-    /// Which column holds the acceleration in multi-column files (0-based; default: the last).
-    pub column: Option<usize>,
+/// Plain text and CSV.
+pub struct Plain;
+
+impl RecordFormat for Plain {
+    fn name(&self) -> &'static str {
+        "plain"
+    }
+
+    fn detect(&self, _text: &str) -> bool {
+        true
+    }
+
+    fn read(&self, name: &str, text: &str, opts: &ReadOptions) -> Result<Record, MotionError> {
+        read_plain(name, text, opts)
+    }
 }
 
 /// Relative tolerance on the spacing of a time column: sample times written with a few decimals
 /// are equally spaced to about 1e-9 relative, not exactly.
 const SPACING_TOL: f64 = 1e-6;
 
-/// Reads a plain-text or CSV record.
-pub fn read_plain(name: &str, text: &str, opts: &PlainOptions) -> Result<Record, MotionError> {
+/// Reads a plain-text or CSV record: one column of accelerations (with `dt_s`), or time in the
+/// first column and accelerations in the others (`component` picks one, 1-based after time;
+/// default the last).
+pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, MotionError> {
     let mut units = opts.units;
     let mut dt = opts.dt_s;
     let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
@@ -119,10 +128,11 @@ pub fn read_plain(name: &str, text: &str, opts: &PlainOptions) -> Result<Record,
         })?;
         (dt, 0)
     } else {
-        let col = opts.column.unwrap_or(ncol - 1);
+        let col = opts.component.unwrap_or(ncol - 1);
         if col == 0 || col >= ncol {
             return Err(MotionError::Invalid(format!(
-                "column {col} is not an acceleration column of this {ncol}-column file (column 0 is time)"
+                "column {col} is not an acceleration column of this {ncol}-column file (column 0 is time; use 1..{})",
+                ncol - 1
             )));
         }
         let t0 = rows[0].1[0];
@@ -157,7 +167,7 @@ mod tests {
         let r = read_plain(
             "a",
             "# units: gal\n# dt_s: 0.02\n100\n-50\n25\n",
-            &PlainOptions::default(),
+            &ReadOptions::default(),
         )
         .unwrap();
         assert_eq!(r.dt_s, 0.02);
@@ -165,7 +175,7 @@ mod tests {
         let r = read_plain(
             "b",
             "time,acc\n0.0, 0.1\n0.01, 0.2\n0.02, 0.3\n",
-            &PlainOptions {
+            &ReadOptions {
                 units: Some(AccelUnit::G),
                 ..Default::default()
             },
@@ -177,28 +187,28 @@ mod tests {
 
     #[test]
     fn broken_files_name_the_line() {
-        let e = read_plain("a", "1\n2\n", &PlainOptions::default()).unwrap_err();
+        let e = read_plain("a", "1\n2\n", &ReadOptions::default()).unwrap_err();
         assert!(e.to_string().contains("units"), "{e}");
-        let e = read_plain("a", "# units: g\n1\n2\n", &PlainOptions::default()).unwrap_err();
+        let e = read_plain("a", "# units: g\n1\n2\n", &ReadOptions::default()).unwrap_err();
         assert!(e.to_string().contains("--dt"), "{e}");
         let e = read_plain(
             "a",
             "# units: g\n# dt_s: 0.1\n1\nx\n",
-            &PlainOptions::default(),
+            &ReadOptions::default(),
         )
         .unwrap_err();
         assert_eq!(e.to_string(), "line 4: expected numbers, found \"x\"");
         let e = read_plain(
             "a",
             "# units: g\n0 1\n0.1 2\n0.25 3\n",
-            &PlainOptions::default(),
+            &ReadOptions::default(),
         )
         .unwrap_err();
         assert!(e.to_string().starts_with("line 4: time 0.25"), "{e}");
         let e = read_plain(
             "a",
             "# units: g\n# dt_s: 0.1\n1\nNaN\n",
-            &PlainOptions::default(),
+            &ReadOptions::default(),
         )
         .unwrap_err();
         assert!(e.to_string().contains("line 4"), "{e}");

@@ -1,0 +1,91 @@
+//! Reading acceleration records in the formats strong-motion databases distribute: PEER NGA
+//! AT2, K-NET/KiK-net ASCII, COSMOS V2, and plain text or CSV. One module per format behind
+//! [`RecordFormat`]; the format is recognised from the content, or forced.
+
+mod at2;
+mod cosmos;
+mod knet;
+mod numbers;
+mod plain;
+
+pub use at2::At2;
+pub use cosmos::Cosmos;
+pub use knet::Knet;
+pub use numbers::{free_format, FixedFormat};
+pub use plain::{read_plain, Plain};
+
+use super::Record;
+use crate::error::{Error, MotionError};
+use crate::units::AccelUnit;
+use std::path::Path;
+
+/// What the caller knows beyond the file.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ReadOptions {
+    /// Sample interval (s) for one-column plain files without a `# dt_s:` line.
+    pub dt_s: Option<f64>,
+    /// Units of plain files without a `# units:` line.
+    pub units: Option<AccelUnit>,
+    /// Which component: the column after time in a plain multi-column file (1-based), the
+    /// channel in a multi-channel COSMOS file (0-based).
+    pub component: Option<usize>,
+}
+
+/// A record file format.
+pub trait RecordFormat {
+    /// Name used by `--format`.
+    fn name(&self) -> &'static str;
+    /// Does this text look like this format?
+    fn detect(&self, text: &str) -> bool;
+    /// Reads the record; accelerations come back in m/s2.
+    fn read(&self, name: &str, text: &str, opts: &ReadOptions) -> Result<Record, MotionError>;
+}
+
+/// Every format, most specific first; plain text matches anything and comes last.
+pub const FORMATS: [&dyn RecordFormat; 4] = [&Knet, &Cosmos, &At2, &Plain];
+
+/// The format called `name` (`at2`, `knet`, `cosmos`, `plain`).
+pub fn format_named(name: &str) -> Option<&'static dyn RecordFormat> {
+    let name = name.to_ascii_lowercase();
+    let name = if name == "csv" || name == "txt" {
+        "plain".to_string()
+    } else {
+        name
+    };
+    FORMATS.iter().copied().find(|f| f.name() == name)
+}
+
+/// The format this text is in.
+pub fn detect(text: &str) -> &'static dyn RecordFormat {
+    FORMATS
+        .iter()
+        .copied()
+        .find(|f| f.detect(text))
+        .unwrap_or(&Plain)
+}
+
+/// Reads a record file, detecting its format unless one is given. Errors name the file.
+pub fn read_record(path: &Path, format: Option<&str>, opts: &ReadOptions) -> Result<Record, Error> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let fmt = match format {
+        Some(f) => format_named(f).ok_or_else(|| Error::Motion {
+            path: path.to_path_buf(),
+            source: MotionError::Invalid(format!(
+                "unknown format \"{f}\": use at2, knet, cosmos or plain"
+            )),
+        })?,
+        None => detect(&text),
+    };
+    let name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |f| f.to_string_lossy().into_owned(),
+    );
+    fmt.read(&name, &text, opts)
+        .map_err(|source| Error::Motion {
+            path: path.to_path_buf(),
+            source,
+        })
+}

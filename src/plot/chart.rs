@@ -1,0 +1,233 @@
+//! Line charts with axes, labels in engineering units and legends, drawn with plotters' SVG
+//! backend (no system fonts needed). Several charts can share one figure as panels.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// One line of a chart.
+#[derive(Debug, Clone, Default)]
+pub struct Series {
+    /// Legend entry (empty: no entry).
+    pub label: String,
+    /// Points (x, y).
+    pub points: Vec<(f64, f64)>,
+    /// Colour index into the palette.
+    pub color: usize,
+    /// Dashed line.
+    pub dashed: bool,
+    /// Draw points as markers instead of a line.
+    pub markers: bool,
+}
+
+/// A chart: axes, labels, lines.
+#[derive(Debug, Clone, Default)]
+pub struct Chart {
+    /// Title above the plot.
+    pub title: String,
+    /// X axis label with units.
+    pub x_label: String,
+    /// Y axis label with units.
+    pub y_label: String,
+    /// Lines.
+    pub series: Vec<Series>,
+    /// Logarithmic x axis.
+    pub log_x: bool,
+    /// Logarithmic y axis.
+    pub log_y: bool,
+    /// Text notes drawn at data coordinates (x, y, text).
+    pub notes: Vec<(f64, f64, String)>,
+}
+
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 95, 168),
+    RGBColor(194, 87, 26),
+    RGBColor(46, 139, 87),
+    RGBColor(179, 38, 30),
+    RGBColor(120, 81, 169),
+    RGBColor(140, 86, 75),
+    RGBColor(0, 128, 128),
+    RGBColor(90, 90, 90),
+];
+
+/// The colour of palette entry k.
+pub fn color(k: usize) -> RGBColor {
+    PALETTE[k % PALETTE.len()]
+}
+
+fn bounds(chart: &Chart) -> ((f64, f64), (f64, f64)) {
+    let pts = chart
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|(x, y)| {
+            x.is_finite()
+                && y.is_finite()
+                && (!chart.log_x || *x > 0.0)
+                && (!chart.log_y || *y > 0.0)
+        });
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in pts {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !x0.is_finite() {
+        return ((0.0, 1.0), (0.0, 1.0));
+    }
+    let log_pad = |lo: f64, hi: f64| {
+        if hi > lo {
+            (lo / 1.2, hi * 1.2)
+        } else {
+            (lo / 2.0, hi * 2.0)
+        }
+    };
+    let lin_pad = |lo: f64, hi: f64| {
+        let span = if hi > lo {
+            hi - lo
+        } else {
+            lo.abs().max(1e-12)
+        };
+        (lo - 0.05 * span, hi + 0.05 * span)
+    };
+    let x = if chart.log_x {
+        log_pad(x0, x1)
+    } else if x1 > x0 {
+        (x0, x1)
+    } else {
+        (x0 - 0.5, x0 + 0.5)
+    };
+    let y = if chart.log_y {
+        log_pad(y0, y1)
+    } else {
+        lin_pad(y0, y1)
+    };
+    (x, y)
+}
+
+macro_rules! draw_on {
+    ($area:expr, $chart:expr, $xr:expr, $yr:expr) => {{
+        let chart = $chart;
+        let mut c = ChartBuilder::on($area)
+            .caption(&chart.title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(42)
+            .y_label_area_size(70)
+            .build_cartesian_2d($xr, $yr)
+            .map_err(|e| e.to_string())?;
+        c.configure_mesh()
+            .x_desc(chart.x_label.as_str())
+            .y_desc(chart.y_label.as_str())
+            .label_style(("sans-serif", 13))
+            .axis_desc_style(("sans-serif", 14))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        let mut legend = false;
+        for s in &chart.series {
+            let style = ShapeStyle::from(&color(s.color)).stroke_width(2);
+            let pts: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .copied()
+                .filter(|(x, y)| {
+                    x.is_finite()
+                        && y.is_finite()
+                        && (!chart.log_x || *x > 0.0)
+                        && (!chart.log_y || *y > 0.0)
+                })
+                .collect();
+            let drawn = if s.markers {
+                c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, style.filled())))
+                    .map_err(|e| e.to_string())?
+            } else if s.dashed {
+                c.draw_series(DashedLineSeries::new(pts, 6, 4, style))
+                    .map_err(|e| e.to_string())?
+            } else {
+                c.draw_series(LineSeries::new(pts, style))
+                    .map_err(|e| e.to_string())?
+            };
+            if !s.label.is_empty() {
+                legend = true;
+                let col = color(s.color);
+                drawn.label(s.label.as_str()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(2))
+                });
+            }
+        }
+        for (x, y, text) in &chart.notes {
+            c.draw_series(std::iter::once(Text::new(
+                text.clone(),
+                (*x, *y),
+                ("sans-serif", 12).into_font().color(&BLACK),
+            )))
+            .map_err(|e| e.to_string())?;
+        }
+        if legend {
+            c.configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK.mix(0.3))
+                .label_font(("sans-serif", 12))
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()
+                .map_err(|e| e.to_string())?;
+        }
+        Ok::<(), String>(())
+    }};
+}
+
+fn draw(area: &DrawingArea<SVGBackend, Shift>, chart: &Chart) -> Result<(), String> {
+    let ((x0, x1), (y0, y1)) = bounds(chart);
+    match (chart.log_x, chart.log_y) {
+        (false, false) => draw_on!(area, chart, x0..x1, y0..y1),
+        (true, false) => draw_on!(area, chart, (x0..x1).log_scale(), y0..y1),
+        (false, true) => draw_on!(area, chart, x0..x1, (y0..y1).log_scale()),
+        (true, true) => draw_on!(area, chart, (x0..x1).log_scale(), (y0..y1).log_scale()),
+    }
+}
+
+/// Draws charts as panels of one SVG figure, `columns` across, each `panel` pixels.
+pub fn render(charts: &[Chart], columns: usize, panel: (u32, u32)) -> String {
+    let columns = columns.max(1);
+    let rows = charts.len().div_ceil(columns).max(1);
+    let mut svg = String::new();
+    {
+        let root =
+            SVGBackend::with_string(&mut svg, (panel.0 * columns as u32, panel.1 * rows as u32))
+                .into_drawing_area();
+        let _ = root.fill(&WHITE);
+        let areas = root.split_evenly((rows, columns));
+        for (chart, area) in charts.iter().zip(&areas) {
+            if let Err(e) = draw(area, chart) {
+                let _ = area.draw(&Text::new(
+                    format!("cannot draw: {e}"),
+                    (10, 20),
+                    ("sans-serif", 14),
+                ));
+            }
+        }
+        let _ = root.present();
+    }
+    svg
+}
+
+/// The data of charts as CSV: one row per point, with chart, series, x and y.
+pub fn to_csv(charts: &[Chart]) -> String {
+    let mut s = String::from("chart,series,x,y\n");
+    for c in charts {
+        for ser in &c.series {
+            for (x, y) in &ser.points {
+                s.push_str(&format!(
+                    "\"{}\",\"{}\",{x},{y}\n",
+                    c.title.replace('"', "'"),
+                    ser.label.replace('"', "'")
+                ));
+            }
+        }
+    }
+    s
+}
