@@ -39,7 +39,7 @@ enum Command {
         graph: bool,
     },
     /// Simulate a wall under a ground motion with the exact event-driven integrator.
-    Run(run::RunArgs),
+    Run(Box<run::RunArgs>),
     /// Ground motions: measures of a record, synthetic motions.
     #[command(subcommand)]
     Motion(motion::MotionCommand),

@@ -54,6 +54,11 @@ pub struct MotionArgs {
     /// Then multiply by this factor (the paper's "amplified by 5").
     #[arg(long, value_name = "X")]
     pub scale: Option<f64>,
+    /// Vertical component (same time step as the record): every normal load, hence every
+    /// friction capacity, is multiplied by 1 + a_v/g. Windowed, corrected and scaled like the
+    /// horizontal record.
+    #[arg(long, value_name = "FILE", requires = "record")]
+    pub vertical: Option<PathBuf>,
 }
 
 fn bad(what: &str, message: String) -> Error {
@@ -63,9 +68,13 @@ fn bad(what: &str, message: String) -> Error {
     }
 }
 
-/// Builds the ground motion described by the options (`duration` is needed for a sine), with a
-/// log of the processing applied.
-pub fn build_motion(m: &MotionArgs, duration: Option<f64>) -> Result<(Motion, Vec<String>), Error> {
+/// Builds the ground motion described by the options (`duration` is needed for a sine, `g` for
+/// a vertical component), with a log of the processing applied.
+pub fn build_motion(
+    m: &MotionArgs,
+    duration: Option<f64>,
+    g: f64,
+) -> Result<(Motion, Vec<String>), Error> {
     let pga = m.pga.as_deref().map(parse_acceleration).transpose()?;
     match (&m.sine, &m.record) {
         (Some(amp), None) => {
@@ -115,11 +124,41 @@ pub fn build_motion(m: &MotionArgs, duration: Option<f64>) -> Result<(Motion, Ve
                 pga_m_s2: pga,
                 scale: m.scale,
             };
-            let (record, notes) = process(&record, &p).map_err(|source| Error::Motion {
-                path: path.clone(),
-                source,
-            })?;
-            Ok((Motion::Record(record), notes))
+            let at = |path: &PathBuf| {
+                let path = path.clone();
+                move |source| Error::Motion { path, source }
+            };
+            let (mut processed, mut notes) = process(&record, &p).map_err(at(path))?;
+            if let Some(vpath) = &m.vertical {
+                // The vertical record gets the same window, correction and overall factor.
+                let unscaled = Processing {
+                    pga_m_s2: None,
+                    scale: None,
+                    ..p.clone()
+                };
+                let (base, _) = process(&record, &unscaled).map_err(at(path))?;
+                let factor = if base.pga_m_s2() > 0.0 {
+                    processed.pga_m_s2() / base.pga_m_s2()
+                } else {
+                    1.0
+                };
+                let vertical = read_record(vpath, m.format.as_deref(), &opts)?;
+                let (vertical, _) = process(
+                    &vertical,
+                    &Processing {
+                        scale: Some(factor),
+                        ..unscaled
+                    },
+                )
+                .map_err(at(vpath))?;
+                processed = processed.with_vertical(&vertical, g).map_err(at(vpath))?;
+                notes.push(format!(
+                    "vertical component {} (PGA {:.4} m/s2) scales the normal loads by 1 + a_v/g",
+                    vpath.display(),
+                    vertical.pga_m_s2()
+                ));
+            }
+            Ok((Motion::Record(processed), notes))
         }
         _ => Err(bad(
             "motion",
@@ -154,7 +193,7 @@ pub struct RunArgs {
 
 pub fn run(args: &RunArgs) -> Result<(), Error> {
     let (wall, topo) = topology::load(&args.wall)?;
-    let (motion, notes) = build_motion(&args.motion, args.duration)?;
+    let (motion, notes) = build_motion(&args.motion, args.duration, wall.g_m_s2.to_f64())?;
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
     let settings = Settings {
         duration_s: duration,

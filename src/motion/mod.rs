@@ -46,6 +46,8 @@ pub struct Record {
     pub dt_s: f64,
     /// Accelerations (m/s2), the first at t = 0.
     pub accel_m_s2: Vec<f64>,
+    /// Vertical load factor 1 + a_v/g at each sample, when a vertical component is given.
+    pub lambda: Option<Vec<f64>>,
     // Ground velocity and displacement at each sample, from rest (compensated sums).
     velocity: Vec<f64>,
     displacement: Vec<f64>,
@@ -152,6 +154,7 @@ impl Record {
             name: name.into(),
             dt_s,
             accel_m_s2,
+            lambda: None,
             velocity,
             displacement,
         })
@@ -162,14 +165,43 @@ impl Record {
         (self.accel_m_s2.len() - 1) as f64 * self.dt_s
     }
 
-    /// The same record scaled by a factor.
+    /// The same record scaled by a factor (the vertical component, if any, is kept).
     pub fn scaled(&self, factor: f64) -> Record {
-        Record::new(
+        let mut r = Record::new(
             self.name.clone(),
             self.dt_s,
             self.accel_m_s2.iter().map(|a| a * factor).collect(),
         )
-        .expect("scaling a valid record by a finite factor keeps it valid")
+        .expect("scaling a valid record by a finite factor keeps it valid");
+        r.lambda = self.lambda.clone();
+        r
+    }
+
+    /// Adds a vertical component: every normal load is multiplied by 1 + a_v/g. It must share
+    /// the time step; a shorter one is extended with zeros. Where 1 + a_v/g <= 0 the blocks would
+    /// lift off, which the sliding model cannot represent: an error names the time.
+    pub fn with_vertical(&self, vertical: &Record, g: f64) -> Result<Record, MotionError> {
+        if (vertical.dt_s - self.dt_s).abs() > 1e-9 * self.dt_s {
+            return Err(MotionError::Invalid(format!(
+                "the vertical component's time step {} s differs from the horizontal one's {} s: resample one of them",
+                vertical.dt_s, self.dt_s
+            )));
+        }
+        let n = self.accel_m_s2.len();
+        let lambda: Vec<f64> = (0..n)
+            .map(|k| 1.0 + vertical.accel_m_s2.get(k).copied().unwrap_or(0.0) / g)
+            .collect();
+        if let Some(k) = lambda.iter().position(|&l| l <= 0.0) {
+            return Err(MotionError::Invalid(format!(
+                "at t = {} s the vertical acceleration {:.4} m/s2 exceeds g downwards (1 + a_v/g = {:.4} <= 0): the blocks would lift off, which this sliding model cannot represent",
+                k as f64 * self.dt_s,
+                vertical.accel_m_s2[k],
+                lambda[k]
+            )));
+        }
+        let mut r = self.clone();
+        r.lambda = Some(lambda);
+        Ok(r)
     }
 
     /// Peak absolute acceleration (m/s2).
@@ -185,6 +217,11 @@ impl Motion {
             Motion::Sine(s) => s.duration_s,
             Motion::Record(r) => r.duration_s(),
         }
+    }
+
+    /// True when a vertical component scales the normal loads.
+    pub fn has_vertical(&self) -> bool {
+        matches!(self, Motion::Record(r) if r.lambda.is_some())
     }
 
     /// Peak absolute ground acceleration (m/s2).
@@ -270,6 +307,7 @@ fn sine_segment(s: &Sine, t: f64) -> Segment {
             t1: f64::INFINITY,
             v0: v_end,
             d0: d_end,
+            lambda: (1.0, 0.0),
             shape: Shape::Linear {
                 a0: 0.0,
                 slope: 0.0,
@@ -295,6 +333,7 @@ fn sine_segment(s: &Sine, t: f64) -> Segment {
         t1,
         v0,
         d0,
+        lambda: (1.0, 0.0),
         shape: Shape::sine(a, w, w * t0 + phi),
     }
 }
@@ -306,6 +345,7 @@ fn sine_state(s: &Sine, t: f64) -> (f64, f64) {
         t1: s.duration_s,
         v0: 0.0,
         d0: 0.0,
+        lambda: (1.0, 0.0),
         shape: Shape::sine(s.amplitude_m_s2, s.omega(), s.phase_rad),
     };
     (seg.dv(t), seg.dd(t))
@@ -329,6 +369,7 @@ fn record_segment(r: &Record, t: f64) -> Segment {
             t1: f64::INFINITY,
             v0: r.velocity[n],
             d0: r.displacement[n],
+            lambda: (1.0, 0.0),
             shape: Shape::Linear {
                 a0: 0.0,
                 slope: 0.0,
@@ -337,11 +378,19 @@ fn record_segment(r: &Record, t: f64) -> Segment {
     }
     let a0 = r.accel_m_s2[k];
     let a1 = r.accel_m_s2.get(k + 1).copied().unwrap_or(0.0);
+    let lambda = match &r.lambda {
+        Some(l) => {
+            let (l0, l1) = (l[k], l.get(k + 1).copied().unwrap_or(1.0));
+            (l0, (l1 - l0) / r.dt_s)
+        }
+        None => (1.0, 0.0),
+    };
     Segment {
         t0: k as f64 * r.dt_s,
         t1: (k + 1) as f64 * r.dt_s,
         v0: r.velocity[k],
         d0: r.displacement[k],
+        lambda,
         shape: Shape::Linear {
             a0,
             slope: (a1 - a0) / r.dt_s,

@@ -51,6 +51,9 @@ pub struct Segment {
     pub v0: f64,
     /// Ground displacement at t0 (m).
     pub d0: f64,
+    /// Vertical load factor 1 + a_v/g at t0 and its rate (1/s): every normal load, hence every
+    /// friction capacity, is multiplied by lambda0 + lambda1 s. (1, 0) without vertical shaking.
+    pub lambda: (f64, f64),
     /// a_g on the segment.
     pub shape: Shape,
 }
@@ -127,6 +130,7 @@ impl Segment {
         Segment {
             t0: t,
             t1: self.t1,
+            lambda: (self.lambda_at(s_a), self.lambda.1),
             v0: self.v0 + self.dv(s_a),
             d0: self.d0 + self.v0 * s_a + self.dd(s_a),
             shape,
@@ -191,6 +195,44 @@ impl Segment {
                 (theta - theta0) / omega
             }
         };
+        s.is_finite().then(|| s.clamp(s_a, s_b))
+    }
+
+    /// The vertical load factor at s.
+    pub fn lambda_at(&self, s: f64) -> f64 {
+        self.lambda.0 + self.lambda.1 * s
+    }
+
+    /// True when the vertical load factor varies on this segment.
+    pub fn has_vertical(&self) -> bool {
+        self.lambda != (1.0, 0.0)
+    }
+
+    /// Integral of a_g(sigma) sigma^2 / 2 from 0 to s (the work of inertial forces on a cluster
+    /// whose friction varies linearly). Only linear segments carry a vertical component.
+    pub fn moment2(&self, s: f64) -> f64 {
+        match self.shape {
+            Shape::Linear { a0, slope } => s * s * s * (a0 / 6.0 + slope * s / 8.0),
+            Shape::Sine { .. } => 0.0,
+        }
+    }
+
+    /// Where on [s_a, s_b] a_g(s) equals k lambda(s), in closed form: `None` if it does not.
+    pub fn time_of_ratio(&self, k: f64, s_a: f64, s_b: f64) -> Option<f64> {
+        if !self.has_vertical() {
+            return self.time_of_accel(k, s_a, s_b);
+        }
+        let Shape::Linear { a0, slope } = self.shape else {
+            return None;
+        };
+        let (fa, fb) = (
+            a0 + slope * s_a - k * self.lambda_at(s_a),
+            a0 + slope * s_b - k * self.lambda_at(s_b),
+        );
+        if (fa > 0.0) == (fb > 0.0) && fa != 0.0 && fb != 0.0 {
+            return None;
+        }
+        let s = (k * self.lambda.0 - a0) / (slope - k * self.lambda.1);
         s.is_finite().then(|| s.clamp(s_a, s_b))
     }
 
@@ -360,6 +402,7 @@ mod tests {
             t1: 1.0,
             v0: 0.0,
             d0: 0.0,
+            lambda: (1.0, 0.0),
             shape: Shape::sine(3.0, 5.0, 0.4),
         };
         for s in [1e-7f64, 1e-3, 0.1, 0.3] {
@@ -381,6 +424,7 @@ mod tests {
                 t1: 1.0,
                 v0: 0.0,
                 d0: 0.0,
+                lambda: (1.0, 0.0),
                 shape: Shape::sine(3.0, 2.0, theta0),
             };
             // Monotone arc: from theta0 to the next crest.
@@ -396,6 +440,7 @@ mod tests {
             t1: 1.0,
             v0: 0.0,
             d0: 0.0,
+            lambda: (1.0, 0.0),
             shape: Shape::Linear {
                 a0: 1.0,
                 slope: -2.0,
@@ -412,6 +457,7 @@ mod tests {
             t1: 3.0,
             v0: 0.1,
             d0: 0.2,
+            lambda: (1.0, 0.0),
             shape: Shape::sine(3.0, 5.0, 0.4),
         };
         let b = seg.anchored(2.3);

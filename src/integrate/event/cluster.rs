@@ -29,10 +29,11 @@ pub enum Motion {
 }
 
 /// Closed-form motion of a sliding cluster, measured from an anchor instant (its formation, or
-/// the start of the current segment): with sigma = t - anchor,
+/// the start of the current segment): with sigma = t - anchor, absolute acceleration
+/// c lambda(t) (c: with unit vertical load factor; lambda = 1 without vertical shaking),
 ///
-///   v = v_a + (c - a_a) sigma - dv_beyond(sigma),
-///   u = u_a + v_a sigma + (c - a_a) sigma^2/2 - dd_beyond(sigma),
+///   v = v_a + (c lambda_a - a_a) sigma + c lambda' sigma^2/2 - dv_beyond(sigma),
+///   u = u_a + v_a sigma + (c lambda_a - a_a) sigma^2/2 + c lambda' sigma^3/6 - dd_beyond(sigma),
 ///
 /// where a_a is a_g at the anchor. Every term is small near the anchor, so the velocity of a
 /// cluster that has just formed at rest is computed without cancellation noise.
@@ -44,12 +45,14 @@ pub struct Slide {
     pub x_a: f64,
     /// Velocity relative to the ground at the anchor (m/s).
     pub v_a: f64,
-    /// Absolute acceleration (m/s2), the nearest float to `c_q`.
+    /// Absolute acceleration at unit vertical load factor (m/s2), the nearest float to `c_q`.
     pub c: f64,
-    /// Absolute acceleration, exact.
+    /// The same, exact.
     pub c_q: Q,
-    /// c - a_g at the anchor (m/s2).
+    /// c lambda - a_g at the anchor (m/s2).
     rel: f64,
+    /// c lambda' (m/s3).
+    grow: f64,
 }
 
 impl Slide {
@@ -58,7 +61,8 @@ impl Slide {
         let anchor = seg.anchored(t);
         let c = c_q.to_f64();
         Slide {
-            rel: c - anchor.accel(0.0),
+            rel: c * anchor.lambda.0 - anchor.accel(0.0),
+            grow: c * anchor.lambda.1,
             anchor,
             x_a: 0.0,
             v_a: v,
@@ -70,18 +74,20 @@ impl Slide {
     /// Displacement gained since formation at time t (m).
     pub fn disp(&self, t: f64) -> f64 {
         let s = t - self.anchor.t0;
-        self.x_a + s * (self.v_a + 0.5 * self.rel * s) - self.anchor.dd_beyond(s)
+        self.x_a + s * (self.v_a + s * (0.5 * self.rel + self.grow * s / 6.0))
+            - self.anchor.dd_beyond(s)
     }
 
     /// Velocity relative to the ground at time t (m/s).
     pub fn vel(&self, t: f64) -> f64 {
         let s = t - self.anchor.t0;
-        self.v_a + self.rel * s - self.anchor.dv_beyond(s)
+        self.v_a + s * (self.rel + 0.5 * self.grow * s) - self.anchor.dv_beyond(s)
     }
 
     /// Acceleration relative to the ground at time t (m/s2).
     pub fn acc(&self, t: f64) -> f64 {
-        self.rel - self.anchor.da(t - self.anchor.t0)
+        let s = t - self.anchor.t0;
+        self.rel + self.grow * s - self.anchor.da(s)
     }
 
     /// Displacement, velocity and acceleration at time t, from one evaluation of the ground
@@ -90,10 +96,15 @@ impl Slide {
         let s = t - self.anchor.t0;
         let (da, dv, dd) = self.anchor.beyond(s);
         (
-            self.x_a + s * (self.v_a + 0.5 * self.rel * s) - dd,
-            self.v_a + self.rel * s - dv,
-            self.rel - da,
+            self.x_a + s * (self.v_a + s * (0.5 * self.rel + self.grow * s / 6.0)) - dd,
+            self.v_a + s * (self.rel + 0.5 * self.grow * s) - dv,
+            self.rel + self.grow * s - da,
         )
+    }
+
+    /// Absolute acceleration at time t (m/s2).
+    pub fn absolute_accel(&self, t: f64) -> f64 {
+        self.c * self.anchor.lambda_at(t - self.anchor.t0)
     }
 
     /// Re-anchors at the start of the next segment.
@@ -103,19 +114,36 @@ impl Slide {
         self.anchor = *next;
         self.x_a = x;
         self.v_a = v;
-        self.rel = self.c - next.accel(0.0);
+        self.rel = self.c * next.lambda.0 - next.accel(0.0);
+        self.grow = self.c * next.lambda.1;
     }
 
     /// Work of the inertial forces -m a_g on the cluster from t_a to t_b, per unit mass (J/kg):
     /// minus the integral of a_g v, in closed form.
     pub fn input_work_per_kg(&self, t_a: f64, t_b: f64) -> f64 {
         let seg = &self.anchor;
+        let (l0, l1) = seg.lambda;
         let i = |t: f64| {
             let s = t - seg.t0;
             let dv = seg.dv(s);
-            self.v_a * dv + self.c * seg.moment(s) - 0.5 * dv * dv
+            self.v_a * dv + self.c * (l0 * seg.moment(s) + l1 * seg.moment2(s)) - 0.5 * dv * dv
         };
         -(i(t_b) - i(t_a))
+    }
+
+    /// Integral of the displacement gained since formation from t_a to t_b (m s); only needed
+    /// with vertical shaking, which comes with piecewise-linear records.
+    pub fn disp_integral(&self, t_a: f64, t_b: f64) -> f64 {
+        let slope = match self.anchor.shape {
+            crate::motion::Shape::Linear { slope, .. } => slope,
+            crate::motion::Shape::Sine { .. } => 0.0,
+        };
+        let f = |t: f64| {
+            let s = t - self.anchor.t0;
+            s * (self.x_a + s * (0.5 * self.v_a + s * (self.rel / 6.0 + self.grow * s / 24.0)))
+                - slope * s.powi(4) / 24.0
+        };
+        f(t_b) - f(t_a)
     }
 }
 

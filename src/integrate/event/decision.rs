@@ -22,15 +22,22 @@ impl Engine<'_> {
         snap.get(&i).copied().unwrap_or_else(|| self.block_vel(i))
     }
 
-    /// The ground acceleration just after now: exact value (or `snap`) with its derivatives.
+    /// The ground acceleration just after now, divided by the vertical load factor (every
+    /// friction force scales with it, so the decision at lambda is the decision at 1 with
+    /// a_g/lambda): exact value (or `snap`, already divided) with its derivatives.
     fn ground_lex(&self, snap: Option<Q>) -> Lex {
         let s = self.s();
-        let a0 = snap.unwrap_or_else(|| {
-            Q::from_f64_exact(self.seg.accel(s)).expect("finite ground acceleration")
-        });
-        let (r1, r2) = self.seg.accel_rates(s);
-        let q = |x: f64| Q::from_f64_exact(x).expect("finite rate");
-        Lex([a0, q(r1), q(r2)])
+        let q = |x: f64| Q::from_f64_exact(x).expect("finite value");
+        let (a, (r1, r2)) = (self.seg.accel(s), self.seg.accel_rates(s));
+        let (l, dl) = (self.seg.lambda_at(s), self.seg.lambda.1);
+        if !self.seg.has_vertical() {
+            let a0 = snap.unwrap_or_else(|| q(a));
+            return Lex([a0, q(r1), q(r2)]);
+        }
+        // (a/l)' = (a' l - a l')/l^2; (a/l)'' = -2 l' (a' l - a l')/l^3 (a'' = l'' = 0).
+        let a0 = snap.unwrap_or_else(|| q(a) / q(l));
+        let num = r1 * l - a * dl;
+        Lex([a0, q(num / (l * l)), q(-2.0 * dl * num / (l * l * l))])
     }
 
     /// Re-decides the mode of the clusters of `seeds` and of every cluster joined to them by a
@@ -44,7 +51,7 @@ impl Engine<'_> {
         theta: Option<Q>,
     ) -> Result<(), SimulationError> {
         self.rec.stats.mode_decisions += 1;
-        let snap: HashMap<usize, f64> = snap.iter().copied().collect();
+        let mut snap: HashMap<usize, f64> = snap.iter().copied().collect();
         let t = self.t;
 
         // 1. The component: whole clusters joined through joints with equal velocities.
@@ -99,7 +106,7 @@ impl Engine<'_> {
                     Some(sup.upper.0)
                 };
                 if let Some(o) = other.filter(|&o| !self.fixed[o]) {
-                    if !local.contains_key(&o) && self.vel_with(o, &snap) == vi {
+                    if !local.contains_key(&o) && self.same_velocity(vi, self.vel_with(o, &snap)) {
                         next.push(o);
                     }
                 }
@@ -114,7 +121,10 @@ impl Engine<'_> {
                 } else {
                     jt.left.0
                 };
-                if !self.fixed[o] && !local.contains_key(&o) && self.vel_with(o, &snap) == vi {
+                if !self.fixed[o]
+                    && !local.contains_key(&o)
+                    && self.same_velocity(vi, self.vel_with(o, &snap))
+                {
                     next.push(o);
                 }
             }
@@ -137,6 +147,7 @@ impl Engine<'_> {
         for (k, &b) in blocks.iter().enumerate() {
             local.insert(b, k);
         }
+        self.equalize_velocities(&blocks, &local, &mut snap);
 
         // 2. Account what the old clusters did up to now, and the joints around them.
         for &k in &old_clusters {
@@ -247,11 +258,15 @@ impl Engine<'_> {
             None => {
                 let mut groups = self.solve(&p, &theta_lex, theta.is_some());
                 for _ in 0..MAX_SNAPS {
-                    let a0 = theta_lex.0[0].to_f64();
+                    // The motion will start from the float c lambda - a_g (`Slide::formed`); if
+                    // rounding gives it no sign, or the wrong one, the breakpoint is hidden.
+                    let (lambda, ag) = (self.seg.lambda_at(self.s()), self.seg.accel(self.s()));
                     let hidden = groups.iter().find(|g| {
+                        let rel = g.accel.to_f64() * lambda - ag;
+                        let exact = (&g.accel - &theta_lex.0[0]).signum();
                         !g.grounded
-                            && g.accel != theta_lex.0[0]
-                            && g.accel.to_f64() == a0
+                            && exact != 0
+                            && (rel == 0.0 || (rel > 0.0) != (exact > 0))
                             && touches_ground(&p, &groups, g)
                     });
                     match hidden {
@@ -414,6 +429,102 @@ impl Engine<'_> {
         all.extend(neighbours);
         self.schedule(&all);
         Ok(())
+    }
+
+    /// Velocities within round-off of each other are equal.
+    fn same_velocity(&self, a: f64, b: f64) -> bool {
+        (a - b).abs() <= self.vel_tol(a, b)
+    }
+
+    /// Joints whose two sides move with velocities equal within round-off are undecided: give
+    /// each group of blocks so joined one velocity, their momentum-weighted mean (zero if the
+    /// group is joined to the ground), so the decision sees exact equality. Without this, a
+    /// block resting on two supports whose velocities differ by round-off meets each in turn,
+    /// one ulp apart, for ever.
+    fn equalize_velocities(
+        &self,
+        blocks: &[usize],
+        local: &HashMap<usize, usize>,
+        snap: &mut HashMap<usize, f64>,
+    ) {
+        let n = blocks.len();
+        let v: Vec<f64> = blocks.iter().map(|&b| self.vel_with(b, snap)).collect();
+        let mut parent: Vec<usize> = (0..n).collect();
+        fn root(p: &mut [usize], mut i: usize) -> usize {
+            while p[i] != i {
+                p[i] = p[p[i]];
+                i = p[i];
+            }
+            i
+        }
+        let mut grounded = vec![false; n];
+        for (k, &b) in blocks.iter().enumerate() {
+            for &s in self.topo.below[b].iter().chain(&self.topo.above[b]) {
+                if !self.live_support(s.0) {
+                    continue;
+                }
+                let sup = &self.topo.supports[s.0];
+                let other = if sup.upper.0 == b {
+                    self.lower_block(s.0)
+                } else {
+                    Some(sup.upper.0)
+                };
+                match other.filter(|&o| !self.fixed[o]) {
+                    None => grounded[k] |= self.same_velocity(v[k], 0.0),
+                    Some(o) => {
+                        if let Some(&m) = local.get(&o) {
+                            if self.same_velocity(v[k], v[m]) {
+                                let (a, c) = (root(&mut parent, k), root(&mut parent, m));
+                                parent[a] = c;
+                            }
+                        }
+                    }
+                }
+            }
+            for &j in &self.topo.sides[b] {
+                if !self.live_joint(j.0) || !self.is_touching(j.0) {
+                    continue;
+                }
+                let jt = &self.topo.joints[j.0];
+                let o = if jt.left.0 == b {
+                    jt.right.0
+                } else {
+                    jt.left.0
+                };
+                if self.fixed[o] {
+                    grounded[k] |= self.same_velocity(v[k], 0.0);
+                } else if let Some(&m) = local.get(&o) {
+                    if self.same_velocity(v[k], v[m]) {
+                        let (a, c) = (root(&mut parent, k), root(&mut parent, m));
+                        parent[a] = c;
+                    }
+                }
+            }
+        }
+        let mut groups: HashMap<usize, Vec<usize>> = HashMap::new();
+        for k in 0..n {
+            let r = root(&mut parent, k);
+            groups.entry(r).or_default().push(k);
+        }
+        for members in groups.values() {
+            let distinct = members.iter().any(|&k| v[k] != v[members[0]]);
+            let on_ground = members.iter().any(|&k| grounded[k]);
+            let needs = distinct || (on_ground && v[members[0]] != 0.0);
+            if !needs {
+                continue;
+            }
+            let common = if on_ground {
+                0.0
+            } else {
+                let (p, m) = members.iter().fold((0.0, 0.0), |(p, m), &k| {
+                    (p + self.mass[blocks[k]] * v[k], m + self.mass[blocks[k]])
+                });
+                p / m
+            };
+            for &k in members {
+                snap.insert(blocks[k], common);
+            }
+        }
     }
 
     /// Faces of joint j touch (their gap is zero within round-off).

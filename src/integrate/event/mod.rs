@@ -68,6 +68,10 @@ impl Integrator for EventDriven {
 /// is a touch, not an impact.
 const ROUNDOFF_ULPS: f64 = 1024.0;
 
+/// Events closer together than this many ulps of time count as one instant for the progress
+/// guard ([`Params::max_events_per_instant`]).
+const PROGRESS_WINDOW_ULPS: f64 = 1e6;
+
 /// Marks a block that belongs to no cluster (fixed or fallen).
 const NONE: usize = usize::MAX;
 
@@ -181,6 +185,8 @@ pub(crate) struct Engine<'a> {
     touching: Vec<bool>,
     /// Per support: relative displacement when friction work was last accounted.
     d_last: Vec<f64>,
+    /// Per support: when friction work was last accounted (s).
+    t_fric: Vec<f64>,
     heap: BinaryHeap<Reverse<Pending>>,
     seq: u64,
     version: u64,
@@ -257,6 +263,7 @@ impl<'a> Engine<'a> {
             dir: vec![0; topo.supports.len()],
             touching: topo.joints.iter().map(|j| j.gap_m.is_zero()).collect(),
             d_last: vec![0.0; topo.supports.len()],
+            t_fric: vec![0.0; topo.supports.len()],
             heap: BinaryHeap::new(),
             seq: 0,
             version: 0,
@@ -268,7 +275,7 @@ impl<'a> Engine<'a> {
             ),
             output_dt: sc.settings.output_dt_s,
             output_k: 0,
-            instant: (f64::NAN, 0),
+            instant: (f64::NEG_INFINITY, 0),
             len_scale: extent + d_max,
             vel_scale: v_max + 1e-3,
             count: Counter::default(),
@@ -309,8 +316,12 @@ impl<'a> Engine<'a> {
         Ok(self.finish())
     }
 
+    /// Events piling up at one instant, or creeping forward by a few ulps, mean the run would
+    /// never end: stop with an error that says where. Within `PROGRESS_WINDOW_ULPS` ulps of
+    /// time counts as the same instant.
     fn progress_guard(&mut self, p: &Pending) -> Result<(), SimulationError> {
-        if p.t == self.instant.0 {
+        let window = PROGRESS_WINDOW_ULPS * f64::EPSILON * self.instant.0.abs().max(1.0);
+        if p.t - self.instant.0 <= window {
             self.instant.1 += 1;
             if self.instant.1 > self.params.max_events_per_instant {
                 return Err(SimulationError::NoProgress {
@@ -444,6 +455,12 @@ impl<'a> Engine<'a> {
     }
 
     fn enter_segment(&mut self, t: f64) {
+        if self.seg.has_vertical() {
+            // Friction work with a varying capacity is integrated segment by segment.
+            for s in 0..self.topo.supports.len() {
+                self.account_support(s);
+            }
+        }
         self.seg = self.motion.segment_at(t);
         self.rec.stats.segments += 1;
         let seg = self.seg;
@@ -456,9 +473,17 @@ impl<'a> Engine<'a> {
                 }
             }
         }
-        for k in 0..self.clusters.len() {
-            if !self.clusters[k].blocks.is_empty() {
-                self.schedule_segment(k);
+        if self.motion.has_vertical() {
+            // Relative motion of sliding clusters involves lambda(t): re-found per segment.
+            let live: Vec<usize> = (0..self.clusters.len())
+                .filter(|&k| !self.clusters[k].blocks.is_empty())
+                .collect();
+            self.schedule(&live);
+        } else {
+            for k in 0..self.clusters.len() {
+                if !self.clusters[k].blocks.is_empty() {
+                    self.schedule_segment(k);
+                }
             }
         }
     }
@@ -486,8 +511,9 @@ impl<'a> Engine<'a> {
             }
             return;
         };
+        let peak = sl.absolute_accel(t_a).abs().max(sl.absolute_accel(t).abs());
         for &i in &self.clusters[k].blocks {
-            self.rec.block_accel(i, sl.c.abs());
+            self.rec.block_accel(i, peak);
         }
         if t <= t_a {
             return;
@@ -534,7 +560,7 @@ impl<'a> Engine<'a> {
         if (fa > 0.0 && fb <= 0.0) || (fa < 0.0 && fb >= 0.0) {
             let seg = &sl.anchor;
             let guess = seg
-                .time_of_accel(sl.c, t_a - seg.t0, t_b - seg.t0)
+                .time_of_ratio(sl.c, t_a - seg.t0, t_b - seg.t0)
                 .map_or(0.5 * (t_a + t_b), |s| seg.t0 + s);
             let t = if fa > 0.0 {
                 roots::polish(&acc, guess, t_a, t_b, &mut self.count)
@@ -562,14 +588,44 @@ impl<'a> Engine<'a> {
     }
 
     /// Friction work on support s since it was last accounted, and its displacement extreme.
+    /// With vertical shaking the capacity is F lambda(t): the work is F sigma (lambda d |_a^b -
+    /// lambda' integral d dt) over the stretch (within one segment).
     fn account_support(&mut self, s: usize) {
         if !self.live_support(s) {
             return;
         }
         let d = self.support_d(s);
-        self.rec.energy.friction_j += self.cap[s] * (d - self.d_last[s]).abs();
+        let t_a = self.t_fric[s];
+        if self.seg.has_vertical() && self.dir[s] != 0 {
+            let seg = self.seg;
+            let (la, lb) = (seg.lambda_at(t_a - seg.t0), seg.lambda_at(self.t - seg.t0));
+            let integral = self.block_disp_integral(self.topo.supports[s].upper.0, t_a)
+                - self
+                    .lower_block(s)
+                    .map_or(0.0, |l| self.block_disp_integral(l, t_a));
+            let work =
+                f64::from(self.dir[s]) * (lb * d - la * self.d_last[s] - seg.lambda.1 * integral);
+            self.rec.energy.friction_j += self.cap[s] * work;
+        } else {
+            self.rec.energy.friction_j += self.cap[s] * (d - self.d_last[s]).abs();
+        }
         self.d_last[s] = d;
+        self.t_fric[s] = self.t;
         self.rec.joint_extreme(s, d.abs());
+    }
+
+    /// Integral of block i's displacement from t_a to now (m s), within the current segment.
+    fn block_disp_integral(&self, i: usize, t_a: f64) -> f64 {
+        let span = self.t - t_a;
+        match self.of[i] {
+            NONE => self.u_ref[i] * span,
+            k => {
+                self.u_ref[i] * span
+                    + self.clusters[k]
+                        .slide()
+                        .map_or(0.0, |sl| sl.disp_integral(t_a, self.t))
+            }
+        }
     }
 
     fn output_until(&mut self, t: f64) {
@@ -858,7 +914,7 @@ impl<'a> Engine<'a> {
     /// the conditions hold and nothing else happens before it.
     fn zeno_accumulation(&self, j: usize, approach: &Q) -> Option<f64> {
         let e = &self.restitution;
-        if !(e.is_positive() && *e < Q::one()) {
+        if !(e.is_positive() && *e < Q::one()) || self.motion.has_vertical() {
             return None;
         }
         let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);

@@ -10,7 +10,7 @@
 //!   polynomials, found once per mode, whatever the segments.
 
 use super::cluster::{GroundHits, Motion, Slide};
-use super::roots::{first_violation, polish, valid_after, Fun};
+use super::roots::{first_violation, polish, sign_changes, valid_after, Fun};
 use super::{Constraint, Engine, Ev};
 use std::collections::BTreeSet;
 
@@ -81,18 +81,20 @@ impl Engine<'_> {
         match &self.clusters[k].motion {
             Motion::Stuck { lo, hi, .. } => {
                 let (lo, hi) = (*lo, *hi);
+                // a_g/lambda leaves [lo, hi]: a_g - limit lambda changes sign (linear with a
+                // vertical component, a_g alone otherwise, monotone on a segment either way).
+                let dl = seg.lambda.1;
                 for (limit, upper) in [(hi, true), (lo, false)] {
                     if !limit.is_finite() {
                         continue;
                     }
                     let s = if upper { 1.0 } else { -1.0 };
-                    let f = |x: f64| s * (limit - ag(x));
-                    let hit = if !valid_after(f(t0), 0.0, &[-s * r1, -s * r2]) {
+                    let f = |x: f64| s * (limit * seg.lambda_at(x - seg.t0) - ag(x));
+                    let hit = if !valid_after(f(t0), 0.0, &[s * (limit * dl - r1), -s * r2]) {
                         Some(t0)
                     } else if f(t1) <= 0.0 {
-                        // a_g is monotone on the segment: one crossing, in closed form.
                         let guess = seg
-                            .time_of_accel(limit, t0 - seg.t0, t1 - seg.t0)
+                            .time_of_ratio(limit, t0 - seg.t0, t1 - seg.t0)
                             .map_or(t1, |x| seg.t0 + x);
                         Some(polish(&f, guess, t0, t1, &mut self.count))
                     } else {
@@ -387,13 +389,31 @@ impl Engine<'_> {
                 }
             }
         }
-        let (t0, t1) = (self.t, self.t_end);
+        // Relative acceleration (c_b - c_a) lambda(t): constant without vertical shaking (the
+        // events hold for the whole mode), linear in time on a segment with it (found again on
+        // each segment).
+        let vertical = self.motion.has_vertical();
+        let (t0, t1) = (
+            self.t,
+            if vertical {
+                self.seg.t1.min(self.t_end)
+            } else {
+                self.t_end
+            },
+        );
+        let (lt, dl) = (self.seg.lambda_at(self.s()), self.seg.lambda.1);
         let rel = |x: f64| {
             let tau = x - t0;
-            r0 + tau * (r1 + 0.5 * r2 * tau)
+            r0 + tau * (r1 + r2 * tau * (0.5 * lt + dl * tau / 6.0))
         };
-        let w = |x: f64| r1 + r2 * (x - t0);
-        let vertex = if r2 != 0.0 {
+        let w = |x: f64| {
+            let tau = x - t0;
+            r1 + r2 * tau * (lt + 0.5 * dl * tau)
+        };
+        let vertex = if vertical {
+            let wfd = |x: f64| (w(x), r2 * (lt + dl * (x - t0)));
+            sign_changes(Fun::with(&w, &wfd), t0, t1, &[], 0.0, &mut self.count)
+        } else if r2 != 0.0 {
             vec![t0 - r1 / r2]
         } else {
             Vec::new()
@@ -402,7 +422,7 @@ impl Engine<'_> {
             let sigma = if r1 != 0.0 { r1.signum() } else { r2.signum() };
             if sigma != 0.0 {
                 let f = |x: f64| sigma * w(x);
-                let df = |x: f64| (sigma * w(x), sigma * r2);
+                let df = |x: f64| (sigma * w(x), sigma * r2 * (lt + dl * (x - t0)));
                 let start = valid_after(sigma * r1, 0.0, &[sigma * r2]);
                 if let Some(h) =
                     first_violation(Fun::with(&f, &df), t0, t1, &[], start, 0.0, &mut self.count)

@@ -1,0 +1,127 @@
+//! Vertical shaking: every normal load, hence every friction capacity, scales by 1 + a_v/g.
+
+use pirqa::integrate::event::EventDriven;
+use pirqa::integrate::{Integrator, Scenario, Settings};
+use pirqa::motion::{read_record, Motion, ReadOptions, Record};
+use pirqa::response::Response;
+use pirqa::{samples, Topology, Wall};
+
+fn run(wall: &Wall, motion: &Motion, duration: f64) -> Response {
+    let topo = Topology::new(wall).unwrap();
+    let settings = Settings {
+        duration_s: duration,
+        output_dt_s: Some(0.01),
+        log_events: true,
+        after_collapse: Default::default(),
+    };
+    EventDriven::default()
+        .run(&Scenario {
+            wall,
+            topology: &topo,
+            motion,
+            settings: &settings,
+        })
+        .unwrap()
+}
+
+fn with_vertical(h: Vec<f64>, v: Vec<f64>, dt: f64) -> Motion {
+    let h = Record::new("h", dt, h).unwrap();
+    let v = Record::new("v", dt, v).unwrap();
+    Motion::Record(h.with_vertical(&v, 9.81).unwrap())
+}
+
+#[test]
+fn one_block_under_a_vertical_ramp_matches_the_closed_form() {
+    // a_g = 4, a_v = 0.5 t: the block slides from rest with relative acceleration
+    // -4 + 0.3 g (1 + 0.5 t / g) = -1.057 + 0.15 t, so u = -1.057 t^2/2 + 0.025 t^3.
+    let dt = 0.01;
+    let n = 301;
+    let m = with_vertical(
+        vec![4.0; n],
+        (0..n).map(|k| 0.5 * k as f64 * dt).collect(),
+        dt,
+    );
+    let r = run(&samples::one_block(0.3), &m, 3.0);
+    let h = r.history.as_ref().unwrap();
+    let mut worst: f64 = 0.0;
+    for (t, u) in h.time_s.iter().zip(&h.displacement_m) {
+        let expect = -1.057 * t * t / 2.0 + 0.025 * t * t * t;
+        worst = worst.max((u[0] - expect).abs());
+    }
+    assert!(worst < 1e-12, "error {worst:e}");
+    let e = r.summary.energy;
+    assert!(e.residual_j.abs() <= 1e-9 * e.input_j, "{e:?}");
+}
+
+#[test]
+fn vertical_shaking_can_release_a_block_that_horizontal_shaking_alone_cannot_move() {
+    // a_g = 2.5 < 0.3 g: stuck. A downward a_v of 2 m/s2 lowers the capacity to
+    // 0.3 (9.81 - 2) = 2.343 < 2.5: it slides while the vertical pulse lasts.
+    let dt = 0.01;
+    let v: Vec<f64> = (0..201)
+        .map(|k| if (50..150).contains(&k) { -2.0 } else { 0.0 })
+        .collect();
+    let still = Motion::Record(Record::new("h", dt, vec![2.5; 201]).unwrap());
+    assert_eq!(
+        run(&samples::one_block(0.3), &still, 2.0).summary.blocks[0].max_abs_displacement_m,
+        0.0
+    );
+    let r = run(
+        &samples::one_block(0.3),
+        &with_vertical(vec![2.5; 201], v, dt),
+        2.0,
+    );
+    assert!(r.summary.blocks[0].max_abs_displacement_m > 1e-3);
+}
+
+#[test]
+fn the_uniform_wall_stays_one_rigid_body_under_vertical_shaking() {
+    let wall = Wall::load(std::path::Path::new("walls/five-block-uniform.ron")).unwrap();
+    let h = samples::broadband_record(20.0, 0.01, 5.0);
+    let v = samples::broadband_record(20.0, 0.01, 2.0);
+    let m = Motion::Record(h.with_vertical(&v, 9.81).unwrap());
+    let r = run(&wall, &m, 20.0);
+    for j in r.summary.joints.iter().filter(|j| j.lower != "ground") {
+        assert_eq!(
+            j.max_abs_relative_displacement_m, 0.0,
+            "{}/{}",
+            j.upper, j.lower
+        );
+    }
+    assert!(r.summary.blocks[0].max_abs_displacement_m > 1e-3);
+    let e = r.summary.energy;
+    assert!(e.residual_j.abs() <= 1e-9 * e.input_j);
+}
+
+#[test]
+fn el_centro_with_a_vertical_component_balances_energy() {
+    let h = read_record(
+        std::path::Path::new("../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        None,
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    let v = samples::broadband_record(39.99, 0.01, 1.5);
+    let m = Motion::Record(h.scaled(2.0).with_vertical(&v, 9.81).unwrap());
+    let wall = Wall::load(std::path::Path::new("walls/five-block-variable.ron")).unwrap();
+    let r = run(&wall, &m, 39.99);
+    let e = r.summary.energy;
+    assert!(
+        e.input_j > 0.0 && e.residual_j.abs() <= 1e-9 * e.input_j,
+        "{e:?}"
+    );
+}
+
+#[test]
+fn lift_off_is_a_model_validity_error() {
+    let h = Record::new("h", 0.01, vec![1.0; 10]).unwrap();
+    let v = Record::new("v", 0.01, vec![0.0, 0.0, -10.0, 0.0]).unwrap();
+    let e = h.with_vertical(&v, 9.81).unwrap_err().to_string();
+    assert!(e.contains("t = 0.02 s") && e.contains("lift off"), "{e}");
+    let v = Record::new("v", 0.02, vec![0.0; 5]).unwrap();
+    assert!(h
+        .with_vertical(&v, 9.81)
+        .unwrap_err()
+        .to_string()
+        .contains("time step"));
+}
