@@ -39,6 +39,16 @@ pub enum Error {
     /// The simulation could not continue.
     #[error(transparent)]
     Simulation(#[from] SimulationError),
+    /// A table of study results read back (a CSV pirqa wrote) is malformed.
+    #[error("{}: line {line}: {message}", path.display())]
+    Table {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// What was expected.
+        message: String,
+    },
 }
 
 /// What is wrong with a wall description.

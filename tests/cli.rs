@@ -402,3 +402,155 @@ fn a_tall_block_gets_a_rocking_warning() {
     ]);
     assert!(ok && !out.contains("warning"), "{out}");
 }
+
+#[test]
+fn every_method_writes_the_same_outputs_with_its_name() {
+    for (method, extra) in [
+        ("event", vec![]),
+        ("paper", vec!["--dt", "1e-3"]),
+        ("moreau", vec!["--dt", "1e-3"]),
+        (
+            "regularized",
+            vec!["--rtol", "1e-5", "--eps", "1e-4", "--stiffness", "1e9"],
+        ),
+    ] {
+        let out = temp_dir(&format!("method-{method}"));
+        let mut args = vec![
+            "run",
+            "walls/five-block-variable.ron",
+            "--sine",
+            "400gal",
+            "--freq",
+            "1",
+            "--duration",
+            "3",
+            "--method",
+            method,
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let (ok, _, err) = pirqa(&args);
+        assert!(ok, "{method}: {err}");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(s["method"], method);
+        assert_eq!(s["blocks"].as_array().unwrap().len(), 5);
+        let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+        assert!(history.starts_with("time_s,"), "{method}");
+        assert!(history.lines().count() >= 301, "{method}");
+        assert!(out.join("events.jsonl").exists(), "{method}");
+    }
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "1",
+        "--method",
+        "moreau",
+        "--dt=-1e-3",
+    ]);
+    assert!(!ok);
+    assert!(
+        err.contains("time step -0.001 s") && err.contains("positive"),
+        "{err}"
+    );
+}
+
+#[test]
+fn bench_work_precision_quick_writes_the_chart_its_data_and_the_reach_table() {
+    let out = temp_dir("work-precision");
+    let (ok, stdout, err) = pirqa(&[
+        "bench",
+        "work-precision",
+        "--quick",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let csv = std::fs::read_to_string(out.join("work-precision.csv")).unwrap();
+    for scenario in [
+        "one block sine",
+        "five-block uniform sine",
+        "five-block variable sine",
+        "five-block variable El Centro x5",
+    ] {
+        for method in ["event", "paper", "moreau", "regularized"] {
+            assert!(
+                csv.lines()
+                    .any(|l| l.starts_with(&format!("{scenario},{method},"))),
+                "{scenario} {method}"
+            );
+        }
+    }
+    assert!(csv.contains("one block sine,event,exact,"));
+    let svg = std::fs::read_to_string(out.join("work-precision.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("CPU time per run (s)"));
+    let reach = std::fs::read_to_string(out.join("work-precision-reach.csv")).unwrap();
+    assert_eq!(reach, stdout);
+    assert!(reach.contains("one block sine,event,1e-9,exact,"));
+    // Redrawn from the saved points: the same table, no runs.
+    let again = temp_dir("work-precision-from");
+    let (ok, stdout, err) = pirqa(&[
+        "bench",
+        "work-precision",
+        "--from",
+        out.join("work-precision.csv").to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(stdout, reach);
+    assert!(again.join("work-precision.svg").exists());
+    let broken = again.join("broken.csv");
+    std::fs::write(
+        &broken,
+        "scenario,method,parameter,cpu_s,err_max_m,err_history_m,failed\none,two\n",
+    )
+    .unwrap();
+    let (ok, _, err) = pirqa(&[
+        "bench",
+        "work-precision",
+        "--from",
+        broken.to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+    ]);
+    assert!(!ok);
+    assert!(
+        err.contains("broken.csv: line 2: expected 7 fields, found 2"),
+        "{err}"
+    );
+}
+
+#[test]
+fn bench_failures_writes_the_panels_and_the_measured_numbers() {
+    let out = temp_dir("failures");
+    let (ok, _, err) = pirqa(&["bench", "failures", "--out", out.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("failures.json")).unwrap()).unwrap();
+    assert_eq!(json["drift exact creep (m)"], 0.0);
+    assert_eq!(json["zeno exact accumulations"], 1.0);
+    assert_eq!(json["grazing exact impacts"], 1.0);
+    assert_eq!(json["grazing moreau dt=1e-2 impacts"], 0.0);
+    let svg = std::fs::read_to_string(out.join("failures.svg")).unwrap();
+    for title in [
+        "Drift",
+        "Chatter",
+        "Energy",
+        "Step collapse",
+        "Zeno",
+        "Grazing",
+    ] {
+        assert!(svg.contains(title), "{title}");
+    }
+    assert!(std::fs::read_to_string(out.join("failures.csv"))
+        .unwrap()
+        .starts_with("chart,series,x,y\n"));
+}

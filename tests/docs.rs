@@ -41,3 +41,33 @@ fn every_shipped_wall_checks() {
     }
     assert!(n >= 3);
 }
+
+#[test]
+fn relative_links_in_the_docs_point_to_files_that_exist() {
+    let mut pages = vec![std::path::PathBuf::from("README.md")];
+    for entry in std::fs::read_dir("docs").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "md") {
+            pages.push(path);
+        }
+    }
+    let mut checked = 0;
+    for page in pages {
+        let text = std::fs::read_to_string(&page).unwrap();
+        let dir = page.parent().unwrap();
+        for link in text.split("](").skip(1) {
+            let target = link.split(')').next().unwrap();
+            let file = target.split('#').next().unwrap();
+            if file.is_empty() || file.contains("://") {
+                continue;
+            }
+            assert!(
+                dir.join(file).exists(),
+                "{}: the link `{target}` names no file",
+                page.display()
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 10, "{checked} links");
+}

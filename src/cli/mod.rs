@@ -1,6 +1,7 @@
 //! The `pirqa` command line: parses arguments (clap) and turns library results into text, JSON,
 //! CSV and SVG files. Errors come back to `main` as typed library errors.
 
+mod bench;
 mod check;
 mod motion;
 mod run;
@@ -43,6 +44,9 @@ enum Command {
     /// Ground motions: measures of a record, synthetic motions.
     #[command(subcommand)]
     Motion(motion::MotionCommand),
+    /// Speed and accuracy of the integrators.
+    #[command(subcommand)]
+    Bench(bench::BenchCommand),
 }
 
 /// Runs the command line; returns the process exit code.
@@ -57,6 +61,7 @@ pub fn run() -> Result<(), pirqa::Error> {
         } => check::draw(&wall, &output, graph),
         Command::Run(args) => run::run(&args),
         Command::Motion(cmd) => motion::run(&cmd),
+        Command::Bench(cmd) => bench::run(&cmd),
     }
 }
 

@@ -1,6 +1,7 @@
 //! `pirqa run`: one simulation, written as summary.json, history.csv and events.jsonl.
 
 use super::{print_out, write_file};
+use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
 use pirqa::motion::{process, read_record, Baseline, Motion, Processing, ReadOptions, Sine};
@@ -38,7 +39,7 @@ pub struct MotionArgs {
     pub units: Option<String>,
     /// Sample interval of a one-column plain record (s).
     #[arg(long, value_name = "S")]
-    pub dt: Option<f64>,
+    pub record_dt: Option<f64>,
     /// Keep the record from this time (s).
     #[arg(long, value_name = "S")]
     pub start: Option<f64>,
@@ -112,7 +113,7 @@ pub fn build_motion(
                 None => None,
             };
             let opts = ReadOptions {
-                dt_s: m.dt,
+                dt_s: m.record_dt,
                 units,
                 component: m.component,
             };
@@ -189,6 +190,50 @@ pub struct RunArgs {
     /// What to do when a block falls.
     #[arg(long, value_enum, default_value_t = AfterCollapse::Stop)]
     pub after_collapse: AfterCollapse,
+    /// Integrator: the exact event-driven one, or a time-stepping baseline.
+    #[arg(long, value_enum, default_value_t = Method::Event)]
+    pub method: Method,
+    /// Time step of `paper` and `moreau` (s).
+    #[arg(long, value_name = "S", default_value_t = 1e-3)]
+    pub dt: f64,
+    /// Relative tolerance of `regularized`.
+    #[arg(long, default_value_t = 1e-6)]
+    pub rtol: f64,
+    /// Friction regularization velocity of `regularized` (m/s).
+    #[arg(long, default_value_t = 1e-4)]
+    pub eps: f64,
+    /// Penalty contact stiffness of `regularized` (N/m).
+    #[arg(long, default_value_t = 1e9)]
+    pub stiffness: f64,
+}
+
+/// Integrators.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Method {
+    /// Exact event-driven.
+    Event,
+    /// The paper's Newmark scheme with sgn(v) friction.
+    Paper,
+    /// Moreau-Jean nonsmooth time stepping.
+    Moreau,
+    /// Regularized friction, penalty contacts, Dormand-Prince 5(4).
+    Regularized,
+}
+
+impl RunArgs {
+    /// The integrator the options ask for.
+    pub fn integrator(&self) -> Box<dyn Integrator> {
+        match self.method {
+            Method::Event => Box::new(EventDriven::default()),
+            Method::Paper => Box::new(PaperNewmark { dt_s: self.dt }),
+            Method::Moreau => Box::new(Moreau::new(self.dt)),
+            Method::Regularized => Box::new(Regularized {
+                eps: self.eps,
+                stiffness: self.stiffness,
+                ..Regularized::new(self.rtol)
+            }),
+        }
+    }
 }
 
 pub fn run(args: &RunArgs) -> Result<(), Error> {
@@ -207,7 +252,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         motion: &motion,
         settings: &settings,
     };
-    let mut response = EventDriven::default().run(&scenario)?;
+    let mut response = args.integrator().run(&scenario)?;
     response.summary.motion_processing = notes;
     if let Some(dir) = &args.out {
         write_outputs(dir, &response)?;

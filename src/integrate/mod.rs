@@ -2,7 +2,9 @@
 //! all behind [`Integrator`]. A run takes a [`Scenario`] (wall, graph, ground motion, settings)
 //! and returns a [`Response`].
 
+pub mod baselines;
 pub mod event;
+pub mod stepping;
 
 use crate::error::SimulationError;
 use crate::motion::Motion;

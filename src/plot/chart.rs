@@ -15,7 +15,7 @@ pub struct Series {
     pub color: usize,
     /// Dashed line.
     pub dashed: bool,
-    /// Draw points as markers instead of a line.
+    /// Mark each point with a dot (a single point is drawn as a dot alone).
     pub markers: bool,
 }
 
@@ -36,6 +36,22 @@ pub struct Chart {
     pub log_y: bool,
     /// Text notes drawn at data coordinates (x, y, text).
     pub notes: Vec<(f64, f64, String)>,
+    /// Where the legend goes.
+    pub legend: Corner,
+}
+
+/// A corner of the plot area.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Corner {
+    /// Top right (the default).
+    #[default]
+    UpperRight,
+    /// Bottom right.
+    LowerRight,
+    /// Top left.
+    UpperLeft,
+    /// Bottom left.
+    LowerLeft,
 }
 
 const PALETTE: [RGBColor; 8] = [
@@ -52,6 +68,34 @@ const PALETTE: [RGBColor; 8] = [
 /// The colour of palette entry k.
 pub fn color(k: usize) -> RGBColor {
     PALETTE[k % PALETTE.len()]
+}
+
+/// Axis numbers in the shortest form that keeps three significant digits: 0.5, 120, 1e-6, 2.5e9.
+fn tick(v: &f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || !a.is_finite() {
+        return if a == 0.0 { "0".into() } else { v.to_string() };
+    }
+    let trim = |m: &str| -> String {
+        if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            m.to_string()
+        }
+    };
+    if (1e-3..1e5).contains(&a) {
+        let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
+        let s = trim(&format!("{v:.decimals$}"));
+        if s == "-0" {
+            "0".into()
+        } else {
+            s
+        }
+    } else {
+        let s = format!("{v:.2e}");
+        let (m, e) = s.split_once('e').expect("exponent form");
+        format!("{}e{e}", trim(m))
+    }
 }
 
 fn bounds(chart: &Chart) -> ((f64, f64), (f64, f64)) {
@@ -123,6 +167,8 @@ macro_rules! draw_on {
         c.configure_mesh()
             .x_desc(chart.x_label.as_str())
             .y_desc(chart.y_label.as_str())
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 14))
             .draw()
@@ -141,10 +187,11 @@ macro_rules! draw_on {
                         && (!chart.log_y || *y > 0.0)
                 })
                 .collect();
-            let drawn = if s.markers {
+            if s.markers {
                 c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, style.filled())))
-                    .map_err(|e| e.to_string())?
-            } else if s.dashed {
+                    .map_err(|e| e.to_string())?;
+            }
+            let drawn = if s.dashed {
                 c.draw_series(DashedLineSeries::new(pts, 6, 4, style))
                     .map_err(|e| e.to_string())?
             } else {
@@ -172,7 +219,12 @@ macro_rules! draw_on {
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK.mix(0.3))
                 .label_font(("sans-serif", 12))
-                .position(SeriesLabelPosition::UpperRight)
+                .position(match chart.legend {
+                    Corner::UpperRight => SeriesLabelPosition::UpperRight,
+                    Corner::LowerRight => SeriesLabelPosition::LowerRight,
+                    Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+                    Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+                })
                 .draw()
                 .map_err(|e| e.to_string())?;
         }
@@ -230,4 +282,29 @@ pub fn to_csv(charts: &[Chart]) -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick;
+
+    #[test]
+    fn ticks_are_short_and_keep_three_significant_digits() {
+        for (v, s) in [
+            (0.0, "0"),
+            (0.5, "0.5"),
+            (-1.5, "-1.5"),
+            (0.95, "0.95"),
+            (20.0, "20"),
+            (0.001, "0.001"),
+            (1e-4, "1e-4"),
+            (9.999999999999999e-6, "1e-5"),
+            (1e6, "1e6"),
+            (2.5e9, "2.5e9"),
+            (12345.0, "12345"),
+            (-0.0001, "-1e-4"),
+        ] {
+            assert_eq!(tick(&v), s, "{v}");
+        }
+    }
 }

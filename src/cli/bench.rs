@@ -1,0 +1,113 @@
+//! `pirqa bench`: the speed-accuracy study and the failure demonstrations.
+
+use super::write_file;
+use pirqa::plot::chart;
+use pirqa::study::failures;
+use pirqa::study::work_precision::{self, Ladder};
+use pirqa::Error;
+use std::path::PathBuf;
+
+/// Benchmarks.
+#[derive(clap::Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Error against CPU time of every method on the standard scenarios (CSV and SVG).
+    WorkPrecision {
+        /// Output directory for work-precision.csv, .svg and work-precision-reach.csv.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// A short ladder (a quick look, not the committed figure).
+        #[arg(long)]
+        quick: bool,
+        /// The El Centro record used by the last scenario.
+        #[arg(
+            long,
+            default_value = "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"
+        )]
+        record: PathBuf,
+        /// Extra points from a peer engine (CSV with the same columns), drawn on the same chart.
+        #[arg(long)]
+        peer: Option<PathBuf>,
+        /// Redraw the chart and the reach table from a saved work-precision.csv instead of
+        /// running the ladder.
+        #[arg(long, value_name = "CSV", conflicts_with_all = ["quick", "peer"])]
+        from: Option<PathBuf>,
+    },
+    /// Where the time-stepping methods fail (drift, chatter, energy, stiffness, Zeno, grazing):
+    /// failures.svg, the data behind it (failures.csv) and the measured numbers (failures.json).
+    Failures {
+        /// Output directory.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
+}
+
+pub fn run(cmd: &BenchCommand) -> Result<(), Error> {
+    match cmd {
+        BenchCommand::WorkPrecision {
+            out,
+            quick,
+            record,
+            peer,
+            from,
+        } => {
+            let mut points = Vec::new();
+            if let Some(saved) = from {
+                points = work_precision::read_csv(saved)?;
+            } else {
+                let cases = work_precision::standard_cases(record)?;
+                let ladder = if *quick {
+                    Ladder::quick()
+                } else {
+                    Ladder::full()
+                };
+                let min_time = if *quick { 0.0 } else { 0.2 };
+                for case in &cases {
+                    points.extend(work_precision::run_case(case, &ladder, min_time, |what| {
+                        eprintln!("  {what}")
+                    }));
+                }
+            }
+            if let Some(p) = peer {
+                points.extend(work_precision::read_csv(p)?);
+            }
+            write_file(
+                &out.join("work-precision.csv"),
+                &work_precision::csv(&points),
+            )?;
+            let charts = work_precision::charts(&points);
+            write_file(
+                &out.join("work-precision.svg"),
+                &chart::render(&charts, 2, (620, 440)),
+            )?;
+            let reach = work_precision::reach_csv(&points);
+            write_file(&out.join("work-precision-reach.csv"), &reach)?;
+            print!("{reach}");
+            eprintln!(
+                "wrote {}/work-precision.csv, .svg and work-precision-reach.csv",
+                out.display()
+            );
+            Ok(())
+        }
+        BenchCommand::Failures { out } => {
+            let demos = failures::all(|what| eprintln!("  {what}"))?;
+            let charts: Vec<chart::Chart> = demos.iter().map(|d| d.chart.clone()).collect();
+            let measured: serde_json::Map<String, serde_json::Value> = demos
+                .iter()
+                .flat_map(|d| &d.measured)
+                .map(|(k, v)| (k.clone(), serde_json::json!(v)))
+                .collect();
+            write_file(&out.join("failures.csv"), &chart::to_csv(&charts))?;
+            write_file(
+                &out.join("failures.svg"),
+                &chart::render(&charts, 2, (620, 420)),
+            )?;
+            let json = serde_json::to_string_pretty(&measured).expect("numbers serialize");
+            write_file(&out.join("failures.json"), &format!("{json}\n"))?;
+            for (k, v) in demos.iter().flat_map(|d| &d.measured) {
+                println!("{k}: {v:e}");
+            }
+            eprintln!("wrote {}/failures.csv, .svg and .json", out.display());
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,323 @@
+//! What every time-stepping baseline shares: the wall as plain floats, and an observer that turns
+//! step states into the same outputs as the event-driven integrator (history at output times by
+//! linear interpolation between steps, extremes at steps, energy terms, collapse at steps).
+//! The baselines are deliberately ordinary: their errors are what the accuracy study measures.
+
+use crate::error::SimulationError;
+use crate::integrate::{AfterCollapse, Scenario};
+use crate::motion::Motion;
+use crate::response::{Collapse, EventKind, Recorder, Response};
+use crate::topology::Base;
+
+/// A method parameter (a step, a tolerance, a stiffness) must be finite and positive.
+pub fn positive(what: &str, x: f64, unit: &str) -> Result<(), SimulationError> {
+    if x.is_finite() && x > 0.0 {
+        return Ok(());
+    }
+    let unit = if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
+    };
+    Err(SimulationError::Invalid(format!(
+        "{what} {x}{unit}: it must be positive"
+    )))
+}
+
+/// A horizontal joint in floats.
+#[derive(Debug, Clone, Copy)]
+pub struct Joint {
+    /// Upper block.
+    pub upper: usize,
+    /// Lower block; `None` for the ground or a fixed block.
+    pub lower: Option<usize>,
+    /// Lower block index even when fixed (for collapse geometry); `None` for the ground.
+    pub lower_any: Option<usize>,
+    /// Friction capacity (N).
+    pub capacity: f64,
+    /// Friction coefficient.
+    pub mu: f64,
+}
+
+/// A vertical joint in floats.
+#[derive(Debug, Clone, Copy)]
+pub struct Face {
+    /// Left block (`None`: fixed).
+    pub left: Option<usize>,
+    /// Right block (`None`: fixed).
+    pub right: Option<usize>,
+    /// Left and right block indices, fixed or not.
+    pub pair: (usize, usize),
+    /// Initial gap (m).
+    pub gap0: f64,
+}
+
+/// The wall as floats for time stepping.
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// Blocks.
+    pub n: usize,
+    /// Mass (kg).
+    pub mass: Vec<f64>,
+    /// Moves (not fixed).
+    pub movable: Vec<bool>,
+    /// Horizontal joints.
+    pub joints: Vec<Joint>,
+    /// Vertical joints.
+    pub faces: Vec<Face>,
+    /// Left edges, right edges, centroids (m).
+    pub xl: Vec<f64>,
+    /// Right edges (m).
+    pub xr: Vec<f64>,
+    /// Centroids (m).
+    pub xc: Vec<f64>,
+    /// Restitution.
+    pub restitution: f64,
+    /// Gravity (m/s2).
+    pub g: f64,
+}
+
+impl Model {
+    /// The float model of a scenario's wall.
+    pub fn new(sc: &Scenario) -> Model {
+        let (w, t) = (sc.wall, sc.topology);
+        let movable: Vec<bool> = w.blocks.iter().map(|b| !b.fixed).collect();
+        Model {
+            n: w.blocks.len(),
+            mass: t.blocks.iter().map(|b| b.mass_kg.to_f64()).collect(),
+            joints: t
+                .supports
+                .iter()
+                .map(|s| {
+                    let lower_any = match s.lower {
+                        Base::Ground => None,
+                        Base::Block(b) => Some(b.0),
+                    };
+                    Joint {
+                        upper: s.upper.0,
+                        lower: lower_any.filter(|&b| movable[b]),
+                        lower_any,
+                        capacity: s.capacity_n.to_f64(),
+                        mu: s.friction.to_f64(),
+                    }
+                })
+                .collect(),
+            faces: t
+                .joints
+                .iter()
+                .map(|j| Face {
+                    left: Some(j.left.0).filter(|&b| movable[b]),
+                    right: Some(j.right.0).filter(|&b| movable[b]),
+                    pair: (j.left.0, j.right.0),
+                    gap0: j.gap_m.to_f64(),
+                })
+                .collect(),
+            xl: w.blocks.iter().map(|b| b.x.to_f64()).collect(),
+            xr: w.blocks.iter().map(|b| b.right().to_f64()).collect(),
+            xc: w.blocks.iter().map(|b| b.centroid_x().to_f64()).collect(),
+            restitution: w.restitution.to_f64(),
+            g: w.g_m_s2.to_f64(),
+            movable,
+        }
+    }
+
+    /// Relative velocity across joint j (upper minus lower).
+    pub fn slip_velocity(&self, j: &Joint, v: &[f64]) -> f64 {
+        v[j.upper] - j.lower.map_or(0.0, |l| v[l])
+    }
+
+    /// Gap of face f.
+    pub fn gap(&self, f: &Face, u: &[f64]) -> f64 {
+        f.gap0 + f.right.map_or(0.0, |r| u[r]) - f.left.map_or(0.0, |l| u[l])
+    }
+
+    /// A block whose centroid has left its support span, if any (same rule as the exact
+    /// integrator, evaluated at a step).
+    pub fn fallen(&self, u: &[f64], gone: &[bool]) -> Option<usize> {
+        for i in 0..self.n {
+            if !self.movable[i] || gone[i] {
+                continue;
+            }
+            let mut on_ground = false;
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for j in self.joints.iter().filter(|j| j.upper == i) {
+                match j.lower_any {
+                    None => on_ground = true,
+                    Some(l) if gone[l] => {}
+                    Some(l) => {
+                        let ul = if self.movable[l] { u[l] } else { 0.0 };
+                        let a = (self.xl[i] + u[i]).max(self.xl[l] + ul);
+                        let b = (self.xr[i] + u[i]).min(self.xr[l] + ul);
+                        if b > a {
+                            lo = lo.min(a);
+                            hi = hi.max(b);
+                        }
+                    }
+                }
+            }
+            let c = self.xc[i] + u[i];
+            if !(on_ground || (lo..=hi).contains(&c)) {
+                return Some(i);
+            }
+        }
+        None
+    }
+
+    /// Kinetic energy (J).
+    pub fn kinetic(&self, v: &[f64]) -> f64 {
+        (0..self.n)
+            .filter(|&i| self.movable[i])
+            .map(|i| 0.5 * self.mass[i] * v[i] * v[i])
+            .sum()
+    }
+}
+
+/// Turns step states into a [`Response`].
+pub struct Observer<'a> {
+    /// The recorder.
+    pub rec: Recorder,
+    model: &'a Model,
+    motion: &'a Motion,
+    output_dt: Option<f64>,
+    next_output: u64,
+    last: (f64, Vec<f64>, Vec<f64>),
+    d_last: Vec<f64>,
+    after_collapse: AfterCollapse,
+    /// Blocks that fell.
+    pub gone: Vec<bool>,
+    /// Stop the run (a collapse with `--after-collapse stop`).
+    pub stopped: bool,
+    impulsive: bool,
+}
+
+impl<'a> Observer<'a> {
+    /// An observer for this scenario, at rest at t = 0.
+    pub fn new(sc: &Scenario, model: &'a Model, motion: &'a Motion) -> Observer<'a> {
+        let rec = Recorder::new(
+            sc.wall,
+            sc.topology,
+            sc.settings.output_dt_s.is_some(),
+            sc.settings.log_events,
+        );
+        let n = model.n;
+        Observer {
+            rec,
+            model,
+            motion,
+            output_dt: sc.settings.output_dt_s,
+            next_output: 0,
+            last: (0.0, vec![0.0; n], vec![0.0; n]),
+            d_last: vec![0.0; model.joints.len()],
+            after_collapse: sc.settings.after_collapse,
+            gone: vec![false; n],
+            stopped: false,
+            impulsive: false,
+        }
+    }
+
+    /// Relative displacement of joint j.
+    fn d(&self, j: &Joint, u: &[f64]) -> f64 {
+        u[j.upper] - j.lower.map_or(0.0, |l| u[l])
+    }
+
+    /// Records the state after a step ending at t: history rows at output times in between
+    /// (interpolated), extremes, input work (trapezoid), friction work F |delta d|, collapse.
+    pub fn step(&mut self, t: f64, u: &[f64], v: &[f64]) {
+        let (t0, u0, v0) = (self.last.0, self.last.1.clone(), self.last.2.clone());
+        if let Some(dt) = self.output_dt {
+            loop {
+                let tk = self.next_output as f64 * dt;
+                if tk > t + 1e-12 * dt {
+                    break;
+                }
+                let f = if t > t0 {
+                    ((tk - t0) / (t - t0)).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                };
+                let ui: Vec<f64> = u0.iter().zip(u).map(|(a, b)| a + f * (b - a)).collect();
+                let vi: Vec<f64> = v0.iter().zip(v).map(|(a, b)| a + f * (b - a)).collect();
+                self.rec.sample(tk, &ui, &vi);
+                self.next_output += 1;
+            }
+        }
+        let (a0, a1) = (self.motion.accel(t0), self.motion.accel(t));
+        let m = self.model;
+        let mut work = 0.0;
+        for i in 0..m.n {
+            if m.movable[i] && !self.gone[i] {
+                work += -m.mass[i] * 0.5 * (a0 * v0[i] + a1 * v[i]) * (t - t0);
+                self.rec.block_extremes(i, u[i].abs(), v[i].abs());
+                // Over a step with an impulse, delta v / dt is no acceleration.
+                if t > t0 && !self.impulsive {
+                    self.rec
+                        .block_accel(i, ((v[i] - v0[i]) / (t - t0) + a1).abs());
+                }
+            }
+        }
+        self.rec.energy.input_j += work;
+        for (k, j) in m.joints.iter().enumerate() {
+            if self.gone[j.upper] || j.lower_any.is_some_and(|l| self.gone[l]) {
+                continue;
+            }
+            let d = self.d(j, u);
+            self.rec.energy.friction_j += j.capacity * (d - self.d_last[k]).abs();
+            self.d_last[k] = d;
+            self.rec.joint_extreme(k, d.abs());
+        }
+        if let Some(i) = m.fallen(u, &self.gone) {
+            if self.rec.collapse.is_none() {
+                self.rec.collapse = Some(Collapse {
+                    time_s: t,
+                    block: self.rec.names()[i].clone(),
+                });
+            }
+            self.rec.event(t, EventKind::Collapse, &[i], None, None);
+            self.rec.fell(i);
+            self.gone[i] = true;
+            self.rec.energy.fallen_j += 0.5 * m.mass[i] * v[i] * v[i];
+            if self.after_collapse == AfterCollapse::Stop {
+                self.stopped = true;
+            }
+        }
+        self.last = (t, u.to_vec(), v.to_vec());
+        self.impulsive = false;
+    }
+
+    /// Marks the current step as carrying an impulse (an impact, a penalty contact).
+    pub fn impulsive(&mut self) {
+        self.impulsive = true;
+    }
+
+    /// Logs an impact at face k with velocities before and after, and its energy loss.
+    pub fn impact(&mut self, t: f64, k: usize, before: [f64; 2], after: [f64; 2]) {
+        let (l, r) = self.model.faces[k].pair;
+        let m = |b: usize| {
+            if self.model.movable[b] {
+                self.model.mass[b]
+            } else {
+                0.0
+            }
+        };
+        let ke = |v: [f64; 2]| 0.5 * (m(l) * v[0] * v[0] + m(r) * v[1] * v[1]);
+        self.rec.energy.impact_loss_j += ke(before) - ke(after);
+        self.impulsive = true;
+        let label = format!("{}|{}", self.rec.names()[l], self.rec.names()[r]);
+        self.rec.impact(t, l, r, label, before, after);
+    }
+
+    /// Finishes the run at time t with the last state.
+    pub fn finish(mut self, method: &str, sc: &Scenario, steps: u64) -> Response {
+        let (t, u, v) = self.last.clone();
+        self.rec.energy.kinetic_j = (0..self.model.n)
+            .filter(|&i| self.model.movable[i] && !self.gone[i])
+            .map(|i| 0.5 * self.model.mass[i] * v[i] * v[i])
+            .sum();
+        self.rec.stats.steps = steps;
+        self.rec.stats.events = steps;
+        self.rec.warnings =
+            crate::validity::rocking_warnings(sc.wall, sc.topology, self.rec.peak_accel());
+        self.rec
+            .finish(method, sc.wall, sc.motion.describe(), t, &u, &v)
+    }
+}

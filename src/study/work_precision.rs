@@ -1,0 +1,439 @@
+//! Speed against accuracy: each time-stepping method over a ladder of steps or tolerances, on
+//! named scenarios, against the exact event-driven answer. Errors: the largest error in any
+//! block's max |u|, and the largest error in u(t) over the sampled history.
+
+use crate::integrate::baselines::{Moreau, PaperNewmark, Regularized};
+use crate::integrate::event::EventDriven;
+use crate::integrate::{Integrator, Scenario, Settings};
+use crate::motion::Motion;
+use crate::plot::chart::{Chart, Corner, Series};
+use crate::response::Response;
+use crate::topology::Topology;
+use crate::wall::Wall;
+use std::time::Instant;
+
+/// The scenarios of the committed chart: one block under a sine, the paper's wall with uniform
+/// and variable friction under a sine (400 gal, 1 Hz, 10 s), and the variable wall under El
+/// Centro scaled to 258 gal and by 5 (from `record`).
+pub fn standard_cases(record: &std::path::Path) -> Result<Vec<Case>, crate::Error> {
+    use crate::motion::{read_record, ReadOptions, Sine};
+    let sine = Motion::Sine(Sine::new(4.0, 1.0, 0.0, 10.0).expect("valid sine"));
+    let mut cases = Vec::new();
+    let one = crate::samples::one_block(0.3);
+    cases.push(Case {
+        name: "one block sine".into(),
+        topology: Topology::new(&one).expect("valid"),
+        wall: one,
+        motion: sine.clone(),
+        duration_s: 10.0,
+    });
+    for (name, file) in [
+        ("five-block uniform sine", "walls/five-block-uniform.ron"),
+        ("five-block variable sine", "walls/five-block-variable.ron"),
+    ] {
+        let (wall, topology) = crate::topology::load(std::path::Path::new(file))?;
+        cases.push(Case {
+            name: name.into(),
+            wall,
+            topology,
+            motion: sine.clone(),
+            duration_s: 10.0,
+        });
+    }
+    let raw = read_record(record, None, &ReadOptions::default())?;
+    let el_centro = raw.scaled(2.58 / raw.pga_m_s2() * 5.0);
+    let (wall, topology) =
+        crate::topology::load(std::path::Path::new("walls/five-block-variable.ron"))?;
+    let duration_s = el_centro.duration_s();
+    cases.push(Case {
+        name: "five-block variable El Centro x5".into(),
+        wall,
+        topology,
+        motion: Motion::Record(el_centro),
+        duration_s,
+    });
+    Ok(cases)
+}
+
+/// A named scenario.
+pub struct Case {
+    /// Name used in the CSV and chart.
+    pub name: String,
+    /// The wall.
+    pub wall: Wall,
+    /// Its graph.
+    pub topology: Topology,
+    /// The motion.
+    pub motion: Motion,
+    /// Duration (s).
+    pub duration_s: f64,
+}
+
+/// One point of the chart.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Point {
+    /// Scenario.
+    pub scenario: String,
+    /// Method.
+    pub method: String,
+    /// Step (s) or tolerance.
+    pub parameter: String,
+    /// CPU time of one run (s).
+    pub cpu_s: f64,
+    /// Largest error in a block's max |u| (m).
+    pub err_max_m: f64,
+    /// Largest error in u(t) at the history samples (m).
+    pub err_history_m: f64,
+    /// The run failed (stalled, blew up); the errors are then infinite.
+    pub failed: bool,
+}
+
+/// Output interval of the histories compared (s).
+pub const OUTPUT_DT_S: f64 = 0.01;
+
+fn settings(duration: f64) -> Settings {
+    Settings {
+        duration_s: duration,
+        output_dt_s: Some(OUTPUT_DT_S),
+        log_events: false,
+        after_collapse: Default::default(),
+    }
+}
+
+/// Runs an integrator repeatedly for at least `min_time_s` and returns the mean CPU time of one
+/// run (single thread) and the response.
+pub fn timed(
+    integrator: &dyn Integrator,
+    sc: &Scenario,
+    min_time_s: f64,
+) -> (f64, Result<Response, String>) {
+    let start = Instant::now();
+    let mut runs = 0u32;
+    loop {
+        let r = integrator.run(sc).map_err(|e| e.to_string());
+        runs += 1;
+        let elapsed = start.elapsed().as_secs_f64();
+        if r.is_err() || elapsed >= min_time_s || runs >= 50 {
+            return (elapsed / f64::from(runs), r);
+        }
+    }
+}
+
+/// Errors of a response against the reference: (max |u| error, history error).
+pub fn errors(r: &Response, reference: &Response) -> (f64, f64) {
+    let max = r
+        .summary
+        .blocks
+        .iter()
+        .zip(&reference.summary.blocks)
+        .map(|(a, b)| (a.max_abs_displacement_m - b.max_abs_displacement_m).abs())
+        .fold(0.0, f64::max);
+    let (h, href) = (
+        r.history.as_ref().expect("history"),
+        reference.history.as_ref().expect("history"),
+    );
+    let mut hist: f64 = 0.0;
+    for (row, &t) in h.time_s.iter().enumerate() {
+        // Both sample every OUTPUT_DT_S from 0; the reference adds event rows in between.
+        let k = href.time_s.partition_point(|&x| x < t - 1e-9);
+        if let Some(uref) = href.displacement_m.get(k) {
+            for (a, b) in h.displacement_m[row].iter().zip(uref) {
+                hist = hist.max((a - b).abs());
+            }
+        }
+    }
+    (max, hist)
+}
+
+/// The ladders: steps of the fixed-step methods and (rtol, eps) pairs of the regularized one.
+pub struct Ladder {
+    /// Steps of `paper` and `moreau` (s).
+    pub steps: Vec<f64>,
+    /// (rtol, eps) of `regularized`.
+    pub regularized: Vec<(f64, f64)>,
+}
+
+impl Ladder {
+    /// The full ladder of the committed figure.
+    pub fn full() -> Ladder {
+        Ladder {
+            steps: vec![1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5],
+            regularized: vec![
+                (1e-3, 1e-2),
+                (1e-4, 1e-3),
+                (1e-5, 1e-4),
+                (1e-6, 1e-5),
+                (1e-7, 1e-6),
+            ],
+        }
+    }
+    /// A short ladder for tests and quick looks.
+    pub fn quick() -> Ladder {
+        Ladder {
+            steps: vec![1e-2, 1e-3],
+            regularized: vec![(1e-4, 1e-3)],
+        }
+    }
+}
+
+/// Runs every method of the ladder on a case; the first point is the event-driven reference.
+pub fn run_case(
+    case: &Case,
+    ladder: &Ladder,
+    min_time_s: f64,
+    mut progress: impl FnMut(&str),
+) -> Vec<Point> {
+    let s = settings(case.duration_s);
+    let sc = Scenario {
+        wall: &case.wall,
+        topology: &case.topology,
+        motion: &case.motion,
+        settings: &s,
+    };
+    let (cpu, reference) = timed(&EventDriven::default(), &sc, min_time_s);
+    let reference = reference.expect("the event-driven reference runs");
+    let mut points = vec![Point {
+        scenario: case.name.clone(),
+        method: "event".into(),
+        parameter: "exact".into(),
+        cpu_s: cpu,
+        err_max_m: 0.0,
+        err_history_m: 0.0,
+        failed: false,
+    }];
+    let mut runs: Vec<(String, String, Box<dyn Integrator>)> = Vec::new();
+    for &dt in &ladder.steps {
+        runs.push((
+            "paper".into(),
+            format!("dt={dt:e}"),
+            Box::new(PaperNewmark { dt_s: dt }),
+        ));
+        runs.push((
+            "moreau".into(),
+            format!("dt={dt:e}"),
+            Box::new(Moreau::new(dt)),
+        ));
+    }
+    for &(rtol, eps) in &ladder.regularized {
+        runs.push((
+            "regularized".into(),
+            format!("rtol={rtol:e};eps={eps:e}"),
+            Box::new(Regularized {
+                eps,
+                ..Regularized::new(rtol)
+            }),
+        ));
+    }
+    for (method, parameter, integrator) in runs {
+        progress(&format!("{} {method} {parameter}", case.name));
+        let (cpu, r) = timed(integrator.as_ref(), &sc, min_time_s);
+        let (err_max_m, err_history_m, failed) = match r {
+            Ok(r) => {
+                let (a, b) = errors(&r, &reference);
+                (a, b, false)
+            }
+            Err(_) => (f64::INFINITY, f64::INFINITY, true),
+        };
+        points.push(Point {
+            scenario: case.name.clone(),
+            method,
+            parameter,
+            cpu_s: cpu,
+            err_max_m,
+            err_history_m,
+            failed,
+        });
+    }
+    points
+}
+
+/// Error shown for the exact method on a log axis (its own error is round-off).
+pub const EXACT_FLOOR_M: f64 = 1e-15;
+
+/// The chart: per scenario, history error against CPU time, one line per method, the exact
+/// method as a point, and the 1e-3, 1e-6, 1e-9 m levels.
+pub fn charts(points: &[Point]) -> Vec<Chart> {
+    let mut scenarios: Vec<String> = Vec::new();
+    for p in points {
+        if !scenarios.contains(&p.scenario) {
+            scenarios.push(p.scenario.clone());
+        }
+    }
+    let mut methods: Vec<String> = Vec::new();
+    for p in points {
+        if !methods.contains(&p.method) {
+            methods.push(p.method.clone());
+        }
+    }
+    scenarios
+        .iter()
+        .map(|sc| {
+            let pts: Vec<&Point> = points
+                .iter()
+                .filter(|p| &p.scenario == sc && !p.failed)
+                .collect();
+            let exact_cpu = pts.iter().find(|p| p.method == "event").map(|p| p.cpu_s);
+            let (t0, t1) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.cpu_s), b.max(p.cpu_s))
+            });
+            let mut series: Vec<Series> = methods
+                .iter()
+                .enumerate()
+                .filter_map(|(c, m)| {
+                    let mut xy: Vec<(f64, f64)> = pts
+                        .iter()
+                        .filter(|p| &p.method == m)
+                        .map(|p| {
+                            (
+                                p.cpu_s,
+                                if p.method == "event" {
+                                    EXACT_FLOOR_M
+                                } else {
+                                    p.err_history_m.max(EXACT_FLOOR_M)
+                                },
+                            )
+                        })
+                        .collect();
+                    xy.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    (!xy.is_empty()).then(|| Series {
+                        label: if m == "event" {
+                            "event (exact, reference)".into()
+                        } else {
+                            m.clone()
+                        },
+                        points: xy,
+                        color: c,
+                        markers: true,
+                        ..Default::default()
+                    })
+                })
+                .collect();
+            for level in LEVELS_M {
+                series.push(Series {
+                    points: vec![(t0 * 0.8, level), (t1 * 1.25, level)],
+                    color: 7,
+                    dashed: true,
+                    ..Default::default()
+                });
+            }
+            Chart {
+                title: sc.clone(),
+                x_label: "CPU time per run (s)".into(),
+                y_label: "max error in u(t) (m)".into(),
+                series,
+                log_x: true,
+                log_y: true,
+                notes: LEVELS_M
+                    .iter()
+                    .map(|&level| (t0, level * 8.0, format!("{level:e} m")))
+                    .chain(exact_cpu.map(|t| (t * 1.15, EXACT_FLOOR_M * 2.0, "exact".into())))
+                    .collect(),
+                legend: Corner::LowerRight,
+            }
+        })
+        .collect()
+}
+
+/// Columns of the points' CSV.
+pub const CSV_HEADER: &str = "scenario,method,parameter,cpu_s,err_max_m,err_history_m,failed";
+
+/// The points as CSV.
+pub fn csv(points: &[Point]) -> String {
+    let mut s = format!("{CSV_HEADER}\n");
+    for p in points {
+        s.push_str(&format!(
+            "{},{},{},{:e},{:e},{:e},{}\n",
+            p.scenario, p.method, p.parameter, p.cpu_s, p.err_max_m, p.err_history_m, p.failed
+        ));
+    }
+    s
+}
+
+/// Reads points back from the CSV that [`csv`] writes.
+pub fn read_csv(path: &std::path::Path) -> Result<Vec<Point>, crate::Error> {
+    let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let bad = |line: usize, message: String| crate::Error::Table {
+        path: path.to_path_buf(),
+        line,
+        message,
+    };
+    let mut lines = text.lines().enumerate();
+    match lines.next() {
+        Some((_, header)) if header == CSV_HEADER => {}
+        _ => return Err(bad(1, format!("expected the header `{CSV_HEADER}`"))),
+    }
+    let mut out = Vec::new();
+    for (k, line) in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != 7 {
+            return Err(bad(k + 1, format!("expected 7 fields, found {}", f.len())));
+        }
+        let num = |i: usize| -> Result<f64, crate::Error> {
+            f[i].parse::<f64>()
+                .map_err(|_| bad(k + 1, format!("field {} `{}` is not a number", i + 1, f[i])))
+        };
+        let failed = match f[6] {
+            "true" => true,
+            "false" => false,
+            other => {
+                return Err(bad(
+                    k + 1,
+                    format!("field 7 `{other}` must be true or false"),
+                ))
+            }
+        };
+        out.push(Point {
+            scenario: f[0].into(),
+            method: f[1].into(),
+            parameter: f[2].into(),
+            cpu_s: num(3)?,
+            err_max_m: num(4)?,
+            err_history_m: num(5)?,
+            failed,
+        });
+    }
+    Ok(out)
+}
+
+/// Error levels the chart marks (m).
+pub const LEVELS_M: [f64; 3] = [1e-3, 1e-6, 1e-9];
+
+/// What each method costs to reach each level, as CSV: per scenario, method and level, the
+/// cheapest point whose history error is at most the level, or `never` and the best error the
+/// ladder reached.
+pub fn reach_csv(points: &[Point]) -> String {
+    let mut s = String::from("scenario,method,level_m,parameter,cpu_s,err_history_m\n");
+    let mut keys: Vec<(&str, &str)> = Vec::new();
+    for p in points {
+        if !keys.contains(&(p.scenario.as_str(), p.method.as_str())) {
+            keys.push((&p.scenario, &p.method));
+        }
+    }
+    for (scenario, method) in keys {
+        let pts: Vec<&Point> = points
+            .iter()
+            .filter(|p| p.scenario == scenario && p.method == method && !p.failed)
+            .collect();
+        for level in LEVELS_M {
+            let cheapest = pts
+                .iter()
+                .filter(|p| p.err_history_m <= level)
+                .min_by(|a, b| a.cpu_s.total_cmp(&b.cpu_s));
+            let row = match cheapest {
+                Some(p) => format!("{},{:e},{:e}", p.parameter, p.cpu_s, p.err_history_m),
+                None => {
+                    let best = pts
+                        .iter()
+                        .map(|p| p.err_history_m)
+                        .fold(f64::INFINITY, f64::min);
+                    format!("never,,{best:e}")
+                }
+            };
+            s.push_str(&format!("{scenario},{method},{level:e},{row}\n"));
+        }
+    }
+    s
+}
