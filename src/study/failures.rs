@@ -27,7 +27,7 @@ fn case(name: &str, wall: crate::Wall, motion: Motion, duration_s: f64) -> Case 
     }
 }
 
-/// The paper's wall with uniform friction (mu 0.7 everywhere), 400 gal, 1 Hz, 10 s: the exact
+/// The paper's wall with uniform friction (mu 0.3 everywhere), 400 gal, 1 Hz, 10 s: the exact
 /// answer keeps the upper row stuck on the lower one.
 pub fn drift_case() -> Result<Case, crate::Error> {
     let (wall, topology) =
