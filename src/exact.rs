@@ -225,6 +225,14 @@ impl Q {
         })
     }
 
+    /// Numerator and denominator when both fit in `i128` (the common case), else `None`.
+    pub fn small_parts(&self) -> Option<(i128, i128)> {
+        match &self.0 {
+            Repr::Small(n, d) => Some((*n, *d)),
+            Repr::Big(_) => None,
+        }
+    }
+
     /// The nearest `f64` (round half to even).
     pub fn to_f64(&self) -> f64 {
         const EXACT: i128 = 1 << 53;

@@ -74,6 +74,28 @@ fn one_block_above_threshold_follows_the_closed_form() {
 }
 
 #[test]
+fn a_long_run_of_many_thousand_events_stays_on_the_closed_form() {
+    // 3,000 cycles of stick-slip: more events than the per-instant guard allows at one instant
+    // (10,000), spread over 300 s; the guard must count instants, not the whole run.
+    let (amp, freq, duration) = (4.0, 10.0, 300.0);
+    let r = run(
+        &samples::one_block(0.3),
+        &sine(amp, freq, 0.0, duration),
+        duration,
+        None,
+    );
+    assert!(
+        r.summary.stats.events > 10_000,
+        "{}",
+        r.summary.stats.events
+    );
+    let reference = SlidingBlockReference::new(0.3, 9.81, amp, freq, 0.0, duration);
+    let b = &r.summary.blocks[0];
+    assert!((b.final_displacement_m - reference.displacement(duration)).abs() < 1e-10);
+    assert!((b.max_abs_displacement_m - reference.max_abs_displacement()).abs() < 1e-10);
+}
+
+#[test]
 fn one_block_below_threshold_does_not_move_at_all() {
     let r = run(
         &samples::one_block(0.3),

@@ -3,8 +3,11 @@
 
 mod bench;
 mod check;
+mod generate;
 mod motion;
+mod paper;
 mod run;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -47,6 +50,13 @@ enum Command {
     /// Speed and accuracy of the integrators.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
+    /// Run a sweep file (walls x motions x friction samples) in parallel: tables, charts,
+    /// statistics; resumable.
+    Sweep(sweep::SweepArgs),
+    /// Reproduce the paper's Fig. 3-6 (and the checks of docs/paper.md).
+    Paper(paper::PaperArgs),
+    /// Generate a running-bond wall: one overall size cut into any number of blocks.
+    Generate(generate::GenerateArgs),
 }
 
 /// Runs the command line; returns the process exit code.
@@ -62,6 +72,9 @@ pub fn run() -> Result<(), pirqa::Error> {
         Command::Run(args) => run::run(&args),
         Command::Motion(cmd) => motion::run(&cmd),
         Command::Bench(cmd) => bench::run(&cmd),
+        Command::Sweep(args) => sweep::run(&args),
+        Command::Paper(args) => paper::run(&args),
+        Command::Generate(args) => generate::run(&args),
     }
 }
 

@@ -227,11 +227,12 @@ fn synthetic(kind: &GenerateKind) -> Result<Synthetic, Error> {
     })
 }
 
-/// A record as plain text with the header lines pirqa's reader understands.
+/// A record as plain text with the header lines pirqa's reader understands; every number in
+/// its shortest exact form, so reading it back gives the same record bit for bit.
 pub fn record_text(r: &Record, comment: &str) -> String {
     let mut s = format!("# {comment}\n# units: m/s2\n# dt_s: {}\n", r.dt_s);
     for a in &r.accel_m_s2 {
-        let _ = writeln!(s, "{a:.9e}");
+        let _ = writeln!(s, "{a:e}");
     }
     s
 }

@@ -17,6 +17,8 @@ pub struct Series {
     pub dashed: bool,
     /// Mark each point with a dot (a single point is drawn as a dot alone).
     pub markers: bool,
+    /// Dots only, no line (a scatter of cases).
+    pub scatter: bool,
 }
 
 /// A chart: axes, labels, lines.
@@ -98,6 +100,16 @@ fn tick(v: &f64) -> String {
     }
 }
 
+/// A tick on a linear axis spanning `span`: values within round-off of zero (what a tick
+/// generator's sums leave, such as -5.55e-17) read 0. Log axes pass a span of 0.
+fn tick_on(v: f64, span: f64) -> String {
+    if v.abs() < 1e-9 * span {
+        "0".into()
+    } else {
+        tick(&v)
+    }
+}
+
 fn bounds(chart: &Chart) -> ((f64, f64), (f64, f64)) {
     let pts = chart
         .series
@@ -155,8 +167,11 @@ fn bounds(chart: &Chart) -> ((f64, f64), (f64, f64)) {
 }
 
 macro_rules! draw_on {
-    ($area:expr, $chart:expr, $xr:expr, $yr:expr) => {{
+    ($area:expr, $chart:expr, $xr:expr, $yr:expr, $xspan:expr, $yspan:expr) => {{
         let chart = $chart;
+        let (xspan, yspan): (f64, f64) = ($xspan, $yspan);
+        let fx = move |v: &f64| tick_on(*v, xspan);
+        let fy = move |v: &f64| tick_on(*v, yspan);
         let mut c = ChartBuilder::on($area)
             .caption(&chart.title, ("sans-serif", 18))
             .margin(12)
@@ -167,8 +182,8 @@ macro_rules! draw_on {
         c.configure_mesh()
             .x_desc(chart.x_label.as_str())
             .y_desc(chart.y_label.as_str())
-            .x_label_formatter(&tick)
-            .y_label_formatter(&tick)
+            .x_label_formatter(&fx)
+            .y_label_formatter(&fy)
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 14))
             .draw()
@@ -187,11 +202,14 @@ macro_rules! draw_on {
                         && (!chart.log_y || *y > 0.0)
                 })
                 .collect();
-            if s.markers {
+            if s.markers || s.scatter {
                 c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, style.filled())))
                     .map_err(|e| e.to_string())?;
             }
-            let drawn = if s.dashed {
+            let drawn = if s.scatter {
+                c.draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                    .map_err(|e| e.to_string())?
+            } else if s.dashed {
                 c.draw_series(DashedLineSeries::new(pts, 6, 4, style))
                     .map_err(|e| e.to_string())?
             } else {
@@ -201,9 +219,14 @@ macro_rules! draw_on {
             if !s.label.is_empty() {
                 legend = true;
                 let col = color(s.color);
-                drawn.label(s.label.as_str()).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(2))
-                });
+                let drawn = drawn.label(s.label.as_str());
+                if s.scatter {
+                    drawn.legend(move |(x, y)| Circle::new((x + 9, y), 3, col.filled()));
+                } else {
+                    drawn.legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(2))
+                    });
+                }
             }
         }
         for (x, y, text) in &chart.notes {
@@ -234,11 +257,19 @@ macro_rules! draw_on {
 
 fn draw(area: &DrawingArea<SVGBackend, Shift>, chart: &Chart) -> Result<(), String> {
     let ((x0, x1), (y0, y1)) = bounds(chart);
+    let (xs, ys) = (x1 - x0, y1 - y0);
     match (chart.log_x, chart.log_y) {
-        (false, false) => draw_on!(area, chart, x0..x1, y0..y1),
-        (true, false) => draw_on!(area, chart, (x0..x1).log_scale(), y0..y1),
-        (false, true) => draw_on!(area, chart, x0..x1, (y0..y1).log_scale()),
-        (true, true) => draw_on!(area, chart, (x0..x1).log_scale(), (y0..y1).log_scale()),
+        (false, false) => draw_on!(area, chart, x0..x1, y0..y1, xs, ys),
+        (true, false) => draw_on!(area, chart, (x0..x1).log_scale(), y0..y1, 0.0, ys),
+        (false, true) => draw_on!(area, chart, x0..x1, (y0..y1).log_scale(), xs, 0.0),
+        (true, true) => draw_on!(
+            area,
+            chart,
+            (x0..x1).log_scale(),
+            (y0..y1).log_scale(),
+            0.0,
+            0.0
+        ),
     }
 }
 
@@ -286,7 +317,14 @@ pub fn to_csv(charts: &[Chart]) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::tick;
+    use super::{tick, tick_on};
+
+    #[test]
+    fn round_off_next_to_zero_reads_zero_on_a_linear_axis() {
+        assert_eq!(tick_on(-5.551115123125783e-17, 0.35), "0");
+        assert_eq!(tick_on(0.05, 0.35), "0.05");
+        assert_eq!(tick_on(1e-13, 0.0), "1e-13");
+    }
 
     #[test]
     fn ticks_are_short_and_keep_three_significant_digits() {

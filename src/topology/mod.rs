@@ -228,6 +228,22 @@ impl Topology {
         })
     }
 
+    /// The same graph with other friction coefficients, one per support (a friction-variability
+    /// sample): capacities follow as mu x load.
+    pub fn with_frictions(&self, friction: Vec<Q>) -> Topology {
+        assert_eq!(
+            friction.len(),
+            self.supports.len(),
+            "one coefficient per support"
+        );
+        let mut t = self.clone();
+        for (s, mu) in t.supports.iter_mut().zip(friction) {
+            s.capacity_n = &mu * &s.load_n;
+            s.friction = mu;
+        }
+        t
+    }
+
     /// Support loads (N) once the `removed` blocks are gone: the tributary rule applied to what
     /// is left. Supports touching a removed block carry nothing.
     pub fn loads_without(&self, wall: &Wall, removed: &[bool]) -> Vec<Q> {

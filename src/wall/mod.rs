@@ -3,10 +3,12 @@
 //! graph built on top of it lives in [`crate::topology`].
 
 mod description;
+mod generate;
 
 pub use description::{
     BlockDescription, RectangleDescription, RowDescription, WallDescription, WALL_FORMAT_VERSION,
 };
+pub use generate::RunningBond;
 
 use crate::error::{Error, WallError};
 use crate::exact::Q;

@@ -15,7 +15,7 @@
 //! ground acceleration "just after" the instant ([`Lex`]), which decides joints exactly at their
 //! limit by what happens next.
 
-use super::flow::{Amount, Lex, Network};
+use super::flow::{take_overflow, Amount, Exact, Lex, Network};
 use crate::exact::Q;
 use std::collections::VecDeque;
 
@@ -189,7 +189,7 @@ impl Problem {
     /// constraints) and returns the minimal and the maximal minimiser. `cut` counts joints with
     /// both ends in `set` and, when the ground is `pinned` at theta, joints to the ground; joints
     /// to blocks outside `set` already slide and are in the weights.
-    fn min_cut<T: Amount>(
+    fn min_cut<T: Exact>(
         &self,
         set: &[bool],
         weight: &[T],
@@ -198,19 +198,16 @@ impl Problem {
     ) -> (Vec<bool>, Vec<bool>) {
         let n = self.n();
         let (s, t) = (n, n + 1);
-        let mut net: Network<T> = Network::new(n + 2);
-        let mut big = T::from_q(Q::one());
+        // The arcs, as (from, to, capacity, both ways).
+        let mut arcs: Vec<(usize, usize, T, bool)> = Vec::new();
         for (i, w) in weight.iter().enumerate() {
             if !set[i] {
                 continue;
             }
             if w.positive() {
-                big = big.plus(w);
-                net.arc(i, t, w.clone());
+                arcs.push((i, t, w.clone(), false));
             } else if *w < T::zero() {
-                let c = T::zero().minus(w);
-                big = big.plus(&c);
-                net.arc(s, i, c);
+                arcs.push((s, i, T::zero().minus(w), false));
             }
         }
         for (i, j, f) in &self.friction {
@@ -219,23 +216,22 @@ impl Problem {
             }
             let f = T::from_q(f.clone());
             match j {
-                End::Node(j) if set[*j] => net.edge(*i, *j, f.clone()),
+                End::Node(j) if set[*j] => arcs.push((*i, *j, f.clone(), true)),
                 // Joint to the pinned ground: cut whenever i is in S.
-                End::Ground if pinned => net.arc(*i, t, f.clone()),
+                End::Ground if pinned => arcs.push((*i, t, f.clone(), false)),
                 _ => continue,
             }
-            big = big.plus(&f);
         }
         let (implies, forbidden) = self.constraints(set, side, pinned);
-        for (a, b) in implies {
-            net.arc(a, b, big.clone());
-        }
-        for a in forbidden {
-            net.arc(a, t, big.clone());
-        }
-        net.max_flow(s, t, &big);
-        let minimal = net.reachable_from(s);
-        let reach_t = net.reaching(t);
+        let amounts: Vec<T> = arcs.iter().map(|a| a.2.clone()).collect();
+        // Integer arithmetic when the amounts fit; exact rationals otherwise or on overflow.
+        let cut = T::integers(&amounts).and_then(|ints| {
+            take_overflow();
+            let r = cut_with(n, &arcs, &ints, &implies, &forbidden);
+            (!take_overflow()).then_some(r)
+        });
+        let (minimal, reach_t) =
+            cut.unwrap_or_else(|| cut_with(n, &arcs, &amounts, &implies, &forbidden));
         let maximal: Vec<bool> = (0..n).map(|i| set[i] && !reach_t[i]).collect();
         ((0..n).map(|i| set[i] && minimal[i]).collect(), maximal)
     }
@@ -474,6 +470,38 @@ impl Problem {
             }
         }
     }
+}
+
+/// Builds the network from `arcs` with capacities `caps`, the constraint arcs with a capacity
+/// above every cut, runs the maximum flow, and returns the source side of the minimal minimum
+/// cut and the nodes that still reach the sink.
+fn cut_with<A: Amount>(
+    n: usize,
+    arcs: &[(usize, usize, impl Sized, bool)],
+    caps: &[A],
+    implies: &[(usize, usize)],
+    forbidden: &[usize],
+) -> (Vec<bool>, Vec<bool>) {
+    let (s, t) = (n, n + 1);
+    // Every capacity is positive, so their sum (plus one) exceeds every cut.
+    let big = caps.iter().fold(A::unit(), |b, c| b.plus(c));
+    let big = &big;
+    let mut net: Network<A> = Network::new(n + 2);
+    for (k, &(u, v, _, both)) in arcs.iter().enumerate() {
+        if both {
+            net.edge(u, v, caps[k].clone());
+        } else {
+            net.arc(u, v, caps[k].clone());
+        }
+    }
+    for &(a, b) in implies {
+        net.arc(a, b, big.clone());
+    }
+    for &a in forbidden {
+        net.arc(a, t, big.clone());
+    }
+    net.max_flow(s, t, big);
+    (net.reachable_from(s), net.reaching(t))
 }
 
 #[cfg(test)]

@@ -10,21 +10,116 @@ use std::collections::VecDeque;
 pub trait Amount: Clone + Ord + std::fmt::Debug {
     /// Zero.
     fn zero() -> Self;
+    /// One unit (any positive amount).
+    fn unit() -> Self;
     /// Sum.
     fn plus(&self, o: &Self) -> Self;
     /// Difference.
     fn minus(&self, o: &Self) -> Self;
-    /// Embeds an exact rational.
-    fn from_q(q: Q) -> Self;
     /// True when strictly positive.
     fn positive(&self) -> bool {
         *self > Self::zero()
     }
 }
 
+/// The rational amounts the mode decisions compute with, and their integer form: the same
+/// numbers times one positive common denominator (per component), when they fit in `i128`.
+/// Scaling by a positive constant changes neither the order nor which cuts are minimal, and
+/// integer arithmetic skips the gcd of every rational operation, the cost of large walls.
+pub trait Exact: Amount {
+    /// The integer form.
+    type Int: Amount;
+    /// Embeds an exact rational.
+    fn from_q(q: Q) -> Self;
+    /// All of `values` over one common denominator (per component), or `None` when a
+    /// numerator or the denominator does not fit `i128` with room for sums.
+    fn integers(values: &[Self]) -> Option<Vec<Self::Int>>;
+}
+
+thread_local! {
+    /// Set when integer flow arithmetic overflowed: the caller then redoes the cut exactly.
+    static OVERFLOW: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Clears the overflow flag of this thread and returns what it was.
+pub fn take_overflow() -> bool {
+    OVERFLOW.with(|f| f.replace(false))
+}
+
+fn checked(x: Option<i128>) -> i128 {
+    x.unwrap_or_else(|| {
+        OVERFLOW.with(|f| f.set(true));
+        0
+    })
+}
+
+impl Amount for i128 {
+    fn zero() -> i128 {
+        0
+    }
+    fn unit() -> i128 {
+        1
+    }
+    fn plus(&self, o: &i128) -> i128 {
+        checked(self.checked_add(*o))
+    }
+    fn minus(&self, o: &i128) -> i128 {
+        checked(self.checked_sub(*o))
+    }
+}
+
+/// Lexicographic integer triples ([i128; 3] orders lexicographically).
+impl Amount for [i128; 3] {
+    fn zero() -> [i128; 3] {
+        [0; 3]
+    }
+    fn unit() -> [i128; 3] {
+        [1, 0, 0]
+    }
+    fn plus(&self, o: &[i128; 3]) -> [i128; 3] {
+        [0, 1, 2].map(|k| checked(self[k].checked_add(o[k])))
+    }
+    fn minus(&self, o: &[i128; 3]) -> [i128; 3] {
+        [0, 1, 2].map(|k| checked(self[k].checked_sub(o[k])))
+    }
+}
+
+/// Rationals over their least common denominator: the numerators, if all fit.
+fn over_common_denominator<'a>(values: impl Iterator<Item = &'a Q> + Clone) -> Option<Vec<i128>> {
+    let mut lcm: i128 = 1;
+    for v in values.clone() {
+        let (_, d) = v.small_parts()?;
+        // Denominators repeat: most already divide the running multiple (one i128 division
+        // instead of a gcd).
+        if lcm % d != 0 {
+            lcm = lcm.checked_mul(d / gcd(lcm, d))?;
+        }
+    }
+    // Keep a factor 2^8 of headroom below i128::MAX for the sums a flow forms; the overflow
+    // flag catches anything beyond.
+    const LIMIT: i128 = i128::MAX >> 8;
+    values
+        .map(|v| {
+            let (n, d) = v.small_parts()?;
+            let x = n.checked_mul(lcm / d)?;
+            (x.checked_abs()? <= LIMIT).then_some(x)
+        })
+        .collect()
+}
+
+fn gcd(mut a: i128, mut b: i128) -> i128 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a.abs()
+}
+
 impl Amount for Q {
     fn zero() -> Q {
         Q::zero()
+    }
+    fn unit() -> Q {
+        Q::one()
     }
     fn plus(&self, o: &Q) -> Q {
         self + o
@@ -32,11 +127,18 @@ impl Amount for Q {
     fn minus(&self, o: &Q) -> Q {
         self - o
     }
+    fn positive(&self) -> bool {
+        self.is_positive()
+    }
+}
+
+impl Exact for Q {
+    type Int = i128;
     fn from_q(q: Q) -> Q {
         q
     }
-    fn positive(&self) -> bool {
-        self.is_positive()
+    fn integers(values: &[Q]) -> Option<Vec<i128>> {
+        over_common_denominator(values.iter())
     }
 }
 
@@ -72,6 +174,9 @@ impl PartialOrd for Lex {
 }
 
 impl Amount for Lex {
+    fn unit() -> Lex {
+        Lex::constant(Q::one())
+    }
     fn zero() -> Lex {
         Lex::constant(Q::zero())
     }
@@ -89,8 +194,22 @@ impl Amount for Lex {
             &self.0[2] - &o.0[2],
         ])
     }
+}
+
+impl Exact for Lex {
+    type Int = [i128; 3];
     fn from_q(q: Q) -> Lex {
         Lex::constant(q)
+    }
+    fn integers(values: &[Lex]) -> Option<Vec<[i128; 3]>> {
+        let parts: Vec<Vec<i128>> = (0..3)
+            .map(|k| over_common_denominator(values.iter().map(|v| &v.0[k])))
+            .collect::<Option<_>>()?;
+        Some(
+            (0..values.len())
+                .map(|i| [parts[0][i], parts[1][i], parts[2][i]])
+                .collect(),
+        )
     }
 }
 

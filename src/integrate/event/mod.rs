@@ -321,7 +321,8 @@ impl<'a> Engine<'a> {
     /// time counts as the same instant.
     fn progress_guard(&mut self, p: &Pending) -> Result<(), SimulationError> {
         let window = PROGRESS_WINDOW_ULPS * f64::EPSILON * self.instant.0.abs().max(1.0);
-        if p.t - self.instant.0 <= window {
+        // The first event opens the first instant (before it, `instant` is -inf).
+        if self.instant.0.is_finite() && p.t - self.instant.0 <= window {
             self.instant.1 += 1;
             if self.instant.1 > self.params.max_events_per_instant {
                 return Err(SimulationError::NoProgress {
@@ -663,7 +664,7 @@ impl<'a> Engine<'a> {
     fn handle(&mut self, ev: Ev) -> Result<(), SimulationError> {
         match ev {
             Ev::Threshold { k, upper, .. } => {
-                let snap = match &self.clusters[k].motion {
+                let limit = match &self.clusters[k].motion {
                     ClusterMotion::Stuck { lo_q, hi_q, .. } => {
                         if upper {
                             hi_q.clone()
@@ -673,6 +674,14 @@ impl<'a> Engine<'a> {
                     }
                     ClusterMotion::Sliding(_) => None,
                 };
+                // Snap a_g to the limit only when it is there. A stuck cluster whose neighbours
+                // changed gets a new interval that a_g may already lie beyond; it is decided
+                // with the a_g it has (snapping would keep it stuck and fire again, forever).
+                let (ag, lambda) = (self.seg.accel(self.s()), self.seg.lambda_at(self.s()));
+                let snap = limit.filter(|q| {
+                    let at = q.to_f64() * lambda;
+                    (ag - at).abs() <= ROUNDOFF_ULPS * f64::EPSILON * (ag.abs() + at.abs())
+                });
                 let seeds = self.clusters[k].blocks.clone();
                 self.decide_from(&seeds, &[], snap)?;
             }

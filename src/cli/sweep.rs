@@ -1,0 +1,172 @@
+//! `pirqa sweep`: run a sweep file with a progress bar, then write its tables, charts and
+//! derived numbers.
+
+use super::write_file;
+use indicatif::{ProgressBar, ProgressStyle};
+use pirqa::plot::chart;
+use pirqa::study::sweep::analysis::{analyse, Report};
+use pirqa::study::sweep::store::{Existing, Store};
+use pirqa::study::sweep::Sweep;
+use pirqa::Error;
+use std::path::{Path, PathBuf};
+
+/// Options of `pirqa sweep`.
+#[derive(clap::Args, Debug)]
+pub struct SweepArgs {
+    /// Sweep description (RON; see docs/sweeps.md).
+    pub file: PathBuf,
+    /// Output directory: cases.csv, blocks.csv, manifest.json, results.json, charts.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Keep the finished cases of an interrupted run of the same sweep and run the rest.
+    #[arg(long, conflicts_with = "fresh")]
+    pub resume: bool,
+    /// Discard results already in the output directory.
+    #[arg(long)]
+    pub fresh: bool,
+    /// Worker threads (default: every core).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Rerun only this case in full detail into OUT/case-N: its wall with the sampled friction
+    /// written out (wall.ron), its motion, summary.json, history.csv, events.jsonl, and the
+    /// `pirqa run` command that reproduces it.
+    #[arg(long, value_name = "N")]
+    pub case: Option<usize>,
+}
+
+/// A progress bar on the terminal, nothing when output is redirected (indicatif hides itself).
+pub fn progress_bar(total: u64, done: u64, what: &str) -> ProgressBar {
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} cases, {per_sec}, eta {eta}")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(what.to_string());
+    bar.set_position(done);
+    bar
+}
+
+/// Runs a sweep into `out` and writes its report.
+pub fn run_sweep(sweep: &Sweep, out: &Path, existing: Existing) -> Result<Report, Error> {
+    let mut store = Store::open(out, sweep, existing)?;
+    let done = store.done();
+    let bar = progress_bar(sweep.len() as u64, done.len() as u64, &sweep.name);
+    sweep.run_cases(&done, |row, blocks| {
+        bar.inc(1);
+        store.append(row, blocks)
+    })?;
+    bar.finish_and_clear();
+    let (rows, _) = store.finish()?;
+    let report = analyse(sweep, &rows);
+    write_report(&report, out)?;
+    Ok(report)
+}
+
+/// Writes each figure as SVG with its data as CSV, and results.json.
+pub fn write_report(report: &Report, out: &Path) -> Result<(), Error> {
+    for (stem, charts, columns) in &report.figures {
+        write_file(
+            &out.join(format!("{stem}.svg")),
+            &chart::render(charts, *columns, (620, 420)),
+        )?;
+        write_file(&out.join(format!("{stem}.csv")), &chart::to_csv(charts))?;
+    }
+    write_file(
+        &out.join("results.json"),
+        &(serde_json::to_string_pretty(&report.results).expect("json") + "\n"),
+    )
+}
+
+/// One case in full: its files and the command that reruns it.
+fn rerun_case(sweep: &Sweep, id: usize, out: &Path) -> Result<(), Error> {
+    if id >= sweep.len() {
+        return Err(Error::Table {
+            path: PathBuf::from("--case"),
+            line: 0,
+            message: format!(
+                "case {id} does not exist: the sweep has {} cases",
+                sweep.len()
+            ),
+        });
+    }
+    let dir = out.join(format!("case-{id}"));
+    let (_, m, _) = sweep.case(id);
+    let motion = &sweep.motions[m];
+    write_file(
+        &dir.join("wall.ron"),
+        &format!(
+            "// Case {id} of the sweep \"{}\": the wall with this case's friction.\n{}\n",
+            sweep.name,
+            pirqa::wall::to_ron_string(&sweep.case_wall(id))
+        ),
+    )?;
+    let motion_args = match &motion.motion {
+        pirqa::motion::Motion::Record(r) => {
+            write_file(
+                &dir.join("motion.txt"),
+                &super::motion::record_text(r, &motion.label),
+            )?;
+            format!("--record {}/motion.txt", dir.display())
+        }
+        pirqa::motion::Motion::Sine(s) => format!(
+            "--sine {}m/s2 --freq {} --phase {} --duration {}",
+            s.amplitude_m_s2,
+            s.frequency_hz,
+            s.phase_rad.to_degrees(),
+            s.duration_s
+        ),
+    };
+    let command = format!(
+        "pirqa run {}/wall.ron {motion_args} --duration {} --out {}\n",
+        dir.display(),
+        motion.duration_s,
+        dir.display()
+    );
+    write_file(&dir.join("rerun.txt"), &command)?;
+    let r = sweep.run_case_in_full(id, 0.01)?;
+    super::run::write_outputs(&dir, &r)?;
+    eprintln!(
+        "case {id} ({}, {}) in {}",
+        sweep.walls[sweep.case(id).0].label,
+        motion.label,
+        dir.display()
+    );
+    Ok(())
+}
+
+pub fn run(args: &SweepArgs) -> Result<(), Error> {
+    let sweep = Sweep::load(&args.file)?;
+    if let Some(id) = args.case {
+        return rerun_case(&sweep, id, &args.out);
+    }
+    let existing = if args.resume {
+        Existing::Resume
+    } else if args.fresh {
+        Existing::Overwrite
+    } else {
+        Existing::Refuse
+    };
+    let go = || run_sweep(&sweep, &args.out, existing);
+    let report = match args.threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .expect("a thread pool")
+            .install(go)?,
+        None => go()?,
+    };
+    let failed = report.results["failed_runs"].as_u64().unwrap_or(0);
+    eprintln!(
+        "{}: {} cases in {}{}",
+        sweep.name,
+        sweep.len(),
+        args.out.display(),
+        if failed > 0 {
+            format!(" ({failed} runs failed: see results.json)")
+        } else {
+            String::new()
+        }
+    );
+    Ok(())
+}

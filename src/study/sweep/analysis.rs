@@ -1,0 +1,429 @@
+//! What a sweep's rows show: response spectra and collapse maps for sine grids, incremental
+//! dynamic analysis for scaled records, and, with random friction, the distribution of the
+//! maximum displacement, the probability of collapse with its confidence interval, and
+//! lognormal fragility curves.
+
+use super::store::CaseRow;
+use super::{FrictionModel, Sweep};
+use crate::plot::chart::{Chart, Corner, Series};
+use crate::study::stats::{fit_fragility, quantile, wilson};
+use serde_json::{json, Value};
+use std::collections::BTreeMap;
+
+/// Normal quantile of the two-sided 95 % intervals.
+pub const Z95: f64 = 1.959_963_984_540_054;
+
+/// Charts (one SVG each, panels `columns` across) and the numbers behind them.
+pub struct Report {
+    /// (file stem, panels, columns).
+    pub figures: Vec<(String, Vec<Chart>, usize)>,
+    /// Derived numbers (results.json).
+    pub results: Value,
+}
+
+/// The cases of one wall under one motion (one per friction sample), in sample order.
+struct Cell<'a> {
+    wall: usize,
+    rows: Vec<&'a CaseRow>,
+}
+
+impl Cell<'_> {
+    fn first(&self) -> &CaseRow {
+        self.rows[0]
+    }
+    fn ok(&self) -> impl Iterator<Item = &&CaseRow> {
+        self.rows.iter().filter(|r| r.error.is_none())
+    }
+    /// Median over samples of a quantity (the value itself for nominal friction).
+    fn median(&self, f: impl Fn(&CaseRow) -> f64) -> Option<f64> {
+        let mut v: Vec<f64> = self.ok().map(|r| f(r)).collect();
+        v.sort_by(f64::total_cmp);
+        quantile(&v, 0.5)
+    }
+    fn collapses(&self) -> (u64, u64) {
+        let n = self.ok().count() as u64;
+        (self.ok().filter(|r| r.collapsed).count() as u64, n)
+    }
+}
+
+fn line(label: String, color: usize, points: Vec<(f64, f64)>) -> Series {
+    Series {
+        label,
+        points,
+        color,
+        markers: true,
+        ..Default::default()
+    }
+}
+
+fn scatter(label: &str, color: usize, points: Vec<(f64, f64)>) -> Series {
+    Series {
+        label: label.into(),
+        points,
+        color,
+        scatter: true,
+        ..Default::default()
+    }
+}
+
+/// Everything the rows show.
+pub fn analyse(sweep: &Sweep, rows: &[CaseRow]) -> Report {
+    // Group by (wall, motion) in the sweep's order.
+    let mut cells: BTreeMap<(usize, usize), Cell> = BTreeMap::new();
+    for r in rows {
+        let (w, m, _) = sweep.case(r.case);
+        cells
+            .entry((w, m))
+            .or_insert_with(|| Cell {
+                wall: w,
+                rows: Vec::new(),
+            })
+            .rows
+            .push(r);
+    }
+    for c in cells.values_mut() {
+        c.rows.sort_by_key(|r| r.sample);
+    }
+    let mut figures = Vec::new();
+    let mut results = serde_json::Map::new();
+    results.insert("name".into(), json!(sweep.name));
+    results.insert("cases".into(), json!(rows.len()));
+    let errors: Vec<Value> = rows
+        .iter()
+        .filter_map(|r| {
+            r.error
+                .as_ref()
+                .map(|e| json!({"case": r.case, "wall": r.wall, "motion": r.motion, "error": e}))
+        })
+        .collect();
+    results.insert("failed_runs".into(), json!(errors.len()));
+    results.insert(
+        "failed_examples".into(),
+        Value::Array(errors.into_iter().take(10).collect()),
+    );
+    let sine = sweep.motions.iter().any(|m| m.frequency_hz.is_some());
+    if sine {
+        figures.push(("spectra".into(), spectra(sweep, &cells), 2));
+        figures.push(("collapse-map".into(), collapse_map(sweep, &cells), 2));
+    } else {
+        let (charts, ida) = ida(sweep, &cells);
+        figures.push(("ida".into(), charts, 2));
+        results.insert("ida".into(), ida);
+    }
+    if let FrictionModel::Random { .. } = sweep.friction {
+        let (charts, numbers) = distributions(sweep, &cells);
+        figures.push(("distribution".into(), charts, 2));
+        results.insert("levels".into(), numbers);
+        let (charts, fits) = fragility(sweep, &cells);
+        figures.push(("fragility".into(), charts, 2));
+        results.insert("fragility".into(), fits);
+    }
+    Report {
+        figures,
+        results: Value::Object(results),
+    }
+}
+
+/// Per wall: maximum and residual displacement against frequency, one line per amplitude.
+fn spectra(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> Vec<Chart> {
+    let random = sweep.samples() > 1;
+    let what = if random { "median " } else { "" };
+    let mut charts = Vec::new();
+    for (w, wall) in sweep.walls.iter().enumerate() {
+        let mut by_amp: BTreeMap<i64, Vec<&Cell>> = BTreeMap::new();
+        for c in cells.values().filter(|c| c.wall == w) {
+            let a = c.first().amplitude_gal.unwrap_or(f64::NAN);
+            by_amp.entry((a * 1e3) as i64).or_default().push(c);
+        }
+        let panel = |title: &str, y: &str, f: &dyn Fn(&CaseRow) -> f64| {
+            let mut series = Vec::new();
+            let mut fell = Vec::new();
+            for (k, (amp, cs)) in by_amp.iter().enumerate() {
+                let mut pts: Vec<(f64, f64)> = cs
+                    .iter()
+                    .filter_map(|c| Some((c.first().frequency_hz?, c.median(f)?)))
+                    .collect();
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                fell.extend(
+                    cs.iter()
+                        .filter(|c| c.collapses().0 > 0)
+                        .filter_map(|c| Some((c.first().frequency_hz?, c.median(f)?))),
+                );
+                series.push(Series {
+                    markers: false,
+                    ..line(format!("{:.0} gal", *amp as f64 / 1e3), k, pts)
+                });
+            }
+            if !fell.is_empty() {
+                series.push(scatter("collapse", 3, fell));
+            }
+            Chart {
+                title: format!("{}: {title}", wall.label),
+                x_label: "sine frequency (Hz)".into(),
+                y_label: format!("{what}{y} (m)"),
+                series,
+                log_x: true,
+                log_y: true,
+                ..Default::default()
+            }
+        };
+        charts.push(panel(
+            "maximum displacement",
+            "max |u| of any block",
+            &|r| r.max_abs_u_m,
+        ));
+        charts.push(panel(
+            "residual displacement",
+            "max |final u| of a standing block",
+            &|r| r.residual_u_m,
+        ));
+    }
+    charts
+}
+
+/// Per wall: which (frequency, amplitude) pairs collapse.
+fn collapse_map(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> Vec<Chart> {
+    sweep
+        .walls
+        .iter()
+        .enumerate()
+        .map(|(w, wall)| {
+            let (mut none, mut some, mut all) = (Vec::new(), Vec::new(), Vec::new());
+            for c in cells.values().filter(|c| c.wall == w) {
+                let (Some(f), Some(a)) = (c.first().frequency_hz, c.first().amplitude_gal) else {
+                    continue;
+                };
+                match c.collapses() {
+                    (0, _) => none.push((f, a)),
+                    (k, n) if k == n => all.push((f, a)),
+                    _ => some.push((f, a)),
+                }
+            }
+            let mut series = vec![scatter("stands", 7, none)];
+            if sweep.samples() > 1 {
+                series.push(scatter("collapse in some samples", 1, some));
+            }
+            series.push(scatter("collapse", 3, all));
+            Chart {
+                title: format!("{}: collapse", wall.label),
+                x_label: "sine frequency (Hz)".into(),
+                y_label: "amplitude (gal)".into(),
+                series,
+                log_x: true,
+                legend: Corner::UpperRight,
+                ..Default::default()
+            }
+        })
+        .collect()
+}
+
+/// Per wall: maximum displacement against PGA, one line per record; the collapse intensity of
+/// each record (the lowest PGA at which the wall collapses, or at which most samples do).
+fn ida(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Value) {
+    let random = sweep.samples() > 1;
+    let mut charts = Vec::new();
+    let mut out = Vec::new();
+    for (w, wall) in sweep.walls.iter().enumerate() {
+        let mut by_record: BTreeMap<String, Vec<&Cell>> = BTreeMap::new();
+        for c in cells.values().filter(|c| c.wall == w) {
+            by_record
+                .entry(c.first().record.clone().unwrap_or_default())
+                .or_default()
+                .push(c);
+        }
+        let mut series = Vec::new();
+        let mut fell = Vec::new();
+        for (k, (record, cs)) in by_record.iter().enumerate() {
+            let mut cs = cs.clone();
+            cs.sort_by(|a, b| a.first().pga_gal.total_cmp(&b.first().pga_gal));
+            let pts: Vec<(f64, f64)> = cs
+                .iter()
+                .filter_map(|c| Some((c.first().pga_gal, c.median(|r| r.max_abs_u_m)?)))
+                .collect();
+            // The lowest level at which the wall collapses (nominal) or most samples do.
+            let collapsing = cs.iter().find(|c| {
+                let (k, n) = c.collapses();
+                n > 0 && 2 * k >= n
+            });
+            fell.extend(
+                cs.iter()
+                    .filter(|c| c.collapses().0 > 0)
+                    .filter_map(|c| Some((c.first().pga_gal, c.median(|r| r.max_abs_u_m)?))),
+            );
+            out.push(json!({
+                "wall": wall.label,
+                "record": record,
+                "collapse_pga_gal": collapsing.map(|c| c.first().pga_gal),
+                "collapse_scale": collapsing.and_then(|c| c.first().scale),
+            }));
+            series.push(line(record.clone(), k, pts));
+        }
+        if !fell.is_empty() {
+            series.push(scatter("collapse", 3, fell));
+        }
+        charts.push(Chart {
+            title: format!("{}: incremental dynamic analysis", wall.label),
+            x_label: "PGA (gal)".into(),
+            y_label: format!(
+                "{}max |u| of any block (m)",
+                if random { "median " } else { "" }
+            ),
+            series,
+            log_y: true,
+            legend: Corner::LowerRight,
+            ..Default::default()
+        });
+    }
+    (charts, Value::Array(out))
+}
+
+/// Per wall: the empirical distribution of the maximum displacement at (up to six) motions, and
+/// per (wall, motion) the collapse probability with its 95 % interval and quantiles.
+fn distributions(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Value) {
+    let mut charts = Vec::new();
+    let mut numbers = Vec::new();
+    for (w, wall) in sweep.walls.iter().enumerate() {
+        let cs: Vec<&Cell> = cells.values().filter(|c| c.wall == w).collect();
+        let shown: Vec<usize> = if cs.len() <= 6 {
+            (0..cs.len()).collect()
+        } else {
+            (0..6).map(|k| k * (cs.len() - 1) / 5).collect()
+        };
+        let mut series = Vec::new();
+        for (k, c) in cs.iter().enumerate() {
+            let mut v: Vec<f64> = c.ok().map(|r| r.max_abs_u_m).collect();
+            v.sort_by(f64::total_cmp);
+            let (hits, n) = c.collapses();
+            let (lo, hi) = wilson(hits, n, Z95);
+            numbers.push(json!({
+                "wall": wall.label,
+                "motion": c.first().motion,
+                "pga_gal": c.first().pga_gal,
+                "samples": n,
+                "collapses": hits,
+                "p_collapse": if n > 0 { hits as f64 / n as f64 } else { f64::NAN },
+                "p_collapse_ci95": [lo, hi],
+                "max_abs_u_m_p05": quantile(&v, 0.05),
+                "max_abs_u_m_p50": quantile(&v, 0.5),
+                "max_abs_u_m_p95": quantile(&v, 0.95),
+            }));
+            if shown.contains(&k) && !v.is_empty() {
+                let n = v.len() as f64;
+                let pts = v
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &x)| (x, (i as f64 + 1.0) / n))
+                    .collect();
+                series.push(Series {
+                    label: c.first().motion.clone(),
+                    points: pts,
+                    color: series.len(),
+                    ..Default::default()
+                });
+            }
+        }
+        charts.push(Chart {
+            title: format!("{}: distribution over friction samples", wall.label),
+            x_label: "max |u| of any block (m)".into(),
+            y_label: "fraction of samples at or below".into(),
+            series,
+            log_x: true,
+            legend: Corner::LowerRight,
+            ..Default::default()
+        });
+    }
+    (charts, Value::Array(numbers))
+}
+
+/// Per wall and record (or sine frequency): the probability of collapse against PGA with its
+/// 95 % interval, and the lognormal fragility curve fitted to it.
+fn fragility(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Value) {
+    let mut charts = Vec::new();
+    let mut fits = Vec::new();
+    for (w, wall) in sweep.walls.iter().enumerate() {
+        let mut groups: BTreeMap<String, Vec<&Cell>> = BTreeMap::new();
+        for c in cells.values().filter(|c| c.wall == w) {
+            let key = match (&c.first().record, c.first().frequency_hz) {
+                (Some(r), _) => r.clone(),
+                (None, Some(f)) => format!("sine {f} Hz"),
+                _ => String::new(),
+            };
+            groups.entry(key).or_default().push(c);
+        }
+        let mut series = Vec::new();
+        for (k, (group, cs)) in groups.iter().enumerate().take(4) {
+            let mut levels: Vec<(f64, u64, u64)> = cs
+                .iter()
+                .map(|c| {
+                    let (hits, n) = c.collapses();
+                    (c.first().pga_gal, n, hits)
+                })
+                .collect();
+            levels.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let p: Vec<(f64, f64)> = levels
+                .iter()
+                .filter(|l| l.1 > 0)
+                .map(|&(x, n, h)| (x, h as f64 / n as f64))
+                .collect();
+            let band = |upper: bool| -> Vec<(f64, f64)> {
+                levels
+                    .iter()
+                    .filter(|l| l.1 > 0)
+                    .map(|&(x, n, h)| {
+                        let (lo, hi) = wilson(h, n, Z95);
+                        (x, if upper { hi } else { lo })
+                    })
+                    .collect()
+            };
+            series.push(Series {
+                scatter: true,
+                ..line(format!("{group}: observed"), k, p)
+            });
+            series.push(Series {
+                dashed: true,
+                ..line(String::new(), k, band(false))
+            });
+            series.push(Series {
+                dashed: true,
+                ..line(String::new(), k, band(true))
+            });
+            let fit = fit_fragility(&levels);
+            if let Some(f) = fit {
+                let (x0, x1) = (levels[0].0, levels[levels.len() - 1].0);
+                let curve = (0..=60)
+                    .map(|i| {
+                        let x = x0 + (x1 - x0) * i as f64 / 60.0;
+                        (x, f.probability(x))
+                    })
+                    .collect();
+                series.push(Series {
+                    markers: false,
+                    ..line(
+                        format!(
+                            "{group}: lognormal fit, median {:.0} gal, beta {:.2}",
+                            f.median, f.beta
+                        ),
+                        k,
+                        curve,
+                    )
+                });
+            }
+            fits.push(json!({
+                "wall": wall.label,
+                "group": group,
+                "levels": levels.iter().map(|l| json!({"pga_gal": l.0, "samples": l.1, "collapses": l.2})).collect::<Vec<_>>(),
+                "median_pga_gal": fit.map(|f| f.median),
+                "beta": fit.map(|f| f.beta),
+            }));
+        }
+        charts.push(Chart {
+            title: format!("{}: fragility (95 % intervals dashed)", wall.label),
+            x_label: "PGA (gal)".into(),
+            y_label: "probability of collapse".into(),
+            series,
+            legend: Corner::UpperLeft,
+            ..Default::default()
+        });
+    }
+    (charts, Value::Array(fits))
+}

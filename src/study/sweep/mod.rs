@@ -1,0 +1,740 @@
+//! Sweeps: many runs of the exact integrator over walls x motions x friction samples, described
+//! in RON, run in parallel, stored as they finish (so an interrupted sweep resumes), and reduced
+//! to charts. This module owns the description and the cases; [`store`] the files, [`analysis`]
+//! what the rows show.
+
+pub mod analysis;
+pub mod store;
+
+use crate::error::{Error, MotionError, WallError};
+use crate::exact::Q;
+use crate::integrate::event::EventDriven;
+use crate::integrate::{Integrator, Scenario, Settings};
+use crate::motion::{read_record, Motion, ReadOptions, Sine};
+use crate::response::Response;
+use crate::response::Summary;
+use crate::rng::Rng;
+use crate::topology::Topology;
+use crate::units::parse_acceleration;
+use crate::wall::{RunningBond, Wall, WallDescription};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use store::{BlockRow, CaseRow};
+
+/// Sweep-file format version this pirqa reads.
+pub const SWEEP_FORMAT_VERSION: u32 = 1;
+
+/// Sampled friction coefficients are rounded to this step: friction is never known to more
+/// digits, and short decimals keep the exact arithmetic of mode decisions cheap.
+pub const FRICTION_STEP: f64 = 1e-4;
+
+/// A sweep file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepDescription {
+    /// Format version (1).
+    pub version: u32,
+    /// Name shown on charts.
+    pub name: String,
+    /// The walls.
+    pub walls: Vec<WallSource>,
+    /// The motions.
+    pub motion: MotionSet,
+    /// Friction: the walls' own coefficients, or random samples around them.
+    #[serde(default)]
+    pub friction: FrictionModel,
+}
+
+/// Where a wall comes from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum WallSource {
+    /// A wall file, relative to the sweep file; `friction` replaces every coefficient of the
+    /// wall (default: the file's own).
+    File {
+        /// Path relative to the sweep file.
+        path: String,
+        /// One coefficient for every joint, replacing the file's.
+        #[serde(default)]
+        friction: Option<f64>,
+        /// Label in tables and charts (default: the file name, and the friction if replaced).
+        #[serde(default)]
+        label: Option<String>,
+    },
+    /// A generated running-bond wall.
+    RunningBond(RunningBond),
+}
+
+/// The motions of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum MotionSet {
+    /// Sines: every amplitude at every frequency.
+    Sine {
+        /// Amplitudes with units (`"300gal"`, `"0.3g"`, `"3m/s2"`).
+        amplitudes: Vec<String>,
+        /// Frequencies.
+        frequencies_hz: Frequencies,
+        /// Duration of the sine and of the run (s).
+        duration_s: f64,
+        /// Phase at t = 0 (degrees, default 0).
+        #[serde(default)]
+        phase_deg: f64,
+    },
+    /// Records (paths relative to the sweep file, format detected), each scaled by every factor
+    /// in `scales` or to every peak in `pga` (give one of the two).
+    Records {
+        /// Record files.
+        files: Vec<String>,
+        /// Scale factors.
+        #[serde(default)]
+        scales: Vec<f64>,
+        /// Target peak accelerations with units.
+        #[serde(default)]
+        pga: Vec<String>,
+    },
+}
+
+/// A list of frequencies.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Frequencies {
+    /// These values.
+    List(Vec<f64>),
+    /// `count` values evenly spaced from `from` to `to`.
+    Linear {
+        /// First (Hz).
+        from: f64,
+        /// Last (Hz).
+        to: f64,
+        /// How many.
+        count: usize,
+    },
+    /// `count` values evenly spaced in log from `from` to `to`.
+    Log {
+        /// First (Hz).
+        from: f64,
+        /// Last (Hz).
+        to: f64,
+        /// How many.
+        count: usize,
+    },
+}
+
+impl Frequencies {
+    /// The values (Hz).
+    pub fn values(&self) -> Vec<f64> {
+        // s runs over [0, 1] in `count` steps; values are rounded to 1 uHz so that labels and
+        // the CSV read cleanly.
+        let spaced = |count: usize, f: &dyn Fn(f64) -> f64| -> Vec<f64> {
+            (0..count)
+                .map(|k| {
+                    let s = if count > 1 {
+                        k as f64 / (count - 1) as f64
+                    } else {
+                        0.0
+                    };
+                    (f(s) * 1e6).round() / 1e6
+                })
+                .collect()
+        };
+        match *self {
+            Frequencies::List(ref v) => v.clone(),
+            Frequencies::Linear { from, to, count } => spaced(count, &|s| from + s * (to - from)),
+            Frequencies::Log { from, to, count } => {
+                spaced(count, &|s| (from.ln() + s * (to.ln() - from.ln())).exp())
+            }
+        }
+    }
+}
+
+/// Friction in a sweep.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub enum FrictionModel {
+    /// The walls' own coefficients: one case per wall and motion.
+    #[default]
+    Nominal,
+    /// Each joint's coefficient drawn independently around the wall's own (its mean), `samples`
+    /// walls per motion, the same samples at every motion (common random numbers).
+    Random {
+        /// Normal or lognormal.
+        distribution: Distribution,
+        /// Coefficient of variation (standard deviation / mean).
+        cov: f64,
+        /// Samples per wall and motion.
+        samples: usize,
+        /// Seed: the same seed gives the same samples on any machine.
+        seed: u64,
+    },
+}
+
+/// Distribution of a random friction coefficient.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Distribution {
+    /// Normal, truncated to (0, 2] by redrawing.
+    Normal,
+    /// Lognormal with the given mean and coefficient of variation, truncated to (0, 2].
+    Lognormal,
+}
+
+/// A wall of a sweep, with its graph.
+#[derive(Debug, Clone)]
+pub struct SweepWall {
+    /// Label in tables and charts.
+    pub label: String,
+    /// Its description (to write a case's wall back as a file).
+    pub description: WallDescription,
+    /// The wall.
+    pub wall: Wall,
+    /// Its graph (nominal friction).
+    pub topology: Topology,
+}
+
+/// A motion of a sweep.
+#[derive(Debug, Clone)]
+pub struct SweepMotion {
+    /// Label in tables and charts.
+    pub label: String,
+    /// The motion.
+    pub motion: Motion,
+    /// Run duration (s).
+    pub duration_s: f64,
+    /// Sine amplitude (m/s2).
+    pub amplitude_m_s2: Option<f64>,
+    /// Sine frequency (Hz).
+    pub frequency_hz: Option<f64>,
+    /// Record label.
+    pub record: Option<String>,
+    /// Record scale factor.
+    pub scale: Option<f64>,
+    /// Peak ground acceleration (m/s2).
+    pub pga_m_s2: f64,
+}
+
+/// A sweep ready to run.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    /// Name.
+    pub name: String,
+    /// Walls.
+    pub walls: Vec<SweepWall>,
+    /// Motions.
+    pub motions: Vec<SweepMotion>,
+    /// Friction.
+    pub friction: FrictionModel,
+    /// Hash of the description and of every file it reads: a resumed sweep must match.
+    pub fingerprint: String,
+}
+
+fn invalid(path: &Path, message: String) -> Error {
+    Error::Motion {
+        path: path.to_path_buf(),
+        source: MotionError::Invalid(message),
+    }
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// FNV-1a, 64 bits: a fingerprint that is the same on every machine and version of Rust.
+fn fnv(hash: u64, bytes: &[u8]) -> u64 {
+    bytes.iter().fold(hash, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+
+/// Parses a sweep description (RON).
+pub fn parse_description(text: &str) -> Result<SweepDescription, WallError> {
+    ron::Options::default()
+        .with_default_extension(
+            ron::extensions::Extensions::IMPLICIT_SOME
+                | ron::extensions::Extensions::UNWRAP_VARIANT_NEWTYPES,
+        )
+        .from_str(text)
+        .map_err(|e| WallError::Syntax {
+            line: e.span.start.line,
+            col: e.span.start.col,
+            message: e.code.to_string(),
+        })
+}
+
+impl Sweep {
+    /// Reads a sweep file and everything it names.
+    pub fn load(path: &Path) -> Result<Sweep, Error> {
+        let text = std::fs::read_to_string(path).map_err(io(path))?;
+        let d = parse_description(&text).map_err(|source| Error::Wall {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        Sweep::from_description(&d, base, path)
+    }
+
+    /// Resolves a description whose relative paths start at `base`; `origin` names it in
+    /// errors.
+    pub fn from_description(
+        d: &SweepDescription,
+        base: &Path,
+        origin: &Path,
+    ) -> Result<Sweep, Error> {
+        if d.version != SWEEP_FORMAT_VERSION {
+            return Err(invalid(
+                origin,
+                format!(
+                    "version {}: this pirqa reads sweep files of version {SWEEP_FORMAT_VERSION}",
+                    d.version
+                ),
+            ));
+        }
+        let mut hash = fnv(FNV_OFFSET, format!("{d:?}").as_bytes());
+        let mut walls = Vec::new();
+        for source in &d.walls {
+            let w = resolve_wall(source, base, &mut hash)?;
+            walls.push(w);
+        }
+        if walls.is_empty() {
+            return Err(invalid(
+                origin,
+                "`walls` is empty: name at least one".into(),
+            ));
+        }
+        let motions = resolve_motions(&d.motion, base, origin, &mut hash)?;
+        if let FrictionModel::Random { cov, samples, .. } = d.friction {
+            if !(cov.is_finite() && cov > 0.0 && cov < 1.0) || samples == 0 {
+                return Err(invalid(
+                    origin,
+                    format!(
+                        "friction: cov {cov} and samples {samples}: cov must be in (0, 1) and samples at least 1"
+                    ),
+                ));
+            }
+        }
+        Ok(Sweep {
+            name: d.name.clone(),
+            walls,
+            motions,
+            friction: d.friction.clone(),
+            fingerprint: format!("{hash:016x}"),
+        })
+    }
+
+    /// Friction samples per wall and motion.
+    pub fn samples(&self) -> usize {
+        match self.friction {
+            FrictionModel::Nominal => 1,
+            FrictionModel::Random { samples, .. } => samples,
+        }
+    }
+
+    /// Number of cases.
+    pub fn len(&self) -> usize {
+        self.walls.len() * self.motions.len() * self.samples()
+    }
+
+    /// True when there is nothing to run (a resolved sweep always has a case).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// (wall, motion, sample) of a case.
+    pub fn case(&self, id: usize) -> (usize, usize, usize) {
+        let s = self.samples();
+        (
+            id / (s * self.motions.len()),
+            (id / s) % self.motions.len(),
+            id % s,
+        )
+    }
+
+    /// The friction coefficients of a wall's supports for a sample: nominal, or drawn.
+    pub fn frictions(&self, wall: usize, sample: usize) -> Vec<Q> {
+        let nominal = self.walls[wall]
+            .topology
+            .supports
+            .iter()
+            .map(|s| s.friction.clone());
+        let FrictionModel::Random {
+            distribution,
+            cov,
+            seed,
+            ..
+        } = self.friction
+        else {
+            return nominal.collect();
+        };
+        // Wall and sample pick the stream: the same sample at every motion.
+        let mut rng = Rng::new(seed ^ ((wall as u64) << 40) ^ sample as u64);
+        nominal
+            .map(|mu| draw(&mut rng, mu.to_f64(), cov, distribution))
+            .collect()
+    }
+
+    /// The wall of a case as a description: the sampled friction of every joint written out,
+    /// so that `pirqa run` on it reruns the case exactly.
+    pub fn case_wall(&self, id: usize) -> WallDescription {
+        let (w, _, s) = self.case(id);
+        let sw = &self.walls[w];
+        let mut d = sw.description.clone();
+        if let FrictionModel::Random { .. } = self.friction {
+            for (sup, mu) in sw.topology.supports.iter().zip(self.frictions(w, s)) {
+                let key = format!(
+                    "{}/{}",
+                    sw.wall.blocks[sup.upper.0].name,
+                    sw.topology.base_name(&sw.wall, sup.lower)
+                );
+                d.joint_friction.insert(key, mu.to_f64());
+            }
+        }
+        d
+    }
+
+    /// Runs one case in full: history every `output_dt_s` and the event log.
+    pub fn run_case_in_full(&self, id: usize, output_dt_s: f64) -> Result<Response, Error> {
+        let (w, m, s) = self.case(id);
+        let topology = match self.friction {
+            FrictionModel::Nominal => self.walls[w].topology.clone(),
+            FrictionModel::Random { .. } => {
+                self.walls[w].topology.with_frictions(self.frictions(w, s))
+            }
+        };
+        let motion = &self.motions[m];
+        let settings = Settings {
+            duration_s: motion.duration_s,
+            output_dt_s: Some(output_dt_s),
+            log_events: true,
+            after_collapse: Default::default(),
+        };
+        Ok(EventDriven::default().run(&Scenario {
+            wall: &self.walls[w].wall,
+            topology: &topology,
+            motion: &motion.motion,
+            settings: &settings,
+        })?)
+    }
+
+    /// Runs one case.
+    pub fn run_case(&self, id: usize) -> (CaseRow, Vec<BlockRow>) {
+        let (w, m, s) = self.case(id);
+        let (wall, motion) = (&self.walls[w], &self.motions[m]);
+        let topology = match self.friction {
+            FrictionModel::Nominal => None,
+            FrictionModel::Random { .. } => {
+                Some(wall.topology.with_frictions(self.frictions(w, s)))
+            }
+        };
+        let topo = topology.as_ref().unwrap_or(&wall.topology);
+        let settings = Settings::summary_only(motion.duration_s);
+        let start = std::time::Instant::now();
+        let result = EventDriven::default().run(&Scenario {
+            wall: &wall.wall,
+            topology: topo,
+            motion: &motion.motion,
+            settings: &settings,
+        });
+        let cpu_s = start.elapsed().as_secs_f64();
+        let mut row = CaseRow {
+            case: id,
+            wall: wall.label.clone(),
+            motion: motion.label.clone(),
+            amplitude_gal: motion.amplitude_m_s2.map(|a| a * 100.0),
+            frequency_hz: motion.frequency_hz,
+            record: motion.record.clone(),
+            scale: motion.scale,
+            pga_gal: motion.pga_m_s2 * 100.0,
+            sample: s,
+            cpu_s,
+            ..CaseRow::default()
+        };
+        match result {
+            Ok(r) => {
+                fill(&mut row, &r.summary, &wall.wall, topo);
+                let blocks = r
+                    .summary
+                    .blocks
+                    .iter()
+                    .map(|b| BlockRow {
+                        case: id,
+                        block: b.name.clone(),
+                        max_abs_u_m: b.max_abs_displacement_m,
+                        final_u_m: b.final_displacement_m,
+                        fell: b.fell,
+                    })
+                    .collect();
+                (row, blocks)
+            }
+            Err(e) => {
+                row.error = Some(e.to_string());
+                (row, Vec::new())
+            }
+        }
+    }
+
+    /// Runs every case not in `done` in parallel (on the current rayon pool), handing each
+    /// result to `sink` as it finishes (on a writer thread, one result at a time); stops early
+    /// when `sink` fails.
+    pub fn run_cases(
+        &self,
+        done: &std::collections::HashSet<usize>,
+        mut sink: impl FnMut(CaseRow, Vec<BlockRow>) -> Result<(), Error> + Send,
+    ) -> Result<(), Error> {
+        use std::sync::atomic::{AtomicBool, Ordering};
+        let pending: Vec<usize> = (0..self.len()).filter(|i| !done.contains(i)).collect();
+        let stop = AtomicBool::new(false);
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::scope(|scope| {
+            let stop = &stop;
+            let writer = scope.spawn(move || {
+                for (row, blocks) in rx {
+                    if let Err(e) = sink(row, blocks) {
+                        stop.store(true, Ordering::Relaxed);
+                        return Err(e);
+                    }
+                }
+                Ok(())
+            });
+            // On the calling thread, so that a pool the caller installed is the one used.
+            pending.par_iter().for_each_with(tx, |tx, &id| {
+                if !stop.load(Ordering::Relaxed) {
+                    let _ = tx.send(self.run_case(id));
+                }
+            });
+            writer.join().expect("the writer thread does not panic")
+        })
+    }
+}
+
+/// A friction coefficient drawn around `mean` and rounded to [`FRICTION_STEP`], redrawn until it
+/// lies in (0, 2].
+fn draw(rng: &mut Rng, mean: f64, cov: f64, distribution: Distribution) -> Q {
+    let steps = loop {
+        let x = match distribution {
+            Distribution::Normal => mean * (1.0 + cov * rng.normal()),
+            Distribution::Lognormal => {
+                let s2 = (1.0 + cov * cov).ln();
+                (mean.ln() - 0.5 * s2 + s2.sqrt() * rng.normal()).exp()
+            }
+        };
+        let steps = (x / FRICTION_STEP).round();
+        if steps >= 1.0 && steps * FRICTION_STEP <= 2.0 {
+            break steps as i64;
+        }
+    };
+    Q::frac(steps, 10_000)
+}
+
+fn resolve_wall(source: &WallSource, base: &Path, hash: &mut u64) -> Result<SweepWall, Error> {
+    match source {
+        WallSource::File {
+            path,
+            friction,
+            label,
+        } => {
+            let file: PathBuf = base.join(path);
+            let text = std::fs::read_to_string(&file).map_err(io(&file))?;
+            *hash = fnv(*hash, text.as_bytes());
+            let mut d = crate::wall::parse_description(&text).map_err(|source| Error::Wall {
+                path: file.clone(),
+                source,
+            })?;
+            if let Some(mu) = friction {
+                d.friction = *mu;
+                d.joint_friction.clear();
+            }
+            let wall = Wall::from_description(&d).map_err(|source| Error::Wall {
+                path: file.clone(),
+                source,
+            })?;
+            let topology = Topology::new(&wall).map_err(|source| Error::Wall {
+                path: file.clone(),
+                source,
+            })?;
+            let stem = file
+                .file_stem()
+                .map_or_else(|| path.clone(), |s| s.to_string_lossy().into_owned());
+            let label = label.clone().unwrap_or_else(|| match friction {
+                Some(mu) => format!("{stem} mu={mu}"),
+                None => stem,
+            });
+            Ok(SweepWall {
+                label,
+                description: d,
+                wall,
+                topology,
+            })
+        }
+        WallSource::RunningBond(spec) => {
+            let origin = PathBuf::from(format!("<running bond {} blocks>", spec.block_count()));
+            let err = |source| Error::Wall {
+                path: origin.clone(),
+                source,
+            };
+            let description = spec.description().map_err(err)?;
+            let wall = Wall::from_description(&description).map_err(err)?;
+            let topology = Topology::new(&wall).map_err(err)?;
+            Ok(SweepWall {
+                label: format!("running bond {} blocks", spec.block_count()),
+                description,
+                wall,
+                topology,
+            })
+        }
+    }
+}
+
+fn resolve_motions(
+    set: &MotionSet,
+    base: &Path,
+    origin: &Path,
+    hash: &mut u64,
+) -> Result<Vec<SweepMotion>, Error> {
+    let mut out = Vec::new();
+    match set {
+        MotionSet::Sine {
+            amplitudes,
+            frequencies_hz,
+            duration_s,
+            phase_deg,
+        } => {
+            let freqs = frequencies_hz.values();
+            if amplitudes.is_empty() || freqs.is_empty() {
+                return Err(invalid(
+                    origin,
+                    "Sine: give at least one amplitude and one frequency".into(),
+                ));
+            }
+            for text in amplitudes {
+                let a = parse_acceleration(text)?;
+                for &f in &freqs {
+                    let sine =
+                        Sine::new(a, f, phase_deg.to_radians(), *duration_s).map_err(|source| {
+                            Error::Motion {
+                                path: origin.to_path_buf(),
+                                source,
+                            }
+                        })?;
+                    out.push(SweepMotion {
+                        label: format!("sine {:.0} gal {f} Hz", a * 100.0),
+                        motion: Motion::Sine(sine),
+                        duration_s: *duration_s,
+                        amplitude_m_s2: Some(a),
+                        frequency_hz: Some(f),
+                        record: None,
+                        scale: None,
+                        pga_m_s2: a.abs(),
+                    });
+                }
+            }
+        }
+        MotionSet::Records { files, scales, pga } => {
+            if files.is_empty() || scales.is_empty() == pga.is_empty() {
+                return Err(invalid(
+                    origin,
+                    "Records: give at least one file, and either `scales` or `pga` (not both)"
+                        .into(),
+                ));
+            }
+            let targets: Vec<f64> = pga
+                .iter()
+                .map(|t| parse_acceleration(t))
+                .collect::<Result<_, _>>()?;
+            for f in files {
+                let file = base.join(f);
+                let bytes = std::fs::read(&file).map_err(io(&file))?;
+                *hash = fnv(*hash, &bytes);
+                let record = read_record(&file, None, &ReadOptions::default())?;
+                let peak = record.pga_m_s2();
+                if peak == 0.0 {
+                    return Err(invalid(&file, "the record is all zeros".into()));
+                }
+                let name = file
+                    .file_stem()
+                    .map_or_else(|| f.clone(), |s| s.to_string_lossy().into_owned());
+                let factors: Vec<f64> = if scales.is_empty() {
+                    targets.iter().map(|t| t / peak).collect()
+                } else {
+                    scales.clone()
+                };
+                for (k, &factor) in factors.iter().enumerate() {
+                    if !(factor.is_finite() && factor > 0.0) {
+                        return Err(invalid(
+                            origin,
+                            format!("scale factor {factor}: it must be positive"),
+                        ));
+                    }
+                    let scaled = record.scaled(factor);
+                    let label = if scales.is_empty() {
+                        format!("{name} pga {}", pga[k])
+                    } else {
+                        format!("{name} x{factor}")
+                    };
+                    out.push(SweepMotion {
+                        label,
+                        duration_s: scaled.duration_s(),
+                        pga_m_s2: scaled.pga_m_s2(),
+                        motion: Motion::Record(scaled),
+                        amplitude_m_s2: None,
+                        frequency_hz: None,
+                        record: Some(name.clone()),
+                        scale: Some(factor),
+                    });
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The summary numbers of a case row: maxima over blocks and joints, separations, collapse.
+fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
+    let (k, max) = s
+        .blocks
+        .iter()
+        .enumerate()
+        .fold((0, 0.0f64), |(k, m), (i, b)| {
+            if b.max_abs_displacement_m > m {
+                (i, b.max_abs_displacement_m)
+            } else {
+                (k, m)
+            }
+        });
+    row.max_abs_u_m = max;
+    row.max_abs_u_block = s.blocks.get(k).map_or_else(String::new, |b| b.name.clone());
+    row.residual_u_m = s
+        .blocks
+        .iter()
+        .filter(|b| !b.fell)
+        .map(|b| b.final_displacement_m.abs())
+        .fold(0.0, f64::max);
+    row.max_rel_u_m = s
+        .joints
+        .iter()
+        .filter(|j| j.lower != "ground")
+        .map(|j| j.max_abs_relative_displacement_m)
+        .fold(0.0, f64::max);
+    // Final opening of each vertical joint: how far its faces moved apart.
+    let mut widest = 0.0f64;
+    let mut opened = 0;
+    for j in &topo.joints {
+        let (l, r) = (j.left.0, j.right.0);
+        if s.blocks[l].fell || s.blocks[r].fell {
+            continue;
+        }
+        let opening = s.blocks[r].final_displacement_m - s.blocks[l].final_displacement_m;
+        widest = widest.max(opening);
+        opened += usize::from(opening > store::OPEN_JOINT_M);
+    }
+    row.max_opening_m = widest;
+    row.open_joints = opened;
+    row.impacts = s.impacts;
+    row.events = s.stats.events;
+    row.blocks = wall.blocks.len();
+    if let Some(c) = &s.collapse {
+        row.collapsed = true;
+        row.collapse_time_s = Some(c.time_s);
+        row.collapse_block = Some(c.block.clone());
+    }
+}

@@ -1,0 +1,428 @@
+//! A sweep's files: `cases.csv` (one row per case), `blocks.csv` (one row per case and block),
+//! `manifest.json` (what sweep they belong to). Rows are appended and flushed as cases finish, so
+//! an interrupted sweep keeps every finished case; a resumed one reads them back and runs the
+//! rest. At the end both tables are rewritten in case order.
+
+use super::Sweep;
+use crate::error::Error;
+use std::collections::{HashMap, HashSet};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A vertical joint counts as opened when its faces end further apart than this (m).
+pub const OPEN_JOINT_M: f64 = 1e-3;
+
+/// One case: its inputs and what the run gave.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CaseRow {
+    /// Case number (wall-major, then motion, then sample).
+    pub case: usize,
+    /// Wall label.
+    pub wall: String,
+    /// Motion label.
+    pub motion: String,
+    /// Sine amplitude (gal).
+    pub amplitude_gal: Option<f64>,
+    /// Sine frequency (Hz).
+    pub frequency_hz: Option<f64>,
+    /// Record label.
+    pub record: Option<String>,
+    /// Record scale factor.
+    pub scale: Option<f64>,
+    /// Peak ground acceleration (gal).
+    pub pga_gal: f64,
+    /// Friction sample (0 for nominal friction).
+    pub sample: usize,
+    /// Number of blocks.
+    pub blocks: usize,
+    /// Largest |u| of any block (m).
+    pub max_abs_u_m: f64,
+    /// The block that reached it.
+    pub max_abs_u_block: String,
+    /// Largest |final u| of a block still standing (m).
+    pub residual_u_m: f64,
+    /// Largest |relative displacement| at a joint between two blocks (m): the ground joints
+    /// are the blocks' own u.
+    pub max_rel_u_m: f64,
+    /// Widest final opening of a vertical joint (m).
+    pub max_opening_m: f64,
+    /// Vertical joints that end open by more than [`OPEN_JOINT_M`].
+    pub open_joints: usize,
+    /// Impacts.
+    pub impacts: u64,
+    /// Events.
+    pub events: u64,
+    /// A block fell.
+    pub collapsed: bool,
+    /// When (s).
+    pub collapse_time_s: Option<f64>,
+    /// Which block.
+    pub collapse_block: Option<String>,
+    /// CPU time of the run (s).
+    pub cpu_s: f64,
+    /// Why the run failed, if it did.
+    pub error: Option<String>,
+}
+
+/// One block of one case.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockRow {
+    /// Case number.
+    pub case: usize,
+    /// Block name.
+    pub block: String,
+    /// Largest |u| (m).
+    pub max_abs_u_m: f64,
+    /// Final u (m).
+    pub final_u_m: f64,
+    /// It fell.
+    pub fell: bool,
+}
+
+/// Columns of `cases.csv`.
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,collapsed,collapse_time_s,collapse_block,cpu_s,error";
+
+/// Columns of `blocks.csv`.
+pub const BLOCKS_HEADER: &str = "case,block,max_abs_u_m,final_u_m,fell";
+
+/// Text fields never hold the CSV's separators.
+fn clean(s: &str) -> String {
+    s.replace([',', '\n', '\r', '"'], ";")
+}
+
+fn opt<T: std::fmt::Display>(x: &Option<T>) -> String {
+    x.as_ref().map_or_else(String::new, |v| v.to_string())
+}
+
+impl CaseRow {
+    /// The row as CSV (no newline).
+    pub fn to_csv(&self) -> String {
+        [
+            self.case.to_string(),
+            clean(&self.wall),
+            clean(&self.motion),
+            opt(&self.amplitude_gal),
+            opt(&self.frequency_hz),
+            opt(&self.record.as_deref().map(clean)),
+            opt(&self.scale),
+            self.pga_gal.to_string(),
+            self.sample.to_string(),
+            self.blocks.to_string(),
+            format!("{:e}", self.max_abs_u_m),
+            clean(&self.max_abs_u_block),
+            format!("{:e}", self.residual_u_m),
+            format!("{:e}", self.max_rel_u_m),
+            format!("{:e}", self.max_opening_m),
+            self.open_joints.to_string(),
+            self.impacts.to_string(),
+            self.events.to_string(),
+            self.collapsed.to_string(),
+            opt(&self.collapse_time_s),
+            opt(&self.collapse_block.as_deref().map(clean)),
+            format!("{:e}", self.cpu_s),
+            opt(&self.error.as_deref().map(clean)),
+        ]
+        .join(",")
+    }
+
+    /// Reads a row written by [`CaseRow::to_csv`].
+    pub fn from_csv(line: &str) -> Result<CaseRow, String> {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != 23 {
+            return Err(format!("expected 23 fields, found {}", f.len()));
+        }
+        let num = |i: usize| -> Result<f64, String> {
+            f[i].parse()
+                .map_err(|_| format!("field {} `{}` is not a number", i + 1, f[i]))
+        };
+        let int = |i: usize| -> Result<u64, String> {
+            f[i].parse()
+                .map_err(|_| format!("field {} `{}` is not a whole number", i + 1, f[i]))
+        };
+        let some_num = |i: usize| -> Result<Option<f64>, String> {
+            if f[i].is_empty() {
+                Ok(None)
+            } else {
+                num(i).map(Some)
+            }
+        };
+        let some_text = |i: usize| (!f[i].is_empty()).then(|| f[i].to_string());
+        Ok(CaseRow {
+            case: int(0)? as usize,
+            wall: f[1].into(),
+            motion: f[2].into(),
+            amplitude_gal: some_num(3)?,
+            frequency_hz: some_num(4)?,
+            record: some_text(5),
+            scale: some_num(6)?,
+            pga_gal: num(7)?,
+            sample: int(8)? as usize,
+            blocks: int(9)? as usize,
+            max_abs_u_m: num(10)?,
+            max_abs_u_block: f[11].into(),
+            residual_u_m: num(12)?,
+            max_rel_u_m: num(13)?,
+            max_opening_m: num(14)?,
+            open_joints: int(15)? as usize,
+            impacts: int(16)?,
+            events: int(17)?,
+            collapsed: match f[18] {
+                "true" => true,
+                "false" => false,
+                other => return Err(format!("field 19 `{other}` must be true or false")),
+            },
+            collapse_time_s: some_num(19)?,
+            collapse_block: some_text(20),
+            cpu_s: num(21)?,
+            error: some_text(22),
+        })
+    }
+}
+
+impl BlockRow {
+    /// The row as CSV (no newline).
+    pub fn to_csv(&self) -> String {
+        format!(
+            "{},{},{:e},{:e},{}",
+            self.case,
+            clean(&self.block),
+            self.max_abs_u_m,
+            self.final_u_m,
+            self.fell
+        )
+    }
+
+    /// Reads a row written by [`BlockRow::to_csv`].
+    pub fn from_csv(line: &str) -> Result<BlockRow, String> {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != 5 {
+            return Err(format!("expected 5 fields, found {}", f.len()));
+        }
+        let num = |i: usize| -> Result<f64, String> {
+            f[i].parse()
+                .map_err(|_| format!("field {} `{}` is not a number", i + 1, f[i]))
+        };
+        Ok(BlockRow {
+            case: f[0]
+                .parse()
+                .map_err(|_| format!("field 1 `{}` is not a case number", f[0]))?,
+            block: f[1].into(),
+            max_abs_u_m: num(2)?,
+            final_u_m: num(3)?,
+            fell: f[4] == "true",
+        })
+    }
+}
+
+/// What to do with results already in the output directory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Existing {
+    /// Refuse to touch them (the default: never overwrite a finished study by accident).
+    Refuse,
+    /// Keep the finished cases and run the rest (the sweep must be the same).
+    Resume,
+    /// Start again.
+    Overwrite,
+}
+
+/// The open files of a running sweep.
+pub struct Store {
+    dir: PathBuf,
+    cases: std::fs::File,
+    blocks: std::fs::File,
+    /// Rows so far (read back when resuming, then appended).
+    pub rows: Vec<CaseRow>,
+    /// Block rows so far.
+    pub block_rows: Vec<BlockRow>,
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+fn table_error(path: &Path, line: usize, message: String) -> Error {
+    Error::Table {
+        path: path.to_path_buf(),
+        line,
+        message,
+    }
+}
+
+/// Complete lines of a table written by an earlier run: a last line without its newline was cut
+/// off by the interruption and is dropped.
+fn complete_lines(text: &str) -> Vec<&str> {
+    let mut lines: Vec<&str> = text.split_inclusive('\n').collect();
+    if lines.last().is_some_and(|l| !l.ends_with('\n')) {
+        lines.pop();
+    }
+    lines
+        .into_iter()
+        .map(|l| l.trim_end_matches('\n'))
+        .collect()
+}
+
+impl Store {
+    /// Opens the output directory of `sweep`.
+    pub fn open(dir: &Path, sweep: &Sweep, existing: Existing) -> Result<Store, Error> {
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let (cases_path, blocks_path, manifest_path) = (
+            dir.join("cases.csv"),
+            dir.join("blocks.csv"),
+            dir.join("manifest.json"),
+        );
+        let mut rows = Vec::new();
+        let mut block_rows = Vec::new();
+        if cases_path.exists() {
+            match existing {
+                Existing::Refuse => {
+                    return Err(table_error(
+                        &cases_path,
+                        1,
+                        "results of a sweep are already here: pass --resume to finish it or --fresh to start again".into(),
+                    ))
+                }
+                Existing::Overwrite => {}
+                Existing::Resume => {
+                    let manifest =
+                        std::fs::read_to_string(&manifest_path).map_err(io(&manifest_path))?;
+                    let found: serde_json::Value = serde_json::from_str(&manifest)
+                        .map_err(|e| table_error(&manifest_path, e.line(), e.to_string()))?;
+                    if found["fingerprint"] != sweep.fingerprint.as_str() {
+                        return Err(table_error(
+                            &manifest_path,
+                            1,
+                            "these results belong to another sweep (the sweep file, a wall or a record changed): pass --fresh to start again".into(),
+                        ));
+                    }
+                    rows = read_table(&cases_path, CASES_HEADER, CaseRow::from_csv)?;
+                    let done: HashSet<usize> = rows.iter().map(|r| r.case).collect();
+                    block_rows = read_table(&blocks_path, BLOCKS_HEADER, BlockRow::from_csv)?;
+                    // Block rows are written before their case row: drop those of unfinished cases.
+                    block_rows.retain(|b| done.contains(&b.case));
+                }
+            }
+        }
+        let manifest = serde_json::json!({
+            "name": sweep.name,
+            "fingerprint": sweep.fingerprint,
+            "cases": sweep.len(),
+            "walls": sweep.walls.iter().map(|w| w.label.clone()).collect::<Vec<_>>(),
+            "motions": sweep.motions.len(),
+            "samples": sweep.samples(),
+        });
+        std::fs::write(
+            &manifest_path,
+            serde_json::to_string_pretty(&manifest).expect("json") + "\n",
+        )
+        .map_err(io(&manifest_path))?;
+        let cases = rewrite(&cases_path, CASES_HEADER, rows.iter().map(CaseRow::to_csv))?;
+        let blocks = rewrite(
+            &blocks_path,
+            BLOCKS_HEADER,
+            block_rows.iter().map(BlockRow::to_csv),
+        )?;
+        Ok(Store {
+            dir: dir.to_path_buf(),
+            cases,
+            blocks,
+            rows,
+            block_rows,
+        })
+    }
+
+    /// Cases already finished.
+    pub fn done(&self) -> HashSet<usize> {
+        self.rows.iter().map(|r| r.case).collect()
+    }
+
+    /// Stores a finished case: its block rows first, then the case row that marks it done.
+    pub fn append(&mut self, row: CaseRow, blocks: Vec<BlockRow>) -> Result<(), Error> {
+        let bpath = self.dir.join("blocks.csv");
+        let mut text = String::new();
+        for b in &blocks {
+            text.push_str(&b.to_csv());
+            text.push('\n');
+        }
+        self.blocks.write_all(text.as_bytes()).map_err(io(&bpath))?;
+        self.blocks.flush().map_err(io(&bpath))?;
+        let cpath = self.dir.join("cases.csv");
+        writeln!(self.cases, "{}", row.to_csv()).map_err(io(&cpath))?;
+        self.cases.flush().map_err(io(&cpath))?;
+        self.rows.push(row);
+        self.block_rows.extend(blocks);
+        Ok(())
+    }
+
+    /// Rewrites both tables in case order and returns the rows.
+    pub fn finish(mut self) -> Result<(Vec<CaseRow>, Vec<BlockRow>), Error> {
+        self.rows.sort_by_key(|r| r.case);
+        let order: HashMap<usize, usize> = self
+            .rows
+            .iter()
+            .enumerate()
+            .map(|(k, r)| (r.case, k))
+            .collect();
+        self.block_rows.sort_by_key(|b| order[&b.case]);
+        rewrite(
+            &self.dir.join("cases.csv"),
+            CASES_HEADER,
+            self.rows.iter().map(CaseRow::to_csv),
+        )?;
+        rewrite(
+            &self.dir.join("blocks.csv"),
+            BLOCKS_HEADER,
+            self.block_rows.iter().map(BlockRow::to_csv),
+        )?;
+        Ok((self.rows, self.block_rows))
+    }
+}
+
+/// Writes a table afresh (through a temporary file, so an interruption never leaves half of
+/// it) and returns it open for appending.
+fn rewrite(
+    path: &Path,
+    header: &str,
+    lines: impl Iterator<Item = String>,
+) -> Result<std::fs::File, Error> {
+    let mut text = format!("{header}\n");
+    for l in lines {
+        text.push_str(&l);
+        text.push('\n');
+    }
+    let tmp = path.with_extension("csv.tmp");
+    std::fs::write(&tmp, text).map_err(io(&tmp))?;
+    std::fs::rename(&tmp, path).map_err(io(path))?;
+    std::fs::OpenOptions::new()
+        .append(true)
+        .open(path)
+        .map_err(io(path))
+}
+
+/// Reads a table written by a sweep.
+pub fn read_table<T>(
+    path: &Path,
+    header: &str,
+    parse: impl Fn(&str) -> Result<T, String>,
+) -> Result<Vec<T>, Error> {
+    let text = std::fs::read_to_string(path).map_err(io(path))?;
+    let lines = complete_lines(&text);
+    match lines.first() {
+        Some(h) if *h == header => {}
+        _ => {
+            return Err(table_error(
+                path,
+                1,
+                format!("expected the header `{header}`"),
+            ))
+        }
+    }
+    lines
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(k, l)| parse(l).map_err(|m| table_error(path, k + 1, m)))
+        .collect()
+}
