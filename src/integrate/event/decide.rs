@@ -459,6 +459,26 @@ impl Problem {
             Some((cut + e) / m)
         };
         let mut lambda = ratio(&allowed)?;
+        // Start from the best single block as well: one block breaking away is the usual
+        // answer, and starting at it the loop usually needs one cut to confirm it instead of
+        // several to find it (each cut costs a maximum flow over the whole problem).
+        let mut incident = vec![Q::zero(); n];
+        for (i, j, f) in &self.friction {
+            incident[*i] = &incident[*i] + f;
+            if let End::Node(j) = j {
+                incident[*j] = &incident[*j] + f;
+            }
+        }
+        let mut dragged = vec![false; n];
+        for &(a, b) in &implies {
+            dragged[a] |= a != b;
+        }
+        for i in (0..n).filter(|&i| allowed[i] && !dragged[i]) {
+            let r = (&incident[i] + &external[i]) / &self.mass[i];
+            if r < lambda {
+                lambda = r;
+            }
+        }
         loop {
             let weight: Vec<Q> = (0..n)
                 .map(|i| &external[i] - &self.mass[i] * &lambda)

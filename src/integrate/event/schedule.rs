@@ -348,6 +348,9 @@ impl Engine<'_> {
         let tol = self.len_tol(r0, self.cluster_disp(a));
         let mut bounds = Bounds::default();
         let mut slides_on = false;
+        // The sign of r1 = v_b - v_a that the friction forces assume (from the joints' recorded
+        // directions): the pair meets when r1 leaves it, even if rounding put r1 a hair past 0.
+        let mut assumed = 0.0;
         let in_b = |x: usize| self.of[x] == b;
         for &i in &self.clusters[a].blocks {
             for &s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
@@ -359,12 +362,15 @@ impl Engine<'_> {
                 let Some(low) = low else { continue };
                 if up == i && in_b(low) {
                     slides_on = true;
+                    // w = v_up - v_low = -r1.
+                    assumed = -f64::from(self.dir[s.0]);
                     // d = u_up - u_low = (u_ref[up] - u_ref[low]) - r.
                     for th in self.collapse_thresholds(up, low) {
                         bounds.threshold(self.u_ref[up] - self.u_ref[low] - th, r0, tol, s.0);
                     }
                 } else if low == i && in_b(up) {
                     slides_on = true;
+                    assumed = f64::from(self.dir[s.0]);
                     for th in self.collapse_thresholds(up, low) {
                         bounds.threshold(th - (self.u_ref[up] - self.u_ref[low]), r0, tol, s.0);
                     }
@@ -419,7 +425,13 @@ impl Engine<'_> {
             Vec::new()
         };
         if slides_on {
-            let sigma = if r1 != 0.0 { r1.signum() } else { r2.signum() };
+            let sigma = if assumed != 0.0 {
+                assumed
+            } else if r1 != 0.0 {
+                r1.signum()
+            } else {
+                r2.signum()
+            };
             if sigma != 0.0 {
                 let f = |x: f64| sigma * w(x);
                 let df = |x: f64| (sigma * w(x), sigma * r2 * (lt + dl * (x - t0)));

@@ -731,6 +731,8 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
     row.open_joints = opened;
     row.impacts = s.impacts;
     row.events = s.stats.events;
+    row.energy_input_j = s.energy.input_j;
+    row.energy_residual_j = s.energy.residual_j;
     row.blocks = wall.blocks.len();
     if let Some(c) = &s.collapse {
         row.collapsed = true;

@@ -52,6 +52,10 @@ pub struct CaseRow {
     pub impacts: u64,
     /// Events.
     pub events: u64,
+    /// Work of the ground motion on the blocks (J).
+    pub energy_input_j: f64,
+    /// Energy balance residual (J): round-off for the exact integrator, a check on every case.
+    pub energy_residual_j: f64,
     /// A block fell.
     pub collapsed: bool,
     /// When (s).
@@ -80,7 +84,7 @@ pub struct BlockRow {
 }
 
 /// Columns of `cases.csv`.
-pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,collapsed,collapse_time_s,collapse_block,cpu_s,error";
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,cpu_s,error";
 
 /// Columns of `blocks.csv`.
 pub const BLOCKS_HEADER: &str = "case,block,max_abs_u_m,final_u_m,fell";
@@ -116,6 +120,8 @@ impl CaseRow {
             self.open_joints.to_string(),
             self.impacts.to_string(),
             self.events.to_string(),
+            format!("{:e}", self.energy_input_j),
+            format!("{:e}", self.energy_residual_j),
             self.collapsed.to_string(),
             opt(&self.collapse_time_s),
             opt(&self.collapse_block.as_deref().map(clean)),
@@ -128,8 +134,8 @@ impl CaseRow {
     /// Reads a row written by [`CaseRow::to_csv`].
     pub fn from_csv(line: &str) -> Result<CaseRow, String> {
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 23 {
-            return Err(format!("expected 23 fields, found {}", f.len()));
+        if f.len() != 25 {
+            return Err(format!("expected 25 fields, found {}", f.len()));
         }
         let num = |i: usize| -> Result<f64, String> {
             f[i].parse()
@@ -166,15 +172,17 @@ impl CaseRow {
             open_joints: int(15)? as usize,
             impacts: int(16)?,
             events: int(17)?,
-            collapsed: match f[18] {
+            energy_input_j: num(18)?,
+            energy_residual_j: num(19)?,
+            collapsed: match f[20] {
                 "true" => true,
                 "false" => false,
-                other => return Err(format!("field 19 `{other}` must be true or false")),
+                other => return Err(format!("field 21 `{other}` must be true or false")),
             },
-            collapse_time_s: some_num(19)?,
-            collapse_block: some_text(20),
-            cpu_s: num(21)?,
-            error: some_text(22),
+            collapse_time_s: some_num(21)?,
+            collapse_block: some_text(22),
+            cpu_s: num(23)?,
+            error: some_text(24),
         })
     }
 }
