@@ -554,3 +554,63 @@ fn bench_failures_writes_the_panels_and_the_measured_numbers() {
         .unwrap()
         .starts_with("chart,series,x,y\n"));
 }
+
+/// `pirqa draw --run` draws where a run left the blocks: at the end (fallen blocks marked), or
+/// at a time before the first fall; a time outside the run is an error that says so.
+#[test]
+fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
+    let dir = temp_dir("draw-run");
+    let run = dir.join("run");
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--sine",
+        "500gal",
+        "--freq",
+        "0.2",
+        "--duration",
+        "10",
+        "--after-collapse",
+        "continue",
+        "--out",
+        run.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let draw = |extra: &[&str]| {
+        let svg = dir.join("wall.svg");
+        let mut args = vec![
+            "draw",
+            "walls/five-block-variable.ron",
+            "-o",
+            svg.to_str().unwrap(),
+            "--run",
+            run.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let (ok, _, err) = pirqa(&args);
+        (ok, std::fs::read_to_string(&svg).unwrap_or_default(), err)
+    };
+    // B5 falls at 2.7225 s, B3 right after (see docs/paper.md).
+    let (ok, end, err) = draw(&[]);
+    assert!(ok, "{err}");
+    assert!(end.contains("final state, t = 10 s"), "{end}");
+    assert!(end.contains("B5 (fell)") && end.contains("B3 (fell)"));
+    let (ok, before, err) = draw(&["--at", "2.7"]);
+    assert!(ok, "{err}");
+    assert!(before.contains("t = 2.7 s") && !before.contains("(fell)"));
+    let (ok, _, err) = draw(&["--at", "12"]);
+    assert!(
+        !ok && err.contains("outside the run") && err.contains("10 s"),
+        "{err}"
+    );
+    let (ok, _, err) = pirqa(&[
+        "draw",
+        "walls/five-block-uniform.ron",
+        "-o",
+        dir.join("x.svg").to_str().unwrap(),
+        "--at",
+        "1",
+    ]);
+    assert!(!ok && err.contains("--run"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

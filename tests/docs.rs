@@ -1,4 +1,5 @@
-//! Examples in the documentation are tests: every ```ron block in docs/ must parse and check.
+//! Examples in the documentation are tests: every ```ron block in docs/ must parse and check
+//! (walls everywhere, sweep files in docs/sweeps.md, whose paths start in walls/studies/).
 
 use pirqa::{Topology, Wall};
 
@@ -13,6 +14,18 @@ fn ron_examples_in_docs_are_valid_walls() {
         let text = std::fs::read_to_string(&path).unwrap();
         for block in text.split("```ron").skip(1) {
             let body = block.split("```").next().unwrap();
+            if path.ends_with("sweeps.md") {
+                let d = pirqa::study::sweep::parse_description(body)
+                    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                pirqa::study::sweep::Sweep::from_description(
+                    &d,
+                    std::path::Path::new("walls/studies"),
+                    &path,
+                )
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                found += 1;
+                continue;
+            }
             let wall =
                 Wall::from_ron_str(body).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             Topology::new(&wall).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

@@ -370,3 +370,32 @@ fn mirrored_wall_and_motion_give_the_mirrored_answer() {
     }
     assert_eq!(r.summary.impacts, m.summary.impacts);
 }
+
+/// Under a sine, time scales out: with t' = f t the equations of motion of u f^2 / A do not
+/// depend on the frequency (every force is a fixed multiple of g, and the sine's amplitude is
+/// fixed). So each block's max |u| times f^2 is the same at every frequency over the same number
+/// of cycles, impacts and all: the straight lines of slope -2 in the paper's Fig. 3 and 4.
+#[test]
+fn maxima_scale_exactly_as_one_over_frequency_squared() {
+    let variable = load("walls/five-block-variable.ron");
+    let scaled = |f: f64| -> (Vec<f64>, u64) {
+        let r = run(&variable, &sine(4.0, f, 0.0, 10.0 / f), 10.0 / f, None);
+        assert!(r.summary.collapse.is_none());
+        let m = r
+            .summary
+            .blocks
+            .iter()
+            .map(|b| b.max_abs_displacement_m * f * f)
+            .collect();
+        (m, r.summary.impacts)
+    };
+    let (reference, impacts) = scaled(1.0);
+    assert!(impacts > 0, "the case should include impacts");
+    for f in [0.5, 2.0, 3.7, 8.0] {
+        let (m, n) = scaled(f);
+        assert_eq!(n, impacts, "{f} Hz");
+        for (a, b) in m.iter().zip(&reference) {
+            assert!((a - b).abs() <= 1e-13 * b, "{f} Hz: {a:e} vs {b:e}");
+        }
+    }
+}

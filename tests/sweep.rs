@@ -239,3 +239,71 @@ fn the_analysis_reports_collapse_probabilities_and_a_fragility_fit() {
     let fit = &report.results["fragility"][0];
     assert!(fit["median_pga_gal"].as_f64().is_some(), "{fit}");
 }
+
+/// Walls cut into three block counts get the block-count figure; its numbers are the medians
+/// of the rows, in block-count order; one intensity gets no IDA or fragility chart.
+#[test]
+fn walls_in_several_block_counts_get_the_block_count_analysis() {
+    let bond = |n: usize| {
+        format!(
+            "RunningBond(courses: {n}, blocks_per_course: {n}, width_m: 2.4, height_m: 1.2, \
+             thickness_m: 0.8, density_kg_m3: 2650, friction: 0.3)"
+        )
+    };
+    let text = format!(
+        r#"(version: 1, name: "blocks", walls: [{}, {}, {}],
+            motion: Records(files: ["{EL_CENTRO}"], pga: ["400gal"]),
+            friction: Random(distribution: Lognormal, cov: 0.1, samples: 3, seed: 5))"#,
+        bond(4),
+        bond(2),
+        bond(3)
+    );
+    let s = sweep(&text).unwrap();
+    let rows = run_all(&s, &temp_dir("block-count"), Existing::Refuse);
+    let report = pirqa::study::sweep::analysis::analyse(&s, &rows);
+    let stems: Vec<&str> = report.figures.iter().map(|f| f.0.as_str()).collect();
+    assert_eq!(stems, ["distribution", "block-count"]);
+    let bc = &report.results["block_count"][0];
+    let walls = bc["walls"].as_array().unwrap();
+    let counts: Vec<u64> = walls
+        .iter()
+        .map(|w| w["blocks"].as_u64().unwrap())
+        .collect();
+    assert_eq!(counts, [5, 10, 18]);
+    for w in walls {
+        let mut events: Vec<f64> = rows
+            .iter()
+            .filter(|r| r.blocks as u64 == w["blocks"].as_u64().unwrap())
+            .map(|r| r.events as f64)
+            .collect();
+        events.sort_by(f64::total_cmp);
+        assert_eq!(w["events_p50"].as_f64().unwrap(), events[1]);
+        assert_eq!(w["samples"], 3);
+    }
+    assert!(bc["events_exponent"].as_f64().unwrap().is_finite());
+}
+
+/// Every shipped study loads (its walls, records and friction model) with the number of cases
+/// its comment promises.
+#[test]
+fn every_shipped_study_loads() {
+    let expected = [
+        ("block-count.ron", 5 * 8),
+        ("elcentro-ida.ron", 3 * 11),
+        ("fragility.ron", 6 * 200),
+        ("friction-mc.ron", 1000),
+        ("paper-fig3-4.ron", 3 * 4 * 100),
+    ];
+    let mut found: Vec<String> = std::fs::read_dir("walls/studies")
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    found.sort();
+    let names: Vec<&str> = expected.iter().map(|(n, _)| *n).collect();
+    assert_eq!(found, names, "a study was added or removed: list it here");
+    for (name, cases) in expected {
+        let s = Sweep::load(&Path::new("walls/studies").join(name))
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(s.len(), cases, "{name}");
+    }
+}

@@ -2,6 +2,7 @@
 
 use super::{print_out, write_file};
 use pirqa::plot::{draw_wall, WallDrawing};
+use pirqa::response::saved::state_at;
 use pirqa::topology;
 use std::fmt::Write;
 use std::path::Path;
@@ -82,15 +83,47 @@ pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
     Ok(())
 }
 
-pub fn draw(path: &Path, output: &Path, graph: bool) -> Result<(), pirqa::Error> {
+/// Draws the wall as built, or where the run saved in a directory left it (at its end or at a
+/// time).
+pub fn draw(
+    path: &Path,
+    output: &Path,
+    graph: bool,
+    run: Option<(&Path, Option<f64>)>,
+) -> Result<(), pirqa::Error> {
     let (wall, topo) = topology::load(path)?;
-    let drawing = WallDrawing {
+    let mut drawing = WallDrawing {
         title: wall.name.clone(),
         friction_labels: true,
         support_graph: graph,
         note: Some(format!("pirqa draw {}", path.display())),
         ..WallDrawing::default()
     };
+    if let Some((dir, at_s)) = run {
+        let names: Vec<String> = wall.blocks.iter().map(|b| b.name.clone()).collect();
+        let state = state_at(dir, &names, at_s)?;
+        let fell = state.fallen.iter().filter(|&&f| f).count();
+        drawing.title = match at_s {
+            None => format!("{}: final state, t = {} s", wall.name, state.time_s),
+            Some(_) => format!("{}: t = {} s", wall.name, state.time_s),
+        };
+        drawing.note = Some(format!(
+            "{}; largest |u| {:.1} mm; {fell} fallen; from {}",
+            if at_s.is_some() {
+                "history sample"
+            } else {
+                "exact final displacements"
+            },
+            state
+                .displacement_m
+                .iter()
+                .fold(0.0f64, |m, u| m.max(u.abs()))
+                * 1e3,
+            dir.display()
+        ));
+        drawing.displacement_m = Some(state.displacement_m);
+        drawing.fallen = state.fallen;
+    }
     write_file(output, &draw_wall(&wall, &topo, &drawing))?;
     eprintln!("wrote {}", output.display());
     Ok(())

@@ -41,6 +41,13 @@ enum Command {
         /// Also draw the support graph (block to support) and the vertical joints.
         #[arg(long)]
         graph: bool,
+        /// Draw the blocks where a run left them: the output directory of `pirqa run` on this
+        /// wall (final state, fallen blocks marked).
+        #[arg(long, value_name = "DIR")]
+        run: Option<PathBuf>,
+        /// With --run: draw the state at this time (s), the last history sample at or before it.
+        #[arg(long, value_name = "T", requires = "run")]
+        at: Option<f64>,
     },
     /// Simulate a wall under a ground motion with the exact event-driven integrator.
     Run(Box<run::RunArgs>),
@@ -68,7 +75,9 @@ pub fn run() -> Result<(), pirqa::Error> {
             wall,
             output,
             graph,
-        } => check::draw(&wall, &output, graph),
+            run,
+            at,
+        } => check::draw(&wall, &output, graph, run.as_deref().map(|d| (d, at))),
         Command::Run(args) => run::run(&args),
         Command::Motion(cmd) => motion::run(&cmd),
         Command::Bench(cmd) => bench::run(&cmd),

@@ -2,6 +2,8 @@
 //! displacements and velocities (`history.csv`), and the event log (`events.jsonl`). Integrators
 //! feed a [`Recorder`]; nothing here knows how the numbers were computed.
 
+pub mod saved;
+
 use crate::topology::{Base, Topology};
 use crate::wall::Wall;
 use serde::Serialize;

@@ -82,6 +82,23 @@ pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
     ((centre - half).max(0.0), (centre + half).min(1.0))
 }
 
+/// The exponent k of the power law y = c x^k that fits positive points best in the least-squares
+/// sense on logarithms (how a cost grows with size). `None` for fewer than two distinct x.
+pub fn power_law_exponent(points: &[(f64, f64)]) -> Option<f64> {
+    let logs: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.0 > 0.0 && p.1 > 0.0)
+        .map(|p| (p.0.ln(), p.1.ln()))
+        .collect();
+    let n = logs.len() as f64;
+    let (mx, my) = logs
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
+    let sxx: f64 = logs.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    let sxy: f64 = logs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
 /// A lognormal fragility curve: P(collapse | x) = Phi(ln(x / median) / beta).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Fragility {
@@ -197,6 +214,18 @@ mod tests {
         );
         let (lo, hi) = wilson(0, 10, 1.959_963_984_540_054);
         assert!(lo == 0.0 && (hi - 0.2775).abs() < 5e-5, "{hi}");
+    }
+
+    #[test]
+    fn power_laws_give_back_their_exponent() {
+        let pts: Vec<(f64, f64)> = [5.0, 18.0, 105.0, 976.0]
+            .iter()
+            .map(|&x: &f64| (x, 0.3 * x.powf(1.3)))
+            .collect();
+        let k = power_law_exponent(&pts).unwrap();
+        assert!((k - 1.3).abs() < 1e-14, "{k}");
+        assert_eq!(power_law_exponent(&[(2.0, 1.0), (2.0, 3.0)]), None);
+        assert_eq!(power_law_exponent(&[]), None);
     }
 
     #[test]

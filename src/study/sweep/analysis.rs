@@ -1,12 +1,13 @@
 //! What a sweep's rows show: response spectra and collapse maps for sine grids, incremental
 //! dynamic analysis for scaled records, and, with random friction, the distribution of the
 //! maximum displacement, the probability of collapse with its confidence interval, and
-//! lognormal fragility curves.
+//! lognormal fragility curves; across walls cut into different numbers of blocks, how response
+//! and cost change with the block count.
 
 use super::store::CaseRow;
 use super::{FrictionModel, Sweep};
 use crate::plot::chart::{Chart, Corner, Series};
-use crate::study::stats::{fit_fragility, quantile, wilson};
+use crate::study::stats::{fit_fragility, power_law_exponent, quantile, wilson};
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 
@@ -36,9 +37,7 @@ impl Cell<'_> {
     }
     /// Median over samples of a quantity (the value itself for nominal friction).
     fn median(&self, f: impl Fn(&CaseRow) -> f64) -> Option<f64> {
-        let mut v: Vec<f64> = self.ok().map(|r| f(r)).collect();
-        v.sort_by(f64::total_cmp);
-        quantile(&v, 0.5)
+        quantile(&sorted(self, f), 0.5)
     }
     fn collapses(&self) -> (u64, u64) {
         let n = self.ok().count() as u64;
@@ -105,7 +104,8 @@ pub fn analyse(sweep: &Sweep, rows: &[CaseRow]) -> Report {
     if sine {
         figures.push(("spectra".into(), spectra(sweep, &cells), 2));
         figures.push(("collapse-map".into(), collapse_map(sweep, &cells), 2));
-    } else {
+    } else if sweep.motions.len() > 1 {
+        // Intensity against response needs at least two intensities.
         let (charts, ida) = ida(sweep, &cells);
         figures.push(("ida".into(), charts, 2));
         results.insert("ida".into(), ida);
@@ -114,9 +114,15 @@ pub fn analyse(sweep: &Sweep, rows: &[CaseRow]) -> Report {
         let (charts, numbers) = distributions(sweep, &cells);
         figures.push(("distribution".into(), charts, 2));
         results.insert("levels".into(), numbers);
-        let (charts, fits) = fragility(sweep, &cells);
-        figures.push(("fragility".into(), charts, 2));
-        results.insert("fragility".into(), fits);
+        if sweep.motions.len() > 1 {
+            let (charts, fits) = fragility(sweep, &cells);
+            figures.push(("fragility".into(), charts, 2));
+            results.insert("fragility".into(), fits);
+        }
+    }
+    if let Some((charts, numbers)) = block_count(sweep, &cells) {
+        figures.push(("block-count".into(), charts, 2));
+        results.insert("block_count".into(), numbers);
     }
     Report {
         figures,
@@ -291,8 +297,7 @@ fn distributions(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<
         };
         let mut series = Vec::new();
         for (k, c) in cs.iter().enumerate() {
-            let mut v: Vec<f64> = c.ok().map(|r| r.max_abs_u_m).collect();
-            v.sort_by(f64::total_cmp);
+            let v = sorted(c, |r| r.max_abs_u_m);
             let (hits, n) = c.collapses();
             let (lo, hi) = wilson(hits, n, Z95);
             numbers.push(json!({
@@ -426,4 +431,150 @@ fn fragility(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Char
         });
     }
     (charts, Value::Array(fits))
+}
+
+/// Sorted values of a quantity over a cell's successful samples.
+fn sorted(c: &Cell, f: impl Fn(&CaseRow) -> f64) -> Vec<f64> {
+    let mut v: Vec<f64> = c.ok().map(|r| f(r)).collect();
+    v.sort_by(f64::total_cmp);
+    v
+}
+
+/// When the walls come in at least three block counts (one wall cut ever finer): per motion,
+/// the response (median and 5-95 % band over friction samples), the probability of collapse with
+/// its 95 % interval, and the cost (CPU time and events per case, CPU time per event) against
+/// the number of blocks, with the power-law exponents of the cost.
+fn block_count(
+    sweep: &Sweep,
+    cells: &BTreeMap<(usize, usize), Cell>,
+) -> Option<(Vec<Chart>, Value)> {
+    let counts: std::collections::BTreeSet<usize> =
+        sweep.walls.iter().map(|w| w.wall.blocks.len()).collect();
+    if counts.len() < 3 {
+        return None;
+    }
+    let panel = |title: &str, y: &str, log_y: bool| Chart {
+        title: title.into(),
+        x_label: "blocks in the wall".into(),
+        y_label: y.into(),
+        log_x: true,
+        log_y,
+        legend: Corner::UpperLeft,
+        ..Default::default()
+    };
+    let mut charts = vec![
+        panel("maximum displacement", "max |u| of any block (m)", true),
+        panel(
+            "widest final opening of a vertical joint",
+            "opening (m)",
+            false,
+        ),
+        panel(
+            "probability of collapse (95 % intervals dashed)",
+            "probability",
+            false,
+        ),
+        panel("events per case", "events", true),
+        panel("CPU time per case", "CPU time (s)", true),
+        panel("CPU time per event", "CPU time per event (s)", true),
+    ];
+    let mut numbers = Vec::new();
+    for (m, motion) in sweep.motions.iter().enumerate().take(4) {
+        let mut by_count: Vec<&Cell> = cells
+            .values()
+            .filter(|c| sweep.case(c.first().case).1 == m)
+            .collect();
+        by_count.sort_by_key(|c| c.first().blocks);
+        let x = |c: &Cell| c.first().blocks as f64;
+        let band = |f: &dyn Fn(&CaseRow) -> f64, p: f64| -> Vec<(f64, f64)> {
+            by_count
+                .iter()
+                .filter_map(|c| Some((x(c), quantile(&sorted(c, f), p)?)))
+                .collect()
+        };
+        let label = |what: &str| {
+            if sweep.motions.len() > 1 {
+                format!("{}: {what}", motion.label)
+            } else {
+                what.to_string()
+            }
+        };
+        let mut add = |panel: usize, f: &dyn Fn(&CaseRow) -> f64, with_band: bool| {
+            let s = &mut charts[panel].series;
+            s.push(line(label("median"), m, band(f, 0.5)));
+            if with_band && sweep.samples() > 1 {
+                for p in [0.05, 0.95] {
+                    s.push(Series {
+                        dashed: true,
+                        ..line(
+                            if p < 0.5 {
+                                label("5 % and 95 %")
+                            } else {
+                                String::new()
+                            },
+                            m,
+                            band(f, p),
+                        )
+                    });
+                }
+            }
+        };
+        add(0, &|r| r.max_abs_u_m, true);
+        add(1, &|r| r.max_opening_m, true);
+        add(3, &|r| r.events as f64, false);
+        add(4, &|r| r.cpu_s, false);
+        add(5, &|r| r.cpu_s / r.events.max(1) as f64, false);
+        let p: Vec<(f64, f64, f64, f64)> = by_count
+            .iter()
+            .filter_map(|c| {
+                let (k, n) = c.collapses();
+                let (lo, hi) = wilson(k, n, Z95);
+                (n > 0).then(|| (x(c), k as f64 / n as f64, lo, hi))
+            })
+            .collect();
+        let s = &mut charts[2].series;
+        s.push(line(
+            label("observed"),
+            m,
+            p.iter().map(|q| (q.0, q.1)).collect(),
+        ));
+        for hi in [false, true] {
+            s.push(Series {
+                dashed: true,
+                ..line(
+                    String::new(),
+                    m,
+                    p.iter()
+                        .map(|q| (q.0, if hi { q.3 } else { q.2 }))
+                        .collect(),
+                )
+            });
+        }
+        let cpu = band(&|r| r.cpu_s, 0.5);
+        let events = band(&|r| r.events as f64, 0.5);
+        numbers.push(json!({
+            "motion": motion.label,
+            "cpu_exponent": power_law_exponent(&cpu),
+            "events_exponent": power_law_exponent(&events),
+            "walls": by_count.iter().map(|c| {
+                let (k, n) = c.collapses();
+                json!({
+                    "wall": sweep.walls[c.wall].label,
+                    "blocks": c.first().blocks,
+                    "samples": n,
+                    "collapses": k,
+                    "p_collapse_ci95": wilson(k, n, Z95),
+                    "max_abs_u_m_p50": c.median(|r| r.max_abs_u_m),
+                    "max_rel_u_m_p50": c.median(|r| r.max_rel_u_m),
+                    "max_opening_m_p50": c.median(|r| r.max_opening_m),
+                    "open_joints_p50": c.median(|r| r.open_joints as f64),
+                    "impacts_p50": c.median(|r| r.impacts as f64),
+                    "events_p50": c.median(|r| r.events as f64),
+                    "cpu_s_p50": c.median(|r| r.cpu_s),
+                    "cpu_s_per_event_p50": c.median(|r| r.cpu_s / r.events.max(1) as f64),
+                })
+            }).collect::<Vec<_>>(),
+        }));
+    }
+    Some((charts, Value::Array(numbers)))
 }

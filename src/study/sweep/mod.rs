@@ -14,6 +14,7 @@ use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
 use crate::response::Summary;
 use crate::rng::Rng;
+use crate::study::clock::ThreadClock;
 use crate::topology::Topology;
 use crate::units::parse_acceleration;
 use crate::wall::{RunningBond, Wall, WallDescription};
@@ -428,14 +429,14 @@ impl Sweep {
         };
         let topo = topology.as_ref().unwrap_or(&wall.topology);
         let settings = Settings::summary_only(motion.duration_s);
-        let start = std::time::Instant::now();
+        let clock = ThreadClock::start();
         let result = EventDriven::default().run(&Scenario {
             wall: &wall.wall,
             topology: topo,
             motion: &motion.motion,
             settings: &settings,
         });
-        let cpu_s = start.elapsed().as_secs_f64();
+        let cpu_s = clock.seconds();
         let mut row = CaseRow {
             case: id,
             wall: wall.label.clone(),

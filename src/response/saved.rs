@@ -1,0 +1,167 @@
+//! Reading a run back from its directory (`summary.json`, `history.csv`, `events.jsonl`): the
+//! state of every block at the end or at a chosen time, to draw it after the fact.
+
+use crate::error::Error;
+use std::path::Path;
+
+/// Where each block of a wall was at one instant of a saved run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SavedState {
+    /// The instant (s): the end of the run, or the last history sample at or before the time asked.
+    pub time_s: f64,
+    /// Displacement of each block relative to the ground (m), in the wall's block order.
+    pub displacement_m: Vec<f64>,
+    /// Blocks that had fallen by then.
+    pub fallen: Vec<bool>,
+}
+
+fn table(path: &Path, line: usize, message: String) -> Error {
+    Error::Table {
+        path: path.to_path_buf(),
+        line,
+        message,
+    }
+}
+
+fn read(path: &Path) -> Result<String, Error> {
+    std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// The state of the blocks `names` in the run saved in `dir`: at the end (`at_s` = `None`,
+/// exact final displacements from summary.json) or at the last history sample at or before
+/// `at_s`. A block the run does not know, or a time outside the run, is an error.
+pub fn state_at(dir: &Path, names: &[String], at_s: Option<f64>) -> Result<SavedState, Error> {
+    let summary_path = dir.join("summary.json");
+    let summary: serde_json::Value = serde_json::from_str(&read(&summary_path)?)
+        .map_err(|e| table(&summary_path, e.line(), format!("not a pirqa summary: {e}")))?;
+    let duration_s = summary["duration_s"].as_f64().ok_or_else(|| {
+        table(
+            &summary_path,
+            1,
+            "no `duration_s`: not a pirqa summary".into(),
+        )
+    })?;
+    let blocks = summary["blocks"].as_array().cloned().unwrap_or_default();
+    let summary_block = |name: &str| {
+        blocks.iter().find(|b| b["name"] == name).ok_or_else(|| {
+            table(
+                &summary_path,
+                1,
+                format!("the run has no block {name}: was it run on this wall?"),
+            )
+        })
+    };
+    let Some(t) = at_s else {
+        let mut state = SavedState {
+            time_s: duration_s,
+            displacement_m: Vec::new(),
+            fallen: Vec::new(),
+        };
+        for name in names {
+            let b = summary_block(name)?;
+            state
+                .displacement_m
+                .push(b["final_displacement_m"].as_f64().ok_or_else(|| {
+                    table(
+                        &summary_path,
+                        1,
+                        format!("block {name} has no final_displacement_m"),
+                    )
+                })?);
+            state.fallen.push(b["fell"].as_bool().unwrap_or(false));
+        }
+        return Ok(state);
+    };
+    if !(0.0..=duration_s).contains(&t) {
+        return Err(table(
+            &summary_path,
+            1,
+            format!("--at {t} s is outside the run, which lasts from 0 to {duration_s} s"),
+        ));
+    }
+    let (time_s, displacement_m) = history_at(&dir.join("history.csv"), names, t)?;
+    let fallen = fallen_by(dir, &summary, names, t)?;
+    Ok(SavedState {
+        time_s,
+        displacement_m,
+        fallen,
+    })
+}
+
+/// The last row of history.csv at or before `t`: its time and the named blocks' u.
+fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>), Error> {
+    let text = read(path)?;
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    if header.first() != Some(&"time_s") {
+        return Err(table(path, 1, "the header must start with time_s".into()));
+    }
+    let columns = names
+        .iter()
+        .map(|n| {
+            let col = format!("u_{n}_m");
+            header.iter().position(|h| *h == col).ok_or_else(|| {
+                table(
+                    path,
+                    1,
+                    format!("no column {col}: was the run made on this wall?"),
+                )
+            })
+        })
+        .collect::<Result<Vec<usize>, Error>>()?;
+    let mut found = None;
+    for (k, line) in lines.enumerate() {
+        let fields: Vec<&str> = line.split(',').collect();
+        let num = |i: usize| -> Result<f64, Error> {
+            fields
+                .get(i)
+                .and_then(|f| f.parse().ok())
+                .ok_or_else(|| table(path, k + 2, format!("field {} is not a number", i + 1)))
+        };
+        let time = num(0)?;
+        if time > t {
+            break;
+        }
+        found = Some((
+            time,
+            columns.iter().map(|&c| num(c)).collect::<Result<_, _>>()?,
+        ));
+    }
+    found.ok_or_else(|| table(path, 2, format!("no sample at or before t = {t} s")))
+}
+
+/// Which blocks had fallen by `t`: from the collapse events of events.jsonl, or, for a run
+/// saved without its event log, from the first collapse in the summary.
+fn fallen_by(
+    dir: &Path,
+    summary: &serde_json::Value,
+    names: &[String],
+    t: f64,
+) -> Result<Vec<bool>, Error> {
+    let mut fell: Vec<(f64, String)> = Vec::new();
+    let log = dir.join("events.jsonl");
+    if log.exists() {
+        for (k, line) in read(&log)?.lines().enumerate() {
+            let e: serde_json::Value = serde_json::from_str(line)
+                .map_err(|e| table(&log, k + 1, format!("not an event: {e}")))?;
+            if e["kind"] == "collapse" {
+                let time = e["time_s"].as_f64().unwrap_or(f64::INFINITY);
+                for b in e["blocks"].as_array().into_iter().flatten() {
+                    fell.push((time, b.as_str().unwrap_or_default().to_string()));
+                }
+            }
+        }
+    } else if let (Some(time), Some(b)) = (
+        summary["collapse"]["time_s"].as_f64(),
+        summary["collapse"]["block"].as_str(),
+    ) {
+        fell.push((time, b.to_string()));
+    }
+    Ok(names
+        .iter()
+        .map(|n| fell.iter().any(|(time, b)| b == n && *time <= t))
+        .collect())
+}
