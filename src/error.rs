@@ -24,6 +24,16 @@ pub enum Error {
         #[source]
         source: WallError,
     },
+    /// A survey (block outlines) cannot be made into a wall.
+    #[error("{}: {source}", path.display())]
+    Survey {
+        /// The survey file.
+        path: PathBuf,
+        /// What is wrong (boxed: it is the largest error, and `Error` travels in every
+        /// `Result`).
+        #[source]
+        source: Box<SurveyError>,
+    },
     /// A quantity with units could not be read (command-line values such as `400gal`).
     #[error(transparent)]
     Unit(#[from] UnitError),
@@ -198,6 +208,77 @@ pub enum WallError {
         /// What the upper block does rest on.
         actual: String,
     },
+}
+
+/// What is wrong with a survey of block outlines.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SurveyError {
+    /// A line of the CSV cannot be read.
+    #[error("line {line}: {message}")]
+    Line {
+        /// 1-based line.
+        line: usize,
+        /// What was expected.
+        message: String,
+    },
+    /// Two blocks overlap by more than the snap tolerance.
+    #[error("blocks {a} and {b} overlap by {dx_mm:.1} mm x {dy_mm:.1} mm, more than the snap tolerance of {snap_mm} mm: correct one outline (or raise --snap)")]
+    Overlap {
+        /// One block id.
+        a: String,
+        /// The other.
+        b: String,
+        /// Horizontal overlap (mm), as surveyed.
+        dx_mm: f64,
+        /// Vertical overlap (mm), as surveyed.
+        dy_mm: f64,
+        /// The tolerance (mm).
+        snap_mm: f64,
+    },
+    /// A block rests on nothing within the tolerance.
+    #[error(
+        "block {block} has nothing under it within the snap tolerance of {snap_mm} mm: {below}"
+    )]
+    Floating {
+        /// The block id.
+        block: String,
+        /// What is nearest below it, and how far.
+        below: String,
+        /// The tolerance (mm).
+        snap_mm: f64,
+    },
+    /// Snapping would chain edges farther apart than the tolerance into one level or face.
+    #[error("the {what} of blocks {a} and {b} are {spread_mm:.1} mm apart but are joined through neighbours each within {snap_mm} mm: survey them again or lower --snap")]
+    Chain {
+        /// "bottoms and tops" or "faces".
+        what: &'static str,
+        /// One block id.
+        a: String,
+        /// The other.
+        b: String,
+        /// How far apart the extreme edges are (mm).
+        spread_mm: f64,
+        /// The tolerance (mm).
+        snap_mm: f64,
+    },
+    /// Snapping leaves a block with no height or width.
+    #[error("block {block}: snapping within {snap_mm} mm leaves it {size_mm:.2} mm {what}: the tolerance is too large for this block")]
+    Collapsed {
+        /// The block id.
+        block: String,
+        /// "high" or "wide".
+        what: &'static str,
+        /// What is left (mm).
+        size_mm: f64,
+        /// The tolerance (mm).
+        snap_mm: f64,
+    },
+    /// The imported wall fails the wall checks.
+    #[error("the imported wall: {0}")]
+    Wall(#[from] WallError),
+    /// An import option is out of range.
+    #[error("{0}")]
+    Invalid(String),
 }
 
 /// A quantity with units could not be read.

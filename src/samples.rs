@@ -27,6 +27,7 @@ fn block(width_m: f64, gap_m: f64) -> BlockDescription {
         gap_m,
         name: None,
         height_m: None,
+        density_kg_m3: None,
         fixed: false,
     }
 }
@@ -87,6 +88,7 @@ pub fn block_and_abutment(friction: f64, gap_m: f64, restitution: f64) -> Wall {
         width_m: 1.0,
         height_m: 1.0,
         name: Some("Abutment".into()),
+        density_kg_m3: None,
         fixed: true,
     });
     d.rectangles.push(RectangleDescription {
@@ -95,6 +97,7 @@ pub fn block_and_abutment(friction: f64, gap_m: f64, restitution: f64) -> Wall {
         width_m: 1.0,
         height_m: 0.5,
         name: Some("Block".into()),
+        density_kg_m3: None,
         fixed: false,
     });
     build(d, "block and abutment")

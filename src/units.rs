@@ -98,13 +98,17 @@ pub fn parse_length(text: &str) -> Result<f64, UnitError> {
         units: LENGTH_UNITS,
     };
     let (value, unit) = split_number(text).ok_or_else(err)?;
-    let factor = match unit.to_ascii_lowercase().as_str() {
-        "mm" => 1e-3,
-        "cm" => 1e-2,
-        "m" => 1.0,
-        _ => return Err(err()),
-    };
-    Ok(value * factor)
+    Ok(value * length_unit_m(unit).ok_or_else(err)?)
+}
+
+/// Metres in one `mm`, `cm` or `m` (any case).
+pub fn length_unit_m(unit: &str) -> Option<f64> {
+    match unit.to_ascii_lowercase().as_str() {
+        "mm" => Some(1e-3),
+        "cm" => Some(1e-2),
+        "m" => Some(1.0),
+        _ => None,
+    }
 }
 
 #[cfg(test)]

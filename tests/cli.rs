@@ -614,3 +614,68 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
     assert!(!ok && err.contains("--run"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `pirqa import` on the survey shipped in docs/walls: the report gives the topology, the
+/// largest snap and (with --verbose) every snap; the wall it writes checks and draws.
+#[test]
+fn import_reports_the_snaps_and_writes_a_wall_that_checks() {
+    let dir = temp_dir("import");
+    std::fs::create_dir_all(&dir).unwrap();
+    let wall = dir.join("wall.ron");
+    let (ok, out, err) = pirqa(&[
+        "import",
+        "docs/walls/example-survey.csv",
+        "--units",
+        "mm",
+        "-o",
+        wall.to_str().unwrap(),
+        "--verbose",
+    ]);
+    assert!(ok, "{err}");
+    for expect in [
+        "9 blocks, 13 supports, 6 vertical joints (1 with a measured gap, widest 12.0 mm)",
+        "snapped 25 edges within 5.0 mm; largest adjustment 3.00 mm (B2 bottom onto",
+        "  B5         top           0.85200 ->    0.85300 m (+1.00 mm)",
+    ] {
+        assert!(out.contains(expect), "missing `{expect}` in\n{out}");
+    }
+    let (ok, out, err) = pirqa(&["check", wall.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    assert!(out.contains("B3       ground"), "{out}");
+    let svg = dir.join("wall.svg");
+    let (ok, _, err) = pirqa(&[
+        "draw",
+        wall.to_str().unwrap(),
+        "--graph",
+        "-o",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    // A broken survey: the error names the file, the line and what to fix.
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "id,x,y,width,height\nA,0,0,1,0.5\nB,0.5,oops,1,0.5\n").unwrap();
+    let (ok, _, err) = pirqa(&[
+        "import",
+        bad.to_str().unwrap(),
+        "-o",
+        wall.to_str().unwrap(),
+    ]);
+    assert!(!ok);
+    assert!(
+        err.contains("bad.csv: line 3: column `y`: `oops` is not a number"),
+        "{err}"
+    );
+    let (ok, _, err) = pirqa(&[
+        "import",
+        "docs/walls/example-survey.csv",
+        "--units",
+        "furlongs",
+        "-o",
+        wall.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && err.contains("furlongs") && err.contains("mm, cm, m"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

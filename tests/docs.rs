@@ -36,7 +36,8 @@ fn ron_examples_in_docs_are_valid_walls() {
 }
 
 #[test]
-fn every_shipped_wall_checks() {
+fn every_shipped_wall_checks_and_is_pictured() {
+    let pictures = std::fs::read_to_string("docs/walls.md").unwrap();
     let mut n = 0;
     let mut stack = vec![std::path::PathBuf::from("walls")];
     while let Some(dir) = stack.pop() {
@@ -48,11 +49,20 @@ fn every_shipped_wall_checks() {
                 && !path.to_string_lossy().contains("studies")
             {
                 pirqa::topology::load(&path).unwrap_or_else(|e| panic!("{e}"));
+                // docs/walls.md shows every shipped wall.
+                let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+                let picture = format!("walls/{stem}.svg");
+                assert!(
+                    std::path::Path::new("docs").join(&picture).exists()
+                        && pictures.contains(&format!("]({picture})")),
+                    "{}: no picture docs/{picture} in docs/walls.md",
+                    path.display()
+                );
                 n += 1;
             }
         }
     }
-    assert!(n >= 3);
+    assert!(n >= 7);
 }
 
 #[test]

@@ -27,6 +27,7 @@ fn wall_strategy() -> impl Strategy<Value = WallDescription> {
                 gap_m,
                 name: None,
                 height_m: None,
+                density_kg_m3: None,
                 fixed: false,
             };
             let mut lower_blocks: Vec<BlockDescription> =

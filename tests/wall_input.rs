@@ -233,3 +233,34 @@ fn a_missing_file_is_named() {
     let err = topology::load(std::path::Path::new("walls/no-such-wall.ron")).unwrap_err();
     assert!(err.to_string().contains("walls/no-such-wall.ron"), "{err}");
 }
+
+/// A stone of its own density weighs what it should and loads what is under it; a density that
+/// is not positive names the block.
+#[test]
+fn a_block_can_have_its_own_density() {
+    let rows = r#"rows: [
+        (height_m: 0.6, blocks: [(width_m: 1.2), (width_m: 1.2)]),
+        (height_m: 0.6, blocks: [(width_m: 0.6), (width_m: 1.2, density_kg_m3: 5300), (width_m: 0.6)]),
+    ],"#;
+    let path = write_temp("dense.ron", &wall("", rows, ""));
+    let (w, t) = topology::load(&path).unwrap();
+    // B4 (1.2 x 0.6 x 0.8 m) at twice the wall's density.
+    assert_eq!(w.mass_kg(3).to_f64(), 5300.0 * 1.2 * 0.6 * 0.8);
+    assert_eq!(w.mass_kg(2).to_f64(), 2650.0 * 0.6 * 0.6 * 0.8);
+    // B1 carries B3 (0.36 m2) and half of B4 (0.72 m2 / 2 at 5300 kg/m3) on top of its own.
+    let carried = t.blocks[0].load_n.to_f64() - t.blocks[0].weight_n.to_f64();
+    let expect = (0.36 * 2650.0 + 0.36 * 5300.0) * 0.8 * 9.81;
+    assert!((carried - expect).abs() < 1e-9, "{carried} vs {expect}");
+    let e = error_of(
+        "light.ron",
+        &wall(
+            "",
+            &rows.replace("density_kg_m3: 5300", "density_kg_m3: -1"),
+            "",
+        ),
+    );
+    assert!(
+        e.contains("row 2, block 2") && e.contains("density_kg_m3 = -1"),
+        "{e}"
+    );
+}

@@ -25,21 +25,28 @@ pub struct GenerateArgs {
     /// Overall height.
     #[arg(long, default_value = "1.2m")]
     pub height: String,
+    #[command(flatten)]
+    pub material: Material,
+    /// Output wall file (RON).
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// The wall-level values a generated or imported wall needs and its blocks do not give.
+#[derive(clap::Args, Debug)]
+pub struct Material {
     /// Out-of-plane thickness.
     #[arg(long, default_value = "0.8m")]
     pub thickness: String,
-    /// Density (kg/m3).
+    /// Density (kg/m3) of every block without its own.
     #[arg(long, default_value_t = 2650.0)]
     pub density: f64,
-    /// Friction coefficient of every horizontal joint.
+    /// Friction coefficient of every horizontal joint without its own.
     #[arg(long, default_value_t = 0.3)]
     pub friction: f64,
     /// Coefficient of restitution.
     #[arg(long, default_value_t = 1.0)]
     pub restitution: f64,
-    /// Output wall file (RON).
-    #[arg(short, long)]
-    pub output: PathBuf,
 }
 
 pub fn run(args: &GenerateArgs) -> Result<(), Error> {
@@ -50,10 +57,10 @@ pub fn run(args: &GenerateArgs) -> Result<(), Error> {
     }
     spec.width_m = parse_length(&args.width)?;
     spec.height_m = parse_length(&args.height)?;
-    spec.thickness_m = parse_length(&args.thickness)?;
-    spec.density_kg_m3 = args.density;
-    spec.friction = args.friction;
-    spec.restitution = args.restitution;
+    spec.thickness_m = parse_length(&args.material.thickness)?;
+    spec.density_kg_m3 = args.material.density;
+    spec.friction = args.material.friction;
+    spec.restitution = args.material.restitution;
     let d = spec.description().map_err(|source| Error::Wall {
         path: args.output.clone(),
         source,

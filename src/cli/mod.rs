@@ -4,6 +4,7 @@
 mod bench;
 mod check;
 mod generate;
+mod import;
 mod motion;
 mod paper;
 mod run;
@@ -64,6 +65,9 @@ enum Command {
     Paper(paper::PaperArgs),
     /// Generate a running-bond wall: one overall size cut into any number of blocks.
     Generate(generate::GenerateArgs),
+    /// Import a survey of block outlines (CSV) into a wall file, snapping edges within a
+    /// tolerance; `pirqa draw --graph` then shows what it made.
+    Import(import::ImportArgs),
 }
 
 /// Runs the command line; returns the process exit code.
@@ -84,6 +88,7 @@ pub fn run() -> Result<(), pirqa::Error> {
         Command::Sweep(args) => sweep::run(&args),
         Command::Paper(args) => paper::run(&args),
         Command::Generate(args) => generate::run(&args),
+        Command::Import(args) => import::run(&args),
     }
 }
 

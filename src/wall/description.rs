@@ -72,6 +72,9 @@ pub struct BlockDescription {
     /// Height (m) when it differs from the course's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub height_m: Option<f64>,
+    /// Density (kg/m3) when this stone differs from the wall's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density_kg_m3: Option<f64>,
     /// An abutment that moves with the ground (default false).
     #[serde(default, skip_serializing_if = "is_false")]
     pub fixed: bool,
@@ -92,6 +95,9 @@ pub struct RectangleDescription {
     /// Name (default as for course blocks).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// Density (kg/m3) when this stone differs from the wall's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density_kg_m3: Option<f64>,
     /// An abutment that moves with the ground (default false).
     #[serde(default, skip_serializing_if = "is_false")]
     pub fixed: bool,

@@ -121,6 +121,7 @@ impl RunningBond {
                             gap_m: 0.0,
                             name: None,
                             height_m: None,
+                            density_kg_m3: None,
                             fixed: false,
                         })
                         .collect(),

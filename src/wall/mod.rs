@@ -4,6 +4,7 @@
 
 mod description;
 mod generate;
+pub mod survey;
 
 pub use description::{
     BlockDescription, RectangleDescription, RowDescription, WallDescription, WALL_FORMAT_VERSION,
@@ -32,6 +33,8 @@ pub struct Block {
     pub height: Q,
     /// Moves with the ground (an abutment).
     pub fixed: bool,
+    /// Its own density (kg/m3) when it differs from the wall's.
+    pub density_kg_m3: Option<Q>,
 }
 
 impl Block {
@@ -121,6 +124,7 @@ fn block_number(
 }
 
 const POSITIVE_M: &str = "must be a positive number of metres";
+const DENSITY: &str = "must be positive (kg/m3)";
 
 impl Wall {
     /// Reads and checks a wall file.
@@ -181,9 +185,7 @@ impl Wall {
             "a friction coefficient must lie in (0, 2]",
         )?;
         let density_kg_m3 = match (d.density_kg_m3, d.unit_weight_kn_m3) {
-            (Some(rho), None) => {
-                field("density_kg_m3", rho, rho > 0.0, "must be positive (kg/m3)")?
-            }
+            (Some(rho), None) => field("density_kg_m3", rho, rho > 0.0, DENSITY)?,
             (None, Some(gamma)) => {
                 field(
                     "unit_weight_kn_m3",
@@ -239,6 +241,10 @@ impl Wall {
                     Some(h) => num("height_m", h, h > 0.0, POSITIVE_M)?,
                     None => row_height.clone(),
                 };
+                let density_kg_m3 = spec
+                    .density_kg_m3
+                    .map(|rho| num("density_kg_m3", rho, rho > 0.0, DENSITY))
+                    .transpose()?;
                 let left = x + gap;
                 x = &left + &width;
                 blocks.push(Block {
@@ -249,6 +255,7 @@ impl Wall {
                     width,
                     height,
                     fixed: spec.fixed,
+                    density_kg_m3,
                 });
             }
             y = y + row_height;
@@ -268,6 +275,10 @@ impl Wall {
                 width: num("width_m", rect.width_m, rect.width_m > 0.0, POSITIVE_M)?,
                 height: num("height_m", rect.height_m, rect.height_m > 0.0, POSITIVE_M)?,
                 fixed: rect.fixed,
+                density_kg_m3: rect
+                    .density_kg_m3
+                    .map(|rho| num("density_kg_m3", rho, rho > 0.0, DENSITY))
+                    .transpose()?,
                 origin,
             });
         }
@@ -326,9 +337,10 @@ impl Wall {
         self.blocks.iter().position(|b| b.name == name)
     }
 
-    /// Mass of block `i` (kg).
+    /// Mass of block `i` (kg), of its own density or the wall's.
     pub fn mass_kg(&self, i: usize) -> Q {
-        self.blocks[i].area() * &self.thickness_m * &self.density_kg_m3
+        let b = &self.blocks[i];
+        b.area() * &self.thickness_m * b.density_kg_m3.as_ref().unwrap_or(&self.density_kg_m3)
     }
 
     /// The wall mirrored left to right about x = 0 (blocks keep their names).
