@@ -520,8 +520,7 @@ fn cut_with<A: Amount>(
     for &a in forbidden {
         net.arc(a, t, big.clone());
     }
-    net.max_flow(s, t, big);
-    (net.reachable_from(s), net.reaching(t))
+    net.minimum_cuts(s, t, big)
 }
 
 #[cfg(test)]
