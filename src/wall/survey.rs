@@ -530,11 +530,11 @@ pub fn import(blocks: &[SurveyBlock], options: &SurveyOptions) -> Result<Importe
     };
     let mut under: Vec<Vec<String>> = Vec::with_capacity(n);
     for i in 0..n {
-        let s = supports(i);
         if y[i] == 0 {
             under.push(vec!["ground".into()]);
             continue;
         }
+        let s = supports(i);
         if s.is_empty() {
             let nearest = (0..n)
                 .filter(|&j| {

@@ -54,6 +54,17 @@ pub struct Group {
     pub grounded: bool,
 }
 
+/// Which minimisers of a cut problem a caller needs: each costs its own pass on large networks.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Want {
+    /// The smallest (the level set {b > theta}).
+    Smallest,
+    /// The largest (the level set {b >= theta}).
+    Largest,
+    /// Both.
+    Both,
+}
+
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Side {
     /// Super-level set {b > theta}: a contact (l, r) forces r in when l is in.
@@ -186,16 +197,17 @@ impl Problem {
     }
 
     /// Minimises sum_{i in S} w_i + cut(S) over S within `set` (subject to the side's contact
-    /// constraints) and returns the minimal and the maximal minimiser. `cut` counts joints with
-    /// both ends in `set` and, when the ground is `pinned` at theta, joints to the ground; joints
-    /// to blocks outside `set` already slide and are in the weights.
+    /// constraints) and returns the smallest and the largest minimiser, those `want` asks for.
+    /// `cut` counts joints with both ends in `set` and, when the ground is `pinned` at theta,
+    /// joints to the ground; joints to blocks outside `set` already slide and are in the weights.
     fn min_cut<T: Exact>(
         &self,
         set: &[bool],
         weight: &[T],
         side: Side,
         pinned: bool,
-    ) -> (Vec<bool>, Vec<bool>) {
+        want: Want,
+    ) -> (Option<Vec<bool>>, Option<Vec<bool>>) {
         let n = self.n();
         let (s, t) = (n, n + 1);
         // The arcs, as (from, to, capacity, both ways).
@@ -227,13 +239,15 @@ impl Problem {
         // Integer arithmetic when the amounts fit; exact rationals otherwise or on overflow.
         let cut = T::integers(&amounts).and_then(|ints| {
             take_overflow();
-            let r = cut_with(n, &arcs, &ints, &implies, &forbidden);
+            let r = cut_with(n, &arcs, &ints, &implies, &forbidden, want);
             (!take_overflow()).then_some(r)
         });
         let (minimal, reach_t) =
-            cut.unwrap_or_else(|| cut_with(n, &arcs, &amounts, &implies, &forbidden));
-        let maximal: Vec<bool> = (0..n).map(|i| set[i] && !reach_t[i]).collect();
-        ((0..n).map(|i| set[i] && minimal[i]).collect(), maximal)
+            cut.unwrap_or_else(|| cut_with(n, &arcs, &amounts, &implies, &forbidden, want));
+        (
+            minimal.map(|m| (0..n).map(|i| set[i] && m[i]).collect()),
+            reach_t.map(|r| (0..n).map(|i| set[i] && !r[i]).collect()),
+        )
     }
 
     /// Connected pieces of `members` through undecided joints between members.
@@ -314,7 +328,8 @@ impl Problem {
                 }
             })
             .collect();
-        let (upper, at_or_above) = self.min_cut(set, &weight, Side::Upper, false);
+        let (upper, at_or_above) = self.min_cut(set, &weight, Side::Upper, false, Want::Both);
+        let (upper, at_or_above) = (upper.expect("asked for"), at_or_above.expect("asked for"));
         let lower: Vec<bool> = (0..self.n()).map(|i| set[i] && !at_or_above[i]).collect();
         let level: Vec<usize> = (0..self.n())
             .filter(|&i| at_or_above[i] && !upper[i])
@@ -354,8 +369,13 @@ impl Problem {
             })
             .collect();
         let down_w: Vec<Lex> = up_w.iter().map(|w| Lex::zero().minus(w)).collect();
-        let (upper, _) = self.min_cut(&all, &up_w, Side::Upper, true);
-        let (lower, _) = self.min_cut(&all, &down_w, Side::Lower, true);
+        let upper = self
+            .min_cut(&all, &up_w, Side::Upper, true, Want::Smallest)
+            .0;
+        let lower = self
+            .min_cut(&all, &down_w, Side::Lower, true, Want::Smallest)
+            .0;
+        let (upper, lower) = (upper.expect("asked for"), lower.expect("asked for"));
         let level: Vec<usize> = (0..n).filter(|&i| !upper[i] && !lower[i]).collect();
         // The blocks left at a_g: those joined to the ground through undecided joints are stuck;
         // any other piece moves freely with acceleration a_g (possible only when a_g is locally
@@ -483,8 +503,10 @@ impl Problem {
             let weight: Vec<Q> = (0..n)
                 .map(|i| &external[i] - &self.mass[i] * &lambda)
                 .collect();
-            let (minimal, _) = self.min_cut(&all, &weight, side, true);
-            match ratio(&minimal) {
+            // Any minimiser serves (the ratio found is the same); the largest is the cheaper
+            // pass on large networks.
+            let largest = self.min_cut(&all, &weight, side, true, Want::Largest).1;
+            match ratio(&largest.expect("asked for")) {
                 Some(r) if r < lambda => lambda = r,
                 _ => return Some(lambda),
             }
@@ -493,15 +515,16 @@ impl Problem {
 }
 
 /// Builds the network from `arcs` with capacities `caps`, the constraint arcs with a capacity
-/// above every cut, runs the maximum flow, and returns the source side of the minimal minimum
-/// cut and the nodes that still reach the sink.
+/// above every cut, and returns what `want` asks for: the source side of the minimal minimum
+/// cut, the nodes that reach the sink in every maximum flow.
 fn cut_with<A: Amount>(
     n: usize,
     arcs: &[(usize, usize, impl Sized, bool)],
     caps: &[A],
     implies: &[(usize, usize)],
     forbidden: &[usize],
-) -> (Vec<bool>, Vec<bool>) {
+    want: Want,
+) -> (Option<Vec<bool>>, Option<Vec<bool>>) {
     let (s, t) = (n, n + 1);
     // Every capacity is positive, so their sum (plus one) exceeds every cut.
     let big = caps.iter().fold(A::unit(), |b, c| b.plus(c));
@@ -520,7 +543,14 @@ fn cut_with<A: Amount>(
     for &a in forbidden {
         net.arc(a, t, big.clone());
     }
-    net.minimum_cuts(s, t, big)
+    match want {
+        Want::Both => {
+            let (source_side, sink_side) = net.minimum_cuts(s, t, big);
+            (Some(source_side), Some(sink_side))
+        }
+        Want::Smallest => (Some(net.source_side(s, t, big)), None),
+        Want::Largest => (None, Some(net.sink_side(s, t, big))),
+    }
 }
 
 #[cfg(test)]

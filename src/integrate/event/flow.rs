@@ -222,6 +222,11 @@ struct Arc<T> {
     rev: usize,
 }
 
+/// Below this many nodes Dinic's lower overhead wins (a 976-block wall runs 10 % faster with
+/// it); above it Dinic's phase count (the number of distinct augmenting path lengths, about one
+/// per course of a wall) dominates (docs/performance.md).
+const PUSH_RELABEL_FROM: usize = 2048;
+
 /// A flow network.
 pub struct Network<T: Amount> {
     arcs: Vec<Arc<T>>,
@@ -332,15 +337,32 @@ impl<T: Amount> Network<T> {
     /// that reach `t` in every maximum flow (the sink side of the cut closest to the sink).
     /// `unbounded` exceeds every cut.
     pub fn minimum_cuts(self, s: usize, t: usize, unbounded: &T) -> (Vec<bool>, Vec<bool>) {
-        // Below this many nodes Dinic's lower overhead wins (a 976-block wall runs 10 % faster
-        // with it); above it Dinic's phase count (the number of distinct augmenting path
-        // lengths, about one per course of a wall) dominates: a 10,050-block wall runs 1.9
-        // times faster with push-relabel (docs/performance.md).
-        const PUSH_RELABEL_FROM: usize = 2048;
         if self.adj.len() < PUSH_RELABEL_FROM {
             self.cuts_by_dinic(s, t, unbounded)
         } else {
             self.cuts_by_push_relabel(s, t)
+        }
+    }
+
+    /// The source side of the minimum s-t cut closest to the source (half the work of
+    /// [`Network::minimum_cuts`] for large networks).
+    pub fn source_side(mut self, s: usize, t: usize, unbounded: &T) -> Vec<bool> {
+        if self.adj.len() < PUSH_RELABEL_FROM {
+            self.max_flow(s, t, unbounded);
+            self.reachable_from(s)
+        } else {
+            self.source_side_by_push_relabel(s, t)
+        }
+    }
+
+    /// The nodes that reach `t` in every maximum flow: the sink side of the minimum s-t cut
+    /// closest to the sink.
+    pub fn sink_side(mut self, s: usize, t: usize, unbounded: &T) -> Vec<bool> {
+        if self.adj.len() < PUSH_RELABEL_FROM {
+            self.max_flow(s, t, unbounded);
+            self.reaching(t)
+        } else {
+            self.sink_side_of_max_preflow(s, t)
         }
     }
 
@@ -350,19 +372,22 @@ impl<T: Amount> Network<T> {
     }
 
     /// The sink side from a maximum preflow of this network, the source side from one of the
-    /// reversed network (t to s): the nodes that reach s there are the source side of the cut
-    /// closest to the source here. No second phase turning preflows into flows is needed.
-    fn cuts_by_push_relabel(self, s: usize, t: usize) -> (Vec<bool>, Vec<bool>) {
+    /// reversed network. No second phase turning preflows into flows is needed.
+    fn cuts_by_push_relabel(mut self, s: usize, t: usize) -> (Vec<bool>, Vec<bool>) {
+        let source_side = self.source_side_by_push_relabel(s, t);
+        (source_side, self.sink_side_of_max_preflow(s, t))
+    }
+
+    /// The nodes that reach s in the reversed network (t to s) after a maximum preflow there:
+    /// the source side of the cut closest to the source here. Leaves this network untouched.
+    fn source_side_by_push_relabel(&self, s: usize, t: usize) -> Vec<bool> {
         let mut reversed = Network::new(self.adj.len());
         for pair in self.arcs.chunks(2) {
             // pair[0] goes u -> v (u is where its reverse points).
             let (u, v) = (pair[1].to, pair[0].to);
             reversed.pair(v, u, pair[0].residual.clone(), pair[1].residual.clone());
         }
-        let source_side = reversed.sink_side_of_max_preflow(t, s);
-        let mut forward = self;
-        let sink_side = forward.sink_side_of_max_preflow(s, t);
-        (source_side, sink_side)
+        reversed.sink_side_of_max_preflow(t, s)
     }
 
     /// Shortest residual distance of every node to `t` (`n` where `t` cannot be reached).
