@@ -109,6 +109,26 @@ fn a_clean_survey_imports_to_the_same_wall() {
         assert!(imported.snaps.is_empty(), "{:?}", imported.snaps.first());
         assert_eq!(imported.ground_y_m, 3400.0);
     }
+    // A clean survey in millimetres needs no tolerance at all.
+    let wall = &library()[0];
+    let mut mm = String::from("id,x,y,width,height\n");
+    for b in &wall.blocks {
+        let v = [
+            b.x.to_f64(),
+            b.y.to_f64(),
+            b.width.to_f64(),
+            b.height.to_f64(),
+        ];
+        let v: Vec<String> = v.iter().map(|x| format!("{}", (x * 1e3).round())).collect();
+        mm += &format!("{},{}\n", b.name, v.join(","));
+    }
+    let exact = SurveyOptions {
+        snap_m: 0.0,
+        ..options()
+    };
+    let imported = import(&parse_survey(&mm, 1e-3).unwrap(), &exact).unwrap();
+    let got = Wall::from_description(&imported.description).unwrap();
+    same_graph(&graph(wall), &graph(&got), 1e-9);
 }
 
 #[test]

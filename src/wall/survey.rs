@@ -390,12 +390,15 @@ fn group_names(
 /// offsets stay), and checks what no snap can fix.
 pub fn import(blocks: &[SurveyBlock], options: &SurveyOptions) -> Result<Imported, SurveyError> {
     let n = blocks.len();
-    let tol = options.snap_m;
-    if !(tol.is_finite() && tol >= 0.0) {
+    if !(options.snap_m.is_finite() && options.snap_m >= 0.0) {
         return Err(SurveyError::Invalid(format!(
-            "the snap tolerance must be 0 or more, found {tol} m"
+            "the snap tolerance must be 0 or more, found {} m",
+            options.snap_m
         )));
     }
+    // Edges that agree to the resolution are one edge even with --snap 0: the survey's units
+    // (mm times 0.001) leave round-off in the metres compared here.
+    let tol = options.snap_m.max(RESOLUTION_M / 2.0);
     let snap_mm = tol * 1e3;
     let ground_y_m = blocks.iter().map(|b| b.y_m).fold(f64::INFINITY, f64::min);
     let left: Vec<f64> = blocks.iter().map(|b| b.x_m).collect();
