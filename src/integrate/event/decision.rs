@@ -95,16 +95,7 @@ impl Engine<'_> {
         while let Some(i) = queue.pop() {
             let vi = self.vel_with(i, &snap);
             let mut next = Vec::new();
-            for &s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
-                if !self.live_support(s.0) {
-                    continue;
-                }
-                let sup = &self.topo.supports[s.0];
-                let other = if sup.upper.0 == i {
-                    self.lower_block(s.0)
-                } else {
-                    Some(sup.upper.0)
-                };
+            for other in self.live_neighbours(i) {
                 if let Some(o) = other.filter(|&o| !self.fixed[o]) {
                     if !local.contains_key(&o) && self.same_velocity(vi, self.vel_with(o, &snap)) {
                         next.push(o);
@@ -459,16 +450,7 @@ impl Engine<'_> {
         }
         let mut grounded = vec![false; n];
         for (k, &b) in blocks.iter().enumerate() {
-            for &s in self.topo.below[b].iter().chain(&self.topo.above[b]) {
-                if !self.live_support(s.0) {
-                    continue;
-                }
-                let sup = &self.topo.supports[s.0];
-                let other = if sup.upper.0 == b {
-                    self.lower_block(s.0)
-                } else {
-                    Some(sup.upper.0)
-                };
+            for other in self.live_neighbours(b) {
                 match other.filter(|&o| !self.fixed[o]) {
                     None => grounded[k] |= self.same_velocity(v[k], 0.0),
                     Some(o) => {

@@ -435,6 +435,21 @@ impl<'a> Engine<'a> {
         !self.fallen[sup.upper.0] && self.lower_block(s).is_none_or(|l| !self.fallen[l])
     }
 
+    /// The other ends of block `b`'s live supports (under and over it); `None` is the ground.
+    fn live_neighbours(&self, b: usize) -> impl Iterator<Item = Option<usize>> + '_ {
+        self.topo.below[b]
+            .iter()
+            .chain(&self.topo.above[b])
+            .filter(|s| self.live_support(s.0))
+            .map(move |s| {
+                if self.topo.supports[s.0].upper.0 == b {
+                    self.lower_block(s.0)
+                } else {
+                    Some(self.topo.supports[s.0].upper.0)
+                }
+            })
+    }
+
     fn live_joint(&self, j: usize) -> bool {
         let jt = &self.topo.joints[j];
         !self.fallen[jt.left.0] && !self.fallen[jt.right.0]
@@ -959,16 +974,7 @@ impl<'a> Engine<'a> {
         for b in [l, r] {
             let vb = self.block_vel(b);
             let cb = self.clusters[self.of[b]].slide()?.c;
-            for &s in self.topo.below[b].iter().chain(&self.topo.above[b]) {
-                if !self.live_support(s.0) {
-                    continue;
-                }
-                let sup = &self.topo.supports[s.0];
-                let other = if sup.upper.0 == b {
-                    self.lower_block(s.0)
-                } else {
-                    Some(sup.upper.0)
-                };
+            for other in self.live_neighbours(b) {
                 let w = vb - other.map_or(0.0, |o| self.block_vel(o));
                 let (dw_lo, dw_hi) = match other
                     .filter(|&o| self.of[o] != NONE)
