@@ -15,6 +15,7 @@ pub mod plot;
 pub mod response;
 pub mod rng;
 pub mod samples;
+pub mod sets;
 pub mod study;
 pub mod topology;
 pub mod units;

@@ -7,6 +7,7 @@
 
 use super::{RectangleDescription, WallDescription, WALL_FORMAT_VERSION};
 use crate::error::SurveyError;
+use crate::sets::DisjointSets;
 use std::collections::{BTreeMap, HashMap};
 
 /// Snapped coordinates are whole multiples of this (m): 0.01 mm, far below any survey's
@@ -284,26 +285,6 @@ fn material_density(text: &str) -> Option<f64> {
         .map(|m| m.1)
 }
 
-/// Disjoint sets over edges.
-struct Sets(Vec<usize>);
-
-impl Sets {
-    fn new(n: usize) -> Sets {
-        Sets((0..n).collect())
-    }
-    fn find(&mut self, mut a: usize) -> usize {
-        while self.0[a] != a {
-            self.0[a] = self.0[self.0[a]];
-            a = self.0[a];
-        }
-        a
-    }
-    fn join(&mut self, a: usize, b: usize) {
-        let (a, b) = (self.find(a), self.find(b));
-        self.0[a.max(b)] = a.min(b);
-    }
-}
-
 /// Ticks of [`RESOLUTION_M`] per metre.
 const TICKS_PER_M: f64 = 1e5;
 
@@ -321,7 +302,7 @@ fn metres(t: i64) -> f64 {
 /// edge moves by more than the tolerance), `fixed` for a group holding edge `anchor`.
 /// `owner(e)` names the block of edge e, for the error when a group spreads too far.
 fn snap_groups(
-    sets: &mut Sets,
+    sets: &mut DisjointSets,
     values: &[f64],
     anchor: Option<(usize, f64)>,
     tol: f64,
@@ -368,7 +349,7 @@ fn snap_groups(
 
 /// What edge `edge` was snapped to: the other edges of its group.
 fn group_names(
-    sets: &mut Sets,
+    sets: &mut DisjointSets,
     edge: usize,
     count: usize,
     name: &dyn Fn(usize) -> String,
@@ -411,7 +392,7 @@ pub fn import(blocks: &[SurveyBlock], options: &SurveyOptions) -> Result<Importe
     let overlap = |a0: f64, a1: f64, b0: f64, b1: f64| a1.min(b1) - a0.max(b0);
 
     // Levels: edge i is block i's bottom, n + i its top, 2n the ground.
-    let mut levels = Sets::new(2 * n + 1);
+    let mut levels = DisjointSets::new(2 * n + 1);
     for i in 0..n {
         if bottom[i] <= tol {
             levels.join(i, 2 * n);
@@ -472,7 +453,7 @@ pub fn import(blocks: &[SurveyBlock], options: &SurveyOptions) -> Result<Importe
 
     // Faces of blocks that share height after snapping: edge i is block i's left face, n + i
     // its right face.
-    let mut faces = Sets::new(2 * n);
+    let mut faces = DisjointSets::new(2 * n);
     for i in 0..n {
         for j in 0..n {
             let shared = y[n + i].min(y[n + j]) - y[i].max(y[j]);

@@ -9,6 +9,7 @@ use super::{Engine, NONE};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::response::EventKind;
+use crate::sets::DisjointSets;
 use crate::topology::Base;
 use std::collections::{BTreeSet, HashMap};
 
@@ -440,14 +441,7 @@ impl Engine<'_> {
     ) {
         let n = blocks.len();
         let v: Vec<f64> = blocks.iter().map(|&b| self.vel_with(b, snap)).collect();
-        let mut parent: Vec<usize> = (0..n).collect();
-        fn root(p: &mut [usize], mut i: usize) -> usize {
-            while p[i] != i {
-                p[i] = p[p[i]];
-                i = p[i];
-            }
-            i
-        }
+        let mut sets = DisjointSets::new(n);
         let mut grounded = vec![false; n];
         for (k, &b) in blocks.iter().enumerate() {
             for other in self.live_neighbours(b) {
@@ -456,8 +450,7 @@ impl Engine<'_> {
                     Some(o) => {
                         if let Some(&m) = local.get(&o) {
                             if self.same_velocity(v[k], v[m]) {
-                                let (a, c) = (root(&mut parent, k), root(&mut parent, m));
-                                parent[a] = c;
+                                sets.join(k, m);
                             }
                         }
                     }
@@ -477,15 +470,14 @@ impl Engine<'_> {
                     grounded[k] |= self.same_velocity(v[k], 0.0);
                 } else if let Some(&m) = local.get(&o) {
                     if self.same_velocity(v[k], v[m]) {
-                        let (a, c) = (root(&mut parent, k), root(&mut parent, m));
-                        parent[a] = c;
+                        sets.join(k, m);
                     }
                 }
             }
         }
         let mut groups: HashMap<usize, Vec<usize>> = HashMap::new();
         for k in 0..n {
-            let r = root(&mut parent, k);
+            let r = sets.find(k);
             groups.entry(r).or_default().push(k);
         }
         for members in groups.values() {
