@@ -15,7 +15,7 @@
 //! ground acceleration "just after" the instant ([`Lex`]), which decides joints exactly at their
 //! limit by what happens next.
 
-use super::flow::{take_overflow, Amount, Exact, Lex, Network};
+use super::flow::{take_overflow, Amount, Exact, Lex, Network, PUSH_RELABEL_FROM};
 use crate::exact::Q;
 use std::collections::VecDeque;
 
@@ -313,6 +313,29 @@ impl Problem {
         e
     }
 
+    /// The smallest and the largest minimiser of a free problem's cut at its mean acceleration.
+    /// The weights sum to zero over `set` and no joint leaves it, so the empty set is a
+    /// minimiser exactly when the whole set is: then the set moves as one body, the common case
+    /// when a block comes to rest on a large sliding cluster. Where each minimiser costs a pass
+    /// of its own (push-relabel), the largest alone shows that case.
+    fn level_cuts(&self, set: &[bool], weight: &[Q]) -> (Vec<bool>, Vec<bool>) {
+        if self.n() + 2 < PUSH_RELABEL_FROM {
+            let (upper, at_or_above) = self.min_cut(set, weight, Side::Upper, false, Want::Both);
+            return (upper.expect("asked for"), at_or_above.expect("asked for"));
+        }
+        let at_or_above = self
+            .min_cut(set, weight, Side::Upper, false, Want::Largest)
+            .1;
+        let at_or_above = at_or_above.expect("asked for");
+        if at_or_above == set {
+            return (vec![false; self.n()], at_or_above);
+        }
+        let upper = self
+            .min_cut(set, weight, Side::Upper, false, Want::Smallest)
+            .0;
+        (upper.expect("asked for"), at_or_above)
+    }
+
     /// Clusters of blocks that share no joint with the ground (the ground does not appear).
     fn solve_free(&self, set: &[bool], external: &[Q], adj: &[Vec<usize>], out: &mut Vec<Group>) {
         let members: Vec<usize> = (0..self.n()).filter(|&i| set[i]).collect();
@@ -328,8 +351,7 @@ impl Problem {
                 }
             })
             .collect();
-        let (upper, at_or_above) = self.min_cut(set, &weight, Side::Upper, false, Want::Both);
-        let (upper, at_or_above) = (upper.expect("asked for"), at_or_above.expect("asked for"));
+        let (upper, at_or_above) = self.level_cuts(set, &weight);
         let lower: Vec<bool> = (0..self.n()).map(|i| set[i] && !at_or_above[i]).collect();
         let level: Vec<usize> = (0..self.n())
             .filter(|&i| at_or_above[i] && !upper[i])
@@ -436,15 +458,34 @@ impl Problem {
     /// [a_lo, a_hi] over which they can stay stuck, `None` where no ground acceleration would
     /// move them (a block wedged against an abutment). a_hi is the smallest ratio
     /// (cut(S) + e(S)) / m(S) over the sets S that could lag behind the ground (Dinkelbach's
-    /// iteration on minimum cuts, exact, a few cuts); a_lo the mirror image.
-    pub fn stick_interval(&self) -> (Option<Q>, Option<Q>) {
+    /// iteration on minimum cuts, exact, a few cuts); a_lo the mirror image. `hints` are sets
+    /// (local indices) that broke away from earlier intervals of the same blocks: the iteration
+    /// starts from the best of them that could break away here, so when the weakest set has not
+    /// changed one cut confirms it instead of several finding it again.
+    pub fn stick_interval(&self, hints: &[Vec<usize>]) -> Stick {
         let neg: Vec<Q> = self.external.iter().map(|e| -e).collect();
-        let hi = self.min_ratio(&self.external, Side::Lower);
-        let lo = self.min_ratio(&neg, Side::Upper).map(|r| -r);
-        (lo, hi)
+        let hi = self.min_ratio(&self.external, Side::Lower, hints);
+        let lo = self.min_ratio(&neg, Side::Upper, hints);
+        let mut breaking = Vec::new();
+        let hi = hi.map(|(r, set)| {
+            breaking.push(set);
+            r
+        });
+        let lo = lo.map(|(r, set)| {
+            breaking.push(set);
+            -r
+        });
+        Stick { lo, hi, breaking }
     }
 
-    fn min_ratio(&self, external: &[Q], side: Side) -> Option<Q> {
+    /// The smallest ratio (cut(S) + e(S)) / m(S) over the sets S that may move the side's way,
+    /// and a set that attains it.
+    fn min_ratio(
+        &self,
+        external: &[Q],
+        side: Side,
+        hints: &[Vec<usize>],
+    ) -> Option<(Q, Vec<usize>)> {
         let n = self.n();
         let all = vec![true; n];
         // Start from every block that may move this way at all.
@@ -462,41 +503,73 @@ impl Problem {
                 }
             }
         }
-        let ratio = |s: &[bool]| -> Option<Q> {
-            let members: Vec<usize> = (0..n).filter(|&i| s[i]).collect();
-            if members.is_empty() {
-                return None;
+        // The joints at each block, so a set's ratio costs only its own joints.
+        let mut at: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (k, (i, j, _)) in self.friction.iter().enumerate() {
+            at[*i].push(k);
+            if let End::Node(j) = j {
+                at[*j].push(k);
             }
+        }
+        let ratio = |members: &[usize], inside: &[bool]| -> Q {
             let mut cut = Q::zero();
-            for (i, j, f) in &self.friction {
-                let j_in = matches!(j, End::Node(j) if s[*j]);
-                if s[*i] != j_in {
-                    cut = cut + f;
+            for &i in members {
+                for &k in &at[i] {
+                    let (a, b, f) = &self.friction[k];
+                    let other_inside = match (*a == i, b) {
+                        (true, End::Node(o)) => inside[*o],
+                        (true, End::Ground) => false,
+                        (false, _) => inside[*a],
+                    };
+                    if !other_inside {
+                        cut = cut + f;
+                    }
                 }
             }
             let e: Q = members.iter().map(|&i| external[i].clone()).sum();
             let m: Q = members.iter().map(|&i| self.mass[i].clone()).sum();
-            Some((cut + e) / m)
+            (cut + e) / m
         };
-        let mut lambda = ratio(&allowed)?;
+        let everything: Vec<usize> = (0..n).filter(|&i| allowed[i]).collect();
+        if everything.is_empty() {
+            return None;
+        }
+        let mut lambda = ratio(&everything, &allowed);
+        let mut best = everything;
         // Start from the best single block as well: one block breaking away is the usual
         // answer, and starting at it the loop usually needs one cut to confirm it instead of
         // several to find it (each cut costs a maximum flow over the whole problem).
-        let mut incident = vec![Q::zero(); n];
-        for (i, j, f) in &self.friction {
-            incident[*i] = &incident[*i] + f;
-            if let End::Node(j) = j {
-                incident[*j] = &incident[*j] + f;
-            }
-        }
         let mut dragged = vec![false; n];
         for &(a, b) in &implies {
             dragged[a] |= a != b;
         }
+        let mut inside = vec![false; n];
         for i in (0..n).filter(|&i| allowed[i] && !dragged[i]) {
-            let r = (&incident[i] + &external[i]) / &self.mass[i];
+            inside[i] = true;
+            let r = ratio(&[i], &inside);
+            inside[i] = false;
             if r < lambda {
                 lambda = r;
+                best = vec![i];
+            }
+        }
+        // And from the hints that are sets this side allows (any such set bounds the minimum
+        // from above, which is all the iteration needs to be exact).
+        for hint in hints.iter().filter(|h| !h.is_empty()) {
+            for &i in hint {
+                inside[i] = true;
+            }
+            let possible = hint.iter().all(|&i| allowed[i])
+                && implies.iter().all(|&(a, b)| !inside[a] || inside[b]);
+            if possible {
+                let r = ratio(hint, &inside);
+                if r < lambda {
+                    lambda = r;
+                    best = hint.clone();
+                }
+            }
+            for &i in hint {
+                inside[i] = false;
             }
         }
         loop {
@@ -506,12 +579,31 @@ impl Problem {
             // Any minimiser serves (the ratio found is the same); the largest is the cheaper
             // pass on large networks.
             let largest = self.min_cut(&all, &weight, side, true, Want::Largest).1;
-            match ratio(&largest.expect("asked for")) {
-                Some(r) if r < lambda => lambda = r,
-                _ => return Some(lambda),
+            let largest = largest.expect("asked for");
+            let members: Vec<usize> = (0..n).filter(|&i| largest[i]).collect();
+            if members.is_empty() {
+                return Some((lambda, best));
+            }
+            let r = ratio(&members, &largest);
+            if r < lambda {
+                lambda = r;
+                best = members;
+            } else {
+                return Some((lambda, best));
             }
         }
     }
+}
+
+/// Where blocks stuck to the ground stop being stuck ([`Problem::stick_interval`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stick {
+    /// The lowest ground acceleration they stay stuck at (m/s2); `None`: no limit.
+    pub lo: Option<Q>,
+    /// The highest (m/s2); `None`: no limit.
+    pub hi: Option<Q>,
+    /// Sets (local indices, sorted) that break away at the finite limits.
+    pub breaking: Vec<Vec<usize>>,
 }
 
 /// Builds the network from `arcs` with capacities `caps`, the constraint arcs with a capacity
@@ -579,7 +671,8 @@ mod tests {
     fn one_block_sticks_within_mu_g_and_slides_beyond() {
         let p = one_block(0.3);
         let mug = q(0.3) * q(9.81);
-        assert_eq!(p.stick_interval(), (Some(-&mug), Some(mug.clone())));
+        let stick = p.stick_interval(&[]);
+        assert_eq!((stick.lo, stick.hi), (Some(-&mug), Some(mug.clone())));
         let g = p.solve(&just_after(q(1.0), 0));
         assert_eq!(
             g,
@@ -643,7 +736,8 @@ mod tests {
     fn uniform_wall_breaks_away_as_one_body() {
         let p = five_block([0.3; 6]);
         let mug = q(0.3) * q(9.81);
-        assert_eq!(p.stick_interval(), (Some(-&mug), Some(mug.clone())));
+        let stick = p.stick_interval(&[]);
+        assert_eq!((stick.lo, stick.hi), (Some(-&mug), Some(mug.clone())));
         // At the threshold, rising: the whole wall moves, every upper joint exactly at its limit
         // and sticking.
         let g = p.solve(&just_after(mug.clone(), 1));
@@ -674,7 +768,7 @@ mod tests {
     #[test]
     fn variable_wall_first_break_is_the_weakest_set() {
         let p = five_block([0.29, 0.31, 0.28, 0.30, 0.30, 0.28]);
-        let (lo, hi) = p.stick_interval();
+        let Stick { lo, hi, .. } = p.stick_interval(&[]);
         // B3 and B5 on 0.28 go first: a_hi = 0.28 g; leftward the faces hold B3 against B4 and
         // B5 is the one that lags: also 0.28 g.
         assert_eq!(hi, Some(q(0.28) * q(9.81)));
@@ -687,6 +781,42 @@ mod tests {
         assert_eq!(moving.len(), 1);
         assert_eq!(moving[0].nodes, vec![2]);
         assert_eq!(moving[0].accel, a);
+    }
+
+    #[test]
+    fn hints_change_the_work_not_the_interval() {
+        // Every subset of the five blocks as a hint, valid or not (a set whose faces would have
+        // to pull is no candidate): the same interval, and the sets returned attain it.
+        for p in [
+            five_block([0.29, 0.31, 0.28, 0.30, 0.30, 0.28]),
+            five_block([0.3; 6]),
+            five_block([0.35, 0.2, 0.5, 0.1, 0.4, 0.3]),
+        ] {
+            let plain = p.stick_interval(&[]);
+            for mask in 1..32usize {
+                let hint: Vec<usize> = (0..5).filter(|i| mask >> i & 1 == 1).collect();
+                let hinted = p.stick_interval(&[hint, vec![]]);
+                assert_eq!((&hinted.lo, &hinted.hi), (&plain.lo, &plain.hi), "{mask}");
+                let sets: Vec<&Vec<usize>> = hinted.breaking.iter().collect();
+                assert_eq!(sets.len(), 2);
+                let ratio = |set: &[usize], external: &dyn Fn(usize) -> Q| {
+                    let mut cut = Q::zero();
+                    for (i, j, f) in &p.friction {
+                        let j_in = matches!(j, End::Node(j) if set.contains(j));
+                        if set.contains(i) != j_in {
+                            cut = cut + f;
+                        }
+                    }
+                    let e: Q = set.iter().map(|&i| external(i)).sum();
+                    let m: Q = set.iter().map(|&i| p.mass[i].clone()).sum();
+                    (cut + e) / m
+                };
+                let hi = hinted.hi.clone().unwrap();
+                let lo = hinted.lo.clone().unwrap();
+                assert_eq!(ratio(sets[0], &|i| p.external[i].clone()), hi);
+                assert_eq!(-ratio(sets[1], &|i| -&p.external[i]), lo);
+            }
+        }
     }
 
     #[test]
@@ -793,7 +923,7 @@ mod tests {
         // Block on the ground, abutment (ground) on its left, face touching.
         let mut p = one_block(0.3);
         p.contacts.push((End::Ground, End::Node(0)));
-        let (lo, hi) = p.stick_interval();
+        let Stick { lo, hi, .. } = p.stick_interval(&[]);
         assert_eq!(hi, None, "lagging behind means pushing into the abutment");
         assert_eq!(lo, Some(-(q(0.3) * q(9.81))));
         let g = p.solve(&just_after(q(50.0), 0));

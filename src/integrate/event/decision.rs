@@ -17,6 +17,9 @@ use std::collections::{BTreeSet, HashMap};
 /// snap can move the breakpoint that matters at most this many times.
 const MAX_SNAPS: usize = 8;
 
+/// Sets that broke away at earlier stick limits, kept as hints for the next intervals.
+const BREAKING_HINTS: usize = 8;
+
 impl Engine<'_> {
     /// Velocity of block i with the given overrides.
     fn vel_with(&self, i: usize, snap: &HashMap<usize, f64>) -> f64 {
@@ -245,7 +248,7 @@ impl Engine<'_> {
         //    the general decision, snapping the ground acceleration to a breakpoint that rounding
         //    hides.
         let mut theta_lex = self.ground_lex(theta.clone());
-        let (groups, intervals) = match self.all_stuck(&p, &theta_lex, theta.is_some()) {
+        let (groups, intervals) = match self.all_stuck(&p, &blocks, &theta_lex, theta.is_some()) {
             Some(found) => found,
             None => {
                 let mut groups = self.solve(&p, &theta_lex, theta.is_some());
@@ -604,18 +607,37 @@ impl Engine<'_> {
                 }
             }
         }
-        let (lo_q, hi_q) = self.stick_interval(p.canonical());
+        let (lo_q, hi_q) = self.stick_interval(p.canonical(), &members);
         self.clusters[k].motion = stuck(lo_q, hi_q);
     }
 
-    /// The stick interval of a problem whose blocks are all stuck, remembered per run.
-    fn stick_interval(&mut self, p: Problem) -> (Option<Q>, Option<Q>) {
+    /// The stick interval of a problem whose blocks (`members`: global indices, sorted, in the
+    /// problem's order) are all stuck, remembered per run. The sets that broke away at earlier
+    /// limits are the hints ([`Problem::stick_interval`]): a block joining or leaving a large
+    /// stuck cluster seldom changes its weakest set.
+    fn stick_interval(&mut self, p: Problem, members: &[usize]) -> (Option<Q>, Option<Q>) {
         if let Some(found) = self.stick_memo.get(&p) {
             return found.clone();
         }
-        let found = p.stick_interval();
-        self.stick_memo.insert(p, found.clone());
-        found
+        let hints: Vec<Vec<usize>> = self
+            .breaking
+            .iter()
+            .map(|set| {
+                set.iter()
+                    .filter_map(|b| members.binary_search(b).ok())
+                    .collect()
+            })
+            .collect();
+        let found = p.stick_interval(&hints);
+        for set in found.breaking {
+            let global: Vec<usize> = set.into_iter().map(|k| members[k]).collect();
+            self.breaking.retain(|known| *known != global);
+            self.breaking.push_front(global);
+            self.breaking.truncate(BREAKING_HINTS);
+        }
+        let interval = (found.lo, found.hi);
+        self.stick_memo.insert(p, interval.clone());
+        interval
     }
 
     /// The general decision. Only the signs of the ground acceleration's derivatives matter
@@ -654,6 +676,7 @@ impl Engine<'_> {
     fn all_stuck(
         &mut self,
         p: &Problem,
+        blocks: &[usize],
         theta: &Lex,
         snapped: bool,
     ) -> Option<(Vec<Group>, Vec<Option<(Option<Q>, Option<Q>)>>)> {
@@ -667,7 +690,8 @@ impl Engine<'_> {
             if !on_ground {
                 return None;
             }
-            let (lo, hi) = self.stick_interval(p.restrict(&piece));
+            let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
+            let (lo, hi) = self.stick_interval(p.restrict(&piece), &members);
             if lo.as_ref().is_some_and(|lo| a0 <= lo) || hi.as_ref().is_some_and(|hi| a0 >= hi) {
                 return None;
             }

@@ -225,7 +225,7 @@ struct Arc<T> {
 /// Below this many nodes Dinic's lower overhead wins (a 976-block wall runs 10 % faster with
 /// it); above it Dinic's phase count (the number of distinct augmenting path lengths, about one
 /// per course of a wall) dominates (docs/performance.md).
-const PUSH_RELABEL_FROM: usize = 2048;
+pub const PUSH_RELABEL_FROM: usize = 2048;
 
 /// A flow network.
 pub struct Network<T: Amount> {

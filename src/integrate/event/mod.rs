@@ -24,7 +24,7 @@ use crate::wall::Wall;
 use cluster::{Cluster, Motion as ClusterMotion};
 use roots::{Counter, Fun};
 use std::cmp::{Ordering, Reverse};
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::{BinaryHeap, HashMap, VecDeque};
 
 /// Safeguards of the event-driven integrator. Neither is a tolerance: they only stop a run that
 /// would otherwise never end, with an error that says where.
@@ -200,6 +200,9 @@ pub(crate) struct Engine<'a> {
     stopped: bool,
     /// Stick intervals already worked out, by problem.
     stick_memo: HashMap<decide::Problem, (Option<Q>, Option<Q>)>,
+    /// Sets of blocks (global indices, sorted) that broke away at recent stick limits, newest
+    /// first: hints for the next stick intervals.
+    breaking: VecDeque<Vec<usize>>,
     /// Decisions already worked out, by problem and ground acceleration.
     free_memo: HashMap<(decide::Problem, flow::Lex), Vec<decide::Group>>,
 }
@@ -281,6 +284,7 @@ impl<'a> Engine<'a> {
             count: Counter::default(),
             stopped: false,
             stick_memo: HashMap::new(),
+            breaking: VecDeque::new(),
             free_memo: HashMap::new(),
         })
     }
