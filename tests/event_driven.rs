@@ -471,3 +471,61 @@ fn a_wall_of_two_thousand_blocks_with_random_friction_balances_its_energy() {
     let e = &r.summary.energy;
     assert!(e.residual_j.abs() < 1e-12 * e.input_j, "{e:?}");
 }
+
+#[test]
+fn a_sliding_cluster_splits_when_an_impact_reverses_the_friction_on_it() {
+    // X slides on the ground carrying Y (stuck to it) and C (sliding ahead on 0.2); C hits the
+    // abutment A and bounces back, so C's friction on X turns from +0.2 m_C g to -0.2 m_C g.
+    // Masses 1.3 : 0.7 : 0.4 (widths). Before the impact X and Y move at
+    // (-0.72 + 0.08) / 2 g = -0.32 g and Y needs 0.32 g of the 0.36 g its joint holds; after it
+    // they would move at (-0.72 - 0.08) / 2 g = -0.40 g: Y must slip on X at that instant.
+    let wall = Wall::from_ron_str(
+        r#"(
+            version: 1,
+            thickness_m: 1.0,
+            density_kg_m3: 2000,
+            friction: 0.3,
+            joint_friction: { "C/X": 0.2, "Y/X": 0.36 },
+            rectangles: [
+                (x_m: 0.0, y_m: 0.0, width_m: 1.3, height_m: 0.5, name: "X"),
+                (x_m: 1.6, y_m: 0.0, width_m: 0.4, height_m: 1.0, name: "A", fixed: true),
+                (x_m: 0.0, y_m: 0.5, width_m: 0.7, height_m: 0.5, name: "Y"),
+                (x_m: 1.0, y_m: 0.5, width_m: 0.4, height_m: 0.5, name: "C"),
+            ],
+        )"#,
+    )
+    .unwrap();
+    let g = wall.g_m_s2.to_f64();
+    let r = run(&wall, &constant(-0.5 * g, 0.6), 0.6, None);
+    // C gains 0.3 g on the ground and closes its 0.2 m gap first (X needs 0.18 g for 0.3 m).
+    let t_hit = (2.0 * 0.2 / (0.3 * g)).sqrt();
+    let impact = r
+        .events
+        .iter()
+        .find(|e| e.kind == EventKind::Impact)
+        .expect("C hits the abutment");
+    assert_eq!(impact.blocks, ["C", "A"]);
+    assert!((impact.time_s - t_hit).abs() < 1e-12);
+    let slip = r
+        .events
+        .iter()
+        .find(|e| e.kind == EventKind::Slip && e.joint.as_deref() == Some("Y/X"))
+        .expect("Y slips on X");
+    assert_eq!(slip.time_s, impact.time_s, "at the impact, not later");
+    // Then Y moves at -0.36 g (its joint at capacity) and X at (-0.72 - 0.08 + 0.36 * 0.7) / 1.3 g
+    // until 0.6 s, with no other event (C drifts back on X, X is 6 cm short of the abutment).
+    assert_eq!(r.events.len(), 5, "{:?}", r.events);
+    let a_rel = (-0.36 + 0.548 / 1.3) * g;
+    let expected = 0.5 * a_rel * (0.6 - impact.time_s).powi(2);
+    let yx = r
+        .summary
+        .joints
+        .iter()
+        .find(|j| j.upper == "Y" && j.lower == "X")
+        .unwrap();
+    assert!(
+        (yx.final_relative_displacement_m - expected).abs() < 1e-13,
+        "{} against {expected}",
+        yx.final_relative_displacement_m
+    );
+}

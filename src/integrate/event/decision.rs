@@ -330,6 +330,9 @@ impl Engine<'_> {
             })
         };
         let mut neighbours: BTreeSet<usize> = BTreeSet::new();
+        // Neighbours a joint of which turned: their friction forces changed (only an impact turns
+        // a sliding joint without a re-decision of both sides).
+        let mut pushed: BTreeSet<usize> = BTreeSet::new();
         for &s in &touched_supports {
             if !self.live_support(s) {
                 continue;
@@ -366,6 +369,13 @@ impl Engine<'_> {
             };
             let old_dir = self.dir[s];
             self.dir[s] = new_dir;
+            if old_dir != new_dir {
+                for b in std::iter::once(up).chain(lo) {
+                    if !local.contains_key(&b) && self.of[b] != NONE {
+                        pushed.insert(self.of[b]);
+                    }
+                }
+            }
             if (old_dir == 0) != (new_dir == 0) {
                 self.rec.transitions += 1;
                 let kind = if new_dir == 0 {
@@ -423,6 +433,16 @@ impl Engine<'_> {
         let mut all: Vec<usize> = new_clusters;
         all.extend(neighbours);
         self.schedule(&all);
+
+        // 8. A sliding cluster of several blocks whose friction forces changed may have to split:
+        //    re-decide it (a stuck one has its new stick interval, which is checked at once).
+        for k in pushed {
+            let blocks = &self.clusters[k].blocks;
+            if blocks.len() > 1 && self.clusters[k].slide().is_some() {
+                let seeds = blocks.clone();
+                self.decide_from(&seeds, &[], None)?;
+            }
+        }
         Ok(())
     }
 
