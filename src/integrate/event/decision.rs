@@ -418,6 +418,9 @@ impl Engine<'_> {
         for &k in &new_clusters {
             neighbours.remove(&k);
         }
+        // A stuck neighbour none of whose joints turned keeps its problem, so its interval and
+        // events stand (a sliding one is rescheduled: what it slides against has changed).
+        neighbours.retain(|k| pushed.contains(k) || self.clusters[*k].slide().is_some());
 
         // 7. Stuck clusters get their threshold interval; neighbours whose friction changed move
         //    on with their new forces.
