@@ -431,7 +431,7 @@ impl Engine<'_> {
             self.clusters[k].version = self.new_version();
         }
         for &k in &neighbours {
-            self.refresh(k);
+            self.refresh(k, pushed.contains(&k));
         }
         let mut all: Vec<usize> = new_clusters;
         all.extend(neighbours);
@@ -728,12 +728,14 @@ impl Engine<'_> {
         Some((groups, intervals))
     }
 
-    /// A cluster next to a re-decided one: its friction forces may have changed (after an
-    /// impact) and its neighbourhood has; it gets a new version and fresh events.
-    fn refresh(&mut self, k: usize) {
+    /// A cluster next to a re-decided one: its neighbourhood has changed, and where one of its
+    /// joints `turned` (after an impact) its friction forces too; it gets a new version and
+    /// fresh events.
+    fn refresh(&mut self, k: usize, turned: bool) {
         let t = self.t;
         match &self.clusters[k].motion {
             Motion::Stuck { .. } => self.set_thresholds(k),
+            Motion::Sliding(_) if !turned => {}
             Motion::Sliding(sl) => {
                 let force: Q = self.external_forces(k).into_iter().sum();
                 let c_q = force / &self.clusters[k].mass_q;
