@@ -20,6 +20,36 @@ const MAX_SNAPS: usize = 8;
 /// Sets that broke away at earlier stick limits, kept as hints for the next intervals.
 const BREAKING_HINTS: usize = 8;
 
+/// The local index of each block in a decision problem (`NONE` outside it): a table over all
+/// blocks, because a decision can take in most of a large wall.
+struct Local(Vec<usize>);
+
+impl Local {
+    fn new(n: usize) -> Local {
+        Local(vec![NONE; n])
+    }
+
+    fn get(&self, b: &usize) -> Option<&usize> {
+        Some(&self.0[*b]).filter(|&&k| k != NONE)
+    }
+
+    fn contains_key(&self, b: &usize) -> bool {
+        self.0[*b] != NONE
+    }
+
+    fn insert(&mut self, b: usize, k: usize) {
+        self.0[b] = k;
+    }
+}
+
+impl std::ops::Index<&usize> for Local {
+    type Output = usize;
+
+    fn index(&self, b: &usize) -> &usize {
+        self.get(b).expect("block in the problem")
+    }
+}
+
 impl Engine<'_> {
     /// Velocity of block i with the given overrides.
     fn vel_with(&self, i: usize, snap: &HashMap<usize, f64>) -> f64 {
@@ -59,13 +89,13 @@ impl Engine<'_> {
         let t = self.t;
 
         // 1. The component: whole clusters joined through joints with equal velocities.
-        let mut local: HashMap<usize, usize> = HashMap::new();
+        let mut local = Local::new(self.n);
         let mut blocks: Vec<usize> = Vec::new();
         let mut old_clusters: BTreeSet<usize> = BTreeSet::new();
         let mut queue: Vec<usize> = Vec::new();
         let add = |b: usize,
                    this: &Engine,
-                   local: &mut HashMap<usize, usize>,
+                   local: &mut Local,
                    blocks: &mut Vec<usize>,
                    old: &mut BTreeSet<usize>,
                    queue: &mut Vec<usize>| {
@@ -77,8 +107,8 @@ impl Engine<'_> {
                 }
             };
             for m in members {
-                if let std::collections::hash_map::Entry::Vacant(e) = local.entry(m) {
-                    e.insert(blocks.len());
+                if !local.contains_key(&m) {
+                    local.insert(m, blocks.len());
                     blocks.push(m);
                     queue.push(m);
                 }
@@ -148,8 +178,8 @@ impl Engine<'_> {
         for &k in &old_clusters {
             self.account(k, t);
         }
-        let mut touched_supports: BTreeSet<usize> = BTreeSet::new();
-        let mut touched_joints: BTreeSet<usize> = BTreeSet::new();
+        let mut touched_supports: Vec<usize> = Vec::new();
+        let mut touched_joints: Vec<usize> = Vec::new();
         for &i in &blocks {
             touched_supports.extend(
                 self.topo.below[i]
@@ -158,6 +188,10 @@ impl Engine<'_> {
                     .map(|s| s.0),
             );
             touched_joints.extend(self.topo.sides[i].iter().map(|j| j.0));
+        }
+        for touched in [&mut touched_supports, &mut touched_joints] {
+            touched.sort_unstable();
+            touched.dedup();
         }
         for &s in &touched_supports {
             self.account_support(s);
@@ -459,12 +493,7 @@ impl Engine<'_> {
     /// group is joined to the ground), so the decision sees exact equality. Without this, a
     /// block resting on two supports whose velocities differ by round-off meets each in turn,
     /// one ulp apart, for ever.
-    fn equalize_velocities(
-        &self,
-        blocks: &[usize],
-        local: &HashMap<usize, usize>,
-        snap: &mut HashMap<usize, f64>,
-    ) {
+    fn equalize_velocities(&self, blocks: &[usize], local: &Local, snap: &mut HashMap<usize, f64>) {
         let n = blocks.len();
         let v: Vec<f64> = blocks.iter().map(|&b| self.vel_with(b, snap)).collect();
         let mut sets = DisjointSets::new(n);
@@ -580,8 +609,10 @@ impl Engine<'_> {
     fn set_thresholds(&mut self, k: usize) {
         self.clusters[k].blocks.sort_unstable();
         let members = self.clusters[k].blocks.clone();
-        let local: HashMap<usize, usize> =
-            members.iter().enumerate().map(|(n, &b)| (b, n)).collect();
+        let mut local = Local::new(self.n);
+        for (n, &b) in members.iter().enumerate() {
+            local.insert(b, n);
+        }
         let mut p = Problem {
             mass: members.iter().map(|&i| self.mass_q[i].clone()).collect(),
             external: self.external_forces(k),
