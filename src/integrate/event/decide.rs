@@ -17,6 +17,7 @@
 
 use super::flow::{take_overflow, Amount, Exact, Lex, Network, PUSH_RELABEL_FROM};
 use crate::exact::Q;
+use std::cmp::Ordering;
 use std::collections::VecDeque;
 
 /// The other end of a joint: a block of the problem, or the ground (and fixed blocks).
@@ -373,12 +374,21 @@ impl Problem {
 
     /// Solves the decision problem. `ground` is the ground acceleration just after the instant
     /// (exact, with its derivatives) when some joint reaches the ground; it is ignored otherwise.
-    pub fn solve(&self, ground: &Lex) -> Vec<Group> {
+    /// `bodies` are disjoint sets of nodes that moved as rigid bodies until now (large sliding
+    /// clusters); away from the ground they make the work proportional to the cut that shows
+    /// each still holds, instead of the cuts that would find their groups anew
+    /// ([`Problem::solve_contracted`]). The answer does not depend on them.
+    pub fn solve(&self, ground: &Lex, bodies: &[Vec<usize>]) -> Vec<Group> {
         let n = self.n();
         let adj = self.adjacency();
         let all = vec![true; n];
         let mut out = Vec::new();
         if !self.touches_ground() {
+            if !bodies.is_empty() {
+                if let Some(groups) = self.solve_contracted(bodies) {
+                    return groups;
+                }
+            }
             self.solve_free(&all, &self.external, &adj, &mut out);
             return out;
         }
@@ -452,6 +462,142 @@ impl Problem {
             }
         }
         out
+    }
+
+    /// A problem away from the ground solved with each of `bodies` held together: contracted to
+    /// one node (its mass, its external force, its joints to the rest) the problem is small.
+    /// Holding bodies together is a constraint, so this is the answer to the full problem exactly
+    /// when the full problem's optimality conditions also hold inside every group that holds a
+    /// body: with the forces the other groups now put on it (sliding joints at capacity), its
+    /// weights sum to zero at its acceleration, and it stays whole exactly when its largest
+    /// minimum cut is all of it. The minimiser being unique, the groups are then the full
+    /// problem's; `None` when some group cannot stay whole (or touches another group moving at
+    /// its own acceleration, where the force between them is not determined).
+    fn solve_contracted(&self, bodies: &[Vec<usize>]) -> Option<Vec<Group>> {
+        let n = self.n();
+        let mut node = vec![usize::MAX; n];
+        let mut members: Vec<Vec<usize>> = Vec::new();
+        for body in bodies {
+            for &i in body {
+                node[i] = members.len();
+            }
+            members.push(body.clone());
+        }
+        for (i, c) in node.iter_mut().enumerate() {
+            if *c == usize::MAX {
+                *c = members.len();
+                members.push(vec![i]);
+            }
+        }
+        let end = |e: &End| match e {
+            End::Node(i) => End::Node(node[*i]),
+            End::Ground => End::Ground,
+        };
+        let sum = |values: &[Q], of: &[usize]| -> Q { of.iter().map(|&i| values[i].clone()).sum() };
+        let small = Problem {
+            mass: members.iter().map(|m| sum(&self.mass, m)).collect(),
+            external: members.iter().map(|m| sum(&self.external, m)).collect(),
+            friction: self
+                .friction
+                .iter()
+                .filter(|(i, j, _)| end(j) != End::Node(node[*i]))
+                .map(|(i, j, f)| (node[*i], end(j), f.clone()))
+                .collect(),
+            contacts: self
+                .contacts
+                .iter()
+                .map(|(l, r)| (end(l), end(r)))
+                .filter(|(l, r)| l != r)
+                .collect(),
+        }
+        .canonical();
+        let mut groups = small.solve(&Lex::zero(), &[]);
+        let mut group_of = vec![0; n];
+        for (g, group) in groups.iter_mut().enumerate() {
+            let mut nodes: Vec<usize> = group
+                .nodes
+                .iter()
+                .flat_map(|&c| members[c].iter().copied())
+                .collect();
+            nodes.sort_unstable();
+            for &i in &nodes {
+                group_of[i] = g;
+            }
+            group.nodes = nodes;
+        }
+        let holds_a_body = |g: &Group| {
+            bodies
+                .iter()
+                .any(|b| b.first().is_some_and(|i| g.nodes.contains(i)))
+        };
+        for group in groups.iter().filter(|group| holds_a_body(group)) {
+            let a = &group.accel;
+            let mut set = vec![false; n];
+            for &i in &group.nodes {
+                set[i] = true;
+            }
+            let mut external = self.external.clone();
+            for (i, j, f) in &self.friction {
+                let End::Node(j) = j else { continue };
+                let (inside, other) = match (set[*i], set[*j]) {
+                    (true, false) => (*i, *j),
+                    (false, true) => (*j, *i),
+                    _ => continue,
+                };
+                // The other group pulls this one its own way, with the joint's whole capacity.
+                match groups[group_of[other]].accel.cmp(a) {
+                    Ordering::Greater => external[inside] = &external[inside] + f,
+                    Ordering::Less => external[inside] = &external[inside] - f,
+                    Ordering::Equal => return None,
+                }
+            }
+            let touching_a_twin = self.contacts.iter().any(|(l, r)| match (l, r) {
+                (End::Node(l), End::Node(r)) if set[*l] != set[*r] => {
+                    groups[group_of[*l]].accel == groups[group_of[*r]].accel
+                }
+                _ => false,
+            });
+            if touching_a_twin {
+                return None;
+            }
+            let weight: Vec<Q> = (0..n)
+                .map(|i| {
+                    if set[i] {
+                        &self.mass[i] * a - &external[i]
+                    } else {
+                        Q::zero()
+                    }
+                })
+                .collect();
+            let total: Q = weight.iter().cloned().sum();
+            if !total.is_zero() {
+                return None;
+            }
+            let largest = self
+                .min_cut(&set, &weight, Side::Upper, false, Want::Largest)
+                .1;
+            if largest.expect("asked for") != set {
+                return None;
+            }
+        }
+        // A group is one connected piece of the joint graph (a body given in pieces would
+        // otherwise hold them together).
+        let adj = self.adjacency();
+        Some(
+            groups
+                .into_iter()
+                .flat_map(|g| {
+                    let accel = g.accel;
+                    self.pieces(&g.nodes, &adj)
+                        .into_iter()
+                        .map(move |nodes| Group {
+                            nodes,
+                            accel: accel.clone(),
+                            grounded: false,
+                        })
+                })
+                .collect(),
+        )
     }
 
     /// For blocks that are all stuck to the ground: the interval of ground accelerations
@@ -648,6 +794,7 @@ fn cut_with<A: Amount>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     fn q(x: f64) -> Q {
         Q::from_decimal(x).unwrap()
@@ -673,7 +820,7 @@ mod tests {
         let mug = q(0.3) * q(9.81);
         let stick = p.stick_interval(&[]);
         assert_eq!((stick.lo, stick.hi), (Some(-&mug), Some(mug.clone())));
-        let g = p.solve(&just_after(q(1.0), 0));
+        let g = p.solve(&just_after(q(1.0), 0), &[]);
         assert_eq!(
             g,
             vec![Group {
@@ -683,7 +830,7 @@ mod tests {
             }]
         );
         // Exactly at the limit: rising ground acceleration makes it slide, falling keeps it.
-        let g = p.solve(&just_after(mug.clone(), 1));
+        let g = p.solve(&just_after(mug.clone(), 1), &[]);
         assert_eq!(
             g,
             vec![Group {
@@ -692,10 +839,10 @@ mod tests {
                 grounded: false
             }]
         );
-        let g = p.solve(&just_after(mug.clone(), -1));
+        let g = p.solve(&just_after(mug.clone(), -1), &[]);
         assert!(g[0].grounded);
         // Beyond: slides with friction mu g pulling it along.
-        let g = p.solve(&just_after(q(5.0), 0));
+        let g = p.solve(&just_after(q(5.0), 0), &[]);
         assert_eq!(g[0].accel, mug);
         assert!(!g[0].grounded);
     }
@@ -740,7 +887,7 @@ mod tests {
         assert_eq!((stick.lo, stick.hi), (Some(-&mug), Some(mug.clone())));
         // At the threshold, rising: the whole wall moves, every upper joint exactly at its limit
         // and sticking.
-        let g = p.solve(&just_after(mug.clone(), 1));
+        let g = p.solve(&just_after(mug.clone(), 1), &[]);
         assert_eq!(
             g,
             vec![Group {
@@ -750,11 +897,11 @@ mod tests {
             }]
         );
         // Falling back: everything stuck, one cluster through the touching faces.
-        let g = p.solve(&just_after(mug.clone(), -1));
+        let g = p.solve(&just_after(mug.clone(), -1), &[]);
         assert_eq!(g.len(), 1);
         assert!(g[0].grounded);
         // Well beyond: still one body.
-        let g = p.solve(&just_after(q(-7.0), 0));
+        let g = p.solve(&just_after(q(-7.0), 0), &[]);
         assert_eq!(
             g,
             vec![Group {
@@ -774,7 +921,7 @@ mod tests {
         assert_eq!(hi, Some(q(0.28) * q(9.81)));
         assert_eq!(lo, Some(-(q(0.28) * q(9.81))));
         let a = q(0.28) * q(9.81);
-        let g = p.solve(&just_after(a.clone(), 1));
+        let g = p.solve(&just_after(a.clone(), 1), &[]);
         // Pushed rightward by the ground, B3 lags behind (moves -x relative) and opens from B4;
         // B5 would have to push B4: it stays.
         let moving: Vec<&Group> = g.iter().filter(|g| !g.grounded).collect();
@@ -819,6 +966,67 @@ mod tests {
         }
     }
 
+    /// Random problems away from the ground: masses, sliding forces, joints and faces.
+    fn free_problem() -> impl Strategy<Value = Problem> {
+        (2usize..9).prop_flat_map(|n| {
+            (
+                prop::collection::vec(1i64..6, n),
+                prop::collection::vec(-12i64..13, n),
+                prop::collection::vec((0..n, 0..n, 1i64..9), 1..2 * n),
+                prop::collection::vec((0..n, 0..n), 0..n),
+            )
+                .prop_map(|(mass, external, joints, faces)| Problem {
+                    mass: mass.into_iter().map(Q::int).collect(),
+                    external: external.into_iter().map(Q::int).collect(),
+                    friction: joints
+                        .into_iter()
+                        .filter(|(i, j, _)| i != j)
+                        .map(|(i, j, f)| (i, End::Node(j), Q::int(f)))
+                        .collect(),
+                    contacts: faces
+                        .into_iter()
+                        .filter(|(l, r)| l != r)
+                        .map(|(l, r)| (End::Node(l), End::Node(r)))
+                        .collect(),
+                })
+        })
+    }
+
+    fn sorted(mut groups: Vec<Group>) -> Vec<Group> {
+        groups.sort_by(|a, b| a.nodes.cmp(&b.nodes));
+        groups
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 3000, failure_persistence: None, ..ProptestConfig::default() })]
+
+        /// Holding bodies together first changes the work, never the answer; and it is used
+        /// whenever the bodies do hold.
+        #[test]
+        fn bodies_held_together_give_the_same_groups(
+            p in free_problem(),
+            labels in prop::collection::vec(0usize..3, 8),
+        ) {
+            let n = p.mass.len();
+            // Up to two bodies: nodes labelled 1, nodes labelled 2.
+            let bodies: Vec<Vec<usize>> = [1, 2]
+                .iter()
+                .map(|&b| (0..n).filter(|&i| labels[i] == b).collect::<Vec<usize>>())
+                .filter(|body| body.len() >= 2)
+                .collect();
+            let plain = sorted(p.solve(&Lex::zero(), &[]));
+            prop_assert_eq!(&sorted(p.solve(&Lex::zero(), &bodies)), &plain);
+            let whole = |body: &Vec<usize>| {
+                let group = plain.iter().find(|g| g.nodes.contains(&body[0])).unwrap();
+                body.iter().all(|i| group.nodes.contains(i))
+            };
+            let connected = |body: &Vec<usize>| p.pieces(body, &p.adjacency()).len() == 1;
+            if bodies.iter().all(|b| whole(b) && connected(b)) {
+                prop_assert!(p.solve_contracted(&bodies).is_some());
+            }
+        }
+    }
+
     #[test]
     fn a_free_stack_splits_where_friction_cannot_hold() {
         // Two blocks sliding on a moving base: lower one (1 kg) gets +10 N, upper one (1 kg) is
@@ -829,7 +1037,7 @@ mod tests {
             friction: vec![(1, End::Node(0), Q::int(2))],
             contacts: vec![],
         };
-        let mut g = p.solve(&Lex::zero());
+        let mut g = p.solve(&Lex::zero(), &[]);
         g.sort_by(|a, b| a.accel.cmp(&b.accel));
         assert_eq!(
             g[0],
@@ -851,7 +1059,7 @@ mod tests {
         let mut p = p;
         p.friction[0].2 = Q::int(6);
         assert_eq!(
-            p.solve(&Lex::zero()),
+            p.solve(&Lex::zero(), &[]),
             vec![Group {
                 nodes: vec![0, 1],
                 accel: Q::int(5),
@@ -873,7 +1081,7 @@ mod tests {
             ],
             contacts: vec![],
         };
-        let mut g = p.solve(&just_after(Q::int(8), 0));
+        let mut g = p.solve(&just_after(Q::int(8), 0), &[]);
         g.sort_by(|a, b| a.nodes.cmp(&b.nodes));
         assert_eq!(
             g[0],
@@ -903,7 +1111,7 @@ mod tests {
             contacts: vec![(End::Node(0), End::Node(1))],
         };
         assert_eq!(
-            p.solve(&Lex::zero()),
+            p.solve(&Lex::zero(), &[]),
             vec![Group {
                 nodes: vec![0, 1],
                 accel: Q::int(5),
@@ -912,7 +1120,7 @@ mod tests {
         );
         // Pushed the other way they separate.
         p.external[0] = Q::int(-10);
-        let mut g = p.solve(&Lex::zero());
+        let mut g = p.solve(&Lex::zero(), &[]);
         g.sort_by(|a, b| a.accel.cmp(&b.accel));
         assert_eq!(g[0].accel, Q::int(-10));
         assert_eq!(g[1].accel, Q::zero());
@@ -926,7 +1134,7 @@ mod tests {
         let Stick { lo, hi, .. } = p.stick_interval(&[]);
         assert_eq!(hi, None, "lagging behind means pushing into the abutment");
         assert_eq!(lo, Some(-(q(0.3) * q(9.81))));
-        let g = p.solve(&just_after(q(50.0), 0));
+        let g = p.solve(&just_after(q(50.0), 0), &[]);
         assert!(g[0].grounded);
     }
 }

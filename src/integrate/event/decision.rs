@@ -20,6 +20,10 @@ const MAX_SNAPS: usize = 8;
 /// Sets that broke away at earlier stick limits, kept as hints for the next intervals.
 const BREAKING_HINTS: usize = 8;
 
+/// Sliding clusters of at least this many blocks are held together in a decision's first try
+/// (`Problem::solve`); below it the general decision costs no more.
+const BODY_FROM: usize = 32;
+
 /// The local index of each block in a decision problem (`NONE` outside it): a table over all
 /// blocks, because a decision can take in most of a large wall.
 struct Local(Vec<usize>);
@@ -285,7 +289,18 @@ impl Engine<'_> {
         let (groups, intervals) = match self.all_stuck(&p, &blocks, &theta_lex, theta.is_some()) {
             Some(found) => found,
             None => {
-                let mut groups = self.solve(&p, &theta_lex, theta.is_some());
+                // Large clusters that slid as one body until now (see `Problem::solve`).
+                let bodies: Vec<Vec<usize>> = old_clusters
+                    .iter()
+                    .map(|&k| &self.clusters[k])
+                    .filter(|c| c.slide().is_some() && c.blocks.len() >= BODY_FROM)
+                    .map(|c| {
+                        let mut nodes: Vec<usize> = c.blocks.iter().map(|b| local[b]).collect();
+                        nodes.sort_unstable();
+                        nodes
+                    })
+                    .collect();
+                let mut groups = self.solve(&p, &theta_lex, theta.is_some(), &bodies);
                 for _ in 0..MAX_SNAPS {
                     // The motion will start from the float c lambda - a_g (`Slide::formed`); if
                     // rounding gives it no sign, or the wrong one, the breakpoint is hidden.
@@ -301,7 +316,7 @@ impl Engine<'_> {
                     match hidden {
                         Some(g) => {
                             theta_lex.0[0] = g.accel.clone();
-                            groups = self.solve(&p, &theta_lex, false);
+                            groups = self.solve(&p, &theta_lex, false, &bodies);
                         }
                         None => break,
                     }
@@ -698,7 +713,13 @@ impl Engine<'_> {
     /// (they order ties, and every tie compares the same mass combination), so theta is
     /// normalised to them; decisions away from the ground, or at a stick threshold (an exact
     /// value met again cycle after cycle), are remembered per run.
-    fn solve(&mut self, p: &Problem, theta: &Lex, remember: bool) -> Vec<Group> {
+    fn solve(
+        &mut self,
+        p: &Problem,
+        theta: &Lex,
+        remember: bool,
+        bodies: &[Vec<usize>],
+    ) -> Vec<Group> {
         let sign = |q: &Q| Q::int(i64::from(q.signum()));
         let theta = if p.touches_ground() {
             let second = if theta.0[1].is_zero() {
@@ -711,13 +732,13 @@ impl Engine<'_> {
             Lex::zero()
         };
         if !remember && p.touches_ground() {
-            return p.solve(&theta);
+            return p.solve(&theta, bodies);
         }
         let key = (p.clone(), theta);
         if let Some(found) = self.free_memo.get(&key) {
             return found.clone();
         }
-        let found = p.solve(&key.1);
+        let found = p.solve(&key.1, bodies);
         self.free_memo.insert(key, found.clone());
         found
     }
