@@ -705,14 +705,14 @@ impl Engine<'_> {
             self.breaking.truncate(BREAKING_HINTS);
         }
         let interval = (found.lo, found.hi);
-        self.stick_memo.insert(p, interval.clone());
+        self.stick_memo.insert(p, interval.clone(), members.len());
         interval
     }
 
     /// The general decision. Only the signs of the ground acceleration's derivatives matter
     /// (they order ties, and every tie compares the same mass combination), so theta is
     /// normalised to them; decisions away from the ground, or at a stick threshold (an exact
-    /// value met again cycle after cycle), are remembered per run.
+    /// value met again cycle after cycle), are remembered per run ([`Memo`](super::memo::Memo)).
     fn solve(
         &mut self,
         p: &Problem,
@@ -739,7 +739,7 @@ impl Engine<'_> {
             return found.clone();
         }
         let found = p.solve(&key.1, bodies);
-        self.free_memo.insert(key, found.clone());
+        self.free_memo.insert(key, found.clone(), p.mass.len());
         found
     }
 

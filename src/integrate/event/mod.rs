@@ -11,6 +11,7 @@ pub mod decide;
 mod decision;
 pub mod flow;
 pub mod impact;
+mod memo;
 pub mod roots;
 mod schedule;
 
@@ -22,6 +23,7 @@ use crate::response::{Collapse, EventKind, Recorder, Response};
 use crate::topology::{Base, Topology};
 use crate::wall::Wall;
 use cluster::{Cluster, Motion as ClusterMotion};
+use memo::Memo;
 use roots::{Counter, Fun};
 use std::cmp::{Ordering, Reverse};
 use std::collections::{BinaryHeap, HashMap, VecDeque};
@@ -199,12 +201,12 @@ pub(crate) struct Engine<'a> {
     count: Counter,
     stopped: bool,
     /// Stick intervals already worked out, by problem.
-    stick_memo: HashMap<decide::Problem, (Option<Q>, Option<Q>)>,
+    stick_memo: Memo<decide::Problem, (Option<Q>, Option<Q>)>,
     /// Sets of blocks (global indices, sorted) that broke away at recent stick limits, newest
     /// first: hints for the next stick intervals.
     breaking: VecDeque<Vec<usize>>,
     /// Decisions already worked out, by problem and ground acceleration.
-    free_memo: HashMap<(decide::Problem, flow::Lex), Vec<decide::Group>>,
+    free_memo: Memo<(decide::Problem, flow::Lex), Vec<decide::Group>>,
 }
 
 impl<'a> Engine<'a> {
@@ -283,9 +285,9 @@ impl<'a> Engine<'a> {
             vel_scale: v_max + 1e-3,
             count: Counter::default(),
             stopped: false,
-            stick_memo: HashMap::new(),
+            stick_memo: Memo::new(),
             breaking: VecDeque::new(),
-            free_memo: HashMap::new(),
+            free_memo: Memo::new(),
         })
     }
 
