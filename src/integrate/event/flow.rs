@@ -227,19 +227,68 @@ struct Arc<T> {
 /// per course of a wall) dominates (docs/performance.md).
 pub const PUSH_RELABEL_FROM: usize = 2048;
 
-/// A flow network.
+/// A flow network. Arcs are added in any order; before the first flow they are laid out by the
+/// node they leave (`first[u]..first[u + 1]`), so scanning a node's arcs reads one stretch of
+/// memory.
 pub struct Network<T: Amount> {
+    n: usize,
     arcs: Vec<Arc<T>>,
-    adj: Vec<Vec<usize>>,
+    /// While arcs are being added: the node each leaves.
+    tails: Vec<usize>,
+    /// Once laid out: where each node's arcs start (n + 1 entries).
+    first: Vec<usize>,
 }
 
 impl<T: Amount> Network<T> {
     /// A network with `n` nodes and no arcs.
     pub fn new(n: usize) -> Network<T> {
         Network {
+            n,
             arcs: Vec::new(),
-            adj: vec![Vec::new(); n],
+            tails: Vec::new(),
+            first: Vec::new(),
         }
+    }
+
+    /// Lays the arcs out by the node they leave (a counting sort), once.
+    fn lay_out(&mut self) {
+        if self.first.len() == self.n + 1 {
+            return;
+        }
+        let mut first = vec![0; self.n + 1];
+        for &u in &self.tails {
+            first[u + 1] += 1;
+        }
+        for u in 0..self.n {
+            first[u + 1] += first[u];
+        }
+        let mut next = first.clone();
+        let place: Vec<usize> = self
+            .tails
+            .iter()
+            .map(|&u| {
+                next[u] += 1;
+                next[u] - 1
+            })
+            .collect();
+        let mut arcs: Vec<Option<Arc<T>>> = (0..self.arcs.len()).map(|_| None).collect();
+        for (a, arc) in std::mem::take(&mut self.arcs).into_iter().enumerate() {
+            arcs[place[a]] = Some(Arc {
+                rev: place[arc.rev],
+                ..arc
+            });
+        }
+        self.arcs = arcs
+            .into_iter()
+            .map(|a| a.expect("every place filled"))
+            .collect();
+        self.first = first;
+        self.tails = Vec::new();
+    }
+
+    /// The arcs leaving u (once laid out).
+    fn out(&self, u: usize) -> std::ops::Range<usize> {
+        self.first[u]..self.first[u + 1]
     }
 
     /// An arc u -> v of capacity `cap` (and its zero-capacity reverse).
@@ -264,16 +313,16 @@ impl<T: Amount> Network<T> {
             residual: backward,
             rev: k,
         });
-        self.adj[u].push(k);
-        self.adj[v].push(k + 1);
+        self.tails.push(u);
+        self.tails.push(v);
     }
 
     fn levels(&self, s: usize) -> Vec<usize> {
-        let mut level = vec![usize::MAX; self.adj.len()];
+        let mut level = vec![usize::MAX; self.n];
         level[s] = 0;
         let mut queue = VecDeque::from([s]);
         while let Some(u) = queue.pop_front() {
-            for &a in &self.adj[u] {
+            for a in self.out(u) {
                 let arc = &self.arcs[a];
                 if level[arc.to] == usize::MAX && arc.residual.positive() {
                     level[arc.to] = level[u] + 1;
@@ -288,8 +337,8 @@ impl<T: Amount> Network<T> {
         if u == t {
             return limit.clone();
         }
-        while next[u] < self.adj[u].len() {
-            let a = self.adj[u][next[u]];
+        while next[u] < self.first[u + 1] {
+            let a = next[u];
             let (to, ok) = {
                 let arc = &self.arcs[a];
                 (
@@ -316,13 +365,14 @@ impl<T: Amount> Network<T> {
     /// Pushes a maximum flow from s to t and returns its value. Afterwards the residual network
     /// gives the minimum cuts ([`Network::reachable_from`], [`Network::reaching`]).
     pub fn max_flow(&mut self, s: usize, t: usize, unbounded: &T) -> T {
+        self.lay_out();
         let mut total = T::zero();
         loop {
             let level = self.levels(s);
             if level[t] == usize::MAX {
                 return total;
             }
-            let mut next = vec![0; self.adj.len()];
+            let mut next = self.first[..self.n].to_vec();
             loop {
                 let f = self.push(s, t, unbounded, &level, &mut next);
                 if !f.positive() {
@@ -337,7 +387,7 @@ impl<T: Amount> Network<T> {
     /// that reach `t` in every maximum flow (the sink side of the cut closest to the sink).
     /// `unbounded` exceeds every cut.
     pub fn minimum_cuts(self, s: usize, t: usize, unbounded: &T) -> (Vec<bool>, Vec<bool>) {
-        if self.adj.len() < PUSH_RELABEL_FROM {
+        if self.n < PUSH_RELABEL_FROM {
             self.cuts_by_dinic(s, t, unbounded)
         } else {
             self.cuts_by_push_relabel(s, t)
@@ -347,7 +397,7 @@ impl<T: Amount> Network<T> {
     /// The source side of the minimum s-t cut closest to the source (half the work of
     /// [`Network::minimum_cuts`] for large networks).
     pub fn source_side(mut self, s: usize, t: usize, unbounded: &T) -> Vec<bool> {
-        if self.adj.len() < PUSH_RELABEL_FROM {
+        if self.n < PUSH_RELABEL_FROM {
             self.max_flow(s, t, unbounded);
             self.reachable_from(s)
         } else {
@@ -358,7 +408,7 @@ impl<T: Amount> Network<T> {
     /// The nodes that reach `t` in every maximum flow: the sink side of the minimum s-t cut
     /// closest to the sink.
     pub fn sink_side(mut self, s: usize, t: usize, unbounded: &T) -> Vec<bool> {
-        if self.adj.len() < PUSH_RELABEL_FROM {
+        if self.n < PUSH_RELABEL_FROM {
             self.max_flow(s, t, unbounded);
             self.reaching(t)
         } else {
@@ -374,30 +424,37 @@ impl<T: Amount> Network<T> {
     /// The sink side from a maximum preflow of this network, the source side from one of the
     /// reversed network. No second phase turning preflows into flows is needed.
     fn cuts_by_push_relabel(mut self, s: usize, t: usize) -> (Vec<bool>, Vec<bool>) {
+        self.lay_out();
         let source_side = self.source_side_by_push_relabel(s, t);
         (source_side, self.sink_side_of_max_preflow(s, t))
     }
 
     /// The nodes that reach s in the reversed network (t to s) after a maximum preflow there:
-    /// the source side of the cut closest to the source here. Leaves this network untouched.
-    fn source_side_by_push_relabel(&self, s: usize, t: usize) -> Vec<bool> {
-        let mut reversed = Network::new(self.adj.len());
-        for pair in self.arcs.chunks(2) {
-            // pair[0] goes u -> v (u is where its reverse points).
-            let (u, v) = (pair[1].to, pair[0].to);
-            reversed.pair(v, u, pair[0].residual.clone(), pair[1].residual.clone());
+    /// the source side of the cut closest to the source here. Leaves this network's flow untouched.
+    fn source_side_by_push_relabel(&mut self, s: usize, t: usize) -> Vec<bool> {
+        self.lay_out();
+        let mut reversed = Network::new(self.n);
+        // Each pair once, from its first arc: u -> v (u is where its reverse points) becomes
+        // v -> u with the same residual, and its reverse u -> v.
+        for (a, arc) in self.arcs.iter().enumerate() {
+            if a > arc.rev {
+                continue;
+            }
+            let back = &self.arcs[arc.rev];
+            let (u, v) = (back.to, arc.to);
+            reversed.pair(v, u, arc.residual.clone(), back.residual.clone());
         }
         reversed.sink_side_of_max_preflow(t, s)
     }
 
     /// Shortest residual distance of every node to `t` (`n` where `t` cannot be reached).
     fn distances_to(&self, t: usize) -> Vec<usize> {
-        let n = self.adj.len();
+        let n = self.n;
         let mut dist = vec![n; n];
         dist[t] = 0;
         let mut queue = VecDeque::from([t]);
         while let Some(v) = queue.pop_front() {
-            for &a in &self.adj[v] {
+            for a in self.out(v) {
                 let u = self.arcs[a].to;
                 if dist[u] == n && self.arcs[self.arcs[a].rev].residual.positive() {
                     dist[u] = dist[v] + 1;
@@ -413,10 +470,10 @@ impl<T: Amount> Network<T> {
     /// left with excess has a label of at least n, so it cannot reach t, and the flow into the
     /// nodes that can is maximum (Goldberg and Tarjan 1988, first phase).
     fn sink_side_of_max_preflow(&mut self, s: usize, t: usize) -> Vec<bool> {
-        let n = self.adj.len();
+        self.lay_out();
+        let n = self.n;
         let mut excess = vec![T::zero(); n];
-        for k in 0..self.adj[s].len() {
-            let a = self.adj[s][k];
+        for a in self.out(s) {
             let r = std::mem::replace(&mut self.arcs[a].residual, T::zero());
             if r.positive() {
                 let (v, rev) = (self.arcs[a].to, self.arcs[a].rev);
@@ -431,7 +488,7 @@ impl<T: Amount> Network<T> {
         let mut at_height = vec![0usize; n];
         let mut active: Vec<Vec<usize>> = vec![Vec::new(); n];
         let mut queued = vec![false; n];
-        let mut current = vec![0; n];
+        let mut current = self.first[..n].to_vec();
         let mut highest = 0;
         let mut relabels = n;
         loop {
@@ -444,7 +501,7 @@ impl<T: Amount> Network<T> {
                 for &h in height.iter().filter(|&&h| h < n) {
                     at_height[h] += 1;
                 }
-                current.iter_mut().for_each(|c| *c = 0);
+                current.copy_from_slice(&self.first[..n]);
                 active.iter_mut().for_each(Vec::clear);
                 queued.iter_mut().for_each(|q| *q = false);
                 highest = 0;
@@ -465,11 +522,11 @@ impl<T: Amount> Network<T> {
             queued[u] = false;
             // Discharge u: push along admissible arcs, relabel when none is left.
             while excess[u].positive() && height[u] < n {
-                if current[u] == self.adj[u].len() {
-                    let lowest = self.adj[u]
-                        .iter()
-                        .filter(|&&a| self.arcs[a].residual.positive())
-                        .map(|&a| height[self.arcs[a].to])
+                if current[u] == self.first[u + 1] {
+                    let lowest = self
+                        .out(u)
+                        .filter(|&a| self.arcs[a].residual.positive())
+                        .map(|a| height[self.arcs[a].to])
                         .min();
                     let old = height[u];
                     height[u] = lowest.map_or(n, |h| (h + 1).min(n));
@@ -483,11 +540,11 @@ impl<T: Amount> Network<T> {
                             *h = n;
                         }
                     }
-                    current[u] = 0;
+                    current[u] = self.first[u];
                     relabels += 1;
                     continue;
                 }
-                let a = self.adj[u][current[u]];
+                let a = current[u];
                 let v = self.arcs[a].to;
                 if self.arcs[a].residual.positive() && height[u] == height[v] + 1 {
                     let amount = if excess[u] < self.arcs[a].residual {
@@ -519,12 +576,12 @@ impl<T: Amount> Network<T> {
 
     /// Nodes reachable from `s` through arcs with residual capacity: the source side of the
     /// minimum cut closest to the source.
-    pub fn reachable_from(&self, s: usize) -> Vec<bool> {
-        let mut seen = vec![false; self.adj.len()];
+    fn reachable_from(&self, s: usize) -> Vec<bool> {
+        let mut seen = vec![false; self.n];
         seen[s] = true;
         let mut stack = vec![s];
         while let Some(u) = stack.pop() {
-            for &a in &self.adj[u] {
+            for a in self.out(u) {
                 let arc = &self.arcs[a];
                 if !seen[arc.to] && arc.residual.positive() {
                     seen[arc.to] = true;
@@ -537,12 +594,12 @@ impl<T: Amount> Network<T> {
 
     /// Nodes from which `t` is reachable through arcs with residual capacity: the sink side of
     /// the minimum cut closest to the sink.
-    pub fn reaching(&self, t: usize) -> Vec<bool> {
-        let mut seen = vec![false; self.adj.len()];
+    fn reaching(&self, t: usize) -> Vec<bool> {
+        let mut seen = vec![false; self.n];
         seen[t] = true;
         let mut stack = vec![t];
         while let Some(v) = stack.pop() {
-            for &a in &self.adj[v] {
+            for a in self.out(v) {
                 // Arc a goes v -> u; its reverse u -> v carries residual into v.
                 let u = self.arcs[a].to;
                 let into_v = &self.arcs[self.arcs[a].rev];
