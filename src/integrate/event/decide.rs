@@ -998,7 +998,12 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 3000, failure_persistence: None, ..ProptestConfig::default() })]
+        // Many cases (each is cheap); no regression file, which would sit at the top level.
+        #![proptest_config(ProptestConfig {
+            cases: 3000,
+            failure_persistence: None,
+            ..ProptestConfig::default()
+        })]
 
         /// Holding bodies together first changes the work, never the answer; and it is used
         /// whenever the bodies do hold.
