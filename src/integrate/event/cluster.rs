@@ -198,6 +198,24 @@ pub struct Cluster {
     pub roots: Option<Roots>,
     /// Event times against the ground side on the current segment (reset with `roots`).
     pub ground_hits: Option<GroundHits>,
+    /// What its blocks reached since their reference displacements were last set.
+    pub extremes: Extremes,
+}
+
+/// Peaks a cluster's blocks reached, kept for the cluster as a whole and handed to the recorder
+/// block by block only when the blocks' references change (or at the end): a large cluster then
+/// costs nothing per segment of the ground motion. The peaks are the same: each block's
+/// displacement is its reference plus the cluster's, and the largest |reference + d| over a
+/// stretch of d is at its least or greatest d.
+#[derive(Debug, Clone, Default)]
+pub struct Extremes {
+    /// Peak |absolute acceleration| (m/s2).
+    pub accel_m_s2: f64,
+    /// Least and greatest displacement of the cluster relative to its blocks' references (m);
+    /// `None` while it has not slid.
+    pub disp_m: Option<(f64, f64)>,
+    /// Peak |velocity| relative to the ground (m/s).
+    pub vel_m_s: f64,
 }
 
 impl Cluster {

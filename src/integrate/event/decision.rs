@@ -328,6 +328,7 @@ impl Engine<'_> {
 
         // 5. Install the new clusters.
         for &k in &old_clusters {
+            self.record_extremes(k);
             self.clusters[k].blocks.clear();
             self.clusters[k].version = self.new_version();
             self.free.push(k);
@@ -357,6 +358,7 @@ impl Engine<'_> {
                 accounted_to: t,
                 roots: None,
                 ground_hits: None,
+                extremes: Default::default(),
             });
             for (&i, &node) in members.iter().zip(&g.nodes) {
                 self.of[i] = k;
@@ -793,6 +795,7 @@ impl Engine<'_> {
                 let c_q = force / &self.clusters[k].mass_q;
                 if c_q != sl.c_q {
                     self.account(k, t);
+                    self.record_extremes(k);
                     let v = self.cluster_vel(k);
                     let members = self.clusters[k].blocks.clone();
                     for &i in &members {
@@ -824,6 +827,7 @@ impl Engine<'_> {
             if self.of[i] != NONE {
                 let k = self.of[i];
                 self.account(k, self.t);
+                self.record_extremes(k);
             }
             self.u_ref[i] = self.block_disp(i);
             self.fallen[i] = true;
@@ -856,6 +860,7 @@ impl Engine<'_> {
                 continue;
             }
             self.account(k, self.t);
+            self.record_extremes(k);
             let moved = self.cluster_disp(k);
             let members = std::mem::take(&mut self.clusters[k].blocks);
             for i in members {
@@ -876,6 +881,7 @@ impl Engine<'_> {
                 accounted_to: self.t,
                 roots: None,
                 ground_hits: None,
+                extremes: Default::default(),
             });
             self.of[i] = k;
         }

@@ -527,16 +527,14 @@ impl<'a> Engine<'a> {
             // Stuck blocks move with the ground.
             if t > t_a {
                 let (lo, hi) = self.motion.accel_range(t_a, t);
-                for &i in &self.clusters[k].blocks {
-                    self.rec.block_accel(i, lo.abs().max(hi.abs()));
-                }
+                let peak = &mut self.clusters[k].extremes.accel_m_s2;
+                *peak = peak.max(lo.abs().max(hi.abs()));
             }
             return;
         };
         let peak = sl.absolute_accel(t_a).abs().max(sl.absolute_accel(t).abs());
-        for &i in &self.clusters[k].blocks {
-            self.rec.block_accel(i, peak);
-        }
+        let accel = &mut self.clusters[k].extremes.accel_m_s2;
+        *accel = accel.max(peak);
         if t <= t_a {
             return;
         }
@@ -560,9 +558,20 @@ impl<'a> Engine<'a> {
         for &r in &a_split {
             vmax = vmax.max(vel(r).abs());
         }
+        let e = &mut self.clusters[k].extremes;
+        e.disp_m = Some(e.disp_m.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))));
+        e.vel_m_s = e.vel_m_s.max(vmax);
+    }
+
+    /// Hands cluster k's extremes to its blocks: before their references change, and at the end.
+    fn record_extremes(&mut self, k: usize) {
+        let e = std::mem::take(&mut self.clusters[k].extremes);
         for &i in &self.clusters[k].blocks {
-            let u = (self.u_ref[i] + lo).abs().max((self.u_ref[i] + hi).abs());
-            self.rec.block_extremes(i, u, vmax);
+            self.rec.block_accel(i, e.accel_m_s2);
+            if let Some((lo, hi)) = e.disp_m {
+                let u = (self.u_ref[i] + lo).abs().max((self.u_ref[i] + hi).abs());
+                self.rec.block_extremes(i, u, e.vel_m_s);
+            }
         }
     }
 
@@ -1085,6 +1094,9 @@ impl<'a> Engine<'a> {
         let t = self.t.min(self.t_end);
         self.t = t;
         self.account_all(t);
+        for k in 0..self.clusters.len() {
+            self.record_extremes(k);
+        }
         for s in 0..self.topo.supports.len() {
             self.account_support(s);
         }
