@@ -234,8 +234,11 @@ pub fn first_violation(
                         graze: false,
                     });
                 }
-                let t = scan_past_zero(fun, p, q, count);
-                return Some(Hit { t, graze: false });
+                return Some(match scan_past_zero(fun, p, q, count) {
+                    Some(t) => Hit { t, graze: false },
+                    // Valid for less than one float step of time: it touches zero here.
+                    None => Hit { t: p, graze: true },
+                });
             }
             return Some(Hit {
                 t: refine(fun, p, q, 0.0, count),
@@ -249,9 +252,11 @@ pub fn first_violation(
 }
 
 /// On a piece that starts at a zero of f and is valid just after it but invalid at its end q:
-/// find a point where f is positive, then refine. If round-off keeps f <= 0 everywhere sampled,
-/// the function never becomes measurably valid: report the start of the piece's second half.
-fn scan_past_zero(fun: Fun, p: f64, q: f64, count: &mut Counter) -> f64 {
+/// find a point where f is positive, then refine. `None` when f is <= 0 at every float time
+/// after p that was sampled, down to the next float: the stretch where it is valid is shorter
+/// than one float step of time (two faces that part at 1e-13 m/s and are pushed back together
+/// at once), so it touches zero at p.
+fn scan_past_zero(fun: Fun, p: f64, q: f64, count: &mut Counter) -> Option<f64> {
     let f = fun.f;
     let mut step = (q - p) * 0.5;
     let mut best = None;
@@ -268,10 +273,12 @@ fn scan_past_zero(fun: Fun, p: f64, q: f64, count: &mut Counter) -> f64 {
         }
         step *= 0.5;
     }
-    match best {
-        Some(x) => refine(fun, x, q, 0.0, count),
-        None => q,
-    }
+    let x = best.or_else(|| {
+        let next = p.next_up();
+        count.0 += 1;
+        (next < q && f(next) > 0.0).then_some(next)
+    })?;
+    Some(refine(fun, x, q, 0.0, count))
 }
 
 /// All points in (t_a, t_b) where f changes sign, given the same monotone pieces, each located
@@ -365,6 +372,28 @@ mod tests {
         let hit = first_violation(Fun::plain(&h), 0.0, 2.0, &[0.5], true, 0.0, &mut c).unwrap();
         assert_eq!(hit.t, 1.0);
         assert!(first_violation(Fun::plain(&h), 0.0, 0.9, &[0.5], true, 0.0, &mut c).is_none());
+    }
+
+    #[test]
+    fn a_stretch_of_validity_shorter_than_a_float_step_touches_at_its_start() {
+        // Two faces parting at 1.8e-13 m/s, pushed back at 429 m/s2: open for 8.5e-16 s, less
+        // than one float step at t = 4.86 s (8.9e-16 s). The event is now, not at the horizon.
+        let mut c = Counter::default();
+        let t0 = 4.864661376259848;
+        let f = |x: f64| {
+            let tau = x - t0;
+            1.8e-13 * tau - 214.5 * tau * tau
+        };
+        let hit = first_violation(Fun::plain(&f), t0, 39.99, &[], true, 0.0, &mut c);
+        assert_eq!(hit, Some(Hit { t: t0, graze: true }));
+        // Open for longer than a float step: the crossing is found where it is.
+        let g = |x: f64| {
+            let tau = x - t0;
+            1.8e-9 * tau - 214.5 * tau * tau
+        };
+        let hit = first_violation(Fun::plain(&g), t0, 39.99, &[], true, 0.0, &mut c).unwrap();
+        assert!(!hit.graze && g(hit.t) <= 0.0 && g(hit.t.next_down()) > 0.0);
+        assert!((hit.t - t0 - 1.8e-9 / 214.5).abs() < 1e-14);
     }
 
     #[test]
