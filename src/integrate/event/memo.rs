@@ -7,7 +7,7 @@ use std::collections::{HashMap, VecDeque};
 use std::hash::Hash;
 use std::rc::Rc;
 
-/// Questions of more blocks than this are large.
+/// Questions of this many blocks or more are large.
 pub const LARGE_FROM: usize = 256;
 
 /// Large questions kept (the oldest is forgotten first).
