@@ -525,12 +525,15 @@ impl Problem {
             }
             group.nodes = nodes;
         }
-        let holds_a_body = |g: &Group| {
+        let holds_a_body = |g: usize| {
             bodies
                 .iter()
-                .any(|b| b.first().is_some_and(|i| g.nodes.contains(i)))
+                .any(|b| b.first().is_some_and(|&i| group_of[i] == g))
         };
-        for group in groups.iter().filter(|group| holds_a_body(group)) {
+        for (g, group) in groups.iter().enumerate() {
+            if !holds_a_body(g) {
+                continue;
+            }
             let a = &group.accel;
             let mut set = vec![false; n];
             for &i in &group.nodes {
@@ -998,12 +1001,7 @@ mod tests {
     }
 
     proptest! {
-        // Many cases (each is cheap); no regression file, which would sit at the top level.
-        #![proptest_config(ProptestConfig {
-            cases: 3000,
-            failure_persistence: None,
-            ..ProptestConfig::default()
-        })]
+        #![proptest_config(crate::integrate::event::many_cheap_cases())]
 
         /// Holding bodies together first changes the work, never the answer; and it is used
         /// whenever the bodies do hold.

@@ -657,12 +657,7 @@ mod tests {
     }
 
     proptest! {
-        // Many cases (each is cheap); no regression file, which would sit at the top level.
-        #![proptest_config(ProptestConfig {
-            cases: 3000,
-            failure_persistence: None,
-            ..ProptestConfig::default()
-        })]
+        #![proptest_config(crate::integrate::event::many_cheap_cases())]
 
         /// Push-relabel and Dinic find the same two minimum cuts (both are unique), in integers,
         /// rationals and lexicographic amounts, ties (zero and equal capacities) included.

@@ -47,6 +47,17 @@ impl Default for Params {
     }
 }
 
+/// The property tests' configuration: many cases (each is cheap), and no regression file, which
+/// would sit at the top level.
+#[cfg(test)]
+pub(crate) fn many_cheap_cases() -> proptest::test_runner::Config {
+    proptest::test_runner::Config {
+        cases: 3000,
+        failure_persistence: None,
+        ..Default::default()
+    }
+}
+
 /// The exact event-driven integrator.
 #[derive(Debug, Clone, Default)]
 pub struct EventDriven {
