@@ -239,12 +239,13 @@ impl Motion {
             (a.min(b), a.max(b))
         };
         // Extremes inside lie on segment boundaries: sample peaks, sine crests.
-        let mut t = self.segment_at(t0).t1;
-        while t < t1 {
-            let a = self.accel(t);
+        let mut seg = self.segment_at(t0);
+        while seg.t1 < t1 {
+            let t = seg.t1;
+            seg = self.segment_at(t);
+            let a = seg.accel(t - seg.t0);
             lo = lo.min(a);
             hi = hi.max(a);
-            t = self.segment_at(t).t1;
         }
         (lo, hi)
     }
@@ -300,8 +301,8 @@ impl Motion {
 fn sine_segment(s: &Sine, t: f64) -> Segment {
     let w = s.omega();
     let (a, phi) = (s.amplitude_m_s2, s.phase_rad);
-    let (v_end, d_end) = sine_state(s, s.duration_s);
     if t >= s.duration_s {
+        let (v_end, d_end) = sine_state(s, s.duration_s);
         return Segment {
             t0: s.duration_s,
             t1: f64::INFINITY,

@@ -183,9 +183,12 @@ impl Segment {
                 ..
             } => {
                 // The arc runs between crests at pi/2 + k pi: rising for odd k... pick the
-                // solution of sin(theta) = target/A on the arc containing theta0.
+                // solution of sin(theta) = target/A on the arc containing [s_a, s_b], found
+                // from its middle (a segment starts at a crest, where rounding of theta0 can
+                // fall on either arc).
                 let y = (target / amplitude).clamp(-1.0, 1.0).asin();
-                let k = ((theta0 - std::f64::consts::FRAC_PI_2) / std::f64::consts::PI).floor();
+                let mid = theta0 + omega * 0.5 * (s_a + s_b);
+                let k = ((mid - std::f64::consts::FRAC_PI_2) / std::f64::consts::PI).floor();
                 let base = std::f64::consts::FRAC_PI_2 + k * std::f64::consts::PI;
                 let rising = (k as i64).rem_euclid(2) == 1;
                 // On a rising arc theta - 2m pi = y; on a falling one theta - 2m pi = pi - y.
@@ -434,6 +437,25 @@ mod tests {
             let target = 0.5 * (seg.accel(0.0) + seg.accel(end));
             let s = seg.time_of_accel(target, 0.0, end).unwrap();
             assert!((seg.accel(s) - target).abs() < 1e-12, "theta0 {theta0}");
+        }
+        // Segments start at crests, where theta0 may round to either side of pi/2 + k pi: the
+        // arc is the one the segment runs on, whatever the side.
+        for k in 0..40 {
+            let crest = std::f64::consts::FRAC_PI_2 + f64::from(k) * std::f64::consts::PI;
+            for theta0 in [crest.next_down(), crest, crest.next_up()] {
+                let seg = Segment {
+                    t0: 0.0,
+                    t1: 1.0,
+                    v0: 0.0,
+                    d0: 0.0,
+                    lambda: (1.0, 0.0),
+                    shape: Shape::sine(3.0, 2.0, theta0),
+                };
+                let end = std::f64::consts::PI / 2.0;
+                let target = 0.3 * seg.accel(0.0) + 0.7 * seg.accel(end);
+                let s = seg.time_of_accel(target, 0.0, end).unwrap();
+                assert!((seg.accel(s) - target).abs() < 1e-12, "theta0 {theta0}");
+            }
         }
         let lin = Segment {
             t0: 0.0,

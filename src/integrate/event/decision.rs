@@ -11,7 +11,8 @@ use crate::exact::Q;
 use crate::response::EventKind;
 use crate::sets::DisjointSets;
 use crate::topology::Base;
-use std::collections::{BTreeSet, HashMap};
+use rustc_hash::FxHashMap;
+use std::collections::BTreeSet;
 
 /// A ground acceleration within rounding of a breakpoint of the decision is snapped to it; the
 /// snap can move the breakpoint that matters at most this many times.
@@ -56,7 +57,7 @@ impl std::ops::Index<&usize> for Local {
 
 impl Engine<'_> {
     /// Velocity of block i with the given overrides.
-    fn vel_with(&self, i: usize, snap: &HashMap<usize, f64>) -> f64 {
+    fn vel_with(&self, i: usize, snap: &FxHashMap<usize, f64>) -> f64 {
         snap.get(&i).copied().unwrap_or_else(|| self.block_vel(i))
     }
 
@@ -89,7 +90,7 @@ impl Engine<'_> {
         theta: Option<Q>,
     ) -> Result<(), SimulationError> {
         self.rec.stats.mode_decisions += 1;
-        let mut snap: HashMap<usize, f64> = snap.iter().copied().collect();
+        let mut snap: FxHashMap<usize, f64> = snap.iter().copied().collect();
         let t = self.t;
 
         // 1. The component: whole clusters joined through joints with equal velocities.
@@ -510,7 +511,12 @@ impl Engine<'_> {
     /// group is joined to the ground), so the decision sees exact equality. Without this, a
     /// block resting on two supports whose velocities differ by round-off meets each in turn,
     /// one ulp apart, for ever.
-    fn equalize_velocities(&self, blocks: &[usize], local: &Local, snap: &mut HashMap<usize, f64>) {
+    fn equalize_velocities(
+        &self,
+        blocks: &[usize],
+        local: &Local,
+        snap: &mut FxHashMap<usize, f64>,
+    ) {
         let n = blocks.len();
         let v: Vec<f64> = blocks.iter().map(|&b| self.vel_with(b, snap)).collect();
         let mut sets = DisjointSets::new(n);
@@ -547,7 +553,7 @@ impl Engine<'_> {
                 }
             }
         }
-        let mut groups: HashMap<usize, Vec<usize>> = HashMap::new();
+        let mut groups: FxHashMap<usize, Vec<usize>> = FxHashMap::default();
         for k in 0..n {
             let r = sets.find(k);
             groups.entry(r).or_default().push(k);

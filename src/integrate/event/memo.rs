@@ -3,7 +3,8 @@
 //! small cluster sticking to the wall, slipping, sticking again). Questions about many blocks
 //! hold a copy of most of the wall each, so only the latest [`LARGE_KEPT`] of them are kept.
 
-use std::collections::{HashMap, VecDeque};
+use rustc_hash::FxHashMap;
+use std::collections::VecDeque;
 use std::hash::Hash;
 use std::rc::Rc;
 
@@ -15,7 +16,8 @@ const LARGE_KEPT: usize = 32;
 
 /// Remembered answers.
 pub struct Memo<K, V> {
-    map: HashMap<Rc<K>, V>,
+    /// Keyed by a fast hash: a decision's question is hashed at every event.
+    map: FxHashMap<Rc<K>, V>,
     large: VecDeque<Rc<K>>,
 }
 
@@ -23,7 +25,7 @@ impl<K: Hash + Eq, V> Memo<K, V> {
     /// Nothing remembered.
     pub fn new() -> Memo<K, V> {
         Memo {
-            map: HashMap::new(),
+            map: FxHashMap::default(),
             large: VecDeque::new(),
         }
     }

@@ -83,6 +83,16 @@ pub fn refine(fun: Fun, mut lo: f64, mut hi: f64, tol: f64, count: &mut Counter)
         count.0 += 1;
         for _ in 0..100 {
             let newton = x - fx / d;
+            // Newton lands within a few floats of x: x is the root to round-off. (At an end
+            // of the bracket the step would fall outside it; bisecting from there would take
+            // fifty steps to get back.)
+            if (newton - x).abs() <= 4.0 * f64::EPSILON * x.abs() {
+                return if tol > 0.0 {
+                    x
+                } else {
+                    polish(f, x, lo, hi, count)
+                };
+            }
             let next = if newton > lo && newton < hi {
                 newton
             } else {
@@ -348,6 +358,17 @@ mod tests {
         }
         let x = polish(&f, root + 3e-16, 1.0, 2.0, &mut c);
         assert_eq!(x, refine(Fun::plain(&f), 1.0, 2.0, 0.0, &mut c));
+    }
+
+    #[test]
+    fn newton_landing_on_the_root_stops_there() {
+        // From 0 Newton lands exactly on the root at 1, which becomes the end of the bracket:
+        // done, not fifty bisections back towards it.
+        let f = |x: f64| 1.0 - x;
+        let fd = |x: f64| (1.0 - x, -1.0);
+        let mut c = Counter::default();
+        assert_eq!(refine(Fun::with(&f, &fd), 0.0, 3.0, 0.0, &mut c), 1.0);
+        assert!(c.0 <= 8, "{} evaluations", c.0);
     }
 
     #[test]
