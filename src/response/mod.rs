@@ -355,8 +355,16 @@ impl Recorder {
         }
     }
 
+    /// Logs support k starting to stick or to slip, when logging (only then is its name built).
+    pub fn support_event(&mut self, time_s: f64, kind: EventKind, k: usize, blocks: &[usize]) {
+        if self.log_events {
+            let joint = self.joint_name(k);
+            self.event(time_s, kind, blocks, Some(joint), None);
+        }
+    }
+
     /// The name of joint k as `"upper/lower"`.
-    pub fn joint_name(&self, k: usize) -> String {
+    fn joint_name(&self, k: usize) -> String {
         format!("{}/{}", self.joints[k].2, self.joints[k].3)
     }
 

@@ -435,10 +435,11 @@ impl Engine<'_> {
                 } else {
                     EventKind::Slip
                 };
-                let mut who = vec![up];
-                who.extend(lo);
-                let label = self.rec.joint_name(s);
-                self.rec.event(t, kind, &who, Some(label), None);
+                let who: &[usize] = match lo {
+                    Some(l) => &[up, l],
+                    None => &[up],
+                };
+                self.rec.support_event(t, kind, s, who);
             }
         }
         for &j in &touched_joints {
