@@ -88,6 +88,9 @@ const PROGRESS_WINDOW_ULPS: f64 = 1e6;
 /// Marks a block that belongs to no cluster (fixed or fallen).
 const NONE: usize = usize::MAX;
 
+/// The event queue is first rid of stale events when it reaches this size (see `push`).
+const PURGE_FROM: usize = 1024;
+
 /// What limits a cluster's displacement relative to a neighbour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Constraint {
@@ -201,6 +204,8 @@ pub(crate) struct Engine<'a> {
     /// Per support: when friction work was last accounted (s).
     t_fric: Vec<f64>,
     heap: BinaryHeap<Reverse<Pending>>,
+    /// The queue's size at which its stale events are next purged.
+    purge_at: usize,
     seq: u64,
     version: u64,
     rec: Recorder,
@@ -281,6 +286,7 @@ impl<'a> Engine<'a> {
             d_last: vec![0.0; topo.supports.len()],
             t_fric: vec![0.0; topo.supports.len()],
             heap: BinaryHeap::new(),
+            purge_at: PURGE_FROM,
             seq: 0,
             version: 0,
             rec: Recorder::new(
@@ -383,6 +389,10 @@ impl<'a> Engine<'a> {
         }
     }
 
+    /// Queues an event. Events of clusters that have changed since go stale and are skipped
+    /// when popped; on a large wall far more go stale than are popped (a pair's events are found
+    /// up to the end of the run), so the queue is purged of them whenever it has doubled. The
+    /// order of the events kept does not change.
     fn push(&mut self, t: f64, ev: Ev) {
         self.seq += 1;
         self.heap.push(Reverse(Pending {
@@ -390,6 +400,14 @@ impl<'a> Engine<'a> {
             seq: self.seq,
             ev,
         }));
+        if self.heap.len() >= self.purge_at {
+            let all = std::mem::take(&mut self.heap).into_vec();
+            self.heap = all
+                .into_iter()
+                .filter(|Reverse(p)| self.is_current(&p.ev))
+                .collect();
+            self.purge_at = (2 * self.heap.len()).max(PURGE_FROM);
+        }
     }
 
     fn s(&self) -> f64 {
