@@ -239,13 +239,30 @@ impl Motion {
             (a.min(b), a.max(b))
         };
         // Extremes inside lie on segment boundaries: sample peaks, sine crests.
-        let mut seg = self.segment_at(t0);
-        while seg.t1 < t1 {
-            let t = seg.t1;
-            seg = self.segment_at(t);
-            let a = seg.accel(t - seg.t0);
-            lo = lo.min(a);
-            hi = hi.max(a);
+        match self {
+            Motion::Record(r) => {
+                // The samples themselves (zero past the last), read in place: a cluster stuck
+                // through a long record asks for its peak once, over all of it.
+                let n = r.accel_m_s2.len();
+                for j in record_index(r, t0) + 1..=n {
+                    if j as f64 * r.dt_s >= t1 {
+                        break;
+                    }
+                    let a = r.accel_m_s2.get(j).copied().unwrap_or(0.0);
+                    lo = lo.min(a);
+                    hi = hi.max(a);
+                }
+            }
+            Motion::Sine(_) => {
+                let mut seg = self.segment_at(t0);
+                while seg.t1 < t1 {
+                    let t = seg.t1;
+                    seg = self.segment_at(t);
+                    let a = seg.accel(t - seg.t0);
+                    lo = lo.min(a);
+                    hi = hi.max(a);
+                }
+            }
         }
         (lo, hi)
     }
@@ -352,17 +369,23 @@ fn sine_state(s: &Sine, t: f64) -> (f64, f64) {
     (seg.dv(t), seg.dd(t))
 }
 
-fn record_segment(r: &Record, t: f64) -> Segment {
+/// The sample interval [k dt, (k + 1) dt) holding t; n (the record's length) past its end.
+fn record_index(r: &Record, t: f64) -> usize {
     let n = r.accel_m_s2.len();
     let k = ((t / r.dt_s).floor() as usize).min(n);
     // Round-off in t / dt can land one step off; correct it.
-    let k = if k > 0 && t < k as f64 * r.dt_s {
+    if k > 0 && t < k as f64 * r.dt_s {
         k - 1
     } else if k < n && t >= (k + 1) as f64 * r.dt_s {
         k + 1
     } else {
         k
-    };
+    }
+}
+
+fn record_segment(r: &Record, t: f64) -> Segment {
+    let n = r.accel_m_s2.len();
+    let k = record_index(r, t);
     if k >= n {
         let t0 = n as f64 * r.dt_s;
         return Segment {
@@ -454,5 +477,38 @@ mod tests {
         assert_eq!(m.accel(2.0), 0.0);
         assert!(Record::new("x", 0.0, vec![1.0, 2.0]).is_err());
         assert!(Record::new("x", 0.1, vec![1.0, f64::NAN]).is_err());
+    }
+
+    #[test]
+    fn acceleration_range_of_a_record_is_its_extreme_samples() {
+        // dt = 0.01 s: sample times are not exact in binary, so intervals that start or end
+        // on a sample, just before or just after it, all occur.
+        let a: Vec<f64> = (0..200)
+            .map(|k| ((k * 37 % 101) as f64 - 50.0) / 7.0)
+            .collect();
+        let m = Motion::Record(Record::new("zigzag", 0.01, a).unwrap());
+        let ends: Vec<f64> = (0..=205)
+            .flat_map(|k| {
+                let t = k as f64 * 0.01;
+                [t.next_down(), t, t.next_up(), t + 0.004]
+            })
+            .filter(|&t| t >= 0.0)
+            .collect();
+        for (i, &t0) in ends.iter().enumerate().step_by(7) {
+            for &t1 in ends[i..].iter().step_by(5) {
+                // The extremes of a piecewise-linear function: its ends and every corner
+                // inside, each read through the segment that starts there.
+                let (a0, a1) = (m.accel(t0), m.accel(t1));
+                let mut want = [a0.min(a1), a0.max(a1)];
+                let mut seg = m.segment_at(t0);
+                while seg.t1 < t1 {
+                    seg = m.segment_at(seg.t1);
+                    let x = seg.accel(0.0);
+                    want = [want[0].min(x), want[1].max(x)];
+                }
+                let got = m.accel_range(t0, t1);
+                assert_eq!(got, (want[0], want[1]), "[{t0}, {t1}]");
+            }
+        }
     }
 }

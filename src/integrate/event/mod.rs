@@ -328,7 +328,6 @@ impl<'a> Engine<'a> {
                 None => {
                     self.output_until(seg_end);
                     self.t = seg_end;
-                    self.account_all(seg_end);
                     if seg_end >= self.t_end {
                         break;
                     }
@@ -510,6 +509,14 @@ impl<'a> Engine<'a> {
             // Friction work with a varying capacity is integrated segment by segment.
             for s in 0..self.topo.supports.len() {
                 self.account_support(s);
+            }
+        }
+        // A sliding cluster's closed form is rebased on the new segment: what it did on this
+        // one is booked first. A stuck one moves with the ground, whatever the segment, and is
+        // booked when it dissolves (a stuck wall costs nothing per block and segment).
+        for k in 0..self.clusters.len() {
+            if !self.clusters[k].blocks.is_empty() && self.clusters[k].slide().is_some() {
+                self.account(k, t);
             }
         }
         self.seg = self.motion.segment_at(t);
