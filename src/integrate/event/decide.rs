@@ -995,6 +995,21 @@ mod tests {
         })
     }
 
+    /// Random problems on the ground: `free_problem` with some blocks resting on it.
+    fn ground_problem() -> impl Strategy<Value = Problem> {
+        (
+            free_problem(),
+            prop::collection::vec((0usize..8, 1i64..9), 1..5),
+        )
+            .prop_map(|(mut p, on)| {
+                let n = p.mass.len();
+                for (i, f) in on {
+                    p.friction.push((i % n, End::Ground, Q::int(f)));
+                }
+                p
+            })
+    }
+
     fn sorted(mut groups: Vec<Group>) -> Vec<Group> {
         groups.sort_by(|a, b| a.nodes.cmp(&b.nodes));
         groups
@@ -1002,6 +1017,47 @@ mod tests {
 
     proptest! {
         #![proptest_config(crate::integrate::event::many_cheap_cases())]
+
+        /// Pieces of the joint graph meet only through the ground: decided one by one they
+        /// give the groups of the whole (grounded blocks may be grouped differently), and a
+        /// piece with the ground acceleration strictly inside its stick interval is grounded.
+        /// The event loop relies on both to decide a large stuck cluster by its interval.
+        #[test]
+        fn pieces_are_decided_alone_as_together(p in ground_problem(), a in -12i64..13) {
+            let theta = Lex([Q::int(a), Q::zero(), Q::zero()]);
+            let split = |groups: Vec<Group>| {
+                let mut grounded: Vec<usize> = Vec::new();
+                let mut free = Vec::new();
+                for g in groups {
+                    if g.grounded {
+                        grounded.extend(g.nodes);
+                    } else {
+                        free.push(g);
+                    }
+                }
+                grounded.sort_unstable();
+                (grounded, sorted(free))
+            };
+            let whole = split(p.solve(&theta, &[]));
+            let mut alone = Vec::new();
+            for (piece, on_ground) in p.ground_pieces() {
+                let q = p.restrict(&piece);
+                for g in q.solve(&theta, &[]) {
+                    alone.push(Group {
+                        nodes: g.nodes.iter().map(|&k| piece[k]).collect(),
+                        ..g
+                    });
+                }
+                let stick = q.stick_interval(&[]);
+                let a0 = &theta.0[0];
+                let inside = stick.lo.as_ref().is_none_or(|lo| a0 > lo)
+                    && stick.hi.as_ref().is_none_or(|hi| a0 < hi);
+                if on_ground && inside {
+                    prop_assert!(piece.iter().all(|i| whole.0.contains(i)));
+                }
+            }
+            prop_assert_eq!(split(alone), whole);
+        }
 
         /// Holding bodies together first changes the work, never the answer; and it is used
         /// whenever the bodies do hold.

@@ -283,49 +283,57 @@ impl Engine<'_> {
             }
         }
 
-        // 4. Solve: the common case first (everything stuck, inside its stick intervals), then
-        //    the general decision, snapping the ground acceleration to a breakpoint that rounding
-        //    hides.
+        // 4. Solve: pieces joined to the ground with the ground acceleration strictly inside
+        //    their stick intervals stay stuck (the common case); the other pieces get the general
+        //    decision. Pieces meet only through the ground, whose motion is given, so each is
+        //    decided on its own: a block knocked out of a large stuck cluster costs that
+        //    cluster a stick interval, not a general decision over all of it.
         let mut theta_lex = self.ground_lex(theta.clone());
-        let (groups, intervals) = match self.all_stuck(&p, &blocks, &theta_lex, theta.is_some()) {
-            Some(found) => found,
-            None => {
-                // Large clusters that slid as one body until now (see `Problem::solve`).
-                let bodies: Vec<Vec<usize>> = old_clusters
-                    .iter()
-                    .map(|&k| &self.clusters[k])
-                    .filter(|c| c.slide().is_some() && c.blocks.len() >= BODY_FROM)
-                    .map(|c| {
-                        let mut nodes: Vec<usize> = c.blocks.iter().map(|b| local[b]).collect();
-                        nodes.sort_unstable();
-                        nodes
-                    })
-                    .collect();
-                let mut groups = self.solve(&p, &theta_lex, theta.is_some(), &bodies);
-                for _ in 0..MAX_SNAPS {
-                    // The motion will start from the float c lambda - a_g (`Slide::formed`); if
-                    // rounding gives it no sign, or the wrong one, the breakpoint is hidden.
-                    let (lambda, ag) = (self.seg.lambda_at(self.s()), self.seg.accel(self.s()));
-                    let hidden = groups.iter().find(|g| {
-                        let rel = g.accel.to_f64() * lambda - ag;
-                        let exact = (&g.accel - &theta_lex.0[0]).signum();
-                        !g.grounded
-                            && exact != 0
-                            && (rel == 0.0 || (rel > 0.0) != (exact > 0))
-                            && touches_ground(&p, &groups, g)
-                    });
-                    match hidden {
-                        Some(g) => {
-                            theta_lex.0[0] = g.accel.clone();
-                            groups = self.solve(&p, &theta_lex, false, &bodies);
-                        }
-                        None => break,
-                    }
+        let (mut groups, mut intervals, rest) =
+            self.stuck_pieces(&p, &blocks, &theta_lex, theta.is_some());
+        if !rest.is_empty() {
+            // Large clusters that slid as one body until now (see `Problem::solve`).
+            let bodies: Vec<Vec<usize>> = old_clusters
+                .iter()
+                .map(|&k| &self.clusters[k])
+                .filter(|c| c.slide().is_some() && c.blocks.len() >= BODY_FROM)
+                .map(|c| {
+                    let mut nodes: Vec<usize> = c.blocks.iter().map(|b| local[b]).collect();
+                    nodes.sort_unstable();
+                    nodes
+                })
+                .collect();
+            if rest.len() == blocks.len() {
+                groups = self.decide_general(&p, &mut theta_lex, theta.is_some(), &bodies);
+            } else {
+                let mut index = vec![NONE; blocks.len()];
+                for (k, &i) in rest.iter().enumerate() {
+                    index[i] = k;
                 }
-                let n = groups.len();
-                (groups, vec![None; n])
+                // A body lies within one piece: in the rest entirely, or not at all.
+                let rest_bodies: Vec<Vec<usize>> = bodies
+                    .iter()
+                    .filter(|b| index[b[0]] != NONE)
+                    .map(|b| b.iter().map(|&i| index[i]).collect())
+                    .collect();
+                let q = p.restrict(&rest);
+                let before = theta_lex.clone();
+                let found = self.decide_general(&q, &mut theta_lex, theta.is_some(), &rest_bodies);
+                if theta_lex == before {
+                    groups.extend(found.into_iter().map(|g| Group {
+                        nodes: g.nodes.iter().map(|&k| rest[k]).collect(),
+                        ..g
+                    }));
+                } else {
+                    // A hidden breakpoint moved the ground acceleration, at which the stuck
+                    // pieces were not decided: decide everything there (rare).
+                    theta_lex = before;
+                    groups = self.decide_general(&p, &mut theta_lex, theta.is_some(), &bodies);
+                    intervals.clear();
+                }
             }
-        };
+            intervals.resize(groups.len(), None);
+        }
 
         // 5. Install the new clusters.
         for &k in &old_clusters {
@@ -752,41 +760,80 @@ impl Engine<'_> {
         found
     }
 
-    /// The common outcome at a stop: every block joined to the ground, the ground acceleration
-    /// strictly inside the stick interval of every piece. Returns the stuck groups with their
-    /// intervals, or `None` when the general decision is needed (a threshold event, a piece not
-    /// joined to the ground, a_g on or beyond a limit).
+    /// The general decision of problem p at the ground acceleration `theta`, snapping theta to
+    /// a breakpoint that rounding hides: the motion will start from the float c lambda - a_g
+    /// (`Slide::formed`), and if rounding gives it no sign, or the wrong one, the group's
+    /// breakpoint is in fact where the ground is. `theta` comes back snapped.
+    fn decide_general(
+        &mut self,
+        p: &Problem,
+        theta: &mut Lex,
+        remember: bool,
+        bodies: &[Vec<usize>],
+    ) -> Vec<Group> {
+        let mut groups = self.solve(p, theta, remember, bodies);
+        for _ in 0..MAX_SNAPS {
+            let (lambda, ag) = (self.seg.lambda_at(self.s()), self.seg.accel(self.s()));
+            let hidden = groups.iter().find(|g| {
+                let rel = g.accel.to_f64() * lambda - ag;
+                let exact = (&g.accel - &theta.0[0]).signum();
+                !g.grounded
+                    && exact != 0
+                    && (rel == 0.0 || (rel > 0.0) != (exact > 0))
+                    && touches_ground(p, &groups, g)
+            });
+            match hidden {
+                Some(g) => {
+                    theta.0[0] = g.accel.clone();
+                    groups = self.solve(p, theta, false, bodies);
+                }
+                None => break,
+            }
+        }
+        groups
+    }
+
+    /// The pieces of p (its joint graph without the ground) that are joined to the ground with
+    /// the ground acceleration strictly inside their stick intervals: they stay stuck, and come
+    /// back as groups with their intervals. The other blocks (local indices, sorted) need the
+    /// general decision: pieces not joined to the ground or at or beyond a limit, and every
+    /// block at a threshold (theta `snapped` to the exact limit) or when nothing touches the
+    /// ground.
     #[allow(clippy::type_complexity)]
-    fn all_stuck(
+    fn stuck_pieces(
         &mut self,
         p: &Problem,
         blocks: &[usize],
         theta: &Lex,
         snapped: bool,
-    ) -> Option<(Vec<Group>, Vec<Option<(Option<Q>, Option<Q>)>>)> {
+    ) -> (Vec<Group>, Vec<Option<(Option<Q>, Option<Q>)>>, Vec<usize>) {
         if snapped || !p.touches_ground() {
-            return None;
+            return (Vec::new(), Vec::new(), (0..blocks.len()).collect());
         }
         let a0 = &theta.0[0];
         let mut groups = Vec::new();
         let mut intervals = Vec::new();
+        let mut rest = Vec::new();
         for (piece, on_ground) in p.ground_pieces() {
-            if !on_ground {
-                return None;
+            if on_ground {
+                let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
+                let (lo, hi) = self.stick_interval(p.restrict(&piece), &members);
+                let inside =
+                    lo.as_ref().is_none_or(|lo| a0 > lo) && hi.as_ref().is_none_or(|hi| a0 < hi);
+                if inside {
+                    groups.push(Group {
+                        nodes: piece,
+                        accel: a0.clone(),
+                        grounded: true,
+                    });
+                    intervals.push(Some((lo, hi)));
+                    continue;
+                }
             }
-            let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
-            let (lo, hi) = self.stick_interval(p.restrict(&piece), &members);
-            if lo.as_ref().is_some_and(|lo| a0 <= lo) || hi.as_ref().is_some_and(|hi| a0 >= hi) {
-                return None;
-            }
-            groups.push(Group {
-                nodes: piece,
-                accel: a0.clone(),
-                grounded: true,
-            });
-            intervals.push(Some((lo, hi)));
+            rest.extend(piece);
         }
-        Some((groups, intervals))
+        rest.sort_unstable();
+        (groups, intervals, rest)
     }
 
     /// A cluster next to a re-decided one: its neighbourhood has changed, and where one of its
