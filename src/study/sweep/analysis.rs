@@ -464,11 +464,15 @@ fn block_count(
     };
     let mut charts = vec![
         panel("maximum displacement", "max |u| of any block (m)", true),
-        panel(
-            "widest final opening of a vertical joint",
-            "opening (m)",
-            false,
-        ),
+        Chart {
+            // The small walls' upper band starts high on the left.
+            legend: Corner::LowerRight,
+            ..panel(
+                "widest final opening of a vertical joint",
+                "opening (m)",
+                false,
+            )
+        },
         panel(
             "probability of collapse (95 % intervals dashed)",
             "probability",
@@ -552,6 +556,20 @@ fn block_count(
         }
         let cpu = band(&|r| r.cpu_s, 0.5);
         let events = band(&|r| r.events as f64, 0.5);
+        // The cost of the smallest wall, scaled by the events: where the measured line runs
+        // above it, each event costs more on a larger wall.
+        if let (Some(&(x0, c0)), Some(&(y0, e0))) = (cpu.first(), events.first()) {
+            if x0 == y0 && e0 > 0.0 {
+                charts[4].series.push(Series {
+                    dashed: true,
+                    ..line(
+                        label("if it grew as the events"),
+                        m,
+                        events.iter().map(|&(x, e)| (x, c0 * e / e0)).collect(),
+                    )
+                });
+            }
+        }
         numbers.push(json!({
             "motion": motion.label,
             "cpu_exponent": power_law_exponent(&cpu),
