@@ -338,6 +338,9 @@ pub enum SimulationError {
     /// The scenario asks for something the model cannot represent.
     #[error("{0}")]
     Invalid(String),
+    /// A bug in pirqa stopped the run (caught so that a sweep's other cases still finish).
+    #[error("internal error ({0}): a bug in pirqa, please report it with this case")]
+    Bug(String),
 }
 
 /// Convenience alias.

@@ -283,6 +283,34 @@ fn walls_in_several_block_counts_get_the_block_count_analysis() {
     assert!(bc["events_exponent"].as_f64().unwrap().is_finite());
 }
 
+/// An impact can knock blocks of a large sliding body into different pieces of the next decision
+/// (the block-count study's case 17, 105 blocks, which stopped the whole study with a panic
+/// when only whole bodies were expected). Decided, it keeps its energy balance.
+#[test]
+fn a_sliding_body_split_by_an_impact_is_decided() {
+    let bond = |n: usize| {
+        format!(
+            "RunningBond(courses: {n}, blocks_per_course: {n}, width_m: 2.4, height_m: 1.2, \
+             thickness_m: 0.8, density_kg_m3: 2650, friction: 0.3)"
+        )
+    };
+    let text = format!(
+        r#"(version: 1, name: "blocks", walls: [{}, {}, {}],
+            motion: Records(files: ["{EL_CENTRO}"], pga: ["400gal"]),
+            friction: Random(distribution: Lognormal, cov: 0.1, samples: 8, seed: 5))"#,
+        bond(2),
+        bond(4),
+        bond(10)
+    );
+    let s = sweep(&text).unwrap();
+    assert_eq!(s.case(17), (2, 0, 1));
+    let (row, _) = s.run_case(17);
+    assert_eq!(row.error, None);
+    assert_eq!(row.blocks, 105);
+    assert!(row.impacts > 0);
+    assert!(row.energy_residual_j.abs() <= 1e-9 * row.energy_input_j);
+}
+
 /// Every shipped study loads (its walls, records and friction model) with the number of cases
 /// its comment promises.
 #[test]

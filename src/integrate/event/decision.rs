@@ -310,11 +310,17 @@ impl Engine<'_> {
                 for (k, &i) in rest.iter().enumerate() {
                     index[i] = k;
                 }
-                // A body lies within one piece: in the rest entirely, or not at all.
+                // What is left of each body in the rest (an impact can have knocked some of
+                // its blocks into other pieces).
                 let rest_bodies: Vec<Vec<usize>> = bodies
                     .iter()
-                    .filter(|b| index[b[0]] != NONE)
-                    .map(|b| b.iter().map(|&i| index[i]).collect())
+                    .map(|b| {
+                        b.iter()
+                            .filter(|&&i| index[i] != NONE)
+                            .map(|&i| index[i])
+                            .collect::<Vec<usize>>()
+                    })
+                    .filter(|b| !b.is_empty())
                     .collect();
                 let q = p.restrict(&rest);
                 let before = theta_lex.clone();

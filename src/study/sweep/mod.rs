@@ -6,7 +6,7 @@
 pub mod analysis;
 pub mod store;
 
-use crate::error::{Error, MotionError, WallError};
+use crate::error::{Error, MotionError, SimulationError, WallError};
 use crate::exact::Q;
 use crate::integrate::event::EventDriven;
 use crate::integrate::{Integrator, Scenario, Settings};
@@ -430,11 +430,22 @@ impl Sweep {
         let topo = topology.as_ref().unwrap_or(&wall.topology);
         let settings = Settings::summary_only(motion.duration_s);
         let clock = ThreadClock::start();
-        let result = EventDriven::default().run(&Scenario {
-            wall: &wall.wall,
-            topology: topo,
-            motion: &motion.motion,
-            settings: &settings,
+        // A panic is a bug; caught, it fails this case instead of the whole sweep.
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            EventDriven::default().run(&Scenario {
+                wall: &wall.wall,
+                topology: topo,
+                motion: &motion.motion,
+                settings: &settings,
+            })
+        }))
+        .unwrap_or_else(|panic| {
+            let message = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "a panic".into());
+            Err(SimulationError::Bug(message))
         });
         let cpu_s = clock.seconds();
         let mut row = CaseRow {
