@@ -222,6 +222,12 @@ macro_rules! draw_on {
                 let drawn = drawn.label(s.label.as_str());
                 if s.scatter {
                     drawn.legend(move |(x, y)| Circle::new((x + 9, y), 3, col.filled()));
+                } else if s.dashed {
+                    drawn.legend(move |(x, y)| {
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (7, 0)], col.stroke_width(2))
+                            + PathElement::new(vec![(11, 0), (18, 0)], col.stroke_width(2))
+                    });
                 } else {
                     drawn.legend(move |(x, y)| {
                         PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(2))
