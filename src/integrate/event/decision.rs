@@ -104,14 +104,14 @@ impl Engine<'_> {
                    blocks: &mut Vec<usize>,
                    old: &mut BTreeSet<usize>,
                    queue: &mut Vec<usize>| {
-            let members: Vec<usize> = match this.of[b] {
-                NONE => vec![b],
+            let members: &[usize] = match this.of[b] {
+                NONE => std::slice::from_ref(&b),
                 k => {
                     old.insert(k);
-                    this.clusters[k].blocks.clone()
+                    &this.clusters[k].blocks
                 }
             };
-            for m in members {
+            for &m in members {
                 if !local.contains_key(&m) {
                     local.insert(m, blocks.len());
                     blocks.push(m);
@@ -536,14 +536,24 @@ impl Engine<'_> {
         let v: Vec<f64> = blocks.iter().map(|&b| self.vel_with(b, snap)).collect();
         let mut sets = DisjointSets::new(n);
         let mut grounded = vec![false; n];
+        // Whether some velocities are equal within round-off but not exactly (else: done).
+        let mut inexact = false;
+        // Velocities a and b count as equal; the second flag: only within round-off.
+        let near = |a: f64, b: f64| (self.same_velocity(a, b), a != b);
         for (k, &b) in blocks.iter().enumerate() {
             for other in self.live_neighbours(b) {
                 match other.filter(|&o| !self.fixed[o]) {
-                    None => grounded[k] |= self.same_velocity(v[k], 0.0),
+                    None => {
+                        let (same, off) = near(v[k], 0.0);
+                        grounded[k] |= same;
+                        inexact |= same && off;
+                    }
                     Some(o) => {
                         if let Some(&m) = local.get(&o) {
-                            if self.same_velocity(v[k], v[m]) {
+                            let (same, off) = near(v[k], v[m]);
+                            if same {
                                 sets.join(k, m);
+                                inexact |= off;
                             }
                         }
                     }
@@ -560,13 +570,20 @@ impl Engine<'_> {
                     jt.left.0
                 };
                 if self.fixed[o] {
-                    grounded[k] |= self.same_velocity(v[k], 0.0);
+                    let (same, off) = near(v[k], 0.0);
+                    grounded[k] |= same;
+                    inexact |= same && off;
                 } else if let Some(&m) = local.get(&o) {
-                    if self.same_velocity(v[k], v[m]) {
+                    let (same, off) = near(v[k], v[m]);
+                    if same {
                         sets.join(k, m);
+                        inexact |= off;
                     }
                 }
             }
+        }
+        if !inexact {
+            return;
         }
         let mut groups: FxHashMap<usize, Vec<usize>> = FxHashMap::default();
         for k in 0..n {

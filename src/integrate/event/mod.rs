@@ -575,25 +575,28 @@ impl<'a> Engine<'a> {
             return;
         }
         self.rec.energy.input_j += self.clusters[k].mass * sl.input_work_per_kg(t_a, t);
-        let roots = match &self.clusters[k].roots {
-            Some(r) if r.from <= t_a && t <= r.to => r.clone(),
-            _ => self.zeros(&sl, t_a, t),
+        // The cluster's zeros, found when it was scheduled on this segment (kept for later
+        // accounts), or found now.
+        let cached = self.clusters[k].roots.take();
+        let fresh = match &cached {
+            Some(r) if r.from <= t_a && t <= r.to => None,
+            _ => Some(self.zeros(&sl, t_a, t)),
         };
+        let roots = fresh.as_ref().or(cached.as_ref()).expect("found or cached");
         let inside = |x: &&f64| **x > t_a && **x < t;
-        let a_split: Vec<f64> = roots.a_zero.iter().filter(inside).copied().collect();
-        let v_roots: Vec<f64> = roots.v_zero.iter().filter(inside).copied().collect();
         let vel = |x: f64| sl.vel(x);
         let mut lo = sl.disp(t_a).min(sl.disp(t));
         let mut hi = sl.disp(t_a).max(sl.disp(t));
-        for &r in &v_roots {
+        for &r in roots.v_zero.iter().filter(inside) {
             let x = sl.disp(r);
             lo = lo.min(x);
             hi = hi.max(x);
         }
         let mut vmax = vel(t_a).abs().max(vel(t).abs());
-        for &r in &a_split {
+        for &r in roots.a_zero.iter().filter(inside) {
             vmax = vmax.max(vel(r).abs());
         }
+        self.clusters[k].roots = cached;
         let e = &mut self.clusters[k].extremes;
         e.disp_m = Some(e.disp_m.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))));
         e.vel_m_s = e.vel_m_s.max(vmax);
