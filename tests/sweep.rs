@@ -240,25 +240,32 @@ fn the_analysis_reports_collapse_probabilities_and_a_fragility_fit() {
     assert!(fit["median_pga_gal"].as_f64().is_some(), "{fit}");
 }
 
+/// The block-count study's sweep (`walls/studies/block-count.ron`) over the paper's wall cut
+/// into n x n running-bond blocks for each n of `cuts`, with `samples` friction samples.
+fn running_bond_sweep(cuts: &[usize], samples: usize) -> Sweep {
+    let walls: Vec<String> = cuts
+        .iter()
+        .map(|n| {
+            format!(
+                "RunningBond(courses: {n}, blocks_per_course: {n}, width_m: 2.4, height_m: 1.2, \
+                 thickness_m: 0.8, density_kg_m3: 2650, friction: 0.3)"
+            )
+        })
+        .collect();
+    let text = format!(
+        r#"(version: 1, name: "blocks", walls: [{}],
+            motion: Records(files: ["{EL_CENTRO}"], pga: ["400gal"]),
+            friction: Random(distribution: Lognormal, cov: 0.1, samples: {samples}, seed: 5))"#,
+        walls.join(", ")
+    );
+    sweep(&text).unwrap()
+}
+
 /// Walls cut into three block counts get the block-count figure; its numbers are the medians
 /// of the rows, in block-count order; one intensity gets no IDA or fragility chart.
 #[test]
 fn walls_in_several_block_counts_get_the_block_count_analysis() {
-    let bond = |n: usize| {
-        format!(
-            "RunningBond(courses: {n}, blocks_per_course: {n}, width_m: 2.4, height_m: 1.2, \
-             thickness_m: 0.8, density_kg_m3: 2650, friction: 0.3)"
-        )
-    };
-    let text = format!(
-        r#"(version: 1, name: "blocks", walls: [{}, {}, {}],
-            motion: Records(files: ["{EL_CENTRO}"], pga: ["400gal"]),
-            friction: Random(distribution: Lognormal, cov: 0.1, samples: 3, seed: 5))"#,
-        bond(4),
-        bond(2),
-        bond(3)
-    );
-    let s = sweep(&text).unwrap();
+    let s = running_bond_sweep(&[4, 2, 3], 3);
     let rows = run_all(&s, &temp_dir("block-count"), Existing::Refuse);
     let report = pirqa::study::sweep::analysis::analyse(&s, &rows);
     let stems: Vec<&str> = report.figures.iter().map(|f| f.0.as_str()).collect();
@@ -288,21 +295,7 @@ fn walls_in_several_block_counts_get_the_block_count_analysis() {
 /// when only whole bodies were expected). Decided, it keeps its energy balance.
 #[test]
 fn a_sliding_body_split_by_an_impact_is_decided() {
-    let bond = |n: usize| {
-        format!(
-            "RunningBond(courses: {n}, blocks_per_course: {n}, width_m: 2.4, height_m: 1.2, \
-             thickness_m: 0.8, density_kg_m3: 2650, friction: 0.3)"
-        )
-    };
-    let text = format!(
-        r#"(version: 1, name: "blocks", walls: [{}, {}, {}],
-            motion: Records(files: ["{EL_CENTRO}"], pga: ["400gal"]),
-            friction: Random(distribution: Lognormal, cov: 0.1, samples: 8, seed: 5))"#,
-        bond(2),
-        bond(4),
-        bond(10)
-    );
-    let s = sweep(&text).unwrap();
+    let s = running_bond_sweep(&[2, 4, 10], 8);
     assert_eq!(s.case(17), (2, 0, 1));
     let (row, _) = s.run_case(17);
     assert_eq!(row.error, None);

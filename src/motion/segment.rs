@@ -419,17 +419,22 @@ mod tests {
         assert_relative_eq!(seg.dd(s), 0.5 * seg.accel(0.0) * s * s, max_relative = 1e-5);
     }
 
+    /// A sine arc of 3 m/s2 at 2 rad/s starting at phase theta0.
+    fn sine_from(theta0: f64) -> Segment {
+        Segment {
+            t0: 0.0,
+            t1: 1.0,
+            v0: 0.0,
+            d0: 0.0,
+            lambda: (1.0, 0.0),
+            shape: Shape::sine(3.0, 2.0, theta0),
+        }
+    }
+
     #[test]
     fn closed_form_time_of_an_acceleration() {
         for theta0 in [-1.5, -0.2, 1.6, 2.0, 4.0, 7.9] {
-            let seg = Segment {
-                t0: 0.0,
-                t1: 1.0,
-                v0: 0.0,
-                d0: 0.0,
-                lambda: (1.0, 0.0),
-                shape: Shape::sine(3.0, 2.0, theta0),
-            };
+            let seg = sine_from(theta0);
             // Monotone arc: from theta0 to the next crest.
             let k = ((theta0 - std::f64::consts::FRAC_PI_2) / std::f64::consts::PI).floor();
             let end =
@@ -443,14 +448,7 @@ mod tests {
         for k in 0..40 {
             let crest = std::f64::consts::FRAC_PI_2 + f64::from(k) * std::f64::consts::PI;
             for theta0 in [crest.next_down(), crest, crest.next_up()] {
-                let seg = Segment {
-                    t0: 0.0,
-                    t1: 1.0,
-                    v0: 0.0,
-                    d0: 0.0,
-                    lambda: (1.0, 0.0),
-                    shape: Shape::sine(3.0, 2.0, theta0),
-                };
+                let seg = sine_from(theta0);
                 let end = std::f64::consts::PI / 2.0;
                 let target = 0.3 * seg.accel(0.0) + 0.7 * seg.accel(end);
                 let s = seg.time_of_accel(target, 0.0, end).unwrap();
