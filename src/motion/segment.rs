@@ -1,6 +1,8 @@
 //! One piece of a ground motion on which a_g, its integrals and its derivatives are closed-form
 //! functions of s = t - t0, and a_g is monotone.
 
+use std::cell::Cell;
+
 /// The closed form of a_g on a segment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Shape {
@@ -29,7 +31,7 @@ pub enum Shape {
 impl Shape {
     /// A sine arc starting at phase theta0.
     pub fn sine(amplitude: f64, omega: f64, theta0: f64) -> Shape {
-        let (sin0, cos0) = theta0.sin_cos();
+        let (sin0, cos0) = sin_cos(theta0);
         Shape::Sine {
             amplitude,
             omega,
@@ -56,6 +58,45 @@ pub struct Segment {
     pub lambda: (f64, f64),
     /// a_g on the segment.
     pub shape: Shape,
+}
+
+/// The memo of `sin_cos` has 2^TRIG_BITS slots.
+const TRIG_BITS: u32 = 5;
+const TRIG_SLOTS: usize = 1 << TRIG_BITS;
+
+thread_local! {
+    /// The latest arguments of `sin_cos` (bits) with their sine and cosine, direct-mapped.
+    static TRIG: [Cell<(u64, f64, f64)>; TRIG_SLOTS] =
+        const { [const { Cell::new((NAN_BITS, f64::NAN, f64::NAN)) }; TRIG_SLOTS] };
+}
+
+/// An empty slot: a NaN argument, whose sine and cosine are NaN anyway.
+const NAN_BITS: u64 = 0x7ff8_0000_0000_0000;
+
+/// The slot of an argument (bits). Fibonacci hashing: the top bits of the product depend on
+/// every bit of the argument.
+fn trig_slot(bits: u64) -> usize {
+    (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - TRIG_BITS)) as usize
+}
+
+/// sin(x) and cos(x), remembered for recent arguments. Why: the event-driven integrator
+/// evaluates a sliding cluster many times at one instant (its displacement, velocity and
+/// acceleration, each block's, each joint's), and a root finder a function and its derivative
+/// at one point; on the paper's wall four calls in five repeat one of the last few arguments.
+/// The values are those of `f64::sin_cos`, bit for bit.
+fn sin_cos(x: f64) -> (f64, f64) {
+    let bits = x.to_bits();
+    TRIG.with(|memo| {
+        let slot = &memo[trig_slot(bits)];
+        let (key, s, c) = slot.get();
+        if key == bits {
+            (s, c)
+        } else {
+            let (s, c) = x.sin_cos();
+            slot.set((bits, s, c));
+            (s, c)
+        }
+    })
 }
 
 /// sin(x) - x without cancellation for small x.
@@ -117,7 +158,7 @@ impl Segment {
                 // Rotate exactly as `accel` does, so the new start's a_g is bit for bit the
                 // value the parent gives at s_a: decisions made with one and motion computed
                 // with the other must agree on ties.
-                let (sn, cs) = (omega * s_a).sin_cos();
+                let (sn, cs) = sin_cos(omega * s_a);
                 Shape::Sine {
                     amplitude,
                     omega,
@@ -151,7 +192,7 @@ impl Segment {
                 ..
             } => {
                 let x = omega * s;
-                let (h, ch) = (0.5 * x).sin_cos();
+                let (h, ch) = sin_cos(0.5 * x);
                 let smx = sin_minus_x_from_half(x, h, ch);
                 let cos_part = if x.abs() < 0.25 {
                     cos_minus_1_plus_half_x2(x)
@@ -250,7 +291,7 @@ impl Segment {
                 cos0,
                 ..
             } => {
-                let (sh, ch) = (0.5 * omega * s).sin_cos();
+                let (sh, ch) = sin_cos(0.5 * omega * s);
                 2.0 * amplitude * (cos0 * ch - sin0 * sh) * sh
             }
         }
@@ -268,7 +309,7 @@ impl Segment {
                 ..
             } => {
                 let x = omega * s;
-                let (h, ch) = (0.5 * x).sin_cos();
+                let (h, ch) = sin_cos(0.5 * x);
                 amplitude / omega * (2.0 * cos0 * h * h + sin0 * sin_minus_x_from_half(x, h, ch))
             }
         }
@@ -286,7 +327,7 @@ impl Segment {
                 ..
             } => {
                 let x = omega * s;
-                let (h, ch) = (0.5 * x).sin_cos();
+                let (h, ch) = sin_cos(0.5 * x);
                 let cos_part = if x.abs() < 0.25 {
                     cos_minus_1_plus_half_x2(x)
                 } else {
@@ -309,7 +350,7 @@ impl Segment {
                 cos0,
                 ..
             } => {
-                let (sn, cs) = (omega * s).sin_cos();
+                let (sn, cs) = sin_cos(omega * s);
                 amplitude * (sin0 * cs + cos0 * sn)
             }
         }
@@ -326,7 +367,7 @@ impl Segment {
                 cos0,
                 ..
             } => {
-                let (sn, cs) = (omega * s).sin_cos();
+                let (sn, cs) = sin_cos(omega * s);
                 let (sin_th, cos_th) = (sin0 * cs + cos0 * sn, cos0 * cs - sin0 * sn);
                 (
                     amplitude * omega * cos_th,
@@ -348,7 +389,7 @@ impl Segment {
                 ..
             } => {
                 // cos a - cos b = 2 sin((a+b)/2) sin((b-a)/2), free of cancellation.
-                let (sh, ch) = (0.5 * omega * s).sin_cos();
+                let (sh, ch) = sin_cos(0.5 * omega * s);
                 2.0 * amplitude / omega * (sin0 * ch + cos0 * sh) * sh
             }
         }
@@ -369,7 +410,7 @@ impl Segment {
                 // A/w^2 [w s cos th0 - sin(th0 + w s) + sin th0]
                 //   = A/w^2 [2 sin th0 sin^2(w s / 2) - cos th0 (sin(w s) - w s)].
                 let x = omega * s;
-                let (h, ch) = (0.5 * x).sin_cos();
+                let (h, ch) = sin_cos(0.5 * x);
                 amplitude / (omega * omega)
                     * (2.0 * sin0 * h * h - cos0 * sin_minus_x_from_half(x, h, ch))
             }
@@ -397,6 +438,39 @@ impl Segment {
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn remembered_sines_are_the_sines_bit_for_bit() {
+        let same = |x: f64| {
+            let ((s, c), (s0, c0)) = (sin_cos(x), x.sin_cos());
+            assert_eq!(
+                (s.to_bits(), c.to_bits()),
+                (s0.to_bits(), c0.to_bits()),
+                "{x}"
+            );
+        };
+        // Arguments that share a slot and differ only in their last bits, asked for in turn:
+        // each must get its own values, not its neighbour's.
+        for k in 0..200 {
+            let x = (k as f64 * 0.618_033_988_749_895).fract() * 7.0 - 0.5;
+            let rivals: Vec<f64> = (1..200u64)
+                .map(|d| f64::from_bits(x.to_bits() + d))
+                .filter(|y| trig_slot(y.to_bits()) == trig_slot(x.to_bits()))
+                .take(3)
+                .collect();
+            assert!(!rivals.is_empty());
+            for &y in &rivals {
+                for z in [x, y, x, y, y] {
+                    same(z);
+                }
+            }
+        }
+        for z in [0.0, -0.0, 1e-300, f64::MIN_POSITIVE, 3.0, 3.0] {
+            same(z);
+        }
+        let (s, c) = sin_cos(f64::NAN);
+        assert!(s.is_nan() && c.is_nan());
+    }
 
     #[test]
     fn sine_increments_match_direct_formulas() {
