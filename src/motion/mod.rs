@@ -253,14 +253,14 @@ impl Motion {
                     hi = hi.max(a);
                 }
             }
-            Motion::Sine(_) => {
-                let mut seg = self.segment_at(t0);
-                while seg.t1 < t1 {
-                    let t = seg.t1;
-                    seg = self.segment_at(t);
-                    let a = seg.accel(t - seg.t0);
+            Motion::Sine(s) => {
+                // The crests between arcs, and the end of the sine (0 after it).
+                let mut end = sine_arc(s, t0).map_or(f64::INFINITY, |(_, t)| t);
+                while end < t1 {
+                    let a = sine_accel(s, end);
                     lo = lo.min(a);
                     hi = hi.max(a);
+                    end = sine_arc(s, end).map_or(f64::INFINITY, |(_, t)| t);
                 }
             }
         }
@@ -290,8 +290,13 @@ impl Motion {
 
     /// Ground acceleration at time t (m/s2).
     pub fn accel(&self, t: f64) -> f64 {
-        let s = self.segment_at(t);
-        s.accel(t - s.t0)
+        match self {
+            Motion::Sine(s) => sine_accel(s, t),
+            Motion::Record(_) => {
+                let s = self.segment_at(t);
+                s.accel(t - s.t0)
+            }
+        }
     }
 
     /// The segment containing time t (the later one at a boundary); t >= 0.
@@ -316,9 +321,7 @@ impl Motion {
 }
 
 fn sine_segment(s: &Sine, t: f64) -> Segment {
-    let w = s.omega();
-    let (a, phi) = (s.amplitude_m_s2, s.phase_rad);
-    if t >= s.duration_s {
+    let Some((t0, t1)) = sine_arc(s, t) else {
         let (v_end, d_end) = sine_state(s, s.duration_s);
         return Segment {
             t0: s.duration_s,
@@ -331,8 +334,26 @@ fn sine_segment(s: &Sine, t: f64) -> Segment {
                 slope: 0.0,
             },
         };
+    };
+    let (v0, d0) = sine_state(s, t0);
+    Segment {
+        t0,
+        t1,
+        v0,
+        d0,
+        lambda: (1.0, 0.0),
+        shape: sine_shape(s, t0),
     }
-    // Boundaries where the phase w t + phi passes pi/2 + k pi: a_g is monotone between them.
+}
+
+/// The arc [t0, t1) of a sine holding t (the later one at a boundary): a_g is monotone
+/// between the instants where the phase w t + phi passes pi/2 + k pi. `None` from the end of
+/// the sine on.
+fn sine_arc(s: &Sine, t: f64) -> Option<(f64, f64)> {
+    if t >= s.duration_s {
+        return None;
+    }
+    let (w, phi) = (s.omega(), s.phase_rad);
     let k = ((w * t + phi - std::f64::consts::FRAC_PI_2) / std::f64::consts::PI).floor();
     let boundary = |k: f64| (std::f64::consts::FRAC_PI_2 + k * std::f64::consts::PI - phi) / w;
     let mut t0 = boundary(k).max(0.0);
@@ -345,14 +366,21 @@ fn sine_segment(s: &Sine, t: f64) -> Segment {
         t0 = t1;
         t1 = boundary(k + 2.0).min(s.duration_s);
     }
-    let (v0, d0) = sine_state(s, t0);
-    Segment {
-        t0,
-        t1,
-        v0,
-        d0,
-        lambda: (1.0, 0.0),
-        shape: Shape::sine(a, w, w * t0 + phi),
+    Some((t0, t1))
+}
+
+/// a_g on the sine's arc that starts at t0.
+fn sine_shape(s: &Sine, t0: f64) -> Shape {
+    let w = s.omega();
+    Shape::sine(s.amplitude_m_s2, w, w * t0 + s.phase_rad)
+}
+
+/// a_g of a sine at t, bit for bit what its segment at t gives, without the segment's
+/// velocity and displacement.
+fn sine_accel(s: &Sine, t: f64) -> f64 {
+    match sine_arc(s, t) {
+        Some((t0, _)) => sine_shape(s, t0).accel(t - t0),
+        None => 0.0,
     }
 }
 
@@ -496,19 +524,60 @@ mod tests {
             .collect();
         for (i, &t0) in ends.iter().enumerate().step_by(7) {
             for &t1 in ends[i..].iter().step_by(5) {
-                // The extremes of a piecewise-linear function: its ends and every corner
-                // inside, each read through the segment that starts there.
-                let (a0, a1) = (m.accel(t0), m.accel(t1));
-                let mut want = [a0.min(a1), a0.max(a1)];
-                let mut seg = m.segment_at(t0);
-                while seg.t1 < t1 {
-                    seg = m.segment_at(seg.t1);
-                    let x = seg.accel(0.0);
-                    want = [want[0].min(x), want[1].max(x)];
-                }
-                let got = m.accel_range(t0, t1);
-                assert_eq!(got, (want[0], want[1]), "[{t0}, {t1}]");
+                assert_eq!(m.accel_range(t0, t1), range_by_segments(&m, t0, t1));
             }
         }
+    }
+
+    /// The extremes of a_g over [t0, t1] by definition: a_g is monotone on a segment, so they
+    /// are among the ends and the starts of the segments inside, each read through its segment.
+    fn range_by_segments(m: &Motion, t0: f64, t1: f64) -> (f64, f64) {
+        let at = |t: f64| {
+            let seg = m.segment_at(t);
+            seg.accel(t - seg.t0)
+        };
+        let (a0, a1) = (at(t0), at(t1));
+        let mut want = (a0.min(a1), a0.max(a1));
+        let mut seg = m.segment_at(t0);
+        while seg.t1 < t1 {
+            seg = m.segment_at(seg.t1);
+            let x = seg.accel(0.0);
+            want = (want.0.min(x), want.1.max(x));
+        }
+        want
+    }
+
+    #[test]
+    fn a_sine_is_read_as_its_segments_and_peaks_at_its_crests() {
+        // Crests at t = (pi/2 + k pi - 0.7) / (2 pi 1.3); the sine ends between two of them.
+        let m = Motion::Sine(Sine::new(4.0, 1.3, 0.7, 4.9).unwrap());
+        let w = 2.0 * std::f64::consts::PI * 1.3;
+        let times: Vec<f64> = (0..14)
+            .map(|k| (std::f64::consts::FRAC_PI_2 + k as f64 * std::f64::consts::PI - 0.7) / w)
+            .chain([0.0, 4.9, 0.123, 2.5, 5.5])
+            .filter(|&t| t >= 0.0)
+            .flat_map(|t| [t.next_down(), t, t.next_up(), t + 0.05])
+            .filter(|&t| t >= 0.0)
+            .collect();
+        for &t in &times {
+            let seg = m.segment_at(t);
+            assert_eq!(m.accel(t).to_bits(), seg.accel(t - seg.t0).to_bits(), "{t}");
+        }
+        for (i, &t0) in times.iter().enumerate() {
+            for &t1 in times[i..].iter().filter(|&&t1| t1 >= t0) {
+                let (lo, hi) = m.accel_range(t0, t1);
+                assert_eq!((lo, hi), range_by_segments(&m, t0, t1), "[{t0}, {t1}]");
+                for k in 0..=50 {
+                    let a = m.accel(t0 + (t1 - t0) * k as f64 / 50.0);
+                    assert!(lo <= a && a <= hi, "[{t0}, {t1}]: {a} outside [{lo}, {hi}]");
+                }
+            }
+        }
+        // Over a whole cycle the range is the amplitude, to round-off.
+        let (lo, hi) = m.accel_range(0.0, 1.0);
+        assert!(
+            (lo + 4.0).abs() < 1e-14 && (hi - 4.0).abs() < 1e-14,
+            "{lo} {hi}"
+        );
     }
 }

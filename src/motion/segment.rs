@@ -40,6 +40,23 @@ impl Shape {
             cos0,
         }
     }
+
+    /// a_g at s from the start (m/s2).
+    pub fn accel(&self, s: f64) -> f64 {
+        match *self {
+            Shape::Linear { a0, slope } => a0 + slope * s,
+            Shape::Sine {
+                amplitude,
+                omega,
+                sin0,
+                cos0,
+                ..
+            } => {
+                let (sn, cs) = sin_cos(omega * s);
+                amplitude * (sin0 * cs + cos0 * sn)
+            }
+        }
+    }
 }
 
 /// A segment [t0, t1) of a ground motion.
@@ -341,19 +358,7 @@ impl Segment {
 
     /// a_g at s (m/s2).
     pub fn accel(&self, s: f64) -> f64 {
-        match self.shape {
-            Shape::Linear { a0, slope } => a0 + slope * s,
-            Shape::Sine {
-                amplitude,
-                omega,
-                sin0,
-                cos0,
-                ..
-            } => {
-                let (sn, cs) = sin_cos(omega * s);
-                amplitude * (sin0 * cs + cos0 * sn)
-            }
-        }
+        self.shape.accel(s)
     }
 
     /// First and second time derivatives of a_g at s, from the right.
