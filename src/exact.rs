@@ -106,9 +106,9 @@ impl Q {
     }
 
     /// The fraction `n / d` (d != 0).
-    pub fn frac(n: i64, d: i64) -> Q {
+    pub fn frac(n: i128, d: i128) -> Q {
         assert!(d != 0, "Q::frac with zero denominator");
-        Q::from_parts(n as i128, d as i128)
+        Q::from_parts(n, d)
     }
 
     fn from_parts(n: i128, d: i128) -> Q {

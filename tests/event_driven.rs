@@ -465,7 +465,7 @@ fn a_wall_of_two_thousand_blocks_with_random_friction_balances_its_energy() {
     let mu: Vec<pirqa::Q> = nominal
         .supports
         .iter()
-        .map(|_| pirqa::Q::frac(2700 + (rng.uniform() * 600.0) as i64, 10_000))
+        .map(|_| pirqa::Q::frac(2700 + (rng.uniform() * 600.0) as i128, 10_000))
         .collect();
     let topo = nominal.with_frictions(mu);
     let settings = Settings::summary_only(10.0);

@@ -144,7 +144,7 @@ proptest! {
         let mu: Vec<pirqa::exact::Q> = nominal
             .supports
             .iter()
-            .map(|_| pirqa::exact::Q::frac(2500 + (rng.uniform() * 1000.0) as i64, 10_000))
+            .map(|_| pirqa::exact::Q::frac(2500 + (rng.uniform() * 1000.0) as i128, 10_000))
             .collect();
         let topo = nominal.with_frictions(mu);
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));

@@ -89,7 +89,7 @@ fn friction_samples_are_reproducible_rounded_and_centred_on_the_wall() {
             // A multiple of the friction step, exactly.
             assert_eq!(
                 *mu,
-                pirqa::exact::Q::frac((x / FRICTION_STEP).round() as i64, 10_000)
+                pirqa::exact::Q::frac((x / FRICTION_STEP).round() as i128, 10_000)
             );
             sum[j] += x;
         }

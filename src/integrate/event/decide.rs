@@ -15,7 +15,9 @@
 //! ground acceleration "just after" the instant ([`Lex`]), which decides joints exactly at their
 //! limit by what happens next.
 
-use super::flow::{take_overflow, Amount, Exact, Lex, Network, PUSH_RELABEL_FROM};
+use super::flow::{
+    over_common_denominator, take_overflow, Amount, Exact, Lex, Network, PUSH_RELABEL_FROM,
+};
 use crate::exact::Q;
 use std::cmp::Ordering;
 use std::collections::VecDeque;
@@ -627,6 +629,30 @@ impl Problem {
         Stick { lo, hi, breaking }
     }
 
+    /// Calls `f` with each undecided joint (its index) that leaves the set `members` (marked in
+    /// `inside`) for the ground or a block outside; `at` lists each block's joints.
+    fn for_each_cut(
+        &self,
+        at: &[Vec<usize>],
+        members: &[usize],
+        inside: &[bool],
+        mut f: impl FnMut(usize),
+    ) {
+        for &i in members {
+            for &k in &at[i] {
+                let (a, b, _) = &self.friction[k];
+                let other_inside = match (*a == i, b) {
+                    (true, End::Node(o)) => inside[*o],
+                    (true, End::Ground) => false,
+                    (false, _) => inside[*a],
+                };
+                if !other_inside {
+                    f(k);
+                }
+            }
+        }
+    }
+
     /// The smallest ratio (cut(S) + e(S)) / m(S) over the sets S that may move the side's way,
     /// and a set that attains it.
     fn min_ratio(
@@ -660,24 +686,27 @@ impl Problem {
                 at[*j].push(k);
             }
         }
+        // A set's ratio sums integers over common denominators and reduces once, where they
+        // fit: a rational sum reduces at every addition, most of the cost of a search.
+        let integral = Integral::new(self, external);
         let ratio = |members: &[usize], inside: &[bool]| -> Q {
-            let mut cut = Q::zero();
-            for &i in members {
-                for &k in &at[i] {
-                    let (a, b, f) = &self.friction[k];
-                    let other_inside = match (*a == i, b) {
-                        (true, End::Node(o)) => inside[*o],
-                        (true, End::Ground) => false,
-                        (false, _) => inside[*a],
-                    };
-                    if !other_inside {
-                        cut = cut + f;
-                    }
-                }
-            }
-            let e: Q = members.iter().map(|&i| external[i].clone()).sum();
-            let m: Q = members.iter().map(|&i| self.mass[i].clone()).sum();
-            (cut + e) / m
+            let fast = integral.as_ref().and_then(|z| {
+                let mut cut = Some(0i128);
+                self.for_each_cut(&at, members, inside, |k| {
+                    cut = cut.and_then(|c| c.checked_add(z.capacity[k]));
+                });
+                let (f, m) = members.iter().try_fold((cut?, 0i128), |(f, m), &i| {
+                    Some((f.checked_add(z.external[i])?, m.checked_add(z.mass[i])?))
+                })?;
+                z.ratio(f, m)
+            });
+            fast.unwrap_or_else(|| {
+                let mut cut = Q::zero();
+                self.for_each_cut(&at, members, inside, |k| cut = &cut + &self.friction[k].2);
+                let e: Q = members.iter().map(|&i| external[i].clone()).sum();
+                let m: Q = members.iter().map(|&i| self.mass[i].clone()).sum();
+                (cut + e) / m
+            })
         };
         let everything: Vec<usize> = (0..n).filter(|&i| allowed[i]).collect();
         if everything.is_empty() {
@@ -753,6 +782,45 @@ pub struct Stick {
     pub hi: Option<Q>,
     /// Sets (local indices, sorted) that break away at the finite limits.
     pub breaking: Vec<Vec<usize>>,
+}
+
+/// A problem's joint capacities, one side's external forces and its masses as integers over
+/// common denominators ([`over_common_denominator`]).
+struct Integral {
+    /// Capacities, over `force_den`.
+    capacity: Vec<i128>,
+    /// External forces, over `force_den`.
+    external: Vec<i128>,
+    force_den: i128,
+    /// Masses, over `mass_den`.
+    mass: Vec<i128>,
+    mass_den: i128,
+}
+
+impl Integral {
+    /// `None` when the numbers do not fit.
+    fn new(p: &Problem, external: &[Q]) -> Option<Integral> {
+        let forces = p.friction.iter().map(|j| &j.2).chain(external);
+        let (mut capacity, force_den) = over_common_denominator(forces)?;
+        let external = capacity.split_off(p.friction.len());
+        let (mass, mass_den) = over_common_denominator(p.mass.iter())?;
+        Some(Integral {
+            capacity,
+            external,
+            force_den,
+            mass,
+            mass_den,
+        })
+    }
+
+    /// The exact ratio of a sum of force numerators to a (positive) sum of mass numerators, if
+    /// it fits.
+    fn ratio(&self, force: i128, mass: i128) -> Option<Q> {
+        Some(Q::frac(
+            force.checked_mul(self.mass_den)?,
+            mass.checked_mul(self.force_den)?,
+        ))
+    }
 }
 
 /// Builds the network from `arcs` with capacities `caps`, the constraint arcs with a capacity
@@ -1010,6 +1078,60 @@ mod tests {
             })
     }
 
+    /// The stick interval by enumeration: the least ratio (cut(S) + e(S)) / m(S) over every set
+    /// S that may move each way (closed under its faces, none pushed into the ground).
+    fn stick_by_enumeration(p: &Problem) -> (Option<Q>, Option<Q>) {
+        let n = p.n();
+        let best = |external: &[Q], side: Side| -> Option<Q> {
+            let (implies, forbidden) = p.constraints(&vec![true; n], side, true);
+            (1..1u32 << n)
+                .filter_map(|mask| {
+                    let inside = |i: usize| mask >> i & 1 == 1;
+                    let admissible = forbidden.iter().all(|&a| !inside(a))
+                        && implies.iter().all(|&(a, b)| !inside(a) || inside(b));
+                    admissible.then(|| {
+                        let mut cut = Q::zero();
+                        for (i, j, f) in &p.friction {
+                            let j_in = matches!(j, End::Node(j) if inside(*j));
+                            if inside(*i) != j_in {
+                                cut = cut + f;
+                            }
+                        }
+                        let set = (0..n).filter(|&i| inside(i));
+                        let e: Q = set.clone().map(|i| external[i].clone()).sum();
+                        let m: Q = set.map(|i| p.mass[i].clone()).sum();
+                        (cut + e) / m
+                    })
+                })
+                .min()
+        };
+        let neg: Vec<Q> = p.external.iter().map(|e| -e).collect();
+        (
+            best(&neg, Side::Upper).map(|r| -r),
+            best(&p.external, Side::Lower),
+        )
+    }
+
+    /// The same problem with every capacity and mass off by a fraction with a large prime
+    /// denominator (Mersenne primes, pairwise coprime): over a common denominator they no
+    /// longer fit 128 bits, and the exact rational path is taken.
+    fn with_coprime_denominators(mut p: Problem) -> Problem {
+        const PRIMES: [i128; 5] = [
+            (1i128 << 61) - 1,
+            (1 << 31) - 1,
+            (1 << 19) - 1,
+            8191,
+            131_071,
+        ];
+        for (k, joint) in p.friction.iter_mut().enumerate() {
+            joint.2 = &joint.2 + &Q::frac(1, PRIMES[k % PRIMES.len()]);
+        }
+        for (k, m) in p.mass.iter_mut().enumerate() {
+            *m = &*m + &Q::frac(1, PRIMES[(k + 1) % PRIMES.len()]);
+        }
+        p
+    }
+
     fn sorted(mut groups: Vec<Group>) -> Vec<Group> {
         groups.sort_by(|a, b| a.nodes.cmp(&b.nodes));
         groups
@@ -1017,6 +1139,22 @@ mod tests {
 
     proptest! {
         #![proptest_config(crate::integrate::event::many_cheap_cases())]
+
+        /// The stick interval is the weakest set's ratio, whether the search sums integers over
+        /// common denominators or, where they do not fit, exact rationals.
+        #[test]
+        fn stick_intervals_are_the_weakest_sets(p in ground_problem()) {
+            let interval = |p: &Problem| {
+                let Stick { lo, hi, .. } = p.stick_interval(&[]);
+                (lo, hi)
+            };
+            prop_assert_eq!(interval(&p), stick_by_enumeration(&p));
+            let q = with_coprime_denominators(p);
+            if q.friction.len() >= 4 {
+                prop_assert!(Integral::new(&q, &q.external).is_none());
+            }
+            prop_assert_eq!(interval(&q), stick_by_enumeration(&q));
+        }
 
         /// Pieces of the joint graph meet only through the ground: decided one by one they
         /// give the groups of the whole (grounded blocks may be grouped differently), and a

@@ -87,8 +87,11 @@ impl Amount for [i128; 3] {
     }
 }
 
-/// Rationals over their least common denominator: the numerators, if all fit.
-fn over_common_denominator<'a>(values: impl Iterator<Item = &'a Q> + Clone) -> Option<Vec<i128>> {
+/// Rationals over their least common denominator: the numerators and the denominator, if all
+/// fit.
+pub fn over_common_denominator<'a>(
+    values: impl Iterator<Item = &'a Q> + Clone,
+) -> Option<(Vec<i128>, i128)> {
     let mut lcm: i128 = 1;
     for v in values.clone() {
         let (_, d) = v.small_parts()?;
@@ -101,13 +104,14 @@ fn over_common_denominator<'a>(values: impl Iterator<Item = &'a Q> + Clone) -> O
     // Keep a factor 2^8 of headroom below i128::MAX for the sums a flow forms; the overflow
     // flag catches anything beyond.
     const LIMIT: i128 = i128::MAX >> 8;
-    values
+    let numerators = values
         .map(|v| {
             let (n, d) = v.small_parts()?;
             let x = n.checked_mul(lcm / d)?;
             (x.checked_abs()? <= LIMIT).then_some(x)
         })
-        .collect()
+        .collect::<Option<Vec<i128>>>()?;
+    Some((numerators, lcm))
 }
 
 fn gcd(mut a: i128, mut b: i128) -> i128 {
@@ -141,7 +145,7 @@ impl Exact for Q {
         q
     }
     fn integers(values: &[Q]) -> Option<Vec<i128>> {
-        over_common_denominator(values.iter())
+        over_common_denominator(values.iter()).map(|(n, _)| n)
     }
 }
 
@@ -206,7 +210,7 @@ impl Exact for Lex {
     }
     fn integers(values: &[Lex]) -> Option<Vec<[i128; 3]>> {
         let parts: Vec<Vec<i128>> = (0..3)
-            .map(|k| over_common_denominator(values.iter().map(|v| &v.0[k])))
+            .map(|k| over_common_denominator(values.iter().map(|v| &v.0[k])).map(|(n, _)| n))
             .collect::<Option<_>>()?;
         Some(
             (0..values.len())
@@ -669,7 +673,7 @@ mod tests {
             let dinic = build(n, &arcs, ints).cuts_by_dinic(s, t, &big);
             let pr = build(n, &arcs, ints).cuts_by_push_relabel(s, t);
             prop_assert_eq!(&dinic, &pr);
-            let rational = |c: i128| Q::frac(c as i64, 7);
+            let rational = |c: i128| Q::frac(c, 7);
             let qr = build(n, &arcs, rational).cuts_by_push_relabel(s, t);
             prop_assert_eq!(&dinic, &qr);
             // c + (c mod 3) eps: ties in the first component are broken by the second.

@@ -532,7 +532,7 @@ fn draw(rng: &mut Rng, mean: f64, cov: f64, distribution: Distribution) -> Q {
         };
         let steps = (x / FRICTION_STEP).round();
         if steps >= 1.0 && steps * FRICTION_STEP <= 2.0 {
-            break steps as i64;
+            break steps as i128;
         }
     };
     Q::frac(steps, 10_000)
