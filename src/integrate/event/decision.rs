@@ -30,8 +30,20 @@ const BODY_FROM: usize = 32;
 struct Local(Vec<usize>);
 
 impl Local {
-    fn new(n: usize) -> Local {
-        Local(vec![NONE; n])
+    /// The table over n blocks, in the memory of an earlier one (all `NONE`) if given.
+    fn reuse(mut table: Vec<usize>, n: usize) -> Local {
+        if table.len() != n {
+            table = vec![NONE; n];
+        }
+        Local(table)
+    }
+
+    /// Empties the entries of `used` and hands the memory back.
+    fn release(mut self, used: &[usize]) -> Vec<usize> {
+        for &b in used {
+            self.0[b] = NONE;
+        }
+        self.0
     }
 
     fn get(&self, b: &usize) -> Option<&usize> {
@@ -53,6 +65,27 @@ impl std::ops::Index<&usize> for Local {
     fn index(&self, b: &usize) -> &usize {
         self.get(b).expect("block in the problem")
     }
+}
+
+/// Working memory of the decisions, kept from one event to the next (allocating it afresh was a
+/// tenth of a run on the paper's wall). Between decisions every vector is empty and `local` is
+/// all `NONE`.
+#[derive(Default)]
+pub(super) struct Buffers {
+    /// The table of [`Local`].
+    local: Vec<usize>,
+    /// The component's blocks, and the queue that gathers them.
+    blocks: Vec<usize>,
+    queue: Vec<usize>,
+    /// The clusters the component's blocks belonged to.
+    old: Vec<usize>,
+    /// The supports and vertical joints at the component's blocks.
+    supports: Vec<usize>,
+    joints: Vec<usize>,
+    /// The blocks' displacements and velocities (m, m/s), and the new group of each.
+    u: Vec<f64>,
+    v: Vec<f64>,
+    group_of: Vec<usize>,
 }
 
 impl Engine<'_> {
@@ -94,20 +127,22 @@ impl Engine<'_> {
         let t = self.t;
 
         // 1. The component: whole clusters joined through joints with equal velocities.
-        let mut local = Local::new(self.n);
-        let mut blocks: Vec<usize> = Vec::new();
-        let mut old_clusters: BTreeSet<usize> = BTreeSet::new();
-        let mut queue: Vec<usize> = Vec::new();
+        let mut buf = std::mem::take(&mut self.buffers);
+        let mut local = Local::reuse(std::mem::take(&mut buf.local), self.n);
+        let mut blocks = std::mem::take(&mut buf.blocks);
+        let mut old_clusters = std::mem::take(&mut buf.old);
+        let mut queue = std::mem::take(&mut buf.queue);
         let add = |b: usize,
                    this: &Engine,
                    local: &mut Local,
                    blocks: &mut Vec<usize>,
-                   old: &mut BTreeSet<usize>,
+                   old: &mut Vec<usize>,
                    queue: &mut Vec<usize>| {
+            // Once per cluster: its first block brings in all the others.
             let members: &[usize] = match this.of[b] {
                 NONE => std::slice::from_ref(&b),
                 k => {
-                    old.insert(k);
+                    old.push(k);
                     &this.clusters[k].blocks
                 }
             };
@@ -174,17 +209,18 @@ impl Engine<'_> {
 
         // Canonical order (by block index), so a configuration met again is the same problem.
         blocks.sort_unstable();
+        old_clusters.sort_unstable();
         for (k, &b) in blocks.iter().enumerate() {
             local.insert(b, k);
         }
-        self.equalize_velocities(&blocks, &local, &mut snap);
+        self.equalize_velocities(&blocks, &local, &mut snap, &mut buf.v);
 
         // 2. Account what the old clusters did up to now, and the joints around them.
         for &k in &old_clusters {
             self.account(k, t);
         }
-        let mut touched_supports: Vec<usize> = Vec::new();
-        let mut touched_joints: Vec<usize> = Vec::new();
+        let mut touched_supports = std::mem::take(&mut buf.supports);
+        let mut touched_joints = std::mem::take(&mut buf.joints);
         for &i in &blocks {
             touched_supports.extend(
                 self.topo.below[i]
@@ -201,8 +237,10 @@ impl Engine<'_> {
         for &s in &touched_supports {
             self.account_support(s);
         }
-        let u_now: Vec<f64> = blocks.iter().map(|&i| self.block_disp(i)).collect();
-        let v_now: Vec<f64> = blocks.iter().map(|&i| self.vel_with(i, &snap)).collect();
+        let (u_now, v_now) = (&mut buf.u, &mut buf.v);
+        u_now.extend(blocks.iter().map(|&i| self.block_disp(i)));
+        v_now.clear();
+        v_now.extend(blocks.iter().map(|&i| self.vel_with(i, &snap)));
 
         // 3. The decision problem.
         let mut p = Problem {
@@ -348,13 +386,20 @@ impl Engine<'_> {
             self.clusters[k].version = self.new_version();
             self.free.push(k);
         }
-        let mut group_of = vec![usize::MAX; blocks.len()];
+        let group_of = &mut buf.group_of;
+        group_of.resize(blocks.len(), usize::MAX);
         let mut new_clusters = Vec::with_capacity(groups.len());
         let mut needs_interval = Vec::new();
         for (g_idx, g) in groups.iter().enumerate() {
-            let members: Vec<usize> = g.nodes.iter().map(|&k| blocks[k]).collect();
-            for &k in &g.nodes {
-                group_of[k] = g_idx;
+            // The member list is built in the emptied list of the slot `alloc` will give.
+            let mut members = self
+                .free
+                .last()
+                .map_or_else(Vec::new, |&k| std::mem::take(&mut self.clusters[k].blocks));
+            members.extend(g.nodes.iter().map(|&k| blocks[k]));
+            for (&i, &node) in members.iter().zip(&g.nodes) {
+                group_of[node] = g_idx;
+                self.u_ref[i] = u_now[node];
             }
             let mass_q: Q = members.iter().map(|&i| self.mass_q[i].clone()).sum();
             let motion = if g.grounded {
@@ -367,7 +412,7 @@ impl Engine<'_> {
             let k = self.alloc(Cluster {
                 mass: mass_q.to_f64(),
                 mass_q,
-                blocks: members.clone(),
+                blocks: members,
                 version: 0,
                 motion,
                 accounted_to: t,
@@ -375,9 +420,8 @@ impl Engine<'_> {
                 ground_hits: None,
                 extremes: Default::default(),
             });
-            for (&i, &node) in members.iter().zip(&g.nodes) {
+            for &i in &self.clusters[k].blocks {
                 self.of[i] = k;
-                self.u_ref[i] = u_now[node];
             }
             if g.grounded && intervals[g_idx].is_none() {
                 needs_interval.push(k);
@@ -482,6 +526,22 @@ impl Engine<'_> {
                 self.touching[j] = true;
             }
         }
+        // The working memory goes back before anything below decides again.
+        buf.local = local.release(&blocks);
+        for (v, kept) in [
+            (blocks, &mut buf.blocks),
+            (queue, &mut buf.queue),
+            (old_clusters, &mut buf.old),
+            (touched_supports, &mut buf.supports),
+            (touched_joints, &mut buf.joints),
+        ] {
+            *kept = v;
+            kept.clear();
+        }
+        buf.u.clear();
+        buf.v.clear();
+        buf.group_of.clear();
+        self.buffers = buf;
         for &k in &new_clusters {
             neighbours.remove(&k);
         }
@@ -521,40 +581,22 @@ impl Engine<'_> {
         (a - b).abs() <= self.vel_tol(a, b)
     }
 
-    /// Joints whose two sides move with velocities equal within round-off are undecided: give
-    /// each group of blocks so joined one velocity, their momentum-weighted mean (zero if the
-    /// group is joined to the ground), so the decision sees exact equality. Without this, a
-    /// block resting on two supports whose velocities differ by round-off meets each in turn,
-    /// one ulp apart, for ever.
-    fn equalize_velocities(
+    /// Calls `f(k, other)` for each live support and touching vertical joint of the component's
+    /// block `blocks[k]`: `other` is the local index of the block on the other side, or `None`
+    /// for the ground or an abutment; joints to blocks outside the component are left out.
+    fn for_each_pair(
         &self,
         blocks: &[usize],
         local: &Local,
-        snap: &mut FxHashMap<usize, f64>,
+        mut f: impl FnMut(usize, Option<usize>),
     ) {
-        let n = blocks.len();
-        let v: Vec<f64> = blocks.iter().map(|&b| self.vel_with(b, snap)).collect();
-        let mut sets = DisjointSets::new(n);
-        let mut grounded = vec![false; n];
-        // Whether some velocities are equal within round-off but not exactly (else: done).
-        let mut inexact = false;
-        // Velocities a and b count as equal; the second flag: only within round-off.
-        let near = |a: f64, b: f64| (self.same_velocity(a, b), a != b);
         for (k, &b) in blocks.iter().enumerate() {
             for other in self.live_neighbours(b) {
                 match other.filter(|&o| !self.fixed[o]) {
-                    None => {
-                        let (same, off) = near(v[k], 0.0);
-                        grounded[k] |= same;
-                        inexact |= same && off;
-                    }
+                    None => f(k, None),
                     Some(o) => {
                         if let Some(&m) = local.get(&o) {
-                            let (same, off) = near(v[k], v[m]);
-                            if same {
-                                sets.join(k, m);
-                                inexact |= off;
-                            }
+                            f(k, Some(m));
                         }
                     }
                 }
@@ -570,21 +612,51 @@ impl Engine<'_> {
                     jt.left.0
                 };
                 if self.fixed[o] {
-                    let (same, off) = near(v[k], 0.0);
-                    grounded[k] |= same;
-                    inexact |= same && off;
+                    f(k, None);
                 } else if let Some(&m) = local.get(&o) {
-                    let (same, off) = near(v[k], v[m]);
-                    if same {
-                        sets.join(k, m);
-                        inexact |= off;
-                    }
+                    f(k, Some(m));
                 }
             }
         }
+    }
+
+    /// Joints whose two sides move with velocities equal within round-off are undecided: give
+    /// each group of blocks so joined one velocity, their momentum-weighted mean (zero if the
+    /// group is joined to the ground), so the decision sees exact equality. Without this, a
+    /// block resting on two supports whose velocities differ by round-off meets each in turn,
+    /// one ulp apart, for ever.
+    fn equalize_velocities(
+        &self,
+        blocks: &[usize],
+        local: &Local,
+        snap: &mut FxHashMap<usize, f64>,
+        v: &mut Vec<f64>,
+    ) {
+        let n = blocks.len();
+        v.clear();
+        v.extend(blocks.iter().map(|&b| self.vel_with(b, snap)));
+        // Velocities a and b count as equal; the second flag: only within round-off.
+        let near = |a: f64, b: f64| (self.same_velocity(a, b), a != b);
+        let other_velocity = |other: Option<usize>| other.map_or(0.0, |m| v[m]);
+        // Whether some velocities are equal within round-off but not exactly (else: done).
+        let mut inexact = false;
+        self.for_each_pair(blocks, local, |k, other| {
+            let (same, off) = near(v[k], other_velocity(other));
+            inexact |= same && off;
+        });
         if !inexact {
             return;
         }
+        let mut sets = DisjointSets::new(n);
+        let mut grounded = vec![false; n];
+        self.for_each_pair(blocks, local, |k, other| {
+            if near(v[k], other_velocity(other)).0 {
+                match other {
+                    None => grounded[k] = true,
+                    Some(m) => sets.join(k, m),
+                }
+            }
+        });
         let mut groups: FxHashMap<usize, Vec<usize>> = FxHashMap::default();
         for k in 0..n {
             let r = sets.find(k);
@@ -664,7 +736,7 @@ impl Engine<'_> {
     fn set_thresholds(&mut self, k: usize) {
         self.clusters[k].blocks.sort_unstable();
         let members = self.clusters[k].blocks.clone();
-        let mut local = Local::new(self.n);
+        let mut local = Local::reuse(std::mem::take(&mut self.buffers.local), self.n);
         for (n, &b) in members.iter().enumerate() {
             local.insert(b, n);
         }
@@ -716,6 +788,7 @@ impl Engine<'_> {
                 }
             }
         }
+        self.buffers.local = local.release(&members);
         let (lo_q, hi_q) = self.stick_interval(p.canonical(), &members);
         self.clusters[k].motion = stuck(lo_q, hi_q);
     }

@@ -223,6 +223,8 @@ pub(crate) struct Engine<'a> {
     breaking: VecDeque<Vec<usize>>,
     /// Decisions already worked out, by problem and ground acceleration.
     free_memo: Memo<(decide::Problem, flow::Lex), Vec<decide::Group>>,
+    /// Working memory of the decisions.
+    buffers: decision::Buffers,
 }
 
 impl<'a> Engine<'a> {
@@ -305,6 +307,7 @@ impl<'a> Engine<'a> {
             stick_memo: Memo::new(),
             breaking: VecDeque::new(),
             free_memo: Memo::new(),
+            buffers: decision::Buffers::default(),
         })
     }
 
