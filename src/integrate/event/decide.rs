@@ -57,6 +57,19 @@ pub struct Group {
     pub grounded: bool,
 }
 
+/// Adjacency lists of a problem's nodes, stored flat: the neighbours of node i are
+/// `next[start[i]..start[i + 1]]`.
+struct Adjacency {
+    start: Vec<usize>,
+    next: Vec<usize>,
+}
+
+impl Adjacency {
+    fn of(&self, i: usize) -> &[usize] {
+        &self.next[self.start[i]..self.start[i + 1]]
+    }
+}
+
 /// Which minimisers of a cut problem a caller needs: each costs its own pass on large networks.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Want {
@@ -156,21 +169,37 @@ impl Problem {
             .collect()
     }
 
-    fn adjacency(&self) -> Vec<Vec<usize>> {
-        let mut adj = vec![Vec::new(); self.n()];
-        for &(i, j, _) in &self.friction {
-            if let End::Node(j) = j {
-                adj[i].push(j);
-                adj[j].push(i);
-            }
+    /// The blocks joined by each undecided joint or face between blocks.
+    fn adjacency(&self) -> Adjacency {
+        let pairs = || {
+            let joints = self.friction.iter().filter_map(|&(i, j, _)| match j {
+                End::Node(j) => Some((i, j)),
+                End::Ground => None,
+            });
+            let faces = self.contacts.iter().filter_map(|&(l, r)| match (l, r) {
+                (End::Node(l), End::Node(r)) => Some((l, r)),
+                _ => None,
+            });
+            joints.chain(faces)
+        };
+        // Counting sort: each node's neighbours end at start[i + 1], then fill backwards.
+        let mut start = vec![0; self.n() + 1];
+        for (a, b) in pairs() {
+            start[a + 1] += 1;
+            start[b + 1] += 1;
         }
-        for &(l, r) in &self.contacts {
-            if let (End::Node(l), End::Node(r)) = (l, r) {
-                adj[l].push(r);
-                adj[r].push(l);
-            }
+        for i in 0..self.n() {
+            start[i + 1] += start[i];
         }
-        adj
+        let mut next = vec![0; start[self.n()]];
+        let mut end = start[1..].to_vec();
+        for (a, b) in pairs() {
+            end[a] -= 1;
+            next[end[a]] = b;
+            end[b] -= 1;
+            next[end[b]] = a;
+        }
+        Adjacency { start, next }
     }
 
     /// For each node of `set`, "in S implies that node in S" arcs and nodes that may not be in S
@@ -254,7 +283,7 @@ impl Problem {
     }
 
     /// Connected pieces of `members` through undecided joints between members.
-    fn pieces(&self, members: &[usize], adj: &[Vec<usize>]) -> Vec<Vec<usize>> {
+    fn pieces(&self, members: &[usize], adj: &Adjacency) -> Vec<Vec<usize>> {
         let mut inside = vec![false; self.n()];
         for &i in members {
             inside[i] = true;
@@ -266,14 +295,16 @@ impl Problem {
                 continue;
             }
             seen[i] = true;
+            // Breadth first, the piece itself the queue (its order does not matter: it is
+            // sorted below).
             let mut piece = vec![i];
-            let mut queue = VecDeque::from([i]);
-            while let Some(u) = queue.pop_front() {
-                for &v in &adj[u] {
+            let mut k = 0;
+            while let Some(&u) = piece.get(k) {
+                k += 1;
+                for &v in adj.of(u) {
                     if inside[v] && !seen[v] {
                         seen[v] = true;
                         piece.push(v);
-                        queue.push_back(v);
                     }
                 }
             }
@@ -340,7 +371,7 @@ impl Problem {
     }
 
     /// Clusters of blocks that share no joint with the ground (the ground does not appear).
-    fn solve_free(&self, set: &[bool], external: &[Q], adj: &[Vec<usize>], out: &mut Vec<Group>) {
+    fn solve_free(&self, set: &[bool], external: &[Q], adj: &Adjacency, out: &mut Vec<Group>) {
         let members: Vec<usize> = (0..self.n()).filter(|&i| set[i]).collect();
         let mass: Q = members.iter().map(|&i| self.mass[i].clone()).sum();
         let total: Q = members.iter().map(|&i| external[i].clone()).sum();
@@ -434,7 +465,7 @@ impl Problem {
             }
         }
         while let Some(u) = queue.pop_front() {
-            for &v in &adj[u] {
+            for &v in adj.of(u) {
                 if on_level[v] && !grounded[v] {
                     grounded[v] = true;
                     queue.push_back(v);

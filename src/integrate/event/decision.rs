@@ -246,7 +246,8 @@ impl Engine<'_> {
         let mut p = Problem {
             mass: blocks.iter().map(|&i| self.mass_q[i].clone()).collect(),
             external: vec![Q::zero(); blocks.len()],
-            ..Problem::default()
+            friction: Vec::with_capacity(touched_supports.len()),
+            contacts: Vec::with_capacity(touched_joints.len()),
         };
         for &s in &touched_supports {
             if !self.live_support(s) {
