@@ -21,6 +21,11 @@ const MAX_SNAPS: usize = 8;
 /// Sets that broke away at earlier stick limits, kept as hints for the next intervals.
 const BREAKING_HINTS: usize = 8;
 
+/// Ground accelerations remembered per decision problem (the oldest is forgotten first): a
+/// problem is met again at the few stick thresholds of its neighbourhood, or away from the
+/// ground at none.
+const THETAS_KEPT: usize = 16;
+
 /// Sliding clusters of at least this many blocks are held together in a decision's first try
 /// (`Problem::solve`); below it the general decision costs no more.
 const BODY_FROM: usize = 32;
@@ -848,12 +853,22 @@ impl Engine<'_> {
         if !remember && p.touches_ground() {
             return p.solve(&theta, bodies);
         }
-        let key = (p.clone(), theta);
-        if let Some(found) = self.free_memo.get(&key) {
+        let known = self.free_memo.get(p);
+        if let Some((_, found)) = known.and_then(|k| k.iter().find(|(at, _)| *at == theta)) {
             return found.clone();
         }
-        let found = p.solve(&key.1, bodies);
-        self.free_memo.insert(key, found.clone(), p.mass.len());
+        let found = p.solve(&theta, bodies);
+        match self.free_memo.get_mut(p) {
+            Some(known) => {
+                if known.len() == THETAS_KEPT {
+                    known.remove(0);
+                }
+                known.push((theta, found.clone()));
+            }
+            None => self
+                .free_memo
+                .insert(p.clone(), vec![(theta, found.clone())], p.mass.len()),
+        }
         found
     }
 

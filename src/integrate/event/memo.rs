@@ -35,6 +35,11 @@ impl<K: Hash + Eq, V> Memo<K, V> {
         self.map.get(question)
     }
 
+    /// The answer to `question`, if worked out, to amend.
+    pub fn get_mut(&mut self, question: &K) -> Option<&mut V> {
+        self.map.get_mut(question)
+    }
+
     /// Remembers an answer; `blocks` is the size of the question.
     pub fn insert(&mut self, question: K, answer: V, blocks: usize) {
         let question = Rc::new(question);

@@ -221,8 +221,9 @@ pub(crate) struct Engine<'a> {
     /// Sets of blocks (global indices, sorted) that broke away at recent stick limits, newest
     /// first: hints for the next stick intervals.
     breaking: VecDeque<Vec<usize>>,
-    /// Decisions already worked out, by problem and ground acceleration.
-    free_memo: Memo<(decide::Problem, flow::Lex), Vec<decide::Group>>,
+    /// Decisions already worked out, by problem, and under it by ground acceleration (a
+    /// problem meets few: it is looked up without building a key).
+    free_memo: Memo<decide::Problem, Vec<(flow::Lex, Vec<decide::Group>)>>,
     /// Working memory of the decisions.
     buffers: decision::Buffers,
 }
