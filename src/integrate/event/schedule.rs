@@ -12,7 +12,6 @@
 use super::cluster::{GroundHits, Motion, Slide};
 use super::roots::{first_violation, polish, sign_changes, valid_after, Fun};
 use super::{Constraint, Engine, Ev};
-use std::collections::BTreeSet;
 
 fn constraint_bits(c: Constraint) -> u64 {
     match c {
@@ -54,18 +53,19 @@ impl Engine<'_> {
     /// Schedules the next events of the given clusters and of every pair of sliding clusters
     /// among them and their neighbours.
     pub(super) fn schedule(&mut self, ks: &[usize]) {
-        let mut pairs = BTreeSet::new();
+        let mut pairs = Vec::new();
         for &k in ks {
             if self.clusters[k].blocks.is_empty() {
                 continue;
             }
             self.schedule_segment(k);
             if self.clusters[k].slide().is_some() {
-                for m in self.sliding_neighbours(k) {
-                    pairs.insert((k.min(m), k.max(m)));
-                }
+                self.sliding_neighbours(k, |m| pairs.push((k.min(m), k.max(m))));
             }
         }
+        // Each pair once, in order.
+        pairs.sort_unstable();
+        pairs.dedup();
         for (a, b) in pairs {
             self.schedule_pair(a, b);
         }
@@ -163,8 +163,7 @@ impl Engine<'_> {
             Some(r) if r.from <= t0 && t1 <= r.to => r,
             _ => self.zeros(sl, t0, t1),
         };
-        let v_roots = zeros.v_zero.clone();
-        self.clusters[k].roots = Some(zeros);
+        let v_roots = &zeros.v_zero;
         let mut hits = [None; 3];
         if sigma != 0 {
             // The stop is the first zero of the velocity: the same function, found on the same
@@ -189,7 +188,7 @@ impl Engine<'_> {
                 Fun::with(&f, &df),
                 t0,
                 t1,
-                &v_roots,
+                v_roots,
                 start,
                 tol,
                 &mut self.count,
@@ -207,19 +206,19 @@ impl Engine<'_> {
                 Fun::with(&f, &df),
                 t0,
                 t1,
-                &v_roots,
+                v_roots,
                 start,
                 tol,
                 &mut self.count,
             )
             .map(|h| h.t);
         }
+        self.clusters[k].roots = Some(zeros);
         hits
     }
 
-    /// Sliding clusters sharing a joint with cluster k.
-    fn sliding_neighbours(&self, k: usize) -> BTreeSet<usize> {
-        let mut out = BTreeSet::new();
+    /// Calls `f` with each sliding cluster sharing a joint with cluster k (once per joint).
+    fn sliding_neighbours(&self, k: usize, mut f: impl FnMut(usize)) {
         for &i in &self.clusters[k].blocks {
             let supports = self.topo.below[i].iter().chain(&self.topo.above[i]);
             let others = supports.filter(|s| self.live_support(s.0)).filter_map(|s| {
@@ -244,11 +243,10 @@ impl Engine<'_> {
             for o in others.chain(sides) {
                 let m = self.of[o];
                 if m != super::NONE && m != k && self.clusters[m].slide().is_some() {
-                    out.insert(m);
+                    f(m);
                 }
             }
         }
-        out
     }
 
     /// The four relative displacements d = u_upper - u_lower at which the standing of `upper`
@@ -416,13 +414,16 @@ impl Engine<'_> {
             let tau = x - t0;
             r1 + r2 * tau * (lt + 0.5 * dl * tau)
         };
-        let vertex = if vertical {
+        let (changes, single);
+        let vertex: &[f64] = if vertical {
             let wfd = |x: f64| (w(x), r2 * (lt + dl * (x - t0)));
-            sign_changes(Fun::with(&w, &wfd), t0, t1, &[], 0.0, &mut self.count)
+            changes = sign_changes(Fun::with(&w, &wfd), t0, t1, &[], 0.0, &mut self.count);
+            &changes
         } else if r2 != 0.0 {
-            vec![t0 - r1 / r2]
+            single = [t0 - r1 / r2];
+            &single
         } else {
-            Vec::new()
+            &[]
         };
         if slides_on {
             let sigma = if assumed != 0.0 {
@@ -451,7 +452,7 @@ impl Engine<'_> {
                 Fun::with(&f, &df),
                 t0,
                 t1,
-                &vertex,
+                vertex,
                 start,
                 tol,
                 &mut self.count,
@@ -467,7 +468,7 @@ impl Engine<'_> {
                 Fun::with(&f, &df),
                 t0,
                 t1,
-                &vertex,
+                vertex,
                 start,
                 tol,
                 &mut self.count,
