@@ -116,6 +116,9 @@ impl Q {
             return Q::from_big(BigInt::from(n), BigInt::from(d));
         }
         let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+        if d == 1 {
+            return Q(Repr::Small(n, 1));
+        }
         let g = gcd_i128(n, d);
         if g <= 1 {
             return Q(Repr::Small(n, d));
@@ -306,6 +309,13 @@ impl Q {
 
     fn add_impl(&self, o: &Q) -> Q {
         if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &o.0) {
+            // Sums start from zero: nothing to reduce.
+            if *a == 0 {
+                return o.clone();
+            }
+            if *c == 0 {
+                return self.clone();
+            }
             if *b == *d {
                 if let Some(n) = a.checked_add(*c) {
                     return Q::from_parts(n, *b);
@@ -507,6 +517,57 @@ impl fmt::Display for Q {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    /// Numerators and denominators of every size that matters: zero and small values, values
+    /// whose products overflow 64 bits, and values whose products overflow 128 bits.
+    fn part() -> impl Strategy<Value = i128> {
+        prop_oneof![
+            Just(0i128),
+            -30i128..30,
+            (-(1i128 << 62))..(1i128 << 62),
+            (-(1i128 << 120))..(1i128 << 120),
+        ]
+    }
+
+    fn rational() -> impl Strategy<Value = Q> {
+        (
+            part(),
+            part().prop_filter("non-zero denominator", |d| *d != 0),
+        )
+            .prop_map(|(n, d)| Q::frac(n, d))
+    }
+
+    /// Reduced, positive denominator, in 128 bits whenever it fits: what `==` and `Hash` need.
+    fn canonical(q: &Q) -> bool {
+        let (n, d) = q.big_parts();
+        let fits = n.to_i128().is_some_and(|n| n != i128::MIN) && d.to_i128().is_some();
+        d.is_positive() && n.gcd(&d).is_one() && fits == matches!(q.0, Repr::Small(..))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 5000, failure_persistence: None, ..Default::default() })]
+
+        /// Every operation against big-integer arithmetic on numerators and denominators.
+        #[test]
+        fn arithmetic_is_exact_and_canonical(a in rational(), b in rational()) {
+            let ((an, ad), (bn, bd)) = (a.big_parts(), b.big_parts());
+            let is = |q: &Q, n: BigInt, d: BigInt| {
+                let (qn, qd) = q.big_parts();
+                canonical(q) && qn * d == n * qd
+            };
+            prop_assert!(canonical(&a) && canonical(&b));
+            prop_assert!(is(&(&a + &b), &an * &bd + &bn * &ad, &ad * &bd));
+            prop_assert!(is(&(&a - &b), &an * &bd - &bn * &ad, &ad * &bd));
+            prop_assert!(is(&(&a * &b), &an * &bn, &ad * &bd));
+            if !b.is_zero() {
+                prop_assert!(is(&(&a / &b), &an * &bd, &ad * &bn));
+            }
+            prop_assert!(is(&-&a, -&an, ad.clone()));
+            prop_assert_eq!(a.cmp(&b), (&an * &bd).cmp(&(&bn * &ad)));
+            prop_assert_eq!(a == b, an == bn && ad == bd);
+        }
+    }
 
     #[test]
     fn decimals_are_read_as_written() {
