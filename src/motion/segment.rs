@@ -361,6 +361,22 @@ impl Segment {
         self.shape.accel(s)
     }
 
+    /// a_g at the start, bit for bit `accel(0.0)`: sin 0 = 0 and cos 0 = 1 exactly, so no sine
+    /// is evaluated. Why not `accel(0.0)`: inside a loop over clusters the compiler hoisted
+    /// that call's sine (a pure function to it) out of the loop and ahead of the test for the
+    /// shape, evaluating it once per segment even of a record.
+    pub fn start_accel(&self) -> f64 {
+        match self.shape {
+            Shape::Linear { a0, slope } => a0 + slope * 0.0,
+            Shape::Sine {
+                amplitude,
+                sin0,
+                cos0,
+                ..
+            } => amplitude * (sin0 * 1.0 + cos0 * 0.0),
+        }
+    }
+
     /// First and second time derivatives of a_g at s, from the right.
     pub fn accel_rates(&self, s: f64) -> (f64, f64) {
         match self.shape {
@@ -475,6 +491,43 @@ mod tests {
         }
         let (s, c) = sin_cos(f64::NAN);
         assert!(s.is_nan() && c.is_nan());
+    }
+
+    #[test]
+    fn acceleration_at_the_start_is_read_without_a_sine() {
+        // Signed zeros included: -0 + 0 is +0, so the formula cannot be shortened to sin0 or a0.
+        let at_zero = |cos0: f64| Shape::Sine {
+            amplitude: 3.0,
+            omega: 2.0,
+            theta0: 0.0,
+            sin0: -0.0,
+            cos0,
+        };
+        let line = |a0: f64, slope: f64| Shape::Linear { a0, slope };
+        let shapes = [
+            Shape::sine(4.0, 6.2, 0.7),
+            Shape::sine(-2.5, 1.3, 2.0),
+            at_zero(1.0),
+            at_zero(-1.0),
+            line(-0.0, 2.0),
+            line(-0.0, -2.0),
+            line(1.5, 3.0),
+        ];
+        for shape in shapes {
+            let seg = Segment {
+                t0: 1.0,
+                t1: 2.0,
+                v0: 0.0,
+                d0: 0.0,
+                lambda: (1.0, 0.0),
+                shape,
+            };
+            assert_eq!(
+                seg.start_accel().to_bits(),
+                seg.accel(0.0).to_bits(),
+                "{shape:?}"
+            );
+        }
     }
 
     #[test]

@@ -61,7 +61,7 @@ impl Slide {
         let anchor = seg.anchored(t);
         let c = c_q.to_f64();
         Slide {
-            rel: c * anchor.lambda.0 - anchor.accel(0.0),
+            rel: c * anchor.lambda.0 - anchor.start_accel(),
             grow: c * anchor.lambda.1,
             anchor,
             x_a: 0.0,
@@ -114,7 +114,7 @@ impl Slide {
         self.anchor = *next;
         self.x_a = x;
         self.v_a = v;
-        self.rel = self.c * next.lambda.0 - next.accel(0.0);
+        self.rel = self.c * next.lambda.0 - next.start_accel();
         self.grow = self.c * next.lambda.1;
     }
 
