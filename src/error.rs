@@ -103,10 +103,10 @@ pub enum WallError {
     #[error("the wall has no blocks: give `rows` or `rectangles`")]
     Empty,
     /// A block's number is out of range.
-    #[error("block {block} ({origin}): {field} = {value}: {rule}")]
+    #[error("{}: {field} = {value}: {rule}", block_place(.block, .origin))]
     BlockField {
-        /// Block name.
-        block: String,
+        /// Block name, if the file gave one (the default names are given after the checks).
+        block: Option<String>,
         /// Where it is in the file.
         origin: String,
         /// Field name.
@@ -115,6 +115,14 @@ pub enum WallError {
         value: f64,
         /// The rule it breaks.
         rule: &'static str,
+    },
+    /// A block's name cannot be told from a joint key.
+    #[error("block name \"{name}\" ({origin}): a block name must not be empty, contain '/', or be \"ground\"")]
+    BlockName {
+        /// The name as written.
+        name: String,
+        /// Where it is in the file.
+        origin: String,
     },
     /// Two blocks share a name.
     #[error("block name {name} is used twice: by {first} and by {second}")]
@@ -345,3 +353,11 @@ pub enum SimulationError {
 
 /// Convenience alias.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// "block B7 (row 2, block 3)", or "the block at row 2, block 3" when it has no name yet.
+fn block_place(block: &Option<String>, origin: &str) -> String {
+    match block {
+        Some(name) => format!("block {name} ({origin})"),
+        None => format!("the block at {origin}"),
+    }
+}

@@ -84,6 +84,27 @@ fn non_positive_and_non_finite_sizes_name_the_block() {
         &wall("", GOOD_ROWS, "").replace("thickness_m: 0.8", "thickness_m: 0"),
     );
     assert!(msg.contains("thickness_m = 0"), "{msg}");
+
+    // A block without a name is placed by its row and position (its default name comes later).
+    let rows = r#"rows: [(height_m: 0.6, blocks: [(width_m: 1.2), (width_m: -0.5)])],"#;
+    let msg = error_of("unnamed.ron", &wall("", rows, ""));
+    assert!(
+        msg.contains("the block at row 1, block 2: width_m = -0.5"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn block_names_that_joint_keys_cannot_tell_apart_are_refused() {
+    for name in ["ground", "B1/B2", " "] {
+        let rows = format!(r#"rows: [(height_m: 0.6, blocks: [(width_m: 1.2, name: "{name}")])],"#);
+        let msg = error_of("names.ron", &wall("", &rows, ""));
+        assert!(
+            msg.contains(&format!("block name \"{name}\" (row 1, block 1)"))
+                && msg.contains("must not be empty, contain '/', or be \"ground\""),
+            "{msg}"
+        );
+    }
 }
 
 #[test]

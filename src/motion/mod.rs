@@ -275,7 +275,9 @@ impl Motion {
                 s.amplitude_m_s2,
                 s.amplitude_m_s2 * 100.0,
                 s.frequency_hz,
-                s.phase_rad.to_degrees(),
+                // To 1e-9 degree: the phase was given in degrees and is kept in radians, and
+                // the way back shows rounding noise (29.999999999999996 for 30).
+                (s.phase_rad.to_degrees() * 1e9).round() / 1e9,
                 s.duration_s
             ),
             Motion::Record(r) => format!(
@@ -545,6 +547,18 @@ mod tests {
             want = (want.0.min(x), want.1.max(x));
         }
         want
+    }
+
+    #[test]
+    fn a_sine_is_described_with_the_phase_in_degrees_as_given() {
+        for (deg, shown) in [
+            (30.0, "phase 30 deg"),
+            (135.0, "phase 135 deg"),
+            (0.1, "phase 0.1 deg"),
+        ] {
+            let m = Motion::Sine(Sine::new(4.0, 1.0, f64::to_radians(deg), 20.0).unwrap());
+            assert!(m.describe().contains(shown), "{}", m.describe());
+        }
     }
 
     #[test]

@@ -114,7 +114,7 @@ fn block_number(
         Ok(exact(value))
     } else {
         Err(WallError::BlockField {
-            block: name.clone().unwrap_or_else(|| "(unnamed)".into()),
+            block: name.clone(),
             origin: origin.to_string(),
             field,
             value,
@@ -297,12 +297,9 @@ impl Wall {
         let mut seen: HashMap<&str, usize> = HashMap::new();
         for (i, b) in blocks.iter().enumerate() {
             if b.name == "ground" || b.name.contains('/') || b.name.trim().is_empty() {
-                return Err(WallError::BlockField {
-                    block: b.name.clone(),
+                return Err(WallError::BlockName {
+                    name: b.name.clone(),
                     origin: b.origin.clone(),
-                    field: "name",
-                    value: f64::NAN,
-                    rule: "a block name must not be empty, contain '/', or be \"ground\"",
                 });
             }
             if let Some(&j) = seen.get(b.name.as_str()) {
