@@ -22,6 +22,11 @@ use crate::exact::Q;
 use std::cmp::Ordering;
 use std::collections::VecDeque;
 
+/// Stick intervals of problems of at most this many blocks try every set (at most 255, in
+/// integers) instead of searching with minimum cuts: each cut builds a flow network, and a few
+/// cost more than all the sets of a small problem.
+const ENUMERATE_UP_TO: usize = 8;
+
 /// The other end of a joint: a block of the problem, or the ground (and fixed blocks).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum End {
@@ -643,11 +648,18 @@ impl Problem {
     /// iteration on minimum cuts, exact, a few cuts); a_lo the mirror image. `hints` are sets
     /// (local indices) that broke away from earlier intervals of the same blocks: the iteration
     /// starts from the best of them that could break away here, so when the weakest set has not
-    /// changed one cut confirms it instead of several finding it again.
+    /// changed one cut confirms it instead of several finding it again. Problems of at most
+    /// [`ENUMERATE_UP_TO`] blocks try every set instead.
     pub fn stick_interval(&self, hints: &[Vec<usize>]) -> Stick {
+        self.stick_interval_by(hints, ENUMERATE_UP_TO)
+    }
+
+    /// [`Problem::stick_interval`], trying every set for problems of at most `enumerate_up_to`
+    /// blocks (tests pin the search with 0).
+    fn stick_interval_by(&self, hints: &[Vec<usize>], enumerate_up_to: usize) -> Stick {
         let neg: Vec<Q> = self.external.iter().map(|e| -e).collect();
-        let hi = self.min_ratio(&self.external, Side::Lower, hints);
-        let lo = self.min_ratio(&neg, Side::Upper, hints);
+        let hi = self.min_ratio(&self.external, Side::Lower, hints, enumerate_up_to);
+        let lo = self.min_ratio(&neg, Side::Upper, hints, enumerate_up_to);
         let mut breaking = Vec::new();
         let hi = hi.map(|(r, set)| {
             breaking.push(set);
@@ -658,6 +670,49 @@ impl Problem {
             -r
         });
         Stick { lo, hi, breaking }
+    }
+
+    /// The least ratio (cut(S) + e(S)) / m(S), and a set S that attains it, over every set of
+    /// `allowed` blocks closed under `implies`, tried one by one in integers; `None` if a sum
+    /// or a comparison does not fit. For at most [`ENUMERATE_UP_TO`] blocks.
+    fn weakest_set(
+        &self,
+        z: &Integral,
+        implies: &[(usize, usize)],
+        allowed: &[bool],
+    ) -> Option<(Q, Vec<usize>)> {
+        let n = self.n();
+        let allowed_mask = (0..n).filter(|&i| allowed[i]).fold(0u32, |m, i| m | 1 << i);
+        // (force numerator, mass numerator, set) of the weakest set so far.
+        let mut best: Option<(i128, i128, u32)> = None;
+        for set in 1..1u32 << n {
+            let inside = |i: usize| set >> i & 1 == 1;
+            if set & !allowed_mask != 0 || implies.iter().any(|&(a, b)| inside(a) && !inside(b)) {
+                continue;
+            }
+            let mut force = 0i128;
+            for (k, (i, j, _)) in self.friction.iter().enumerate() {
+                let j_inside = matches!(j, End::Node(j) if inside(*j));
+                if inside(*i) != j_inside {
+                    force = force.checked_add(z.capacity[k])?;
+                }
+            }
+            let mut mass = 0i128;
+            for i in (0..n).filter(|&i| inside(i)) {
+                force = force.checked_add(z.external[i])?;
+                mass = mass.checked_add(z.mass[i])?;
+            }
+            let weaker = match best {
+                None => true,
+                Some((f, m, _)) => force.checked_mul(m)? < f.checked_mul(mass)?,
+            };
+            if weaker {
+                best = Some((force, mass, set));
+            }
+        }
+        let (force, mass, set) = best?;
+        let members = (0..n).filter(|&i| set >> i & 1 == 1).collect();
+        Some((z.ratio(force, mass)?, members))
     }
 
     /// Calls `f` with each undecided joint (its index) that leaves the set `members` (marked in
@@ -691,6 +746,7 @@ impl Problem {
         external: &[Q],
         side: Side,
         hints: &[Vec<usize>],
+        enumerate_up_to: usize,
     ) -> Option<(Q, Vec<usize>)> {
         let n = self.n();
         let all = vec![true; n];
@@ -742,6 +798,12 @@ impl Problem {
         let everything: Vec<usize> = (0..n).filter(|&i| allowed[i]).collect();
         if everything.is_empty() {
             return None;
+        }
+        if n <= enumerate_up_to {
+            let weakest = integral.as_ref();
+            if let Some(found) = weakest.and_then(|z| self.weakest_set(z, &implies, &allowed)) {
+                return Some(found);
+            }
         }
         let mut lambda = ratio(&everything, &allowed);
         let mut best = everything;
@@ -1041,10 +1103,11 @@ mod tests {
             five_block([0.3; 6]),
             five_block([0.35, 0.2, 0.5, 0.1, 0.4, 0.3]),
         ] {
-            let plain = p.stick_interval(&[]);
+            // The search with minimum cuts (small problems would try every set instead).
+            let plain = p.stick_interval_by(&[], 0);
             for mask in 1..32usize {
                 let hint: Vec<usize> = (0..5).filter(|i| mask >> i & 1 == 1).collect();
-                let hinted = p.stick_interval(&[hint, vec![]]);
+                let hinted = p.stick_interval_by(&[hint, vec![]], 0);
                 assert_eq!((&hinted.lo, &hinted.hi), (&plain.lo, &plain.hi), "{mask}");
                 let sets: Vec<&Vec<usize>> = hinted.breaking.iter().collect();
                 assert_eq!(sets.len(), 2);
@@ -1163,6 +1226,25 @@ mod tests {
         p
     }
 
+    /// `ground_problem` with some blocks' faces against an abutment, on either side.
+    fn abutted_problem() -> impl Strategy<Value = Problem> {
+        (
+            ground_problem(),
+            prop::collection::vec((0usize..8, any::<bool>()), 0..3),
+        )
+            .prop_map(|(mut p, faces)| {
+                let n = p.mass.len();
+                for (i, abutment_left) in faces {
+                    p.contacts.push(if abutment_left {
+                        (End::Ground, End::Node(i % n))
+                    } else {
+                        (End::Node(i % n), End::Ground)
+                    });
+                }
+                p
+            })
+    }
+
     fn sorted(mut groups: Vec<Group>) -> Vec<Group> {
         groups.sort_by(|a, b| a.nodes.cmp(&b.nodes));
         groups
@@ -1174,17 +1256,22 @@ mod tests {
         /// The stick interval is the weakest set's ratio, whether the search sums integers over
         /// common denominators or, where they do not fit, exact rationals.
         #[test]
-        fn stick_intervals_are_the_weakest_sets(p in ground_problem()) {
-            let interval = |p: &Problem| {
-                let Stick { lo, hi, .. } = p.stick_interval(&[]);
+        fn stick_intervals_are_the_weakest_sets(p in abutted_problem()) {
+            // Both ways: every set tried in integers, and the search with minimum cuts.
+            let interval = |p: &Problem, enumerate_up_to: usize| {
+                let Stick { lo, hi, .. } = p.stick_interval_by(&[], enumerate_up_to);
                 (lo, hi)
             };
-            prop_assert_eq!(interval(&p), stick_by_enumeration(&p));
+            let want = stick_by_enumeration(&p);
+            prop_assert_eq!(interval(&p, ENUMERATE_UP_TO), want.clone());
+            prop_assert_eq!(interval(&p, 0), want);
             let q = with_coprime_denominators(p);
             if q.friction.len() >= 4 {
                 prop_assert!(Integral::new(&q, &q.external).is_none());
             }
-            prop_assert_eq!(interval(&q), stick_by_enumeration(&q));
+            let want = stick_by_enumeration(&q);
+            prop_assert_eq!(interval(&q, ENUMERATE_UP_TO), want.clone());
+            prop_assert_eq!(interval(&q, 0), want);
         }
 
         /// Pieces of the joint graph meet only through the ground: decided one by one they
