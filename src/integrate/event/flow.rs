@@ -89,7 +89,7 @@ impl Amount for [i128; 3] {
 
 /// Rationals over their least common denominator: the numerators and the denominator, if all
 /// fit.
-pub fn over_common_denominator<'a>(
+pub(super) fn over_common_denominator<'a>(
     values: impl Iterator<Item = &'a Q> + Clone,
 ) -> Option<(Vec<i128>, i128)> {
     let mut lcm: i128 = 1;
