@@ -73,14 +73,15 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
 
 /// n / g for a divisor g > 0 of n. Why not `/`: 128-bit division is a library call many times
 /// slower than the 64-bit instruction, and the numbers here nearly always fit 64 bits.
-fn div(n: i128, g: i128) -> i128 {
+pub(crate) fn div(n: i128, g: i128) -> i128 {
     match (i64::try_from(n), i64::try_from(g)) {
         (Ok(n), Ok(g)) => (n / g) as i128,
         _ => n / g,
     }
 }
 
-fn gcd_i128(a: i128, b: i128) -> i128 {
+/// The greatest common divisor, binary (no 128-bit division), in 64 bits when both fit.
+pub(crate) fn gcd_i128(a: i128, b: i128) -> i128 {
     // Callers never pass i128::MIN, so unsigned_abs fits and the result fits i128.
     let (a, b) = (a.unsigned_abs(), b.unsigned_abs());
     match (u64::try_from(a), u64::try_from(b)) {
@@ -245,7 +246,10 @@ impl Q {
     pub fn to_f64(&self) -> f64 {
         const EXACT: i128 = 1 << 53;
         match &self.0 {
-            Repr::Small(n, d) if n.abs() <= EXACT && *d <= EXACT => *n as f64 / *d as f64,
+            // Both fit 64 bits: one instruction each, where i128 to f64 is a library call.
+            Repr::Small(n, d) if n.abs() <= EXACT && *d <= EXACT => {
+                (*n as i64) as f64 / (*d as i64) as f64
+            }
             _ => {
                 let (n, d) = self.big_parts();
                 big_ratio_to_f64(&n, &d)

@@ -27,6 +27,10 @@ use std::collections::VecDeque;
 /// cost more than all the sets of a small problem.
 const ENUMERATE_UP_TO: usize = 8;
 
+/// Minimum cuts over at most this many blocks try every set too (see [`cut_by_enumeration`]):
+/// below it that costs less than building a flow network and pushing a flow through it.
+const CUT_ENUMERATE_UP_TO: usize = 6;
+
 /// The other end of a joint: a block of the problem, or the ground (and fixed blocks).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum End {
@@ -106,6 +110,15 @@ impl Problem {
                 .contacts
                 .iter()
                 .any(|(l, r)| *l == End::Ground || *r == End::Ground)
+    }
+
+    /// The problem emptied, its memory kept for the next.
+    pub fn cleared(mut self) -> Problem {
+        self.mass.clear();
+        self.external.clear();
+        self.friction.clear();
+        self.contacts.clear();
+        self
     }
 
     /// The same problem with its joint lists in a canonical order.
@@ -919,7 +932,33 @@ impl Integral {
 /// Builds the network from `arcs` with capacities `caps`, the constraint arcs with a capacity
 /// above every cut, and returns what `want` asks for: the source side of the minimal minimum
 /// cut, the nodes that reach the sink in every maximum flow.
+/// The minimum cuts a caller wants of the network on n blocks plus source n and sink n + 1:
+/// `arcs` with capacities `caps` (both ways where flagged), `implies` (a on the source side puts
+/// b there) and `forbidden` blocks (never on the source side). Each cut comes as its side of
+/// the network: the source side of the smallest, the sink side of the largest.
 fn cut_with<A: Amount>(
+    n: usize,
+    arcs: &[(usize, usize, impl Sized, bool)],
+    caps: &[A],
+    implies: &[(usize, usize)],
+    forbidden: &[usize],
+    want: Want,
+) -> (Option<Vec<bool>>, Option<Vec<bool>>) {
+    if n <= CUT_ENUMERATE_UP_TO && arcs.len() <= 64 {
+        let (smallest, largest) = cut_by_enumeration(n, arcs, caps, implies, forbidden);
+        let (s, t) = (n, n + 1);
+        let source_side = (0..n + 2).map(|i| i == s || (i < n && smallest >> i & 1 == 1));
+        let sink_side = (0..n + 2).map(|i| i == t || (i < n && largest >> i & 1 == 0));
+        return (
+            (want != Want::Largest).then(|| source_side.collect()),
+            (want != Want::Smallest).then(|| sink_side.collect()),
+        );
+    }
+    cut_by_flow(n, arcs, caps, implies, forbidden, want)
+}
+
+/// [`cut_with`] by a maximum flow.
+fn cut_by_flow<A: Amount>(
     n: usize,
     arcs: &[(usize, usize, impl Sized, bool)],
     caps: &[A],
@@ -953,6 +992,68 @@ fn cut_with<A: Amount>(
         Want::Smallest => (Some(net.source_side(s, t, big)), None),
         Want::Largest => (None, Some(net.sink_side(s, t, big))),
     }
+}
+
+/// [`cut_with`] by trying every source side allowed (n < 32, at most 64 arcs), as bit sets:
+/// the smallest and the largest minimiser (the minimisers are closed under intersection and
+/// union). The sets are visited in Gray-code order, so each step moves one block and changes
+/// the cut by its own arcs only.
+fn cut_by_enumeration<A: Amount>(
+    n: usize,
+    arcs: &[(usize, usize, impl Sized, bool)],
+    caps: &[A],
+    implies: &[(usize, usize)],
+    forbidden: &[usize],
+) -> (u32, u32) {
+    let s = n;
+    let mut at = vec![0u64; n];
+    for (k, &(u, v, _, _)) in arcs.iter().enumerate() {
+        for x in [u, v].into_iter().filter(|&x| x < n) {
+            at[x] |= 1 << k;
+        }
+    }
+    let mut needs = vec![0u32; n];
+    for &(a, b) in implies {
+        needs[a] |= 1 << b;
+    }
+    let banned = forbidden.iter().fold(0u32, |m, &a| m | 1 << a);
+    let cuts = |k: usize, set: u32| {
+        let inside = |x: usize| x == s || (x < n && set >> x & 1 == 1);
+        let (u, v, _, both) = arcs[k];
+        (inside(u) && !inside(v)) || (both && inside(v) && !inside(u))
+    };
+    let mut set = 0u32;
+    let mut cut = (0..arcs.len())
+        .filter(|&k| cuts(k, set))
+        .fold(A::zero(), |c, k| c.plus(&caps[k]));
+    // The empty set is always allowed.
+    let (mut best, mut smallest, mut largest) = (cut.clone(), 0u32, 0u32);
+    for step in 1u32..1 << n {
+        let x = step.trailing_zeros() as usize;
+        let moved = set ^ 1 << x;
+        let mut arcs_at = at[x];
+        while arcs_at != 0 {
+            let k = arcs_at.trailing_zeros() as usize;
+            arcs_at &= arcs_at - 1;
+            match (cuts(k, set), cuts(k, moved)) {
+                (true, false) => cut = cut.minus(&caps[k]),
+                (false, true) => cut = cut.plus(&caps[k]),
+                _ => {}
+            }
+        }
+        set = moved;
+        let allowed =
+            set & banned == 0 && (0..n).all(|a| set >> a & 1 == 0 || needs[a] & !set == 0);
+        if !allowed {
+            continue;
+        }
+        match cut.cmp(&best) {
+            Ordering::Less => (best, smallest, largest) = (cut.clone(), set, set),
+            Ordering::Equal => (smallest, largest) = (smallest & set, largest | set),
+            Ordering::Greater => {}
+        }
+    }
+    (smallest, largest)
 }
 
 #[cfg(test)]
@@ -1250,8 +1351,54 @@ mod tests {
         groups
     }
 
+    /// A small cut problem: n blocks plus source n and sink n + 1, arcs (one way or both) with
+    /// capacities from 0 (ties) up, blocks implying others and blocks kept off the source side.
+    #[allow(clippy::type_complexity)]
+    fn cut_problem() -> impl Strategy<
+        Value = (
+            usize,
+            Vec<(usize, usize, i128, bool)>,
+            Vec<(usize, usize)>,
+            Vec<usize>,
+        ),
+    > {
+        (1usize..8).prop_flat_map(|n| {
+            let arc = (0..n + 2, 0..n + 2, 0i128..6, any::<bool>());
+            let arcs = prop::collection::vec(arc, 0..3 * n + 2)
+                .prop_map(|arcs| arcs.into_iter().filter(|a| a.0 != a.1).collect::<Vec<_>>());
+            let implies = prop::collection::vec((0..n, 0..n), 0..n);
+            let forbidden = prop::collection::vec(0..n, 0..2);
+            (Just(n), arcs, implies, forbidden)
+        })
+    }
+
     proptest! {
         #![proptest_config(crate::integrate::event::many_cheap_cases())]
+
+        /// Trying every set finds the same smallest and largest minimum cuts as a maximum flow,
+        /// in integers and in lexicographic triples (ties broken by the later components).
+        #[test]
+        fn enumerated_cuts_are_the_flow_cuts((n, arcs, implies, forbidden) in cut_problem()) {
+            let (s, t) = (n, n + 1);
+            let sides = |(smallest, largest): (u32, u32)| {
+                (
+                    (0..n + 2)
+                        .map(|i| i == s || (i < n && smallest >> i & 1 == 1))
+                        .collect::<Vec<bool>>(),
+                    (0..n + 2)
+                        .map(|i| i == t || (i < n && largest >> i & 1 == 0))
+                        .collect::<Vec<bool>>(),
+                )
+            };
+            let ints: Vec<i128> = arcs.iter().map(|a| a.2).collect();
+            let flow = cut_by_flow(n, &arcs, &ints, &implies, &forbidden, Want::Both);
+            let tried = sides(cut_by_enumeration(n, &arcs, &ints, &implies, &forbidden));
+            prop_assert_eq!((flow.0.unwrap(), flow.1.unwrap()), tried);
+            let lex: Vec<[i128; 3]> = arcs.iter().map(|a| [a.2 / 2, a.2 % 2, a.2 % 3]).collect();
+            let flow = cut_by_flow(n, &arcs, &lex, &implies, &forbidden, Want::Both);
+            let tried = sides(cut_by_enumeration(n, &arcs, &lex, &implies, &forbidden));
+            prop_assert_eq!((flow.0.unwrap(), flow.1.unwrap()), tried);
+        }
 
         /// The stick interval is the weakest set's ratio, whether the search sums integers over
         /// common denominators or, where they do not fit, exact rationals.

@@ -12,7 +12,6 @@ use crate::response::EventKind;
 use crate::sets::DisjointSets;
 use crate::topology::Base;
 use rustc_hash::FxHashMap;
-use std::collections::BTreeSet;
 
 /// A ground acceleration within rounding of a breakpoint of the decision is snapped to it; the
 /// snap can move the breakpoint that matters at most this many times.
@@ -64,6 +63,43 @@ impl Local {
     }
 }
 
+/// Velocities set for the decision (m/s), over all blocks (NaN: none set): where a block stops,
+/// where two clusters meet, after an impact, and where round-off was evened out.
+struct Snap {
+    vel: Vec<f64>,
+    set: Vec<usize>,
+}
+
+impl Snap {
+    /// The table over n blocks, in the memory of an earlier one (all NaN) if given.
+    fn reuse(mut vel: Vec<f64>, mut set: Vec<usize>, n: usize) -> Snap {
+        if vel.len() != n {
+            vel = vec![f64::NAN; n];
+        }
+        set.clear();
+        Snap { vel, set }
+    }
+
+    fn get(&self, b: usize) -> Option<f64> {
+        Some(self.vel[b]).filter(|v| !v.is_nan())
+    }
+
+    fn insert(&mut self, b: usize, v: f64) {
+        if self.vel[b].is_nan() {
+            self.set.push(b);
+        }
+        self.vel[b] = v;
+    }
+
+    /// Empties the table and hands the memory back.
+    fn release(mut self) -> (Vec<f64>, Vec<usize>) {
+        for &b in &self.set {
+            self.vel[b] = f64::NAN;
+        }
+        (self.vel, self.set)
+    }
+}
+
 impl std::ops::Index<&usize> for Local {
     type Output = usize;
 
@@ -79,6 +115,9 @@ impl std::ops::Index<&usize> for Local {
 pub(super) struct Buffers {
     /// The table of [`Local`].
     local: Vec<usize>,
+    /// The table of [`Snap`] and the blocks set in it.
+    snap: Vec<f64>,
+    snapped: Vec<usize>,
     /// The component's blocks, and the queue that gathers them.
     blocks: Vec<usize>,
     queue: Vec<usize>,
@@ -87,6 +126,8 @@ pub(super) struct Buffers {
     /// The supports and vertical joints at the component's blocks.
     supports: Vec<usize>,
     joints: Vec<usize>,
+    /// The decision problem.
+    problem: Problem,
     /// The blocks' displacements and velocities (m, m/s), and the new group of each.
     u: Vec<f64>,
     v: Vec<f64>,
@@ -95,8 +136,8 @@ pub(super) struct Buffers {
 
 impl Engine<'_> {
     /// Velocity of block i with the given overrides.
-    fn vel_with(&self, i: usize, snap: &FxHashMap<usize, f64>) -> f64 {
-        snap.get(&i).copied().unwrap_or_else(|| self.block_vel(i))
+    fn vel_with(&self, i: usize, snap: &Snap) -> f64 {
+        snap.get(i).unwrap_or_else(|| self.block_vel(i))
     }
 
     /// The ground acceleration just after now, divided by the vertical load factor (every
@@ -128,11 +169,21 @@ impl Engine<'_> {
         theta: Option<Q>,
     ) -> Result<(), SimulationError> {
         self.rec.stats.mode_decisions += 1;
-        let mut snap: FxHashMap<usize, f64> = snap.iter().copied().collect();
         let t = self.t;
 
         // 1. The component: whole clusters joined through joints with equal velocities.
         let mut buf = std::mem::take(&mut self.buffers);
+        let mut snap = {
+            let (vel, set) = (
+                std::mem::take(&mut buf.snap),
+                std::mem::take(&mut buf.snapped),
+            );
+            let mut table = Snap::reuse(vel, set, self.n);
+            for &(i, v) in snap {
+                table.insert(i, v);
+            }
+            table
+        };
         let mut local = Local::reuse(std::mem::take(&mut buf.local), self.n);
         let mut blocks = std::mem::take(&mut buf.blocks);
         let mut old_clusters = std::mem::take(&mut buf.old);
@@ -171,9 +222,10 @@ impl Engine<'_> {
                 );
             }
         }
+        let mut next = Vec::new();
         while let Some(i) = queue.pop() {
             let vi = self.vel_with(i, &snap);
-            let mut next = Vec::new();
+            next.clear();
             for other in self.live_neighbours(i) {
                 if let Some(o) = other.filter(|&o| !self.fixed[o]) {
                     if !local.contains_key(&o) && self.same_velocity(vi, self.vel_with(o, &snap)) {
@@ -198,7 +250,7 @@ impl Engine<'_> {
                     next.push(o);
                 }
             }
-            for o in next {
+            for &o in &next {
                 if !local.contains_key(&o) {
                     add(
                         o,
@@ -248,12 +300,10 @@ impl Engine<'_> {
         v_now.extend(blocks.iter().map(|&i| self.vel_with(i, &snap)));
 
         // 3. The decision problem.
-        let mut p = Problem {
-            mass: blocks.iter().map(|&i| self.mass_q[i].clone()).collect(),
-            external: vec![Q::zero(); blocks.len()],
-            friction: Vec::with_capacity(touched_supports.len()),
-            contacts: Vec::with_capacity(touched_joints.len()),
-        };
+        let mut p = std::mem::take(&mut buf.problem);
+        p.mass
+            .extend(blocks.iter().map(|&i| self.mass_q[i].clone()));
+        p.external.resize(blocks.len(), Q::zero());
         for &s in &touched_supports {
             if !self.live_support(s) {
                 continue;
@@ -326,6 +376,8 @@ impl Engine<'_> {
                 }
             }
         }
+
+        let p = p.canonical();
 
         // 4. Solve: pieces joined to the ground with the ground acceleration strictly inside
         //    their stick intervals stay stuck (the common case); the other pieces get the general
@@ -445,10 +497,10 @@ impl Engine<'_> {
                 Lex::constant(g.accel.clone())
             })
         };
-        let mut neighbours: BTreeSet<usize> = BTreeSet::new();
+        let mut neighbours: Vec<usize> = Vec::new();
         // Neighbours a joint of which turned: their friction forces changed (only an impact turns
         // a sliding joint without a re-decision of both sides).
-        let mut pushed: BTreeSet<usize> = BTreeSet::new();
+        let mut pushed: Vec<usize> = Vec::new();
         for &s in &touched_supports {
             if !self.live_support(s) {
                 continue;
@@ -458,7 +510,7 @@ impl Engine<'_> {
             let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
             for b in std::iter::once(up).chain(lo) {
                 if !local.contains_key(&b) && self.of[b] != NONE {
-                    neighbours.insert(self.of[b]);
+                    neighbours.push(self.of[b]);
                 }
             }
             let same = lo.is_some_and(|l| self.of[l] == self.of[up]);
@@ -488,7 +540,7 @@ impl Engine<'_> {
             if old_dir != new_dir {
                 for b in std::iter::once(up).chain(lo) {
                     if !local.contains_key(&b) && self.of[b] != NONE {
-                        pushed.insert(self.of[b]);
+                        pushed.push(self.of[b]);
                     }
                 }
             }
@@ -514,7 +566,7 @@ impl Engine<'_> {
             let (l, r) = (jt.left.0, jt.right.0);
             for b in [l, r] {
                 if !local.contains_key(&b) && self.of[b] != NONE {
-                    neighbours.insert(self.of[b]);
+                    neighbours.push(self.of[b]);
                 }
             }
             let together = (self.of[l] == self.of[r] && self.of[l] != NONE)
@@ -534,6 +586,8 @@ impl Engine<'_> {
         }
         // The working memory goes back before anything below decides again.
         buf.local = local.release(&blocks);
+        buf.problem = p.cleared();
+        (buf.snap, buf.snapped) = snap.release();
         for (v, kept) in [
             (blocks, &mut buf.blocks),
             (queue, &mut buf.queue),
@@ -548,12 +602,15 @@ impl Engine<'_> {
         buf.v.clear();
         buf.group_of.clear();
         self.buffers = buf;
-        for &k in &new_clusters {
-            neighbours.remove(&k);
+        // Neighbours hold blocks outside the component only, so none is a new cluster.
+        for set in [&mut neighbours, &mut pushed] {
+            set.sort_unstable();
+            set.dedup();
         }
         // A stuck neighbour none of whose joints turned keeps its problem, so its interval and
         // events stand (a sliding one is rescheduled: what it slides against has changed).
-        neighbours.retain(|k| pushed.contains(k) || self.clusters[*k].slide().is_some());
+        neighbours
+            .retain(|k| pushed.binary_search(k).is_ok() || self.clusters[*k].slide().is_some());
 
         // 7. Stuck clusters get their threshold interval; neighbours whose friction changed move
         //    on with their new forces.
@@ -564,7 +621,7 @@ impl Engine<'_> {
             self.clusters[k].version = self.new_version();
         }
         for &k in &neighbours {
-            self.refresh(k, pushed.contains(&k));
+            self.refresh(k, pushed.binary_search(&k).is_ok());
         }
         let mut all: Vec<usize> = new_clusters;
         all.extend(neighbours);
@@ -635,7 +692,7 @@ impl Engine<'_> {
         &self,
         blocks: &[usize],
         local: &Local,
-        snap: &mut FxHashMap<usize, f64>,
+        snap: &mut Snap,
         v: &mut Vec<f64>,
     ) {
         let n = blocks.len();
@@ -795,7 +852,7 @@ impl Engine<'_> {
             }
         }
         self.buffers.local = local.release(&members);
-        let (lo_q, hi_q) = self.stick_interval(p.canonical(), &members);
+        let (lo_q, hi_q) = self.stick_interval(&p.canonical(), &members);
         self.clusters[k].motion = stuck(lo_q, hi_q);
     }
 
@@ -803,8 +860,8 @@ impl Engine<'_> {
     /// problem's order) are all stuck, remembered per run. The sets that broke away at earlier
     /// limits are the hints ([`Problem::stick_interval`]): a block joining or leaving a large
     /// stuck cluster seldom changes its weakest set.
-    fn stick_interval(&mut self, p: Problem, members: &[usize]) -> (Option<Q>, Option<Q>) {
-        if let Some(found) = self.stick_memo.get(&p) {
+    fn stick_interval(&mut self, p: &Problem, members: &[usize]) -> (Option<Q>, Option<Q>) {
+        if let Some(found) = self.stick_memo.get(p) {
             return found.clone();
         }
         let hints: Vec<Vec<usize>> = self
@@ -824,7 +881,8 @@ impl Engine<'_> {
             self.breaking.truncate(BREAKING_HINTS);
         }
         let interval = (found.lo, found.hi);
-        self.stick_memo.insert(p, interval.clone(), members.len());
+        self.stick_memo
+            .insert(p.clone(), interval.clone(), members.len());
         interval
     }
 
@@ -928,8 +986,13 @@ impl Engine<'_> {
         let mut rest = Vec::new();
         for (piece, on_ground) in p.ground_pieces() {
             if on_ground {
-                let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
-                let (lo, hi) = self.stick_interval(p.restrict(&piece), &members);
+                // p is canonical: a piece that is all of it needs no copy.
+                let (lo, hi) = if piece.len() == blocks.len() {
+                    self.stick_interval(p, blocks)
+                } else {
+                    let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
+                    self.stick_interval(&p.restrict(&piece), &members)
+                };
                 let inside =
                     lo.as_ref().is_none_or(|lo| a0 > lo) && hi.as_ref().is_none_or(|hi| a0 < hi);
                 if inside {

@@ -4,7 +4,7 @@
 //! push-relabel (highest label first, with global relabelling), which moves a whole wall's
 //! load down in a few sweeps where Dinic needs a phase per course.
 
-use crate::exact::Q;
+use crate::exact::{div, gcd_i128, Q};
 use std::cmp::Ordering;
 use std::collections::VecDeque;
 
@@ -95,10 +95,9 @@ pub(super) fn over_common_denominator<'a>(
     let mut lcm: i128 = 1;
     for v in values.clone() {
         let (_, d) = v.small_parts()?;
-        // Denominators repeat: most already divide the running multiple (one i128 division
-        // instead of a gcd).
-        if lcm % d != 0 {
-            lcm = lcm.checked_mul(d / gcd(lcm, d))?;
+        let g = gcd_i128(lcm, d);
+        if g != d {
+            lcm = lcm.checked_mul(div(d, g))?;
         }
     }
     // Keep a factor 2^8 of headroom below i128::MAX for the sums a flow forms; the overflow
@@ -107,18 +106,11 @@ pub(super) fn over_common_denominator<'a>(
     let numerators = values
         .map(|v| {
             let (n, d) = v.small_parts()?;
-            let x = n.checked_mul(lcm / d)?;
+            let x = n.checked_mul(div(lcm, d))?;
             (x.checked_abs()? <= LIMIT).then_some(x)
         })
         .collect::<Option<Vec<i128>>>()?;
     Some((numerators, lcm))
-}
-
-fn gcd(mut a: i128, mut b: i128) -> i128 {
-    while b != 0 {
-        (a, b) = (b, a % b);
-    }
-    a.abs()
 }
 
 impl Amount for Q {
