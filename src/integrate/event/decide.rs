@@ -19,6 +19,7 @@ use super::flow::{
     over_common_denominator, take_overflow, Amount, Exact, Lex, Network, PUSH_RELABEL_FROM,
 };
 use crate::exact::Q;
+use crate::sets::DisjointSets;
 use std::cmp::Ordering;
 use std::collections::VecDeque;
 
@@ -164,27 +165,36 @@ impl Problem {
     /// Connected pieces of the joint graph without passing through the ground, each sorted, and
     /// whether each touches the ground.
     pub fn ground_pieces(&self) -> Vec<(Vec<usize>, bool)> {
-        let adj = self.adjacency();
-        let all: Vec<usize> = (0..self.n()).collect();
-        let mut on_ground = vec![false; self.n()];
-        for (i, j, _) in &self.friction {
-            if *j == End::Ground {
-                on_ground[*i] = true;
+        let n = self.n();
+        let mut sets = DisjointSets::new(n);
+        let mut on_ground = vec![false; n];
+        for &(i, j, _) in &self.friction {
+            match j {
+                End::Node(j) => sets.join(i, j),
+                End::Ground => on_ground[i] = true,
             }
         }
-        for (l, r) in &self.contacts {
+        for &(l, r) in &self.contacts {
             match (l, r) {
-                (End::Ground, End::Node(i)) | (End::Node(i), End::Ground) => on_ground[*i] = true,
+                (End::Node(a), End::Node(b)) => sets.join(a, b),
+                (End::Ground, End::Node(i)) | (End::Node(i), End::Ground) => on_ground[i] = true,
                 _ => {}
             }
         }
-        self.pieces(&all, &adj)
-            .into_iter()
-            .map(|p| {
-                let g = p.iter().any(|&i| on_ground[i]);
-                (p, g)
-            })
-            .collect()
+        // Pieces in the order of their first block, each block in order.
+        let mut piece_of = vec![usize::MAX; n];
+        let mut out: Vec<(Vec<usize>, bool)> = Vec::new();
+        for (i, grounded) in on_ground.into_iter().enumerate() {
+            let root = sets.find(i);
+            if piece_of[root] == usize::MAX {
+                piece_of[root] = out.len();
+                out.push((Vec::new(), false));
+            }
+            let piece = &mut out[piece_of[root]];
+            piece.0.push(i);
+            piece.1 |= grounded;
+        }
+        out
     }
 
     /// The blocks joined by each undecided joint or face between blocks.

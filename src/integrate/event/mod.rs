@@ -589,8 +589,8 @@ impl<'a> Engine<'a> {
         let roots = fresh.as_ref().or(cached.as_ref()).expect("found or cached");
         let inside = |x: &&f64| **x > t_a && **x < t;
         let vel = |x: f64| sl.vel(x);
-        let mut lo = sl.disp(t_a).min(sl.disp(t));
-        let mut hi = sl.disp(t_a).max(sl.disp(t));
+        let (d_a, d_t) = (sl.disp(t_a), sl.disp(t));
+        let (mut lo, mut hi) = (d_a.min(d_t), d_a.max(d_t));
         for &r in roots.v_zero.iter().filter(inside) {
             let x = sl.disp(r);
             lo = lo.min(x);
