@@ -623,9 +623,7 @@ impl Engine<'_> {
         for &k in &neighbours {
             self.refresh(k, pushed.binary_search(&k).is_ok());
         }
-        let mut all: Vec<usize> = new_clusters;
-        all.extend(neighbours);
-        self.schedule(&all);
+        self.schedule(new_clusters.iter().chain(&neighbours).copied());
 
         // 8. A sliding cluster of several blocks whose friction forces changed may have to split:
         //    re-decide it (a stuck one has its new stick interval, which is checked at once).

@@ -226,6 +226,8 @@ pub(crate) struct Engine<'a> {
     free_memo: Memo<decide::Problem, Vec<(flow::Lex, Vec<decide::Group>)>>,
     /// Working memory of the decisions.
     buffers: decision::Buffers,
+    /// Working memory of the scheduling: pairs of sliding clusters (empty between calls).
+    pairs: Vec<(usize, usize)>,
 }
 
 impl<'a> Engine<'a> {
@@ -309,6 +311,7 @@ impl<'a> Engine<'a> {
             breaking: VecDeque::new(),
             free_memo: Memo::new(),
             buffers: decision::Buffers::default(),
+            pairs: Vec::new(),
         })
     }
 
@@ -540,7 +543,7 @@ impl<'a> Engine<'a> {
             let live: Vec<usize> = (0..self.clusters.len())
                 .filter(|&k| !self.clusters[k].blocks.is_empty())
                 .collect();
-            self.schedule(&live);
+            self.schedule(live);
         } else {
             for k in 0..self.clusters.len() {
                 if !self.clusters[k].blocks.is_empty() {
@@ -800,8 +803,7 @@ impl<'a> Engine<'a> {
                         let v = self.new_version();
                         self.clusters[k].version = v;
                     }
-                    let ks: Vec<usize> = std::iter::once(a).chain(b).collect();
-                    self.schedule(&ks);
+                    self.schedule(std::iter::once(a).chain(b));
                     Ok(())
                 } else {
                     self.collapse(upper)

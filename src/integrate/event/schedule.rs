@@ -52,9 +52,9 @@ impl Bounds {
 impl Engine<'_> {
     /// Schedules the next events of the given clusters and of every pair of sliding clusters
     /// among them and their neighbours.
-    pub(super) fn schedule(&mut self, ks: &[usize]) {
-        let mut pairs = Vec::new();
-        for &k in ks {
+    pub(super) fn schedule(&mut self, ks: impl IntoIterator<Item = usize>) {
+        let mut pairs = std::mem::take(&mut self.pairs);
+        for k in ks {
             if self.clusters[k].blocks.is_empty() {
                 continue;
             }
@@ -66,9 +66,11 @@ impl Engine<'_> {
         // Each pair once, in order.
         pairs.sort_unstable();
         pairs.dedup();
-        for (a, b) in pairs {
+        for &(a, b) in &pairs {
             self.schedule_pair(a, b);
         }
+        pairs.clear();
+        self.pairs = pairs;
     }
 
     /// Events of cluster k that involve a_g, up to the end of the current segment.
