@@ -91,6 +91,22 @@ pub(crate) fn gcd_i128(a: i128, b: i128) -> i128 {
 }
 
 impl Q {
+    /// One word that equal numbers share (the representation is canonical): for hashing many
+    /// numbers at once, where hashing each through a hasher costs a decision memo lookup more
+    /// than the rest of it.
+    pub fn hash_word(&self) -> u64 {
+        let fold = |x: i128| (x as u64) ^ ((x >> 64) as u64).rotate_left(29);
+        match &self.0 {
+            Repr::Small(n, d) => fold(*n) ^ fold(*d).rotate_left(32),
+            Repr::Big(b) => {
+                use std::hash::{Hash, Hasher};
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                b.hash(&mut h);
+                h.finish()
+            }
+        }
+    }
+
     /// Zero.
     pub fn zero() -> Q {
         Q(Repr::Small(0, 1))

@@ -43,7 +43,7 @@ pub enum End {
 
 /// One decision problem: the blocks whose joints are undecided, and those joints. Problems are
 /// compared and hashed as values, so a run can remember the answers it has already worked out.
-#[derive(Debug, Clone, Default, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Problem {
     /// Mass of each block (kg).
     pub mass: Vec<Q>,
@@ -54,6 +54,30 @@ pub struct Problem {
     /// Touching faces with zero relative velocity: (left, right); the right face may not
     /// accelerate into the left one.
     pub contacts: Vec<(End, End)>,
+}
+
+/// All of a problem mixed into one word for the hasher (equal problems mix alike): a run looks
+/// a problem up at every event.
+impl std::hash::Hash for Problem {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        let end = |e: &End| match e {
+            End::Node(i) => *i as u64,
+            End::Ground => u64::MAX,
+        };
+        let mut words = [self.mass.len() as u64, self.friction.len() as u64]
+            .into_iter()
+            .chain(self.mass.iter().chain(&self.external).map(Q::hash_word))
+            .chain(
+                self.friction
+                    .iter()
+                    .flat_map(|(i, j, f)| [*i as u64, end(j), f.hash_word()]),
+            )
+            .chain(self.contacts.iter().flat_map(|(l, r)| [end(l), end(r)]));
+        let first = words.next().unwrap_or(0);
+        state.write_u64(words.fold(first, |h, w| {
+            (h.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
+        }));
+    }
 }
 
 /// A cluster in the solution.
@@ -1083,6 +1107,33 @@ mod tests {
             friction: vec![(0, End::Ground, q(mu) * q(9.81))],
             contacts: vec![],
         }
+    }
+
+    #[test]
+    fn equal_problems_hash_alike_whatever_their_memory() {
+        use std::hash::BuildHasher;
+        let hash = |p: &Problem| rustc_hash::FxBuildHasher.hash_one(p);
+        let p = five_block([0.3; 6]);
+        // The same numbers reached another way, in vectors with room to spare.
+        let mut twin = Problem::default();
+        twin.mass.reserve(64);
+        twin.mass
+            .extend(p.mass.iter().map(|m| m * &Q::int(3) / Q::int(3)));
+        twin.external.extend(p.external.iter().cloned());
+        twin.friction.extend(p.friction.iter().cloned());
+        twin.contacts.extend(p.contacts.iter().cloned());
+        assert_eq!(twin, p);
+        assert_eq!(hash(&twin), hash(&p));
+        // One capacity, one end or one face changed: another problem, another hash.
+        let mut other = p.clone();
+        other.friction[0].2 = &other.friction[0].2 + &Q::frac(1, 1000);
+        assert_ne!(hash(&other), hash(&p));
+        let mut other = p.clone();
+        other.friction[0].1 = End::Node(4);
+        assert_ne!(hash(&other), hash(&p));
+        let mut other = p.clone();
+        other.contacts.pop();
+        assert_ne!(hash(&other), hash(&p));
     }
 
     fn just_after(a: Q, rate: i64) -> Lex {
