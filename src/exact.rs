@@ -91,9 +91,9 @@ pub(crate) fn gcd_i128(a: i128, b: i128) -> i128 {
 }
 
 impl Q {
-    /// One word that equal numbers share (the representation is canonical): for hashing many
-    /// numbers at once, where hashing each through a hasher costs a decision memo lookup more
-    /// than the rest of it.
+    /// One word that equal numbers share (the representation is canonical), for hashing many
+    /// numbers at once: a decision memo hashes dozens per lookup, and feeding each through the
+    /// hasher cost more than the rest of the lookup.
     pub fn hash_word(&self) -> u64 {
         let fold = |x: i128| (x as u64) ^ ((x >> 64) as u64).rotate_left(29);
         match &self.0 {

@@ -963,9 +963,6 @@ impl Integral {
     }
 }
 
-/// Builds the network from `arcs` with capacities `caps`, the constraint arcs with a capacity
-/// above every cut, and returns what `want` asks for: the source side of the minimal minimum
-/// cut, the nodes that reach the sink in every maximum flow.
 /// The minimum cuts a caller wants of the network on n blocks plus source n and sink n + 1:
 /// `arcs` with capacities `caps` (both ways where flagged), `implies` (a on the source side puts
 /// b there) and `forbidden` blocks (never on the source side). Each cut comes as its side of
@@ -991,7 +988,9 @@ fn cut_with<A: Amount>(
     cut_by_flow(n, arcs, caps, implies, forbidden, want)
 }
 
-/// [`cut_with`] by a maximum flow.
+/// [`cut_with`] by a maximum flow: the network from `arcs`, the constraint arcs with a capacity
+/// above every cut; the source side of the minimal minimum cut, the nodes that reach the sink in
+/// every maximum flow.
 fn cut_by_flow<A: Amount>(
     n: usize,
     arcs: &[(usize, usize, impl Sized, bool)],
