@@ -9,6 +9,7 @@
 
 use crate::exact::Q;
 use crate::motion::Segment;
+use std::cell::Cell;
 
 /// How a cluster moves.
 #[derive(Debug, Clone)]
@@ -53,6 +54,10 @@ pub struct Slide {
     rel: f64,
     /// c lambda' (m/s3).
     grow: f64,
+    /// The last displacement and velocity asked for, each with its time (NaN: none): a decision
+    /// asks for the state of a cluster at one instant many times, and each answer costs a sine.
+    last_disp: Cell<(f64, f64)>,
+    last_vel: Cell<(f64, f64)>,
 }
 
 impl Slide {
@@ -68,20 +73,34 @@ impl Slide {
             v_a: v,
             c,
             c_q,
+            last_disp: Cell::new((f64::NAN, 0.0)),
+            last_vel: Cell::new((f64::NAN, 0.0)),
         }
     }
 
     /// Displacement gained since formation at time t (m).
     pub fn disp(&self, t: f64) -> f64 {
+        let (at, d) = self.last_disp.get();
+        if at == t {
+            return d;
+        }
         let s = t - self.anchor.t0;
-        self.x_a + s * (self.v_a + s * (0.5 * self.rel + self.grow * s / 6.0))
-            - self.anchor.dd_beyond(s)
+        let d = self.x_a + s * (self.v_a + s * (0.5 * self.rel + self.grow * s / 6.0))
+            - self.anchor.dd_beyond(s);
+        self.last_disp.set((t, d));
+        d
     }
 
     /// Velocity relative to the ground at time t (m/s).
     pub fn vel(&self, t: f64) -> f64 {
+        let (at, v) = self.last_vel.get();
+        if at == t {
+            return v;
+        }
         let s = t - self.anchor.t0;
-        self.v_a + s * (self.rel + 0.5 * self.grow * s) - self.anchor.dv_beyond(s)
+        let v = self.v_a + s * (self.rel + 0.5 * self.grow * s) - self.anchor.dv_beyond(s);
+        self.last_vel.set((t, v));
+        v
     }
 
     /// Acceleration relative to the ground at time t (m/s2).
@@ -116,6 +135,8 @@ impl Slide {
         self.v_a = v;
         self.rel = self.c * next.lambda.0 - next.start_accel();
         self.grow = self.c * next.lambda.1;
+        self.last_disp.set((f64::NAN, 0.0));
+        self.last_vel.set((f64::NAN, 0.0));
     }
 
     /// Work of the inertial forces -m a_g on the cluster from t_a to t_b, per unit mass (J/kg):
