@@ -248,3 +248,32 @@ impl Cluster {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::motion::{Motion, Sine};
+
+    /// The displacement and velocity remembered are those computed (bit for bit what `state`
+    /// gives), whatever the order of the times asked for, before and after re-anchoring.
+    #[test]
+    fn remembered_states_are_the_computed_ones() {
+        let motion = Motion::Sine(Sine::new(4.0, 1.0, 30.0, 20.0).unwrap());
+        let seg = motion.segment_at(0.1);
+        let mut sl = Slide::formed(&seg, 0.1, 0.05, Q::frac(-3, 2));
+        let check = |sl: &Slide, t: f64| {
+            let (u, v, _) = sl.state(t);
+            assert_eq!(sl.disp(t).to_bits(), u.to_bits(), "u at {t}");
+            assert_eq!(sl.vel(t).to_bits(), v.to_bits(), "v at {t}");
+        };
+        for t in [0.2, 0.2, 0.13, 0.2, 0.37, 0.37] {
+            check(&sl, t);
+        }
+        // Re-anchored later on: the times asked for before are measured from the new anchor.
+        let next = motion.segment_at(0.45);
+        sl.rebase(&next);
+        for t in [0.37, 0.2, 0.5, 0.37] {
+            check(&sl, t);
+        }
+    }
+}
