@@ -976,16 +976,28 @@ fn cut_with<A: Amount>(
     want: Want,
 ) -> (Option<Vec<bool>>, Option<Vec<bool>>) {
     if n <= CUT_ENUMERATE_UP_TO && arcs.len() <= 64 {
-        let (smallest, largest) = cut_by_enumeration(n, arcs, caps, implies, forbidden);
-        let (s, t) = (n, n + 1);
-        let source_side = (0..n + 2).map(|i| i == s || (i < n && smallest >> i & 1 == 1));
-        let sink_side = (0..n + 2).map(|i| i == t || (i < n && largest >> i & 1 == 0));
+        let (source_side, sink_side) =
+            sides(n, cut_by_enumeration(n, arcs, caps, implies, forbidden));
         return (
-            (want != Want::Largest).then(|| source_side.collect()),
-            (want != Want::Smallest).then(|| sink_side.collect()),
+            (want != Want::Largest).then_some(source_side),
+            (want != Want::Smallest).then_some(sink_side),
         );
     }
     cut_by_flow(n, arcs, caps, implies, forbidden, want)
+}
+
+/// The smallest and the largest minimiser over n blocks, as bit sets, written as the sides of
+/// the network that [`cut_with`] returns.
+fn sides(n: usize, (smallest, largest): (u32, u32)) -> (Vec<bool>, Vec<bool>) {
+    let (s, t) = (n, n + 1);
+    (
+        (0..n + 2)
+            .map(|i| i == s || (i < n && smallest >> i & 1 == 1))
+            .collect(),
+        (0..n + 2)
+            .map(|i| i == t || (i < n && largest >> i & 1 == 0))
+            .collect(),
+    )
 }
 
 /// [`cut_with`] by a maximum flow: the network from `arcs`, the constraint arcs with a capacity
@@ -1439,24 +1451,13 @@ mod tests {
         /// in integers and in lexicographic triples (ties broken by the later components).
         #[test]
         fn enumerated_cuts_are_the_flow_cuts((n, arcs, implies, forbidden) in cut_problem()) {
-            let (s, t) = (n, n + 1);
-            let sides = |(smallest, largest): (u32, u32)| {
-                (
-                    (0..n + 2)
-                        .map(|i| i == s || (i < n && smallest >> i & 1 == 1))
-                        .collect::<Vec<bool>>(),
-                    (0..n + 2)
-                        .map(|i| i == t || (i < n && largest >> i & 1 == 0))
-                        .collect::<Vec<bool>>(),
-                )
-            };
             let ints: Vec<i128> = arcs.iter().map(|a| a.2).collect();
             let flow = cut_by_flow(n, &arcs, &ints, &implies, &forbidden, Want::Both);
-            let tried = sides(cut_by_enumeration(n, &arcs, &ints, &implies, &forbidden));
+            let tried = sides(n, cut_by_enumeration(n, &arcs, &ints, &implies, &forbidden));
             prop_assert_eq!((flow.0.unwrap(), flow.1.unwrap()), tried);
             let lex: Vec<[i128; 3]> = arcs.iter().map(|a| [a.2 / 2, a.2 % 2, a.2 % 3]).collect();
             let flow = cut_by_flow(n, &arcs, &lex, &implies, &forbidden, Want::Both);
-            let tried = sides(cut_by_enumeration(n, &arcs, &lex, &implies, &forbidden));
+            let tried = sides(n, cut_by_enumeration(n, &arcs, &lex, &implies, &forbidden));
             prop_assert_eq!((flow.0.unwrap(), flow.1.unwrap()), tried);
         }
 
