@@ -15,9 +15,7 @@
 //! ground acceleration "just after" the instant ([`Lex`]), which decides joints exactly at their
 //! limit by what happens next.
 
-use super::flow::{
-    over_common_denominator, take_overflow, Amount, Exact, Lex, Network, PUSH_RELABEL_FROM,
-};
+use super::flow::{over_common_denominator, take_overflow, Amount, Network, PUSH_RELABEL_FROM};
 use crate::exact::Q;
 use crate::sets::DisjointSets;
 use std::cmp::Ordering;
@@ -31,6 +29,37 @@ const ENUMERATE_UP_TO: usize = 8;
 /// Minimum cuts over at most this many blocks try every set too (see [`cut_by_enumeration`]):
 /// below it that costs less than building a flow network and pushing a flow through it.
 const CUT_ENUMERATE_UP_TO: usize = 6;
+
+/// c0 + c1 eps + c2 eps^2 for an infinitesimal eps > 0, ordered lexicographically: the value of a
+/// ground acceleration "just after" an instant, a_g(t) + a_g'(t) eps + a_g''(t) eps^2 / 2.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Lex(pub [Q; 3]);
+
+impl Lex {
+    /// A plain number.
+    pub fn constant(q: Q) -> Lex {
+        Lex([q, Q::zero(), Q::zero()])
+    }
+    /// Zero.
+    pub fn zero() -> Lex {
+        Lex::constant(Q::zero())
+    }
+}
+
+impl Ord for Lex {
+    fn cmp(&self, o: &Lex) -> Ordering {
+        self.0[0]
+            .cmp(&o.0[0])
+            .then_with(|| self.0[1].cmp(&o.0[1]))
+            .then_with(|| self.0[2].cmp(&o.0[2]))
+    }
+}
+
+impl PartialOrd for Lex {
+    fn partial_cmp(&self, o: &Lex) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
 
 /// The other end of a joint: a block of the problem, or the ground (and fixed blocks).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -284,44 +313,48 @@ impl Problem {
     /// constraints) and returns the smallest and the largest minimiser, those `want` asks for.
     /// `cut` counts joints with both ends in `set` and, when the ground is `pinned` at theta,
     /// joints to the ground; joints to blocks outside `set` already slide and are in the weights.
-    fn min_cut<T: Exact>(
+    fn min_cut(
         &self,
         set: &[bool],
-        weight: &[T],
+        weight: &[Q],
         side: Side,
         pinned: bool,
         want: Want,
     ) -> (Option<Vec<bool>>, Option<Vec<bool>>) {
         let n = self.n();
         let (s, t) = (n, n + 1);
-        // The arcs, as (from, to, capacity, both ways).
-        let mut arcs: Vec<(usize, usize, T, bool)> = Vec::new();
+        // The arcs, as (from, to, -, both ways), and their capacities.
+        let mut arcs: Vec<(usize, usize, (), bool)> = Vec::new();
+        let mut amounts: Vec<Q> = Vec::new();
         for (i, w) in weight.iter().enumerate() {
             if !set[i] {
                 continue;
             }
-            if w.positive() {
-                arcs.push((i, t, w.clone(), false));
-            } else if *w < T::zero() {
-                arcs.push((s, i, T::zero().minus(w), false));
+            if w.is_positive() {
+                arcs.push((i, t, (), false));
+                amounts.push(w.clone());
+            } else if !w.is_zero() {
+                arcs.push((s, i, (), false));
+                amounts.push(-w);
             }
         }
         for (i, j, f) in &self.friction {
             if !set[*i] {
                 continue;
             }
-            let f = T::from_q(f.clone());
             match j {
-                End::Node(j) if set[*j] => arcs.push((*i, *j, f.clone(), true)),
+                End::Node(j) if set[*j] => arcs.push((*i, *j, (), true)),
                 // Joint to the pinned ground: cut whenever i is in S.
-                End::Ground if pinned => arcs.push((*i, t, f.clone(), false)),
+                End::Ground if pinned => arcs.push((*i, t, (), false)),
                 _ => continue,
             }
+            amounts.push(f.clone());
         }
         let (implies, forbidden) = self.constraints(set, side, pinned);
-        let amounts: Vec<T> = arcs.iter().map(|a| a.2.clone()).collect();
-        // Integer arithmetic when the amounts fit; exact rationals otherwise or on overflow.
-        let cut = T::integers(&amounts).and_then(|ints| {
+        // Integer arithmetic when the amounts fit over a common denominator (scaling changes
+        // no minimiser, and skips a gcd at every operation); exact rationals otherwise or on
+        // overflow.
+        let cut = over_common_denominator(amounts.iter()).and_then(|(ints, _)| {
             take_overflow();
             let r = cut_with(n, &arcs, &ints, &implies, &forbidden, want);
             (!take_overflow()).then_some(r)
@@ -478,21 +511,8 @@ impl Problem {
             return out;
         }
         // {b > a_g} and {b < a_g}: two cuts, the ground pinned at a_g and never in either set.
-        let up_w: Vec<Lex> = (0..n)
-            .map(|i| {
-                ground
-                    .scale(&self.mass[i])
-                    .minus(&Lex::constant(self.external[i].clone()))
-            })
-            .collect();
-        let down_w: Vec<Lex> = up_w.iter().map(|w| Lex::zero().minus(w)).collect();
-        let upper = self
-            .min_cut(&all, &up_w, Side::Upper, true, Want::Smallest)
-            .0;
-        let lower = self
-            .min_cut(&all, &down_w, Side::Lower, true, Want::Smallest)
-            .0;
-        let (upper, lower) = (upper.expect("asked for"), lower.expect("asked for"));
+        let upper = self.split_at_ground(ground, Side::Upper);
+        let lower = self.split_at_ground(ground, Side::Lower);
         let level: Vec<usize> = (0..n).filter(|&i| !upper[i] && !lower[i]).collect();
         // The blocks left at a_g: those joined to the ground through undecided joints are stuck;
         // any other piece moves freely with acceleration a_g (possible only when a_g is locally
@@ -547,6 +567,36 @@ impl Problem {
             }
         }
         out
+    }
+
+    /// The blocks that accelerate faster than the ground just after the instant, {b > a_g}
+    /// (`Side::Upper`), or slower, {b < a_g} (`Side::Lower`): the smallest set S minimising
+    /// sum_{i in S} (m_i a_g - e_i) + cut(S) (mirrored for the lower side), joints to the ground
+    /// cut. With a_g = a0 + a1 eps + a2 eps^2, a set's amount is (c0(S), a1 m(S), a2 m(S)) up to
+    /// constants: capacities are plain numbers, and only the weights carry eps, in proportion to
+    /// the mass. So the minimisers are those of c0 alone, in plain rationals, and among them the
+    /// lightest (the smallest) when a_g is rising (a1 > 0, or a1 = 0 < a2) and the heaviest (the
+    /// largest) when it is falling; all of them tie when it is steady, and the smallest is the
+    /// answer. No flow in lexicographic amounts is needed (several times slower on a large wall).
+    fn split_at_ground(&self, ground: &Lex, side: Side) -> Vec<bool> {
+        let rising = match ground.0[1].signum() {
+            0 => ground.0[2].signum(),
+            rate => rate,
+        };
+        let (sign, lightest) = match side {
+            Side::Upper => (Q::one(), rising >= 0),
+            Side::Lower => (-Q::one(), rising <= 0),
+        };
+        let weight: Vec<Q> = (0..self.n())
+            .map(|i| &sign * &(&ground.0[0] * &self.mass[i] - &self.external[i]))
+            .collect();
+        let all = vec![true; self.n()];
+        let cut = if lightest {
+            self.min_cut(&all, &weight, side, true, Want::Smallest).0
+        } else {
+            self.min_cut(&all, &weight, side, true, Want::Largest).1
+        };
+        cut.expect("asked for")
     }
 
     /// A problem away from the ground solved with each of `bodies` held together: contracted to
@@ -1178,6 +1228,14 @@ mod tests {
         );
         let g = p.solve(&just_after(mug.clone(), -1), &[]);
         assert!(g[0].grounded);
+        // The mirror image, and a steady ground (a record's constant stretch): exactly the
+        // capacity holds it.
+        let g = p.solve(&just_after(-&mug, -1), &[]);
+        assert_eq!((g[0].accel.clone(), g[0].grounded), (-&mug, false));
+        for at in [mug.clone(), -&mug] {
+            assert!(p.solve(&just_after(at.clone(), 1), &[])[0].grounded != at.is_positive());
+            assert!(p.solve(&just_after(at, 0), &[])[0].grounded);
+        }
         // Beyond: slides with friction mu g pulling it along.
         let g = p.solve(&just_after(q(5.0), 0), &[]);
         assert_eq!(g[0].accel, mug);
@@ -1447,18 +1505,65 @@ mod tests {
     proptest! {
         #![proptest_config(crate::integrate::event::many_cheap_cases())]
 
-        /// Trying every set finds the same smallest and largest minimum cuts as a maximum flow,
-        /// in integers and in lexicographic triples (ties broken by the later components).
+        /// Trying every set finds the same smallest and largest minimum cuts as a maximum flow.
         #[test]
         fn enumerated_cuts_are_the_flow_cuts((n, arcs, implies, forbidden) in cut_problem()) {
             let ints: Vec<i128> = arcs.iter().map(|a| a.2).collect();
             let flow = cut_by_flow(n, &arcs, &ints, &implies, &forbidden, Want::Both);
             let tried = sides(n, cut_by_enumeration(n, &arcs, &ints, &implies, &forbidden));
             prop_assert_eq!((flow.0.unwrap(), flow.1.unwrap()), tried);
-            let lex: Vec<[i128; 3]> = arcs.iter().map(|a| [a.2 / 2, a.2 % 2, a.2 % 3]).collect();
-            let flow = cut_by_flow(n, &arcs, &lex, &implies, &forbidden, Want::Both);
-            let tried = sides(n, cut_by_enumeration(n, &arcs, &lex, &implies, &forbidden));
-            prop_assert_eq!((flow.0.unwrap(), flow.1.unwrap()), tried);
+        }
+
+        /// The split at the ground is the smallest set minimising the amount in lexicographic
+        /// triples, (c0, c1, c2) with the weights' terms in eps and eps^2, tried set by set.
+        #[test]
+        fn the_ground_splits_where_triples_are_least(
+            p in abutted_problem(),
+            a0 in -12i64..13,
+            rates in (-1i64..2, -1i64..2),
+        ) {
+            let theta = Lex([Q::int(a0), Q::int(rates.0), Q::int(rates.1)]);
+            let n = p.mass.len();
+            for (side, sign) in [(Side::Upper, 1), (Side::Lower, -1)] {
+                let (implies, forbidden) = p.constraints(&vec![true; n], side, true);
+                let sign = Q::int(sign);
+                let mut least: Option<(Lex, u32)> = None;
+                for set in 0u32..1 << n {
+                    let inside = |i: usize| set >> i & 1 == 1;
+                    let closed = implies.iter().all(|&(a, b)| !inside(a) || inside(b))
+                        && forbidden.iter().all(|&a| !inside(a));
+                    if !closed {
+                        continue;
+                    }
+                    let mut amount = [Q::zero(), Q::zero(), Q::zero()];
+                    for i in (0..n).filter(|&i| inside(i)) {
+                        let w = &theta.0[0] * &p.mass[i] - &p.external[i];
+                        amount[0] = &amount[0] + &sign * &w;
+                        for (a, rate) in amount.iter_mut().zip(&theta.0).skip(1) {
+                            *a = &*a + &sign * &(rate * &p.mass[i]);
+                        }
+                    }
+                    for (i, j, f) in &p.friction {
+                        let crosses = match j {
+                            End::Node(j) => inside(*i) != inside(*j),
+                            End::Ground => inside(*i),
+                        };
+                        if crosses {
+                            amount[0] = &amount[0] + f;
+                        }
+                    }
+                    let amount = Lex(amount);
+                    least = match least {
+                        Some((best, _)) if amount < best => Some((amount, set)),
+                        Some((best, smallest)) if amount == best => Some((best, smallest & set)),
+                        Some(kept) => Some(kept),
+                        None => Some((amount, set)),
+                    };
+                }
+                let (_, smallest) = least.expect("the empty set is allowed");
+                let expected: Vec<bool> = (0..n).map(|i| smallest >> i & 1 == 1).collect();
+                prop_assert_eq!(p.split_at_ground(&theta, side), expected);
+            }
         }
 
         /// The stick interval is the weakest set's ratio, whether the search sums integers over

@@ -3,8 +3,7 @@
 //! friction forces changed.
 
 use super::cluster::{Cluster, Motion, Slide};
-use super::decide::{End, Group, Problem};
-use super::flow::{Amount, Lex};
+use super::decide::{End, Group, Lex, Problem};
 use super::{Engine, NONE};
 use crate::error::SimulationError;
 use crate::exact::Q;

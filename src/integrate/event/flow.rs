@@ -5,7 +5,6 @@
 //! load down in a few sweeps where Dinic needs a phase per course.
 
 use crate::exact::{div, gcd_i128, Q};
-use std::cmp::Ordering;
 use std::collections::VecDeque;
 
 /// Numbers a flow can carry: an ordered group (addition, subtraction, comparison). Exact types
@@ -23,20 +22,6 @@ pub trait Amount: Clone + Ord + std::fmt::Debug {
     fn positive(&self) -> bool {
         *self > Self::zero()
     }
-}
-
-/// The rational amounts the mode decisions compute with, and their integer form: the same
-/// numbers times one positive common denominator (per component), when they fit in `i128`.
-/// Scaling by a positive constant changes neither the order nor which cuts are minimal, and
-/// integer arithmetic skips the gcd of every rational operation, the cost of large walls.
-pub trait Exact: Amount {
-    /// The integer form.
-    type Int: Amount;
-    /// Embeds an exact rational.
-    fn from_q(q: Q) -> Self;
-    /// All of `values` over one common denominator (per component), or `None` when a
-    /// numerator or the denominator does not fit `i128` with room for sums.
-    fn integers(values: &[Self]) -> Option<Vec<Self::Int>>;
 }
 
 thread_local! {
@@ -68,22 +53,6 @@ impl Amount for i128 {
     }
     fn minus(&self, o: &i128) -> i128 {
         checked(self.checked_sub(*o))
-    }
-}
-
-/// Lexicographic integer triples ([i128; 3] orders lexicographically).
-impl Amount for [i128; 3] {
-    fn zero() -> [i128; 3] {
-        [0; 3]
-    }
-    fn unit() -> [i128; 3] {
-        [1, 0, 0]
-    }
-    fn plus(&self, o: &[i128; 3]) -> [i128; 3] {
-        [0, 1, 2].map(|k| checked(self[k].checked_add(o[k])))
-    }
-    fn minus(&self, o: &[i128; 3]) -> [i128; 3] {
-        [0, 1, 2].map(|k| checked(self[k].checked_sub(o[k])))
     }
 }
 
@@ -128,87 +97,6 @@ impl Amount for Q {
     }
     fn positive(&self) -> bool {
         self.is_positive()
-    }
-}
-
-impl Exact for Q {
-    type Int = i128;
-    fn from_q(q: Q) -> Q {
-        q
-    }
-    fn integers(values: &[Q]) -> Option<Vec<i128>> {
-        over_common_denominator(values.iter()).map(|(n, _)| n)
-    }
-}
-
-/// c0 + c1 eps + c2 eps^2 for an infinitesimal eps > 0, ordered lexicographically: the value of a
-/// ground acceleration "just after" an instant, a_g(t) + a_g'(t) eps + a_g''(t) eps^2 / 2.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub struct Lex(pub [Q; 3]);
-
-impl Lex {
-    /// A plain number.
-    pub fn constant(q: Q) -> Lex {
-        Lex([q, Q::zero(), Q::zero()])
-    }
-    /// The same value times an exact factor.
-    pub fn scale(&self, k: &Q) -> Lex {
-        Lex([&self.0[0] * k, &self.0[1] * k, &self.0[2] * k])
-    }
-}
-
-impl Ord for Lex {
-    fn cmp(&self, o: &Lex) -> Ordering {
-        self.0[0]
-            .cmp(&o.0[0])
-            .then_with(|| self.0[1].cmp(&o.0[1]))
-            .then_with(|| self.0[2].cmp(&o.0[2]))
-    }
-}
-
-impl PartialOrd for Lex {
-    fn partial_cmp(&self, o: &Lex) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-
-impl Amount for Lex {
-    fn unit() -> Lex {
-        Lex::constant(Q::one())
-    }
-    fn zero() -> Lex {
-        Lex::constant(Q::zero())
-    }
-    fn plus(&self, o: &Lex) -> Lex {
-        Lex([
-            &self.0[0] + &o.0[0],
-            &self.0[1] + &o.0[1],
-            &self.0[2] + &o.0[2],
-        ])
-    }
-    fn minus(&self, o: &Lex) -> Lex {
-        Lex([
-            &self.0[0] - &o.0[0],
-            &self.0[1] - &o.0[1],
-            &self.0[2] - &o.0[2],
-        ])
-    }
-}
-
-impl Exact for Lex {
-    type Int = [i128; 3];
-    fn from_q(q: Q) -> Lex {
-        Lex::constant(q)
-    }
-    fn integers(values: &[Lex]) -> Option<Vec<[i128; 3]>> {
-        let parts: Vec<Vec<i128>> = (0..3)
-            .map(|k| over_common_denominator(values.iter().map(|v| &v.0[k])).map(|(n, _)| n))
-            .collect::<Option<_>>()?;
-        Some(
-            (0..values.len())
-                .map(|i| [parts[0][i], parts[1][i], parts[2][i]])
-                .collect(),
-        )
     }
 }
 
@@ -655,8 +543,8 @@ mod tests {
     proptest! {
         #![proptest_config(crate::integrate::event::many_cheap_cases())]
 
-        /// Push-relabel and Dinic find the same two minimum cuts (both are unique), in integers,
-        /// rationals and lexicographic amounts, ties (zero and equal capacities) included.
+        /// Push-relabel and Dinic find the same two minimum cuts (both are unique), in integers
+        /// and rationals, ties (zero and equal capacities) included.
         #[test]
         fn push_relabel_and_dinic_find_the_same_cuts((n, arcs) in random_arcs()) {
             let (s, t) = (0, n - 1);
@@ -668,25 +556,6 @@ mod tests {
             let rational = |c: i128| Q::frac(c, 7);
             let qr = build(n, &arcs, rational).cuts_by_push_relabel(s, t);
             prop_assert_eq!(&dinic, &qr);
-            // c + (c mod 3) eps: ties in the first component are broken by the second.
-            let lex = |c: i128| Lex([Q::int(c as i64), Q::int((c % 3) as i64), Q::zero()]);
-            let big_lex = Lex::constant(Q::int(big as i64));
-            prop_assert_eq!(
-                build(n, &arcs, lex).cuts_by_dinic(s, t, &big_lex),
-                build(n, &arcs, lex).cuts_by_push_relabel(s, t)
-            );
         }
-    }
-
-    #[test]
-    fn lexicographic_capacities() {
-        let eps = |c0: i64, c1: i64| Lex([Q::int(c0), Q::int(c1), Q::zero()]);
-        let mut net: Network<Lex> = Network::new(3);
-        net.arc(0, 1, eps(1, 1));
-        net.arc(1, 2, eps(1, 0));
-        let f = net.max_flow(0, 2, &eps(100, 0));
-        assert_eq!(f, eps(1, 0));
-        // The bottleneck is 1 -> 2 (1 < 1 + eps).
-        assert_eq!(net.reachable_from(0), vec![true, true, false]);
     }
 }

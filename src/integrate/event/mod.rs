@@ -223,7 +223,7 @@ pub(crate) struct Engine<'a> {
     breaking: VecDeque<Vec<usize>>,
     /// Decisions already worked out, by problem, and under it by ground acceleration (a
     /// problem meets few: it is looked up without building a key).
-    free_memo: Memo<decide::Problem, Vec<(flow::Lex, Vec<decide::Group>)>>,
+    free_memo: Memo<decide::Problem, Vec<(decide::Lex, Vec<decide::Group>)>>,
     /// Working memory of the decisions.
     buffers: decision::Buffers,
     /// Working memory of the scheduling: pairs of sliding clusters (empty between calls).
