@@ -583,12 +583,19 @@ impl Problem {
             0 => ground.0[2].signum(),
             rate => rate,
         };
-        let (sign, lightest) = match side {
-            Side::Upper => (Q::one(), rising >= 0),
-            Side::Lower => (-Q::one(), rising <= 0),
+        let lightest = match side {
+            Side::Upper => rising >= 0,
+            Side::Lower => rising <= 0,
         };
         let weight: Vec<Q> = (0..self.n())
-            .map(|i| &sign * &(&ground.0[0] * &self.mass[i] - &self.external[i]))
+            .map(|i| {
+                let w = &ground.0[0] * &self.mass[i] - &self.external[i];
+                if side == Side::Upper {
+                    w
+                } else {
+                    -w
+                }
+            })
             .collect();
         let all = vec![true; self.n()];
         let cut = if lightest {
