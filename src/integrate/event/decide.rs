@@ -26,7 +26,7 @@ use std::collections::VecDeque;
 /// cost more than all the sets of a small problem.
 const ENUMERATE_UP_TO: usize = 8;
 
-/// Minimum cuts over at most this many blocks try every set too (see [`cut_by_enumeration`]):
+/// Minimum cuts over at most this many blocks try every set too (see [`Cut::by_enumeration`]):
 /// below it that costs less than building a flow network and pushing a flow through it.
 const CUT_ENUMERATE_UP_TO: usize = 6;
 
@@ -313,28 +313,21 @@ impl Problem {
     /// constraints) and returns the smallest and the largest minimiser, those `want` asks for.
     /// `cut` counts joints with both ends in `set` and, when the ground is `pinned` at theta,
     /// joints to the ground; joints to blocks outside `set` already slide and are in the weights.
-    fn min_cut(
-        &self,
-        set: &[bool],
-        weight: &[Q],
-        side: Side,
-        pinned: bool,
-        want: Want,
-    ) -> (Option<Vec<bool>>, Option<Vec<bool>>) {
+    fn min_cut(&self, set: &[bool], weight: &[Q], side: Side, pinned: bool, want: Want) -> Sides {
         let n = self.n();
         let (s, t) = (n, n + 1);
-        // The arcs, as (from, to, -, both ways), and their capacities.
-        let mut arcs: Vec<(usize, usize, (), bool)> = Vec::new();
+        // The arcs, as (from, to, both ways), and their capacities.
+        let mut arcs: Vec<(usize, usize, bool)> = Vec::new();
         let mut amounts: Vec<Q> = Vec::new();
         for (i, w) in weight.iter().enumerate() {
             if !set[i] {
                 continue;
             }
             if w.is_positive() {
-                arcs.push((i, t, (), false));
+                arcs.push((i, t, false));
                 amounts.push(w.clone());
             } else if !w.is_zero() {
-                arcs.push((s, i, (), false));
+                arcs.push((s, i, false));
                 amounts.push(-w);
             }
         }
@@ -343,9 +336,9 @@ impl Problem {
                 continue;
             }
             match j {
-                End::Node(j) if set[*j] => arcs.push((*i, *j, (), true)),
+                End::Node(j) if set[*j] => arcs.push((*i, *j, true)),
                 // Joint to the pinned ground: cut whenever i is in S.
-                End::Ground if pinned => arcs.push((*i, t, (), false)),
+                End::Ground if pinned => arcs.push((*i, t, false)),
                 _ => continue,
             }
             amounts.push(f.clone());
@@ -354,13 +347,18 @@ impl Problem {
         // Integer arithmetic when the amounts fit over a common denominator (scaling changes
         // no minimiser, and skips a gcd at every operation); exact rationals otherwise or on
         // overflow.
+        let question = Cut {
+            n,
+            arcs: &arcs,
+            implies: &implies,
+            forbidden: &forbidden,
+        };
         let cut = over_common_denominator(amounts.iter()).and_then(|(ints, _)| {
             take_overflow();
-            let r = cut_with(n, &arcs, &ints, &implies, &forbidden, want);
+            let r = question.minimum(&ints, want);
             (!take_overflow()).then_some(r)
         });
-        let (minimal, reach_t) =
-            cut.unwrap_or_else(|| cut_with(n, &arcs, &amounts, &implies, &forbidden, want));
+        let (minimal, reach_t) = cut.unwrap_or_else(|| question.minimum(&amounts, want));
         (
             minimal.map(|m| (0..n).map(|i| set[i] && m[i]).collect()),
             reach_t.map(|r| (0..n).map(|i| set[i] && !r[i]).collect()),
@@ -1020,31 +1018,137 @@ impl Integral {
     }
 }
 
-/// The minimum cuts a caller wants of the network on n blocks plus source n and sink n + 1:
-/// `arcs` with capacities `caps` (both ways where flagged), `implies` (a on the source side puts
-/// b there) and `forbidden` blocks (never on the source side). Each cut comes as its side of
-/// the network: the source side of the smallest, the sink side of the largest.
-fn cut_with<A: Amount>(
+/// The sides of the minimum cuts a caller asked for ([`Want`]): the source side of the
+/// smallest, the sink side of the largest.
+type Sides = (Option<Vec<bool>>, Option<Vec<bool>>);
+
+/// A minimum-cut question on n blocks plus source n and sink n + 1: `arcs` (from, to, both
+/// ways), `implies` (a on the source side puts b there) and `forbidden` blocks (never on the
+/// source side); each answer takes the arcs' capacities.
+struct Cut<'a> {
     n: usize,
-    arcs: &[(usize, usize, impl Sized, bool)],
-    caps: &[A],
-    implies: &[(usize, usize)],
-    forbidden: &[usize],
-    want: Want,
-) -> (Option<Vec<bool>>, Option<Vec<bool>>) {
-    if n <= CUT_ENUMERATE_UP_TO && arcs.len() <= 64 {
-        let (source_side, sink_side) =
-            sides(n, cut_by_enumeration(n, arcs, caps, implies, forbidden));
-        return (
-            (want != Want::Largest).then_some(source_side),
-            (want != Want::Smallest).then_some(sink_side),
-        );
+    arcs: &'a [(usize, usize, bool)],
+    implies: &'a [(usize, usize)],
+    forbidden: &'a [usize],
+}
+
+impl Cut<'_> {
+    /// The minimum cuts the caller wants, each as its side of the network: the source side of
+    /// the smallest, the sink side of the largest.
+    fn minimum<A: Amount>(&self, caps: &[A], want: Want) -> Sides {
+        if self.n <= CUT_ENUMERATE_UP_TO && self.arcs.len() <= 64 {
+            let (source_side, sink_side) = sides(self.n, self.by_enumeration(caps));
+            return (
+                (want != Want::Largest).then_some(source_side),
+                (want != Want::Smallest).then_some(sink_side),
+            );
+        }
+        self.by_flow(caps, want)
     }
-    cut_by_flow(n, arcs, caps, implies, forbidden, want)
+
+    /// [`Cut::minimum`] by a maximum flow: the network from `arcs`, the constraint arcs with a
+    /// capacity above every cut; the source side of the minimal minimum cut, the nodes that
+    /// reach the sink in every maximum flow.
+    fn by_flow<A: Amount>(&self, caps: &[A], want: Want) -> Sides {
+        let Cut {
+            n,
+            arcs,
+            implies,
+            forbidden,
+        } = *self;
+        let (s, t) = (n, n + 1);
+        // Every capacity is positive, so their sum (plus one) exceeds every cut.
+        let big = caps.iter().fold(A::unit(), |b, c| b.plus(c));
+        let big = &big;
+        let mut net: Network<A> = Network::new(n + 2);
+        for (k, &(u, v, both)) in arcs.iter().enumerate() {
+            if both {
+                net.edge(u, v, caps[k].clone());
+            } else {
+                net.arc(u, v, caps[k].clone());
+            }
+        }
+        for &(a, b) in implies {
+            net.arc(a, b, big.clone());
+        }
+        for &a in forbidden {
+            net.arc(a, t, big.clone());
+        }
+        match want {
+            Want::Both => {
+                let (source_side, sink_side) = net.minimum_cuts(s, t, big);
+                (Some(source_side), Some(sink_side))
+            }
+            Want::Smallest => (Some(net.source_side(s, t, big)), None),
+            Want::Largest => (None, Some(net.sink_side(s, t, big))),
+        }
+    }
+
+    /// [`Cut::minimum`] by trying every source side allowed (n < 32, at most 64 arcs), as bit
+    /// sets: the smallest and the largest minimiser (the minimisers are closed under
+    /// intersection and union). The sets are visited in Gray-code order, so each step moves one
+    /// block and changes the cut by its own arcs only.
+    fn by_enumeration<A: Amount>(&self, caps: &[A]) -> (u32, u32) {
+        let Cut {
+            n,
+            arcs,
+            implies,
+            forbidden,
+        } = *self;
+        let s = n;
+        let mut at = vec![0u64; n];
+        for (k, &(u, v, _)) in arcs.iter().enumerate() {
+            for x in [u, v].into_iter().filter(|&x| x < n) {
+                at[x] |= 1 << k;
+            }
+        }
+        let mut needs = vec![0u32; n];
+        for &(a, b) in implies {
+            needs[a] |= 1 << b;
+        }
+        let banned = forbidden.iter().fold(0u32, |m, &a| m | 1 << a);
+        let cuts = |k: usize, set: u32| {
+            let inside = |x: usize| x == s || (x < n && set >> x & 1 == 1);
+            let (u, v, both) = arcs[k];
+            (inside(u) && !inside(v)) || (both && inside(v) && !inside(u))
+        };
+        let mut set = 0u32;
+        let mut cut = (0..arcs.len())
+            .filter(|&k| cuts(k, set))
+            .fold(A::zero(), |c, k| c.plus(&caps[k]));
+        // The empty set is always allowed.
+        let (mut best, mut smallest, mut largest) = (cut.clone(), 0u32, 0u32);
+        for step in 1u32..1 << n {
+            let x = step.trailing_zeros() as usize;
+            let moved = set ^ 1 << x;
+            let mut arcs_at = at[x];
+            while arcs_at != 0 {
+                let k = arcs_at.trailing_zeros() as usize;
+                arcs_at &= arcs_at - 1;
+                match (cuts(k, set), cuts(k, moved)) {
+                    (true, false) => cut = cut.minus(&caps[k]),
+                    (false, true) => cut = cut.plus(&caps[k]),
+                    _ => {}
+                }
+            }
+            set = moved;
+            let allowed =
+                set & banned == 0 && (0..n).all(|a| set >> a & 1 == 0 || needs[a] & !set == 0);
+            if !allowed {
+                continue;
+            }
+            match cut.cmp(&best) {
+                Ordering::Less => (best, smallest, largest) = (cut.clone(), set, set),
+                Ordering::Equal => (smallest, largest) = (smallest & set, largest | set),
+                Ordering::Greater => {}
+            }
+        }
+        (smallest, largest)
+    }
 }
 
 /// The smallest and the largest minimiser over n blocks, as bit sets, written as the sides of
-/// the network that [`cut_with`] returns.
+/// the network that [`Cut::minimum`] returns.
 fn sides(n: usize, (smallest, largest): (u32, u32)) -> (Vec<bool>, Vec<bool>) {
     let (s, t) = (n, n + 1);
     (
@@ -1055,107 +1159,6 @@ fn sides(n: usize, (smallest, largest): (u32, u32)) -> (Vec<bool>, Vec<bool>) {
             .map(|i| i == t || (i < n && largest >> i & 1 == 0))
             .collect(),
     )
-}
-
-/// [`cut_with`] by a maximum flow: the network from `arcs`, the constraint arcs with a capacity
-/// above every cut; the source side of the minimal minimum cut, the nodes that reach the sink in
-/// every maximum flow.
-fn cut_by_flow<A: Amount>(
-    n: usize,
-    arcs: &[(usize, usize, impl Sized, bool)],
-    caps: &[A],
-    implies: &[(usize, usize)],
-    forbidden: &[usize],
-    want: Want,
-) -> (Option<Vec<bool>>, Option<Vec<bool>>) {
-    let (s, t) = (n, n + 1);
-    // Every capacity is positive, so their sum (plus one) exceeds every cut.
-    let big = caps.iter().fold(A::unit(), |b, c| b.plus(c));
-    let big = &big;
-    let mut net: Network<A> = Network::new(n + 2);
-    for (k, &(u, v, _, both)) in arcs.iter().enumerate() {
-        if both {
-            net.edge(u, v, caps[k].clone());
-        } else {
-            net.arc(u, v, caps[k].clone());
-        }
-    }
-    for &(a, b) in implies {
-        net.arc(a, b, big.clone());
-    }
-    for &a in forbidden {
-        net.arc(a, t, big.clone());
-    }
-    match want {
-        Want::Both => {
-            let (source_side, sink_side) = net.minimum_cuts(s, t, big);
-            (Some(source_side), Some(sink_side))
-        }
-        Want::Smallest => (Some(net.source_side(s, t, big)), None),
-        Want::Largest => (None, Some(net.sink_side(s, t, big))),
-    }
-}
-
-/// [`cut_with`] by trying every source side allowed (n < 32, at most 64 arcs), as bit sets:
-/// the smallest and the largest minimiser (the minimisers are closed under intersection and
-/// union). The sets are visited in Gray-code order, so each step moves one block and changes
-/// the cut by its own arcs only.
-fn cut_by_enumeration<A: Amount>(
-    n: usize,
-    arcs: &[(usize, usize, impl Sized, bool)],
-    caps: &[A],
-    implies: &[(usize, usize)],
-    forbidden: &[usize],
-) -> (u32, u32) {
-    let s = n;
-    let mut at = vec![0u64; n];
-    for (k, &(u, v, _, _)) in arcs.iter().enumerate() {
-        for x in [u, v].into_iter().filter(|&x| x < n) {
-            at[x] |= 1 << k;
-        }
-    }
-    let mut needs = vec![0u32; n];
-    for &(a, b) in implies {
-        needs[a] |= 1 << b;
-    }
-    let banned = forbidden.iter().fold(0u32, |m, &a| m | 1 << a);
-    let cuts = |k: usize, set: u32| {
-        let inside = |x: usize| x == s || (x < n && set >> x & 1 == 1);
-        let (u, v, _, both) = arcs[k];
-        (inside(u) && !inside(v)) || (both && inside(v) && !inside(u))
-    };
-    let mut set = 0u32;
-    let mut cut = (0..arcs.len())
-        .filter(|&k| cuts(k, set))
-        .fold(A::zero(), |c, k| c.plus(&caps[k]));
-    // The empty set is always allowed.
-    let (mut best, mut smallest, mut largest) = (cut.clone(), 0u32, 0u32);
-    for step in 1u32..1 << n {
-        let x = step.trailing_zeros() as usize;
-        let moved = set ^ 1 << x;
-        let mut arcs_at = at[x];
-        while arcs_at != 0 {
-            let k = arcs_at.trailing_zeros() as usize;
-            arcs_at &= arcs_at - 1;
-            match (cuts(k, set), cuts(k, moved)) {
-                (true, false) => cut = cut.minus(&caps[k]),
-                (false, true) => cut = cut.plus(&caps[k]),
-                _ => {}
-            }
-        }
-        set = moved;
-        let allowed =
-            set & banned == 0 && (0..n).all(|a| set >> a & 1 == 0 || needs[a] & !set == 0);
-        if !allowed {
-            continue;
-        }
-        match cut.cmp(&best) {
-            Ordering::Less => (best, smallest, largest) = (cut.clone(), set, set),
-            Ordering::Equal => (smallest, largest) = (smallest & set, largest | set),
-            Ordering::Greater => {}
-        }
-    }
-    (smallest, largest)
 }
 
 #[cfg(test)]
@@ -1516,8 +1519,10 @@ mod tests {
         #[test]
         fn enumerated_cuts_are_the_flow_cuts((n, arcs, implies, forbidden) in cut_problem()) {
             let ints: Vec<i128> = arcs.iter().map(|a| a.2).collect();
-            let flow = cut_by_flow(n, &arcs, &ints, &implies, &forbidden, Want::Both);
-            let tried = sides(n, cut_by_enumeration(n, &arcs, &ints, &implies, &forbidden));
+            let arcs: Vec<(usize, usize, bool)> = arcs.iter().map(|a| (a.0, a.1, a.3)).collect();
+            let question = Cut { n, arcs: &arcs, implies: &implies, forbidden: &forbidden };
+            let flow = question.by_flow(&ints, Want::Both);
+            let tried = sides(n, question.by_enumeration(&ints));
             prop_assert_eq!((flow.0.unwrap(), flow.1.unwrap()), tried);
         }
 
