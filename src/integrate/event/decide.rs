@@ -16,7 +16,7 @@
 //! limit by what happens next.
 
 use super::flow::{over_common_denominator, take_overflow, Amount, Network, PUSH_RELABEL_FROM};
-use crate::exact::Q;
+use crate::exact::{div, gcd_i128, Q};
 use crate::sets::DisjointSets;
 use std::cmp::Ordering;
 use std::collections::VecDeque;
@@ -313,25 +313,80 @@ impl Problem {
     /// constraints) and returns the smallest and the largest minimiser, those `want` asks for.
     /// `cut` counts joints with both ends in `set` and, when the ground is `pinned` at theta,
     /// joints to the ground; joints to blocks outside `set` already slide and are in the weights.
+    /// Integer arithmetic when the weights and capacities fit over a common denominator
+    /// (scaling changes no minimiser, and skips a gcd at every operation); exact rationals
+    /// otherwise or on overflow.
     fn min_cut(&self, set: &[bool], weight: &[Q], side: Side, pinned: bool, want: Want) -> Sides {
+        let amounts = weight.iter().chain(self.friction.iter().map(|j| &j.2));
+        if let Some((ints, _)) = over_common_denominator(amounts) {
+            let (w, caps) = ints.split_at(self.n());
+            if let Some(sides) = self.min_cut_in_integers(set, w, caps, side, pinned, want) {
+                return sides;
+            }
+        }
+        let caps: Vec<Q> = self.friction.iter().map(|j| j.2.clone()).collect();
+        self.min_cut_of(set, weight, &caps, side, pinned, want)
+    }
+
+    /// [`Problem::min_cut`] with the weights and the joints' capacities (in the order of
+    /// `friction`) given as integers over one denominator; `None` when they could overflow.
+    fn min_cut_in_integers(
+        &self,
+        set: &[bool],
+        weight: &[i128],
+        caps: &[i128],
+        side: Side,
+        pinned: bool,
+        want: Want,
+    ) -> Option<Sides> {
+        // Every excess and residual of a flow is at most twice the sum of all capacities plus
+        // one (the constraint arcs' capacity): if four times that sum fits, nothing overflows.
+        // (An overflow inside a flow would leave amounts that no longer add up, and the flow
+        // might never end.)
+        let total = weight
+            .iter()
+            .zip(set)
+            .filter(|(_, &inside)| inside)
+            .map(|(w, _)| w)
+            .chain(caps)
+            .try_fold(0i128, |sum, x| sum.checked_add(x.checked_abs()?))?;
+        if total > i128::MAX >> 2 {
+            return None;
+        }
+        take_overflow();
+        let sides = self.min_cut_of(set, weight, caps, side, pinned, want);
+        (!take_overflow()).then_some(sides)
+    }
+
+    /// [`Problem::min_cut`] in any exact amount: `caps` are the joints' capacities, in the
+    /// order of `friction`.
+    fn min_cut_of<A: Amount>(
+        &self,
+        set: &[bool],
+        weight: &[A],
+        caps: &[A],
+        side: Side,
+        pinned: bool,
+        want: Want,
+    ) -> Sides {
         let n = self.n();
         let (s, t) = (n, n + 1);
         // The arcs, as (from, to, both ways), and their capacities.
         let mut arcs: Vec<(usize, usize, bool)> = Vec::new();
-        let mut amounts: Vec<Q> = Vec::new();
+        let mut amounts: Vec<A> = Vec::new();
         for (i, w) in weight.iter().enumerate() {
             if !set[i] {
                 continue;
             }
-            if w.is_positive() {
+            if w.positive() {
                 arcs.push((i, t, false));
                 amounts.push(w.clone());
-            } else if !w.is_zero() {
+            } else if *w != A::zero() {
                 arcs.push((s, i, false));
-                amounts.push(-w);
+                amounts.push(A::zero().minus(w));
             }
         }
-        for (i, j, f) in &self.friction {
+        for ((i, j, _), cap) in self.friction.iter().zip(caps) {
             if !set[*i] {
                 continue;
             }
@@ -341,24 +396,16 @@ impl Problem {
                 End::Ground if pinned => arcs.push((*i, t, false)),
                 _ => continue,
             }
-            amounts.push(f.clone());
+            amounts.push(cap.clone());
         }
         let (implies, forbidden) = self.constraints(set, side, pinned);
-        // Integer arithmetic when the amounts fit over a common denominator (scaling changes
-        // no minimiser, and skips a gcd at every operation); exact rationals otherwise or on
-        // overflow.
         let question = Cut {
             n,
             arcs: &arcs,
             implies: &implies,
             forbidden: &forbidden,
         };
-        let cut = over_common_denominator(amounts.iter()).and_then(|(ints, _)| {
-            take_overflow();
-            let r = question.minimum(&ints, want);
-            (!take_overflow()).then_some(r)
-        });
-        let (minimal, reach_t) = cut.unwrap_or_else(|| question.minimum(&amounts, want));
+        let (minimal, reach_t) = question.minimum(&amounts, want);
         (
             minimal.map(|m| (0..n).map(|i| set[i] && m[i]).collect()),
             reach_t.map(|r| (0..n).map(|i| set[i] && !r[i]).collect()),
@@ -585,23 +632,37 @@ impl Problem {
             Side::Upper => rising >= 0,
             Side::Lower => rising <= 0,
         };
-        let weight: Vec<Q> = (0..self.n())
-            .map(|i| {
-                let w = &ground.0[0] * &self.mass[i] - &self.external[i];
-                if side == Side::Upper {
-                    w
-                } else {
-                    -w
-                }
-            })
-            .collect();
-        let all = vec![true; self.n()];
-        let cut = if lightest {
-            self.min_cut(&all, &weight, side, true, Want::Smallest).0
+        let want = if lightest {
+            Want::Smallest
         } else {
-            self.min_cut(&all, &weight, side, true, Want::Largest).1
+            Want::Largest
         };
-        cut.expect("asked for")
+        let all = vec![true; self.n()];
+        // The weights e_i - a0 m_i (lower side), negated on the upper side: in integers
+        // without a rational operation where they fit.
+        let in_integers = Integral::new(self, &self.external).and_then(|z| {
+            let (mut weight, caps) = z.at(&ground.0[0])?;
+            if side == Side::Upper {
+                for w in &mut weight {
+                    *w = w.checked_neg()?;
+                }
+            }
+            self.min_cut_in_integers(&all, &weight, &caps, side, true, want)
+        });
+        let (smallest, largest) = in_integers.unwrap_or_else(|| {
+            let weight: Vec<Q> = (0..self.n())
+                .map(|i| {
+                    let w = &self.external[i] - &ground.0[0] * &self.mass[i];
+                    if side == Side::Upper {
+                        -w
+                    } else {
+                        w
+                    }
+                })
+                .collect();
+            self.min_cut(&all, &weight, side, true, want)
+        });
+        if lightest { smallest } else { largest }.expect("asked for")
     }
 
     /// A problem away from the ground solved with each of `bodies` held together: contracted to
@@ -946,13 +1007,19 @@ impl Problem {
             }
         }
         loop {
-            let weight: Vec<Q> = (0..n)
-                .map(|i| &external[i] - &self.mass[i] * &lambda)
-                .collect();
             // Any minimiser serves (the ratio found is the same); the largest is the cheaper
-            // pass on large networks.
-            let largest = self.min_cut(&all, &weight, side, true, Want::Largest).1;
-            let largest = largest.expect("asked for");
+            // pass on large networks. The weights come straight in integers where they fit.
+            let in_integers = integral.as_ref().and_then(|z| {
+                let (weight, caps) = z.at(&lambda)?;
+                self.min_cut_in_integers(&all, &weight, &caps, side, true, Want::Largest)
+            });
+            let largest = in_integers.unwrap_or_else(|| {
+                let weight: Vec<Q> = (0..n)
+                    .map(|i| &external[i] - &self.mass[i] * &lambda)
+                    .collect();
+                self.min_cut(&all, &weight, side, true, Want::Largest)
+            });
+            let largest = largest.1.expect("asked for");
             let members: Vec<usize> = (0..n).filter(|&i| largest[i]).collect();
             if members.is_empty() {
                 return Some((lambda, best));
@@ -1006,6 +1073,33 @@ impl Integral {
             mass,
             mass_den,
         })
+    }
+
+    /// The weights e_i - lambda m_i and the joints' capacities as integers over one denominator
+    /// (lcm(F, M q) for lambda = p / q, F and M the force and mass denominators), for a cut in
+    /// integers without a rational operation; `None` when they do not fit.
+    fn at(&self, lambda: &Q) -> Option<(Vec<i128>, Vec<i128>)> {
+        let (p, q) = lambda.small_parts()?;
+        // Over lcm(F, M q): forces scale by lcm / F, masses times p by lcm / (M q).
+        let mass_q = self.mass_den.checked_mul(q)?;
+        let g = gcd_i128(self.force_den, mass_q);
+        let per_force = div(mass_q, g);
+        let per_mass = div(self.force_den, g).checked_mul(p)?;
+        let weight = self
+            .external
+            .iter()
+            .zip(&self.mass)
+            .map(|(e, m)| {
+                e.checked_mul(per_force)?
+                    .checked_sub(m.checked_mul(per_mass)?)
+            })
+            .collect::<Option<Vec<i128>>>()?;
+        let caps = self
+            .capacity
+            .iter()
+            .map(|c| c.checked_mul(per_force))
+            .collect::<Option<Vec<i128>>>()?;
+        Some((weight, caps))
     }
 
     /// The exact ratio of a sum of force numerators to a (positive) sum of mass numerators, if
@@ -1315,6 +1409,34 @@ mod tests {
                 grounded: false
             }]
         );
+    }
+
+    #[test]
+    fn cuts_whose_flows_could_overflow_are_made_in_rationals() {
+        // Two free blocks joined by a joint of capacity b = 2^123, weights -3b and 2b: the
+        // least amount is {0} (-3b + b). The amounts sum to 6b, above a quarter of i128's range
+        // though no flow through this network would overflow: the integer cut refuses, lest a
+        // larger network overflow inside its flow, and the rational cut gives the answer.
+        let b = 1i128 << 123;
+        let p = Problem {
+            mass: vec![Q::one(), Q::one()],
+            external: vec![Q::zero(), Q::zero()],
+            friction: vec![(0, End::Node(1), Q::frac(b, 1))],
+            contacts: Vec::new(),
+        };
+        let all = [true, true];
+        let refused =
+            p.min_cut_in_integers(&all, &[-3 * b, 2 * b], &[b], Side::Upper, false, Want::Both);
+        assert_eq!(refused, None);
+        let weight = [Q::frac(-3 * b, 1), Q::frac(2 * b, 1)];
+        let (smallest, largest) = p.min_cut(&all, &weight, Side::Upper, false, Want::Both);
+        assert_eq!(smallest, Some(vec![true, false]));
+        assert_eq!(largest, Some(vec![true, false]));
+        // Scaled down by 2^100 the integer cut takes it, with the same answer.
+        let small = [-3 * (b >> 100), 2 * (b >> 100)];
+        let taken =
+            p.min_cut_in_integers(&all, &small, &[b >> 100], Side::Upper, false, Want::Both);
+        assert_eq!(taken, Some((smallest, largest)));
     }
 
     #[test]
