@@ -26,6 +26,10 @@ use std::collections::VecDeque;
 /// cost more than all the sets of a small problem.
 const ENUMERATE_UP_TO: usize = 8;
 
+/// A large body that breaks is split and its problem solved again at most this many times
+/// before the general decision takes over ([`Problem::solve_by_bodies`]).
+const BODY_SPLITS: usize = 16;
+
 /// Minimum cuts over at most this many blocks try every set too (see [`Cut::by_enumeration`]):
 /// below it that costs less than building a flow network and pushing a flow through it.
 const CUT_ENUMERATE_UP_TO: usize = 6;
@@ -540,7 +544,7 @@ impl Problem {
     /// `bodies` are disjoint sets of nodes that moved as rigid bodies until now (large sliding
     /// clusters); away from the ground they make the work proportional to the cut that shows
     /// each still holds, instead of the cuts that would find their groups anew
-    /// ([`Problem::solve_contracted`]). The answer does not depend on them.
+    /// ([`Problem::solve_by_bodies`]). The answer does not depend on them.
     pub fn solve(&self, ground: &Lex, bodies: &[Vec<usize>]) -> Vec<Group> {
         let n = self.n();
         let adj = self.adjacency();
@@ -548,7 +552,7 @@ impl Problem {
         let mut out = Vec::new();
         if !self.touches_ground() {
             if !bodies.is_empty() {
-                if let Some(groups) = self.solve_contracted(bodies) {
+                if let Some(groups) = self.solve_by_bodies(bodies) {
                     return groups;
                 }
             }
@@ -665,6 +669,43 @@ impl Problem {
         if lightest { smallest } else { largest }.expect("asked for")
     }
 
+    /// A problem away from the ground solved with `bodies` held together
+    /// ([`Problem::solve_contracted`]); where a group holding bodies cannot stay whole, the part
+    /// of it that would move ahead splits the bodies it cuts, and the problem is solved again,
+    /// at most [`BODY_SPLITS`] times. Each try costs a small contracted problem and a cut per
+    /// group holding a body, where the general decision would cut the whole problem again at
+    /// every level of its recursion. `None`: the general decision is needed.
+    fn solve_by_bodies(&self, bodies: &[Vec<usize>]) -> Option<Vec<Group>> {
+        let mut bodies = bodies.to_vec();
+        for _ in 0..=BODY_SPLITS {
+            let ahead = match self.solve_contracted(&bodies) {
+                Held::Groups(groups) => return Some(groups),
+                Held::Undetermined => return None,
+                Held::Breaks(ahead) => ahead,
+            };
+            // The part ahead cannot be a union of whole contracted nodes (the contracted
+            // optimum would have split it off), so it cuts some body; a body of one block is no
+            // body.
+            let split: Vec<Vec<usize>> = bodies
+                .iter()
+                .flat_map(|body| {
+                    let (front, back): (Vec<usize>, Vec<usize>) =
+                        body.iter().partition(|&&i| ahead[i]);
+                    [front, back]
+                })
+                .filter(|part| part.len() >= 2)
+                .collect();
+            let cut_one = bodies
+                .iter()
+                .any(|body| body.iter().any(|&i| ahead[i]) && body.iter().any(|&i| !ahead[i]));
+            if !cut_one {
+                return None;
+            }
+            bodies = split;
+        }
+        None
+    }
+
     /// A problem away from the ground solved with each of `bodies` held together: contracted to
     /// one node (its mass, its external force, its joints to the rest) the problem is small.
     /// Holding bodies together is a constraint, so this is the answer to the full problem exactly
@@ -672,9 +713,10 @@ impl Problem {
     /// body: with the forces the other groups now put on it (sliding joints at capacity), its
     /// weights sum to zero at its acceleration, and it stays whole exactly when its largest
     /// minimum cut is all of it. The minimiser being unique, the groups are then the full
-    /// problem's; `None` when some group cannot stay whole (or touches another group moving at
-    /// its own acceleration, where the force between them is not determined).
-    fn solve_contracted(&self, bodies: &[Vec<usize>]) -> Option<Vec<Group>> {
+    /// problem's. Otherwise the parts of the groups that cannot stay whole that would move
+    /// ahead (their largest minimum cuts) come back; undetermined where a group touches another
+    /// moving at its own acceleration (the force between them is not known).
+    fn solve_contracted(&self, bodies: &[Vec<usize>]) -> Held {
         let n = self.n();
         let mut node = vec![usize::MAX; n];
         let mut members: Vec<Vec<usize>> = Vec::new();
@@ -731,6 +773,8 @@ impl Problem {
                 .iter()
                 .any(|b| b.first().is_some_and(|&i| group_of[i] == g))
         };
+        // The parts ahead of every group that cannot stay whole.
+        let mut ahead: Option<Vec<bool>> = None;
         for (g, group) in groups.iter().enumerate() {
             if !holds_a_body(g) {
                 continue;
@@ -752,7 +796,7 @@ impl Problem {
                 match groups[group_of[other]].accel.cmp(a) {
                     Ordering::Greater => external[inside] = &external[inside] + f,
                     Ordering::Less => external[inside] = &external[inside] - f,
-                    Ordering::Equal => return None,
+                    Ordering::Equal => return Held::Undetermined,
                 }
             }
             let touching_a_twin = self.contacts.iter().any(|(l, r)| match (l, r) {
@@ -762,7 +806,7 @@ impl Problem {
                 _ => false,
             });
             if touching_a_twin {
-                return None;
+                return Held::Undetermined;
             }
             let weight: Vec<Q> = (0..n)
                 .map(|i| {
@@ -775,19 +819,26 @@ impl Problem {
                 .collect();
             let total: Q = weight.iter().cloned().sum();
             if !total.is_zero() {
-                return None;
+                return Held::Undetermined;
             }
             let largest = self
                 .min_cut(&set, &weight, Side::Upper, false, Want::Largest)
-                .1;
-            if largest.expect("asked for") != set {
-                return None;
+                .1
+                .expect("asked for");
+            if largest != set {
+                let ahead = ahead.get_or_insert_with(|| vec![false; n]);
+                for (i, _) in largest.iter().enumerate().filter(|(_, &x)| x) {
+                    ahead[i] = true;
+                }
             }
+        }
+        if let Some(ahead) = ahead {
+            return Held::Breaks(ahead);
         }
         // A group is one connected piece of the joint graph (a body given in pieces would
         // otherwise hold them together).
         let adj = self.adjacency();
-        Some(
+        Held::Groups(
             groups
                 .into_iter()
                 .flat_map(|g| {
@@ -1033,6 +1084,16 @@ impl Problem {
             }
         }
     }
+}
+
+/// How a problem solved with bodies held together came out ([`Problem::solve_contracted`]).
+enum Held {
+    /// Every body held: the groups of the full problem.
+    Groups(Vec<Group>),
+    /// Some groups cannot stay whole: the parts of them that would move ahead.
+    Breaks(Vec<bool>),
+    /// A group touches another moving at its own acceleration.
+    Undetermined,
 }
 
 /// Where blocks stuck to the ground stop being stuck ([`Problem::stick_interval`]).
@@ -1784,9 +1845,43 @@ mod tests {
             };
             let connected = |body: &Vec<usize>| p.pieces(body, &p.adjacency()).len() == 1;
             if bodies.iter().all(|b| whole(b) && connected(b)) {
-                prop_assert!(p.solve_contracted(&bodies).is_some());
+                prop_assert!(matches!(p.solve_contracted(&bodies), Held::Groups(_)));
             }
         }
+    }
+
+    #[test]
+    fn a_body_that_breaks_is_split_until_its_parts_hold() {
+        // A stack of four 1 kg blocks that slid as one body, 12 N now on the bottom one. As one
+        // body it would go at 3 m/s2, the bottom joint passing 9 N of its 4 N capacity: the
+        // three above break away (4 N: 4/3 m/s2), and of those the lowest cannot pass the
+        // 8/3 N the top two need through its 2 N joint: 0 at 8, 1 at 2, {2, 3} at 1 m/s2, the
+        // top joint passing 1 N of 5. Two splits, then every part holds.
+        let p = Problem {
+            mass: vec![Q::one(); 4],
+            external: vec![Q::int(12), Q::zero(), Q::zero(), Q::zero()],
+            friction: vec![
+                (1, End::Node(0), Q::int(4)),
+                (2, End::Node(1), Q::int(2)),
+                (3, End::Node(2), Q::int(5)),
+            ],
+            contacts: vec![],
+        };
+        let body = vec![vec![0, 1, 2, 3]];
+        assert!(matches!(p.solve_contracted(&body), Held::Breaks(_)));
+        let by_accel = |mut g: Vec<Group>| {
+            g.sort_by(|a, b| a.accel.cmp(&b.accel));
+            g
+        };
+        let group = |nodes: Vec<usize>, a: i64| Group {
+            nodes,
+            accel: Q::int(a),
+            grounded: false,
+        };
+        let want = vec![group(vec![2, 3], 1), group(vec![1], 2), group(vec![0], 8)];
+        let split = p.solve_by_bodies(&body).expect("its parts hold once split");
+        assert_eq!(by_accel(split), want);
+        assert_eq!(by_accel(p.solve(&Lex::zero(), &[])), want);
     }
 
     #[test]
