@@ -686,18 +686,13 @@ impl Problem {
             // The part ahead cannot be a union of whole contracted nodes (the contracted
             // optimum would have split it off), so it cuts some body; a body of one block is no
             // body.
-            let split: Vec<Vec<usize>> = bodies
-                .iter()
-                .flat_map(|body| {
-                    let (front, back): (Vec<usize>, Vec<usize>) =
-                        body.iter().partition(|&&i| ahead[i]);
-                    [front, back]
-                })
-                .filter(|part| part.len() >= 2)
-                .collect();
-            let cut_one = bodies
-                .iter()
-                .any(|body| body.iter().any(|&i| ahead[i]) && body.iter().any(|&i| !ahead[i]));
+            let mut split = Vec::new();
+            let mut cut_one = false;
+            for body in &bodies {
+                let (front, back): (Vec<usize>, Vec<usize>) = body.iter().partition(|&&i| ahead[i]);
+                cut_one |= !front.is_empty() && !back.is_empty();
+                split.extend([front, back].into_iter().filter(|part| part.len() >= 2));
+            }
             if !cut_one {
                 return None;
             }
@@ -827,8 +822,8 @@ impl Problem {
                 .expect("asked for");
             if largest != set {
                 let ahead = ahead.get_or_insert_with(|| vec![false; n]);
-                for (i, _) in largest.iter().enumerate().filter(|(_, &x)| x) {
-                    ahead[i] = true;
+                for (a, &l) in ahead.iter_mut().zip(&largest) {
+                    *a |= l;
                 }
             }
         }
