@@ -560,8 +560,9 @@ impl Problem {
             return out;
         }
         // {b > a_g} and {b < a_g}: two cuts, the ground pinned at a_g and never in either set.
-        let upper = self.split_at_ground(ground, Side::Upper);
-        let lower = self.split_at_ground(ground, Side::Lower);
+        let at_ground = self.integral_at(&ground.0[0]);
+        let upper = self.split_at_ground(ground, Side::Upper, at_ground.as_ref());
+        let lower = self.split_at_ground(ground, Side::Lower, at_ground.as_ref());
         let level: Vec<usize> = (0..n).filter(|&i| !upper[i] && !lower[i]).collect();
         // The blocks left at a_g: those joined to the ground through undecided joints are stuck;
         // any other piece moves freely with acceleration a_g (possible only when a_g is locally
@@ -618,6 +619,12 @@ impl Problem {
         out
     }
 
+    /// The weights e_i - lambda m_i (this problem's external forces) and the joints'
+    /// capacities as integers over one denominator ([`Integral::at`]), where they fit.
+    fn integral_at(&self, lambda: &Q) -> Option<(Vec<i128>, Vec<i128>)> {
+        Integral::new(self, &self.external)?.at(lambda)
+    }
+
     /// The blocks that accelerate faster than the ground just after the instant, {b > a_g}
     /// (`Side::Upper`), or slower, {b < a_g} (`Side::Lower`): the smallest set S minimising
     /// sum_{i in S} (m_i a_g - e_i) + cut(S) (mirrored for the lower side), joints to the ground
@@ -627,7 +634,15 @@ impl Problem {
     /// lightest (the smallest) when a_g is rising (a1 > 0, or a1 = 0 < a2) and the heaviest (the
     /// largest) when it is falling; all of them tie when it is steady, and the smallest is the
     /// answer. No flow in lexicographic amounts is needed (several times slower on a large wall).
-    fn split_at_ground(&self, ground: &Lex, side: Side) -> Vec<bool> {
+    ///
+    /// `at_ground`: the weights e_i - a0 m_i and the capacities in integers
+    /// ([`Problem::integral_at`]), worked out once for both sides.
+    fn split_at_ground(
+        &self,
+        ground: &Lex,
+        side: Side,
+        at_ground: Option<&(Vec<i128>, Vec<i128>)>,
+    ) -> Vec<bool> {
         let rising = match ground.0[1].signum() {
             0 => ground.0[2].signum(),
             rate => rate,
@@ -644,14 +659,15 @@ impl Problem {
         let all = vec![true; self.n()];
         // The weights e_i - a0 m_i (lower side), negated on the upper side: in integers
         // without a rational operation where they fit.
-        let in_integers = Integral::new(self, &self.external).and_then(|z| {
-            let (mut weight, caps) = z.at(&ground.0[0])?;
-            if side == Side::Upper {
-                for w in &mut weight {
-                    *w = w.checked_neg()?;
-                }
-            }
-            self.min_cut_in_integers(&all, &weight, &caps, side, true, want)
+        let in_integers = at_ground.and_then(|(weight, caps)| {
+            let weight = match side {
+                Side::Upper => weight
+                    .iter()
+                    .map(|w| w.checked_neg())
+                    .collect::<Option<_>>()?,
+                Side::Lower => weight.clone(),
+            };
+            self.min_cut_in_integers(&all, &weight, caps, side, true, want)
         });
         let (smallest, largest) = in_integers.unwrap_or_else(|| {
             let weight: Vec<Q> = (0..self.n())
@@ -1752,7 +1768,11 @@ mod tests {
                 }
                 let (_, smallest) = least.expect("the empty set is allowed");
                 let expected: Vec<bool> = (0..n).map(|i| smallest >> i & 1 == 1).collect();
-                prop_assert_eq!(p.split_at_ground(&theta, side), expected);
+                // In integers where they fit, and in rationals.
+                let at_ground = p.integral_at(&theta.0[0]);
+                prop_assert!(at_ground.is_some());
+                prop_assert_eq!(&p.split_at_ground(&theta, side, at_ground.as_ref()), &expected);
+                prop_assert_eq!(p.split_at_ground(&theta, side, None), expected);
             }
         }
 
