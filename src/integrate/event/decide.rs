@@ -30,6 +30,12 @@ const ENUMERATE_UP_TO: usize = 8;
 /// before the general decision takes over ([`Problem::solve_by_bodies`]).
 const BODY_SPLITS: usize = 16;
 
+/// [`Problem::solve_by_bodies`] holds bodies together only where that leaves at most this many
+/// nodes, or a quarter of the problem: each try solves the contracted problem by the general
+/// decision, and tries over a large one cost more than the general decision over all of it
+/// (a 4,413-block part holding a 2,247-block body: 56 flows against 16).
+const CONTRACTED_UP_TO: usize = 64;
+
 /// Minimum cuts over at most this many blocks try every set too (see [`Cut::by_enumeration`]):
 /// below it that costs less than building a flow network and pushing a flow through it.
 const CUT_ENUMERATE_UP_TO: usize = 6;
@@ -373,20 +379,25 @@ impl Problem {
         pinned: bool,
         want: Want,
     ) -> Sides {
-        let n = self.n();
+        // The network has a node for each member of `set` only: the recursion of a decision
+        // cuts ever smaller parts of one large problem, and each cut should cost its part.
+        let members: Vec<usize> = (0..self.n()).filter(|&i| set[i]).collect();
+        let mut local = vec![usize::MAX; self.n()];
+        for (k, &i) in members.iter().enumerate() {
+            local[i] = k;
+        }
+        let n = members.len();
         let (s, t) = (n, n + 1);
         // The arcs, as (from, to, both ways), and their capacities.
         let mut arcs: Vec<(usize, usize, bool)> = Vec::new();
         let mut amounts: Vec<A> = Vec::new();
-        for (i, w) in weight.iter().enumerate() {
-            if !set[i] {
-                continue;
-            }
+        for (k, &i) in members.iter().enumerate() {
+            let w = &weight[i];
             if w.positive() {
-                arcs.push((i, t, false));
+                arcs.push((k, t, false));
                 amounts.push(w.clone());
             } else if *w != A::zero() {
-                arcs.push((s, i, false));
+                arcs.push((s, k, false));
                 amounts.push(A::zero().minus(w));
             }
         }
@@ -395,14 +406,17 @@ impl Problem {
                 continue;
             }
             match j {
-                End::Node(j) if set[*j] => arcs.push((*i, *j, true)),
+                End::Node(j) if set[*j] => arcs.push((local[*i], local[*j], true)),
                 // Joint to the pinned ground: cut whenever i is in S.
-                End::Ground if pinned => arcs.push((*i, t, false)),
+                End::Ground if pinned => arcs.push((local[*i], t, false)),
                 _ => continue,
             }
             amounts.push(cap.clone());
         }
         let (implies, forbidden) = self.constraints(set, side, pinned);
+        let implies: Vec<(usize, usize)> =
+            implies.iter().map(|&(a, b)| (local[a], local[b])).collect();
+        let forbidden: Vec<usize> = forbidden.iter().map(|&a| local[a]).collect();
         let question = Cut {
             n,
             arcs: &arcs,
@@ -410,9 +424,16 @@ impl Problem {
             forbidden: &forbidden,
         };
         let (minimal, reach_t) = question.minimum(&amounts, want);
+        let back = |inside: &dyn Fn(usize) -> bool| {
+            let mut out = vec![false; self.n()];
+            for (k, &i) in members.iter().enumerate() {
+                out[i] = inside(k);
+            }
+            out
+        };
         (
-            minimal.map(|m| (0..n).map(|i| set[i] && m[i]).collect()),
-            reach_t.map(|r| (0..n).map(|i| set[i] && !r[i]).collect()),
+            minimal.map(|m| back(&|k| m[k])),
+            reach_t.map(|r| back(&|k| !r[k])),
         )
     }
 
@@ -613,10 +634,53 @@ impl Problem {
         for (part, is_upper) in [(upper, true), (lower, false)] {
             if part.iter().any(|&b| b) {
                 let e = self.boundary_forces(&all, &part, true, &self.external, is_upper);
-                self.solve_free(&part, &e, &adj, &mut out);
+                if !self.solve_part_by_bodies(&part, &e, bodies, &mut out) {
+                    self.solve_free(&part, &e, &adj, &mut out);
+                }
             }
         }
         out
+    }
+
+    /// A part of a decision at the ground that moves away from it (its joints to the ground
+    /// slide, their forces in `external`), solved with the bodies inside it held together
+    /// ([`Problem::solve_by_bodies`]) and its groups added to `out`: the upper part of a wall
+    /// sliding on its lower courses is a free problem as large as itself, which the general
+    /// decision would cut again at every level of its recursion. `false` (nothing added) where
+    /// no body lies in the part or the general decision is needed.
+    fn solve_part_by_bodies(
+        &self,
+        part: &[bool],
+        external: &[Q],
+        bodies: &[Vec<usize>],
+        out: &mut Vec<Group>,
+    ) -> bool {
+        let nodes: Vec<usize> = (0..self.n()).filter(|&i| part[i]).collect();
+        let mut index = vec![usize::MAX; self.n()];
+        for (k, &i) in nodes.iter().enumerate() {
+            index[i] = k;
+        }
+        let inner: Vec<Vec<usize>> = bodies
+            .iter()
+            .map(|b| b.iter().filter(|&&i| part[i]).map(|&i| index[i]).collect())
+            .filter(|b: &Vec<usize>| b.len() >= 2)
+            .collect();
+        if inner.is_empty() {
+            return false;
+        }
+        let mut free = self.restrict(&nodes);
+        free.external = nodes.iter().map(|&i| external[i].clone()).collect();
+        free.friction.retain(|(_, j, _)| *j != End::Ground);
+        free.contacts
+            .retain(|(l, r)| *l != End::Ground && *r != End::Ground);
+        let Some(groups) = free.solve_by_bodies(&inner) else {
+            return false;
+        };
+        out.extend(groups.into_iter().map(|g| Group {
+            nodes: g.nodes.iter().map(|&k| nodes[k]).collect(),
+            ..g
+        }));
+        true
     }
 
     /// The weights e_i - lambda m_i (this problem's external forces) and the joints'
@@ -692,6 +756,14 @@ impl Problem {
     /// group holding a body, where the general decision would cut the whole problem again at
     /// every level of its recursion. `None`: the general decision is needed.
     fn solve_by_bodies(&self, bodies: &[Vec<usize>]) -> Option<Vec<Group>> {
+        let contracted = self.n()
+            - bodies
+                .iter()
+                .map(|b| b.len().saturating_sub(1))
+                .sum::<usize>();
+        if contracted > CONTRACTED_UP_TO && 4 * contracted > self.n() {
+            return None;
+        }
         let mut bodies = bodies.to_vec();
         for _ in 0..=BODY_SPLITS {
             let ahead = match self.solve_contracted(&bodies) {
@@ -1862,6 +1934,30 @@ mod tests {
             if bodies.iter().all(|b| whole(b) && connected(b)) {
                 prop_assert!(matches!(p.solve_contracted(&bodies), Held::Groups(_)));
             }
+        }
+    }
+
+    proptest! {
+        /// At the ground too: the parts that move away from it are decided with the bodies
+        /// inside them held together, and the answer is the same.
+        #[test]
+        fn bodies_held_together_at_the_ground_give_the_same_groups(
+            p in ground_problem(),
+            labels in prop::collection::vec(0usize..3, 8),
+            a in -12i64..13,
+            rate in -1i64..2,
+        ) {
+            let n = p.mass.len();
+            let bodies: Vec<Vec<usize>> = [1, 2]
+                .iter()
+                .map(|&b| (0..n).filter(|&i| labels[i] == b).collect::<Vec<usize>>())
+                .filter(|body| body.len() >= 2)
+                .collect();
+            let theta = Lex([Q::int(a), Q::int(rate), Q::zero()]);
+            prop_assert_eq!(
+                sorted(p.solve(&theta, &bodies)),
+                sorted(p.solve(&theta, &[]))
+            );
         }
     }
 
