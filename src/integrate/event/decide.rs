@@ -567,23 +567,79 @@ impl Problem {
     /// each still holds, instead of the cuts that would find their groups anew
     /// ([`Problem::solve_by_bodies`]). The answer does not depend on them.
     pub fn solve(&self, ground: &Lex, bodies: &[Vec<usize>]) -> Vec<Group> {
-        let n = self.n();
-        let adj = self.adjacency();
-        let all = vec![true; n];
-        let mut out = Vec::new();
         if !self.touches_ground() {
             if !bodies.is_empty() {
                 if let Some(groups) = self.solve_by_bodies(bodies) {
                     return groups;
                 }
             }
-            self.solve_free(&all, &self.external, &adj, &mut out);
+            let mut out = Vec::new();
+            let all = vec![true; self.n()];
+            self.solve_free(&all, &self.external, &self.adjacency(), &mut out);
             return out;
         }
         // {b > a_g} and {b < a_g}: two cuts, the ground pinned at a_g and never in either set.
         let at_ground = self.integral_at(&ground.0[0]);
         let upper = self.split_at_ground(ground, Side::Upper, at_ground.as_ref());
         let lower = self.split_at_ground(ground, Side::Lower, at_ground.as_ref());
+        self.solve_split(ground, bodies, upper, lower)
+    }
+
+    /// A decision at the ground acceleration `ground` exactly at a limit of this problem's own
+    /// stick interval `stick`, passing it outward: the blocks that move are the largest minimiser
+    /// that the interval's last cut found, which is the split at the ground
+    /// ([`Problem::split_at_ground`]: the same weights, constraints and minimiser), and no block
+    /// moves the other way when the interval is more than a point, so the decision needs
+    /// neither of the two cuts over the whole problem. `None` anywhere else, and where the
+    /// interval is a point or empty (a problem that cannot be stuck). Most decisions at
+    /// the ground of a large wall are of this kind: a stuck cluster reaching its limit.
+    pub fn solve_past_limit(
+        &self,
+        ground: &Lex,
+        bodies: &[Vec<usize>],
+        stick: &Stick,
+    ) -> Option<Vec<Group>> {
+        let a0 = &ground.0[0];
+        if let (Some(lo), Some(hi)) = (&stick.lo, &stick.hi) {
+            // At a_g = hi, a set T moving ahead of the ground would need a_g <= lo (its amount
+            // is m(T) (a_g - lo_T), lo_T <= lo): none does when lo < hi.
+            if lo >= hi {
+                return None;
+            }
+        }
+        let rising = match ground.0[1].signum() {
+            0 => ground.0[2].signum(),
+            rate => rate,
+        };
+        let (leaving, up) = if rising > 0 && stick.hi.as_ref() == Some(a0) {
+            (stick.leaving_hi.as_ref()?, false)
+        } else if rising < 0 && stick.lo.as_ref() == Some(a0) {
+            (stick.leaving_lo.as_ref()?, true)
+        } else {
+            return None;
+        };
+        let none = vec![false; self.n()];
+        let mut moving = none.clone();
+        for &i in leaving {
+            moving[i] = true;
+        }
+        let (upper, lower) = if up { (moving, none) } else { (none, moving) };
+        Some(self.solve_split(ground, bodies, upper, lower))
+    }
+
+    /// The rest of a decision at the ground once the blocks faster than the ground (`upper`)
+    /// and slower (`lower`) are known: those left at a_g, and the free parts.
+    fn solve_split(
+        &self,
+        ground: &Lex,
+        bodies: &[Vec<usize>],
+        upper: Vec<bool>,
+        lower: Vec<bool>,
+    ) -> Vec<Group> {
+        let n = self.n();
+        let adj = self.adjacency();
+        let all = vec![true; n];
+        let mut out = Vec::new();
         let level: Vec<usize> = (0..n).filter(|&i| !upper[i] && !lower[i]).collect();
         // The blocks left at a_g: those joined to the ground through undecided joints are stuck;
         // any other piece moves freely with acceleration a_g (possible only when a_g is locally
@@ -958,15 +1014,24 @@ impl Problem {
         let hi = self.min_ratio(&self.external, Side::Lower, hints, enumerate_up_to);
         let lo = self.min_ratio(&neg, Side::Upper, hints, enumerate_up_to);
         let mut breaking = Vec::new();
-        let hi = hi.map(|(r, set)| {
+        let (mut leaving_lo, mut leaving_hi) = (None, None);
+        let hi = hi.map(|(r, set, leaving)| {
             breaking.push(set);
+            leaving_hi = leaving;
             r
         });
-        let lo = lo.map(|(r, set)| {
+        let lo = lo.map(|(r, set, leaving)| {
             breaking.push(set);
+            leaving_lo = leaving;
             -r
         });
-        Stick { lo, hi, breaking }
+        Stick {
+            lo,
+            hi,
+            breaking,
+            leaving_lo,
+            leaving_hi,
+        }
     }
 
     /// The least ratio (cut(S) + e(S)) / m(S), and a set S that attains it, over every set of
@@ -1037,14 +1102,15 @@ impl Problem {
     }
 
     /// The smallest ratio (cut(S) + e(S)) / m(S) over the sets S that may move the side's way,
-    /// and a set that attains it.
+    /// a set that attains it, and, where the search ended with a cut, the largest set that
+    /// does (the union of all: the blocks that move when a_g passes the limit outward).
     fn min_ratio(
         &self,
         external: &[Q],
         side: Side,
         hints: &[Vec<usize>],
         enumerate_up_to: usize,
-    ) -> Option<(Q, Vec<usize>)> {
+    ) -> Option<(Q, Vec<usize>, Option<Vec<usize>>)> {
         let n = self.n();
         let all = vec![true; n];
         // Start from every block that may move this way at all.
@@ -1098,8 +1164,8 @@ impl Problem {
         }
         if n <= enumerate_up_to {
             let weakest = integral.as_ref();
-            if let Some(found) = weakest.and_then(|z| self.weakest_set(z, &implies, &allowed)) {
-                return Some(found);
+            if let Some((r, set)) = weakest.and_then(|z| self.weakest_set(z, &implies, &allowed)) {
+                return Some((r, set, None));
             }
         }
         let mut lambda = ratio(&everything, &allowed);
@@ -1156,14 +1222,16 @@ impl Problem {
             let largest = largest.1.expect("asked for");
             let members: Vec<usize> = (0..n).filter(|&i| largest[i]).collect();
             if members.is_empty() {
-                return Some((lambda, best));
+                return Some((lambda, best, None));
             }
             let r = ratio(&members, &largest);
             if r < lambda {
                 lambda = r;
                 best = members;
             } else {
-                return Some((lambda, best));
+                // The cut at the least ratio: its largest minimiser is the union of every set
+                // that attains it.
+                return Some((lambda, best, Some(members)));
             }
         }
     }
@@ -1188,6 +1256,11 @@ pub struct Stick {
     pub hi: Option<Q>,
     /// Sets (local indices, sorted) that break away at the finite limits.
     pub breaking: Vec<Vec<usize>>,
+    /// The blocks (local indices, sorted) that move when a_g falls through `lo`, where the
+    /// search ended with a cut at it ([`Problem::solve_past_limit`]).
+    pub leaving_lo: Option<Vec<usize>>,
+    /// The same for a_g rising through `hi`.
+    pub leaving_hi: Option<Vec<usize>>,
 }
 
 /// A problem's joint capacities, one side's external forces and its masses as integers over
@@ -1867,6 +1940,31 @@ mod tests {
             let want = stick_by_enumeration(&q);
             prop_assert_eq!(interval(&q, ENUMERATE_UP_TO), want.clone());
             prop_assert_eq!(interval(&q, 0), want);
+        }
+
+        /// At a limit of a problem's own stick interval, passing it outward, the blocks the
+        /// interval's last cut found leaving are the decision's, without its cuts; anywhere
+        /// else the shortcut declines.
+        #[test]
+        fn decisions_past_a_stick_limit_need_no_cut(p in abutted_problem()) {
+            let stick = p.stick_interval_by(&[], 0);
+            let point = matches!((&stick.lo, &stick.hi), (Some(lo), Some(hi)) if lo >= hi);
+            for (limit, outward, leaving) in [
+                (&stick.hi, 1, &stick.leaving_hi),
+                (&stick.lo, -1, &stick.leaving_lo),
+            ] {
+                let Some(limit) = limit else { continue };
+                let past = Lex([limit.clone(), Q::int(outward), Q::zero()]);
+                let fast = p.solve_past_limit(&past, &[], &stick);
+                prop_assert_eq!(fast.is_some(), leaving.is_some() && !point);
+                if let Some(fast) = fast {
+                    prop_assert_eq!(sorted(fast), sorted(p.solve(&past, &[])));
+                }
+                let back = Lex([limit.clone(), Q::int(-outward), Q::zero()]);
+                prop_assert!(p.solve_past_limit(&back, &[], &stick).is_none());
+                let beyond = Lex([limit + &Q::int(outward), Q::int(outward), Q::zero()]);
+                prop_assert!(p.solve_past_limit(&beyond, &[], &stick).is_none());
+            }
         }
 
         /// Pieces of the joint graph meet only through the ground: decided one by one they

@@ -859,7 +859,7 @@ impl Engine<'_> {
     /// stuck cluster seldom changes its weakest set.
     fn stick_interval(&mut self, p: &Problem, members: &[usize]) -> (Option<Q>, Option<Q>) {
         if let Some(found) = self.stick_memo.get(p) {
-            return found.clone();
+            return (found.lo.clone(), found.hi.clone());
         }
         let hints: Vec<Vec<usize>> = self
             .breaking
@@ -870,16 +870,15 @@ impl Engine<'_> {
                     .collect()
             })
             .collect();
-        let found = p.stick_interval(&hints);
-        for set in found.breaking {
+        let mut found = p.stick_interval(&hints);
+        for set in std::mem::take(&mut found.breaking) {
             let global: Vec<usize> = set.into_iter().map(|k| members[k]).collect();
             self.breaking.retain(|known| *known != global);
             self.breaking.push_front(global);
             self.breaking.truncate(BREAKING_HINTS);
         }
-        let interval = (found.lo, found.hi);
-        self.stick_memo
-            .insert(p.clone(), interval.clone(), members.len());
+        let interval = (found.lo.clone(), found.hi.clone());
+        self.stick_memo.insert(p.clone(), found, members.len());
         interval
     }
 
@@ -906,13 +905,13 @@ impl Engine<'_> {
             Lex::zero()
         };
         if !remember && p.touches_ground() {
-            return p.solve(&theta, bodies);
+            return self.solve_anew(p, &theta, bodies);
         }
         let known = self.free_memo.get(p);
         if let Some((_, found)) = known.and_then(|k| k.iter().find(|(at, _)| *at == theta)) {
             return found.clone();
         }
-        let found = p.solve(&theta, bodies);
+        let found = self.solve_anew(p, &theta, bodies);
         match self.free_memo.get_mut(p) {
             Some(known) => {
                 if known.len() == THETAS_KEPT {
@@ -925,6 +924,16 @@ impl Engine<'_> {
                 .insert(p.clone(), vec![(theta, found.clone())], p.mass.len()),
         }
         found
+    }
+
+    /// Problem p decided at `theta`; at a limit of its own remembered stick interval (a stuck
+    /// cluster reaching it), without the two cuts at the ground ([`Problem::solve_past_limit`]).
+    fn solve_anew(&self, p: &Problem, theta: &Lex, bodies: &[Vec<usize>]) -> Vec<Group> {
+        p.touches_ground()
+            .then(|| self.stick_memo.get(p))
+            .flatten()
+            .and_then(|stick| p.solve_past_limit(theta, bodies, stick))
+            .unwrap_or_else(|| p.solve(theta, bodies))
     }
 
     /// The general decision of problem p at the ground acceleration `theta`, snapping theta to

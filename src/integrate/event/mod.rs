@@ -216,8 +216,8 @@ pub(crate) struct Engine<'a> {
     vel_scale: f64,
     count: Counter,
     stopped: bool,
-    /// Stick intervals already worked out, by problem.
-    stick_memo: Memo<decide::Problem, (Option<Q>, Option<Q>)>,
+    /// Stick intervals already worked out, by problem, with the blocks that leave at each limit.
+    stick_memo: Memo<decide::Problem, decide::Stick>,
     /// Sets of blocks (global indices, sorted) that broke away at recent stick limits, newest
     /// first: hints for the next stick intervals.
     breaking: VecDeque<Vec<usize>>,
