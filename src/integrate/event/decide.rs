@@ -1206,28 +1206,43 @@ impl Problem {
                 inside[i] = false;
             }
         }
+        // Each cut's smallest minimiser S gives the next ratio lambda + f(lambda) / m(S), f < 0
+        // the least amount: the lightest minimiser steps furthest, and at the least ratio it is
+        // empty. Where both minimisers cost one flow (Dinic) it is used; on push-relabel's large
+        // networks each side is a pass of its own, and the largest alone serves.
+        let want = if n + 2 < PUSH_RELABEL_FROM {
+            Want::Both
+        } else {
+            Want::Largest
+        };
         loop {
-            // Any minimiser serves (the ratio found is the same); the largest is the cheaper
-            // pass on large networks. The weights come straight in integers where they fit.
+            // The weights come straight in integers where they fit.
             let in_integers = integral.as_ref().and_then(|z| {
                 let (weight, caps) = z.at(&lambda)?;
-                self.min_cut_in_integers(&all, &weight, &caps, side, true, Want::Largest)
+                self.min_cut_in_integers(&all, &weight, &caps, side, true, want)
             });
-            let largest = in_integers.unwrap_or_else(|| {
+            let (smallest, largest) = in_integers.unwrap_or_else(|| {
                 let weight: Vec<Q> = (0..n)
                     .map(|i| &external[i] - &self.mass[i] * &lambda)
                     .collect();
-                self.min_cut(&all, &weight, side, true, Want::Largest)
+                self.min_cut(&all, &weight, side, true, want)
             });
-            let largest = largest.1.expect("asked for");
+            let largest = largest.expect("asked for");
             let members: Vec<usize> = (0..n).filter(|&i| largest[i]).collect();
             if members.is_empty() {
                 return Some((lambda, best, None));
             }
-            let r = ratio(&members, &largest);
+            let (step, inside) = match &smallest {
+                Some(smallest) => ((0..n).filter(|&i| smallest[i]).collect(), smallest),
+                None => (members.clone(), &largest),
+            };
+            if step.is_empty() {
+                return Some((lambda, best, Some(members)));
+            }
+            let r = ratio(&step, inside);
             if r < lambda {
                 lambda = r;
-                best = members;
+                best = step;
             } else {
                 // The cut at the least ratio: its largest minimiser is the union of every set
                 // that attains it.
