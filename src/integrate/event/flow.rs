@@ -201,7 +201,11 @@ impl<T: Amount> Network<T> {
         self.tails.push(v);
     }
 
-    fn levels(&self, s: usize) -> Vec<usize> {
+    /// Residual distances from s, up to t's: once t is reached every node nearer than t has
+    /// its level (breadth first), and nodes as far as t or further cannot lie on a shortest
+    /// path to it, so the search stops there (most of a decision's network is one or two steps
+    /// from the source, and t is two or three).
+    fn levels(&self, s: usize, t: usize) -> Vec<usize> {
         let mut level = vec![usize::MAX; self.n];
         level[s] = 0;
         let mut queue = VecDeque::from([s]);
@@ -210,6 +214,9 @@ impl<T: Amount> Network<T> {
                 let arc = &self.arcs[a];
                 if level[arc.to] == usize::MAX && arc.residual.positive() {
                     level[arc.to] = level[u] + 1;
+                    if arc.to == t {
+                        return level;
+                    }
                     queue.push_back(arc.to);
                 }
             }
@@ -227,7 +234,9 @@ impl<T: Amount> Network<T> {
                 let arc = &self.arcs[a];
                 (
                     arc.to,
-                    arc.residual.positive() && level[arc.to] == level[u] + 1,
+                    arc.residual.positive()
+                        && level[arc.to] == level[u] + 1
+                        && (arc.to == t || level[arc.to] < level[t]),
                 )
             };
             if ok {
@@ -252,7 +261,7 @@ impl<T: Amount> Network<T> {
         self.lay_out();
         let mut total = T::zero();
         loop {
-            let level = self.levels(s);
+            let level = self.levels(s, t);
             if level[t] == usize::MAX {
                 return total;
             }
