@@ -327,10 +327,33 @@ impl Problem {
     /// (scaling changes no minimiser, and skips a gcd at every operation); exact rationals
     /// otherwise or on overflow.
     fn min_cut(&self, set: &[bool], weight: &[Q], side: Side, pinned: bool, want: Want) -> Sides {
-        let amounts = weight.iter().chain(self.friction.iter().map(|j| &j.2));
+        // Only the amounts the cut uses go over the common denominator: a decision's recursion
+        // cuts small parts of a large problem, and each should cost its part.
+        let members: Vec<usize> = (0..self.n()).filter(|&i| set[i]).collect();
+        let joints: Vec<usize> = (0..self.friction.len())
+            .filter(|&k| {
+                let (i, j, _) = &self.friction[k];
+                set[*i]
+                    && match j {
+                        End::Node(j) => set[*j],
+                        End::Ground => pinned,
+                    }
+            })
+            .collect();
+        let amounts = members
+            .iter()
+            .map(|&i| &weight[i])
+            .chain(joints.iter().map(|&k| &self.friction[k].2));
         if let Some((ints, _)) = over_common_denominator(amounts) {
-            let (w, caps) = ints.split_at(self.n());
-            if let Some(sides) = self.min_cut_in_integers(set, w, caps, side, pinned, want) {
+            let mut w = vec![0i128; self.n()];
+            let mut caps = vec![0i128; self.friction.len()];
+            for (&i, &x) in members.iter().zip(&ints) {
+                w[i] = x;
+            }
+            for (&k, &x) in joints.iter().zip(&ints[members.len()..]) {
+                caps[k] = x;
+            }
+            if let Some(sides) = self.min_cut_in_integers(set, &w, &caps, side, pinned, want) {
                 return sides;
             }
         }
