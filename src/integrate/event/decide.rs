@@ -1231,8 +1231,8 @@ impl Problem {
         }
         // Each cut's smallest minimiser S gives the next ratio lambda + f(lambda) / m(S), f < 0
         // the least amount: the lightest minimiser steps furthest, and at the least ratio it is
-        // empty. Where both minimisers cost one flow (Dinic) it is used; on push-relabel's large
-        // networks each side is a pass of its own, and the largest alone serves.
+        // empty. Where both minimisers cost one flow (Dinic, on the smallest networks) it is
+        // used; with push-relabel each side is a pass of its own, and the largest alone serves.
         let want = if n + 2 < PUSH_RELABEL_FROM {
             Want::Both
         } else {
