@@ -1863,6 +1863,16 @@ mod tests {
             })
     }
 
+    /// Up to two bodies among the first n nodes: those labelled 1, those labelled 2 (a body of
+    /// one node is none).
+    fn labelled_bodies(labels: &[usize], n: usize) -> Vec<Vec<usize>> {
+        [1, 2]
+            .iter()
+            .map(|&b| (0..n).filter(|&i| labels[i] == b).collect::<Vec<usize>>())
+            .filter(|body| body.len() >= 2)
+            .collect()
+    }
+
     fn sorted(mut groups: Vec<Group>) -> Vec<Group> {
         groups.sort_by(|a, b| a.nodes.cmp(&b.nodes));
         groups
@@ -2053,13 +2063,7 @@ mod tests {
             p in free_problem(),
             labels in prop::collection::vec(0usize..3, 8),
         ) {
-            let n = p.mass.len();
-            // Up to two bodies: nodes labelled 1, nodes labelled 2.
-            let bodies: Vec<Vec<usize>> = [1, 2]
-                .iter()
-                .map(|&b| (0..n).filter(|&i| labels[i] == b).collect::<Vec<usize>>())
-                .filter(|body| body.len() >= 2)
-                .collect();
+            let bodies = labelled_bodies(&labels, p.mass.len());
             let plain = sorted(p.solve(&Lex::zero(), &[]));
             prop_assert_eq!(&sorted(p.solve(&Lex::zero(), &bodies)), &plain);
             let whole = |body: &Vec<usize>| {
@@ -2083,12 +2087,7 @@ mod tests {
             a in -12i64..13,
             rate in -1i64..2,
         ) {
-            let n = p.mass.len();
-            let bodies: Vec<Vec<usize>> = [1, 2]
-                .iter()
-                .map(|&b| (0..n).filter(|&i| labels[i] == b).collect::<Vec<usize>>())
-                .filter(|body| body.len() >= 2)
-                .collect();
+            let bodies = labelled_bodies(&labels, p.mass.len());
             let theta = Lex([Q::int(a), Q::int(rate), Q::zero()]);
             prop_assert_eq!(
                 sorted(p.solve(&theta, &bodies)),
