@@ -191,6 +191,11 @@ fn uniform_friction_wall_moves_as_one_rigid_body() {
         let motion = sine(4.0, freq, 0.0, 10.0);
         let r = run(&wall, &motion, 10.0, Some(0.01));
         assert_eq!(r.summary.impacts, 0);
+        // Every decision takes in the one body of five blocks, and cuts over five blocks try
+        // every set: no flow is run.
+        let stats = r.summary.stats;
+        assert_eq!(stats.decision_blocks, 5 * stats.mode_decisions);
+        assert_eq!(stats.flow_nodes, 0);
         for j in &r.summary.joints {
             if j.lower != "ground" {
                 assert_eq!(
@@ -426,6 +431,19 @@ fn el_centro_first_s(seconds: usize, pga_m_s2: f64) -> Motion {
     Motion::Record(first.scaled(pga_m_s2 / record.pga_m_s2()))
 }
 
+/// The wall's topology with every joint's friction drawn uniformly from lowest / 10,000 to
+/// (lowest + span) / 10,000 (seed 5).
+fn random_friction(wall: &Wall, lowest: i128, span: i128) -> Topology {
+    let mut rng = pirqa::rng::Rng::new(5);
+    let nominal = Topology::new(wall).unwrap();
+    let mu: Vec<pirqa::Q> = nominal
+        .supports
+        .iter()
+        .map(|_| pirqa::Q::frac(lowest + (rng.uniform() * span as f64) as i128, 10_000))
+        .collect();
+    nominal.with_frictions(mu)
+}
+
 fn big_wall() -> Wall {
     let d = pirqa::wall::RunningBond::paper_wall(2100)
         .description()
@@ -442,6 +460,17 @@ fn a_uniform_wall_of_two_thousand_blocks_moves_as_one_body() {
     let r = run(&wall, &el_centro_first_s(8, 4.0), 8.0, None);
     assert_eq!(wall.blocks.len(), 2139);
     assert!(r.summary.stats.events > 0);
+    // The work counters see it: every decision takes in all 2,139 blocks, and every flow pass
+    // runs over them and the two terminals.
+    let stats = r.summary.stats;
+    assert_eq!(stats.decision_blocks, 2139 * stats.mode_decisions);
+    assert!(stats.flow_nodes > 0);
+    assert_eq!(
+        stats.flow_nodes % 2141,
+        0,
+        "{} flow nodes",
+        stats.flow_nodes
+    );
     let first = r.summary.blocks[0].max_abs_displacement_m;
     assert!(first > 1e-3, "it slides: {first} m");
     for j in r.summary.joints.iter().filter(|j| j.lower != "ground") {
@@ -458,16 +487,8 @@ fn a_uniform_wall_of_two_thousand_blocks_moves_as_one_body() {
 /// with flows over large parts of the wall, and the energy balance closes to round-off.
 #[test]
 fn a_wall_of_two_thousand_blocks_with_random_friction_balances_its_energy() {
-    use pirqa::rng::Rng;
     let wall = big_wall();
-    let mut rng = Rng::new(5);
-    let nominal = Topology::new(&wall).unwrap();
-    let mu: Vec<pirqa::Q> = nominal
-        .supports
-        .iter()
-        .map(|_| pirqa::Q::frac(2700 + (rng.uniform() * 600.0) as i128, 10_000))
-        .collect();
-    let topo = nominal.with_frictions(mu);
+    let topo = random_friction(&wall, 2700, 600);
     let settings = Settings::summary_only(10.0);
     let r = EventDriven::default()
         .run(&Scenario {
@@ -542,4 +563,43 @@ fn a_sliding_cluster_splits_when_an_impact_reverses_the_friction_on_it() {
         "{} against {expected}",
         yx.final_relative_displacement_m
     );
+}
+
+/// The work counters are the run's own: a run that failed part-way on the same thread, after
+/// flows of its own, leaves nothing in them.
+#[test]
+fn work_counters_count_the_run_alone() {
+    use pirqa::integrate::event::Params;
+    let d = pirqa::wall::RunningBond::paper_wall(100)
+        .description()
+        .unwrap();
+    let wall = Wall::from_description(&d).unwrap();
+    let topo = random_friction(&wall, 2000, 2000);
+    let motion = el_centro_first_s(10, 4.0);
+    let settings = Settings::summary_only(10.0);
+    let scenario = Scenario {
+        wall: &wall,
+        topology: &topo,
+        motion: &motion,
+        settings: &settings,
+    };
+    let counters = |params: Params| {
+        EventDriven { params }.run(&scenario).map(|r| {
+            let stats = r.summary.stats;
+            assert!(r.summary.impacts > 0, "the wall meets impacts");
+            (stats.decision_blocks, stats.flow_nodes)
+        })
+    };
+    let fresh = std::thread::scope(|s| s.spawn(|| counters(Params::default())).join())
+        .unwrap()
+        .unwrap();
+    assert!(fresh.1 > 0, "a 105-block wall runs flows");
+    // No impact allowed: the run stops with an error at the first one, after the flows of the
+    // decisions before it.
+    let strict = Params {
+        max_collisions_per_chain: 0,
+        ..Params::default()
+    };
+    assert!(counters(strict).is_err());
+    assert_eq!(counters(Params::default()).unwrap(), fresh);
 }

@@ -148,6 +148,19 @@ fn an_interrupted_sweep_resumes_to_the_same_table() {
     let other = sweep(&SMALL.replace("seed: 11", "seed: 12")).unwrap();
     let e = Store::open(&dir, &other, Existing::Resume).err().unwrap();
     assert!(e.to_string().contains("another sweep"), "{e}");
+
+    // A table with other columns (another version of pirqa) names the file and says what to do.
+    let old_columns = CASES_HEADER.replace("transitions,decision_blocks,flow_nodes,", "");
+    let text = std::fs::read_to_string(&cases).unwrap();
+    std::fs::write(&cases, text.replacen(CASES_HEADER, &old_columns, 1)).unwrap();
+    let e = read_table(&cases, CASES_HEADER, CaseRow::from_csv)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("cases.csv: line 1") && e.contains("--fresh"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -122,6 +122,12 @@ pub struct Stats {
     pub root_evaluations: u64,
     /// Time steps (time-stepping methods).
     pub steps: u64,
+    /// Blocks in the mode decisions, summed over decisions: the size of the rigid groups the
+    /// events touched (event-driven).
+    pub decision_blocks: u64,
+    /// Nodes of the maximum-flow passes of the exact decisions, summed over passes (minimum
+    /// cuts over at most six blocks try every set and run none; event-driven).
+    pub flow_nodes: u64,
 }
 
 /// `summary.json`.

@@ -265,6 +265,7 @@ impl Engine<'_> {
 
         // Canonical order (by block index), so a configuration met again is the same problem.
         blocks.sort_unstable();
+        self.rec.stats.decision_blocks += blocks.len() as u64;
         old_clusters.sort_unstable();
         for (k, &b) in blocks.iter().enumerate() {
             local.insert(b, k);

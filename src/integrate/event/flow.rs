@@ -27,6 +27,20 @@ pub trait Amount: Clone + Ord + std::fmt::Debug {
 thread_local! {
     /// Set when integer flow arithmetic overflowed: the caller then redoes the cut exactly.
     static OVERFLOW: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// Nodes of the maximum-flow passes run on this thread since it was last read: the work
+    /// counter of the exact decisions (decisions are pure functions of their problems, so the
+    /// count cannot travel through them).
+    static PASS_NODES: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// The nodes of the maximum-flow passes run on this thread since the last call, and a fresh
+/// count.
+pub fn take_pass_nodes() -> u64 {
+    PASS_NODES.with(|c| c.replace(0))
+}
+
+fn count_passes(nodes: usize, passes: u64) {
+    PASS_NODES.with(|c| c.set(c.get() + nodes as u64 * passes));
 }
 
 /// Clears the overflow flag of this thread and returns what it was.
@@ -282,8 +296,10 @@ impl<T: Amount> Network<T> {
     /// `unbounded` exceeds every cut.
     pub fn minimum_cuts(self, s: usize, t: usize, unbounded: &T) -> (Vec<bool>, Vec<bool>) {
         if self.n < PUSH_RELABEL_FROM {
+            count_passes(self.n, 1);
             self.cuts_by_dinic(s, t, unbounded)
         } else {
+            count_passes(self.n, 2);
             self.cuts_by_push_relabel(s, t)
         }
     }
@@ -291,6 +307,7 @@ impl<T: Amount> Network<T> {
     /// The source side of the minimum s-t cut closest to the source (half the work of
     /// [`Network::minimum_cuts`] for large networks).
     pub fn source_side(mut self, s: usize, t: usize, unbounded: &T) -> Vec<bool> {
+        count_passes(self.n, 1);
         if self.n < PUSH_RELABEL_FROM {
             self.max_flow(s, t, unbounded);
             self.reachable_from(s)
@@ -302,6 +319,7 @@ impl<T: Amount> Network<T> {
     /// The nodes that reach `t` in every maximum flow: the sink side of the minimum s-t cut
     /// closest to the sink.
     pub fn sink_side(mut self, s: usize, t: usize, unbounded: &T) -> Vec<bool> {
+        count_passes(self.n, 1);
         if self.n < PUSH_RELABEL_FROM {
             self.max_flow(s, t, unbounded);
             self.reaching(t)

@@ -316,6 +316,9 @@ impl<'a> Engine<'a> {
     }
 
     fn run(mut self) -> Result<Response, SimulationError> {
+        // The flow passes counted from here on are this run's (a failed run on this thread
+        // may have left some).
+        flow::take_pass_nodes();
         // At rest at t = 0: every block is undecided against the ground.
         let seeds: Vec<usize> = (0..self.n).filter(|&i| !self.fixed[i]).collect();
         self.decide_from(&seeds, &[], None)?;
@@ -1160,6 +1163,7 @@ impl<'a> Engine<'a> {
             .map(|i| 0.5 * self.mass[i] * v[i] * v[i])
             .sum();
         self.rec.stats.root_evaluations = self.count.0;
+        self.rec.stats.flow_nodes = flow::take_pass_nodes();
         self.rec.warnings =
             crate::validity::rocking_warnings(self.wall, self.topo, self.rec.peak_accel());
         let motion = self.motion.describe();

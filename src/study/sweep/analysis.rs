@@ -442,8 +442,9 @@ fn sorted(c: &Cell, f: impl Fn(&CaseRow) -> f64) -> Vec<f64> {
 
 /// When the walls come in at least three block counts (one wall cut ever finer): per motion,
 /// the response (median and 5-95 % band over friction samples), the probability of collapse with
-/// its 95 % interval, and the cost (CPU time and events per case, CPU time per event) against
-/// the number of blocks, with the power-law exponents of the cost.
+/// its 95 % interval, and the cost (CPU time and events per case, CPU time per event, the work
+/// of the exact decisions per event) against the number of blocks, with the power-law exponents
+/// of the cost.
 fn block_count(
     sweep: &Sweep,
     cells: &BTreeMap<(usize, usize), Cell>,
@@ -481,6 +482,11 @@ fn block_count(
         panel("events per case", "events", true),
         panel("CPU time per case", "CPU time (s)", true),
         panel("CPU time per event", "CPU time per event (s)", true),
+        panel(
+            "work of the exact decisions per event",
+            "blocks in decisions, flow-network nodes",
+            true,
+        ),
     ];
     let mut numbers = Vec::new();
     for (m, motion) in sweep.motions.iter().enumerate().take(4) {
@@ -528,6 +534,33 @@ fn block_count(
         add(3, &|r| r.events as f64, false);
         add(4, &|r| r.cpu_s, false);
         add(5, &|r| r.cpu_s / r.events.max(1) as f64, false);
+        if let Some(events) = charts[3].series.last_mut() {
+            events.label = label("events handled (median)");
+        }
+        // Stick-slip transitions beside the events: what a run reports, against what the
+        // integrator handled (one event can start many joints slipping).
+        charts[3].series.push(Series {
+            dashed: true,
+            ..line(
+                label("stick-slip transitions (median)"),
+                m + 4,
+                band(&|r| r.transitions as f64, 0.5),
+            )
+        });
+        // What the cost follows: the size of the groups the decisions take in, and the flows
+        // over them.
+        let per_event =
+            |f: fn(&CaseRow) -> u64| move |r: &CaseRow| f(r) as f64 / r.events.max(1) as f64;
+        charts[6].series.push(line(
+            label("blocks in decisions per event"),
+            m,
+            band(&per_event(|r| r.decision_blocks), 0.5),
+        ));
+        charts[6].series.push(line(
+            label("flow-network nodes per event"),
+            m + 4,
+            band(&per_event(|r| r.flow_nodes), 0.5),
+        ));
         let p: Vec<(f64, f64, f64, f64)> = by_count
             .iter()
             .filter_map(|c| {
@@ -574,6 +607,10 @@ fn block_count(
             "motion": motion.label,
             "cpu_exponent": power_law_exponent(&cpu),
             "events_exponent": power_law_exponent(&events),
+            "transitions_exponent": power_law_exponent(&band(&|r| r.transitions as f64, 0.5)),
+            "decision_blocks_exponent":
+                power_law_exponent(&band(&|r| r.decision_blocks as f64, 0.5)),
+            "flow_nodes_exponent": power_law_exponent(&band(&|r| r.flow_nodes as f64, 0.5)),
             "walls": by_count.iter().map(|c| {
                 let (k, n) = c.collapses();
                 json!({
@@ -588,6 +625,9 @@ fn block_count(
                     "open_joints_p50": c.median(|r| r.open_joints as f64),
                     "impacts_p50": c.median(|r| r.impacts as f64),
                     "events_p50": c.median(|r| r.events as f64),
+                    "transitions_p50": c.median(|r| r.transitions as f64),
+                    "decision_blocks_p50": c.median(|r| r.decision_blocks as f64),
+                    "flow_nodes_p50": c.median(|r| r.flow_nodes as f64),
                     "cpu_s_p50": c.median(|r| r.cpu_s),
                     "cpu_s_per_event_p50": c.median(|r| r.cpu_s / r.events.max(1) as f64),
                 })

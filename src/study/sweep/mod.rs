@@ -743,6 +743,9 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
     row.open_joints = opened;
     row.impacts = s.impacts;
     row.events = s.stats.events;
+    row.transitions = s.stick_slip_transitions;
+    row.decision_blocks = s.stats.decision_blocks;
+    row.flow_nodes = s.stats.flow_nodes;
     row.energy_input_j = s.energy.input_j;
     row.energy_residual_j = s.energy.residual_j;
     row.blocks = wall.blocks.len();

@@ -50,8 +50,18 @@ pub struct CaseRow {
     pub open_joints: usize,
     /// Impacts.
     pub impacts: u64,
-    /// Events.
+    /// Events handled by the integrator.
     pub events: u64,
+    /// Stick-slip transitions of the joints.
+    pub transitions: u64,
+    /// Blocks in the mode decisions, summed over decisions ([`Stats`]).
+    ///
+    /// [`Stats`]: crate::response::Stats
+    pub decision_blocks: u64,
+    /// Nodes of the decisions' maximum-flow passes, summed over passes ([`Stats`]).
+    ///
+    /// [`Stats`]: crate::response::Stats
+    pub flow_nodes: u64,
     /// Work of the ground motion on the blocks (J).
     pub energy_input_j: f64,
     /// Energy balance residual (J): round-off for the exact integrator, a check on every case.
@@ -84,7 +94,7 @@ pub struct BlockRow {
 }
 
 /// Columns of `cases.csv`.
-pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,cpu_s,error";
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,cpu_s,error";
 
 /// Columns of `blocks.csv`.
 pub const BLOCKS_HEADER: &str = "case,block,max_abs_u_m,final_u_m,fell";
@@ -120,6 +130,9 @@ impl CaseRow {
             self.open_joints.to_string(),
             self.impacts.to_string(),
             self.events.to_string(),
+            self.transitions.to_string(),
+            self.decision_blocks.to_string(),
+            self.flow_nodes.to_string(),
             format!("{:e}", self.energy_input_j),
             format!("{:e}", self.energy_residual_j),
             self.collapsed.to_string(),
@@ -134,8 +147,8 @@ impl CaseRow {
     /// Reads a row written by [`CaseRow::to_csv`].
     pub fn from_csv(line: &str) -> Result<CaseRow, String> {
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 25 {
-            return Err(format!("expected 25 fields, found {}", f.len()));
+        if f.len() != 28 {
+            return Err(format!("expected 28 fields, found {}", f.len()));
         }
         let num = |i: usize| -> Result<f64, String> {
             f[i].parse()
@@ -172,17 +185,20 @@ impl CaseRow {
             open_joints: int(15)? as usize,
             impacts: int(16)?,
             events: int(17)?,
-            energy_input_j: num(18)?,
-            energy_residual_j: num(19)?,
-            collapsed: match f[20] {
+            transitions: int(18)?,
+            decision_blocks: int(19)?,
+            flow_nodes: int(20)?,
+            energy_input_j: num(21)?,
+            energy_residual_j: num(22)?,
+            collapsed: match f[23] {
                 "true" => true,
                 "false" => false,
-                other => return Err(format!("field 21 `{other}` must be true or false")),
+                other => return Err(format!("field 24 `{other}` must be true or false")),
             },
-            collapse_time_s: some_num(21)?,
-            collapse_block: some_text(22),
-            cpu_s: num(23)?,
-            error: some_text(24),
+            collapse_time_s: some_num(24)?,
+            collapse_block: some_text(25),
+            cpu_s: num(26)?,
+            error: some_text(27),
         })
     }
 }
@@ -423,7 +439,10 @@ pub fn read_table<T>(
             return Err(table_error(
                 path,
                 1,
-                format!("expected the header `{header}`"),
+                format!(
+                    "expected the header `{header}` (a table written by another version of \
+                     pirqa cannot be resumed: rerun with --fresh)"
+                ),
             ))
         }
     }
