@@ -539,12 +539,13 @@ fn block_count(
         }
         // Stick-slip transitions beside the events: what a run reports, against what the
         // integrator handled (one event can start many joints slipping).
+        let transitions = band(&|r| r.transitions as f64, 0.5);
         charts[3].series.push(Series {
             dashed: true,
             ..line(
                 label("stick-slip transitions (median)"),
                 m + 4,
-                band(&|r| r.transitions as f64, 0.5),
+                transitions.clone(),
             )
         });
         // What the cost follows: the size of the groups the decisions take in, and the flows
@@ -607,7 +608,7 @@ fn block_count(
             "motion": motion.label,
             "cpu_exponent": power_law_exponent(&cpu),
             "events_exponent": power_law_exponent(&events),
-            "transitions_exponent": power_law_exponent(&band(&|r| r.transitions as f64, 0.5)),
+            "transitions_exponent": power_law_exponent(&transitions),
             "decision_blocks_exponent":
                 power_law_exponent(&band(&|r| r.decision_blocks as f64, 0.5)),
             "flow_nodes_exponent": power_law_exponent(&band(&|r| r.flow_nodes as f64, 0.5)),
