@@ -7,6 +7,7 @@
 
 #![warn(missing_docs)]
 
+pub mod clock;
 pub mod error;
 pub mod exact;
 pub mod integrate;

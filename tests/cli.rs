@@ -144,6 +144,89 @@ fn run_writes_summary_history_and_events() {
     let first: serde_json::Value = serde_json::from_str(events.lines().next().unwrap()).unwrap();
     assert_eq!(first["kind"], "slip");
     assert!(first["time_s"].is_number());
+    assert!(
+        !out.join("decisions.jsonl").exists(),
+        "the decision log only when asked for"
+    );
+}
+
+#[test]
+fn run_logs_its_decisions_when_asked() {
+    let out = temp_dir("decisions");
+    let (ok, stdout, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "5",
+        "--out",
+        out.to_str().unwrap(),
+        "--decisions",
+    ]);
+    assert!(ok, "{err}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let decisions = std::fs::read_to_string(out.join("decisions.jsonl")).unwrap();
+    let log: Vec<serde_json::Value> = decisions
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(
+        log.len() as u64,
+        summary["stats"]["mode_decisions"].as_u64().unwrap()
+    );
+    assert_eq!(log[0]["cause"], "start");
+    let wall = &log[0]["stuck_formed"];
+    assert_eq!(wall["blocks"], 5);
+    // The wall at rest holds until B3 or B5, each alone on a joint of mu 0.28, slides: a_g =
+    // 0.28 g = 2.7468 m/s2 either way (the nearest float to the exact limit).
+    assert_eq!(wall["a_g_lo_m_s2"].as_f64(), Some(-2.7468));
+    assert_eq!(wall["a_g_hi_m_s2"].as_f64(), Some(2.7468));
+    for key in [
+        "time_s",
+        "a_g_m_s2",
+        "blocks",
+        "clusters",
+        "flow_nodes",
+        "cpu_s",
+    ] {
+        assert!(log[1][key].is_number(), "{key}");
+    }
+    assert!(
+        stdout.contains("mode decisions: ") && stdout.contains("stick_limit"),
+        "{stdout}"
+    );
+    // The table's counts add up to the log.
+    let counted: u64 = stdout
+        .lines()
+        .skip_while(|l| !l.contains("mode decisions: "))
+        .skip(2)
+        .map(|l| l.split_whitespace().nth(2).unwrap().parse::<u64>().unwrap())
+        .sum();
+    assert_eq!(counted, log.len() as u64);
+
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "5",
+        "--out",
+        out.to_str().unwrap(),
+        "--method",
+        "paper",
+        "--decisions",
+    ]);
+    assert!(
+        !ok && err.contains("--decisions: only the event-driven integrator"),
+        "{err}"
+    );
 }
 
 #[test]

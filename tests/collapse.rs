@@ -12,6 +12,7 @@ fn run(wall: &Wall, motion: &Motion, duration: f64, after: AfterCollapse) -> Res
         duration_s: duration,
         output_dt_s: None,
         log_events: true,
+        log_decisions: false,
         after_collapse: after,
     };
     EventDriven::default()

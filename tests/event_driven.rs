@@ -14,6 +14,7 @@ fn run(wall: &Wall, motion: &Motion, duration: f64, output_dt: Option<f64>) -> R
         duration_s: duration,
         output_dt_s: output_dt,
         log_events: true,
+        log_decisions: false,
         after_collapse: Default::default(),
     };
     let sc = Scenario {
@@ -602,4 +603,68 @@ fn work_counters_count_the_run_alone() {
     };
     assert!(counters(strict).is_err());
     assert_eq!(counters(Params::default()).unwrap(), fresh);
+}
+
+/// The decision log adds up to the run's counters, decision by decision, and every group it
+/// says stuck to the ground holds the ground acceleration of its decision: a 105-block wall with
+/// random friction under El Centro, which meets every kind of event but a fall.
+#[test]
+fn decision_log_adds_up_to_the_run() {
+    use pirqa::response::DecisionCause;
+    let d = pirqa::wall::RunningBond::paper_wall(100)
+        .description()
+        .unwrap();
+    let wall = Wall::from_description(&d).unwrap();
+    let topo = random_friction(&wall, 2000, 2000);
+    let motion = el_centro_first_s(10, 4.0);
+    let run = |log_decisions: bool| {
+        let settings = Settings {
+            log_decisions,
+            ..Settings::summary_only(10.0)
+        };
+        let scenario = Scenario {
+            wall: &wall,
+            topology: &topo,
+            motion: &motion,
+            settings: &settings,
+        };
+        EventDriven::default().run(&scenario).unwrap()
+    };
+    let r = run(true);
+    let (log, stats) = (&r.decisions, &r.summary.stats);
+    assert_eq!(log.len() as u64, stats.mode_decisions);
+    let blocks: usize = log.iter().map(|d| d.blocks).sum();
+    assert_eq!(blocks as u64, stats.decision_blocks);
+    assert_eq!(
+        log.iter().map(|d| d.flow_nodes).sum::<u64>(),
+        stats.flow_nodes
+    );
+    assert!(stats.flow_nodes > 0);
+    assert_eq!((log[0].cause, log[0].time_s), (DecisionCause::Start, 0.0));
+    assert!(log.windows(2).all(|w| w[0].time_s <= w[1].time_s));
+    for cause in [
+        DecisionCause::StickLimit,
+        DecisionCause::Stop,
+        DecisionCause::Meet,
+        DecisionCause::Impact,
+    ] {
+        assert!(log.iter().any(|d| d.cause == cause), "{cause:?} is logged");
+    }
+    for d in log {
+        assert!(d.blocks >= 1 && d.clusters >= 1 && d.cpu_s >= 0.0);
+        if let Some(g) = &d.stuck_formed {
+            let (lo, hi) = (g.a_g_lo_m_s2, g.a_g_hi_m_s2);
+            assert!(
+                lo.is_none_or(|lo| lo <= d.a_g_m_s2) && hi.is_none_or(|hi| d.a_g_m_s2 <= hi),
+                "a group formed stuck at {} s holds a_g = {} m/s2: {g:?}",
+                d.time_s,
+                d.a_g_m_s2
+            );
+        }
+    }
+    // Asked for or not, the run is the same; the log is kept only when asked for.
+    let quiet = run(false);
+    assert!(quiet.decisions.is_empty());
+    assert_eq!(quiet.summary.stats, r.summary.stats);
+    assert_eq!(quiet.final_displacement_m, r.final_displacement_m);
 }

@@ -12,6 +12,7 @@ fn run(wall: &Wall, motion: &Motion, duration: f64) -> Response {
         duration_s: duration,
         output_dt_s: Some(0.01),
         log_events: true,
+        log_decisions: false,
         after_collapse: Default::default(),
     };
     EventDriven::default()

@@ -10,7 +10,8 @@ mod paper;
 mod run;
 mod sweep;
 
-use clap::{Parser, Subcommand};
+use clap::error::ErrorKind;
+use clap::{CommandFactory, Parser, Subcommand};
 use std::path::PathBuf;
 
 /// Exact event-driven dynamics of dry-stone block walls under earthquakes.
@@ -82,7 +83,18 @@ pub fn run() -> Result<(), pirqa::Error> {
             run,
             at,
         } => check::draw(&wall, &output, graph, run.as_deref().map(|d| (d, at))),
-        Command::Run(args) => run::run(&args),
+        Command::Run(args) => {
+            if args.decisions && args.method != run::Method::Event {
+                Cli::command()
+                    .error(
+                        ErrorKind::ArgumentConflict,
+                        "--decisions: only the event-driven integrator (--method event) decides \
+                         modes; the time-stepping baselines have no decisions to log",
+                    )
+                    .exit();
+            }
+            run::run(&args)
+        }
         Command::Motion(cmd) => motion::run(&cmd),
         Command::Bench(cmd) => bench::run(&cmd),
         Command::Sweep(args) => sweep::run(&args),

@@ -5,10 +5,11 @@ use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
 use pirqa::motion::{process, read_record, Baseline, Motion, Processing, ReadOptions, Sine};
-use pirqa::response::Response;
+use pirqa::response::{DecisionCause, DecisionRecord, Response};
 use pirqa::topology;
 use pirqa::units::{parse_acceleration, AccelUnit};
 use pirqa::Error;
+use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -181,6 +182,11 @@ pub struct RunArgs {
     /// Directory for summary.json, history.csv and events.jsonl.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Also write decisions.jsonl (event-driven only): every mode decision with what brought
+    /// it, the blocks it took in, the stuck groups it took in and formed with their limits, the
+    /// nodes of its maximum flows and its CPU time; and print where the decisions' time went.
+    #[arg(long, requires = "out")]
+    pub decisions: bool,
     /// Write only the summary, to this file.
     #[arg(long, value_name = "FILE")]
     pub summary: Option<PathBuf>,
@@ -244,6 +250,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         duration_s: duration,
         output_dt_s: args.out.as_ref().map(|_| args.output_dt),
         log_events: args.out.is_some(),
+        log_decisions: args.decisions,
         after_collapse: args.after_collapse,
     };
     let scenario = Scenario {
@@ -261,12 +268,18 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         write_file(path, &response.summary_json())?;
     }
     print_out(&terminal_summary(&response, args.out.as_deref()));
+    if args.decisions {
+        print_out(&decision_table(&response.decisions));
+    }
     Ok(())
 }
 
 pub fn write_outputs(dir: &Path, r: &Response) -> Result<(), Error> {
     write_file(&dir.join("summary.json"), &r.summary_json())?;
     write_file(&dir.join("events.jsonl"), &r.events_jsonl())?;
+    if !r.decisions.is_empty() {
+        write_file(&dir.join("decisions.jsonl"), &r.decisions_jsonl())?;
+    }
     if let Some(csv) = r.history_csv() {
         write_file(&dir.join("history.csv"), &csv)?;
     }
@@ -322,8 +335,60 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
     if let Some(dir) = out {
         let _ = writeln!(
             t,
-            "  wrote {}/summary.json, history.csv, events.jsonl",
-            dir.display()
+            "  wrote {}/summary.json, history.csv, events.jsonl{}",
+            dir.display(),
+            if r.decisions.is_empty() {
+                ""
+            } else {
+                ", decisions.jsonl"
+            }
+        );
+    }
+    t
+}
+
+/// Where the mode decisions' time went: per cause, and per size of what they took in.
+fn decision_table(decisions: &[DecisionRecord]) -> String {
+    let mut rows: BTreeMap<(DecisionCause, usize), (u64, u64, u64, f64)> = BTreeMap::new();
+    for d in decisions {
+        // Sizes by decade: 1-9, 10-99, ... blocks.
+        let decade = d.blocks.max(1).ilog10() as usize;
+        let row = rows.entry((d.cause, decade)).or_default();
+        row.0 += 1;
+        row.1 += d.blocks as u64;
+        row.2 += d.flow_nodes;
+        row.3 += d.cpu_s;
+    }
+    let total_s: f64 = decisions.iter().map(|d| d.cpu_s).sum();
+    let mut t = format!(
+        "  mode decisions: {}, {:.1} ms of CPU\n  {:<12} {:>14} {:>10} {:>13} {:>13} {:>10} {:>6}\n",
+        decisions.len(),
+        1e3 * total_s,
+        "cause",
+        "blocks in",
+        "decisions",
+        "blocks, sum",
+        "flow nodes",
+        "CPU ms",
+        "share"
+    );
+    for ((cause, decade), (n, blocks, nodes, cpu_s)) in &rows {
+        let name = serde_json::to_value(cause).expect("a cause serialises");
+        let sizes = format!(
+            "{}-{}",
+            10usize.pow(*decade as u32),
+            10usize.pow(*decade as u32 + 1) - 1
+        );
+        let _ = writeln!(
+            t,
+            "  {:<12} {:>14} {:>10} {:>13} {:>13} {:>10.1} {:>5.1}%",
+            name.as_str().unwrap_or_default(),
+            sizes,
+            n,
+            blocks,
+            nodes,
+            1e3 * cpu_s,
+            100.0 * cpu_s / total_s.max(f64::MIN_POSITIVE)
         );
     }
     t

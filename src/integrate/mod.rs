@@ -32,6 +32,8 @@ pub struct Settings {
     pub output_dt_s: Option<f64>,
     /// Keep the event log.
     pub log_events: bool,
+    /// Keep the log of mode decisions (event-driven only: what each took in and cost).
+    pub log_decisions: bool,
     /// What to do after a collapse.
     pub after_collapse: AfterCollapse,
 }
@@ -43,6 +45,7 @@ impl Settings {
             duration_s,
             output_dt_s: None,
             log_events: false,
+            log_decisions: false,
             after_collapse: AfterCollapse::Stop,
         }
     }

@@ -1,6 +1,7 @@
 //! What a run produces, whatever the integrator: the summary (`summary.json`), the history of
-//! displacements and velocities (`history.csv`), and the event log (`events.jsonl`). Integrators
-//! feed a [`Recorder`]; nothing here knows how the numbers were computed.
+//! displacements and velocities (`history.csv`), the event log (`events.jsonl`), and, from the
+//! event-driven integrator when asked, the log of its mode decisions (`decisions.jsonl`).
+//! Integrators feed a [`Recorder`]; nothing here knows how the numbers were computed.
 
 pub mod saved;
 
@@ -50,6 +51,70 @@ pub struct EventRecord {
     /// Velocities of the two blocks (left, right) just after an impact (m/s).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub after_m_s: Option<[f64; 2]>,
+}
+
+/// What brought the event-driven integrator to decide the mode again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DecisionCause {
+    /// The wall at rest at t = 0.
+    Start,
+    /// The ground acceleration reached a limit of a cluster stuck to the ground.
+    StickLimit,
+    /// A sliding cluster came to rest relative to the ground.
+    Stop,
+    /// Two sliding clusters reached the same velocity.
+    Meet,
+    /// Faces closed at zero approach speed.
+    Touch,
+    /// Faces collided.
+    Impact,
+    /// A series of impacts with e < 1 accumulated.
+    Zeno,
+    /// A sliding cluster whose friction forces a decision next to it changed.
+    Split,
+    /// A block fell (`--after-collapse continue`).
+    Fall,
+}
+
+/// A cluster stuck to the ground, with the limits of the ground acceleration it holds within
+/// (m/s2, at unit vertical load factor; `None`: no ground acceleration that way moves it).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StuckGroup {
+    /// Its blocks.
+    pub blocks: usize,
+    /// Lower limit of a_g (m/s2).
+    pub a_g_lo_m_s2: Option<f64>,
+    /// Upper limit of a_g (m/s2).
+    pub a_g_hi_m_s2: Option<f64>,
+}
+
+/// One mode decision of the event-driven integrator: what it took in, what it cost, what it
+/// made. Its counts add up to the run's `stats` (`mode_decisions`, `decision_blocks`,
+/// `flow_nodes`); `cpu_s` is measured, so it differs from run to run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DecisionRecord {
+    /// Time (s).
+    pub time_s: f64,
+    /// What brought it.
+    pub cause: DecisionCause,
+    /// Ground acceleration (m/s2).
+    pub a_g_m_s2: f64,
+    /// Blocks it took in: the clusters joined to the event by joints at equal velocities.
+    pub blocks: usize,
+    /// The largest cluster stuck to the ground among those it took in, as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stuck_taken_in: Option<StuckGroup>,
+    /// Clusters it formed.
+    pub clusters: usize,
+    /// The largest cluster stuck to the ground it formed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stuck_formed: Option<StuckGroup>,
+    /// Nodes of its maximum-flow passes, summed over passes.
+    pub flow_nodes: u64,
+    /// CPU time of the calling thread (s), from gathering the blocks to scheduling the new
+    /// clusters' events; the decisions it sets off for split clusters are records of their own.
+    pub cpu_s: f64,
 }
 
 /// Per-block results.
@@ -185,6 +250,8 @@ pub struct Response {
     pub history: Option<History>,
     /// Logged events.
     pub events: Vec<EventRecord>,
+    /// Logged mode decisions (event-driven, when asked for; otherwise empty).
+    pub decisions: Vec<DecisionRecord>,
     /// Final displacement of each block (m), fallen ones at their last position.
     pub final_displacement_m: Vec<f64>,
 }
@@ -202,6 +269,8 @@ pub struct Recorder {
     /// Logged events.
     pub events: Vec<EventRecord>,
     log_events: bool,
+    /// Logged mode decisions, when the integrator keeps them.
+    pub decisions: Option<Vec<DecisionRecord>>,
     /// Impacts counted.
     pub impacts: u64,
     /// Touches counted.
@@ -251,6 +320,7 @@ impl Recorder {
             history: history.then(History::default),
             events: Vec::new(),
             log_events,
+            decisions: None,
             impacts: 0,
             touches: 0,
             zeno: 0,
@@ -432,9 +502,21 @@ impl Recorder {
             },
             history: self.history,
             events: self.events,
+            decisions: self.decisions.unwrap_or_default(),
             final_displacement_m: u.to_vec(),
         }
     }
+}
+
+/// One JSON object per line (the records hold only numbers, strings and flags, so each
+/// serialises).
+fn jsonl<T: Serialize>(records: &[T]) -> String {
+    let mut s = String::new();
+    for r in records {
+        s.push_str(&serde_json::to_string(r).expect("record serialises"));
+        s.push('\n');
+    }
+    s
 }
 
 impl Response {
@@ -445,12 +527,12 @@ impl Response {
 
     /// `events.jsonl` text: one JSON object per line.
     pub fn events_jsonl(&self) -> String {
-        let mut s = String::new();
-        for e in &self.events {
-            s.push_str(&serde_json::to_string(e).expect("event serialises"));
-            s.push('\n');
-        }
-        s
+        jsonl(&self.events)
+    }
+
+    /// `decisions.jsonl` text: one JSON object per mode decision.
+    pub fn decisions_jsonl(&self) -> String {
+        jsonl(&self.decisions)
     }
 
     /// `history.csv` text, or `None` without a history.

@@ -105,6 +105,7 @@ pub fn run(
         duration_s: case.duration_s,
         output_dt_s,
         log_events: true,
+        log_decisions: false,
         after_collapse: Default::default(),
     };
     integrator.run(&Scenario {

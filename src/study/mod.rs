@@ -1,6 +1,5 @@
 //! Studies: many runs and what they show. Each module owns one kind of study.
 
-pub mod clock;
 pub mod failures;
 pub mod paper;
 pub mod stats;

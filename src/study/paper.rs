@@ -436,6 +436,7 @@ fn record_figures(
             duration_s: record.duration_s(),
             output_dt_s: Some(0.02),
             log_events: false,
+            log_decisions: false,
             after_collapse: AfterCollapse::Continue,
         };
         let r: Response = EventDriven::default().run(&Scenario {

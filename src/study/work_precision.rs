@@ -96,6 +96,7 @@ fn settings(duration: f64) -> Settings {
         duration_s: duration,
         output_dt_s: Some(OUTPUT_DT_S),
         log_events: false,
+        log_decisions: false,
         after_collapse: Default::default(),
     }
 }

@@ -224,6 +224,7 @@ fn chart_points(cases: &[work_precision::Case], out: &str) {
             duration_s: case.duration_s,
             output_dt_s: Some(work_precision::OUTPUT_DT_S),
             log_events: false,
+            log_decisions: false,
             after_collapse: Default::default(),
         };
         let sc = Scenario {

@@ -4,10 +4,12 @@
 
 use super::cluster::{Cluster, Motion, Slide};
 use super::decide::{End, Group, Lex, Problem};
+use super::flow;
 use super::{Engine, NONE};
+use crate::clock::ThreadClock;
 use crate::error::SimulationError;
 use crate::exact::Q;
-use crate::response::EventKind;
+use crate::response::{DecisionCause as Cause, DecisionRecord, EventKind, StuckGroup};
 use crate::sets::DisjointSets;
 use crate::topology::Base;
 use rustc_hash::FxHashMap;
@@ -160,14 +162,21 @@ impl Engine<'_> {
     /// Re-decides the mode of the clusters of `seeds` and of every cluster joined to them by a
     /// joint with zero relative velocity. `snap` overrides block velocities (set to exactly zero at
     /// a stop, to a common value where two clusters meet, after an impact); `theta` is the exact
-    /// ground acceleration when the event is a stick threshold.
+    /// ground acceleration when the event is a stick threshold; `cause` goes into the decision
+    /// log.
     pub(super) fn decide_from(
         &mut self,
         seeds: &[usize],
         snap: &[(usize, f64)],
         theta: Option<Q>,
+        cause: Cause,
     ) -> Result<(), SimulationError> {
         self.rec.stats.mode_decisions += 1;
+        let log_from = self
+            .rec
+            .decisions
+            .is_some()
+            .then(|| (ThreadClock::start(), flow::pass_nodes()));
         let t = self.t;
 
         // 1. The component: whole clusters joined through joints with equal velocities.
@@ -267,6 +276,9 @@ impl Engine<'_> {
         blocks.sort_unstable();
         self.rec.stats.decision_blocks += blocks.len() as u64;
         old_clusters.sort_unstable();
+        let taken_in = log_from
+            .as_ref()
+            .map(|_| (blocks.len(), self.largest_stuck(&old_clusters)));
         for (k, &b) in blocks.iter().enumerate() {
             local.insert(b, k);
         }
@@ -624,6 +636,22 @@ impl Engine<'_> {
             self.refresh(k, pushed.binary_search(&k).is_ok());
         }
         self.schedule(new_clusters.iter().chain(&neighbours).copied());
+        if let (Some((clock, nodes_from)), Some((blocks, stuck_taken_in))) = (log_from, taken_in) {
+            let record = DecisionRecord {
+                time_s: t,
+                cause,
+                a_g_m_s2: self.seg.accel(self.s()),
+                blocks,
+                stuck_taken_in,
+                clusters: new_clusters.len(),
+                stuck_formed: self.largest_stuck(&new_clusters),
+                flow_nodes: flow::pass_nodes() - nodes_from,
+                cpu_s: clock.seconds(),
+            };
+            if let Some(log) = &mut self.rec.decisions {
+                log.push(record);
+            }
+        }
 
         // 8. A sliding cluster of several blocks whose friction forces changed may have to split:
         //    re-decide it (a stuck one has its new stick interval, which is checked at once).
@@ -631,10 +659,25 @@ impl Engine<'_> {
             let blocks = &self.clusters[k].blocks;
             if blocks.len() > 1 && self.clusters[k].slide().is_some() {
                 let seeds = blocks.clone();
-                self.decide_from(&seeds, &[], None)?;
+                self.decide_from(&seeds, &[], None, Cause::Split)?;
             }
         }
         Ok(())
+    }
+
+    /// The largest of these clusters that is stuck to the ground, for the decision log.
+    fn largest_stuck(&self, clusters: &[usize]) -> Option<StuckGroup> {
+        clusters
+            .iter()
+            .filter_map(|&k| match &self.clusters[k].motion {
+                Motion::Stuck { lo_q, hi_q, .. } => Some(StuckGroup {
+                    blocks: self.clusters[k].blocks.len(),
+                    a_g_lo_m_s2: lo_q.as_ref().map(Q::to_f64),
+                    a_g_hi_m_s2: hi_q.as_ref().map(Q::to_f64),
+                }),
+                Motion::Sliding(_) => None,
+            })
+            .max_by_key(|g| g.blocks)
     }
 
     /// Velocities within round-off of each other are equal.
@@ -1126,7 +1169,7 @@ impl Engine<'_> {
                 self.dir[s] = 0;
             }
         }
-        self.decide_from(&live, &snap, None)
+        self.decide_from(&live, &snap, None, Cause::Fall)
     }
 }
 

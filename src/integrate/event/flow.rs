@@ -39,6 +39,12 @@ pub fn take_pass_nodes() -> u64 {
     PASS_NODES.with(|c| c.replace(0))
 }
 
+/// The nodes of the maximum-flow passes run on this thread since the last
+/// [`take_pass_nodes`], the count left as it is.
+pub fn pass_nodes() -> u64 {
+    PASS_NODES.with(|c| c.get())
+}
+
 fn count_passes(nodes: usize, passes: u64) {
     PASS_NODES.with(|c| c.set(c.get() + nodes as u64 * passes));
 }

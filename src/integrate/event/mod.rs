@@ -19,7 +19,7 @@ use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::integrate::{AfterCollapse, Integrator, Scenario};
 use crate::motion::{Motion, Segment};
-use crate::response::{Collapse, EventKind, Recorder, Response};
+use crate::response::{Collapse, DecisionCause as Cause, EventKind, Recorder, Response};
 use crate::topology::{Base, Topology};
 use crate::wall::Wall;
 use cluster::{Cluster, Motion as ClusterMotion};
@@ -257,6 +257,13 @@ impl<'a> Engine<'a> {
             .map(|b| b.right().to_f64().abs().max(b.top().to_f64()))
             .fold(1.0, f64::max);
         let seg = sc.motion.segment_at(0.0);
+        let mut rec = Recorder::new(
+            wall,
+            topo,
+            sc.settings.output_dt_s.is_some(),
+            sc.settings.log_events,
+        );
+        rec.decisions = sc.settings.log_decisions.then(Vec::new);
         Ok(Engine {
             wall,
             topo,
@@ -294,12 +301,7 @@ impl<'a> Engine<'a> {
             purge_at: PURGE_FROM,
             seq: 0,
             version: 0,
-            rec: Recorder::new(
-                wall,
-                topo,
-                sc.settings.output_dt_s.is_some(),
-                sc.settings.log_events,
-            ),
+            rec,
             output_dt: sc.settings.output_dt_s,
             output_k: 0,
             instant: (f64::NEG_INFINITY, 0),
@@ -321,7 +323,7 @@ impl<'a> Engine<'a> {
         flow::take_pass_nodes();
         // At rest at t = 0: every block is undecided against the ground.
         let seeds: Vec<usize> = (0..self.n).filter(|&i| !self.fixed[i]).collect();
-        self.decide_from(&seeds, &[], None)?;
+        self.decide_from(&seeds, &[], None, Cause::Start)?;
         loop {
             let seg_end = self.seg.t1.min(self.t_end);
             match self.pop_until(seg_end) {
@@ -762,12 +764,12 @@ impl<'a> Engine<'a> {
                     (ag - at).abs() <= ROUNDOFF_ULPS * f64::EPSILON * (ag.abs() + at.abs())
                 });
                 let seeds = self.clusters[k].blocks.clone();
-                self.decide_from(&seeds, &[], snap)?;
+                self.decide_from(&seeds, &[], snap, Cause::StickLimit)?;
             }
             Ev::Stop { k, .. } => {
                 let seeds = self.clusters[k].blocks.clone();
                 let snap: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, 0.0)).collect();
-                self.decide_from(&seeds, &snap, None)?;
+                self.decide_from(&seeds, &snap, None, Cause::Stop)?;
             }
             Ev::Meet { a, b, .. } => {
                 let (ma, mb) = (self.clusters[a].mass, self.clusters[b].mass);
@@ -779,7 +781,7 @@ impl<'a> Engine<'a> {
                     .copied()
                     .collect();
                 let snap: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, v)).collect();
-                self.decide_from(&seeds, &snap, None)?;
+                self.decide_from(&seeds, &snap, None, Cause::Meet)?;
             }
             Ev::GroundBound { k, c, .. } => self.constraint_reached(k, None, c)?,
             Ev::PairBound { a, b, c, .. } => self.constraint_reached(a, Some(b), c)?,
@@ -852,7 +854,7 @@ impl<'a> Engine<'a> {
             .filter(|&&i| !self.grounded(i))
             .map(|&i| (i, v))
             .collect();
-        self.decide_from(&seeds, &snap, None)
+        self.decide_from(&seeds, &snap, None, Cause::Touch)
     }
 
     fn joint_label(&self, j: usize) -> String {
@@ -975,7 +977,7 @@ impl<'a> Engine<'a> {
                 );
                 self.rec.zeno += 1;
                 let v = common.to_f64();
-                return self.decide_from(&[l, r], &[(l, v), (r, v)], None);
+                return self.decide_from(&[l, r], &[(l, v), (r, v)], None, Cause::Zeno);
             }
         }
         self.rec.energy.impact_loss_j += loss.to_f64();
@@ -991,7 +993,7 @@ impl<'a> Engine<'a> {
             }
             seeds.push(*blk);
         }
-        self.decide_from(&seeds, &snap, None)
+        self.decide_from(&seeds, &snap, None, Cause::Impact)
     }
 
     /// Zeno: after an impact with 0 < e < 1 between two blocks that slide alone under forces the

@@ -6,6 +6,7 @@
 pub mod analysis;
 pub mod store;
 
+use crate::clock::ThreadClock;
 use crate::error::{Error, MotionError, SimulationError, WallError};
 use crate::exact::Q;
 use crate::integrate::event::EventDriven;
@@ -14,7 +15,6 @@ use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
 use crate::response::Summary;
 use crate::rng::Rng;
-use crate::study::clock::ThreadClock;
 use crate::topology::Topology;
 use crate::units::parse_acceleration;
 use crate::wall::{RunningBond, Wall, WallDescription};
@@ -407,6 +407,7 @@ impl Sweep {
             duration_s: motion.duration_s,
             output_dt_s: Some(output_dt_s),
             log_events: true,
+            log_decisions: false,
             after_collapse: Default::default(),
         };
         Ok(EventDriven::default().run(&Scenario {

@@ -1,5 +1,6 @@
-//! The CPU time of the calling thread: what one case of a sweep costs, whatever else shares
-//! the cores (wall-clock time would count the other threads' work when cases run in parallel).
+//! The CPU time of the calling thread: what one case of a sweep or one mode decision costs,
+//! whatever else shares the cores (wall-clock time would count the other threads' work when
+//! cases run in parallel).
 
 /// A stopwatch of the calling thread's CPU time (wall-clock time where the platform has no
 /// per-thread clock).
