@@ -227,6 +227,22 @@ fn run_logs_its_decisions_when_asked() {
         !ok && err.contains("--decisions: only the event-driven integrator"),
         "{err}"
     );
+
+    // Run again into the same directory without the log: the earlier run's log goes.
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(!out.join("decisions.jsonl").exists());
 }
 
 #[test]

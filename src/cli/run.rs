@@ -277,8 +277,15 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
 pub fn write_outputs(dir: &Path, r: &Response) -> Result<(), Error> {
     write_file(&dir.join("summary.json"), &r.summary_json())?;
     write_file(&dir.join("events.jsonl"), &r.events_jsonl())?;
+    let decisions = dir.join("decisions.jsonl");
     if !r.decisions.is_empty() {
-        write_file(&dir.join("decisions.jsonl"), &r.decisions_jsonl())?;
+        write_file(&decisions, &r.decisions_jsonl())?;
+    } else if decisions.exists() {
+        // A log from an earlier run would pass for this one's.
+        std::fs::remove_file(&decisions).map_err(|source| Error::Io {
+            path: decisions.clone(),
+            source,
+        })?;
     }
     if let Some(csv) = r.history_csv() {
         write_file(&dir.join("history.csv"), &csv)?;
