@@ -82,10 +82,9 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
     d
 }
 
-#[test]
-fn run_writes_summary_history_and_events() {
-    let out = temp_dir("run");
-    let (ok, stdout, err) = pirqa(&[
+/// `pirqa run` on the paper's variable wall, 400 gal at 1 Hz for 5 s, into `out`.
+fn run_five_block(out: &std::path::Path, extra: &[&str]) -> (bool, String, String) {
+    let mut args = vec![
         "run",
         "walls/five-block-variable.ron",
         "--sine",
@@ -96,7 +95,15 @@ fn run_writes_summary_history_and_events() {
         "5",
         "--out",
         out.to_str().unwrap(),
-    ]);
+    ];
+    args.extend(extra);
+    pirqa(&args)
+}
+
+#[test]
+fn run_writes_summary_history_and_events() {
+    let out = temp_dir("run");
+    let (ok, stdout, err) = run_five_block(&out, &[]);
     assert!(ok, "{err}");
     assert!(
         stdout.contains("B3") && stdout.contains("residual"),
@@ -153,19 +160,7 @@ fn run_writes_summary_history_and_events() {
 #[test]
 fn run_logs_its_decisions_when_asked() {
     let out = temp_dir("decisions");
-    let (ok, stdout, err) = pirqa(&[
-        "run",
-        "walls/five-block-variable.ron",
-        "--sine",
-        "400gal",
-        "--freq",
-        "1",
-        "--duration",
-        "5",
-        "--out",
-        out.to_str().unwrap(),
-        "--decisions",
-    ]);
+    let (ok, stdout, err) = run_five_block(&out, &["--decisions"]);
     assert!(ok, "{err}");
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
@@ -208,39 +203,14 @@ fn run_logs_its_decisions_when_asked() {
         .sum();
     assert_eq!(counted, log.len() as u64);
 
-    let (ok, _, err) = pirqa(&[
-        "run",
-        "walls/five-block-variable.ron",
-        "--sine",
-        "400gal",
-        "--freq",
-        "1",
-        "--duration",
-        "5",
-        "--out",
-        out.to_str().unwrap(),
-        "--method",
-        "paper",
-        "--decisions",
-    ]);
+    let (ok, _, err) = run_five_block(&out, &["--method", "paper", "--decisions"]);
     assert!(
         !ok && err.contains("--decisions: only the event-driven integrator"),
         "{err}"
     );
 
     // Run again into the same directory without the log: the earlier run's log goes.
-    let (ok, _, err) = pirqa(&[
-        "run",
-        "walls/five-block-variable.ron",
-        "--sine",
-        "400gal",
-        "--freq",
-        "1",
-        "--duration",
-        "5",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (ok, _, err) = run_five_block(&out, &[]);
     assert!(ok, "{err}");
     assert!(!out.join("decisions.jsonl").exists());
 }

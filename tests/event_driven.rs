@@ -566,17 +566,23 @@ fn a_sliding_cluster_splits_when_an_impact_reverses_the_friction_on_it() {
     );
 }
 
-/// The work counters are the run's own: a run that failed part-way on the same thread, after
-/// flows of its own, leaves nothing in them.
-#[test]
-fn work_counters_count_the_run_alone() {
-    use pirqa::integrate::event::Params;
+/// The paper's wall cut into 105 blocks with random friction (mu 0.2-0.4), and the first 10 s
+/// of El Centro at 4 m/s2: flows, impacts and every kind of decision.
+fn shaken_running_bond() -> (Wall, Topology, Motion) {
     let d = pirqa::wall::RunningBond::paper_wall(100)
         .description()
         .unwrap();
     let wall = Wall::from_description(&d).unwrap();
     let topo = random_friction(&wall, 2000, 2000);
-    let motion = el_centro_first_s(10, 4.0);
+    (wall, topo, el_centro_first_s(10, 4.0))
+}
+
+/// The work counters are the run's own: a run that failed part-way on the same thread, after
+/// flows of its own, leaves nothing in them.
+#[test]
+fn work_counters_count_the_run_alone() {
+    use pirqa::integrate::event::Params;
+    let (wall, topo, motion) = shaken_running_bond();
     let settings = Settings::summary_only(10.0);
     let scenario = Scenario {
         wall: &wall,
@@ -611,12 +617,7 @@ fn work_counters_count_the_run_alone() {
 #[test]
 fn decision_log_adds_up_to_the_run() {
     use pirqa::response::DecisionCause;
-    let d = pirqa::wall::RunningBond::paper_wall(100)
-        .description()
-        .unwrap();
-    let wall = Wall::from_description(&d).unwrap();
-    let topo = random_friction(&wall, 2000, 2000);
-    let motion = el_centro_first_s(10, 4.0);
+    let (wall, topo, motion) = shaken_running_bond();
     let run = |log_decisions: bool| {
         let settings = Settings {
             log_decisions,
