@@ -87,6 +87,11 @@ pub struct StuckGroup {
     pub a_g_lo_m_s2: Option<f64>,
     /// Upper limit of a_g (m/s2).
     pub a_g_hi_m_s2: Option<f64>,
+    /// The lower limit is only a bound from inside, kept from a larger group and worked out
+    /// when a_g reaches it (the limit itself lies at it or beyond).
+    pub lo_is_bound: bool,
+    /// The same for the upper limit.
+    pub hi_is_bound: bool,
 }
 
 /// One mode decision of the event-driven integrator: what it took in, what it cost, what it

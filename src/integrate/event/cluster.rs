@@ -24,6 +24,9 @@ pub enum Motion {
         lo_q: Option<Q>,
         /// Exact upper limit.
         hi_q: Option<Q>,
+        /// Per side ([lo, hi]): the limit is only a bound from inside, worked out exactly when
+        /// a_g reaches it (`decide::Stick::bound_only`).
+        bound_only: [bool; 2],
     },
     /// Sliding with constant absolute acceleration.
     Sliding(Slide),

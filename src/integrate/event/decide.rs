@@ -196,6 +196,18 @@ impl Problem {
     /// themselves and with the ground. Joints to other nodes must not exist (callers split along
     /// the pieces of the joint graph).
     pub fn restrict(&self, nodes: &[usize]) -> Problem {
+        self.sub_problem(nodes, false)
+    }
+
+    /// The sub-problem of `nodes` (renumbered in the order given) with every other node held
+    /// as the ground: their joints to other nodes join them to the ground, their faces against
+    /// other nodes are dropped (a bound on the sub-problem's stick interval from inside, as
+    /// `Engine::kept_limits` needs).
+    pub fn with_ground(&self, nodes: &[usize]) -> Problem {
+        self.sub_problem(nodes, true)
+    }
+
+    fn sub_problem(&self, nodes: &[usize], others_are_ground: bool) -> Problem {
         let mut index = vec![usize::MAX; self.n()];
         for (k, &i) in nodes.iter().enumerate() {
             index[i] = k;
@@ -204,14 +216,18 @@ impl Problem {
             End::Ground => Some(End::Ground),
             End::Node(i) => (index[i] != usize::MAX).then(|| End::Node(index[i])),
         };
+        let joint = |e: End| map(e).or(others_are_ground.then_some(End::Ground));
         Problem {
             mass: nodes.iter().map(|&i| self.mass[i].clone()).collect(),
             external: nodes.iter().map(|&i| self.external[i].clone()).collect(),
             friction: self
                 .friction
                 .iter()
-                .filter(|(i, _, _)| index[*i] != usize::MAX)
-                .filter_map(|(i, j, f)| Some((index[*i], map(*j)?, f.clone())))
+                .filter_map(|(i, j, f)| match (joint(End::Node(*i))?, joint(*j)?) {
+                    (End::Ground, End::Ground) => None,
+                    (End::Node(a), b) => Some((a, b, f.clone())),
+                    (End::Ground, End::Node(b)) => Some((b, End::Ground, f.clone())),
+                })
                 .collect(),
             contacts: self
                 .contacts
@@ -634,9 +650,9 @@ impl Problem {
             0 => ground.0[2].signum(),
             rate => rate,
         };
-        let (leaving, up) = if rising > 0 && stick.hi.as_ref() == Some(a0) {
+        let (leaving, up) = if rising > 0 && stick.hi.as_ref() == Some(a0) && !stick.bound_only[1] {
             (stick.leaving_hi.as_ref()?, false)
-        } else if rising < 0 && stick.lo.as_ref() == Some(a0) {
+        } else if rising < 0 && stick.lo.as_ref() == Some(a0) && !stick.bound_only[0] {
             (stick.leaving_lo.as_ref()?, true)
         } else {
             return None;
@@ -1027,15 +1043,30 @@ impl Problem {
     /// changed one cut confirms it instead of several finding it again. Problems of at most
     /// [`ENUMERATE_UP_TO`] blocks try every set instead.
     pub fn stick_interval(&self, hints: &[Vec<usize>]) -> Stick {
-        self.stick_interval_by(hints, ENUMERATE_UP_TO)
+        self.stick_sides(hints, [true, true])
     }
 
-    /// [`Problem::stick_interval`], trying every set for problems of at most `enumerate_up_to`
+    /// [`Problem::stick_interval`] for the sides `want` ([lo, hi]) only: a side not wanted comes
+    /// back as no limit, for the caller to fill in.
+    pub fn stick_sides(&self, hints: &[Vec<usize>], want: [bool; 2]) -> Stick {
+        self.stick_sides_by(hints, want, ENUMERATE_UP_TO)
+    }
+
+    /// [`Problem::stick_sides`], trying every set for problems of at most `enumerate_up_to`
     /// blocks (tests pin the search with 0).
-    fn stick_interval_by(&self, hints: &[Vec<usize>], enumerate_up_to: usize) -> Stick {
+    fn stick_sides_by(
+        &self,
+        hints: &[Vec<usize>],
+        want: [bool; 2],
+        enumerate_up_to: usize,
+    ) -> Stick {
         let neg: Vec<Q> = self.external.iter().map(|e| -e).collect();
-        let hi = self.min_ratio(&self.external, Side::Lower, hints, enumerate_up_to);
-        let lo = self.min_ratio(&neg, Side::Upper, hints, enumerate_up_to);
+        let hi = want[1]
+            .then(|| self.min_ratio(&self.external, Side::Lower, hints, enumerate_up_to))
+            .flatten();
+        let lo = want[0]
+            .then(|| self.min_ratio(&neg, Side::Upper, hints, enumerate_up_to))
+            .flatten();
         let mut breaking = Vec::new();
         let (mut leaving_lo, mut leaving_hi) = (None, None);
         let hi = hi.map(|(r, set, leaving)| {
@@ -1054,6 +1085,7 @@ impl Problem {
             breaking,
             leaving_lo,
             leaving_hi,
+            bound_only: [false, false],
         }
     }
 
@@ -1286,7 +1318,7 @@ enum Held {
 }
 
 /// Where blocks stuck to the ground stop being stuck ([`Problem::stick_interval`]).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Stick {
     /// The lowest ground acceleration they stay stuck at (m/s2); `None`: no limit.
     pub lo: Option<Q>,
@@ -1299,6 +1331,10 @@ pub struct Stick {
     pub leaving_lo: Option<Vec<usize>>,
     /// The same for a_g rising through `hi`.
     pub leaving_hi: Option<Vec<usize>>,
+    /// Per side ([lo, hi]): the limit is a bound from inside that a change of the blocks could
+    /// not have narrowed, kept instead of worked out again (the exact limit lies at it or
+    /// beyond); it is worked out when a_g reaches it.
+    pub bound_only: [bool; 2],
 }
 
 /// A problem's joint capacities, one side's external forces and its masses as integers over
@@ -1722,10 +1758,10 @@ mod tests {
             five_block([0.35, 0.2, 0.5, 0.1, 0.4, 0.3]),
         ] {
             // The search with minimum cuts (small problems would try every set instead).
-            let plain = p.stick_interval_by(&[], 0);
+            let plain = p.stick_sides_by(&[], [true, true], 0);
             for mask in 1..32usize {
                 let hint: Vec<usize> = (0..5).filter(|i| mask >> i & 1 == 1).collect();
-                let hinted = p.stick_interval_by(&[hint, vec![]], 0);
+                let hinted = p.stick_sides_by(&[hint, vec![]], [true, true], 0);
                 assert_eq!((&hinted.lo, &hinted.hi), (&plain.lo, &plain.hi), "{mask}");
                 let sets: Vec<&Vec<usize>> = hinted.breaking.iter().collect();
                 assert_eq!(sets.len(), 2);
@@ -1975,7 +2011,7 @@ mod tests {
         fn stick_intervals_are_the_weakest_sets(p in abutted_problem()) {
             // Both ways: every set tried in integers, and the search with minimum cuts.
             let interval = |p: &Problem, enumerate_up_to: usize| {
-                let Stick { lo, hi, .. } = p.stick_interval_by(&[], enumerate_up_to);
+                let Stick { lo, hi, .. } = p.stick_sides_by(&[], [true, true], enumerate_up_to);
                 (lo, hi)
             };
             let want = stick_by_enumeration(&p);
@@ -1995,7 +2031,7 @@ mod tests {
         /// else the shortcut declines.
         #[test]
         fn decisions_past_a_stick_limit_need_no_cut(p in abutted_problem()) {
-            let stick = p.stick_interval_by(&[], 0);
+            let stick = p.stick_sides_by(&[], [true, true], 0);
             let point = matches!((&stick.lo, &stick.hi), (Some(lo), Some(hi)) if lo >= hi);
             for (limit, outward, leaving) in [
                 (&stick.hi, 1, &stick.leaving_hi),

@@ -3,7 +3,7 @@
 //! friction forces changed.
 
 use super::cluster::{Cluster, Motion, Slide};
-use super::decide::{End, Group, Lex, Problem};
+use super::decide::{End, Group, Lex, Problem, Stick};
 use super::flow;
 use super::{Engine, NONE};
 use crate::clock::ThreadClock;
@@ -473,8 +473,7 @@ impl Engine<'_> {
             }
             let mass_q: Q = members.iter().map(|&i| self.mass_q[i].clone()).sum();
             let motion = if g.grounded {
-                let (lo_q, hi_q) = intervals[g_idx].clone().unwrap_or((None, None));
-                stuck(lo_q, hi_q)
+                stuck(intervals[g_idx].clone().unwrap_or_default())
             } else {
                 let v = v_now[g.nodes[0]];
                 Motion::Sliding(Slide::formed(&self.seg, self.t, v, g.accel.clone()))
@@ -670,10 +669,17 @@ impl Engine<'_> {
         clusters
             .iter()
             .filter_map(|&k| match &self.clusters[k].motion {
-                Motion::Stuck { lo_q, hi_q, .. } => Some(StuckGroup {
+                Motion::Stuck {
+                    lo_q,
+                    hi_q,
+                    bound_only,
+                    ..
+                } => Some(StuckGroup {
                     blocks: self.clusters[k].blocks.len(),
                     a_g_lo_m_s2: lo_q.as_ref().map(Q::to_f64),
                     a_g_hi_m_s2: hi_q.as_ref().map(Q::to_f64),
+                    lo_is_bound: bound_only[0],
+                    hi_is_bound: bound_only[1],
                 }),
                 Motion::Sliding(_) => None,
             })
@@ -809,35 +815,39 @@ impl Engine<'_> {
 
     /// Constant external friction on each block of cluster k from joints that slide.
     fn external_forces(&self, k: usize) -> Vec<Q> {
-        let members = &self.clusters[k].blocks;
-        let mut out = Vec::with_capacity(members.len());
-        for &i in members {
-            let mut e = Q::zero();
-            for &s in &self.topo.below[i] {
-                if self.live_support(s.0) && self.dir[s.0] != 0 {
-                    e = if self.dir[s.0] > 0 {
-                        e - &self.cap_q[s.0]
-                    } else {
-                        e + &self.cap_q[s.0]
-                    };
-                }
-            }
-            for &s in &self.topo.above[i] {
-                if self.live_support(s.0) && self.dir[s.0] != 0 {
-                    e = if self.dir[s.0] > 0 {
-                        e + &self.cap_q[s.0]
-                    } else {
-                        e - &self.cap_q[s.0]
-                    };
-                }
-            }
-            out.push(e);
-        }
-        out
+        self.clusters[k]
+            .blocks
+            .iter()
+            .map(|&i| self.external_force(i))
+            .collect()
     }
 
-    /// The stick interval of stuck cluster k.
-    fn set_thresholds(&mut self, k: usize) {
+    /// Constant friction on block i from its joints that slide, by their recorded directions.
+    fn external_force(&self, i: usize) -> Q {
+        let mut e = Q::zero();
+        for &s in &self.topo.below[i] {
+            if self.live_support(s.0) && self.dir[s.0] != 0 {
+                e = if self.dir[s.0] > 0 {
+                    e - &self.cap_q[s.0]
+                } else {
+                    e + &self.cap_q[s.0]
+                };
+            }
+        }
+        for &s in &self.topo.above[i] {
+            if self.live_support(s.0) && self.dir[s.0] != 0 {
+                e = if self.dir[s.0] > 0 {
+                    e + &self.cap_q[s.0]
+                } else {
+                    e - &self.cap_q[s.0]
+                };
+            }
+        }
+        e
+    }
+
+    /// The exact stick interval of stuck cluster k.
+    pub(super) fn set_thresholds(&mut self, k: usize) {
         self.clusters[k].blocks.sort_unstable();
         let members = self.clusters[k].blocks.clone();
         let mut local = Local::reuse(std::mem::take(&mut self.buffers.local), self.n);
@@ -893,17 +903,28 @@ impl Engine<'_> {
             }
         }
         self.buffers.local = local.release(&members);
-        let (lo_q, hi_q) = self.stick_interval(&p.canonical(), &members);
-        self.clusters[k].motion = stuck(lo_q, hi_q);
+        let limits = self.stick_interval(&p.canonical(), &members, [None, None]);
+        self.clusters[k].motion = stuck(limits);
     }
 
     /// The stick interval of a problem whose blocks (`members`: global indices, sorted, in the
     /// problem's order) are all stuck, remembered per run. The sets that broke away at earlier
     /// limits are the hints ([`Problem::stick_interval`]): a block joining or leaving a large
-    /// stuck cluster seldom changes its weakest set.
-    fn stick_interval(&mut self, p: &Problem, members: &[usize]) -> (Option<Q>, Option<Q>) {
-        if let Some(found) = self.stick_memo.get(p) {
-            return (found.lo.clone(), found.hi.clone());
+    /// stuck cluster seldom changes its weakest set. A side `kept` (from [`Engine::kept_limits`])
+    /// is taken as a bound instead of worked out, unless it is known exactly.
+    fn stick_interval(
+        &mut self,
+        p: &Problem,
+        members: &[usize],
+        kept: [Option<Option<Q>>; 2],
+    ) -> Limits {
+        let known = self.stick_memo.get(p);
+        let exact = |side: usize| known.is_some_and(|s| !s.bound_only[side]);
+        let want = [0, 1].map(|side| !exact(side) && kept[side].is_none());
+        if want == [false, false] {
+            if let Some(s) = known {
+                return Limits::of(s);
+            }
         }
         let hints: Vec<Vec<usize>> = self
             .breaking
@@ -914,16 +935,45 @@ impl Engine<'_> {
                     .collect()
             })
             .collect();
-        let mut found = p.stick_interval(&hints);
+        let mut found = if want == [false, false] {
+            Stick::default()
+        } else {
+            p.stick_sides(&hints, want)
+        };
         for set in std::mem::take(&mut found.breaking) {
             let global: Vec<usize> = set.into_iter().map(|k| members[k]).collect();
             self.breaking.retain(|known| *known != global);
             self.breaking.push_front(global);
             self.breaking.truncate(BREAKING_HINTS);
         }
-        let interval = (found.lo.clone(), found.hi.clone());
-        self.stick_memo.insert(p.clone(), found, members.len());
-        interval
+        // Each side not worked out now is known exactly or kept as a bound.
+        let mut known = self.stick_memo.get_mut(p);
+        for side in (0..2).filter(|&side| !want[side]) {
+            let (limit, leaving) = match side {
+                0 => (&mut found.lo, &mut found.leaving_lo),
+                _ => (&mut found.hi, &mut found.leaving_hi),
+            };
+            match known.as_deref_mut().filter(|s| !s.bound_only[side]) {
+                Some(s) => {
+                    let (l, v) = match side {
+                        0 => (&s.lo, &mut s.leaving_lo),
+                        _ => (&s.hi, &mut s.leaving_hi),
+                    };
+                    *limit = l.clone();
+                    *leaving = std::mem::take(v);
+                }
+                None => {
+                    *limit = kept[side].clone().expect("kept where not worked out");
+                    found.bound_only[side] = limit.is_some();
+                }
+            }
+        }
+        let limits = Limits::of(&found);
+        match known {
+            Some(s) => *s = found,
+            None => self.stick_memo.insert(p.clone(), found, members.len()),
+        }
+        limits
     }
 
     /// The general decision. Only the signs of the ground acceleration's derivatives matter
@@ -1019,14 +1069,13 @@ impl Engine<'_> {
     /// general decision: pieces not joined to the ground or at or beyond a limit, and every
     /// block at a threshold (theta `snapped` to the exact limit) or when nothing touches the
     /// ground.
-    #[allow(clippy::type_complexity)]
     fn stuck_pieces(
         &mut self,
         p: &Problem,
         blocks: &[usize],
         theta: &Lex,
         snapped: bool,
-    ) -> (Vec<Group>, Vec<Option<(Option<Q>, Option<Q>)>>, Vec<usize>) {
+    ) -> (Vec<Group>, Vec<Option<Limits>>, Vec<usize>) {
         if snapped || !p.touches_ground() {
             return (Vec::new(), Vec::new(), (0..blocks.len()).collect());
         }
@@ -1037,21 +1086,24 @@ impl Engine<'_> {
         for (piece, on_ground) in p.ground_pieces() {
             if on_ground {
                 // p is canonical: a piece that is all of it needs no copy.
-                let (lo, hi) = if piece.len() == blocks.len() {
-                    self.stick_interval(p, blocks)
+                let limits = if piece.len() == blocks.len() {
+                    let kept = self.kept_limits(p, blocks);
+                    self.stick_interval(p, blocks, kept)
                 } else {
                     let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
-                    self.stick_interval(&p.restrict(&piece), &members)
+                    let q = p.restrict(&piece);
+                    let kept = self.kept_limits(&q, &members);
+                    self.stick_interval(&q, &members, kept)
                 };
-                let inside =
-                    lo.as_ref().is_none_or(|lo| a0 > lo) && hi.as_ref().is_none_or(|hi| a0 < hi);
+                let inside = limits.lo.as_ref().is_none_or(|lo| a0 > lo)
+                    && limits.hi.as_ref().is_none_or(|hi| a0 < hi);
                 if inside {
                     groups.push(Group {
                         nodes: piece,
                         accel: a0.clone(),
                         grounded: true,
                     });
-                    intervals.push(Some((lo, hi)));
+                    intervals.push(Some(limits));
                     continue;
                 }
             }
@@ -1059,6 +1111,115 @@ impl Engine<'_> {
         }
         rest.sort_unstable();
         (groups, intervals, rest)
+    }
+
+    /// Bounds from inside on the stick interval of problem q, whose blocks (`members`: global
+    /// indices, sorted, in q's order) are to stay stuck, per side ([lo, hi]); `None` where the
+    /// bound cannot be shown, or q is too small to be worth it
+    /// ([`Params::kept_limits_from`](super::Params)).
+    ///
+    /// q is a stuck cluster K that lost the blocks L and took in the blocks C of clusters that
+    /// came to rest on it. A side's limit is the least ratio (cut(S) + e(S)) / m(S) over the sets
+    /// S that may break away that way (mirrored for lo). Write S = A + B, A in K, B in C:
+    ///
+    ///   num_q(S) = num_K(A) + sum over A of (c_i - l_i + d_i) + num_q(B) - 2 cap(A, B),
+    ///
+    /// with c_i, l_i the capacities of block i's joints to C and to L, and d_i the change of its
+    /// sliding friction (its sign flipped for lo). Where d_i >= c_i + l_i for every block of
+    /// K, the sum is at least 2 cap(A, C) >= 2 cap(A, B), so num_q(S) >= lambda_K m(A) +
+    /// lambda_C m(B): S is no weaker than the weaker of K's limit and C's own, with K as its
+    /// ground (faces against K dropped, which only widens the sets tried). Every set q allows
+    /// restricts to a set K allowed, unless a face against a block of L held it back. A block
+    /// knocked out of a stuck group drags the rest its way and holds it back the other, a
+    /// cluster coming to rest stops dragging it one way: one side passes the test, and a flow
+    /// over C replaces one over the whole group.
+    fn kept_limits(&self, q: &Problem, members: &[usize]) -> [Option<Option<Q>>; 2] {
+        let none = [None, None];
+        if members.len() < self.params.kept_limits_from {
+            return none;
+        }
+        let stuck = |k: usize| k != NONE && matches!(self.clusters[k].motion, Motion::Stuck { .. });
+        let mut of_k = members.iter().map(|&i| self.of[i]).filter(|&k| stuck(k));
+        let Some(k) = of_k.next() else {
+            return none;
+        };
+        if of_k.any(|other| other != k) {
+            return none;
+        }
+        let Motion::Stuck { lo_q, hi_q, .. } = &self.clusters[k].motion else {
+            return none;
+        };
+        let in_q = |b: usize| members.binary_search(&b).is_ok();
+        let mut holds = [true, true];
+        let mut joined = Vec::new();
+        for (n, &i) in members.iter().enumerate() {
+            if self.of[i] != k {
+                joined.push(n);
+                continue;
+            }
+            // Capacity of i's sticking joints to the blocks that left and that joined.
+            let mut c = Q::zero();
+            for s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
+                let s = s.0;
+                if !self.live_support(s) {
+                    continue;
+                }
+                let sup = &self.topo.supports[s];
+                let other = if sup.upper.0 == i {
+                    self.lower_block(s)
+                } else {
+                    Some(sup.upper.0)
+                };
+                let Some(b) = other.filter(|&b| !self.fixed[b]) else {
+                    continue;
+                };
+                let left = self.of[b] == k && !in_q(b) && self.dir[s] == 0;
+                if left || (self.of[b] != k && in_q(b)) {
+                    c = c + &self.cap_q[s];
+                }
+            }
+            for &j in &self.topo.sides[i] {
+                let jt = &self.topo.joints[j.0];
+                let d = if jt.left.0 == i {
+                    jt.right.0
+                } else {
+                    jt.left.0
+                };
+                if !self.fixed[d]
+                    && self.of[d] == k
+                    && !in_q(d)
+                    && self.live_joint(j.0)
+                    && self.is_touching(j.0)
+                {
+                    // The face held i back from moving towards d: lagging (hi) if d is on
+                    // its left, running ahead (lo) if on its right.
+                    holds[usize::from(jt.left.0 == d)] = false;
+                }
+            }
+            let d = &q.external[n] - &self.external_force(i);
+            if !c.is_zero() || !d.is_zero() {
+                holds[1] &= !(&d - &c).is_negative();
+                holds[0] &= !(&d + &c).is_positive();
+            }
+            if holds == [false, false] {
+                return none;
+            }
+        }
+        let mut bound = [lo_q.clone(), hi_q.clone()];
+        if !joined.is_empty() {
+            let c_alone = q.with_ground(&joined);
+            let own = c_alone.stick_sides(&[], holds);
+            bound[0] = match (bound[0].take(), own.lo) {
+                (Some(a), Some(b)) => Some(a.max(b)),
+                (a, b) => a.or(b),
+            };
+            bound[1] = match (bound[1].take(), own.hi) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            };
+        }
+        let [lo, hi] = bound;
+        [holds[0].then_some(lo), holds[1].then_some(hi)]
     }
 
     /// A cluster next to a re-decided one: its neighbourhood has changed, and where one of its
@@ -1173,12 +1334,32 @@ impl Engine<'_> {
     }
 }
 
-fn stuck(lo_q: Option<Q>, hi_q: Option<Q>) -> Motion {
+/// A stuck cluster's limits of a_g, exact or bounds from inside ([`Stick::bound_only`]).
+#[derive(Debug, Clone, Default)]
+struct Limits {
+    lo: Option<Q>,
+    hi: Option<Q>,
+    bound_only: [bool; 2],
+}
+
+impl Limits {
+    fn of(s: &Stick) -> Limits {
+        Limits {
+            lo: s.lo.clone(),
+            hi: s.hi.clone(),
+            bound_only: s.bound_only,
+        }
+    }
+}
+
+fn stuck(limits: Limits) -> Motion {
+    let Limits { lo, hi, bound_only } = limits;
     Motion::Stuck {
-        lo: lo_q.as_ref().map_or(f64::NEG_INFINITY, Q::to_f64),
-        hi: hi_q.as_ref().map_or(f64::INFINITY, Q::to_f64),
-        lo_q,
-        hi_q,
+        lo: lo.as_ref().map_or(f64::NEG_INFINITY, Q::to_f64),
+        hi: hi.as_ref().map_or(f64::INFINITY, Q::to_f64),
+        lo_q: lo,
+        hi_q: hi,
+        bound_only,
     }
 }
 

@@ -28,14 +28,20 @@ use roots::{Counter, Fun};
 use std::cmp::{Ordering, Reverse};
 use std::collections::{BinaryHeap, HashMap, VecDeque};
 
-/// Safeguards of the event-driven integrator. Neither is a tolerance: they only stop a run that
-/// would otherwise never end, with an error that says where.
+/// Settings of the event-driven integrator. None is a tolerance: the first two only stop a run
+/// that would otherwise never end, with an error that says where; the third changes the work,
+/// never the answer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Params {
     /// Events allowed at one instant.
     pub max_events_per_instant: usize,
     /// Pairwise collisions allowed in one impact chain.
     pub max_collisions_per_chain: usize,
+    /// A part of a stuck cluster of at least this many blocks that a decision keeps stuck keeps
+    /// the cluster's limits that its change cannot have narrowed, as bounds, and works them
+    /// out only when a_g reaches them (`usize::MAX`: always at once). Below it, working a
+    /// limit out costs less than the event a bound may add.
+    pub kept_limits_from: usize,
 }
 
 impl Default for Params {
@@ -43,9 +49,13 @@ impl Default for Params {
         Params {
             max_events_per_instant: 10_000,
             max_collisions_per_chain: 100_000,
+            kept_limits_from: KEPT_LIMITS_FROM,
         }
     }
 }
+
+/// The default of [`Params::kept_limits_from`].
+const KEPT_LIMITS_FROM: usize = 256;
 
 /// The property tests' configuration: many cases (each is cheap), and no regression file, which
 /// would sit at the top level.
@@ -745,16 +755,25 @@ impl<'a> Engine<'a> {
     fn handle(&mut self, ev: Ev) -> Result<(), SimulationError> {
         match ev {
             Ev::Threshold { k, upper, .. } => {
-                let limit = match &self.clusters[k].motion {
-                    ClusterMotion::Stuck { lo_q, hi_q, .. } => {
-                        if upper {
-                            hi_q.clone()
-                        } else {
-                            lo_q.clone()
-                        }
-                    }
+                let side = usize::from(upper);
+                let limit = |motion: &ClusterMotion| match motion {
+                    ClusterMotion::Stuck { lo_q, hi_q, .. } => [lo_q, hi_q][side].clone(),
                     ClusterMotion::Sliding(_) => None,
                 };
+                let bound = limit(&self.clusters[k].motion);
+                if matches!(&self.clusters[k].motion, ClusterMotion::Stuck { bound_only, .. } if bound_only[side])
+                {
+                    // a_g has reached a bound: the exact limit is at it or beyond. Beyond it,
+                    // nothing happens (no history row either: the run is the same as if the
+                    // limit had been worked out at once).
+                    self.set_thresholds(k);
+                    if limit(&self.clusters[k].motion) != bound {
+                        self.clusters[k].version = self.new_version();
+                        self.schedule([k]);
+                        return Ok(());
+                    }
+                }
+                let limit = bound;
                 // Snap a_g to the limit only when it is there. A stuck cluster whose neighbours
                 // changed gets a new interval that a_g may already lie beyond; it is decided
                 // with the a_g it has (snapping would keep it stuck and fire again, forever).
