@@ -1899,6 +1899,29 @@ mod tests {
             })
     }
 
+    /// The sub-problem of the nodes whose label is `kept`, each joint to a node of another label
+    /// turned into a sliding force of its full capacity, of sign `towards[label]`, on the kept
+    /// end; faces to other labels dropped.
+    fn sliding_against(
+        p: &Problem,
+        labels: &[usize],
+        kept: [bool; 3],
+        towards: [i64; 3],
+    ) -> Problem {
+        let nodes: Vec<usize> = (0..p.n()).filter(|&i| kept[labels[i]]).collect();
+        let mut q = p.restrict(&nodes);
+        for (i, j, f) in &p.friction {
+            let End::Node(j) = *j else { continue };
+            for (a, b) in [(*i, j), (j, *i)] {
+                if kept[labels[a]] && !kept[labels[b]] {
+                    let k = nodes.binary_search(&a).expect("kept");
+                    q.external[k] = &q.external[k] + &(Q::int(towards[labels[b]]) * f);
+                }
+            }
+        }
+        q
+    }
+
     /// Up to two bodies among the first n nodes: those labelled 1, those labelled 2 (a body of
     /// one node is none).
     fn labelled_bodies(labels: &[usize], n: usize) -> Vec<Vec<usize>> {
@@ -2024,6 +2047,58 @@ mod tests {
             let want = stick_by_enumeration(&q);
             prop_assert_eq!(interval(&q, ENUMERATE_UP_TO), want.clone());
             prop_assert_eq!(interval(&q, 0), want);
+        }
+
+        /// `Engine::kept_limits`: blocks labelled 0 stay stuck, those labelled 2 left (their
+        /// joints now slide, their friction dragging the rest towards the side tested), those
+        /// labelled 1 came to rest on the group (their friction had dragged it away from that
+        /// side). The new interval's limit on that side is at or beyond the weaker of the old
+        /// group's and the newcomers' own, with the old group as their ground.
+        #[test]
+        fn kept_limits_bound_the_interval_from_inside(
+            p in abutted_problem(),
+            labels in prop::collection::vec(0usize..3, 8),
+        ) {
+            let labels = &labels[..p.n()];
+            prop_assume!(labels.contains(&0));
+            // No face between the blocks that stay and those that left: kept_limits declines
+            // the side such a face held back.
+            let mut p = p;
+            p.contacts.retain(|pair| match pair {
+                (End::Node(a), End::Node(b)) => labels[*a].min(labels[*b]) != 0
+                    || labels[*a].max(labels[*b]) != 2,
+                _ => true,
+            });
+            let joined: Vec<usize> = (0..p.n())
+                .filter(|&i| labels[i] != 2)
+                .enumerate()
+                .filter(|&(_, i)| labels[i] == 1)
+                .map(|(k, _)| k)
+                .collect();
+            // The weaker of two limits on one side (`None`: none that way).
+            let weaker = |a: Option<Q>, b: Option<Q>, hi: bool| match (a, b) {
+                (Some(a), Some(b)) => Some(if hi { a.min(b) } else { a.max(b) }),
+                (a, b) => a.or(b),
+            };
+            for (side, sign) in [(1, 1), (0, -1)] {
+                let q = sliding_against(&p, labels, [true, true, false], [0, 0, sign]);
+                let old = sliding_against(&p, labels, [true, false, true], [0, -sign, 0]);
+                let own = if joined.is_empty() {
+                    None
+                } else {
+                    let c = q.with_ground(&joined).stick_interval(&[]);
+                    if side == 1 { c.hi } else { c.lo }
+                };
+                let (new, old) = (q.stick_interval(&[]), old.stick_interval(&[]));
+                let (new, old) = if side == 1 { (new.hi, old.hi) } else { (new.lo, old.lo) };
+                let bound = if joined.is_empty() { old } else { weaker(old, own, side == 1) };
+                let inside = match (&new, &bound) {
+                    (None, _) => true,
+                    (Some(_), None) => false,
+                    (Some(new), Some(bound)) => i64::from((new - bound).signum()) * sign >= 0,
+                };
+                prop_assert!(inside, "side {}: {:?} beyond {:?}", side, new, bound);
+            }
         }
 
         /// At a limit of a problem's own stick interval, passing it outward, the blocks the

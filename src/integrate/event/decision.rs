@@ -626,7 +626,7 @@ impl Engine<'_> {
         // 7. Stuck clusters get their threshold interval; neighbours whose friction changed move
         //    on with their new forces.
         for &k in &needs_interval {
-            self.set_thresholds(k);
+            self.set_thresholds(k, false);
         }
         for &k in &new_clusters {
             self.clusters[k].version = self.new_version();
@@ -846,8 +846,9 @@ impl Engine<'_> {
         e
     }
 
-    /// The exact stick interval of stuck cluster k.
-    pub(super) fn set_thresholds(&mut self, k: usize) {
+    /// The stick interval of stuck cluster k; with `exact`, no limit is a bound
+    /// ([`Stick::bound_only`]).
+    pub(super) fn set_thresholds(&mut self, k: usize, exact: bool) {
         self.clusters[k].blocks.sort_unstable();
         let members = self.clusters[k].blocks.clone();
         let mut local = Local::reuse(std::mem::take(&mut self.buffers.local), self.n);
@@ -903,7 +904,7 @@ impl Engine<'_> {
             }
         }
         self.buffers.local = local.release(&members);
-        let limits = self.stick_interval(&p.canonical(), &members, [None, None]);
+        let limits = self.stick_interval(&p.canonical(), &members, [None, None], exact);
         self.clusters[k].motion = stuck(limits);
     }
 
@@ -911,16 +912,18 @@ impl Engine<'_> {
     /// problem's order) are all stuck, remembered per run. The sets that broke away at earlier
     /// limits are the hints ([`Problem::stick_interval`]): a block joining or leaving a large
     /// stuck cluster seldom changes its weakest set. A side `kept` (from [`Engine::kept_limits`])
-    /// is taken as a bound instead of worked out, unless it is known exactly.
+    /// is taken as a bound instead of worked out, unless it is known exactly; so is a bound the
+    /// run already holds for the same problem, unless `exact` (a_g has reached it).
     fn stick_interval(
         &mut self,
         p: &Problem,
         members: &[usize],
         kept: [Option<Option<Q>>; 2],
+        exact: bool,
     ) -> Limits {
         let known = self.stick_memo.get(p);
-        let exact = |side: usize| known.is_some_and(|s| !s.bound_only[side]);
-        let want = [0, 1].map(|side| !exact(side) && kept[side].is_none());
+        let usable = |side: usize| known.is_some_and(|s| !(exact && s.bound_only[side]));
+        let want = [0, 1].map(|side| !usable(side) && kept[side].is_none());
         if want == [false, false] {
             if let Some(s) = known {
                 return Limits::of(s);
@@ -946,24 +949,26 @@ impl Engine<'_> {
             self.breaking.push_front(global);
             self.breaking.truncate(BREAKING_HINTS);
         }
-        // Each side not worked out now is known exactly or kept as a bound.
+        // Each side not worked out now is known exactly, kept as a bound, or a bound known.
         let mut known = self.stick_memo.get_mut(p);
         for side in (0..2).filter(|&side| !want[side]) {
             let (limit, leaving) = match side {
                 0 => (&mut found.lo, &mut found.leaving_lo),
                 _ => (&mut found.hi, &mut found.leaving_hi),
             };
-            match known.as_deref_mut().filter(|s| !s.bound_only[side]) {
-                Some(s) => {
+            let before = known.as_deref_mut();
+            match (before, &kept[side]) {
+                (Some(s), kept) if !s.bound_only[side] || kept.is_none() => {
                     let (l, v) = match side {
                         0 => (&s.lo, &mut s.leaving_lo),
                         _ => (&s.hi, &mut s.leaving_hi),
                     };
                     *limit = l.clone();
                     *leaving = std::mem::take(v);
+                    found.bound_only[side] = s.bound_only[side];
                 }
-                None => {
-                    *limit = kept[side].clone().expect("kept where not worked out");
+                (_, kept) => {
+                    *limit = kept.clone().expect("kept where not known");
                     found.bound_only[side] = limit.is_some();
                 }
             }
@@ -1088,12 +1093,12 @@ impl Engine<'_> {
                 // p is canonical: a piece that is all of it needs no copy.
                 let limits = if piece.len() == blocks.len() {
                     let kept = self.kept_limits(p, blocks);
-                    self.stick_interval(p, blocks, kept)
+                    self.stick_interval(p, blocks, kept, false)
                 } else {
                     let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
                     let q = p.restrict(&piece);
                     let kept = self.kept_limits(&q, &members);
-                    self.stick_interval(&q, &members, kept)
+                    self.stick_interval(&q, &members, kept, false)
                 };
                 let inside = limits.lo.as_ref().is_none_or(|lo| a0 > lo)
                     && limits.hi.as_ref().is_none_or(|hi| a0 < hi);
@@ -1149,7 +1154,10 @@ impl Engine<'_> {
         let Motion::Stuck { lo_q, hi_q, .. } = &self.clusters[k].motion else {
             return none;
         };
-        let in_q = |b: usize| members.binary_search(&b).is_ok();
+        let mut in_q = vec![false; self.n];
+        for &i in members {
+            in_q[i] = true;
+        }
         let mut holds = [true, true];
         let mut joined = Vec::new();
         for (n, &i) in members.iter().enumerate() {
@@ -1157,8 +1165,10 @@ impl Engine<'_> {
                 joined.push(n);
                 continue;
             }
-            // Capacity of i's sticking joints to the blocks that left and that joined.
+            // Capacity of i's sticking joints to the blocks that left and that joined; a block
+            // whose joints all stick within K and q (most of a large group) changed in nothing.
             let mut c = Q::zero();
+            let mut changed = false;
             for s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
                 let s = s.0;
                 if !self.live_support(s) {
@@ -1170,11 +1180,13 @@ impl Engine<'_> {
                 } else {
                     Some(sup.upper.0)
                 };
+                changed |= self.dir[s] != 0;
                 let Some(b) = other.filter(|&b| !self.fixed[b]) else {
                     continue;
                 };
-                let left = self.of[b] == k && !in_q(b) && self.dir[s] == 0;
-                if left || (self.of[b] != k && in_q(b)) {
+                let (in_k, in_q) = (self.of[b] == k, in_q[b]);
+                changed |= !(in_k && in_q);
+                if (in_k && !in_q && self.dir[s] == 0) || (!in_k && in_q) {
                     c = c + &self.cap_q[s];
                 }
             }
@@ -1187,7 +1199,7 @@ impl Engine<'_> {
                 };
                 if !self.fixed[d]
                     && self.of[d] == k
-                    && !in_q(d)
+                    && !in_q[d]
                     && self.live_joint(j.0)
                     && self.is_touching(j.0)
                 {
@@ -1195,6 +1207,9 @@ impl Engine<'_> {
                     // its left, running ahead (lo) if on its right.
                     holds[usize::from(jt.left.0 == d)] = false;
                 }
+            }
+            if !changed {
+                continue;
             }
             let d = &q.external[n] - &self.external_force(i);
             if !c.is_zero() || !d.is_zero() {
@@ -1228,7 +1243,7 @@ impl Engine<'_> {
     fn refresh(&mut self, k: usize, turned: bool) {
         let t = self.t;
         match &self.clusters[k].motion {
-            Motion::Stuck { .. } => self.set_thresholds(k),
+            Motion::Stuck { .. } => self.set_thresholds(k, false),
             Motion::Sliding(_) if !turned => {}
             Motion::Sliding(sl) => {
                 let force: Q = self.external_forces(k).into_iter().sum();
