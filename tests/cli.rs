@@ -215,6 +215,46 @@ fn run_logs_its_decisions_when_asked() {
     assert!(!out.join("decisions.jsonl").exists());
 }
 
+/// `--no-history` keeps the logs and leaves history.csv out, removing one an earlier run left;
+/// it needs --out and does not go with --output-dt.
+#[test]
+fn run_without_history_keeps_the_logs() {
+    let out = temp_dir("no-history");
+    let (ok, _, err) = run_five_block(&out, &[]);
+    assert!(ok, "{err}");
+    assert!(out.join("history.csv").exists());
+    let events = std::fs::read_to_string(out.join("events.jsonl")).unwrap();
+    let (ok, stdout, err) = run_five_block(&out, &["--no-history", "--decisions"]);
+    assert!(ok, "{err}");
+    assert!(
+        !out.join("history.csv").exists(),
+        "the earlier history goes"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("events.jsonl")).unwrap(),
+        events
+    );
+    assert!(out.join("decisions.jsonl").exists() && out.join("summary.json").exists());
+    assert!(
+        stdout.contains("/summary.json, events.jsonl, decisions.jsonl"),
+        "{stdout}"
+    );
+    let (ok, _, err) = run_five_block(&out, &["--no-history", "--output-dt", "0.1"]);
+    assert!(!ok && err.contains("--output-dt"), "{err}");
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "5",
+        "--no-history",
+    ]);
+    assert!(!ok && err.contains("--out"), "{err}");
+}
+
 #[test]
 fn amplitudes_in_gal_g_and_m_s2_give_the_same_run() {
     let mut maxima = Vec::new();

@@ -1,4 +1,5 @@
-//! `pirqa run`: one simulation, written as summary.json, history.csv and events.jsonl.
+//! `pirqa run`: one simulation, written as summary.json, history.csv and events.jsonl (and,
+//! when asked, decisions.jsonl).
 
 use super::{print_out, write_file};
 use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
@@ -187,6 +188,10 @@ pub struct RunArgs {
     /// nodes of its maximum flows and its CPU time; and print where the decisions' time went.
     #[arg(long, requires = "out")]
     pub decisions: bool,
+    /// With --out, leave history.csv out (on a wall of thousands of blocks, writing a row of
+    /// every block at every event takes longer than the run); the logs are written as usual.
+    #[arg(long, requires = "out", conflicts_with = "output_dt")]
+    pub no_history: bool,
     /// Write only the summary, to this file.
     #[arg(long, value_name = "FILE")]
     pub summary: Option<PathBuf>,
@@ -248,7 +253,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
     let settings = Settings {
         duration_s: duration,
-        output_dt_s: args.out.as_ref().map(|_| args.output_dt),
+        output_dt_s: (args.out.is_some() && !args.no_history).then_some(args.output_dt),
         log_events: args.out.is_some(),
         log_decisions: args.decisions,
         after_collapse: args.after_collapse,
@@ -277,20 +282,22 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
 pub fn write_outputs(dir: &Path, r: &Response) -> Result<(), Error> {
     write_file(&dir.join("summary.json"), &r.summary_json())?;
     write_file(&dir.join("events.jsonl"), &r.events_jsonl())?;
-    let decisions = dir.join("decisions.jsonl");
-    if !r.decisions.is_empty() {
-        write_file(&decisions, &r.decisions_jsonl())?;
-    } else if decisions.exists() {
-        // A log from an earlier run would pass for this one's.
-        std::fs::remove_file(&decisions).map_err(|source| Error::Io {
-            path: decisions.clone(),
+    let decisions = (!r.decisions.is_empty()).then(|| r.decisions_jsonl());
+    write_or_remove(&dir.join("decisions.jsonl"), decisions)?;
+    write_or_remove(&dir.join("history.csv"), r.history_csv())
+}
+
+/// Writes `text` to `path`, or removes a file an earlier run left there: a directory holds one
+/// run's files, and an older log or history would pass for this run's.
+fn write_or_remove(path: &Path, text: Option<String>) -> Result<(), Error> {
+    match text {
+        Some(text) => write_file(path, &text),
+        None if path.exists() => std::fs::remove_file(path).map_err(|source| Error::Io {
+            path: path.to_path_buf(),
             source,
-        })?;
+        }),
+        None => Ok(()),
     }
-    if let Some(csv) = r.history_csv() {
-        write_file(&dir.join("history.csv"), &csv)?;
-    }
-    Ok(())
 }
 
 fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
@@ -340,16 +347,16 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
         let _ = writeln!(t, "  warning: {w}");
     }
     if let Some(dir) = out {
-        let _ = writeln!(
-            t,
-            "  wrote {}/summary.json, history.csv, events.jsonl{}",
-            dir.display(),
-            if r.decisions.is_empty() {
-                ""
-            } else {
-                ", decisions.jsonl"
-            }
-        );
+        let written: Vec<&str> = [
+            Some("summary.json"),
+            r.history.is_some().then_some("history.csv"),
+            Some("events.jsonl"),
+            (!r.decisions.is_empty()).then_some("decisions.jsonl"),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        let _ = writeln!(t, "  wrote {}/{}", dir.display(), written.join(", "));
     }
     t
 }
