@@ -653,6 +653,7 @@ fn decision_log_adds_up_to_the_run() {
     }
     for d in log {
         assert!(d.blocks >= 1 && d.clusters >= 1 && d.cpu_s >= 0.0);
+        assert_eq!(d.load_factor, 1.0, "no vertical component");
         if let Some(g) = &d.stuck_formed {
             let (lo, hi) = (g.a_g_lo_m_s2, g.a_g_hi_m_s2);
             assert!(

@@ -12,7 +12,7 @@ fn run(wall: &Wall, motion: &Motion, duration: f64) -> Response {
         duration_s: duration,
         output_dt_s: Some(0.01),
         log_events: true,
-        log_decisions: false,
+        log_decisions: true,
         after_collapse: Default::default(),
     };
     EventDriven::default()
@@ -111,6 +111,20 @@ fn el_centro_with_a_vertical_component_balances_energy() {
         e.input_j > 0.0 && e.residual_j.abs() <= 1e-9 * e.input_j,
         "{e:?}"
     );
+    // The decision log's limits are at unit load factor: every group formed stuck holds
+    // a_g / load_factor (to the rounding of the division and of the limits to floats).
+    assert!(r.decisions.iter().any(|d| d.load_factor != 1.0));
+    for d in &r.decisions {
+        let Some(g) = &d.stuck_formed else { continue };
+        let a = d.a_g_m_s2 / d.load_factor;
+        let slack = 4.0 * f64::EPSILON * a.abs();
+        assert!(
+            g.a_g_lo_m_s2.is_none_or(|lo| lo <= a + slack)
+                && g.a_g_hi_m_s2.is_none_or(|hi| a - slack <= hi),
+            "a group formed stuck at {} s holds a_g / load_factor = {a}: {g:?}",
+            d.time_s
+        );
+    }
 }
 
 #[test]

@@ -105,6 +105,9 @@ pub struct DecisionRecord {
     pub cause: DecisionCause,
     /// Ground acceleration (m/s2).
     pub a_g_m_s2: f64,
+    /// Vertical load factor 1 + a_v/g (1 without a vertical component): the limits of a stuck
+    /// group are at unit load factor, so it holds while a_g / load_factor lies within them.
+    pub load_factor: f64,
     /// Blocks it took in: the clusters joined to the event by joints at equal velocities.
     pub blocks: usize,
     /// The largest cluster stuck to the ground among those it took in, as it was.

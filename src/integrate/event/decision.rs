@@ -640,6 +640,7 @@ impl Engine<'_> {
                 time_s: t,
                 cause,
                 a_g_m_s2: self.seg.accel(self.s()),
+                load_factor: self.seg.lambda_at(self.s()),
                 blocks,
                 stuck_taken_in,
                 clusters: new_clusters.len(),
