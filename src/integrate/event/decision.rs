@@ -449,7 +449,20 @@ impl Engine<'_> {
             intervals.resize(groups.len(), None);
         }
 
-        // 5. Install the new clusters.
+        // 5. Install the new clusters, keeping what the intervals after it may need.
+        let mut before = Before::default();
+        if blocks.len() >= self.params.kept_limits_from {
+            for &b in &blocks {
+                before.of.insert(b, self.of[b]);
+            }
+            for &k in &old_clusters {
+                let limits = match &self.clusters[k].motion {
+                    Motion::Stuck { lo_q, hi_q, .. } => Some([lo_q.clone(), hi_q.clone()]),
+                    Motion::Sliding(_) => None,
+                };
+                before.limits.insert(k, limits);
+            }
+        }
         for &k in &old_clusters {
             self.record_extremes(k);
             self.clusters[k].blocks.clear();
@@ -549,6 +562,7 @@ impl Engine<'_> {
             let old_dir = self.dir[s];
             self.dir[s] = new_dir;
             if old_dir != new_dir {
+                before.dir.insert(s, old_dir);
                 for b in std::iter::once(up).chain(lo) {
                     if !local.contains_key(&b) && self.of[b] != NONE {
                         pushed.push(self.of[b]);
@@ -626,13 +640,13 @@ impl Engine<'_> {
         // 7. Stuck clusters get their threshold interval; neighbours whose friction changed move
         //    on with their new forces.
         for &k in &needs_interval {
-            self.set_thresholds(k, false);
+            self.set_thresholds(k, Some(&before));
         }
         for &k in &new_clusters {
             self.clusters[k].version = self.new_version();
         }
         for &k in &neighbours {
-            self.refresh(k, pushed.binary_search(&k).is_ok());
+            self.refresh(k, pushed.binary_search(&k).is_ok(), &before);
         }
         self.schedule(new_clusters.iter().chain(&neighbours).copied());
         if let (Some((clock, nodes_from)), Some((blocks, stuck_taken_in))) = (log_from, taken_in) {
@@ -825,10 +839,16 @@ impl Engine<'_> {
 
     /// Constant friction on block i from its joints that slide, by their recorded directions.
     fn external_force(&self, i: usize) -> Q {
+        self.external_force_by(i, |s| self.dir[s])
+    }
+
+    /// The same with each support's direction given by `dir`.
+    fn external_force_by(&self, i: usize, dir: impl Fn(usize) -> i8) -> Q {
         let mut e = Q::zero();
         for &s in &self.topo.below[i] {
-            if self.live_support(s.0) && self.dir[s.0] != 0 {
-                e = if self.dir[s.0] > 0 {
+            let d = dir(s.0);
+            if self.live_support(s.0) && d != 0 {
+                e = if d > 0 {
                     e - &self.cap_q[s.0]
                 } else {
                     e + &self.cap_q[s.0]
@@ -836,8 +856,9 @@ impl Engine<'_> {
             }
         }
         for &s in &self.topo.above[i] {
-            if self.live_support(s.0) && self.dir[s.0] != 0 {
-                e = if self.dir[s.0] > 0 {
+            let d = dir(s.0);
+            if self.live_support(s.0) && d != 0 {
+                e = if d > 0 {
                     e + &self.cap_q[s.0]
                 } else {
                     e - &self.cap_q[s.0]
@@ -847,9 +868,15 @@ impl Engine<'_> {
         e
     }
 
-    /// The stick interval of stuck cluster k; with `exact`, no limit is a bound
-    /// ([`Stick::bound_only`]).
-    pub(super) fn set_thresholds(&mut self, k: usize, exact: bool) {
+    /// The exact stick interval of stuck cluster k (a_g has reached a bound of it).
+    pub(super) fn set_exact_thresholds(&mut self, k: usize) {
+        self.set_thresholds(k, None);
+    }
+
+    /// The stick interval of stuck cluster k after a decision that changed `before` (limits
+    /// it cannot have narrowed are kept as bounds, [`Engine::kept_limits`]); without it, exact
+    /// (no limit is a bound, [`Stick::bound_only`]).
+    fn set_thresholds(&mut self, k: usize, before: Option<&Before>) {
         self.clusters[k].blocks.sort_unstable();
         let members = self.clusters[k].blocks.clone();
         let mut local = Local::reuse(std::mem::take(&mut self.buffers.local), self.n);
@@ -905,7 +932,9 @@ impl Engine<'_> {
             }
         }
         self.buffers.local = local.release(&members);
-        let limits = self.stick_interval(&p.canonical(), &members, [None, None], exact);
+        let p = p.canonical();
+        let kept = before.map_or([None, None], |b| self.kept_limits(&p, &members, Some(b)));
+        let limits = self.stick_interval(&p, &members, kept, before.is_none());
         self.clusters[k].motion = stuck(limits);
     }
 
@@ -1093,12 +1122,12 @@ impl Engine<'_> {
             if on_ground {
                 // p is canonical: a piece that is all of it needs no copy.
                 let limits = if piece.len() == blocks.len() {
-                    let kept = self.kept_limits(p, blocks);
+                    let kept = self.kept_limits(p, blocks, None);
                     self.stick_interval(p, blocks, kept, false)
                 } else {
                     let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
                     let q = p.restrict(&piece);
-                    let kept = self.kept_limits(&q, &members);
+                    let kept = self.kept_limits(&q, &members, None);
                     self.stick_interval(&q, &members, kept, false)
                 };
                 let inside = limits.lo.as_ref().is_none_or(|lo| a0 > lo)
@@ -1139,20 +1168,50 @@ impl Engine<'_> {
     /// knocked out of a stuck group drags the rest its way and holds it back the other, a
     /// cluster coming to rest stops dragging it one way: one side passes the test, and a flow
     /// over C replaces one over the whole group.
-    fn kept_limits(&self, q: &Problem, members: &[usize]) -> [Option<Option<Q>>; 2] {
+    ///
+    /// The engine's state is the one before the change, except what `before` holds (when the
+    /// change is already installed).
+    fn kept_limits(
+        &self,
+        q: &Problem,
+        members: &[usize],
+        before: Option<&Before>,
+    ) -> [Option<Option<Q>>; 2] {
         let none = [None, None];
         if members.len() < self.params.kept_limits_from {
             return none;
         }
-        let stuck = |k: usize| k != NONE && matches!(self.clusters[k].motion, Motion::Stuck { .. });
-        let mut of_k = members.iter().map(|&i| self.of[i]).filter(|&k| stuck(k));
+        let of = |b: usize| {
+            before
+                .and_then(|x| x.of.get(&b).copied())
+                .unwrap_or(self.of[b])
+        };
+        let dir = |s: usize| {
+            before
+                .and_then(|x| x.dir.get(&s).copied())
+                .unwrap_or(self.dir[s])
+        };
+        let limits = |k: usize| match before.and_then(|x| x.limits.get(&k)) {
+            Some(kept) => kept.clone(),
+            None if k == NONE => None,
+            None => match &self.clusters[k].motion {
+                Motion::Stuck { lo_q, hi_q, .. } => Some([lo_q.clone(), hi_q.clone()]),
+                Motion::Sliding(_) => None,
+            },
+        };
+        let mut of_k = members.iter().map(|&i| of(i)).filter(|&k| {
+            k != NONE
+                && before
+                    .and_then(|x| x.limits.get(&k))
+                    .map_or_else(|| self.clusters[k].slide().is_none(), Option::is_some)
+        });
         let Some(k) = of_k.next() else {
             return none;
         };
         if of_k.any(|other| other != k) {
             return none;
         }
-        let Motion::Stuck { lo_q, hi_q, .. } = &self.clusters[k].motion else {
+        let Some([lo_q, hi_q]) = limits(k) else {
             return none;
         };
         let mut in_q = vec![false; self.n];
@@ -1162,7 +1221,7 @@ impl Engine<'_> {
         let mut holds = [true, true];
         let mut joined = Vec::new();
         for (n, &i) in members.iter().enumerate() {
-            if self.of[i] != k {
+            if of(i) != k {
                 joined.push(n);
                 continue;
             }
@@ -1181,13 +1240,13 @@ impl Engine<'_> {
                 } else {
                     Some(sup.upper.0)
                 };
-                changed |= self.dir[s] != 0;
+                changed |= dir(s) != 0;
                 let Some(b) = other.filter(|&b| !self.fixed[b]) else {
                     continue;
                 };
-                let (in_k, in_q) = (self.of[b] == k, in_q[b]);
+                let (in_k, in_q) = (of(b) == k, in_q[b]);
                 changed |= !(in_k && in_q);
-                if (in_k && !in_q && self.dir[s] == 0) || (!in_k && in_q) {
+                if (in_k && !in_q && dir(s) == 0) || (!in_k && in_q) {
                     c = c + &self.cap_q[s];
                 }
             }
@@ -1199,7 +1258,7 @@ impl Engine<'_> {
                     jt.left.0
                 };
                 if !self.fixed[d]
-                    && self.of[d] == k
+                    && of(d) == k
                     && !in_q[d]
                     && self.live_joint(j.0)
                     && self.is_touching(j.0)
@@ -1212,7 +1271,7 @@ impl Engine<'_> {
             if !changed {
                 continue;
             }
-            let d = &q.external[n] - &self.external_force(i);
+            let d = &q.external[n] - &self.external_force_by(i, dir);
             if !c.is_zero() || !d.is_zero() {
                 holds[1] &= !(&d - &c).is_negative();
                 holds[0] &= !(&d + &c).is_positive();
@@ -1221,7 +1280,7 @@ impl Engine<'_> {
                 return none;
             }
         }
-        let mut bound = [lo_q.clone(), hi_q.clone()];
+        let mut bound = [lo_q, hi_q];
         if !joined.is_empty() {
             let c_alone = q.with_ground(&joined);
             let own = c_alone.stick_sides(&[], holds);
@@ -1241,10 +1300,10 @@ impl Engine<'_> {
     /// A cluster next to a re-decided one: its neighbourhood has changed, and where one of its
     /// joints `turned` (after an impact) its friction forces too; it gets a new version and
     /// fresh events.
-    fn refresh(&mut self, k: usize, turned: bool) {
+    fn refresh(&mut self, k: usize, turned: bool, before: &Before) {
         let t = self.t;
         match &self.clusters[k].motion {
-            Motion::Stuck { .. } => self.set_thresholds(k, false),
+            Motion::Stuck { .. } => self.set_thresholds(k, Some(before)),
             Motion::Sliding(_) if !turned => {}
             Motion::Sliding(sl) => {
                 let force: Q = self.external_forces(k).into_iter().sum();
@@ -1366,6 +1425,17 @@ impl Limits {
             bound_only: s.bound_only,
         }
     }
+}
+
+/// The state a decision changed, for the stick intervals worked out after it
+/// ([`Engine::kept_limits`]): the cluster each block of the component was in, the limits of
+/// those clusters (`None`: it slid), and the joints whose direction it turned. Everything else
+/// is as it was.
+#[derive(Debug, Default)]
+struct Before {
+    of: FxHashMap<usize, usize>,
+    limits: FxHashMap<usize, Option<[Option<Q>; 2]>>,
+    dir: FxHashMap<usize, i8>,
 }
 
 fn stuck(limits: Limits) -> Motion {

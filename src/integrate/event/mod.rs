@@ -766,7 +766,7 @@ impl<'a> Engine<'a> {
                     // a_g has reached a bound: the exact limit is at it or beyond. Beyond it,
                     // nothing happens (no history row either: the run is the same as if the
                     // limit had been worked out at once).
-                    self.set_thresholds(k, true);
+                    self.set_exact_thresholds(k);
                     if limit(&self.clusters[k].motion) != bound {
                         self.clusters[k].version = self.new_version();
                         self.schedule([k]);
