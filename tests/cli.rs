@@ -84,6 +84,13 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 
 /// `pirqa run` on the paper's variable wall, 400 gal at 1 Hz for 5 s, into `out`.
 fn run_five_block(out: &std::path::Path, extra: &[&str]) -> (bool, String, String) {
+    let mut args = vec!["--out", out.to_str().unwrap()];
+    args.extend(extra);
+    five_block(&args)
+}
+
+/// The five-block variable wall under the paper's sine (400 gal, 1 Hz, 5 s), with `extra`.
+fn five_block(extra: &[&str]) -> (bool, String, String) {
     let mut args = vec![
         "run",
         "walls/five-block-variable.ron",
@@ -93,8 +100,6 @@ fn run_five_block(out: &std::path::Path, extra: &[&str]) -> (bool, String, Strin
         "1",
         "--duration",
         "5",
-        "--out",
-        out.to_str().unwrap(),
     ];
     args.extend(extra);
     pirqa(&args)
@@ -241,17 +246,7 @@ fn run_without_history_keeps_the_logs() {
     );
     let (ok, _, err) = run_five_block(&out, &["--no-history", "--output-dt", "0.1"]);
     assert!(!ok && err.contains("--output-dt"), "{err}");
-    let (ok, _, err) = pirqa(&[
-        "run",
-        "walls/five-block-variable.ron",
-        "--sine",
-        "400gal",
-        "--freq",
-        "1",
-        "--duration",
-        "5",
-        "--no-history",
-    ]);
+    let (ok, _, err) = five_block(&["--no-history"]);
     assert!(!ok && err.contains("--out"), "{err}");
 }
 

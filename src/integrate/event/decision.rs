@@ -245,12 +245,7 @@ impl Engine<'_> {
                 if !self.live_joint(j.0) || !self.is_touching(j.0) {
                     continue;
                 }
-                let jt = &self.topo.joints[j.0];
-                let o = if jt.left.0 == i {
-                    jt.right.0
-                } else {
-                    jt.left.0
-                };
+                let o = self.across_joint(j.0, i);
                 if !self.fixed[o]
                     && !local.contains_key(&o)
                     && self.same_velocity(vi, self.vel_with(o, &snap))
@@ -730,12 +725,7 @@ impl Engine<'_> {
                 if !self.live_joint(j.0) || !self.is_touching(j.0) {
                     continue;
                 }
-                let jt = &self.topo.joints[j.0];
-                let o = if jt.left.0 == b {
-                    jt.right.0
-                } else {
-                    jt.left.0
-                };
+                let o = self.across_joint(j.0, b);
                 if self.fixed[o] {
                     f(k, None);
                 } else if let Some(&m) = local.get(&o) {
@@ -1234,14 +1224,8 @@ impl Engine<'_> {
                 if !self.live_support(s) {
                     continue;
                 }
-                let sup = &self.topo.supports[s];
-                let other = if sup.upper.0 == i {
-                    self.lower_block(s)
-                } else {
-                    Some(sup.upper.0)
-                };
                 changed |= dir(s) != 0;
-                let Some(b) = other.filter(|&b| !self.fixed[b]) else {
+                let Some(b) = self.across_support(s, i).filter(|&b| !self.fixed[b]) else {
                     continue;
                 };
                 let (in_k, in_q) = (of(b) == k, in_q[b]);
@@ -1251,12 +1235,7 @@ impl Engine<'_> {
                 }
             }
             for &j in &self.topo.sides[i] {
-                let jt = &self.topo.joints[j.0];
-                let d = if jt.left.0 == i {
-                    jt.right.0
-                } else {
-                    jt.left.0
-                };
+                let d = self.across_joint(j.0, i);
                 if !self.fixed[d]
                     && of(d) == k
                     && !in_q[d]
@@ -1265,7 +1244,7 @@ impl Engine<'_> {
                 {
                     // The face held i back from moving towards d: lagging (hi) if d is on
                     // its left, running ahead (lo) if on its right.
-                    holds[usize::from(jt.left.0 == d)] = false;
+                    holds[usize::from(self.topo.joints[j.0].left.0 == d)] = false;
                 }
             }
             if !changed {

@@ -497,13 +497,27 @@ impl<'a> Engine<'a> {
             .iter()
             .chain(&self.topo.above[b])
             .filter(|s| self.live_support(s.0))
-            .map(move |s| {
-                if self.topo.supports[s.0].upper.0 == b {
-                    self.lower_block(s.0)
-                } else {
-                    Some(self.topo.supports[s.0].upper.0)
-                }
-            })
+            .map(move |s| self.across_support(s.0, b))
+    }
+
+    /// The block across support s from block b; `None` is the ground.
+    fn across_support(&self, s: usize, b: usize) -> Option<usize> {
+        let upper = self.topo.supports[s].upper.0;
+        if upper == b {
+            self.lower_block(s)
+        } else {
+            Some(upper)
+        }
+    }
+
+    /// The block across vertical joint j from block b.
+    fn across_joint(&self, j: usize, b: usize) -> usize {
+        let jt = &self.topo.joints[j];
+        if jt.left.0 == b {
+            jt.right.0
+        } else {
+            jt.left.0
+        }
     }
 
     fn live_joint(&self, j: usize) -> bool {

@@ -232,26 +232,11 @@ impl Engine<'_> {
     /// Calls `f` with each sliding cluster sharing a joint with cluster k (once per joint).
     fn sliding_neighbours(&self, k: usize, mut f: impl FnMut(usize)) {
         for &i in &self.clusters[k].blocks {
-            let supports = self.topo.below[i].iter().chain(&self.topo.above[i]);
-            let others = supports.filter(|s| self.live_support(s.0)).filter_map(|s| {
-                let sup = &self.topo.supports[s.0];
-                if sup.upper.0 == i {
-                    self.lower_block(s.0)
-                } else {
-                    Some(sup.upper.0)
-                }
-            });
+            let others = self.live_neighbours(i).flatten();
             let sides = self.topo.sides[i]
                 .iter()
                 .filter(|j| self.live_joint(j.0))
-                .map(|j| {
-                    let jt = &self.topo.joints[j.0];
-                    if jt.left.0 == i {
-                        jt.right.0
-                    } else {
-                        jt.left.0
-                    }
-                });
+                .map(|j| self.across_joint(j.0, i));
             for o in others.chain(sides) {
                 let m = self.of[o];
                 if m != super::NONE && m != k && self.clusters[m].slide().is_some() {
