@@ -1181,20 +1181,21 @@ impl Engine<'_> {
                 .and_then(|x| x.dir.get(&s).copied())
                 .unwrap_or(self.dir[s])
         };
-        let limits = |k: usize| match before.and_then(|x| x.limits.get(&k)) {
-            Some(kept) => kept.clone(),
-            None if k == NONE => None,
-            None => match &self.clusters[k].motion {
-                Motion::Stuck { lo_q, hi_q, .. } => Some([lo_q.clone(), hi_q.clone()]),
-                Motion::Sliding(_) => None,
-            },
+        // The limits of cluster k as it was (`None`: it slid, or there is none).
+        let limits = |k: usize| -> Option<[&Option<Q>; 2]> {
+            match before.and_then(|x| x.limits.get(&k)) {
+                Some(kept) => kept.as_ref().map(|[lo, hi]| [lo, hi]),
+                None if k == NONE => None,
+                None => match &self.clusters[k].motion {
+                    Motion::Stuck { lo_q, hi_q, .. } => Some([lo_q, hi_q]),
+                    Motion::Sliding(_) => None,
+                },
+            }
         };
-        let mut of_k = members.iter().map(|&i| of(i)).filter(|&k| {
-            k != NONE
-                && before
-                    .and_then(|x| x.limits.get(&k))
-                    .map_or_else(|| self.clusters[k].slide().is_none(), Option::is_some)
-        });
+        let mut of_k = members
+            .iter()
+            .map(|&i| of(i))
+            .filter(|&k| limits(k).is_some());
         let Some(k) = of_k.next() else {
             return none;
         };
@@ -1259,7 +1260,7 @@ impl Engine<'_> {
                 return none;
             }
         }
-        let mut bound = [lo_q, hi_q];
+        let mut bound = [lo_q.clone(), hi_q.clone()];
         if !joined.is_empty() {
             let c_alone = q.with_ground(&joined);
             let own = c_alone.stick_sides(&[], holds);

@@ -37,10 +37,10 @@ pub struct Params {
     pub max_events_per_instant: usize,
     /// Pairwise collisions allowed in one impact chain.
     pub max_collisions_per_chain: usize,
-    /// A part of a stuck cluster of at least this many blocks that a decision keeps stuck keeps
-    /// the cluster's limits that its change cannot have narrowed, as bounds, and works them
-    /// out only when a_g reaches them (`usize::MAX`: always at once). Below it, working a
-    /// limit out costs less than the event a bound may add.
+    /// A stuck group of at least this many blocks that a decision leaves, forms or turns a
+    /// joint of keeps the limits its change cannot have narrowed, as bounds, and works them out
+    /// only when a_g reaches them (`usize::MAX`: always at once). Below it, working a limit out
+    /// costs less than the event a bound may add.
     pub kept_limits_from: usize,
 }
 
