@@ -923,32 +923,29 @@ impl Engine<'_> {
         }
         self.buffers.local = local.release(&members);
         let p = p.canonical();
-        let kept = before.map_or([None, None], |b| self.kept_limits(&p, &members, Some(b)));
-        let limits = self.stick_interval(&p, &members, kept, before.is_none());
+        let change = before.map_or(Change::Exact, |b| Change::After(Some(b)));
+        let limits = self.stick_interval(&p, &members, change);
         self.clusters[k].motion = stuck(limits);
     }
 
     /// The stick interval of a problem whose blocks (`members`: global indices, sorted, in the
     /// problem's order) are all stuck, remembered per run. The sets that broke away at earlier
     /// limits are the hints ([`Problem::stick_interval`]): a block joining or leaving a large
-    /// stuck cluster seldom changes its weakest set. A side `kept` (from [`Engine::kept_limits`])
-    /// is taken as a bound instead of worked out, unless it is known exactly; so is a bound the
-    /// run already holds for the same problem, unless `exact` (a_g has reached it).
-    fn stick_interval(
-        &mut self,
-        p: &Problem,
-        members: &[usize],
-        kept: [Option<Option<Q>>; 2],
-        exact: bool,
-    ) -> Limits {
+    /// stuck cluster seldom changes its weakest set. After a `change`, a bound the run already
+    /// holds for the same problem stands, and a side the change cannot have narrowed is kept as
+    /// a bound ([`Engine::kept_limits`], worked out only for the sides the run does not know).
+    fn stick_interval(&mut self, p: &Problem, members: &[usize], change: Change) -> Limits {
         let known = self.stick_memo.get(p);
+        let exact = matches!(change, Change::Exact);
         let usable = |side: usize| known.is_some_and(|s| !(exact && s.bound_only[side]));
-        let want = [0, 1].map(|side| !usable(side) && kept[side].is_none());
-        if want == [false, false] {
-            if let Some(s) = known {
-                return Limits::of(s);
-            }
+        if let (Some(s), true) = (known, usable(0) && usable(1)) {
+            return Limits::of(s);
         }
+        let kept = match change {
+            Change::After(before) => self.kept_limits(p, members, before),
+            Change::Exact => [None, None],
+        };
+        let want = [0, 1].map(|side| !usable(side) && kept[side].is_none());
         let hints: Vec<Vec<usize>> = self
             .breaking
             .iter()
@@ -1112,13 +1109,11 @@ impl Engine<'_> {
             if on_ground {
                 // p is canonical: a piece that is all of it needs no copy.
                 let limits = if piece.len() == blocks.len() {
-                    let kept = self.kept_limits(p, blocks, None);
-                    self.stick_interval(p, blocks, kept, false)
+                    self.stick_interval(p, blocks, Change::After(None))
                 } else {
                     let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
                     let q = p.restrict(&piece);
-                    let kept = self.kept_limits(&q, &members, None);
-                    self.stick_interval(&q, &members, kept, false)
+                    self.stick_interval(&q, &members, Change::After(None))
                 };
                 let inside = limits.lo.as_ref().is_none_or(|lo| a0 > lo)
                     && limits.hi.as_ref().is_none_or(|hi| a0 < hi);
@@ -1405,6 +1400,16 @@ impl Limits {
             bound_only: s.bound_only,
         }
     }
+}
+
+/// How far a stick interval may rest on bounds ([`Engine::stick_interval`]).
+#[derive(Clone, Copy)]
+enum Change<'a> {
+    /// a_g has reached a bound: every limit is worked out.
+    Exact,
+    /// After a change: the engine's state is the one before it, except what the decision that
+    /// made it has already installed (`Before`).
+    After(Option<&'a Before>),
 }
 
 /// The state a decision changed, for the stick intervals worked out after it
