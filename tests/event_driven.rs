@@ -692,7 +692,7 @@ fn kept_limits_change_the_work_not_the_answer() {
     let five_topo = Topology::new(&five).unwrap();
     let paper_sine = sine(4.0, 1.0, 0.0, 20.0);
     let toppling = sine(5.0, 0.2, 0.0, 10.0);
-    let mut bound_events = 0;
+    let (mut bound_events, mut logged_bounds) = (0, 0);
     for (wall, topo, motion, duration_s, after_collapse) in [
         (&wall, &topo, &motion, 10.0, Stop),
         (&wall, &topo, &shaken_both_ways, 10.0, Stop),
@@ -703,7 +703,7 @@ fn kept_limits_change_the_work_not_the_answer() {
             duration_s,
             output_dt_s: Some(0.01),
             log_events: true,
-            log_decisions: false,
+            log_decisions: true,
             after_collapse,
         };
         let scenario = Scenario {
@@ -732,6 +732,16 @@ fn kept_limits_change_the_work_not_the_answer() {
             assert!(kept.summary.blocks.iter().any(|b| b.fell), "a block falls");
         }
         bound_events += k.events - e.events;
+        // The decision log says which limits are bounds: none where every limit is exact.
+        let bounds = |r: &Response| {
+            r.decisions
+                .iter()
+                .filter_map(|d| d.stuck_formed.as_ref())
+                .filter(|g| g.lo_is_bound || g.hi_is_bound)
+                .count()
+        };
+        assert_eq!(bounds(&exact), 0);
+        logged_bounds += bounds(&kept);
         if wall.blocks.len() > 100 {
             assert!(
                 k.flow_nodes < e.flow_nodes,
@@ -742,4 +752,5 @@ fn kept_limits_change_the_work_not_the_answer() {
         }
     }
     assert!(bound_events > 0, "a_g reaches a bound");
+    assert!(logged_bounds > 0, "the log shows the bounds kept");
 }
