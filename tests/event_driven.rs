@@ -566,6 +566,100 @@ fn a_sliding_cluster_splits_when_an_impact_reverses_the_friction_on_it() {
     );
 }
 
+#[test]
+fn simultaneous_impacts_on_two_courses_are_one_decision() {
+    // Two columns of two equal blocks, 10 cm apart, their vertical joints in line. The left
+    // column slides on mu 0.1 under 3 m/s2 (2.019 m/s2 relative); the right one is held (mu 0.5)
+    // and neither column can shear (mu 0.5 and 0.6 on the block below). Both faces close at
+    // one instant: each pair exchanges velocities (equal masses, e = 1), so the right column
+    // leaves as a whole with the left one's velocity, and neither column ever slips inside.
+    let wall = Wall::from_ron_str(
+        r#"(
+            version: 1,
+            thickness_m: 1.0,
+            density_kg_m3: 2000,
+            friction: 0.5,
+            joint_friction: { "L0/ground": 0.1, "R1/R0": 0.6 },
+            rows: [
+                (height_m: 0.5, blocks: [
+                    (width_m: 0.5, name: "L0"), (width_m: 0.5, gap_m: 0.1, name: "R0"),
+                ]),
+                (height_m: 0.5, blocks: [
+                    (width_m: 0.5, name: "L1"), (width_m: 0.5, gap_m: 0.1, name: "R1"),
+                ]),
+            ],
+        )"#,
+    )
+    .unwrap();
+    let topo = Topology::new(&wall).unwrap();
+    let motion = constant(-3.0, 0.4);
+    let settings = Settings {
+        log_events: true,
+        log_decisions: true,
+        ..Settings::summary_only(0.4)
+    };
+    let scenario = Scenario {
+        wall: &wall,
+        topology: &topo,
+        motion: &motion,
+        settings: &settings,
+    };
+    let r = EventDriven::default().run(&scenario).unwrap();
+    let a_rel = 3.0 - 0.1 * wall.g_m_s2.to_f64();
+    let t_hit = (2.0 * 0.1 / a_rel).sqrt();
+    let impacts: Vec<_> = r
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Impact)
+        .collect();
+    assert_eq!(impacts.len(), 2, "{impacts:?}");
+    let mut pairs: Vec<_> = impacts.iter().map(|e| e.blocks.join("|")).collect();
+    pairs.sort();
+    assert_eq!(pairs, ["L0|R0", "L1|R1"]);
+    for e in &impacts {
+        assert!(
+            (e.time_s - t_hit).abs() < 1e-12,
+            "{} against {t_hit}",
+            e.time_s
+        );
+        let (before, after) = (e.before_m_s.unwrap(), e.after_m_s.unwrap());
+        assert!((before[0] - a_rel * t_hit).abs() < 1e-12);
+        assert_eq!(
+            (before[1], after),
+            (0.0, [0.0, before[0]]),
+            "an exact exchange"
+        );
+    }
+    let inside: Vec<_> = r
+        .events
+        .iter()
+        .filter(|e| matches!(e.joint.as_deref(), Some("L1/L0" | "R1/R0")))
+        .collect();
+    assert!(inside.is_empty(), "no column slips inside: {inside:?}");
+    let at_hit: Vec<_> = r
+        .decisions
+        .iter()
+        .filter(|d| d.time_s == impacts[0].time_s)
+        .collect();
+    assert_eq!(
+        at_hit.len(),
+        1,
+        "one decision after both impacts: {at_hit:?}"
+    );
+    assert_eq!(r.summary.energy.impact_loss_j, 0.0);
+    // Absolute accelerations: the left column's 0.1 g throughout, the right one's 0.5 g once
+    // it slides (no mode of zero duration between the two impacts counts).
+    let g = wall.g_m_s2.to_f64();
+    for (b, mu) in r.summary.blocks.iter().zip([0.1, 0.5, 0.1, 0.5]) {
+        assert!(
+            (b.max_abs_accel_m_s2 - mu * g).abs() < 1e-12,
+            "{}: {} m/s2",
+            b.name,
+            b.max_abs_accel_m_s2
+        );
+    }
+}
+
 /// The paper's wall cut into 105 blocks with random friction (mu 0.2-0.4), and the first 10 s
 /// of El Centro at 4 m/s2: flows, impacts and every kind of decision.
 fn shaken_running_bond() -> (Wall, Topology, Motion) {

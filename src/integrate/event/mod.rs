@@ -180,6 +180,14 @@ impl Ord for Pending {
     }
 }
 
+/// The blocks an impact reaches through touching faces ([`impact::resolve`]'s input).
+struct Chain {
+    /// Each block with its mass and velocity; the ground and abutments have no mass.
+    bodies: Vec<(usize, impact::Body)>,
+    /// Touching faces (left body, right body, joint), left to right.
+    faces: Vec<(usize, usize, usize)>,
+}
+
 pub(crate) struct Engine<'a> {
     wall: &'a Wall,
     topo: &'a Topology,
@@ -898,15 +906,16 @@ impl<'a> Engine<'a> {
         )
     }
 
-    /// Resolves the impact at joint j and the chain of touching blocks around it, exactly.
-    fn impact(&mut self, j: usize) -> Result<(), SimulationError> {
-        // The chain: blocks reachable from the joint through touching faces.
+    /// The chain of an impact at joint j: the blocks reachable from it through touching faces
+    /// (joints already `seen` are left out, and the chain's are marked).
+    fn chain(&self, j: usize, seen: &mut [bool]) -> Chain {
         let mut bodies_of = HashMap::new();
-        let mut bodies = Vec::new();
-        let mut faces: Vec<(usize, usize, usize)> = Vec::new();
+        let mut chain = Chain {
+            bodies: Vec::new(),
+            faces: Vec::new(),
+        };
         let mut queue = vec![j];
-        let mut seen_joint = vec![false; self.topo.joints.len()];
-        seen_joint[j] = true;
+        seen[j] = true;
         while let Some(jj) = queue.pop() {
             let jt = &self.topo.joints[jj];
             let mut ids = [0usize; 2];
@@ -917,7 +926,7 @@ impl<'a> Engine<'a> {
                     blk
                 };
                 let id = *bodies_of.entry(key).or_insert_with(|| {
-                    bodies.push((
+                    chain.bodies.push((
                         blk,
                         impact::Body {
                             mass: (!self.fixed[blk]).then(|| self.mass_q[blk].clone()),
@@ -925,30 +934,51 @@ impl<'a> Engine<'a> {
                                 .expect("velocities are finite"),
                         },
                     ));
-                    bodies.len() - 1
+                    chain.bodies.len() - 1
                 });
                 ids[slot] = id;
                 if !self.fixed[blk] {
                     for &side in &self.topo.sides[blk] {
-                        if !seen_joint[side.0]
-                            && self.live_joint(side.0)
-                            && self.gap(side.0).abs() <= self.len_tol(self.block_disp(blk), 0.0)
-                        {
-                            seen_joint[side.0] = true;
+                        if !seen[side.0] && self.closed(side.0, blk) {
+                            seen[side.0] = true;
                             queue.push(side.0);
                         }
                     }
                 }
             }
-            faces.push((ids[0], ids[1], jj));
+            chain.faces.push((ids[0], ids[1], jj));
         }
-        faces.sort_by(|p, q| {
+        chain.faces.sort_by(|p, q| {
             self.xl[self.topo.joints[p.2].right.0]
                 .total_cmp(&self.xl[self.topo.joints[q.2].right.0])
         });
-        let pairs: Vec<(usize, usize)> = faces.iter().map(|f| (f.0, f.1)).collect();
-        let mut exact: Vec<impact::Body> = bodies.iter().map(|b| b.1.clone()).collect();
-        let scale = bodies
+        chain
+    }
+
+    /// Joint j, a side of block `blk`, is live and its faces touch.
+    fn closed(&self, j: usize, blk: usize) -> bool {
+        self.live_joint(j) && self.gap(j).abs() <= self.len_tol(self.block_disp(blk), 0.0)
+    }
+
+    /// The faces of joint j approach: closed, they collide.
+    fn approaching(&self, j: usize) -> bool {
+        let (vl, vr) = (
+            self.block_vel(self.topo.joints[j].left.0),
+            self.block_vel(self.topo.joints[j].right.0),
+        );
+        vl - vr > self.vel_tol(vl, vr)
+    }
+
+    /// Resolves a chain exactly: its collisions, the kinetic energy they lose (J) and the
+    /// bodies' velocities after.
+    fn resolve_chain(
+        &self,
+        chain: &Chain,
+    ) -> Result<(Vec<impact::Collision>, Q, Vec<impact::Body>), SimulationError> {
+        let pairs: Vec<(usize, usize)> = chain.faces.iter().map(|f| (f.0, f.1)).collect();
+        let mut exact: Vec<impact::Body> = chain.bodies.iter().map(|b| b.1.clone()).collect();
+        let scale = chain
+            .bodies
             .iter()
             .map(|b| b.1.velocity.abs().to_f64())
             .fold(0.0, f64::max);
@@ -960,7 +990,8 @@ impl<'a> Engine<'a> {
             &negligible,
             self.params.max_collisions_per_chain,
         ) else {
-            let names: Vec<&str> = bodies
+            let names: Vec<&str> = chain
+                .bodies
                 .iter()
                 .map(|b| self.wall.blocks[b.0].name.as_str())
                 .collect();
@@ -970,30 +1001,78 @@ impl<'a> Engine<'a> {
                 count: self.params.max_collisions_per_chain,
             });
         };
-        for c in &collisions {
-            let jj = faces[c.face].2;
-            let (l, r) = (self.topo.joints[jj].left.0, self.topo.joints[jj].right.0);
-            self.touching[jj] = true;
-            let pair = |v: &[Q; 2]| [v[0].to_f64(), v[1].to_f64()];
-            self.rec.impact(
-                self.t,
-                l,
-                r,
-                self.joint_label(jj),
-                pair(&c.before),
-                pair(&c.after),
-            );
+        Ok((collisions, loss, exact))
+    }
+
+    /// Other chains that collide at this instant on the clusters of `chains`' blocks, resolved
+    /// (and marked `seen`): where a body hits its neighbours along several courses at once, one
+    /// scheduled pair of clusters gives one face, and the others would each be found only after
+    /// a decision over the whole body, with a transition at zero duration in between. A chain of
+    /// one collision between two blocks each sliding alone is left to its own event: it may
+    /// start a Zeno series ([`Engine::zeno_accumulation`]).
+    fn simultaneous_chains(
+        &self,
+        chains: &mut Vec<(Chain, Vec<impact::Collision>, Q, Vec<impact::Body>)>,
+        seen: &mut [bool],
+    ) -> Result<(), SimulationError> {
+        let mut scanned: Vec<usize> = Vec::new();
+        let mut next = 0;
+        while next < chains.len() {
+            let hit: Vec<usize> = chains[next]
+                .0
+                .bodies
+                .iter()
+                .map(|b| b.0)
+                .filter(|&b| !self.fixed[b])
+                .collect();
+            next += 1;
+            for b in hit {
+                let k = self.of[b];
+                let members = match k {
+                    NONE => std::slice::from_ref(&b),
+                    k if scanned.contains(&k) => continue,
+                    k => {
+                        scanned.push(k);
+                        &self.clusters[k].blocks[..]
+                    }
+                };
+                for &m in members {
+                    for &side in &self.topo.sides[m] {
+                        let jj = side.0;
+                        if seen[jj] || !self.closed(jj, m) || !self.approaching(jj) {
+                            continue;
+                        }
+                        let chain = self.chain(jj, seen);
+                        let (collisions, loss, exact) = self.resolve_chain(&chain)?;
+                        if collisions.len() == 1 && self.alone_sliding(jj).is_some() {
+                            continue;
+                        }
+                        chains.push((chain, collisions, loss, exact));
+                    }
+                }
+            }
         }
-        if let Some(single) = (collisions.len() == 1).then(|| faces[collisions[0].face]) {
+        Ok(())
+    }
+
+    /// Resolves the impact at joint j and the chain of touching blocks around it, exactly, with
+    /// every other chain that collides at this instant on the clusters they hit
+    /// ([`Engine::simultaneous_chains`]); then one decision follows them all.
+    fn impact(&mut self, j: usize) -> Result<(), SimulationError> {
+        let mut seen = vec![false; self.topo.joints.len()];
+        let first = self.chain(j, &mut seen);
+        let (collisions, loss, exact) = self.resolve_chain(&first)?;
+        if let Some(single) = (collisions.len() == 1).then(|| first.faces[collisions[0].face]) {
             if let Some(t_acc) = self.zeno_accumulation(single.2, &collisions[0].approach) {
+                self.record_collisions(&first, &collisions);
                 // Every bounce of the series happens within (t, t_acc) under the same forces: the
                 // pair's centre of mass moves as if they had stuck now, and from t_acc on they
                 // do. Merge them now with their common velocity; all of the relative kinetic
                 // energy is lost to the series.
                 let (bl, br, jj) = single;
                 let (ml, mr) = (
-                    bodies[bl].1.mass.clone().expect("sliding"),
-                    bodies[br].1.mass.clone().expect("sliding"),
+                    first.bodies[bl].1.mass.clone().expect("sliding"),
+                    first.bodies[br].1.mass.clone().expect("sliding"),
                 );
                 let c = &collisions[0];
                 let common = (&ml * &c.before[0] + &mr * &c.before[1]) / (&ml + &mr);
@@ -1013,20 +1092,43 @@ impl<'a> Engine<'a> {
                 return self.decide_from(&[l, r], &[(l, v), (r, v)], None, Cause::Zeno);
             }
         }
-        self.rec.energy.impact_loss_j += loss.to_f64();
+        let mut chains = vec![(first, collisions, loss, exact)];
+        self.simultaneous_chains(&mut chains, &mut seen)?;
         let mut seeds = Vec::new();
         let mut snap = Vec::new();
-        for (k, (blk, _)) in bodies.iter().enumerate() {
-            if self.fixed[*blk] {
-                continue;
+        for (chain, collisions, loss, exact) in &chains {
+            self.record_collisions(chain, collisions);
+            self.rec.energy.impact_loss_j += loss.to_f64();
+            for (k, (blk, _)) in chain.bodies.iter().enumerate() {
+                if self.fixed[*blk] {
+                    continue;
+                }
+                let v = exact[k].velocity.to_f64();
+                if v != self.block_vel(*blk) {
+                    snap.push((*blk, v));
+                }
+                seeds.push(*blk);
             }
-            let v = exact[k].velocity.to_f64();
-            if v != self.block_vel(*blk) {
-                snap.push((*blk, v));
-            }
-            seeds.push(*blk);
         }
         self.decide_from(&seeds, &snap, None, Cause::Impact)
+    }
+
+    /// Logs a chain's collisions; their faces touch from now on.
+    fn record_collisions(&mut self, chain: &Chain, collisions: &[impact::Collision]) {
+        for c in collisions {
+            let jj = chain.faces[c.face].2;
+            let (l, r) = (self.topo.joints[jj].left.0, self.topo.joints[jj].right.0);
+            self.touching[jj] = true;
+            let pair = |v: &[Q; 2]| [v[0].to_f64(), v[1].to_f64()];
+            self.rec.impact(
+                self.t,
+                l,
+                r,
+                self.joint_label(jj),
+                pair(&c.before),
+                pair(&c.after),
+            );
+        }
     }
 
     /// Zeno: after an impact with 0 < e < 1 between two blocks that slide alone under forces the
@@ -1039,19 +1141,8 @@ impl<'a> Engine<'a> {
     /// bounces is the exact one, not that of blocks merged early.
     fn zeno_accumulation(&self, j: usize, approach: &Q) -> Option<f64> {
         let e = &self.restitution;
-        if !(e.is_positive() && *e < Q::one()) || self.motion.has_vertical() {
-            return None;
-        }
         let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
-        let (kl, kr) = (self.of[l], self.of[r]);
-        if kl == NONE
-            || kr == NONE
-            || self.clusters[kl].blocks.len() != 1
-            || self.clusters[kr].blocks.len() != 1
-        {
-            return None;
-        }
-        let (sl, sr) = (self.clusters[kl].slide()?, self.clusters[kr].slide()?);
+        let (sl, sr) = self.alone_sliding(j)?;
         let closing = &sr.c_q - &sl.c_q;
         if !closing.is_negative() {
             return None;
@@ -1098,6 +1189,25 @@ impl<'a> Engine<'a> {
             .map(|p| p.0.t)
             .fold(f64::INFINITY, f64::min);
         (t_acc < earliest && t_acc < self.t_end).then_some(t_acc)
+    }
+
+    /// The slides of the two blocks of joint j where a Zeno series is possible between them: 0 <
+    /// e < 1, no vertical shaking, and each block sliding alone.
+    fn alone_sliding(&self, j: usize) -> Option<(&cluster::Slide, &cluster::Slide)> {
+        let e = &self.restitution;
+        if !(e.is_positive() && *e < Q::one()) || self.motion.has_vertical() {
+            return None;
+        }
+        let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
+        let (kl, kr) = (self.of[l], self.of[r]);
+        if kl == NONE
+            || kr == NONE
+            || self.clusters[kl].blocks.len() != 1
+            || self.clusters[kr].blocks.len() != 1
+        {
+            return None;
+        }
+        Some((self.clusters[kl].slide()?, self.clusters[kr].slide()?))
     }
 
     /// Does block i still stand on its supports? Its centroid must lie in the span from the
