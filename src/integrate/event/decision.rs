@@ -395,17 +395,29 @@ impl Engine<'_> {
         let (mut groups, mut intervals, rest) =
             self.stuck_pieces(&p, &blocks, &theta_lex, theta.is_some());
         if !rest.is_empty() {
-            // Large clusters that slid as one body until now (see `Problem::solve`).
-            let bodies: Vec<Vec<usize>> = old_clusters
-                .iter()
-                .map(|&k| &self.clusters[k])
-                .filter(|c| c.slide().is_some() && c.blocks.len() >= BODY_FROM)
-                .map(|c| {
-                    let mut nodes: Vec<usize> = c.blocks.iter().map(|b| local[b]).collect();
-                    nodes.sort_unstable();
-                    nodes
-                })
-                .collect();
+            // Large clusters that slid as one body until now (see `Problem::solve`), each cut
+            // by velocity: the blocks an impact hits leave with velocities of their own, and
+            // held to the rest they would fail the first try, which costs a cut over the body.
+            let mut bodies: Vec<Vec<usize>> = Vec::new();
+            for c in old_clusters.iter().map(|&k| &self.clusters[k]) {
+                if c.slide().is_none() || c.blocks.len() < BODY_FROM {
+                    continue;
+                }
+                let mut by_velocity: Vec<(f64, Vec<usize>)> = Vec::new();
+                for b in &c.blocks {
+                    let v = self.vel_with(*b, &snap);
+                    match by_velocity.iter_mut().find(|(w, _)| *w == v) {
+                        Some((_, nodes)) => nodes.push(local[b]),
+                        None => by_velocity.push((v, vec![local[b]])),
+                    }
+                }
+                for (_, mut nodes) in by_velocity {
+                    if nodes.len() >= 2 {
+                        nodes.sort_unstable();
+                        bodies.push(nodes);
+                    }
+                }
+            }
             if rest.len() == blocks.len() {
                 groups = self.decide_general(&p, &mut theta_lex, theta.is_some(), &bodies);
             } else {
