@@ -9,7 +9,6 @@ use pirqa::samples::{self, SlidingBlockReference};
 use pirqa::{Topology, Wall};
 
 fn run(wall: &Wall, motion: &Motion, duration: f64, output_dt: Option<f64>) -> Response {
-    let topo = Topology::new(wall).unwrap();
     let settings = Settings {
         duration_s: duration,
         output_dt_s: output_dt,
@@ -17,11 +16,15 @@ fn run(wall: &Wall, motion: &Motion, duration: f64, output_dt: Option<f64>) -> R
         log_decisions: false,
         after_collapse: Default::default(),
     };
+    run_with(wall, &Topology::new(wall).unwrap(), motion, &settings)
+}
+
+fn run_with(wall: &Wall, topology: &Topology, motion: &Motion, settings: &Settings) -> Response {
     let sc = Scenario {
         wall,
-        topology: &topo,
+        topology,
         motion,
-        settings: &settings,
+        settings,
     };
     EventDriven::default().run(&sc).unwrap()
 }
@@ -491,14 +494,7 @@ fn a_wall_of_two_thousand_blocks_with_random_friction_balances_its_energy() {
     let wall = big_wall();
     let topo = random_friction(&wall, 2700, 600);
     let settings = Settings::summary_only(10.0);
-    let r = EventDriven::default()
-        .run(&Scenario {
-            wall: &wall,
-            topology: &topo,
-            motion: &el_centro_first_s(10, 4.0),
-            settings: &settings,
-        })
-        .unwrap();
+    let r = run_with(&wall, &topo, &el_centro_first_s(10, 4.0), &settings);
     assert!(
         r.summary.stats.events > 500,
         "{} events",
@@ -591,20 +587,13 @@ fn simultaneous_impacts_on_two_courses_are_one_decision() {
         )"#,
     )
     .unwrap();
-    let topo = Topology::new(&wall).unwrap();
-    let motion = constant(-3.0, 0.4);
     let settings = Settings {
         log_events: true,
         log_decisions: true,
         ..Settings::summary_only(0.4)
     };
-    let scenario = Scenario {
-        wall: &wall,
-        topology: &topo,
-        motion: &motion,
-        settings: &settings,
-    };
-    let r = EventDriven::default().run(&scenario).unwrap();
+    let topo = Topology::new(&wall).unwrap();
+    let r = run_with(&wall, &topo, &constant(-3.0, 0.4), &settings);
     let a_rel = 3.0 - 0.1 * wall.g_m_s2.to_f64();
     let t_hit = (2.0 * 0.1 / a_rel).sqrt();
     let impacts: Vec<_> = r
@@ -717,13 +706,7 @@ fn decision_log_adds_up_to_the_run() {
             log_decisions,
             ..Settings::summary_only(10.0)
         };
-        let scenario = Scenario {
-            wall: &wall,
-            topology: &topo,
-            motion: &motion,
-            settings: &settings,
-        };
-        EventDriven::default().run(&scenario).unwrap()
+        run_with(&wall, &topo, &motion, &settings)
     };
     let r = run(true);
     let (log, stats) = (&r.decisions, &r.summary.stats);
