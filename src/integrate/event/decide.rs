@@ -1049,23 +1049,43 @@ impl Problem {
     /// [`Problem::stick_interval`] for the sides `want` ([lo, hi]) only: a side not wanted comes
     /// back as no limit, for the caller to fill in.
     pub fn stick_sides(&self, hints: &[Vec<usize>], want: [bool; 2]) -> Stick {
-        self.stick_sides_by(hints, want, ENUMERATE_UP_TO)
+        self.stick_sides_beyond(hints, want, [None, None])
     }
 
-    /// [`Problem::stick_sides`], trying every set for problems of at most `enumerate_up_to`
-    /// blocks (tests pin the search with 0).
+    /// [`Problem::stick_sides`] where each limit is known to lie at or beyond `bounds` ([lo, hi],
+    /// a limit kept as a bound): the search first cuts at the bound, and where a set attains
+    /// it that one cut is the answer (a limit that has not moved), instead of the several that
+    /// would come down to it from above.
+    pub fn stick_sides_beyond(
+        &self,
+        hints: &[Vec<usize>],
+        want: [bool; 2],
+        bounds: [Option<&Q>; 2],
+    ) -> Stick {
+        self.stick_sides_by(hints, want, bounds, ENUMERATE_UP_TO)
+    }
+
+    /// [`Problem::stick_sides_beyond`], trying every set for problems of at most
+    /// `enumerate_up_to` blocks (tests pin the search with 0).
     fn stick_sides_by(
         &self,
         hints: &[Vec<usize>],
         want: [bool; 2],
+        bounds: [Option<&Q>; 2],
         enumerate_up_to: usize,
     ) -> Stick {
         let neg: Vec<Q> = self.external.iter().map(|e| -e).collect();
         let hi = want[1]
-            .then(|| self.min_ratio(&self.external, Side::Lower, hints, enumerate_up_to))
+            .then(|| {
+                let floor = bounds[1].cloned();
+                self.min_ratio(&self.external, Side::Lower, hints, floor, enumerate_up_to)
+            })
             .flatten();
         let lo = want[0]
-            .then(|| self.min_ratio(&neg, Side::Upper, hints, enumerate_up_to))
+            .then(|| {
+                let floor = bounds[0].map(|b| -b);
+                self.min_ratio(&neg, Side::Upper, hints, floor, enumerate_up_to)
+            })
             .flatten();
         let mut breaking = Vec::new();
         let (mut leaving_lo, mut leaving_hi) = (None, None);
@@ -1164,6 +1184,7 @@ impl Problem {
         external: &[Q],
         side: Side,
         hints: &[Vec<usize>],
+        floor: Option<Q>,
         enumerate_up_to: usize,
     ) -> Option<(Q, Vec<usize>, Option<Vec<usize>>)> {
         let n = self.n();
@@ -1270,19 +1291,33 @@ impl Problem {
         } else {
             Want::Largest
         };
-        let mut adjacency = None;
-        loop {
+        let cut_at = |lambda: &Q, want: Want| {
             // The weights come straight in integers where they fit.
             let in_integers = integral.as_ref().and_then(|z| {
-                let (weight, caps) = z.at(&lambda)?;
+                let (weight, caps) = z.at(lambda)?;
                 self.min_cut_in_integers(&all, &weight, &caps, side, true, want)
             });
-            let (smallest, largest) = in_integers.unwrap_or_else(|| {
+            in_integers.unwrap_or_else(|| {
                 let weight: Vec<Q> = (0..n)
-                    .map(|i| &external[i] - &self.mass[i] * &lambda)
+                    .map(|i| &external[i] - &self.mass[i] * lambda)
                     .collect();
                 self.min_cut(&all, &weight, side, true, want)
-            });
+            })
+        };
+        // At a floor (a kept bound, at or below the least ratio) every set's amount is at least
+        // zero; a set that reaches zero attains the floor, which is then the least ratio, and
+        // the largest such set is the cut's largest minimiser. Otherwise the least ratio lies
+        // above it, and the search goes on from above.
+        if let Some(floor) = floor.filter(|f| *f < lambda) {
+            let largest = cut_at(&floor, Want::Largest).1.expect("asked for");
+            let members: Vec<usize> = (0..n).filter(|&i| largest[i]).collect();
+            if !members.is_empty() {
+                return Some((floor, members.clone(), Some(members)));
+            }
+        }
+        let mut adjacency = None;
+        loop {
+            let (smallest, largest) = cut_at(&lambda, want);
             let largest = largest.expect("asked for");
             let members: Vec<usize> = (0..n).filter(|&i| largest[i]).collect();
             if members.is_empty() {
@@ -1560,6 +1595,7 @@ fn sides(n: usize, (smallest, largest): (u32, u32)) -> (Vec<bool>, Vec<bool>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrate::event::flow;
     use proptest::prelude::*;
 
     fn q(x: f64) -> Q {
@@ -1759,14 +1795,11 @@ mod tests {
         assert_eq!(moving[0].accel, a);
     }
 
-    #[test]
-    fn a_minimiser_in_pieces_steps_to_its_weakest_piece() {
-        // 40 blocks in a row on the ground (push-relabel's size), two weak pairs far apart,
-        // each held together by a strong joint: {5, 6} (ratio (3 + 3 + 1 + 1) / 2 = 4) and
-        // {30, 31} (4.2). From the whole row (372.4 / 40 = 9.31) the first cut's minimiser is
-        // both pairs, whose ratio 4.1 would take a second cut to reach 4; its weakest piece is
-        // the answer, and one more cut confirms it: two cuts, where from a hint naming the
-        // pair one confirms it.
+    /// 40 blocks in a row on the ground (push-relabel's size), two weak pairs far apart, each
+    /// held together by a strong joint: {5, 6} (ratio (3 + 3 + 1 + 1) / 2 = 4, the limit a_hi)
+    /// and {30, 31} (4.2). The cuts a_hi's search makes from `hints` and the `bound` it is known
+    /// to lie at or beyond, in flow-network nodes.
+    fn cuts_between_two_weak_pairs(hints: &[Vec<usize>], bound: Option<&Q>) -> u64 {
         let n = 40;
         let mut friction: Vec<(usize, End, Q)> = (0..n)
             .map(|i| {
@@ -1788,16 +1821,35 @@ mod tests {
             friction,
             contacts: vec![],
         };
-        let cuts = |hints: &[Vec<usize>]| {
-            let from = crate::integrate::event::flow::pass_nodes();
-            let stick = p.stick_sides_by(hints, [false, true], 0);
-            assert_eq!(stick.hi, Some(Q::int(4)));
-            assert_eq!(stick.breaking, [vec![5, 6]]);
-            crate::integrate::event::flow::pass_nodes() - from
-        };
-        let one = cuts(&[vec![5, 6]]);
+        let from = flow::pass_nodes();
+        let stick = p.stick_sides_by(hints, [false, true], [None, bound], 0);
+        assert_eq!(stick.hi, Some(Q::int(4)));
+        assert_eq!(stick.leaving_hi, Some(vec![5, 6]));
+        flow::pass_nodes() - from
+    }
+
+    #[test]
+    fn a_minimiser_in_pieces_steps_to_its_weakest_piece() {
+        // From the whole row (372.4 / 40 = 9.31) the first cut's minimiser is both pairs, whose
+        // ratio 4.1 would take a second cut to reach 4; its weakest piece is the answer, and
+        // one more cut confirms it: two cuts, where from a hint naming the pair one does.
+        let one = cuts_between_two_weak_pairs(&[vec![5, 6]], None);
         assert!(one > 0);
-        assert_eq!(cuts(&[]), 2 * one, "two cuts, not three");
+        assert_eq!(
+            cuts_between_two_weak_pairs(&[], None),
+            2 * one,
+            "two, not three"
+        );
+    }
+
+    #[test]
+    fn a_bound_at_the_limit_is_confirmed_by_one_cut() {
+        // At the limit, one cut shows a set attains it; below it, that cut finds none, and the
+        // search goes on from above as without it.
+        let one = cuts_between_two_weak_pairs(&[vec![5, 6]], None);
+        assert_eq!(cuts_between_two_weak_pairs(&[], Some(&Q::int(4))), one);
+        let below = Q::frac(39, 10);
+        assert_eq!(cuts_between_two_weak_pairs(&[], Some(&below)), 3 * one);
     }
 
     #[test]
@@ -1810,10 +1862,10 @@ mod tests {
             five_block([0.35, 0.2, 0.5, 0.1, 0.4, 0.3]),
         ] {
             // The search with minimum cuts (small problems would try every set instead).
-            let plain = p.stick_sides_by(&[], [true, true], 0);
+            let plain = p.stick_sides_by(&[], [true, true], [None, None], 0);
             for mask in 1..32usize {
                 let hint: Vec<usize> = (0..5).filter(|i| mask >> i & 1 == 1).collect();
-                let hinted = p.stick_sides_by(&[hint, vec![]], [true, true], 0);
+                let hinted = p.stick_sides_by(&[hint, vec![]], [true, true], [None, None], 0);
                 assert_eq!((&hinted.lo, &hinted.hi), (&plain.lo, &plain.hi), "{mask}");
                 let sets: Vec<&Vec<usize>> = hinted.breaking.iter().collect();
                 assert_eq!(sets.len(), 2);
@@ -2086,12 +2138,26 @@ mod tests {
         fn stick_intervals_are_the_weakest_sets(p in abutted_problem()) {
             // Both ways: every set tried in integers, and the search with minimum cuts.
             let interval = |p: &Problem, enumerate_up_to: usize| {
-                let Stick { lo, hi, .. } = p.stick_sides_by(&[], [true, true], enumerate_up_to);
+                let Stick { lo, hi, .. } = p.stick_sides_by(&[], [true, true], [None, None], enumerate_up_to);
                 (lo, hi)
             };
             let want = stick_by_enumeration(&p);
             prop_assert_eq!(interval(&p, ENUMERATE_UP_TO), want.clone());
             prop_assert_eq!(interval(&p, 0), want);
+            // From a bound at or inside each limit (a limit kept as a bound): the same interval,
+            // and the same blocks leaving at each limit.
+            let plain = p.stick_sides_by(&[], [true, true], [None, None], 0);
+            for inside in [Q::zero(), Q::frac(1, 3), Q::int(2)] {
+                let lo = plain.lo.as_ref().map(|l| l + &inside);
+                let hi = plain.hi.as_ref().map(|h| h - &inside);
+                let from = p.stick_sides_by(&[], [true, true], [lo.as_ref(), hi.as_ref()], 0);
+                prop_assert_eq!((&from.lo, &from.hi), (&plain.lo, &plain.hi));
+                for (a, b) in [(&from.leaving_lo, &plain.leaving_lo), (&from.leaving_hi, &plain.leaving_hi)] {
+                    if let (Some(a), Some(b)) = (a, b) {
+                        prop_assert_eq!(a, b);
+                    }
+                }
+            }
             let q = with_coprime_denominators(p);
             if q.friction.len() >= 4 {
                 prop_assert!(Integral::new(&q, &q.external).is_none());
@@ -2158,7 +2224,7 @@ mod tests {
         /// else the shortcut declines.
         #[test]
         fn decisions_past_a_stick_limit_need_no_cut(p in abutted_problem()) {
-            let stick = p.stick_sides_by(&[], [true, true], 0);
+            let stick = p.stick_sides_by(&[], [true, true], [None, None], 0);
             let point = matches!((&stick.lo, &stick.hi), (Some(lo), Some(hi)) if lo >= hi);
             for (limit, outward, leaving) in [
                 (&stick.hi, 1, &stick.leaving_hi),

@@ -970,7 +970,13 @@ impl Engine<'_> {
         let mut found = if want == [false, false] {
             Stick::default()
         } else {
-            p.stick_sides(&hints, want)
+            // A side remembered as a bound only: the exact limit is at it or beyond.
+            let bounds = [0, 1].map(|side| {
+                known
+                    .filter(|s| s.bound_only[side])
+                    .and_then(|s| [&s.lo, &s.hi][side].as_ref())
+            });
+            p.stick_sides_beyond(&hints, want, bounds)
         };
         for set in std::mem::take(&mut found.breaking) {
             let global: Vec<usize> = set.into_iter().map(|k| members[k]).collect();
