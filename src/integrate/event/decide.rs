@@ -1197,6 +1197,7 @@ impl Problem {
     /// The smallest ratio (cut(S) + e(S)) / m(S) over the sets S that may move the side's way,
     /// a set that attains it, and, where the search ended with a cut, the largest set that
     /// does (the union of all: the blocks that move when a_g passes the limit outward).
+    /// `floor`, where given, is known to be at or below the smallest ratio (a kept bound).
     fn min_ratio(
         &self,
         external: &[Q],
