@@ -1372,6 +1372,15 @@ impl Problem {
     }
 }
 
+/// The weaker of two limits on one side of a stick interval (`hi`: the lower of two upper
+/// limits, else the higher of two lower ones); `None` is no limit that way.
+pub fn weaker_limit(a: Option<Q>, b: Option<Q>, hi: bool) -> Option<Q> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(if hi { a.min(b) } else { a.max(b) }),
+        (a, b) => a.or(b),
+    }
+}
+
 /// How a problem solved with bodies held together came out ([`Problem::solve_contracted`]).
 enum Held {
     /// Every body held: the groups of the full problem.
@@ -2212,11 +2221,6 @@ mod tests {
                 .filter(|&(_, i)| labels[i] == 1)
                 .map(|(k, _)| k)
                 .collect();
-            // The weaker of two limits on one side (`None`: none that way).
-            let weaker = |a: Option<Q>, b: Option<Q>, hi: bool| match (a, b) {
-                (Some(a), Some(b)) => Some(if hi { a.min(b) } else { a.max(b) }),
-                (a, b) => a.or(b),
-            };
             for (side, sign) in [(1, 1), (0, -1)] {
                 let q = sliding_against(&p, labels, [true, true, false], [0, 0, sign]);
                 let old = sliding_against(&p, labels, [true, false, true], [0, -sign, 0]);
@@ -2228,7 +2232,7 @@ mod tests {
                 };
                 let (new, old) = (q.stick_interval(&[]), old.stick_interval(&[]));
                 let (new, old) = if side == 1 { (new.hi, old.hi) } else { (new.lo, old.lo) };
-                let bound = if joined.is_empty() { old } else { weaker(old, own, side == 1) };
+                let bound = if joined.is_empty() { old } else { weaker_limit(old, own, side == 1) };
                 let inside = match (&new, &bound) {
                     (None, _) => true,
                     (Some(_), None) => false,

@@ -3,7 +3,7 @@
 //! friction forces changed.
 
 use super::cluster::{Cluster, Motion, Slide};
-use super::decide::{End, Group, Lex, Problem, Stick};
+use super::decide::{weaker_limit, End, Group, Lex, Problem, Stick};
 use super::flow;
 use super::{Engine, NONE};
 use crate::clock::ThreadClock;
@@ -1275,20 +1275,12 @@ impl Engine<'_> {
                 return none;
             }
         }
-        let mut bound = [lo_q.clone(), hi_q.clone()];
+        let (mut lo, mut hi) = (lo_q.clone(), hi_q.clone());
         if !joined.is_empty() {
-            let c_alone = q.with_ground(&joined);
-            let own = c_alone.stick_sides(&[], holds);
-            bound[0] = match (bound[0].take(), own.lo) {
-                (Some(a), Some(b)) => Some(a.max(b)),
-                (a, b) => a.or(b),
-            };
-            bound[1] = match (bound[1].take(), own.hi) {
-                (Some(a), Some(b)) => Some(a.min(b)),
-                (a, b) => a.or(b),
-            };
+            let own = q.with_ground(&joined).stick_sides(&[], holds);
+            lo = weaker_limit(lo, own.lo, false);
+            hi = weaker_limit(hi, own.hi, true);
         }
-        let [lo, hi] = bound;
         [holds[0].then_some(lo), holds[1].then_some(hi)]
     }
 

@@ -861,11 +861,11 @@ impl<'a> Engine<'a> {
     /// A vertical joint closes: an impact if the faces approach, a touch otherwise.
     fn faces_meet(&mut self, j: usize) -> Result<(), SimulationError> {
         let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
-        let (vl, vr) = (self.block_vel(l), self.block_vel(r));
         self.touching[j] = true;
-        if vl - vr > self.vel_tol(vl, vr) {
+        if self.approaching(j) {
             return self.impact(j);
         }
+        let (vl, vr) = (self.block_vel(l), self.block_vel(r));
         self.rec.touches += 1;
         self.rec.event(
             self.t,
