@@ -4,7 +4,7 @@
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{Integrator, Scenario, Settings};
 use pirqa::motion::{Motion, Record, Sine};
-use pirqa::response::{EventKind, Response};
+use pirqa::response::{EventKind, EventRecord, Response};
 use pirqa::samples::{self, SlidingBlockReference};
 use pirqa::{Topology, Wall};
 
@@ -41,6 +41,14 @@ fn constant(a: f64, duration: f64) -> Motion {
 
 fn load(path: &str) -> Wall {
     Wall::load(std::path::Path::new(path)).unwrap()
+}
+
+/// The impacts a run logged, in order.
+fn impacts(r: &Response) -> Vec<&EventRecord> {
+    r.events
+        .iter()
+        .filter(|e| e.kind == EventKind::Impact)
+        .collect()
 }
 
 /// Largest |event-driven u - reference u| over the sampled history of block `i`.
@@ -276,11 +284,7 @@ fn newtons_cradle_passes_the_velocity_down_the_row() {
     // C B (gap 0.1) A: A alone can slide (mu 0.1), B and C are held (mu 0.5 > 3 / 9.81).
     let wall = samples::course(&[0.5, 0.5, 0.1], &[0.0, 0.0, 0.1], 1.0);
     let r = run(&wall, &constant(3.0, 0.6), 0.6, Some(0.1));
-    let impacts: Vec<_> = r
-        .events
-        .iter()
-        .filter(|e| e.kind == EventKind::Impact)
-        .collect();
+    let impacts = impacts(&r);
     assert_eq!(impacts.len(), 2, "A hits B, B hits C, at one instant");
     assert_eq!(impacts[0].time_s, impacts[1].time_s);
     let t = impacts[0].time_s;
@@ -596,11 +600,7 @@ fn simultaneous_impacts_on_two_courses_are_one_decision() {
     let r = run_with(&wall, &topo, &constant(-3.0, 0.4), &settings);
     let a_rel = 3.0 - 0.1 * wall.g_m_s2.to_f64();
     let t_hit = (2.0 * 0.1 / a_rel).sqrt();
-    let impacts: Vec<_> = r
-        .events
-        .iter()
-        .filter(|e| e.kind == EventKind::Impact)
-        .collect();
+    let impacts = impacts(&r);
     assert_eq!(impacts.len(), 2, "{impacts:?}");
     let mut pairs: Vec<_> = impacts.iter().map(|e| e.blocks.join("|")).collect();
     pairs.sort();
