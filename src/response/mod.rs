@@ -201,6 +201,10 @@ pub struct Stats {
     /// Nodes of the maximum-flow passes of the exact decisions, summed over passes (minimum
     /// cuts over at most six blocks try every set and run none; event-driven).
     pub flow_nodes: u64,
+    /// Pairs of sliding clusters whose events were found, summed over the times they were
+    /// (event-driven): the scheduling work, which a decision beside a large sliding body
+    /// keeps to the pairs it changed.
+    pub pair_schedules: u64,
 }
 
 /// `summary.json`.

@@ -213,6 +213,10 @@ pub struct Cluster {
     pub mass_q: Q,
     /// Changes whenever its motion changes; events computed for an older version are stale.
     pub version: u64,
+    /// Changes whenever what it slides against changes and its motion does not: its events
+    /// against the ground side computed for an older one are stale, its events with other
+    /// sliding clusters stand.
+    pub ground_version: u64,
     /// How it moves.
     pub motion: Motion,
     /// Energy and extremes are accounted up to this time (s).

@@ -505,6 +505,7 @@ impl Engine<'_> {
                 mass_q,
                 blocks: members,
                 version: 0,
+                ground_version: 0,
                 motion,
                 accounted_to: t,
                 roots: None,
@@ -642,9 +643,15 @@ impl Engine<'_> {
             set.dedup();
         }
         // A stuck neighbour none of whose joints turned keeps its problem, so its interval and
-        // events stand (a sliding one is rescheduled: what it slides against has changed).
-        neighbours
-            .retain(|k| pushed.binary_search(k).is_ok() || self.clusters[*k].slide().is_some());
+        // events stand. A sliding one keeps its motion and its events with the sliding clusters
+        // that did not change (those with the new ones come with theirs); what it slides
+        // against has changed, so its events against the ground side are found again. A large
+        // body beside a small decision then costs a pass over its own blocks, not one over every
+        // sliding cluster along it.
+        let quiet: Vec<usize> = neighbours
+            .into_iter()
+            .filter(|k| pushed.binary_search(k).is_err() && self.clusters[*k].slide().is_some())
+            .collect();
 
         // 7. Stuck clusters get their threshold interval; neighbours whose friction changed move
         //    on with their new forces.
@@ -654,10 +661,14 @@ impl Engine<'_> {
         for &k in &new_clusters {
             self.clusters[k].version = self.new_version();
         }
-        for &k in &neighbours {
-            self.refresh(k, pushed.binary_search(&k).is_ok(), &before);
+        for &k in &pushed {
+            self.refresh(k, &before);
         }
-        self.schedule(new_clusters.iter().chain(&neighbours).copied());
+        for &k in &quiet {
+            self.clusters[k].ground_version = self.new_version();
+            self.schedule_segment(k);
+        }
+        self.schedule(new_clusters.iter().chain(&pushed).copied());
         if let (Some((clock, nodes_from)), Some((blocks, stuck_taken_in))) = (log_from, taken_in) {
             let record = DecisionRecord {
                 time_s: t,
@@ -1284,14 +1295,12 @@ impl Engine<'_> {
         [holds[0].then_some(lo), holds[1].then_some(hi)]
     }
 
-    /// A cluster next to a re-decided one: its neighbourhood has changed, and where one of its
-    /// joints `turned` (after an impact) its friction forces too; it gets a new version and
-    /// fresh events.
-    fn refresh(&mut self, k: usize, turned: bool, before: &Before) {
+    /// A cluster next to a re-decided one one of whose joints turned (after an impact): its
+    /// friction forces have changed; it gets a new version and fresh events.
+    fn refresh(&mut self, k: usize, before: &Before) {
         let t = self.t;
         match &self.clusters[k].motion {
             Motion::Stuck { .. } => self.set_thresholds(k, Some(before)),
-            Motion::Sliding(_) if !turned => {}
             Motion::Sliding(sl) => {
                 let force: Q = self.external_forces(k).into_iter().sum();
                 let c_q = force / &self.clusters[k].mass_q;
@@ -1379,6 +1388,7 @@ impl Engine<'_> {
                 mass_q: self.mass_q[i].clone(),
                 blocks: vec![i],
                 version: 0,
+                ground_version: 0,
                 motion: Motion::Sliding(Slide::formed(&self.seg, self.t, v, Q::zero())),
                 accounted_to: self.t,
                 roots: None,

@@ -120,10 +120,12 @@ enum Ev {
     Stop {
         k: usize,
         ver: u64,
+        ground: u64,
     },
     GroundBound {
         k: usize,
         ver: u64,
+        ground: u64,
         c: Constraint,
     },
     Meet {
@@ -409,8 +411,9 @@ impl<'a> Engine<'a> {
                 .is_some_and(|c| c.version == v && !c.blocks.is_empty())
         };
         match *ev {
-            Ev::Threshold { k, ver, .. } | Ev::Stop { k, ver } | Ev::GroundBound { k, ver, .. } => {
-                ok(k, ver)
+            Ev::Threshold { k, ver, .. } => ok(k, ver),
+            Ev::Stop { k, ver, ground } | Ev::GroundBound { k, ver, ground, .. } => {
+                ok(k, ver) && self.clusters[k].ground_version == ground
             }
             Ev::Meet { a, va, b, vb } | Ev::PairBound { a, va, b, vb, .. } => {
                 ok(a, va) && ok(b, vb)

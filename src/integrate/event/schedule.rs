@@ -143,12 +143,13 @@ impl Engine<'_> {
                         hits
                     }
                 };
+                let ground = self.clusters[k].ground_version;
                 if let Some(t) = hits[0] {
-                    self.push(t, Ev::Stop { k, ver });
+                    self.push(t, Ev::Stop { k, ver, ground });
                 }
                 for (hit, bound) in [(hits[1], bounds.lo), (hits[2], bounds.hi)] {
                     if let (Some(t), Some((_, c))) = (hit, bound) {
-                        self.push(t, Ev::GroundBound { k, ver, c });
+                        self.push(t, Ev::GroundBound { k, ver, ground, c });
                     }
                 }
             }
@@ -337,6 +338,7 @@ impl Engine<'_> {
             return;
         };
         let (va, vb) = (ca.version, cb.version);
+        self.rec.stats.pair_schedules += 1;
         let r0 = self.cluster_disp(b) - self.cluster_disp(a);
         let r1 = self.cluster_vel(b) - self.cluster_vel(a);
         let r2 = sb.c - sa.c;
