@@ -326,6 +326,7 @@ fn every_shipped_study_loads() {
         ("elcentro-ida.ron", 3 * 11),
         ("fragility.ron", 6 * 200),
         ("friction-mc.ron", 1000),
+        ("long-walls.ron", 5 * 8),
         ("paper-fig3-4.ron", 3 * 4 * 100),
     ];
     let mut found: Vec<String> = std::fs::read_dir("walls/studies")
