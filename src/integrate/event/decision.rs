@@ -1295,8 +1295,8 @@ impl Engine<'_> {
         [holds[0].then_some(lo), holds[1].then_some(hi)]
     }
 
-    /// A cluster next to a re-decided one one of whose joints turned (after an impact): its
-    /// friction forces have changed; it gets a new version and fresh events.
+    /// A neighbour of the re-decided clusters one of whose joints the decision turned (after an
+    /// impact): its friction forces have changed; it gets a new version and fresh events.
     fn refresh(&mut self, k: usize, before: &Before) {
         let t = self.t;
         match &self.clusters[k].motion {
