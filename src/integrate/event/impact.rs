@@ -75,7 +75,7 @@ pub fn resolve(
             before,
             after,
         });
-        // The ground side's velocity does not change: only the moving bodies' faces move.
+        // The ground side's velocity never changes: only the blocks' faces are looked at again.
         for b in [l, r].into_iter().filter(|&b| bodies[b].mass.is_some()) {
             for &j in &at[b] {
                 queue.look(j, faces, bodies, negligible);
