@@ -2171,10 +2171,10 @@ mod tests {
             };
             let want = stick_by_enumeration(&p);
             prop_assert_eq!(interval(&p, ENUMERATE_UP_TO), want.clone());
-            prop_assert_eq!(interval(&p, 0), want);
+            let plain = p.stick_sides_by(&[], [true, true], [None, None], 0);
+            prop_assert_eq!((plain.lo.clone(), plain.hi.clone()), want);
             // From a bound at or inside each limit (a limit kept as a bound): the same interval,
             // and the same blocks leaving at each limit.
-            let plain = p.stick_sides_by(&[], [true, true], [None, None], 0);
             for inside in [Q::zero(), Q::frac(1, 3), Q::int(2)] {
                 let lo = plain.lo.as_ref().map(|l| l + &inside);
                 let hi = plain.hi.as_ref().map(|h| h - &inside);

@@ -49,10 +49,12 @@ pub fn resolve(
     // fastest first (ties: the leftmost), are kept in a queue, and only those faces are looked
     // at again. A course of touching blocks with e < 1 takes many collisions per face to
     // settle, and looking at every face after each cost the chain's length per collision.
+    // The faces of each block (the ground side's velocity never changes, so it has none here).
     let mut at: Vec<Vec<usize>> = vec![Vec::new(); bodies.len()];
     for (k, &(l, r)) in faces.iter().enumerate() {
-        at[l].push(k);
-        at[r].push(k);
+        for b in [l, r].into_iter().filter(|&b| bodies[b].mass.is_some()) {
+            at[b].push(k);
+        }
     }
     let mut queue = Approaching {
         heap: BinaryHeap::new(),
@@ -75,11 +77,8 @@ pub fn resolve(
             before,
             after,
         });
-        // The ground side's velocity never changes: only the blocks' faces are looked at again.
-        for b in [l, r].into_iter().filter(|&b| bodies[b].mass.is_some()) {
-            for &j in &at[b] {
-                queue.look(j, faces, bodies, negligible);
-            }
+        for &j in at[l].iter().chain(&at[r]) {
+            queue.look(j, faces, bodies, negligible);
         }
     }
     Some((collisions, loss))
