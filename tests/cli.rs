@@ -1,5 +1,8 @@
 //! The command line end to end: what a user types and what they get back.
 
+mod common;
+
+use common::scratch as temp_dir;
 use std::process::Command;
 
 fn pirqa(args: &[&str]) -> (bool, String, String) {
@@ -60,7 +63,7 @@ fn invalid_input_exits_non_zero_with_the_file_named() {
 
 #[test]
 fn draw_writes_an_svg_with_names_and_friction() {
-    let out = std::env::temp_dir().join(format!("pirqa-draw-{}.svg", std::process::id()));
+    let out = temp_dir("wall.svg");
     let (ok, _, err) = pirqa(&[
         "draw",
         "walls/five-block-variable.ron",
@@ -74,12 +77,6 @@ fn draw_writes_an_svg_with_names_and_friction() {
     for text in [">B1<", ">B5<", "\u{3bc} 0.28", "\u{3bc} 0.31"] {
         assert!(svg.contains(text), "missing {text}");
     }
-}
-
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("pirqa-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
 }
 
 /// `pirqa run` on the paper's variable wall, 400 gal at 1 Hz for 5 s, into `out`.
@@ -254,7 +251,7 @@ fn run_without_history_keeps_the_logs() {
 fn amplitudes_in_gal_g_and_m_s2_give_the_same_run() {
     let mut maxima = Vec::new();
     for amp in ["400gal", "4m/s2", "4.0 m/s^2"] {
-        let file = temp_dir("units").with_extension("json");
+        let file = temp_dir("units.json");
         let (ok, _, err) = pirqa(&[
             "run",
             "walls/five-block-uniform.ron",
@@ -366,7 +363,7 @@ fn motion_info_json_has_units_in_its_keys() {
     // El Centro 1940: Arias intensity about 1.7 m/s, D5-95 about 24 s.
     assert!((v["arias_m_s"].as_f64().unwrap() - 1.68).abs() < 0.05);
     assert!((v["d5_95_s"].as_f64().unwrap() - 24.1).abs() < 0.5);
-    let svg = temp_dir("info").with_extension("svg");
+    let svg = temp_dir("info.svg");
     let (ok, _, err) = pirqa(&[
         "motion",
         "info",

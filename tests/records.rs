@@ -1,6 +1,9 @@
 //! Record readers: the El Centro files in ../shared/records, and small K-NET, COSMOS, AT2 and
 //! plain files written here, with their broken variants.
 
+mod common;
+
+use common::file as write;
 use pirqa::motion::formats::{detect, format_named};
 use pirqa::motion::{read_record, ReadOptions, Record};
 use std::path::{Path, PathBuf};
@@ -9,14 +12,6 @@ const G: f64 = 9.81;
 
 fn shared(name: &str) -> PathBuf {
     Path::new("../shared/records").join(name)
-}
-
-fn write(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("pirqa-records-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
 }
 
 fn read(path: &Path) -> Result<Record, String> {

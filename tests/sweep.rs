@@ -1,18 +1,15 @@
 //! Sweeps: descriptions and their errors, reproducible friction samples, storage that survives
 //! an interruption, and what the analysis reports.
 
+mod common;
+
+use common::scratch as temp_dir;
 use pirqa::study::sweep::store::{read_table, CaseRow, Existing, Store, CASES_HEADER};
 use pirqa::study::sweep::{parse_description, Sweep, SweepDescription, FRICTION_STEP};
 use std::collections::HashSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const EL_CENTRO: &str = "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2";
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("pirqa-sweep-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
 
 fn sweep(text: &str) -> Result<Sweep, pirqa::Error> {
     let d: SweepDescription = parse_description(text).map_err(|source| pirqa::Error::Wall {
@@ -118,7 +115,7 @@ fn an_interrupted_sweep_resumes_to_the_same_table() {
     let stopped = s.run_cases(&HashSet::new(), |r, b| {
         if written == 7 {
             return Err(pirqa::Error::Table {
-                path: dir.clone(),
+                path: dir.to_path_buf(),
                 line: 0,
                 message: "disk full".into(),
             });

@@ -1,15 +1,9 @@
 //! Bad wall input gets an error that names the file, the line or block, and what to fix.
 
-use pirqa::topology;
-use std::path::PathBuf;
+mod common;
 
-fn write_temp(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("pirqa-wall-input-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
+use common::file as write_temp;
+use pirqa::topology;
 
 /// Loads a wall file and returns the error message, which must name the file.
 fn error_of(name: &str, text: &str) -> String {

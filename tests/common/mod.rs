@@ -1,0 +1,45 @@
+//! Scratch space for the integration tests: every path lives in a directory of its own under the
+//! system's temporary directory, removed with everything in it when the test ends, pass or fail
+//! (the tests write histories and charts; left behind, they filled /tmp run after run).
+
+// Each test crate uses the part it needs.
+#![allow(dead_code)]
+
+use std::ops::Deref;
+use std::path::{Path, PathBuf};
+
+/// A path in a temporary directory that is removed when this is dropped.
+pub struct Scratch {
+    _dir: tempfile::TempDir,
+    path: PathBuf,
+}
+
+impl Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.path
+    }
+}
+
+/// A path named `name` that does not exist yet (commands create what they write).
+pub fn scratch(name: &str) -> Scratch {
+    let dir = tempfile::Builder::new()
+        .prefix("pirqa-test-")
+        .tempdir()
+        .expect("a temporary directory");
+    let path = dir.path().join(name);
+    Scratch { _dir: dir, path }
+}
+
+/// A file named `name` holding `text` (error messages name it, so tests choose the name).
+pub fn file(name: &str, text: &str) -> Scratch {
+    let f = scratch(name);
+    std::fs::write(&*f, text).expect("a temporary file");
+    f
+}
