@@ -32,6 +32,10 @@ pub struct SweepArgs {
     /// `pirqa run` command that reproduces it.
     #[arg(long, value_name = "N")]
     pub case: Option<usize>,
+    /// With --case, leave history.csv out (a row of every block at every event: 2 GB for a
+    /// 10,000-block case, and most of its time); `rerun.txt` then says --no-history too.
+    #[arg(long, requires = "case")]
+    pub no_history: bool,
 }
 
 /// A progress bar on the terminal, nothing when output is redirected (indicatif hides itself).
@@ -79,7 +83,7 @@ pub fn write_report(report: &Report, out: &Path) -> Result<(), Error> {
 }
 
 /// One case in full: its files and the command that reruns it.
-fn rerun_case(sweep: &Sweep, id: usize, out: &Path) -> Result<(), Error> {
+fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(), Error> {
     if id >= sweep.len() {
         return Err(Error::Table {
             path: PathBuf::from("--case"),
@@ -118,13 +122,14 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path) -> Result<(), Error> {
         ),
     };
     let command = format!(
-        "pirqa run {}/wall.ron {motion_args} --duration {} --out {}\n",
+        "pirqa run {}/wall.ron {motion_args} --duration {} --out {}{}\n",
         dir.display(),
         motion.duration_s,
-        dir.display()
+        dir.display(),
+        if history { "" } else { " --no-history" }
     );
     write_file(&dir.join("rerun.txt"), &command)?;
-    let r = sweep.run_case_in_full(id, 0.01)?;
+    let r = sweep.run_case_in_full(id, history.then_some(0.01))?;
     super::run::write_outputs(&dir, &r)?;
     eprintln!(
         "case {id} ({}, {}) in {}",
@@ -138,7 +143,7 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path) -> Result<(), Error> {
 pub fn run(args: &SweepArgs) -> Result<(), Error> {
     let sweep = Sweep::load(&args.file)?;
     if let Some(id) = args.case {
-        return rerun_case(&sweep, id, &args.out);
+        return rerun_case(&sweep, id, &args.out, !args.no_history);
     }
     let existing = if args.resume {
         Existing::Resume

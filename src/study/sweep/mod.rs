@@ -393,8 +393,8 @@ impl Sweep {
         d
     }
 
-    /// Runs one case in full: history every `output_dt_s` and the event log.
-    pub fn run_case_in_full(&self, id: usize, output_dt_s: f64) -> Result<Response, Error> {
+    /// Runs one case in full: the event log, and the history every `output_dt_s` if given.
+    pub fn run_case_in_full(&self, id: usize, output_dt_s: Option<f64>) -> Result<Response, Error> {
         let (w, m, s) = self.case(id);
         let topology = match self.friction {
             FrictionModel::Nominal => self.walls[w].topology.clone(),
@@ -405,7 +405,7 @@ impl Sweep {
         let motion = &self.motions[m];
         let settings = Settings {
             duration_s: motion.duration_s,
-            output_dt_s: Some(output_dt_s),
+            output_dt_s,
             log_events: true,
             log_decisions: false,
             after_collapse: Default::default(),
