@@ -13,6 +13,7 @@
 use num_bigint::{BigInt, BigUint, Sign};
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::borrow::Cow;
 use std::cmp::Ordering;
 use std::fmt;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -193,10 +194,13 @@ impl Q {
         }
     }
 
-    fn big_parts(&self) -> (BigInt, BigInt) {
+    /// Numerator and denominator as big integers, borrowed where they are big already: the
+    /// numbers of a long lossy impact chain run to thousands of bits, and copying both operands
+    /// of every operation cost a third of such a run.
+    fn parts(&self) -> (Cow<'_, BigInt>, Cow<'_, BigInt>) {
         match &self.0 {
-            Repr::Small(n, d) => (BigInt::from(*n), BigInt::from(*d)),
-            Repr::Big(b) => (b.0.clone(), b.1.clone()),
+            Repr::Small(n, d) => (Cow::Owned(BigInt::from(*n)), Cow::Owned(BigInt::from(*d))),
+            Repr::Big(b) => (Cow::Borrowed(&b.0), Cow::Borrowed(&b.1)),
         }
     }
 
@@ -307,7 +311,7 @@ impl Q {
                 (*n as i64) as f64 / (*d as i64) as f64
             }
             _ => {
-                let (n, d) = self.big_parts();
+                let (n, d) = self.parts();
                 big_ratio_to_f64(&n, &d)
             }
         }
@@ -392,9 +396,21 @@ impl Q {
                 }
             }
         }
-        let (a, b) = self.big_parts();
-        let (c, d) = o.big_parts();
-        Q::from_big(a * &d + c * &b, b * d)
+        let (a, b) = self.parts();
+        let (c, d) = o.parts();
+        // Over the least common denominator: a chain's dyadic denominators divide one another,
+        // and their product would double the bits the reduction then takes off again.
+        let (twos, odd) = gcd_big(&b, &d);
+        let part = |x: &BigInt| {
+            let x = x >> twos;
+            if odd.is_one() {
+                x
+            } else {
+                x / &odd
+            }
+        };
+        let (bg, dg) = (part(&b), part(&d));
+        Q::from_big(&*a * &dg + &*c * &bg, bg * &*d)
     }
 
     fn mul_impl(&self, o: &Q) -> Q {
@@ -413,9 +429,9 @@ impl Q {
                 }
             }
         }
-        let (a, b) = self.big_parts();
-        let (c, d) = o.big_parts();
-        Q::from_big(a * c, b * d)
+        let (a, b) = self.parts();
+        let (c, d) = o.parts();
+        Q::from_big(&*a * &*c, &*b * &*d)
     }
 
     /// The reciprocal (panics on zero, which callers exclude).
@@ -488,9 +504,9 @@ impl Ord for Q {
                 return x.cmp(&y);
             }
         }
-        let (a, b) = self.big_parts();
-        let (c, d) = o.big_parts();
-        (a * d).cmp(&(c * b))
+        let (a, b) = self.parts();
+        let (c, d) = o.parts();
+        (&*a * &*d).cmp(&(&*c * &*b))
     }
 }
 
@@ -578,6 +594,13 @@ impl fmt::Display for Q {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    impl Q {
+        fn big_parts(&self) -> (BigInt, BigInt) {
+            let (n, d) = self.parts();
+            (n.into_owned(), d.into_owned())
+        }
+    }
 
     /// Numerators and denominators of every size that matters: zero and small values, values
     /// whose products overflow 64 bits, and values whose products overflow 128 bits.
