@@ -14,6 +14,7 @@ fn run(wall: &Wall, motion: &Motion, duration: f64, after: AfterCollapse) -> Res
         log_events: true,
         log_decisions: false,
         after_collapse: after,
+        progress: None,
     };
     EventDriven::default()
         .run(&Scenario {

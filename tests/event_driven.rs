@@ -15,6 +15,7 @@ fn run(wall: &Wall, motion: &Motion, duration: f64, output_dt: Option<f64>) -> R
         log_events: true,
         log_decisions: false,
         after_collapse: Default::default(),
+        progress: None,
     };
     run_with(wall, &Topology::new(wall).unwrap(), motion, &settings)
 }
@@ -782,6 +783,7 @@ fn kept_limits_change_the_work_not_the_answer() {
             log_events: true,
             log_decisions: true,
             after_collapse,
+            progress: None,
         };
         let scenario = Scenario {
             wall,
@@ -855,4 +857,44 @@ fn a_decision_beside_a_sliding_body_reschedules_only_the_pairs_it_changed() {
     assert!(per_decision < 10.0, "{per_decision} pairs per decision");
     let e = &r.summary.energy;
     assert!(e.residual_j.abs() < 1e-12 * e.input_j, "{e:?}");
+}
+
+/// Every integrator tells its progress: simulated times that never go back or past the
+/// duration, ending at it (the bar of `pirqa run` reaches 100 %).
+#[test]
+fn every_integrator_reports_its_progress_up_to_the_duration() {
+    use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
+    use pirqa::integrate::Progress;
+    use std::sync::{Arc, Mutex};
+    let wall = samples::stacked_pair(0.5, 0.2);
+    let topology = Topology::new(&wall).unwrap();
+    let motion = sine(4.0, 1.0, 0.0, 3.0);
+    let integrators: [Box<dyn Integrator>; 4] = [
+        Box::new(EventDriven::default()),
+        Box::new(PaperNewmark { dt_s: 1e-3 }),
+        Box::new(Moreau::new(1e-3)),
+        Box::new(Regularized::new(1e-6)),
+    ];
+    for integrator in integrators {
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        let log = seen.clone();
+        let settings = Settings {
+            progress: Some(Progress(Arc::new(move |t| log.lock().unwrap().push(t)))),
+            ..Settings::summary_only(3.0)
+        };
+        integrator
+            .run(&Scenario {
+                wall: &wall,
+                topology: &topology,
+                motion: &motion,
+                settings: &settings,
+            })
+            .unwrap();
+        let seen = seen.lock().unwrap();
+        let method = integrator.method();
+        assert!(seen.len() >= 6, "{method}: {} reports", seen.len());
+        assert!(seen.windows(2).all(|w| w[0] <= w[1]), "{method} went back");
+        assert!(seen[0] > 0.0, "{method}");
+        assert_eq!(seen.last(), Some(&3.0), "{method}");
+    }
 }

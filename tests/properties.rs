@@ -89,7 +89,7 @@ proptest! {
         let topo = topo.unwrap();
         if std::env::var("PIRQA_PROBE").is_ok() { eprintln!("CASE {}\n{amp} {freq} {phase}", pirqa::wall::to_ron_string(&d)); }
         let motion = Motion::Sine(Sine::new(amp, freq, phase.to_radians(), 4.0).unwrap());
-        let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), log_events: true, log_decisions: false, after_collapse: AfterCollapse::Continue };
+        let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), log_events: true, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings }).unwrap();
 
         let e = r.summary.energy;
@@ -148,7 +148,7 @@ proptest! {
             .collect();
         let topo = nominal.with_frictions(mu);
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
-        let settings = Settings { duration_s: 10.0, output_dt_s: None, log_events: false, log_decisions: false, after_collapse: AfterCollapse::Continue };
+        let settings = Settings { duration_s: 10.0, output_dt_s: None, log_events: false, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings });
         prop_assert!(r.is_ok(), "{:?}", r.err());
         let e = r.unwrap().summary.energy;

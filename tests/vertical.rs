@@ -14,6 +14,7 @@ fn run(wall: &Wall, motion: &Motion, duration: f64) -> Response {
         log_events: true,
         log_decisions: true,
         after_collapse: Default::default(),
+        progress: None,
     };
     EventDriven::default()
         .run(&Scenario {

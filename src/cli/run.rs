@@ -251,12 +251,14 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     let (wall, topo) = topology::load(&args.wall)?;
     let (motion, notes) = build_motion(&args.motion, args.duration, wall.g_m_s2.to_f64())?;
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
+    let (bar, progress) = super::sweep::simulated_time_bar(duration, &wall.name);
     let settings = Settings {
         duration_s: duration,
         output_dt_s: (args.out.is_some() && !args.no_history).then_some(args.output_dt),
         log_events: args.out.is_some(),
         log_decisions: args.decisions,
         after_collapse: args.after_collapse,
+        progress: Some(progress),
     };
     let scenario = Scenario {
         wall: &wall,
@@ -264,7 +266,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         motion: &motion,
         settings: &settings,
     };
-    let mut response = args.integrator().run(&scenario)?;
+    let response = args.integrator().run(&scenario);
+    bar.finish_and_clear();
+    let mut response = response?;
     response.summary.motion_processing = notes;
     if let Some(dir) = &args.out {
         write_outputs(dir, &response)?;

@@ -36,6 +36,34 @@ pub struct Settings {
     pub log_decisions: bool,
     /// What to do after a collapse.
     pub after_collapse: AfterCollapse,
+    /// Told the simulated time as the run goes on (a progress bar for long runs).
+    pub progress: Option<Progress>,
+}
+
+/// Told the simulated time reached (s), once per segment of the ground motion (event-driven)
+/// or per step (time stepping), never past the duration: a run of thousands of blocks takes
+/// minutes, and a bar is the only sign it moves.
+#[derive(Clone)]
+pub struct Progress(pub std::sync::Arc<dyn Fn(f64) + Send + Sync>);
+
+impl Progress {
+    /// Reports time t.
+    pub fn at(&self, t_s: f64) {
+        (self.0)(t_s)
+    }
+}
+
+impl std::fmt::Debug for Progress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Progress")
+    }
+}
+
+/// Settings are equal whatever they report progress to.
+impl PartialEq for Progress {
+    fn eq(&self, _: &Progress) -> bool {
+        true
+    }
 }
 
 impl Settings {
@@ -47,6 +75,7 @@ impl Settings {
             log_events: false,
             log_decisions: false,
             after_collapse: AfterCollapse::Stop,
+            progress: None,
         }
     }
 }

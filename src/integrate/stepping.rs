@@ -4,7 +4,7 @@
 //! The baselines are deliberately ordinary: their errors are what the accuracy study measures.
 
 use crate::error::SimulationError;
-use crate::integrate::{AfterCollapse, Scenario};
+use crate::integrate::{AfterCollapse, Progress, Scenario};
 use crate::motion::Motion;
 use crate::response::{Collapse, EventKind, Recorder, Response};
 use crate::topology::Base;
@@ -188,6 +188,8 @@ pub struct Observer<'a> {
     /// Stop the run (a collapse with `--after-collapse stop`).
     pub stopped: bool,
     impulsive: bool,
+    progress: Option<Progress>,
+    t_end: f64,
 }
 
 impl<'a> Observer<'a> {
@@ -212,6 +214,8 @@ impl<'a> Observer<'a> {
             gone: vec![false; n],
             stopped: false,
             impulsive: false,
+            progress: sc.settings.progress.clone(),
+            t_end: sc.settings.duration_s,
         }
     }
 
@@ -223,6 +227,9 @@ impl<'a> Observer<'a> {
     /// Records the state after a step ending at t: history rows at output times in between
     /// (interpolated), extremes, input work (trapezoid), friction work F |delta d|, collapse.
     pub fn step(&mut self, t: f64, u: &[f64], v: &[f64]) {
+        if let Some(p) = &self.progress {
+            p.at(t.min(self.t_end));
+        }
         let (t0, u0, v0) = (self.last.0, self.last.1.clone(), self.last.2.clone());
         if let Some(dt) = self.output_dt {
             loop {

@@ -107,6 +107,7 @@ pub fn run(
         log_events: true,
         log_decisions: false,
         after_collapse: Default::default(),
+        progress: None,
     };
     integrator.run(&Scenario {
         wall: &case.wall,

@@ -438,6 +438,7 @@ fn record_figures(
             log_events: false,
             log_decisions: false,
             after_collapse: AfterCollapse::Continue,
+            progress: None,
         };
         let r: Response = EventDriven::default().run(&Scenario {
             wall: &wall,

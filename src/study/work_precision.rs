@@ -98,6 +98,7 @@ fn settings(duration: f64) -> Settings {
         log_events: false,
         log_decisions: false,
         after_collapse: Default::default(),
+        progress: None,
     }
 }
 

@@ -226,6 +226,7 @@ fn chart_points(cases: &[work_precision::Case], out: &str) {
             log_events: false,
             log_decisions: false,
             after_collapse: Default::default(),
+            progress: None,
         };
         let sc = Scenario {
             wall: &case.wall,

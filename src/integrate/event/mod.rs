@@ -17,7 +17,7 @@ mod schedule;
 
 use crate::error::SimulationError;
 use crate::exact::Q;
-use crate::integrate::{AfterCollapse, Integrator, Scenario};
+use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario};
 use crate::motion::{Motion, Segment};
 use crate::response::{Collapse, DecisionCause as Cause, EventKind, Recorder, Response};
 use crate::topology::{Base, Topology};
@@ -210,6 +210,7 @@ pub(crate) struct Engine<'a> {
     restitution: Q,
     t: f64,
     t_end: f64,
+    progress: Option<Progress>,
     seg: Segment,
     of: Vec<usize>,
     clusters: Vec<Cluster>,
@@ -308,6 +309,7 @@ impl<'a> Engine<'a> {
             restitution: wall.restitution.clone(),
             t: 0.0,
             t_end,
+            progress: sc.settings.progress.clone(),
             seg,
             of: vec![NONE; n],
             clusters: Vec::new(),
@@ -360,6 +362,9 @@ impl<'a> Engine<'a> {
                 None => {
                     self.output_until(seg_end);
                     self.t = seg_end;
+                    if let Some(p) = &self.progress {
+                        p.at(seg_end);
+                    }
                     if seg_end >= self.t_end {
                         break;
                     }

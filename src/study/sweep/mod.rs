@@ -10,7 +10,7 @@ use crate::clock::ThreadClock;
 use crate::error::{Error, MotionError, SimulationError, WallError};
 use crate::exact::Q;
 use crate::integrate::event::EventDriven;
-use crate::integrate::{Integrator, Scenario, Settings};
+use crate::integrate::{Integrator, Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
 use crate::response::Summary;
@@ -393,8 +393,14 @@ impl Sweep {
         d
     }
 
-    /// Runs one case in full: the event log, and the history every `output_dt_s` if given.
-    pub fn run_case_in_full(&self, id: usize, output_dt_s: Option<f64>) -> Result<Response, Error> {
+    /// Runs one case in full: the event log, and the history every `output_dt_s` if given,
+    /// telling `progress` how far it is.
+    pub fn run_case_in_full(
+        &self,
+        id: usize,
+        output_dt_s: Option<f64>,
+        progress: Progress,
+    ) -> Result<Response, Error> {
         let (w, m, s) = self.case(id);
         let topology = match self.friction {
             FrictionModel::Nominal => self.walls[w].topology.clone(),
@@ -409,6 +415,7 @@ impl Sweep {
             log_events: true,
             log_decisions: false,
             after_collapse: Default::default(),
+            progress: Some(progress),
         };
         Ok(EventDriven::default().run(&Scenario {
             wall: &self.walls[w].wall,
