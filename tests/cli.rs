@@ -713,7 +713,6 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
         "1",
     ]);
     assert!(!ok && err.contains("--run"), "{err}");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `pirqa import` on the survey shipped in docs/walls: the report gives the topology, the
@@ -778,7 +777,6 @@ fn import_reports_the_snaps_and_writes_a_wall_that_checks() {
         !ok && err.contains("furlongs") && err.contains("mm, cm, m"),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A small sweep end to end; one case rerun in full without the history, and the command its

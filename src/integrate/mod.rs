@@ -24,7 +24,7 @@ pub enum AfterCollapse {
 }
 
 /// Settings common to every integrator.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Settings {
     /// Simulated time (s).
     pub duration_s: f64,
@@ -56,13 +56,6 @@ impl Progress {
 impl std::fmt::Debug for Progress {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str("Progress")
-    }
-}
-
-/// Settings are equal whatever they report progress to.
-impl PartialEq for Progress {
-    fn eq(&self, _: &Progress) -> bool {
-        true
     }
 }
 
