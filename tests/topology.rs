@@ -162,3 +162,144 @@ fn a_block_bridging_a_gap_and_faces_seen_past_short_blocks() {
         .collect();
     assert_eq!(loads[0], loads[1]);
 }
+
+/// Rectangles on a grid of half metres, (x, y, width, height) in halves: scattered ones (which
+/// mostly overlap or float), and courses of blocks with gaps, some shorter than their course.
+fn rectangles() -> impl proptest::strategy::Strategy<Value = Vec<(i64, i64, i64, i64)>> {
+    use proptest::prelude::*;
+    let scattered = prop::collection::vec((0i64..10, 0i64..5, 1i64..5, 1i64..3), 1..14);
+    let course = (
+        1i64..3,
+        prop::collection::vec((0i64..2, 1i64..5, 0i64..2), 1..6),
+    );
+    let coursed = prop::collection::vec(course, 1..5).prop_map(|courses| {
+        let mut rects = Vec::new();
+        let mut y = 0;
+        for (height, blocks) in courses {
+            let mut x = 0;
+            for (gap, width, shorter) in blocks {
+                x += gap;
+                rects.push((x, y, width, (height - shorter).max(1)));
+                x += width;
+            }
+            y += height;
+        }
+        rects
+    });
+    prop_oneof![scattered, coursed]
+}
+
+fn wall_of(rects: &[(i64, i64, i64, i64)]) -> Result<Wall, pirqa::error::WallError> {
+    let half = |k: i64| k as f64 / 2.0;
+    let list: Vec<String> = rects
+        .iter()
+        .map(|&(x, y, w, h)| {
+            format!(
+                "(x_m: {}, y_m: {}, width_m: {}, height_m: {})",
+                half(x),
+                half(y),
+                half(w),
+                half(h)
+            )
+        })
+        .collect();
+    Wall::from_ron_str(&format!(
+        "(version: 1, thickness_m: 1, density_kg_m3: 2000, friction: 0.5, rectangles: [{}])",
+        list.join(", ")
+    ))
+}
+
+/// Left, bottom, right and top of block i (m).
+fn edges(wall: &Wall, i: usize) -> [Q; 4] {
+    let b = &wall.blocks[i];
+    [b.x.clone(), b.y.clone(), b.right(), b.top()]
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 512, rng_seed: proptest::test_runner::RngSeed::Fixed(20261124), ..proptest::prelude::ProptestConfig::default() })]
+
+    /// The sweeps that find overlaps, supports and faces (n log n) agree with their
+    /// definitions checked pair by pair.
+    #[test]
+    fn overlaps_supports_and_faces_agree_with_their_definitions(rects in rectangles()) {
+        let overlapping = rects.iter().enumerate().any(|(i, a)| {
+            rects[i + 1..].iter().any(|b| {
+                a.0 < b.0 + b.2 && b.0 < a.0 + a.2 && a.1 < b.1 + b.3 && b.1 < a.1 + a.3
+            })
+        });
+        let wall = match wall_of(&rects) {
+            Err(pirqa::error::WallError::Overlap { .. }) => {
+                proptest::prop_assert!(overlapping);
+                return Ok(());
+            }
+            Err(e) => panic!("{e}"),
+            Ok(wall) => wall,
+        };
+        proptest::prop_assert!(!overlapping);
+        let Ok(topo) = Topology::new(&wall) else {
+            return Ok(()); // floating or toppling: another test's business
+        };
+        let n = wall.blocks.len();
+        for i in 0..n {
+            let [x0, y0, x1, _] = edges(&wall, i);
+            // What block i rests on: the ground, or every block whose top is its bottom and
+            // which it overlaps, left to right.
+            let mut expected: Vec<(Base, Q)> = Vec::new();
+            if y0.is_zero() {
+                expected.push((Base::Ground, &x1 - &x0));
+            }
+            let mut under: Vec<usize> = (0..n).filter(|&j| edges(&wall, j)[3] == y0).collect();
+            under.sort_by(|&a, &b| wall.blocks[a].x.cmp(&wall.blocks[b].x));
+            for j in under {
+                let [l0, _, l1, _] = edges(&wall, j);
+                let overlap = x1.clone().min(l1) - x0.clone().max(l0);
+                if overlap.is_positive() {
+                    expected.push((Base::Block(pirqa::topology::BlockId(j)), overlap));
+                }
+            }
+            let got: Vec<(Base, Q)> = topo.below[i]
+                .iter()
+                .map(|s| (topo.supports[s.0].lower, topo.supports[s.0].overlap_m.clone()))
+                .collect();
+            proptest::prop_assert_eq!(got, expected);
+        }
+        // Faces: j faces i where some height they share is hidden by no block between them
+        // (coordinates are halves, so the quarter points between them decide).
+        let quarter = Q::frac(1, 4);
+        let mut expected = Vec::new();
+        for i in 0..n {
+            let [_, y0, x1, y1] = edges(&wall, i);
+            for j in 0..n {
+                let [o0, p0, _, p1] = edges(&wall, j);
+                let (lo, hi) = (y0.clone().max(p0), y1.clone().min(p1));
+                if o0 < x1 || hi <= lo {
+                    continue;
+                }
+                let mut y = &lo + &quarter;
+                let mut seen = false;
+                while y < hi {
+                    let hidden = (0..n).any(|k| {
+                        let [k0, q0, _, q1] = edges(&wall, k);
+                        k0 >= x1 && k0 < o0 && q0 < y && y < q1
+                    });
+                    seen |= !hidden;
+                    y = &y + &Q::frac(1, 2);
+                }
+                if seen {
+                    expected.push((i, j, &o0 - &x1, &hi - &lo));
+                }
+            }
+        }
+        // By left block, then right block from the bottom up (and nearest first).
+        expected.sort_by(|a, b| {
+            let (p, q) = (&wall.blocks[a.1], &wall.blocks[b.1]);
+            a.0.cmp(&b.0).then(p.y.cmp(&q.y)).then(p.x.cmp(&q.x))
+        });
+        let got: Vec<_> = topo
+            .joints
+            .iter()
+            .map(|j| (j.left.0, j.right.0, j.gap_m.clone(), j.height_m.clone()))
+            .collect();
+        proptest::prop_assert_eq!(got, expected);
+    }
+}

@@ -5,7 +5,7 @@
 use crate::error::WallError;
 use crate::exact::Q;
 use crate::wall::Wall;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// Index of a block in [`Wall::blocks`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
@@ -92,10 +92,15 @@ impl Topology {
     /// names a real support edge.
     pub fn new(wall: &Wall) -> Result<Topology, WallError> {
         let n = wall.blocks.len();
-        let mut by_top: BTreeMap<&Q, Vec<usize>> = BTreeMap::new();
-        let tops: Vec<Q> = wall.blocks.iter().map(|b| b.top()).collect();
-        for (i, t) in tops.iter().enumerate() {
-            by_top.entry(t).or_default().push(i);
+        let rights: Vec<Q> = wall.blocks.iter().map(|b| b.right()).collect();
+        // The blocks whose top is at each height, left to right: blocks with one top do not
+        // overlap, so a block's supports are a run of them found by bisection.
+        let mut by_top: BTreeMap<Q, Vec<usize>> = BTreeMap::new();
+        for (i, b) in wall.blocks.iter().enumerate() {
+            by_top.entry(b.top()).or_default().push(i);
+        }
+        for row in by_top.values_mut() {
+            row.sort_by(|&p, &q| wall.blocks[p].x.cmp(&wall.blocks[q].x));
         }
 
         let mut supports = Vec::new();
@@ -105,12 +110,15 @@ impl Topology {
             let mut found: Vec<(Base, Q)> = Vec::new();
             if b.y.is_zero() {
                 found.push((Base::Ground, b.width.clone()));
-            } else if let Some(cands) = by_top.get(&b.y) {
-                let mut cands = cands.clone();
-                cands.sort_by(|&p, &q| wall.blocks[p].x.cmp(&wall.blocks[q].x));
-                for j in cands {
+            } else if let Some(row) = by_top.get(&b.y) {
+                let first = row.partition_point(|&j| rights[j] <= b.x);
+                for &j in row[first..]
+                    .iter()
+                    .take_while(|&&j| wall.blocks[j].x < rights[i])
+                {
                     let l = &wall.blocks[j];
-                    let overlap = l.right().min(b.right()) - l.x.clone().max(b.x.clone());
+                    let overlap =
+                        rights[j].clone().min(rights[i].clone()) - l.x.clone().max(b.x.clone());
                     if overlap.is_positive() {
                         if b.fixed && !l.fixed {
                             return Err(WallError::FixedOnMovable {
@@ -182,8 +190,15 @@ impl Topology {
             }
         }
 
+        // Names looked up in a table: a friction sample overrides every joint.
+        let index: HashMap<&str, usize> = wall
+            .blocks
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (b.name.as_str(), i))
+            .collect();
         for o in &wall.joint_friction {
-            let (upper, lower) = resolve_key(wall, &supports, &below, &o.key)?;
+            let (upper, lower) = resolve_key(wall, &index, &supports, &below, &o.key)?;
             let s = below[upper]
                 .iter()
                 .find(|s| supports[s.0].lower == lower)
@@ -328,6 +343,7 @@ pub fn contact_hull(
 
 fn resolve_key(
     wall: &Wall,
+    index: &HashMap<&str, usize>,
     supports: &[Support],
     below: &[Vec<SupportId>],
     key: &str,
@@ -344,8 +360,9 @@ fn resolve_key(
             names.join(", ")
         }
     };
-    let upper = wall
-        .block_index(upper_name)
+    let upper = index
+        .get(upper_name)
+        .copied()
         .ok_or_else(|| WallError::JointKeyUnknownBlock {
             key: key.into(),
             name: upper_name.into(),
@@ -354,13 +371,13 @@ fn resolve_key(
     let lower = if lower_name == "ground" {
         Base::Ground
     } else {
-        Base::Block(BlockId(wall.block_index(lower_name).ok_or_else(|| {
-            WallError::JointKeyUnknownBlock {
+        Base::Block(BlockId(index.get(lower_name).copied().ok_or_else(
+            || WallError::JointKeyUnknownBlock {
                 key: key.into(),
                 name: lower_name.into(),
                 known: known(),
-            }
-        })?))
+            },
+        )?))
     };
     if below[upper].iter().any(|s| supports[s.0].lower == lower) {
         return Ok((upper, lower));
@@ -389,6 +406,7 @@ fn resolve_key(
 /// removing from its height band whatever each block met covers.
 fn vertical_joints(wall: &Wall) -> Vec<VerticalJoint> {
     let blocks = &wall.blocks;
+    let tops: Vec<Q> = blocks.iter().map(|b| b.top()).collect();
     let mut order: Vec<usize> = (0..blocks.len()).collect();
     order.sort_by(|&a, &b| {
         blocks[a]
@@ -396,42 +414,50 @@ fn vertical_joints(wall: &Wall) -> Vec<VerticalJoint> {
             .cmp(&blocks[b].x)
             .then(blocks[a].y.cmp(&blocks[b].y))
     });
-    let lefts: Vec<&Q> = order.iter().map(|&k| &blocks[k].x).collect();
+    // Runs of blocks with one left edge, bottom to top: they overlap one another
+    // horizontally, so their vertical extents are disjoint and those a block faces are a
+    // stretch of the run found by bisection, not a scan of every course.
+    let runs: Vec<&[usize]> = order
+        .chunk_by(|&a, &b| blocks[a].x == blocks[b].x)
+        .collect();
     let mut joints = Vec::new();
     for (i, b) in blocks.iter().enumerate() {
         let right = b.right();
-        let start = lefts.partition_point(|x| **x < right);
-        let mut band: Vec<(Q, Q)> = vec![(b.y.clone(), b.top())];
-        for &j in &order[start..] {
+        let start = runs.partition_point(|run| blocks[run[0]].x < right);
+        let mut band: Vec<(Q, Q)> = vec![(b.y.clone(), tops[i].clone())];
+        for run in &runs[start..] {
             if band.is_empty() {
                 break;
             }
-            let o = &blocks[j];
-            let (o0, o1) = (o.y.clone(), o.top());
-            if !band.iter().any(|(a, c)| o1 > *a && o0 < *c) {
-                continue;
+            let first = run.partition_point(|&j| tops[j] <= b.y);
+            for &j in run[first..].iter().take_while(|&&j| blocks[j].y < tops[i]) {
+                let o = &blocks[j];
+                let (o0, o1) = (o.y.clone(), tops[j].clone());
+                if !band.iter().any(|(a, c)| o1 > *a && o0 < *c) {
+                    continue;
+                }
+                if !(b.fixed && o.fixed) {
+                    joints.push(VerticalJoint {
+                        left: BlockId(i),
+                        right: BlockId(j),
+                        gap_m: &o.x - &right,
+                        height_m: tops[i].clone().min(o1.clone()) - b.y.clone().max(o0.clone()),
+                    });
+                }
+                band = band
+                    .into_iter()
+                    .flat_map(|(a, c)| {
+                        let mut pieces = Vec::with_capacity(2);
+                        if o0 > a {
+                            pieces.push((a.clone(), o0.clone().min(c.clone())));
+                        }
+                        if o1 < c {
+                            pieces.push((o1.clone().max(a), c));
+                        }
+                        pieces.into_iter().filter(|(p, q)| q > p)
+                    })
+                    .collect();
             }
-            if !(b.fixed && o.fixed) {
-                joints.push(VerticalJoint {
-                    left: BlockId(i),
-                    right: BlockId(j),
-                    gap_m: &o.x - &right,
-                    height_m: b.top().min(o.top()) - b.y.clone().max(o.y.clone()),
-                });
-            }
-            band = band
-                .into_iter()
-                .flat_map(|(a, c)| {
-                    let mut pieces = Vec::with_capacity(2);
-                    if o0 > a {
-                        pieces.push((a.clone(), o0.clone().min(c.clone())));
-                    }
-                    if o1 < c {
-                        pieces.push((o1.clone().max(a), c));
-                    }
-                    pieces.into_iter().filter(|(p, q)| q > p)
-                })
-                .collect();
         }
     }
     joints.sort_by(|p, q| {

@@ -13,7 +13,8 @@ pub use generate::RunningBond;
 
 use crate::error::{Error, WallError};
 use crate::exact::Q;
-use std::collections::HashMap;
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BinaryHeap, HashMap};
 use std::path::Path;
 
 /// A block of the wall; geometry in metres, exact.
@@ -370,18 +371,34 @@ pub fn to_ron_string(d: &WallDescription) -> String {
     ron::ser::to_string_pretty(d, config).expect("a wall description always serialises")
 }
 
+/// Finds two blocks that overlap, sweeping left to right: the blocks the sweep line crosses
+/// overlap one another horizontally, so their vertical extents are disjoint (or the sweep has
+/// already stopped), and the only one a new block can overlap is the one starting last below
+/// its top. A lookup per block instead of a comparison with every block the line crosses
+/// (one per course): large walls load in n log n.
 fn check_overlaps(blocks: &[Block]) -> Result<(), WallError> {
+    let rights: Vec<Q> = blocks.iter().map(Block::right).collect();
+    let tops: Vec<Q> = blocks.iter().map(Block::top).collect();
     let mut order: Vec<usize> = (0..blocks.len()).collect();
     order.sort_by(|&a, &b| blocks[a].x.cmp(&blocks[b].x));
-    let mut active: Vec<usize> = Vec::new();
+    // The blocks the sweep line crosses, by their bottom edge, and by their right edge to let
+    // them go.
+    let mut crossed: BTreeMap<&Q, usize> = BTreeMap::new();
+    let mut ending: BinaryHeap<Reverse<(&Q, usize)>> = BinaryHeap::new();
     for &i in &order {
         let b = &blocks[i];
-        active.retain(|&a| blocks[a].right() > b.x);
-        for &a in &active {
-            let o = &blocks[a];
-            let dy = o.top().min(b.top()) - o.y.clone().max(b.y.clone());
-            if dy.is_positive() {
-                let dx = o.right().min(b.right()) - o.x.clone().max(b.x.clone());
+        while let Some(&Reverse((right, a))) = ending.peek() {
+            if *right > b.x {
+                break;
+            }
+            ending.pop();
+            crossed.remove(&blocks[a].y);
+        }
+        if let Some((_, &a)) = crossed.range::<&Q, _>(..&tops[i]).next_back() {
+            if tops[a] > b.y {
+                let o = &blocks[a];
+                let dy = tops[a].clone().min(tops[i].clone()) - o.y.clone().max(b.y.clone());
+                let dx = rights[a].clone().min(rights[i].clone()) - o.x.clone().max(b.x.clone());
                 let (first, second) = if a < i { (o, b) } else { (b, o) };
                 return Err(WallError::Overlap {
                     a: first.name.clone(),
@@ -391,7 +408,8 @@ fn check_overlaps(blocks: &[Block]) -> Result<(), WallError> {
                 });
             }
         }
-        active.push(i);
+        crossed.insert(&b.y, i);
+        ending.push(Reverse((&rights[i], i)));
     }
     Ok(())
 }
