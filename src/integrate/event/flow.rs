@@ -399,11 +399,7 @@ impl<T: Amount> Network<T> {
                 excess[v] = excess[v].plus(&r);
             }
         }
-        let mut height = vec![0; n];
-        // Nodes at each height below n: when a height empties, every node above it is cut off
-        // from t (a path to t steps down one height at a time) and is set to n at once, instead
-        // of climbing there relabel by relabel (the gap heuristic).
-        let mut at_height = vec![0usize; n];
+        let mut labels = Labels::new(n);
         let mut active: Vec<Vec<usize>> = vec![Vec::new(); n];
         let mut queued = vec![false; n];
         let mut current = self.first[..n].to_vec();
@@ -413,21 +409,19 @@ impl<T: Amount> Network<T> {
             if relabels >= n {
                 // Global relabelling: exact distances, and the active nodes queued afresh.
                 relabels = 0;
-                height = self.distances_to(t);
+                let mut height = self.distances_to(t);
                 height[s] = n;
-                at_height.iter_mut().for_each(|c| *c = 0);
-                for &h in height.iter().filter(|&&h| h < n) {
-                    at_height[h] += 1;
-                }
+                labels.reset(height);
                 current.copy_from_slice(&self.first[..n]);
                 active.iter_mut().for_each(Vec::clear);
                 queued.iter_mut().for_each(|q| *q = false);
                 highest = 0;
                 for v in (0..n).filter(|&v| v != s && v != t) {
-                    if excess[v].positive() && height[v] < n {
-                        active[height[v]].push(v);
+                    let h = labels.height[v];
+                    if excess[v].positive() && h < n {
+                        active[h].push(v);
                         queued[v] = true;
-                        highest = highest.max(height[v]);
+                        highest = highest.max(h);
                     }
                 }
             }
@@ -439,32 +433,26 @@ impl<T: Amount> Network<T> {
             };
             queued[u] = false;
             // Discharge u: push along admissible arcs, relabel when none is left.
-            while excess[u].positive() && height[u] < n {
+            while excess[u].positive() && labels.height[u] < n {
                 if current[u] == self.first[u + 1] {
+                    // The new label is one above the lowest residual neighbour, whose arc is
+                    // then the first admissible one: the scan goes on from it.
                     let lowest = self
                         .out(u)
                         .filter(|&a| self.arcs[a].residual.positive())
-                        .map(|a| height[self.arcs[a].to])
-                        .min();
-                    let old = height[u];
-                    height[u] = lowest.map_or(n, |h| (h + 1).min(n));
-                    at_height[old] -= 1;
-                    if height[u] < n {
-                        at_height[height[u]] += 1;
-                    }
-                    if at_height[old] == 0 {
-                        for h in height.iter_mut().filter(|h| (old + 1..n).contains(*h)) {
-                            at_height[*h] -= 1;
-                            *h = n;
-                        }
-                    }
-                    current[u] = self.first[u];
+                        .min_by_key(|&a| labels.height[self.arcs[a].to]);
+                    let (to, arc) = match lowest {
+                        Some(a) => ((labels.height[self.arcs[a].to] + 1).min(n), a),
+                        None => (n, self.first[u]),
+                    };
+                    labels.relabel(u, to);
+                    current[u] = arc;
                     relabels += 1;
                     continue;
                 }
                 let a = current[u];
                 let v = self.arcs[a].to;
-                if self.arcs[a].residual.positive() && height[u] == height[v] + 1 {
+                if self.arcs[a].residual.positive() && labels.height[u] == labels.height[v] + 1 {
                     let amount = if excess[u] < self.arcs[a].residual {
                         excess[u].clone()
                     } else {
@@ -476,10 +464,10 @@ impl<T: Amount> Network<T> {
                     excess[u] = excess[u].minus(&amount);
                     excess[v] = excess[v].plus(&amount);
                     if v != s && v != t && !queued[v] {
-                        active[height[v]].push(v);
+                        active[labels.height[v]].push(v);
                         queued[v] = true;
                         // u may have been relabelled above every queued node.
-                        highest = highest.max(height[v]);
+                        highest = highest.max(labels.height[v]);
                     }
                     if !self.arcs[a].residual.positive() {
                         current[u] += 1;
@@ -528,6 +516,93 @@ impl<T: Amount> Network<T> {
             }
         }
         seen
+    }
+}
+
+/// Push-relabel's labels, with the nodes at each label below n in a list of its own: when a
+/// label's list empties, every node above it is cut off from t (a path to t steps down one label
+/// at a time) and goes to n at once, instead of climbing there relabel by relabel (the gap
+/// heuristic), at a cost of the nodes it moves rather than a scan of every node.
+struct Labels {
+    height: Vec<usize>,
+    /// Doubly linked lists, one per label below n (`NONE` ends them).
+    head: Vec<usize>,
+    next: Vec<usize>,
+    prev: Vec<usize>,
+    /// The highest label below n that has nodes (0 when none).
+    top: usize,
+}
+
+const NONE: usize = usize::MAX;
+
+impl Labels {
+    fn new(n: usize) -> Labels {
+        Labels {
+            height: vec![n; n],
+            head: vec![NONE; n],
+            next: vec![NONE; n],
+            prev: vec![NONE; n],
+            top: 0,
+        }
+    }
+
+    /// Takes `height` as the labels and lists every node below n.
+    fn reset(&mut self, height: Vec<usize>) {
+        let n = height.len();
+        self.head.iter_mut().for_each(|h| *h = NONE);
+        self.top = 0;
+        self.height = height;
+        for v in 0..n {
+            let h = self.height[v];
+            if h < n {
+                self.link(v, h);
+            }
+        }
+    }
+
+    fn link(&mut self, v: usize, h: usize) {
+        let first = self.head[h];
+        self.next[v] = first;
+        self.prev[v] = NONE;
+        if first != NONE {
+            self.prev[first] = v;
+        }
+        self.head[h] = v;
+        self.top = self.top.max(h);
+    }
+
+    fn unlink(&mut self, v: usize, h: usize) {
+        let (p, q) = (self.prev[v], self.next[v]);
+        if p == NONE {
+            self.head[h] = q;
+        } else {
+            self.next[p] = q;
+        }
+        if q != NONE {
+            self.prev[q] = p;
+        }
+    }
+
+    /// Moves u (below n) to label `to` (above its own, at most n), and applies the gap
+    /// heuristic if u's old label is left empty.
+    fn relabel(&mut self, u: usize, to: usize) {
+        let n = self.height.len();
+        let old = self.height[u];
+        self.unlink(u, old);
+        self.height[u] = to;
+        if to < n {
+            self.link(u, to);
+        }
+        if self.head[old] == NONE {
+            for h in old + 1..=self.top.max(old) {
+                let mut v = std::mem::replace(&mut self.head[h], NONE);
+                while v != NONE {
+                    self.height[v] = n;
+                    v = self.next[v];
+                }
+            }
+            self.top = old.saturating_sub(1);
+        }
     }
 }
 
