@@ -1,8 +1,9 @@
 //! Maximum flow and minimum cuts with exact capacities. The mode decision reduces every question
 //! it asks — which blocks break away, which stay stuck — to a minimum cut: the one closest to the
 //! source and the one closest to the sink. Small networks use Dinic's algorithm; large ones
-//! push-relabel (highest label first, with global relabelling), which moves a whole wall's
-//! load down in a few sweeps where Dinic needs a phase per course.
+//! push-relabel (active nodes in first-in first-out order, with global relabelling and the gap
+//! heuristic), which moves a whole wall's load down in a few sweeps where Dinic needs a phase
+//! per course.
 
 use crate::exact::{div, gcd_i128, Q};
 use std::collections::VecDeque;
@@ -383,10 +384,13 @@ impl<T: Amount> Network<T> {
         dist
     }
 
-    /// Pushes a maximum preflow from s (push-relabel: highest active label first, labels reset
-    /// to exact distances every `n` relabels) and returns the nodes that reach t: every node
-    /// left with excess has a label of at least n, so it cannot reach t, and the flow into the
-    /// nodes that can is maximum (Goldberg and Tarjan 1988, first phase).
+    /// Pushes a maximum preflow from s (push-relabel: active nodes discharged first in, first
+    /// out; labels reset to exact distances every `n` relabels) and returns the nodes that reach
+    /// t: every node left with excess has a label of at least n, so it cannot reach t, and the
+    /// flow into the nodes that can is maximum (Goldberg and Tarjan 1988, first phase). First
+    /// in, first out rather than highest label first: the networks of a wall's decisions take
+    /// fewer relabels that way (the block-count study's 10,050-block cases 9.3 -> 8.0 s,
+    /// docs/performance.md).
     fn sink_side_of_max_preflow(&mut self, s: usize, t: usize) -> Vec<bool> {
         self.lay_out();
         let n = self.n;
@@ -400,10 +404,9 @@ impl<T: Amount> Network<T> {
             }
         }
         let mut labels = Labels::new(n);
-        let mut active: Vec<Vec<usize>> = vec![Vec::new(); n];
+        let mut fifo: VecDeque<usize> = VecDeque::new();
         let mut queued = vec![false; n];
         let mut current = self.first[..n].to_vec();
-        let mut highest = 0;
         let mut relabels = n;
         loop {
             if relabels >= n {
@@ -413,22 +416,17 @@ impl<T: Amount> Network<T> {
                 height[s] = n;
                 labels.reset(height);
                 current.copy_from_slice(&self.first[..n]);
-                active.iter_mut().for_each(Vec::clear);
+                fifo.clear();
                 queued.iter_mut().for_each(|q| *q = false);
-                highest = 0;
                 for v in (0..n).filter(|&v| v != s && v != t) {
                     let h = labels.height[v];
                     if excess[v].positive() && h < n {
-                        active[h].push(v);
+                        fifo.push_back(v);
                         queued[v] = true;
-                        highest = highest.max(h);
                     }
                 }
             }
-            while highest > 0 && active[highest].is_empty() {
-                highest -= 1;
-            }
-            let Some(u) = active[highest].pop() else {
+            let Some(u) = fifo.pop_front() else {
                 break;
             };
             queued[u] = false;
@@ -464,10 +462,8 @@ impl<T: Amount> Network<T> {
                     excess[u] = excess[u].minus(&amount);
                     excess[v] = excess[v].plus(&amount);
                     if v != s && v != t && !queued[v] {
-                        active[labels.height[v]].push(v);
+                        fifo.push_back(v);
                         queued[v] = true;
-                        // u may have been relabelled above every queued node.
-                        highest = highest.max(labels.height[v]);
                     }
                     if !self.arcs[a].residual.positive() {
                         current[u] += 1;
