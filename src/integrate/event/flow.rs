@@ -177,16 +177,19 @@ impl<T: Amount> Network<T> {
                 next[u] - 1
             })
             .collect();
-        let mut arcs: Vec<Option<Arc<T>>> = (0..self.arcs.len()).map(|_| None).collect();
-        for (a, arc) in std::mem::take(&mut self.arcs).into_iter().enumerate() {
-            arcs[place[a]] = Some(Arc {
-                rev: place[arc.rev],
-                ..arc
-            });
+        // The arc at each place, read in place order: one pass writing the new list in order.
+        let mut at = vec![0; place.len()];
+        for (a, &p) in place.iter().enumerate() {
+            at[p] = a;
         }
-        self.arcs = arcs
-            .into_iter()
-            .map(|a| a.expect("every place filled"))
+        let arcs = std::mem::take(&mut self.arcs);
+        self.arcs = at
+            .iter()
+            .map(|&a| Arc {
+                to: arcs[a].to,
+                residual: arcs[a].residual.clone(),
+                rev: place[arcs[a].rev],
+            })
             .collect();
         self.first = first;
         self.tails = Vec::new();
