@@ -89,7 +89,8 @@ pub struct Topology {
 impl Topology {
     /// Builds the graph and checks what needs it: every movable block rests on something, no
     /// block would topple at rest, abutments stand on fixed ground, and every friction override
-    /// names a real support edge.
+    /// names a real support edge. The wall is one [`Wall::from_description`] accepted (no two
+    /// blocks overlap, which the searches here rely on).
     pub fn new(wall: &Wall) -> Result<Topology, WallError> {
         let n = wall.blocks.len();
         let rights: Vec<Q> = wall.blocks.iter().map(|b| b.right()).collect();
