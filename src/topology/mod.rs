@@ -191,13 +191,17 @@ impl Topology {
             }
         }
 
-        // Names looked up in a table: a friction sample overrides every joint.
-        let index: HashMap<&str, usize> = wall
-            .blocks
-            .iter()
-            .enumerate()
-            .map(|(i, b)| (b.name.as_str(), i))
-            .collect();
+        // Names looked up in a table (a friction sample overrides every joint), built only
+        // where there are overrides.
+        let index: HashMap<&str, usize> = if wall.joint_friction.is_empty() {
+            HashMap::new()
+        } else {
+            wall.blocks
+                .iter()
+                .enumerate()
+                .map(|(i, b)| (b.name.as_str(), i))
+                .collect()
+        };
         for o in &wall.joint_friction {
             let (upper, lower) = resolve_key(wall, &index, &supports, &below, &o.key)?;
             let s = below[upper]

@@ -535,9 +535,10 @@ struct Labels {
 const NONE: usize = usize::MAX;
 
 impl Labels {
+    /// Lists for `n` nodes; the labels come with the first [`Labels::reset`].
     fn new(n: usize) -> Labels {
         Labels {
-            height: vec![n; n],
+            height: Vec::new(),
             head: vec![NONE; n],
             next: vec![NONE; n],
             prev: vec![NONE; n],
