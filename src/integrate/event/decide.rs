@@ -604,7 +604,7 @@ impl Problem {
     /// `bodies` are disjoint sets of nodes that moved as rigid bodies until now (large sliding
     /// clusters); away from the ground they make the work proportional to the cut that shows
     /// each still holds, instead of the cuts that would find their groups anew
-    /// ([`Problem::solve_by_bodies`]). The answer does not depend on them.
+    /// (`Problem::solve_by_bodies`). The answer does not depend on them.
     pub fn solve(&self, ground: &Lex, bodies: &[Vec<usize>]) -> Vec<Group> {
         if !self.touches_ground() {
             if !bodies.is_empty() {
@@ -627,7 +627,7 @@ impl Problem {
     /// A decision at the ground acceleration `ground` exactly at a limit of this problem's own
     /// stick interval `stick`, passing it outward: the blocks that move are the largest minimiser
     /// that the interval's last cut found, which is the split at the ground
-    /// ([`Problem::split_at_ground`]: the same weights, constraints and minimiser), and no block
+    /// (`Problem::split_at_ground`: the same weights, constraints and minimiser), and no block
     /// moves the other way when the interval is more than a point, so the decision needs
     /// neither of the two cuts over the whole problem. `None` anywhere else, and where the
     /// interval is a point or empty (a problem that cannot be stuck). Most decisions at
@@ -1059,7 +1059,7 @@ impl Problem {
     /// (local indices) that broke away from earlier intervals of the same blocks: the iteration
     /// starts from the best of them that could break away here, so when the weakest set has not
     /// changed one cut confirms it instead of several finding it again. Problems of at most
-    /// [`ENUMERATE_UP_TO`] blocks try every set instead.
+    /// `ENUMERATE_UP_TO` blocks try every set instead.
     pub fn stick_interval(&self, hints: &[Vec<usize>]) -> Stick {
         self.stick_sides(hints, [true, true])
     }

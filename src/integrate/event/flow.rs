@@ -281,7 +281,7 @@ impl<T: Amount> Network<T> {
     }
 
     /// Pushes a maximum flow from s to t and returns its value. Afterwards the residual network
-    /// gives the minimum cuts ([`Network::reachable_from`], [`Network::reaching`]).
+    /// gives the minimum cuts (`Network::reachable_from`, `Network::reaching`).
     pub fn max_flow(&mut self, s: usize, t: usize, unbounded: &T) -> T {
         self.lay_out();
         let mut total = T::zero();

@@ -1,6 +1,6 @@
 //! The exact event-driven integrator (design note `event-driven.md`).
 //!
-//! No time step: between events every cluster moves in closed form ([`cluster`]); events are
+//! No time step: between events every cluster moves in closed form (`cluster`); events are
 //! roots of closed-form functions, located to round-off ([`roots`]); at each event the new mode
 //! is decided exactly ([`decide`]) and impacts are resolved exactly ([`impact`]). Work per event
 //! touches only the clusters whose mode changed and their neighbours; a stuck cluster costs one
