@@ -403,7 +403,14 @@ impl Problem {
             return None;
         }
         take_overflow();
-        let sides = self.min_cut_of(set, weight, caps, side, pinned, want);
+        let sides = if total <= i128::from(i64::MAX >> 2) {
+            // The same bound in 64 bits, which most of a wall's cuts meet: half the memory and
+            // one-word arithmetic (the block-count study's 10,050-block case 34: 5.3 -> 5.1 s).
+            let narrow = |v: &[i128]| v.iter().map(|&x| x as i64).collect::<Vec<i64>>();
+            self.min_cut_of(set, &narrow(weight), &narrow(caps), side, pinned, want)
+        } else {
+            self.min_cut_of(set, weight, caps, side, pinned, want)
+        };
         (!take_overflow()).then_some(sides)
     }
 
@@ -1798,11 +1805,14 @@ mod tests {
         let (smallest, largest) = p.min_cut(&all, &weight, Side::Upper, false, Want::Both);
         assert_eq!(smallest, Some(vec![true, false]));
         assert_eq!(largest, Some(vec![true, false]));
-        // Scaled down by 2^100 the integer cut takes it, with the same answer.
-        let small = [-3 * (b >> 100), 2 * (b >> 100)];
-        let taken =
-            p.min_cut_in_integers(&all, &small, &[b >> 100], Side::Upper, false, Want::Both);
-        assert_eq!(taken, Some((smallest, largest)));
+        // Scaled down by 2^50 the integer cut takes it in 128 bits, by 2^100 in 64 (its total
+        // below 2^61), with the same answer.
+        for shift in [50, 100] {
+            let small = [-3 * (b >> shift), 2 * (b >> shift)];
+            let taken =
+                p.min_cut_in_integers(&all, &small, &[b >> shift], Side::Upper, false, Want::Both);
+            assert_eq!(taken, Some((smallest.clone(), largest.clone())));
+        }
     }
 
     #[test]

@@ -55,11 +55,26 @@ pub fn take_overflow() -> bool {
     OVERFLOW.with(|f| f.replace(false))
 }
 
-fn checked(x: Option<i128>) -> i128 {
+fn checked<I: Default>(x: Option<I>) -> I {
     x.unwrap_or_else(|| {
         OVERFLOW.with(|f| f.set(true));
-        0
+        I::default()
     })
+}
+
+impl Amount for i64 {
+    fn zero() -> i64 {
+        0
+    }
+    fn unit() -> i64 {
+        1
+    }
+    fn plus(&self, o: &i64) -> i64 {
+        checked(self.checked_add(*o))
+    }
+    fn minus(&self, o: &i64) -> i64 {
+        checked(self.checked_sub(*o))
+    }
 }
 
 impl Amount for i128 {
@@ -121,10 +136,29 @@ impl Amount for Q {
     }
 }
 
+/// Node and arc indices in 32 bits: a flow's inner loop reads arcs one after another, and a
+/// network of a wall has far fewer than 2^32 of either.
 struct Arc<T> {
-    to: usize,
+    head: u32,
     residual: T,
-    rev: usize,
+    back: u32,
+}
+
+impl<T> Arc<T> {
+    /// The node it enters.
+    fn to(&self) -> usize {
+        self.head as usize
+    }
+
+    /// Its reverse arc.
+    fn rev(&self) -> usize {
+        self.back as usize
+    }
+}
+
+/// An index in 32 bits ([`Arc`]).
+fn narrow(i: usize) -> u32 {
+    u32::try_from(i).expect("a network of fewer than 2^32 nodes and arcs")
 }
 
 /// Below this many nodes Dinic's lower overhead wins, and it gives both cuts from one flow;
@@ -186,9 +220,9 @@ impl<T: Amount> Network<T> {
         self.arcs = at
             .iter()
             .map(|&a| Arc {
-                to: arcs[a].to,
+                head: arcs[a].head,
                 residual: arcs[a].residual.clone(),
-                rev: place[arcs[a].rev],
+                back: narrow(place[arcs[a].rev()]),
             })
             .collect();
         self.first = first;
@@ -213,14 +247,14 @@ impl<T: Amount> Network<T> {
     fn pair(&mut self, u: usize, v: usize, forward: T, backward: T) {
         let k = self.arcs.len();
         self.arcs.push(Arc {
-            to: v,
+            head: narrow(v),
             residual: forward,
-            rev: k + 1,
+            back: narrow(k + 1),
         });
         self.arcs.push(Arc {
-            to: u,
+            head: narrow(u),
             residual: backward,
-            rev: k,
+            back: narrow(k),
         });
         self.tails.push(u);
         self.tails.push(v);
@@ -237,12 +271,12 @@ impl<T: Amount> Network<T> {
         while let Some(u) = queue.pop_front() {
             for a in self.out(u) {
                 let arc = &self.arcs[a];
-                if level[arc.to] == usize::MAX && arc.residual.positive() {
-                    level[arc.to] = level[u] + 1;
-                    if arc.to == t {
+                if level[arc.to()] == usize::MAX && arc.residual.positive() {
+                    level[arc.to()] = level[u] + 1;
+                    if arc.to() == t {
                         return level;
                     }
-                    queue.push_back(arc.to);
+                    queue.push_back(arc.to());
                 }
             }
         }
@@ -258,10 +292,10 @@ impl<T: Amount> Network<T> {
             let (to, ok) = {
                 let arc = &self.arcs[a];
                 (
-                    arc.to,
+                    arc.to(),
                     arc.residual.positive()
-                        && level[arc.to] == level[u] + 1
-                        && (arc.to == t || level[arc.to] < level[t]),
+                        && level[arc.to()] == level[u] + 1
+                        && (arc.to() == t || level[arc.to()] < level[t]),
                 )
             };
             if ok {
@@ -270,7 +304,7 @@ impl<T: Amount> Network<T> {
                 let got = self.push(to, t, &want, level, next);
                 if got.positive() {
                     self.arcs[a].residual = self.arcs[a].residual.minus(&got);
-                    let r = self.arcs[a].rev;
+                    let r = self.arcs[a].rev();
                     self.arcs[r].residual = self.arcs[r].residual.plus(&got);
                     return got;
                 }
@@ -359,11 +393,11 @@ impl<T: Amount> Network<T> {
         // Each pair once, from its first arc: u -> v (u is where its reverse points) becomes
         // v -> u with the same residual, and its reverse u -> v.
         for (a, arc) in self.arcs.iter().enumerate() {
-            if a > arc.rev {
+            if a > arc.rev() {
                 continue;
             }
-            let back = &self.arcs[arc.rev];
-            let (u, v) = (back.to, arc.to);
+            let back = &self.arcs[arc.rev()];
+            let (u, v) = (back.to(), arc.to());
             reversed.pair(v, u, arc.residual.clone(), back.residual.clone());
         }
         reversed.sink_side_of_max_preflow(t, s)
@@ -377,8 +411,8 @@ impl<T: Amount> Network<T> {
         let mut queue = VecDeque::from([t]);
         while let Some(v) = queue.pop_front() {
             for a in self.out(v) {
-                let u = self.arcs[a].to;
-                if dist[u] == n && self.arcs[self.arcs[a].rev].residual.positive() {
+                let u = self.arcs[a].to();
+                if dist[u] == n && self.arcs[self.arcs[a].rev()].residual.positive() {
                     dist[u] = dist[v] + 1;
                     queue.push_back(u);
                 }
@@ -401,7 +435,7 @@ impl<T: Amount> Network<T> {
         for a in self.out(s) {
             let r = std::mem::replace(&mut self.arcs[a].residual, T::zero());
             if r.positive() {
-                let (v, rev) = (self.arcs[a].to, self.arcs[a].rev);
+                let (v, rev) = (self.arcs[a].to(), self.arcs[a].rev());
                 self.arcs[rev].residual = self.arcs[rev].residual.plus(&r);
                 excess[v] = excess[v].plus(&r);
             }
@@ -441,9 +475,9 @@ impl<T: Amount> Network<T> {
                     let lowest = self
                         .out(u)
                         .filter(|&a| self.arcs[a].residual.positive())
-                        .min_by_key(|&a| labels.height[self.arcs[a].to]);
+                        .min_by_key(|&a| labels.height[self.arcs[a].to()]);
                     let (to, arc) = match lowest {
-                        Some(a) => ((labels.height[self.arcs[a].to] + 1).min(n), a),
+                        Some(a) => ((labels.height[self.arcs[a].to()] + 1).min(n), a),
                         None => (n, self.first[u]),
                     };
                     labels.relabel(u, to);
@@ -452,7 +486,7 @@ impl<T: Amount> Network<T> {
                     continue;
                 }
                 let a = current[u];
-                let v = self.arcs[a].to;
+                let v = self.arcs[a].to();
                 if self.arcs[a].residual.positive() && labels.height[u] == labels.height[v] + 1 {
                     let amount = if excess[u] < self.arcs[a].residual {
                         excess[u].clone()
@@ -460,7 +494,7 @@ impl<T: Amount> Network<T> {
                         self.arcs[a].residual.clone()
                     };
                     self.arcs[a].residual = self.arcs[a].residual.minus(&amount);
-                    let rev = self.arcs[a].rev;
+                    let rev = self.arcs[a].rev();
                     self.arcs[rev].residual = self.arcs[rev].residual.plus(&amount);
                     excess[u] = excess[u].minus(&amount);
                     excess[v] = excess[v].plus(&amount);
@@ -488,9 +522,9 @@ impl<T: Amount> Network<T> {
         while let Some(u) = stack.pop() {
             for a in self.out(u) {
                 let arc = &self.arcs[a];
-                if !seen[arc.to] && arc.residual.positive() {
-                    seen[arc.to] = true;
-                    stack.push(arc.to);
+                if !seen[arc.to()] && arc.residual.positive() {
+                    seen[arc.to()] = true;
+                    stack.push(arc.to());
                 }
             }
         }
@@ -506,8 +540,8 @@ impl<T: Amount> Network<T> {
         while let Some(v) = stack.pop() {
             for a in self.out(v) {
                 // Arc a goes v -> u; its reverse u -> v carries residual into v.
-                let u = self.arcs[a].to;
-                let into_v = &self.arcs[self.arcs[a].rev];
+                let u = self.arcs[a].to();
+                let into_v = &self.arcs[self.arcs[a].rev()];
                 if !seen[u] && into_v.residual.positive() {
                     seen[u] = true;
                     stack.push(u);
@@ -653,7 +687,7 @@ mod tests {
         #![proptest_config(crate::integrate::event::many_cheap_cases())]
 
         /// Push-relabel and Dinic find the same two minimum cuts (both are unique), in integers
-        /// and rationals, ties (zero and equal capacities) included.
+        /// of both widths and rationals, ties (zero and equal capacities) included.
         #[test]
         fn push_relabel_and_dinic_find_the_same_cuts((n, arcs) in random_arcs()) {
             let (s, t) = (0, n - 1);
@@ -662,6 +696,8 @@ mod tests {
             let dinic = build(n, &arcs, ints).cuts_by_dinic(s, t, &big);
             let pr = build(n, &arcs, ints).cuts_by_push_relabel(s, t);
             prop_assert_eq!(&dinic, &pr);
+            let narrow = build(n, &arcs, |c: i128| c as i64).cuts_by_push_relabel(s, t);
+            prop_assert_eq!(&dinic, &narrow);
             let rational = |c: i128| Q::frac(c, 7);
             let qr = build(n, &arcs, rational).cuts_by_push_relabel(s, t);
             prop_assert_eq!(&dinic, &qr);
