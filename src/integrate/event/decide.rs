@@ -1087,31 +1087,77 @@ impl Problem {
         want: [bool; 2],
         bounds: [Option<&Q>; 2],
     ) -> Stick {
-        self.stick_sides_by(hints, want, bounds, ENUMERATE_UP_TO)
+        self.stick_sides_by(hints, want, bounds, ENUMERATE_UP_TO, None)
+            .expect("a search asked about no ground acceleration runs to its end")
     }
 
-    /// [`Problem::stick_sides_beyond`], trying every set for problems of at most
-    /// `enumerate_up_to` blocks (tests pin the search with 0).
+    /// [`Problem::stick_sides_beyond`] for a caller that needs the limits only if the ground
+    /// acceleration `a0` lies strictly between them: `None`, without the rest of the search,
+    /// as soon as a set is found that breaks away before a0 (on either side). A stuck piece
+    /// that a change leaves beyond its limit is then decided at once, where its limits would
+    /// have cost their searches to the end and been thrown away.
+    pub fn stick_sides_inside(
+        &self,
+        hints: &[Vec<usize>],
+        want: [bool; 2],
+        bounds: [Option<&Q>; 2],
+        a0: &Q,
+    ) -> Option<Stick> {
+        self.stick_sides_by(hints, want, bounds, ENUMERATE_UP_TO, Some(a0))
+    }
+
+    /// [`Problem::stick_sides_inside`] (all the way where `a0` is not given), trying every set
+    /// for problems of at most `enumerate_up_to` blocks (tests pin the search with 0).
     fn stick_sides_by(
         &self,
         hints: &[Vec<usize>],
         want: [bool; 2],
         bounds: [Option<&Q>; 2],
         enumerate_up_to: usize,
-    ) -> Stick {
-        let neg: Vec<Q> = self.external.iter().map(|e| -e).collect();
+        a0: Option<&Q>,
+    ) -> Option<Stick> {
+        // a0 lies beyond hi when a set's ratio is below it; beyond lo when a set's ratio on
+        // the mirrored side is below -a0.
         let hi = want[1]
             .then(|| {
                 let floor = bounds[1].cloned();
-                self.min_ratio(&self.external, Side::Lower, hints, floor, enumerate_up_to)
+                self.min_ratio(
+                    &self.external,
+                    Side::Lower,
+                    hints,
+                    floor,
+                    enumerate_up_to,
+                    a0,
+                )
             })
             .flatten();
+        if hi
+            .as_ref()
+            .is_some_and(|(r, _, _)| a0.is_some_and(|a0| r < a0))
+        {
+            return None;
+        }
+        let neg: Vec<Q> = self.external.iter().map(|e| -e).collect();
+        let minus_a0 = a0.map(|a0| -a0);
         let lo = want[0]
             .then(|| {
                 let floor = bounds[0].map(|b| -b);
-                self.min_ratio(&neg, Side::Upper, hints, floor, enumerate_up_to)
+                self.min_ratio(
+                    &neg,
+                    Side::Upper,
+                    hints,
+                    floor,
+                    enumerate_up_to,
+                    minus_a0.as_ref(),
+                )
             })
             .flatten();
+        if lo
+            .as_ref()
+            .is_some_and(|(r, _, _)| minus_a0.as_ref().is_some_and(|m| r < m))
+        {
+            return None;
+        }
         let mut breaking = Vec::new();
         let (mut leaving_lo, mut leaving_hi) = (None, None);
         let hi = hi.map(|(r, set, leaving)| {
@@ -1124,14 +1170,14 @@ impl Problem {
             leaving_lo = leaving;
             -r
         });
-        Stick {
+        Some(Stick {
             lo,
             hi,
             breaking,
             leaving_lo,
             leaving_hi,
             bound_only: [false, false],
-        }
+        })
     }
 
     /// The least ratio (cut(S) + e(S)) / m(S), and a set S that attains it, over every set of
@@ -1205,6 +1251,9 @@ impl Problem {
     /// a set that attains it, and, where the search ended with a cut, the largest set that
     /// does (the union of all: the blocks that move when a_g passes the limit outward).
     /// `floor`, where given, is known to be at or below the smallest ratio (a kept bound).
+    /// `stop`, where given, ends the search at the first set whose ratio lies below it (the
+    /// caller only asks whether the smallest ratio does): a ratio below `stop` may be any such
+    /// set's, an upper bound on the smallest.
     fn min_ratio(
         &self,
         external: &[Q],
@@ -1212,6 +1261,7 @@ impl Problem {
         hints: &[Vec<usize>],
         floor: Option<Q>,
         enumerate_up_to: usize,
+        stop: Option<&Q>,
     ) -> Option<(Q, Vec<usize>, Option<Vec<usize>>)> {
         let n = self.n();
         let all = vec![true; n];
@@ -1312,6 +1362,10 @@ impl Problem {
         // the least amount: the lightest minimiser steps furthest, and at the least ratio it is
         // empty. Where both minimisers cost one flow (Dinic, on the smallest networks) it is
         // used; with push-relabel each side is a pass of its own, and the largest alone serves.
+        let below_stop = |lambda: &Q| stop.is_some_and(|stop| lambda < stop);
+        if below_stop(&lambda) {
+            return Some((lambda, best, None));
+        }
         let want = if n + 2 < PUSH_RELABEL_FROM {
             Want::Both
         } else {
@@ -1370,6 +1424,9 @@ impl Problem {
             if r < lambda {
                 lambda = r;
                 best = step;
+                if below_stop(&lambda) {
+                    return Some((lambda, best, None));
+                }
             } else {
                 // The cut at the least ratio: its largest minimiser is the union of every set
                 // that attains it.
@@ -1860,7 +1917,9 @@ mod tests {
             contacts: vec![],
         };
         let from = flow::pass_nodes();
-        let stick = p.stick_sides_by(hints, [false, true], [None, bound], 0);
+        let stick = p
+            .stick_sides_by(hints, [false, true], [None, bound], 0, None)
+            .unwrap();
         assert_eq!(stick.hi, Some(Q::int(4)));
         assert_eq!(stick.leaving_hi, Some(vec![5, 6]));
         flow::pass_nodes() - from
@@ -1900,10 +1959,14 @@ mod tests {
             five_block([0.35, 0.2, 0.5, 0.1, 0.4, 0.3]),
         ] {
             // The search with minimum cuts (small problems would try every set instead).
-            let plain = p.stick_sides_by(&[], [true, true], [None, None], 0);
+            let plain = p
+                .stick_sides_by(&[], [true, true], [None, None], 0, None)
+                .unwrap();
             for mask in 1..32usize {
                 let hint: Vec<usize> = (0..5).filter(|i| mask >> i & 1 == 1).collect();
-                let hinted = p.stick_sides_by(&[hint, vec![]], [true, true], [None, None], 0);
+                let hinted = p
+                    .stick_sides_by(&[hint, vec![]], [true, true], [None, None], 0, None)
+                    .unwrap();
                 assert_eq!((&hinted.lo, &hinted.hi), (&plain.lo, &plain.hi), "{mask}");
                 let sets: Vec<&Vec<usize>> = hinted.breaking.iter().collect();
                 assert_eq!(sets.len(), 2);
@@ -2176,24 +2239,45 @@ mod tests {
         fn stick_intervals_are_the_weakest_sets(p in abutted_problem()) {
             // Both ways: every set tried in integers, and the search with minimum cuts.
             let interval = |p: &Problem, enumerate_up_to: usize| {
-                let Stick { lo, hi, .. } = p.stick_sides_by(&[], [true, true], [None, None], enumerate_up_to);
+                let Stick { lo, hi, .. } = p.stick_sides_by(&[], [true, true], [None, None], enumerate_up_to, None).unwrap();
                 (lo, hi)
             };
             let want = stick_by_enumeration(&p);
             prop_assert_eq!(interval(&p, ENUMERATE_UP_TO), want.clone());
-            let plain = p.stick_sides_by(&[], [true, true], [None, None], 0);
+            let plain = p.stick_sides_by(&[], [true, true], [None, None], 0, None).unwrap();
             prop_assert_eq!((plain.lo.clone(), plain.hi.clone()), want);
             // From a bound at or inside each limit (a limit kept as a bound): the same interval,
             // and the same blocks leaving at each limit.
             for inside in [Q::zero(), Q::frac(1, 3), Q::int(2)] {
                 let lo = plain.lo.as_ref().map(|l| l + &inside);
                 let hi = plain.hi.as_ref().map(|h| h - &inside);
-                let from = p.stick_sides_by(&[], [true, true], [lo.as_ref(), hi.as_ref()], 0);
+                let from = p.stick_sides_by(&[], [true, true], [lo.as_ref(), hi.as_ref()], 0, None).unwrap();
                 prop_assert_eq!((&from.lo, &from.hi), (&plain.lo, &plain.hi));
                 for (a, b) in [(&from.leaving_lo, &plain.leaving_lo), (&from.leaving_hi, &plain.leaving_hi)] {
                     if let (Some(a), Some(b)) = (a, b) {
                         prop_assert_eq!(a, b);
                     }
+                }
+            }
+            // Asked only whether a_g lies inside: the whole interval where it is not beyond a
+            // limit (at one included), nothing where it is, at the limits, between and beyond.
+            let mut at: Vec<Q> = [&plain.lo, &plain.hi].into_iter().flatten().cloned().collect();
+            let near = at.clone();
+            for a in near {
+                at.extend([&a - &Q::frac(1, 7), &a + &Q::frac(1, 7)]);
+            }
+            at.push(Q::zero());
+            for a0 in &at {
+                let beyond = plain.lo.as_ref().is_some_and(|lo| a0 < lo)
+                    || plain.hi.as_ref().is_some_and(|hi| a0 > hi);
+                let asked = p.stick_sides_by(&[], [true, true], [None, None], 0, Some(a0));
+                match asked {
+                    Some(s) => {
+                        prop_assert!(!beyond, "a0 {:?} beyond {:?}", a0, (&plain.lo, &plain.hi));
+                        prop_assert_eq!((&s.lo, &s.hi), (&plain.lo, &plain.hi));
+                        prop_assert_eq!((&s.leaving_lo, &s.leaving_hi), (&plain.leaving_lo, &plain.leaving_hi));
+                    }
+                    None => prop_assert!(beyond, "a0 {:?} inside {:?}", a0, (&plain.lo, &plain.hi)),
                 }
             }
             let q = with_coprime_denominators(p);
@@ -2257,7 +2341,7 @@ mod tests {
         /// else the shortcut declines.
         #[test]
         fn decisions_past_a_stick_limit_need_no_cut(p in abutted_problem()) {
-            let stick = p.stick_sides_by(&[], [true, true], [None, None], 0);
+            let stick = p.stick_sides_by(&[], [true, true], [None, None], 0, None).unwrap();
             let point = matches!((&stick.lo, &stick.hi), (Some(lo), Some(hi)) if lo >= hi);
             for (limit, outward, leaving) in [
                 (&stick.hi, 1, &stick.leaving_hi),

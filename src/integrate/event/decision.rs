@@ -960,11 +960,25 @@ impl Engine<'_> {
     /// holds for the same problem stands, and a side the change cannot have narrowed is kept as
     /// a bound ([`Engine::kept_limits`], worked out only for the sides the run does not know).
     fn stick_interval(&mut self, p: &Problem, members: &[usize], change: Change) -> Limits {
+        self.stick_interval_inside(p, members, change, None)
+            .expect("a search asked about no ground acceleration runs to its end")
+    }
+
+    /// [`Engine::stick_interval`] for a caller that needs it only if the ground acceleration
+    /// `a0` (where given) lies strictly inside: `None` where a search shows it does not
+    /// ([`Problem::stick_sides_inside`]); nothing is then remembered.
+    fn stick_interval_inside(
+        &mut self,
+        p: &Problem,
+        members: &[usize],
+        change: Change,
+        a0: Option<&Q>,
+    ) -> Option<Limits> {
         let known = self.stick_memo.get(p);
         let exact = matches!(change, Change::Exact);
         let usable = |side: usize| known.is_some_and(|s| !(exact && s.bound_only[side]));
         if let (Some(s), true) = (known, usable(0) && usable(1)) {
-            return Limits::of(s);
+            return Some(Limits::of(s));
         }
         let kept = match change {
             Change::After(before) => self.kept_limits(p, members, before),
@@ -989,7 +1003,10 @@ impl Engine<'_> {
                     .filter(|s| s.bound_only[side])
                     .and_then(|s| [&s.lo, &s.hi][side].as_ref())
             });
-            p.stick_sides_beyond(&hints, want, bounds)
+            match a0 {
+                Some(a0) => p.stick_sides_inside(&hints, want, bounds, a0)?,
+                None => p.stick_sides_beyond(&hints, want, bounds),
+            }
         };
         for set in std::mem::take(&mut found.breaking) {
             let global: Vec<usize> = set.into_iter().map(|k| members[k]).collect();
@@ -1026,7 +1043,7 @@ impl Engine<'_> {
             Some(s) => *s = found,
             None => self.stick_memo.insert(p.clone(), found, members.len()),
         }
-        limits
+        Some(limits)
     }
 
     /// The general decision. Only the signs of the ground acceleration's derivatives matter
@@ -1140,15 +1157,17 @@ impl Engine<'_> {
             if on_ground {
                 // p is canonical: a piece that is all of it needs no copy.
                 let limits = if piece.len() == blocks.len() {
-                    self.stick_interval(p, blocks, Change::After(None))
+                    self.stick_interval_inside(p, blocks, Change::After(None), Some(a0))
                 } else {
                     let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
                     let q = p.restrict(&piece);
-                    self.stick_interval(&q, &members, Change::After(None))
+                    self.stick_interval_inside(&q, &members, Change::After(None), Some(a0))
                 };
-                let inside = limits.lo.as_ref().is_none_or(|lo| a0 > lo)
-                    && limits.hi.as_ref().is_none_or(|hi| a0 < hi);
-                if inside {
+                let inside = |limits: &Limits| {
+                    limits.lo.as_ref().is_none_or(|lo| a0 > lo)
+                        && limits.hi.as_ref().is_none_or(|hi| a0 < hi)
+                };
+                if let Some(limits) = limits.filter(inside) {
                     groups.push(Group {
                         nodes: piece,
                         accel: a0.clone(),
