@@ -569,8 +569,34 @@ impl Neg for Q {
 }
 
 impl std::iter::Sum for Q {
+    /// Terms over the same denominator as the one before add their numerators, and the run is
+    /// reduced once when it ends: a body's masses mostly share one denominator, and a sum that
+    /// reduced after every addition took a gcd per block.
     fn sum<I: Iterator<Item = Q>>(iter: I) -> Q {
-        iter.fold(Q::zero(), |a, b| a + b)
+        let mut total = Q::zero();
+        // The current run: its numerator, unreduced, and its denominator.
+        let mut run: Option<(i128, i128)> = None;
+        for q in iter {
+            if let (Repr::Small(n, d), Some((acc, den))) = (&q.0, &mut run) {
+                if d == den {
+                    if let Some(sum) = acc.checked_add(*n) {
+                        *acc = sum;
+                        continue;
+                    }
+                }
+            }
+            if let Some((acc, den)) = run.take() {
+                total = total + Q::from_parts(acc, den);
+            }
+            match q.0 {
+                Repr::Small(n, d) => run = Some((n, d)),
+                Repr::Big(_) => total = total + q,
+            }
+        }
+        match run {
+            Some((acc, den)) => total + Q::from_parts(acc, den),
+            None => total,
+        }
     }
 }
 
@@ -666,6 +692,21 @@ mod tests {
             prop_assert!(is(&-&a, -&an, ad.clone()));
             prop_assert_eq!(a.cmp(&b), (&an * &bd).cmp(&(&bn * &ad)));
             prop_assert_eq!(a == b, an == bn && ad == bd);
+        }
+
+        /// A sum equals the additions one by one, canonical: runs over one denominator (small
+        /// numerators, and numerators whose running sum overflows), mixed with any rationals.
+        #[test]
+        fn sums_are_the_additions(
+            terms in proptest::collection::vec(
+                prop_oneof![rational(), part().prop_map(|n| Q::frac(n, 1000)), (-30i128..30).prop_map(|n| Q::frac(n, 7))],
+                0..40,
+            ),
+        ) {
+            let one_by_one = terms.iter().fold(Q::zero(), |a, b| &a + b);
+            let sum: Q = terms.into_iter().sum();
+            prop_assert!(canonical(&sum));
+            prop_assert_eq!(sum, one_by_one);
         }
     }
 
