@@ -80,6 +80,9 @@ pub enum End {
     Ground,
 }
 
+/// Entries of each of a problem's lists that its hash takes in ([`Problem`]'s `Hash`).
+const HASHED_PER_LIST: usize = 64;
+
 /// One decision problem: the blocks whose joints are undecided, and those joints. Problems are
 /// compared and hashed as values, so a run can remember the answers it has already worked out.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -95,23 +98,29 @@ pub struct Problem {
     pub contacts: Vec<(End, End)>,
 }
 
-/// All of a problem mixed into one word for the hasher (equal problems mix alike): a run looks
-/// a problem up at every event.
+/// A problem mixed into one word for the hasher: its sizes and at most [`HASHED_PER_LIST`]
+/// entries of each list, evenly spread (equal problems mix alike, and the memo's equality
+/// decides between problems that mix alike). A run looks a problem up at every event, and a
+/// large problem is seldom met again: hashing all of it cost a pass over the problem per
+/// lookup that misses.
 impl std::hash::Hash for Problem {
     fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        fn spread<T>(list: &[T]) -> impl Iterator<Item = &T> {
+            list.iter()
+                .step_by(list.len().div_ceil(HASHED_PER_LIST).max(1))
+        }
         let end = |e: &End| match e {
             End::Node(i) => *i as u64,
             End::Ground => u64::MAX,
         };
-        let mut words = [self.mass.len() as u64, self.friction.len() as u64]
+        let sizes = [self.mass.len(), self.friction.len(), self.contacts.len()];
+        let mut words = sizes
             .into_iter()
-            .chain(self.mass.iter().chain(&self.external).map(Q::hash_word))
-            .chain(
-                self.friction
-                    .iter()
-                    .flat_map(|(i, j, f)| [*i as u64, end(j), f.hash_word()]),
-            )
-            .chain(self.contacts.iter().flat_map(|(l, r)| [end(l), end(r)]));
+            .map(|n| n as u64)
+            .chain(spread(&self.mass).map(Q::hash_word))
+            .chain(spread(&self.external).map(Q::hash_word))
+            .chain(spread(&self.friction).flat_map(|(i, j, f)| [*i as u64, end(j), f.hash_word()]))
+            .chain(spread(&self.contacts).flat_map(|(l, r)| [end(l), end(r)]));
         let first = words.next().unwrap_or(0);
         state.write_u64(words.fold(first, |h, w| {
             (h.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
@@ -1729,6 +1738,31 @@ mod tests {
         let mut other = p.clone();
         other.contacts.pop();
         assert_ne!(hash(&other), hash(&p));
+    }
+
+    #[test]
+    fn large_problems_that_hash_alike_are_told_apart() {
+        use super::super::memo::Memo;
+        use std::hash::BuildHasher;
+        let hash = |p: &Problem| rustc_hash::FxBuildHasher.hash_one(p);
+        // A chain of 300 blocks: its hash takes in every fifth block, so the second block's
+        // mass is not in it.
+        let n = 300;
+        let p = Problem {
+            mass: vec![Q::int(2); n],
+            external: vec![Q::zero(); n],
+            friction: (1..n).map(|i| (i, End::Node(i - 1), Q::int(1))).collect(),
+            contacts: Vec::new(),
+        };
+        let mut other = p.clone();
+        other.mass[1] = Q::int(3);
+        assert_eq!(hash(&other), hash(&p));
+        assert_ne!(other, p);
+        let mut memo = Memo::new();
+        memo.insert(p.clone(), 1, n);
+        assert_eq!(memo.get(&other), None);
+        memo.insert(other.clone(), 2, n);
+        assert_eq!((memo.get(&p), memo.get(&other)), (Some(&1), Some(&2)));
     }
 
     fn just_after(a: Q, rate: i64) -> Lex {
