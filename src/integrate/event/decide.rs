@@ -98,7 +98,7 @@ pub struct Problem {
     pub contacts: Vec<(End, End)>,
 }
 
-/// A problem mixed into one word for the hasher: its sizes and at most [`HASHED_PER_LIST`]
+/// A problem mixed into one word for the hasher: its sizes and at most `HASHED_PER_LIST`
 /// entries of each list, evenly spread (equal problems mix alike, and the memo's equality
 /// decides between problems that mix alike). A run looks a problem up at every event, and a
 /// large problem is seldom met again: hashing all of it cost a pass over the problem per
