@@ -2,6 +2,10 @@
 //! capacity) and vertical-joint edges (who can hit whom, across which gap). Loads follow the
 //! tributary rule of the paper's eq. (3); everything here is exact.
 
+mod lists;
+
+pub use lists::Lists;
+
 use crate::error::WallError;
 use crate::exact::Q;
 use crate::wall::Wall;
@@ -79,11 +83,11 @@ pub struct Topology {
     /// Vertical joints, ordered by left block then by position.
     pub joints: Vec<VerticalJoint>,
     /// Per block: the supports it rests on.
-    pub below: Vec<Vec<SupportId>>,
+    pub below: Lists<SupportId>,
     /// Per block: the supports resting on it.
-    pub above: Vec<Vec<SupportId>>,
+    pub above: Lists<SupportId>,
     /// Per block: vertical joints on its left and right faces.
-    pub sides: Vec<Vec<JointId>>,
+    pub sides: Lists<JointId>,
 }
 
 impl Topology {
@@ -242,9 +246,9 @@ impl Topology {
             blocks,
             supports,
             joints,
-            below,
-            above,
-            sides,
+            below: below.into(),
+            above: above.into(),
+            sides: sides.into(),
         })
     }
 
