@@ -55,41 +55,31 @@ pub fn take_overflow() -> bool {
     OVERFLOW.with(|f| f.replace(false))
 }
 
-fn checked<I: Default>(x: Option<I>) -> I {
-    x.unwrap_or_else(|| {
-        OVERFLOW.with(|f| f.set(true));
-        I::default()
-    })
+/// Integers as flow amounts: an overflow sets the flag ([`take_overflow`]) and gives zero.
+macro_rules! integer_amount {
+    ($($int:ty),*) => {$(
+        impl Amount for $int {
+            fn zero() -> $int {
+                0
+            }
+            fn unit() -> $int {
+                1
+            }
+            fn plus(&self, o: &$int) -> $int {
+                self.checked_add(*o).unwrap_or_else(overflowed)
+            }
+            fn minus(&self, o: &$int) -> $int {
+                self.checked_sub(*o).unwrap_or_else(overflowed)
+            }
+        }
+    )*};
 }
 
-impl Amount for i64 {
-    fn zero() -> i64 {
-        0
-    }
-    fn unit() -> i64 {
-        1
-    }
-    fn plus(&self, o: &i64) -> i64 {
-        checked(self.checked_add(*o))
-    }
-    fn minus(&self, o: &i64) -> i64 {
-        checked(self.checked_sub(*o))
-    }
-}
+integer_amount!(i64, i128);
 
-impl Amount for i128 {
-    fn zero() -> i128 {
-        0
-    }
-    fn unit() -> i128 {
-        1
-    }
-    fn plus(&self, o: &i128) -> i128 {
-        checked(self.checked_add(*o))
-    }
-    fn minus(&self, o: &i128) -> i128 {
-        checked(self.checked_sub(*o))
-    }
+fn overflowed<I: Default>() -> I {
+    OVERFLOW.with(|f| f.set(true));
+    I::default()
 }
 
 /// Rationals over their least common denominator: the numerators and the denominator, if all
