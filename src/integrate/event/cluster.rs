@@ -9,7 +9,7 @@
 
 use crate::exact::Q;
 use crate::motion::Segment;
-use std::cell::Cell;
+use std::cell::{Cell, OnceCell};
 
 /// How a cluster moves.
 #[derive(Debug, Clone)]
@@ -228,6 +228,10 @@ pub struct Cluster {
     pub ground_hits: Option<GroundHits>,
     /// What its blocks reached since their reference displacements were last set.
     pub extremes: Extremes,
+    /// Its blocks with a support or a face to the ground or to a block outside it: the only
+    /// ones where it can meet anything else. Worked out at the first need (`Engine::boundary`)
+    /// and kept, since a cluster's blocks never change.
+    pub boundary: OnceCell<Vec<usize>>,
 }
 
 /// Peaks a cluster's blocks reached, kept for the cluster as a whole and handed to the recorder

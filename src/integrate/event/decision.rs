@@ -13,6 +13,7 @@ use crate::response::{DecisionCause as Cause, DecisionRecord, EventKind, StuckGr
 use crate::sets::DisjointSets;
 use crate::topology::Base;
 use rustc_hash::FxHashMap;
+use std::cell::OnceCell;
 
 /// A ground acceleration within rounding of a breakpoint of the decision is snapped to it; the
 /// snap can move the breakpoint that matters at most this many times.
@@ -511,6 +512,7 @@ impl Engine<'_> {
                 roots: None,
                 ground_hits: None,
                 extremes: Default::default(),
+                boundary: OnceCell::new(),
             });
             for &i in &self.clusters[k].blocks {
                 self.of[i] = k;
@@ -1413,6 +1415,7 @@ impl Engine<'_> {
                 roots: None,
                 ground_hits: None,
                 extremes: Default::default(),
+                boundary: OnceCell::new(),
             });
             self.of[i] = k;
         }

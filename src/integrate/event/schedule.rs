@@ -232,7 +232,7 @@ impl Engine<'_> {
 
     /// Calls `f` with each sliding cluster sharing a joint with cluster k (once per joint).
     fn sliding_neighbours(&self, k: usize, mut f: impl FnMut(usize)) {
-        for &i in &self.clusters[k].blocks {
+        for &i in self.boundary(k) {
             let others = self.live_neighbours(i).flatten();
             let sides = self.topo.sides[i]
                 .iter()
@@ -266,7 +266,7 @@ impl Engine<'_> {
         let tol = self.len_tol(du, 0.0);
         let mut sigma = 0i8;
         let mut b = Bounds::default();
-        for &i in &self.clusters[k].blocks {
+        for &i in self.boundary(k) {
             for &s in &self.topo.below[i] {
                 if !self.live_support(s.0) {
                     continue;
@@ -356,7 +356,7 @@ impl Engine<'_> {
         } else {
             b
         };
-        for &i in &self.clusters[smaller].blocks {
+        for &i in self.boundary(smaller) {
             for &s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
                 if !self.live_support(s.0) {
                     continue;
