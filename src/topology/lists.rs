@@ -11,18 +11,6 @@ pub struct Lists<T> {
     items: Vec<T>,
 }
 
-impl<T> Lists<T> {
-    /// The number of lists (one per block).
-    pub fn len(&self) -> usize {
-        self.first.len() - 1
-    }
-
-    /// True when there are no lists.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-}
-
 impl<T> From<Vec<Vec<T>>> for Lists<T> {
     fn from(lists: Vec<Vec<T>>) -> Lists<T> {
         let mut first = Vec::with_capacity(lists.len() + 1);
@@ -52,10 +40,8 @@ mod tests {
     fn each_list_comes_back_as_it_was_given() {
         let given = vec![vec![1, 2], vec![], vec![3], vec![]];
         let lists = Lists::from(given.clone());
-        assert_eq!(lists.len(), 4);
         for (i, list) in given.iter().enumerate() {
             assert_eq!(&lists[i], list.as_slice());
         }
-        assert!(Lists::<u8>::from(Vec::new()).is_empty());
     }
 }
