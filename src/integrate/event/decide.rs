@@ -1430,9 +1430,9 @@ impl Problem {
             }
         }
         // The largest minimiser grows with lambda (the lemma in docs/model.md, section 5): every
-        // set below a lambda that the search steps down to lies within this cut's largest
-        // minimiser, so the next cut need only take that in. Blocks that may not move this
-        // way start outside.
+        // minimiser at a lower lambda, the only way the search steps, lies within this cut's
+        // largest minimiser, so the next cut need only take that in. Blocks that may not move
+        // this way start outside.
         let mut domain = allowed;
         let mut adjacency = None;
         loop {
@@ -1964,12 +1964,16 @@ mod tests {
     /// The limit a_hi's search finds from `hints` and the `bound` it is known to lie at or
     /// beyond, and the work it took, in flow-network nodes.
     fn cuts_between_two_weak_runs(hints: &[Vec<usize>], bound: Option<&Q>) -> u64 {
-        let weak = |i: usize| (5..5 + RUN).contains(&i) || (30..30 + RUN).contains(&i);
+        let (in_a, in_b) = (
+            |i: usize| (5..5 + RUN).contains(&i),
+            |i: usize| (30..30 + RUN).contains(&i),
+        );
+        let weak = |i: usize| in_a(i) || in_b(i);
         let mut friction: Vec<(usize, End, Q)> = (0..ROW)
             .map(|i| {
                 let cap = match i {
-                    5..13 => Q::int(3),
-                    30..38 => q(3.2),
+                    _ if in_a(i) => Q::int(3),
+                    _ if in_b(i) => q(3.2),
                     _ => Q::int(10),
                 };
                 (i, End::Ground, cap)
