@@ -271,7 +271,9 @@ impl<'a> Engine<'a> {
         let mass_q: Vec<Q> = topo.blocks.iter().map(|b| b.mass_kg.clone()).collect();
         let cap_q: Vec<Q> = topo.supports.iter().map(|s| s.capacity_n.clone()).collect();
         let f = |v: &[Q]| v.iter().map(Q::to_f64).collect::<Vec<f64>>();
-        let (v_max, d_max) = motion_bounds(sc.motion, t_end);
+        // Over the whole motion, so a run's round-off scales, and with them its answer up to any
+        // instant, do not depend on how long it is asked to run.
+        let (v_max, d_max) = motion_bounds(sc.motion, t_end.max(sc.motion.duration_s()));
         let extent: f64 = wall
             .blocks
             .iter()
