@@ -163,6 +163,17 @@ enum Want {
     Both,
 }
 
+/// What a sub-problem makes of the nodes left out of it.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Outside {
+    /// Nothing: no joint may reach them.
+    Absent,
+    /// The ground, reached through joints only.
+    GroundWithoutFaces,
+    /// The ground, reached through joints and faces.
+    Ground,
+}
+
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Side {
     /// Super-level set {b > theta}: a contact (l, r) forces r in when l is in.
@@ -205,7 +216,7 @@ impl Problem {
     /// themselves and with the ground. Joints to other nodes must not exist (callers split along
     /// the pieces of the joint graph).
     pub fn restrict(&self, nodes: &[usize]) -> Problem {
-        self.sub_problem(nodes, false)
+        self.sub_problem(nodes, Outside::Absent)
     }
 
     /// The sub-problem of `nodes` (renumbered in the order given) with every other node held
@@ -213,10 +224,40 @@ impl Problem {
     /// other nodes are dropped (a bound on the sub-problem's stick interval from inside, as
     /// `Engine::kept_limits` needs).
     pub fn with_ground(&self, nodes: &[usize]) -> Problem {
-        self.sub_problem(nodes, true)
+        self.sub_problem(nodes, Outside::GroundWithoutFaces)
     }
 
-    fn sub_problem(&self, nodes: &[usize], others_are_ground: bool) -> Problem {
+    /// The sub-problem of `nodes` (renumbered in the order given) with every other node moving
+    /// with the ground: their joints and faces against other nodes are joints and faces against
+    /// the ground. Its decision is the full problem's for these nodes wherever the other nodes
+    /// do stay at a_g.
+    pub fn beside_ground(&self, nodes: &[usize]) -> Problem {
+        self.sub_problem(nodes, Outside::Ground)
+    }
+
+    /// The sub-problem of `nodes` (renumbered in the order given) with the other nodes sliding
+    /// past them: `ahead[i]` is +1 for a node moving ahead of them, -1 for one falling behind,
+    /// 0 for one in `nodes` or in no joint with them. Joints to a sliding node carry their full
+    /// capacity in its direction (external forces), faces against it open.
+    pub fn beside_sliding(&self, nodes: &[usize], ahead: &[i8]) -> Problem {
+        let mut q = self.sub_problem(nodes, Outside::Absent);
+        let mut index = vec![usize::MAX; self.n()];
+        for (k, &i) in nodes.iter().enumerate() {
+            index[i] = k;
+        }
+        for (i, j, f) in &self.friction {
+            let End::Node(j) = *j else { continue };
+            for (a, b) in [(*i, j), (j, *i)] {
+                if index[a] != usize::MAX && ahead[b] != 0 {
+                    let e = &mut q.external[index[a]];
+                    *e = if ahead[b] > 0 { &*e + f } else { &*e - f };
+                }
+            }
+        }
+        q
+    }
+
+    fn sub_problem(&self, nodes: &[usize], outside: Outside) -> Problem {
         let mut index = vec![usize::MAX; self.n()];
         for (k, &i) in nodes.iter().enumerate() {
             index[i] = k;
@@ -225,7 +266,8 @@ impl Problem {
             End::Ground => Some(End::Ground),
             End::Node(i) => (index[i] != usize::MAX).then(|| End::Node(index[i])),
         };
-        let joint = |e: End| map(e).or(others_are_ground.then_some(End::Ground));
+        let joint = |e: End| map(e).or((outside != Outside::Absent).then_some(End::Ground));
+        let face = |e: End| map(e).or((outside == Outside::Ground).then_some(End::Ground));
         Problem {
             mass: nodes.iter().map(|&i| self.mass[i].clone()).collect(),
             external: nodes.iter().map(|&i| self.external[i].clone()).collect(),
@@ -241,7 +283,7 @@ impl Problem {
             contacts: self
                 .contacts
                 .iter()
-                .filter_map(|(l, r)| match (map(*l)?, map(*r)?) {
+                .filter_map(|(l, r)| match (face(*l)?, face(*r)?) {
                     (End::Ground, End::Ground) => None,
                     pair => Some(pair),
                 })
@@ -1742,6 +1784,54 @@ mod tests {
             friction: vec![(0, End::Ground, q(mu) * q(9.81))],
             contacts: vec![],
         }
+    }
+
+    /// Three blocks in a row, each resting on the one to its left (the first on the ground),
+    /// touching face to face.
+    fn three_in_a_row() -> Problem {
+        Problem {
+            mass: vec![Q::one(); 3],
+            external: vec![q(0.5), Q::zero(), Q::zero()],
+            friction: vec![
+                (0, End::Ground, q(1.0)),
+                (1, End::Node(0), q(2.0)),
+                (2, End::Node(1), q(3.0)),
+            ],
+            contacts: vec![(End::Node(0), End::Node(1)), (End::Node(1), End::Node(2))],
+        }
+    }
+
+    #[test]
+    fn neighbours_held_at_the_ground_keep_their_joints_and_faces_as_the_grounds() {
+        let p = three_in_a_row();
+        let beside = p.beside_ground(&[1]);
+        assert_eq!(beside.mass, vec![Q::one()]);
+        assert_eq!(
+            beside.friction,
+            vec![(0, End::Ground, q(2.0)), (0, End::Ground, q(3.0))]
+        );
+        assert_eq!(
+            beside.contacts,
+            vec![(End::Node(0), End::Ground), (End::Ground, End::Node(0))]
+        );
+        // For a bound, faces against the ground are dropped.
+        assert!(p.with_ground(&[1]).contacts.is_empty());
+    }
+
+    #[test]
+    fn neighbours_sliding_past_pull_with_their_joints_capacity_and_their_faces_open() {
+        let p = three_in_a_row();
+        let ahead = p.beside_sliding(&[0, 1], &[0, 0, 1]);
+        assert_eq!(ahead.external, vec![q(0.5), q(3.0)]);
+        assert_eq!(
+            ahead.friction,
+            vec![(0, End::Ground, q(1.0)), (1, End::Node(0), q(2.0))]
+        );
+        assert_eq!(ahead.contacts, vec![(End::Node(0), End::Node(1))]);
+        let behind = p.beside_sliding(&[1, 2], &[-1, 0, 0]);
+        assert_eq!(behind.external, vec![q(-2.0), Q::zero()]);
+        assert_eq!(behind.friction, vec![(1, End::Node(0), q(3.0))]);
+        assert_eq!(behind.contacts, vec![(End::Node(0), End::Node(1))]);
     }
 
     #[test]

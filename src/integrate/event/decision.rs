@@ -1157,6 +1157,13 @@ impl Engine<'_> {
         let mut rest = Vec::new();
         for (piece, on_ground) in p.ground_pieces() {
             if on_ground {
+                if let Some((stuck, limits, moving)) = self.beside_stuck(p, blocks, &piece, theta) {
+                    groups.push(stuck);
+                    intervals.push(Some(limits));
+                    intervals.extend(moving.iter().map(|_| None));
+                    groups.extend(moving);
+                    continue;
+                }
                 // p is canonical: a piece that is all of it needs no copy.
                 let limits = if piece.len() == blocks.len() {
                     self.stick_interval_inside(p, blocks, Change::After(None), Some(a0))
@@ -1183,6 +1190,94 @@ impl Engine<'_> {
         }
         rest.sort_unstable();
         (groups, intervals, rest)
+    }
+
+    /// A piece of p (local indices, sorted) made of a large cluster K that was stuck and a few
+    /// blocks X beside it (fewer than a body, [`BODY_FROM`]: a block that came to rest against
+    /// it, one that a collision stopped on it), decided without a cut over K where that can be
+    /// shown: X is decided with K held at a_g ([`Problem::beside_ground`]), and K with the
+    /// blocks of X that stay at a_g is one stuck group if a_g lies strictly inside its stick
+    /// interval (remembered, or kept as a bound, as after any change), with the rest of X
+    /// sliding past it ([`Problem::beside_sliding`]). Every block's forces then balance at
+    /// these accelerations, which are unique (Gauss' principle), so they are the full
+    /// decision's. `None` (nothing decided) where K is small
+    /// ([`Params::beside_stuck_from`](super::Params)), X is empty or holds a body (a cluster
+    /// that came to rest on K mostly stays, which the piece's own interval shows at less cost
+    /// than a decision over X), the ground acceleration had to be snapped, a block of X would
+    /// float at a_g, all of X would stay (the piece's own interval is then the question), the
+    /// stuck blocks are not one piece or a_g is not inside: the caller then decides the piece
+    /// whole.
+    fn beside_stuck(
+        &mut self,
+        p: &Problem,
+        blocks: &[usize],
+        piece: &[usize],
+        theta: &Lex,
+    ) -> Option<(Group, Limits, Vec<Group>)> {
+        let mut count: Vec<(usize, usize)> = Vec::new();
+        for &k in piece {
+            let c = self.of[blocks[k]];
+            if c == NONE || self.clusters[c].slide().is_some() {
+                continue;
+            }
+            match count.iter_mut().find(|(d, _)| *d == c) {
+                Some((_, n)) => *n += 1,
+                None => count.push((c, 1)),
+            }
+        }
+        let (held, size) = count.into_iter().max_by_key(|&(_, n)| n)?;
+        let few = piece.len() - size;
+        if size < self.params.beside_stuck_from || few == 0 || few >= BODY_FROM {
+            return None;
+        }
+        let beside: Vec<usize> = piece
+            .iter()
+            .copied()
+            .filter(|&k| self.of[blocks[k]] != held)
+            .collect();
+        let mut at = theta.clone();
+        let found = self.decide_general(&p.beside_ground(&beside), &mut at, false, &[]);
+        if at != *theta {
+            return None;
+        }
+        let mut ahead = vec![0_i8; p.mass.len()];
+        let mut moving = Vec::new();
+        for g in found {
+            let nodes: Vec<usize> = g.nodes.iter().map(|&k| beside[k]).collect();
+            if !g.grounded {
+                let dir = match Lex::constant(g.accel.clone()).cmp(theta) {
+                    std::cmp::Ordering::Greater => 1,
+                    std::cmp::Ordering::Less => -1,
+                    std::cmp::Ordering::Equal => return None,
+                };
+                for &k in &nodes {
+                    ahead[k] = dir;
+                }
+                moving.push(Group { nodes, ..g });
+            }
+        }
+        if moving.is_empty() {
+            // The whole piece is to stay: its own interval, which the caller works out, decides.
+            return None;
+        }
+        let stuck: Vec<usize> = piece.iter().copied().filter(|&k| ahead[k] == 0).collect();
+        let q = p.beside_sliding(&stuck, &ahead);
+        if !matches!(q.ground_pieces().as_slice(), [(_, true)]) {
+            return None;
+        }
+        let members: Vec<usize> = stuck.iter().map(|&k| blocks[k]).collect();
+        let a0 = &theta.0[0];
+        let limits = self.stick_interval_inside(&q, &members, Change::After(None), Some(a0))?;
+        let inside = limits.lo.as_ref().is_none_or(|lo| a0 > lo)
+            && limits.hi.as_ref().is_none_or(|hi| a0 < hi);
+        inside.then(|| {
+            let group = Group {
+                nodes: stuck,
+                accel: a0.clone(),
+                grounded: true,
+            };
+            (group, limits, moving)
+        })
     }
 
     /// Bounds from inside on the stick interval of problem q, whose blocks (`members`: global

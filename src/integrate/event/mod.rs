@@ -29,7 +29,7 @@ use std::cmp::{Ordering, Reverse};
 use std::collections::{BinaryHeap, HashMap, VecDeque};
 
 /// Settings of the event-driven integrator. None is a tolerance: the first two only stop a run
-/// that would otherwise never end, with an error that says where; the third changes the work,
+/// that would otherwise never end, with an error that says where; the others change the work,
 /// never the answer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Params {
@@ -42,6 +42,11 @@ pub struct Params {
     /// only when a_g reaches them (`usize::MAX`: always at once). Below it, working a limit out
     /// costs less than the event a bound may add.
     pub kept_limits_from: usize,
+    /// A decision at the ground over a stuck group of at least this many blocks and a few
+    /// blocks beside it decides those few with the group held at a_g, and the group from its
+    /// stick interval, where that shows the answer (`usize::MAX`: never). Below it, the
+    /// decision over the whole piece costs no more.
+    pub beside_stuck_from: usize,
 }
 
 impl Default for Params {
@@ -50,12 +55,16 @@ impl Default for Params {
             max_events_per_instant: 10_000,
             max_collisions_per_chain: 100_000,
             kept_limits_from: KEPT_LIMITS_FROM,
+            beside_stuck_from: BESIDE_STUCK_FROM,
         }
     }
 }
 
 /// The default of [`Params::kept_limits_from`].
 const KEPT_LIMITS_FROM: usize = 256;
+
+/// The default of [`Params::beside_stuck_from`].
+const BESIDE_STUCK_FROM: usize = 256;
 
 /// The property tests' configuration: many cases (each is cheap), and no regression file, which
 /// would sit at the top level.
