@@ -1814,7 +1814,7 @@ mod tests {
             beside.contacts,
             vec![(End::Node(0), End::Ground), (End::Ground, End::Node(0))]
         );
-        // For a bound, faces against the ground are dropped.
+        // Held as the ground for a bound from inside, faces against the others are dropped.
         assert!(p.with_ground(&[1]).contacts.is_empty());
     }
 
