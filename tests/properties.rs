@@ -10,6 +10,8 @@ use pirqa::{Topology, Wall};
 use proptest::prelude::*;
 use std::collections::BTreeMap;
 
+mod answers;
+
 /// Two courses over the same length, cut at random; random friction per block and gaps.
 fn wall_strategy() -> impl Strategy<Value = WallDescription> {
     (
@@ -120,6 +122,32 @@ proptest! {
     }
 }
 
+/// The paper's wall cut into `courses` x `blocks` in running bond with restitution e, every
+/// joint's friction drawn uniformly from lowest / 10,000 to (lowest + span) / 10,000.
+fn coursed_wall(
+    courses: usize,
+    blocks: usize,
+    e: f64,
+    seed: u64,
+    lowest: i128,
+    span: i128,
+) -> (Wall, Topology) {
+    let mut spec = pirqa::wall::RunningBond::paper_wall(5);
+    spec.courses = courses;
+    spec.blocks_per_course = blocks;
+    spec.restitution = e;
+    let wall = Wall::from_description(&spec.description().unwrap()).unwrap();
+    let nominal = Topology::new(&wall).unwrap();
+    let mut rng = pirqa::rng::Rng::new(seed);
+    let mu: Vec<pirqa::exact::Q> = nominal
+        .supports
+        .iter()
+        .map(|_| pirqa::exact::Q::frac(lowest + (rng.uniform() * span as f64) as i128, 10_000))
+        .collect();
+    let topo = nominal.with_frictions(mu);
+    (wall, topo)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse::<u32>().ok()).map_or(24, |c| c / 2 + 1), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261122)), ..ProptestConfig::default() })]
 
@@ -134,24 +162,41 @@ proptest! {
         seed in 0u64..1_000_000,
         pga in 3.0f64..9.0,
     ) {
-        let mut spec = pirqa::wall::RunningBond::paper_wall(5);
-        spec.courses = courses;
-        spec.blocks_per_course = blocks;
-        spec.restitution = e;
-        let wall = Wall::from_description(&spec.description().unwrap()).unwrap();
-        let nominal = Topology::new(&wall).unwrap();
-        let mut rng = pirqa::rng::Rng::new(seed);
-        let mu: Vec<pirqa::exact::Q> = nominal
-            .supports
-            .iter()
-            .map(|_| pirqa::exact::Q::frac(2500 + (rng.uniform() * 1000.0) as i128, 10_000))
-            .collect();
-        let topo = nominal.with_frictions(mu);
+        let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2500, 1000);
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
         let settings = Settings { duration_s: 10.0, output_dt_s: None, log_events: false, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings });
         prop_assert!(r.is_ok(), "{:?}", r.err());
         let e = r.unwrap().summary.energy;
         prop_assert!(e.residual_j.abs() <= 1e-9 * e.input_j.max(1.0), "energy residual {:e} of {:e}", e.residual_j, e.input_j);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse::<u32>().ok()).map_or(24, |c| c / 2 + 1), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261122)), ..ProptestConfig::default() })]
+
+    /// Decisions beside a stuck group (`Params::beside_stuck_from`) change the work, never the
+    /// answer: on random running-bond walls (any restitution) under a strong broadband record,
+    /// with every stuck group of two blocks or more decided so and with none, the same answer
+    /// (`answers::same_answer`).
+    #[test]
+    fn decisions_beside_a_stuck_group_give_the_general_answer(
+        courses in 3usize..6,
+        blocks in 3usize..7,
+        e in prop::sample::select(vec![1.0, 0.8, 0.5, 0.0]),
+        seed in 0u64..1_000_000,
+        pga in 2.0f64..9.0,
+    ) {
+        use pirqa::integrate::event::Params;
+        let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2000, 2000);
+        let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
+        let settings = Settings { duration_s: 10.0, output_dt_s: None, log_events: true, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let scenario = Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings };
+        let run = |beside_stuck_from: usize| {
+            let params = Params { beside_stuck_from, ..Params::default() };
+            EventDriven { params }.run(&scenario).unwrap()
+        };
+        let same = answers::same_answer(&run(usize::MAX), &run(2));
+        prop_assert!(same.is_ok(), "{}", same.unwrap_err());
     }
 }
