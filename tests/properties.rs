@@ -175,12 +175,13 @@ proptest! {
 proptest! {
     #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse::<u32>().ok()).map_or(24, |c| c / 2 + 1), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261122)), ..ProptestConfig::default() })]
 
-    /// Decisions beside a stuck group (`Params::beside_stuck_from`) change the work, never the
-    /// answer: on random running-bond walls (any restitution) under a strong broadband record,
-    /// with every stuck group of two blocks or more decided so and with none, the same answer
-    /// (`answers::same_answer`).
+    /// The settings that change the work never change the answer: on random running-bond walls
+    /// (any restitution) under a strong broadband record, limits kept as bounds
+    /// (`Params::kept_limits_from`) and decisions beside a stuck group
+    /// (`Params::beside_stuck_from`), each for every stuck group of two blocks or more and both
+    /// together, give the answer of a run with neither (`answers::same_answer`).
     #[test]
-    fn decisions_beside_a_stuck_group_give_the_general_answer(
+    fn work_settings_give_the_answer_of_a_run_without_them(
         courses in 3usize..6,
         blocks in 3usize..7,
         e in prop::sample::select(vec![1.0, 0.8, 0.5, 0.0]),
@@ -192,11 +193,14 @@ proptest! {
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
         let settings = Settings { duration_s: 10.0, output_dt_s: None, log_events: true, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let scenario = Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings };
-        let run = |beside_stuck_from: usize| {
-            let params = Params { beside_stuck_from, ..Params::default() };
+        let run = |kept_limits_from: usize, beside_stuck_from: usize| {
+            let params = Params { kept_limits_from, beside_stuck_from, ..Params::default() };
             EventDriven { params }.run(&scenario).unwrap()
         };
-        let same = answers::same_answer(&run(usize::MAX), &run(2));
-        prop_assert!(same.is_ok(), "{}", same.unwrap_err());
+        let plain = run(usize::MAX, usize::MAX);
+        for (kept, beside) in [(2, usize::MAX), (usize::MAX, 2), (2, 2)] {
+            let same = answers::same_answer(&plain, &run(kept, beside));
+            prop_assert!(same.is_ok(), "kept from {kept}, beside from {beside}: {}", same.unwrap_err());
+        }
     }
 }
