@@ -1214,6 +1214,9 @@ impl Engine<'_> {
         piece: &[usize],
         theta: &Lex,
     ) -> Option<(Group, Limits, Vec<Group>)> {
+        if piece.len() <= self.params.beside_stuck_from {
+            return None;
+        }
         let mut count: Vec<(usize, usize)> = Vec::new();
         for &k in piece {
             let c = self.of[blocks[k]];
