@@ -5,7 +5,7 @@
 use super::cluster::{Cluster, Motion, Slide};
 use super::decide::{End, Group, Lex, Problem};
 use super::flow;
-use super::stuck::{stuck, Before};
+use super::stuck::{stuck, Before, Limits};
 use super::{Engine, NONE};
 use crate::clock::ThreadClock;
 use crate::error::SimulationError;
@@ -194,76 +194,14 @@ impl Engine<'_> {
         let mut blocks = std::mem::take(&mut buf.blocks);
         let mut old_clusters = std::mem::take(&mut buf.old);
         let mut queue = std::mem::take(&mut buf.queue);
-        let add = |b: usize,
-                   this: &Engine,
-                   local: &mut Local,
-                   blocks: &mut Vec<usize>,
-                   old: &mut Vec<usize>,
-                   queue: &mut Vec<usize>| {
-            // Once per cluster: its first block brings in all the others.
-            let members: &[usize] = match this.of[b] {
-                NONE => std::slice::from_ref(&b),
-                k => {
-                    old.push(k);
-                    &this.clusters[k].blocks
-                }
-            };
-            for &m in members {
-                if !local.contains_key(&m) {
-                    local.insert(m, blocks.len());
-                    blocks.push(m);
-                    queue.push(m);
-                }
-            }
-        };
-        for &b in seeds {
-            if !self.fixed[b] && !self.fallen[b] && !local.contains_key(&b) {
-                add(
-                    b,
-                    self,
-                    &mut local,
-                    &mut blocks,
-                    &mut old_clusters,
-                    &mut queue,
-                );
-            }
-        }
-        let mut next = Vec::new();
-        while let Some(i) = queue.pop() {
-            let vi = self.vel_with(i, &snap);
-            next.clear();
-            for other in self.live_neighbours(i) {
-                if let Some(o) = other.filter(|&o| !self.fixed[o]) {
-                    if !local.contains_key(&o) && self.same_velocity(vi, self.vel_with(o, &snap)) {
-                        next.push(o);
-                    }
-                }
-            }
-            for &j in &self.topo.sides[i] {
-                if !self.live_joint(j.0) || !self.is_touching(j.0) {
-                    continue;
-                }
-                let o = self.across_joint(j.0, i);
-                if !self.fixed[o]
-                    && !local.contains_key(&o)
-                    && self.same_velocity(vi, self.vel_with(o, &snap))
-                {
-                    next.push(o);
-                }
-            }
-            for &o in &next {
-                if !local.contains_key(&o) {
-                    add(
-                        o,
-                        self,
-                        &mut local,
-                        &mut blocks,
-                        &mut old_clusters,
-                        &mut queue,
-                    );
-                }
-            }
-        }
+        self.gather(
+            seeds,
+            &snap,
+            &mut local,
+            &mut blocks,
+            &mut old_clusters,
+            &mut queue,
+        );
 
         // Canonical order (by block index), so a configuration met again is the same problem.
         blocks.sort_unstable();
@@ -306,153 +244,19 @@ impl Engine<'_> {
 
         // 3. The decision problem.
         let mut p = std::mem::take(&mut buf.problem);
-        p.mass
-            .extend(blocks.iter().map(|&i| self.mass_q[i].clone()));
-        p.external.resize(blocks.len(), Q::zero());
-        for &s in &touched_supports {
-            if !self.live_support(s) {
-                continue;
-            }
-            let sup = &self.topo.supports[s];
-            let up = sup.upper.0;
-            let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
-            let (vu, vl) = (
-                self.vel_with(up, &snap),
-                lo.map_or(0.0, |l| self.vel_with(l, &snap)),
-            );
-            let (lu, ll) = (
-                local.get(&up).copied(),
-                lo.and_then(|l| local.get(&l).copied()),
-            );
-            let lower_is_ground = lo.is_none();
-            let undecided = match lu {
-                Some(u) if vu == vl && (ll.is_some() || lower_is_ground) => Some(u),
-                _ => None,
-            };
-            if let Some(u) = undecided {
-                let end = ll.map_or(End::Ground, End::Node);
-                p.friction.push((u, end, self.cap_q[s].clone()));
-            } else {
-                // Sliding: friction opposes the relative velocity (or, when the far side is
-                // outside and moving with it, its recorded direction).
-                let dir = if vu != vl {
-                    if vu > vl {
-                        1
-                    } else {
-                        -1
-                    }
-                } else {
-                    self.dir[s]
-                };
-                let f = &self.cap_q[s];
-                if let Some(k) = lu {
-                    p.external[k] = if dir > 0 {
-                        &p.external[k] - f
-                    } else {
-                        &p.external[k] + f
-                    };
-                }
-                if let Some(k) = ll {
-                    p.external[k] = if dir > 0 {
-                        &p.external[k] + f
-                    } else {
-                        &p.external[k] - f
-                    };
-                }
-            }
-        }
-        for &j in &touched_joints {
-            if !self.live_joint(j) || !self.is_touching(j) {
-                continue;
-            }
-            let jt = &self.topo.joints[j];
-            let (l, r) = (jt.left.0, jt.right.0);
-            let end = |b: usize| {
-                if self.fixed[b] {
-                    Some(End::Ground)
-                } else {
-                    local.get(&b).map(|&k| End::Node(k))
-                }
-            };
-            let (vl, vr) = (self.vel_with(l, &snap), self.vel_with(r, &snap));
-            if let (Some(el), Some(er)) = (end(l), end(r)) {
-                if vl == vr {
-                    p.contacts.push((el, er));
-                }
-            }
-        }
-
+        self.problem_of(
+            &mut p,
+            &blocks,
+            &local,
+            &snap,
+            &touched_supports,
+            &touched_joints,
+        );
         let p = p.canonical();
 
-        // 4. Solve: pieces joined to the ground with the ground acceleration strictly inside
-        //    their stick intervals stay stuck (the common case); the other pieces get the general
-        //    decision. Pieces meet only through the ground, whose motion is given, so each is
-        //    decided on its own: a block knocked out of a large stuck cluster costs that
-        //    cluster a stick interval, not a general decision over all of it.
-        let mut theta_lex = self.ground_lex(theta.clone());
-        let (mut groups, mut intervals, rest) =
-            self.stuck_pieces(&p, &blocks, &theta_lex, theta.is_some());
-        if !rest.is_empty() {
-            // Large clusters that slid as one body until now (see `Problem::solve`), each cut
-            // by velocity: the blocks an impact hits leave with velocities of their own, and
-            // held to the rest they would fail the first try, which costs a cut over the body.
-            let mut bodies: Vec<Vec<usize>> = Vec::new();
-            for c in old_clusters.iter().map(|&k| &self.clusters[k]) {
-                if c.slide().is_none() || c.blocks.len() < BODY_FROM {
-                    continue;
-                }
-                let mut by_velocity: Vec<(f64, Vec<usize>)> = Vec::new();
-                for b in &c.blocks {
-                    let v = self.vel_with(*b, &snap);
-                    match by_velocity.iter_mut().find(|(w, _)| *w == v) {
-                        Some((_, nodes)) => nodes.push(local[b]),
-                        None => by_velocity.push((v, vec![local[b]])),
-                    }
-                }
-                for (_, mut nodes) in by_velocity {
-                    if nodes.len() >= 2 {
-                        nodes.sort_unstable();
-                        bodies.push(nodes);
-                    }
-                }
-            }
-            if rest.len() == blocks.len() {
-                groups = self.decide_general(&p, &mut theta_lex, theta.is_some(), &bodies);
-            } else {
-                let mut index = vec![NONE; blocks.len()];
-                for (k, &i) in rest.iter().enumerate() {
-                    index[i] = k;
-                }
-                // What is left of each body in the rest (an impact can have knocked some of
-                // its blocks into other pieces).
-                let rest_bodies: Vec<Vec<usize>> = bodies
-                    .iter()
-                    .map(|b| {
-                        b.iter()
-                            .filter(|&&i| index[i] != NONE)
-                            .map(|&i| index[i])
-                            .collect::<Vec<usize>>()
-                    })
-                    .filter(|b| !b.is_empty())
-                    .collect();
-                let q = p.restrict(&rest);
-                let before = theta_lex.clone();
-                let found = self.decide_general(&q, &mut theta_lex, theta.is_some(), &rest_bodies);
-                if theta_lex == before {
-                    groups.extend(found.into_iter().map(|g| Group {
-                        nodes: g.nodes.iter().map(|&k| rest[k]).collect(),
-                        ..g
-                    }));
-                } else {
-                    // A hidden breakpoint moved the ground acceleration, at which the stuck
-                    // pieces were not decided: decide everything there (rare).
-                    theta_lex = before;
-                    groups = self.decide_general(&p, &mut theta_lex, theta.is_some(), &bodies);
-                    intervals.clear();
-                }
-            }
-            intervals.resize(groups.len(), None);
-        }
+        // 4. Solve: stuck pieces by their stick intervals, the rest by the general decision.
+        let (groups, intervals, theta_lex) =
+            self.solve_component(&p, &blocks, &old_clusters, &local, &snap, theta.as_ref());
 
         // 5. Install the new clusters, keeping what the intervals after it may need.
         let mut before = Before::default();
@@ -519,103 +323,22 @@ impl Engine<'_> {
         }
 
         // 6. Joint directions, stick-slip transitions and separations.
-        let accel_of = |b: usize| -> Option<Lex> {
-            let k = *local.get(&b)?;
-            let g = &groups[group_of[k]];
-            Some(if g.grounded {
-                theta_lex.clone()
-            } else {
-                Lex::constant(g.accel.clone())
-            })
+        let accel_of = |b: Option<usize>| -> Lex {
+            match b.and_then(|b| local.get(&b)) {
+                Some(&k) if !groups[group_of[k]].grounded => {
+                    Lex::constant(groups[group_of[k]].accel.clone())
+                }
+                _ => theta_lex.clone(),
+            }
         };
-        let mut neighbours: Vec<usize> = Vec::new();
-        // Neighbours a joint of which turned: their friction forces changed (only an impact turns
-        // a sliding joint without a re-decision of both sides).
-        let mut pushed: Vec<usize> = Vec::new();
-        for &s in &touched_supports {
-            if !self.live_support(s) {
-                continue;
-            }
-            let sup = &self.topo.supports[s];
-            let up = sup.upper.0;
-            let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
-            for b in std::iter::once(up).chain(lo) {
-                if !local.contains_key(&b) && self.of[b] != NONE {
-                    neighbours.push(self.of[b]);
-                }
-            }
-            let same = lo.is_some_and(|l| self.of[l] == self.of[up]);
-            let (vu, vl) = (
-                self.vel_with(up, &snap),
-                lo.map_or(0.0, |l| self.vel_with(l, &snap)),
-            );
-            let new_dir: i8 = if same || (lo.is_none() && self.grounded(up)) {
-                0
-            } else if vu != vl {
-                if vu > vl {
-                    1
-                } else {
-                    -1
-                }
-            } else {
-                let au = accel_of(up).unwrap_or_else(|| theta_lex.clone());
-                let al = lo.and_then(accel_of).unwrap_or_else(|| theta_lex.clone());
-                match au.cmp(&al) {
-                    std::cmp::Ordering::Greater => 1,
-                    std::cmp::Ordering::Less => -1,
-                    std::cmp::Ordering::Equal => self.dir[s],
-                }
-            };
-            let old_dir = self.dir[s];
-            self.dir[s] = new_dir;
-            if old_dir != new_dir {
-                before.dir.insert(s, old_dir);
-                for b in std::iter::once(up).chain(lo) {
-                    if !local.contains_key(&b) && self.of[b] != NONE {
-                        pushed.push(self.of[b]);
-                    }
-                }
-            }
-            if (old_dir == 0) != (new_dir == 0) {
-                self.rec.transitions += 1;
-                let kind = if new_dir == 0 {
-                    EventKind::Stick
-                } else {
-                    EventKind::Slip
-                };
-                let who: &[usize] = match lo {
-                    Some(l) => &[up, l],
-                    None => &[up],
-                };
-                self.rec.support_event(t, kind, s, who);
-            }
-        }
-        for &j in &touched_joints {
-            if !self.live_joint(j) {
-                continue;
-            }
-            let jt = &self.topo.joints[j];
-            let (l, r) = (jt.left.0, jt.right.0);
-            for b in [l, r] {
-                if !local.contains_key(&b) && self.of[b] != NONE {
-                    neighbours.push(self.of[b]);
-                }
-            }
-            let together = (self.of[l] == self.of[r] && self.of[l] != NONE)
-                || (self.grounded(l) && self.grounded(r));
-            if self.touching[j] && !together && self.is_touching(j) {
-                self.touching[j] = false;
-                self.rec.event(
-                    t,
-                    EventKind::Separation,
-                    &[l, r],
-                    Some(self.joint_label(j)),
-                    None,
-                );
-            } else if together && self.is_touching(j) {
-                self.touching[j] = true;
-            }
-        }
+        let (mut neighbours, mut pushed) = self.turn_joints(
+            &touched_supports,
+            &touched_joints,
+            &local,
+            &snap,
+            &accel_of,
+            &mut before,
+        );
         // The working memory goes back before anything below decides again.
         buf.local = local.release(&blocks);
         buf.problem = p.cleared();
@@ -694,6 +417,360 @@ impl Engine<'_> {
             }
         }
         Ok(())
+    }
+
+    /// Step 6 of [`Engine::decide_from`]: each joint of the component takes its new direction
+    /// (`accel_of`: a block's acceleration after the decision, the ground's for `None`), with
+    /// its stick-slip transition and the faces that separate logged. Returns the clusters
+    /// outside the component beside it, and those of them one of whose joints turned: their
+    /// friction forces changed (only an impact turns a sliding joint without a re-decision of
+    /// both sides).
+    fn turn_joints(
+        &mut self,
+        touched_supports: &[usize],
+        touched_joints: &[usize],
+        local: &Local,
+        snap: &Snap,
+        accel_of: &dyn Fn(Option<usize>) -> Lex,
+        before: &mut Before,
+    ) -> (Vec<usize>, Vec<usize>) {
+        let mut neighbours: Vec<usize> = Vec::new();
+        let mut pushed: Vec<usize> = Vec::new();
+        for &s in touched_supports {
+            if !self.live_support(s) {
+                continue;
+            }
+            let sup = &self.topo.supports[s];
+            let up = sup.upper.0;
+            let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
+            for b in std::iter::once(up).chain(lo) {
+                if !local.contains_key(&b) && self.of[b] != NONE {
+                    neighbours.push(self.of[b]);
+                }
+            }
+            let same = lo.is_some_and(|l| self.of[l] == self.of[up]);
+            let (vu, vl) = (
+                self.vel_with(up, snap),
+                lo.map_or(0.0, |l| self.vel_with(l, snap)),
+            );
+            let new_dir: i8 = if same || (lo.is_none() && self.grounded(up)) {
+                0
+            } else if vu != vl {
+                if vu > vl {
+                    1
+                } else {
+                    -1
+                }
+            } else {
+                match accel_of(Some(up)).cmp(&accel_of(lo)) {
+                    std::cmp::Ordering::Greater => 1,
+                    std::cmp::Ordering::Less => -1,
+                    std::cmp::Ordering::Equal => self.dir[s],
+                }
+            };
+            let old_dir = self.dir[s];
+            self.dir[s] = new_dir;
+            if old_dir != new_dir {
+                before.dir.insert(s, old_dir);
+                for b in std::iter::once(up).chain(lo) {
+                    if !local.contains_key(&b) && self.of[b] != NONE {
+                        pushed.push(self.of[b]);
+                    }
+                }
+            }
+            if (old_dir == 0) != (new_dir == 0) {
+                self.rec.transitions += 1;
+                let kind = if new_dir == 0 {
+                    EventKind::Stick
+                } else {
+                    EventKind::Slip
+                };
+                let who: &[usize] = match lo {
+                    Some(l) => &[up, l],
+                    None => &[up],
+                };
+                self.rec.support_event(self.t, kind, s, who);
+            }
+        }
+        for &j in touched_joints {
+            if !self.live_joint(j) {
+                continue;
+            }
+            let jt = &self.topo.joints[j];
+            let (l, r) = (jt.left.0, jt.right.0);
+            for b in [l, r] {
+                if !local.contains_key(&b) && self.of[b] != NONE {
+                    neighbours.push(self.of[b]);
+                }
+            }
+            let together = (self.of[l] == self.of[r] && self.of[l] != NONE)
+                || (self.grounded(l) && self.grounded(r));
+            if self.touching[j] && !together && self.is_touching(j) {
+                self.touching[j] = false;
+                self.rec.event(
+                    self.t,
+                    EventKind::Separation,
+                    &[l, r],
+                    Some(self.joint_label(j)),
+                    None,
+                );
+            } else if together && self.is_touching(j) {
+                self.touching[j] = true;
+            }
+        }
+        (neighbours, pushed)
+    }
+
+    /// Step 1 of [`Engine::decide_from`]: the blocks of the component (whole clusters joined to
+    /// `seeds` through joints whose sides move with equal velocities), in the order found, with
+    /// their local indices, the old clusters they come from, and `queue` left empty.
+    fn gather(
+        &self,
+        seeds: &[usize],
+        snap: &Snap,
+        local: &mut Local,
+        blocks: &mut Vec<usize>,
+        old_clusters: &mut Vec<usize>,
+        queue: &mut Vec<usize>,
+    ) {
+        let add = |b: usize,
+                   this: &Engine,
+                   local: &mut Local,
+                   blocks: &mut Vec<usize>,
+                   old: &mut Vec<usize>,
+                   queue: &mut Vec<usize>| {
+            // Once per cluster: its first block brings in all the others.
+            let members: &[usize] = match this.of[b] {
+                NONE => std::slice::from_ref(&b),
+                k => {
+                    old.push(k);
+                    &this.clusters[k].blocks
+                }
+            };
+            for &m in members {
+                if !local.contains_key(&m) {
+                    local.insert(m, blocks.len());
+                    blocks.push(m);
+                    queue.push(m);
+                }
+            }
+        };
+        for &b in seeds {
+            if !self.fixed[b] && !self.fallen[b] && !local.contains_key(&b) {
+                add(b, self, local, blocks, old_clusters, queue);
+            }
+        }
+        let mut next = Vec::new();
+        while let Some(i) = queue.pop() {
+            let vi = self.vel_with(i, snap);
+            next.clear();
+            for other in self.live_neighbours(i) {
+                if let Some(o) = other.filter(|&o| !self.fixed[o]) {
+                    if !local.contains_key(&o) && self.same_velocity(vi, self.vel_with(o, snap)) {
+                        next.push(o);
+                    }
+                }
+            }
+            for &j in &self.topo.sides[i] {
+                if !self.live_joint(j.0) || !self.is_touching(j.0) {
+                    continue;
+                }
+                let o = self.across_joint(j.0, i);
+                if !self.fixed[o]
+                    && !local.contains_key(&o)
+                    && self.same_velocity(vi, self.vel_with(o, snap))
+                {
+                    next.push(o);
+                }
+            }
+            for &o in &next {
+                if !local.contains_key(&o) {
+                    add(o, self, local, blocks, old_clusters, queue);
+                }
+            }
+        }
+    }
+
+    /// Step 3 of [`Engine::decide_from`]: the decision problem of the component `blocks` (in
+    /// `p`, empty): their masses, the friction of joints that slide as external forces, the
+    /// joints and touching faces whose sides move with equal velocities as undecided.
+    fn problem_of(
+        &self,
+        p: &mut Problem,
+        blocks: &[usize],
+        local: &Local,
+        snap: &Snap,
+        touched_supports: &[usize],
+        touched_joints: &[usize],
+    ) {
+        p.mass
+            .extend(blocks.iter().map(|&i| self.mass_q[i].clone()));
+        p.external.resize(blocks.len(), Q::zero());
+        for &s in touched_supports {
+            if !self.live_support(s) {
+                continue;
+            }
+            let sup = &self.topo.supports[s];
+            let up = sup.upper.0;
+            let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
+            let (vu, vl) = (
+                self.vel_with(up, snap),
+                lo.map_or(0.0, |l| self.vel_with(l, snap)),
+            );
+            let (lu, ll) = (
+                local.get(&up).copied(),
+                lo.and_then(|l| local.get(&l).copied()),
+            );
+            let lower_is_ground = lo.is_none();
+            let undecided = match lu {
+                Some(u) if vu == vl && (ll.is_some() || lower_is_ground) => Some(u),
+                _ => None,
+            };
+            if let Some(u) = undecided {
+                let end = ll.map_or(End::Ground, End::Node);
+                p.friction.push((u, end, self.cap_q[s].clone()));
+            } else {
+                // Sliding: friction opposes the relative velocity (or, when the far side is
+                // outside and moving with it, its recorded direction).
+                let dir = if vu != vl {
+                    if vu > vl {
+                        1
+                    } else {
+                        -1
+                    }
+                } else {
+                    self.dir[s]
+                };
+                let f = &self.cap_q[s];
+                if let Some(k) = lu {
+                    p.external[k] = if dir > 0 {
+                        &p.external[k] - f
+                    } else {
+                        &p.external[k] + f
+                    };
+                }
+                if let Some(k) = ll {
+                    p.external[k] = if dir > 0 {
+                        &p.external[k] + f
+                    } else {
+                        &p.external[k] - f
+                    };
+                }
+            }
+        }
+        for &j in touched_joints {
+            if !self.live_joint(j) || !self.is_touching(j) {
+                continue;
+            }
+            let jt = &self.topo.joints[j];
+            let (l, r) = (jt.left.0, jt.right.0);
+            let end = |b: usize| {
+                if self.fixed[b] {
+                    Some(End::Ground)
+                } else {
+                    local.get(&b).map(|&k| End::Node(k))
+                }
+            };
+            let (vl, vr) = (self.vel_with(l, snap), self.vel_with(r, snap));
+            if let (Some(el), Some(er)) = (end(l), end(r)) {
+                if vl == vr {
+                    p.contacts.push((el, er));
+                }
+            }
+        }
+    }
+
+    /// Step 4 of [`Engine::decide_from`]: the groups of the component's problem `p`, the stick
+    /// intervals of those found stuck by their pieces (`None` for the others), and the ground
+    /// acceleration they were decided at. Pieces joined to the ground with the ground
+    /// acceleration strictly inside their stick intervals stay stuck (the common case); the
+    /// other pieces get the general decision. Pieces meet only through the ground, whose motion
+    /// is given, so each is decided on its own: a block knocked out of a large stuck cluster
+    /// costs that cluster a stick interval, not a general decision over all of it.
+    fn solve_component(
+        &mut self,
+        p: &Problem,
+        blocks: &[usize],
+        old_clusters: &[usize],
+        local: &Local,
+        snap: &Snap,
+        theta: Option<&Q>,
+    ) -> (Vec<Group>, Vec<Option<Limits>>, Lex) {
+        let mut theta_lex = self.ground_lex(theta.cloned());
+        let (mut groups, mut intervals, rest) =
+            self.stuck_pieces(p, blocks, &theta_lex, theta.is_some());
+        if !rest.is_empty() {
+            let bodies = self.sliding_bodies(old_clusters, local, snap);
+            if rest.len() == blocks.len() {
+                groups = self.decide_general(p, &mut theta_lex, theta.is_some(), &bodies);
+            } else {
+                let mut index = vec![NONE; blocks.len()];
+                for (k, &i) in rest.iter().enumerate() {
+                    index[i] = k;
+                }
+                // What is left of each body in the rest (an impact can have knocked some of
+                // its blocks into other pieces).
+                let rest_bodies: Vec<Vec<usize>> = bodies
+                    .iter()
+                    .map(|b| {
+                        b.iter()
+                            .filter(|&&i| index[i] != NONE)
+                            .map(|&i| index[i])
+                            .collect::<Vec<usize>>()
+                    })
+                    .filter(|b| !b.is_empty())
+                    .collect();
+                let q = p.restrict(&rest);
+                let before = theta_lex.clone();
+                let found = self.decide_general(&q, &mut theta_lex, theta.is_some(), &rest_bodies);
+                if theta_lex == before {
+                    groups.extend(found.into_iter().map(|g| Group {
+                        nodes: g.nodes.iter().map(|&k| rest[k]).collect(),
+                        ..g
+                    }));
+                } else {
+                    // A hidden breakpoint moved the ground acceleration, at which the stuck
+                    // pieces were not decided: decide everything there (rare).
+                    theta_lex = before;
+                    groups = self.decide_general(p, &mut theta_lex, theta.is_some(), &bodies);
+                    intervals.clear();
+                }
+            }
+            intervals.resize(groups.len(), None);
+        }
+        (groups, intervals, theta_lex)
+    }
+
+    /// Large clusters of the component that slid as one body until now (see `Problem::solve`),
+    /// each cut by velocity: the blocks an impact hits leave with velocities of their own, and
+    /// held to the rest they would fail the first try, which costs a cut over the body.
+    fn sliding_bodies(
+        &self,
+        old_clusters: &[usize],
+        local: &Local,
+        snap: &Snap,
+    ) -> Vec<Vec<usize>> {
+        let mut bodies: Vec<Vec<usize>> = Vec::new();
+        for c in old_clusters.iter().map(|&k| &self.clusters[k]) {
+            if c.slide().is_none() || c.blocks.len() < BODY_FROM {
+                continue;
+            }
+            let mut by_velocity: Vec<(f64, Vec<usize>)> = Vec::new();
+            for b in &c.blocks {
+                let v = self.vel_with(*b, snap);
+                match by_velocity.iter_mut().find(|(w, _)| *w == v) {
+                    Some((_, nodes)) => nodes.push(local[b]),
+                    None => by_velocity.push((v, vec![local[b]])),
+                }
+            }
+            for (_, mut nodes) in by_velocity {
+                if nodes.len() >= 2 {
+                    nodes.sort_unstable();
+                    bodies.push(nodes);
+                }
+            }
+        }
+        bodies
     }
 
     /// The largest of these clusters that is stuck to the ground, for the decision log.
