@@ -40,7 +40,8 @@ for path, blocks in zip(args[::2], map(int, args[1::2])):
     print(f"{blocks} blocks: {len(rows)} decisions, {cpu:.3f} s of CPU")
     print(f"  taking in a tenth of the wall or more: {len(large)}, {share(large):.3f} s,"
           f" median {sorted(d['blocks'] for d in large)[len(large) // 2]} blocks")
-    print(f"  of them within 1 ms of the one before: {len(burst)}, {share(burst):.3f} s")
+    print(f"  of them within 1 ms of the one before: {len(burst)}, {share(burst):.3f} s;"
+          f" by cause: {dict(collections.Counter(d['cause'] for d in burst).most_common())}")
     impacts = [d for d in large if d["cause"] == "impact"]
     classes = collections.Counter()
     for d in impacts:
