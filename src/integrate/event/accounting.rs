@@ -145,7 +145,7 @@ impl Engine<'_> {
     }
 
     /// Integral of block i's displacement from t_a to now (m s), within the current segment.
-    pub(super) fn block_disp_integral(&self, i: usize, t_a: f64) -> f64 {
+    fn block_disp_integral(&self, i: usize, t_a: f64) -> f64 {
         let span = self.t - t_a;
         match self.of[i] {
             NONE => self.u_ref[i] * span,

@@ -9,7 +9,7 @@ use crate::response::{DecisionCause as Cause, EventKind};
 use std::collections::HashMap;
 
 /// The blocks an impact reaches through touching faces ([`impact::resolve`]'s input).
-pub(super) struct Chain {
+struct Chain {
     /// Each block with its mass and velocity; the ground and abutments have no mass.
     bodies: Vec<(usize, impact::Body)>,
     /// Touching faces (left body, right body, joint), left to right.
@@ -67,7 +67,7 @@ impl Engine<'_> {
 
     /// The chain of an impact at joint j: the blocks reachable from it through touching faces
     /// (joints already `seen` are left out, and the chain's are marked).
-    pub(super) fn chain(&self, j: usize, seen: &mut [bool]) -> Chain {
+    fn chain(&self, j: usize, seen: &mut [bool]) -> Chain {
         let mut bodies_of = HashMap::new();
         let mut chain = Chain {
             bodies: Vec::new(),
@@ -115,12 +115,12 @@ impl Engine<'_> {
     }
 
     /// Joint j, a side of block `blk`, is live and its faces touch.
-    pub(super) fn closed(&self, j: usize, blk: usize) -> bool {
+    fn closed(&self, j: usize, blk: usize) -> bool {
         self.live_joint(j) && self.gap(j).abs() <= self.len_tol(self.block_disp(blk), 0.0)
     }
 
     /// The faces of joint j approach: closed, they collide.
-    pub(super) fn approaching(&self, j: usize) -> bool {
+    fn approaching(&self, j: usize) -> bool {
         let (vl, vr) = (
             self.block_vel(self.topo.joints[j].left.0),
             self.block_vel(self.topo.joints[j].right.0),
@@ -130,7 +130,7 @@ impl Engine<'_> {
 
     /// Resolves a chain exactly: its collisions, the kinetic energy they lose (J) and the
     /// bodies' velocities after.
-    pub(super) fn resolve_chain(
+    fn resolve_chain(
         &self,
         chain: &Chain,
     ) -> Result<(Vec<impact::Collision>, Q, Vec<impact::Body>), SimulationError> {
@@ -169,7 +169,7 @@ impl Engine<'_> {
     /// a decision over the whole body, with a transition at zero duration in between. A chain of
     /// one collision between two blocks each sliding alone is left to its own event: it may
     /// start a Zeno series ([`Engine::zeno_accumulation`]).
-    pub(super) fn simultaneous_chains(
+    fn simultaneous_chains(
         &self,
         chains: &mut Vec<(Chain, Vec<impact::Collision>, Q, Vec<impact::Body>)>,
         seen: &mut [bool],
@@ -217,7 +217,7 @@ impl Engine<'_> {
     /// Resolves the impact at joint j and the chain of touching blocks around it, exactly, with
     /// every other chain that collides at this instant on the clusters they hit
     /// ([`Engine::simultaneous_chains`]); then one decision follows them all.
-    pub(super) fn impact(&mut self, j: usize) -> Result<(), SimulationError> {
+    fn impact(&mut self, j: usize) -> Result<(), SimulationError> {
         let mut seen = vec![false; self.topo.joints.len()];
         let first = self.chain(j, &mut seen);
         let (collisions, loss, exact) = self.resolve_chain(&first)?;
@@ -273,7 +273,7 @@ impl Engine<'_> {
     }
 
     /// Logs a chain's collisions; their faces touch from now on.
-    pub(super) fn record_collisions(&mut self, chain: &Chain, collisions: &[impact::Collision]) {
+    fn record_collisions(&mut self, chain: &Chain, collisions: &[impact::Collision]) {
         for c in collisions {
             let jj = chain.faces[c.face].2;
             let (l, r) = (self.topo.joints[jj].left.0, self.topo.joints[jj].right.0);
@@ -298,7 +298,7 @@ impl Engine<'_> {
     /// invisible: its widest opening, v_r^2 / (2 |a|), is within the round-off of the
     /// displacements. Until then each bounce is an ordinary impact, so the history between
     /// bounces is the exact one, not that of blocks merged early.
-    pub(super) fn zeno_accumulation(&self, j: usize, approach: &Q) -> Option<f64> {
+    fn zeno_accumulation(&self, j: usize, approach: &Q) -> Option<f64> {
         let e = &self.restitution;
         let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
         let (sl, sr) = self.alone_sliding(j)?;
@@ -352,7 +352,7 @@ impl Engine<'_> {
 
     /// The slides of the two blocks of joint j where a Zeno series is possible between them: 0 <
     /// e < 1, no vertical shaking, and each block sliding alone.
-    pub(super) fn alone_sliding(&self, j: usize) -> Option<(&cluster::Slide, &cluster::Slide)> {
+    fn alone_sliding(&self, j: usize) -> Option<(&cluster::Slide, &cluster::Slide)> {
         let e = &self.restitution;
         if !(e.is_positive() && *e < Q::one()) || self.motion.has_vertical() {
             return None;

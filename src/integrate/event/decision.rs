@@ -53,7 +53,7 @@ impl Local {
         Some(&self.0[*b]).filter(|&&k| k != NONE)
     }
 
-    pub(super) fn contains_key(&self, b: &usize) -> bool {
+    fn contains_key(&self, b: &usize) -> bool {
         self.0[*b] != NONE
     }
 

@@ -92,12 +92,7 @@ impl Engine<'_> {
     /// stuck cluster seldom changes its weakest set. After a `change`, a bound the run already
     /// holds for the same problem stands, and a side the change cannot have narrowed is kept as
     /// a bound ([`Engine::kept_limits`], worked out only for the sides the run does not know).
-    pub(super) fn stick_interval(
-        &mut self,
-        p: &Problem,
-        members: &[usize],
-        change: Change,
-    ) -> Limits {
+    fn stick_interval(&mut self, p: &Problem, members: &[usize], change: Change) -> Limits {
         self.stick_interval_inside(p, members, change, None)
             .expect("a search asked about no ground acceleration runs to its end")
     }
@@ -105,7 +100,7 @@ impl Engine<'_> {
     /// [`Engine::stick_interval`] for a caller that needs it only if the ground acceleration
     /// `a0` (where given) lies strictly inside: `None` where a search shows it does not
     /// ([`Problem::stick_sides_inside`]); nothing is then remembered.
-    pub(super) fn stick_interval_inside(
+    fn stick_interval_inside(
         &mut self,
         p: &Problem,
         members: &[usize],
@@ -256,7 +251,7 @@ impl Engine<'_> {
     /// float at a_g, all of X would stay (the piece's own interval is then the question), the
     /// stuck blocks are not one piece or a_g is not inside: the caller then decides the piece
     /// whole.
-    pub(super) fn beside_stuck(
+    fn beside_stuck(
         &mut self,
         p: &Problem,
         blocks: &[usize],
@@ -355,7 +350,7 @@ impl Engine<'_> {
     ///
     /// The engine's state is the one before the change, except what `before` holds (when the
     /// change is already installed).
-    pub(super) fn kept_limits(
+    fn kept_limits(
         &self,
         q: &Problem,
         members: &[usize],
@@ -473,7 +468,7 @@ pub(super) struct Limits {
 }
 
 impl Limits {
-    pub(super) fn of(s: &Stick) -> Limits {
+    fn of(s: &Stick) -> Limits {
         Limits {
             lo: s.lo.clone(),
             hi: s.hi.clone(),
@@ -484,7 +479,7 @@ impl Limits {
 
 /// How far a stick interval may rest on bounds ([`Engine::stick_interval`]).
 #[derive(Clone, Copy)]
-pub(super) enum Change<'a> {
+enum Change<'a> {
     /// a_g has reached a bound: every limit is worked out.
     Exact,
     /// After a change: the engine's state is the one before it, except what the decision that

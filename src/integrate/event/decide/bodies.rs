@@ -112,7 +112,7 @@ impl Problem {
     /// moving at its own acceleration (the force between them is not known). `held`: groups
     /// (their nodes and weights) shown to stay whole by earlier tries, which need no cut again
     /// (a try after a body broke meets the others as they were), and those shown now.
-    pub(super) fn solve_contracted(
+    fn solve_contracted(
         &self,
         bodies: &[Vec<usize>],
         held: &mut Vec<(Vec<usize>, Vec<Q>)>,

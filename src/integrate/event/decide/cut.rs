@@ -147,7 +147,7 @@ impl Problem {
 
     /// [`Problem::min_cut`] in any exact amount: `caps` are the joints' capacities, in the
     /// order of `friction`.
-    pub(super) fn min_cut_of<A: Amount>(
+    fn min_cut_of<A: Amount>(
         &self,
         set: &[bool],
         weight: &[A],
@@ -306,7 +306,7 @@ impl Integral {
 
 /// The sides of the minimum cuts a caller asked for ([`Want`]): the source side of the
 /// smallest, the sink side of the largest.
-pub(super) type Sides = (Option<Vec<bool>>, Option<Vec<bool>>);
+type Sides = (Option<Vec<bool>>, Option<Vec<bool>>);
 
 /// A minimum-cut question on n blocks plus source n and sink n + 1: `arcs` (from, to, both
 /// ways), `implies` (a on the source side puts b there) and `forbidden` blocks (never on the
@@ -321,7 +321,7 @@ struct Cut<'a> {
 impl Cut<'_> {
     /// The minimum cuts the caller wants, each as its side of the network: the source side of
     /// the smallest, the sink side of the largest.
-    pub(super) fn minimum<A: Amount>(&self, caps: &[A], want: Want) -> Sides {
+    fn minimum<A: Amount>(&self, caps: &[A], want: Want) -> Sides {
         if self.n <= CUT_ENUMERATE_UP_TO && self.arcs.len() <= 64 {
             let (source_side, sink_side) = sides(self.n, self.by_enumeration(caps));
             return (
@@ -335,7 +335,7 @@ impl Cut<'_> {
     /// [`Cut::minimum`] by a maximum flow: the network from `arcs`, the constraint arcs with a
     /// capacity above every cut; the source side of the minimal minimum cut, the nodes that
     /// reach the sink in every maximum flow.
-    pub(super) fn by_flow<A: Amount>(&self, caps: &[A], want: Want) -> Sides {
+    fn by_flow<A: Amount>(&self, caps: &[A], want: Want) -> Sides {
         let Cut {
             n,
             arcs,
@@ -374,7 +374,7 @@ impl Cut<'_> {
     /// sets: the smallest and the largest minimiser (the minimisers are closed under
     /// intersection and union). The sets are visited in Gray-code order, so each step moves one
     /// block and changes the cut by its own arcs only.
-    pub(super) fn by_enumeration<A: Amount>(&self, caps: &[A]) -> (u32, u32) {
+    fn by_enumeration<A: Amount>(&self, caps: &[A]) -> (u32, u32) {
         let Cut {
             n,
             arcs,

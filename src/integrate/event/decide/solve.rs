@@ -8,13 +8,7 @@ use std::collections::VecDeque;
 
 impl Problem {
     /// Clusters of blocks that share no joint with the ground (the ground does not appear).
-    pub(super) fn solve_free(
-        &self,
-        set: &[bool],
-        external: &[Q],
-        adj: &Adjacency,
-        out: &mut Vec<Group>,
-    ) {
+    fn solve_free(&self, set: &[bool], external: &[Q], adj: &Adjacency, out: &mut Vec<Group>) {
         let members: Vec<usize> = (0..self.n()).filter(|&i| set[i]).collect();
         let mass: Q = members.iter().map(|&i| self.mass[i].clone()).sum();
         let total: Q = members.iter().map(|&i| external[i].clone()).sum();
@@ -117,7 +111,7 @@ impl Problem {
 
     /// The rest of a decision at the ground once the blocks faster than the ground (`upper`)
     /// and slower (`lower`) are known: those left at a_g, and the free parts.
-    pub(super) fn solve_split(
+    fn solve_split(
         &self,
         ground: &Lex,
         bodies: &[Vec<usize>],
@@ -188,7 +182,7 @@ impl Problem {
 
     /// The weights e_i - lambda m_i (this problem's external forces) and the joints'
     /// capacities as integers over one denominator ([`Integral::at`]), where they fit.
-    pub(super) fn integral_at(&self, lambda: &Q) -> Option<(Vec<i128>, Vec<i128>)> {
+    fn integral_at(&self, lambda: &Q) -> Option<(Vec<i128>, Vec<i128>)> {
         Integral::new(self, &self.external)?.at(lambda)
     }
 
@@ -204,7 +198,7 @@ impl Problem {
     ///
     /// `at_ground`: the weights e_i - a0 m_i and the capacities in integers
     /// ([`Problem::integral_at`]), worked out once for both sides.
-    pub(super) fn split_at_ground(
+    fn split_at_ground(
         &self,
         ground: &Lex,
         side: Side,

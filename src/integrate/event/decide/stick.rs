@@ -138,7 +138,7 @@ impl Problem {
     /// The least ratio (cut(S) + e(S)) / m(S), and a set S that attains it, over every set of
     /// `allowed` blocks closed under `implies`, tried one by one in integers; `None` if a sum
     /// or a comparison does not fit. For at most [`ENUMERATE_UP_TO`] blocks.
-    pub(super) fn weakest_set(
+    fn weakest_set(
         &self,
         z: &Integral,
         implies: &[(usize, usize)],
@@ -194,7 +194,7 @@ impl Problem {
 
     /// Calls `f` with each undecided joint (its index) that leaves the set `members` (marked in
     /// `inside`) for the ground or a block outside; `at` lists each block's joints.
-    pub(super) fn for_each_cut(
+    fn for_each_cut(
         &self,
         at: &[Vec<usize>],
         members: &[usize],
@@ -223,7 +223,7 @@ impl Problem {
     /// `stop`, where given, ends the search at the first set whose ratio lies below it (the
     /// caller only asks whether the smallest ratio does): a ratio below `stop` may be any such
     /// set's, an upper bound on the smallest.
-    pub(super) fn min_ratio(
+    fn min_ratio(
         &self,
         external: &[Q],
         side: Side,
