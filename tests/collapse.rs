@@ -1,34 +1,20 @@
 //! Collapse: a block falls when its centroid leaves the span its supports give it.
 
-use pirqa::integrate::event::EventDriven;
-use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
-use pirqa::motion::{Motion, Record};
+mod engine;
+
+use engine::{constant, exact};
+use pirqa::integrate::{AfterCollapse, Settings};
+use pirqa::motion::Motion;
 use pirqa::response::Response;
-use pirqa::{samples, Topology, Wall};
+use pirqa::{samples, Wall};
 
 fn run(wall: &Wall, motion: &Motion, duration: f64, after: AfterCollapse) -> Response {
-    let topo = Topology::new(wall).unwrap();
     let settings = Settings {
-        duration_s: duration,
-        output_dt_s: None,
         log_events: true,
-        log_decisions: false,
         after_collapse: after,
-        progress: None,
+        ..Settings::summary_only(duration)
     };
-    EventDriven::default()
-        .run(&Scenario {
-            wall,
-            topology: &topo,
-            motion,
-            settings: &settings,
-        })
-        .unwrap()
-}
-
-fn constant(a: f64, duration: f64) -> Motion {
-    let n = (duration / 0.01).round() as usize + 2;
-    Motion::Record(Record::new("constant", 0.01, vec![a; n]).unwrap())
+    exact(wall, motion, &settings)
 }
 
 #[test]

@@ -1,29 +1,21 @@
 //! Vertical shaking: every normal load, hence every friction capacity, scales by 1 + a_v/g.
 
-use pirqa::integrate::event::EventDriven;
-use pirqa::integrate::{Integrator, Scenario, Settings};
+mod engine;
+
+use engine::exact;
+use pirqa::integrate::Settings;
 use pirqa::motion::{read_record, Motion, ReadOptions, Record};
 use pirqa::response::Response;
-use pirqa::{samples, Topology, Wall};
+use pirqa::{samples, Wall};
 
 fn run(wall: &Wall, motion: &Motion, duration: f64) -> Response {
-    let topo = Topology::new(wall).unwrap();
     let settings = Settings {
-        duration_s: duration,
         output_dt_s: Some(0.01),
         log_events: true,
         log_decisions: true,
-        after_collapse: Default::default(),
-        progress: None,
+        ..Settings::summary_only(duration)
     };
-    EventDriven::default()
-        .run(&Scenario {
-            wall,
-            topology: &topo,
-            motion,
-            settings: &settings,
-        })
-        .unwrap()
+    exact(wall, motion, &settings)
 }
 
 fn with_vertical(h: Vec<f64>, v: Vec<f64>, dt: f64) -> Motion {
