@@ -179,8 +179,14 @@ impl Engine<'_> {
         if !self.rec.wants_history() {
             return;
         }
-        let u: Vec<f64> = (0..self.n).map(|i| self.block_disp(i)).collect();
-        let v: Vec<f64> = (0..self.n)
+        let (u, v) = self.state_now();
+        self.rec.sample(self.t, &u, &v);
+    }
+
+    /// Every block's displacement and velocity now (m, m/s; a fallen block's velocity is zero).
+    pub(super) fn state_now(&self) -> (Vec<f64>, Vec<f64>) {
+        let u = (0..self.n).map(|i| self.block_disp(i)).collect();
+        let v = (0..self.n)
             .map(|i| {
                 if self.fallen[i] {
                     0.0
@@ -189,6 +195,6 @@ impl Engine<'_> {
                 }
             })
             .collect();
-        self.rec.sample(self.t, &u, &v);
+        (u, v)
     }
 }

@@ -440,9 +440,7 @@ impl Engine<'_> {
             if !self.live_support(s) {
                 continue;
             }
-            let sup = &self.topo.supports[s];
-            let up = sup.upper.0;
-            let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
+            let (up, lo) = self.support_ends(s);
             for b in std::iter::once(up).chain(lo) {
                 if !local.contains_key(&b) && self.of[b] != NONE {
                     neighbours.push(self.of[b]);
@@ -610,9 +608,7 @@ impl Engine<'_> {
             if !self.live_support(s) {
                 continue;
             }
-            let sup = &self.topo.supports[s];
-            let up = sup.upper.0;
-            let lo = self.lower_block(s).filter(|&l| !self.fixed[l]);
+            let (up, lo) = self.support_ends(s);
             let (vu, vl) = (
                 self.vel_with(up, snap),
                 lo.map_or(0.0, |l| self.vel_with(l, snap)),
@@ -771,6 +767,13 @@ impl Engine<'_> {
             }
         }
         bodies
+    }
+
+    /// Support s's upper block, and its lower block where that can move (`None`: the ground or
+    /// an abutment).
+    fn support_ends(&self, s: usize) -> (usize, Option<usize>) {
+        let up = self.topo.supports[s].upper.0;
+        (up, self.lower_block(s).filter(|&l| !self.fixed[l]))
     }
 
     /// The largest of these clusters that is stuck to the ground, for the decision log.

@@ -799,16 +799,7 @@ impl<'a> Engine<'a> {
         for s in 0..self.topo.supports.len() {
             self.account_support(s);
         }
-        let u: Vec<f64> = (0..self.n).map(|i| self.block_disp(i)).collect();
-        let v: Vec<f64> = (0..self.n)
-            .map(|i| {
-                if self.fallen[i] {
-                    0.0
-                } else {
-                    self.block_vel(i)
-                }
-            })
-            .collect();
+        let (u, v) = self.state_now();
         self.rec.energy.kinetic_j = (0..self.n)
             .filter(|&i| !self.fallen[i])
             .map(|i| 0.5 * self.mass[i] * v[i] * v[i])
