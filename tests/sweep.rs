@@ -298,6 +298,37 @@ fn walls_in_several_block_counts_get_the_block_count_analysis() {
         assert_eq!(w["samples"], 3);
     }
     assert!(bc["events_exponent"].as_f64().unwrap().is_finite());
+    // The CPU panel's line of events times courses (2, 3 and 4 courses): the smallest wall's
+    // median CPU time scaled by the medians of events times courses.
+    let median = |blocks: usize, f: &dyn Fn(&pirqa::study::sweep::store::CaseRow) -> f64| {
+        let mut v: Vec<f64> = rows.iter().filter(|r| r.blocks == blocks).map(f).collect();
+        v.sort_by(f64::total_cmp);
+        v[1]
+    };
+    let work: Vec<(f64, f64)> = [(5, 2.0), (10, 3.0), (18, 4.0)]
+        .iter()
+        .map(|&(b, courses)| (b as f64, median(b, &|r| r.events as f64) * courses))
+        .collect();
+    let cpu0 = median(5, &|r| r.cpu_s);
+    let cpu_panel = report.figures[1]
+        .1
+        .iter()
+        .find(|c| c.title == "CPU time per case")
+        .unwrap();
+    let line = cpu_panel
+        .series
+        .iter()
+        .find(|s| s.label == "if it grew as the events x the courses")
+        .unwrap();
+    let want: Vec<(f64, f64)> = work
+        .iter()
+        .map(|&(x, w)| (x, cpu0 * w / work[0].1))
+        .collect();
+    assert_eq!(line.points, want);
+    assert!(bc["cpu_exponent_in_events_x_courses"]
+        .as_f64()
+        .unwrap()
+        .is_finite());
 }
 
 /// An impact can knock blocks of a large sliding body into different pieces of the next decision

@@ -303,3 +303,28 @@ proptest::proptest! {
         proptest::prop_assert_eq!(got, expected);
     }
 }
+
+/// A wall's height in blocks is its number of courses: the paper's wall has two, a running-bond
+/// wall as many as it was generated with (its offset courses end in half blocks), a stack of two
+/// blocks two.
+#[test]
+fn courses_count_the_blocks_resting_on_one_another() {
+    let (wall, topo) = topology::load(Path::new("walls/five-block-variable.ron")).unwrap();
+    assert_eq!(topo.courses(&wall), 2);
+    for (courses, blocks_per_course) in [(1, 3), (3, 2), (7, 5), (12, 4)] {
+        let spec = pirqa::wall::RunningBond {
+            courses,
+            blocks_per_course,
+            ..pirqa::wall::RunningBond::paper_wall(5)
+        };
+        let wall = Wall::from_description(&spec.description().unwrap()).unwrap();
+        let topo = Topology::new(&wall).unwrap();
+        assert_eq!(
+            topo.courses(&wall),
+            courses,
+            "{courses} x {blocks_per_course}"
+        );
+    }
+    let pair = pirqa::samples::stacked_pair(0.5, 0.2);
+    assert_eq!(Topology::new(&pair).unwrap().courses(&pair), 2);
+}

@@ -298,6 +298,25 @@ impl Topology {
         loads
     }
 
+    /// The wall's height in blocks: the longest chain of blocks resting on one another, from a
+    /// block on the ground up (a coursed wall's number of courses).
+    pub fn courses(&self, wall: &Wall) -> usize {
+        let mut order: Vec<usize> = (0..wall.blocks.len()).collect();
+        order.sort_by(|&a, &b| wall.blocks[a].y.cmp(&wall.blocks[b].y));
+        let mut depth = vec![0; wall.blocks.len()];
+        for &i in &order {
+            depth[i] = 1 + self.below[i]
+                .iter()
+                .filter_map(|s| match self.supports[s.0].lower {
+                    Base::Block(b) => Some(depth[b.0]),
+                    Base::Ground => None,
+                })
+                .max()
+                .unwrap_or(0);
+        }
+        depth.into_iter().max().unwrap_or(0)
+    }
+
     /// Name of a base: the block's name or `ground`.
     pub fn base_name<'a>(&self, wall: &'a Wall, base: Base) -> &'a str {
         match base {

@@ -590,23 +590,49 @@ fn block_count(
         }
         let cpu = band(&|r| r.cpu_s, 0.5);
         let events = band(&|r| r.events as f64, 0.5);
-        // The cost of the smallest wall, scaled by the events: where the measured line runs
-        // above it, each event costs more on a larger wall.
-        if let (Some(&(x0, c0)), Some(&(y0, e0))) = (cpu.first(), events.first()) {
-            if x0 == y0 && e0 > 0.0 {
-                charts[4].series.push(Series {
-                    dashed: true,
-                    ..line(
-                        label("if it grew as the events"),
-                        m,
-                        events.iter().map(|&(x, e)| (x, c0 * e / e0)).collect(),
-                    )
-                });
+        // The events times the wall's height in courses, which the cost follows in the
+        // block-count studies (docs/block-count.md): per block count, (blocks, events x courses,
+        // CPU time), medians.
+        let by_work: Vec<(f64, f64, f64)> = by_count
+            .iter()
+            .filter_map(|c| {
+                let w = &sweep.walls[c.wall];
+                let courses = w.topology.courses(&w.wall) as f64;
+                let events = c.median(|r| r.events as f64)?;
+                Some((x(c), events * courses, c.median(|r| r.cpu_s)?))
+            })
+            .collect();
+        let events_x_courses: Vec<(f64, f64)> = by_work.iter().map(|p| (p.0, p.1)).collect();
+        // The cost of the smallest wall scaled by the events, and by the events times the
+        // courses: where the measured line runs above one, each event (or each event and
+        // course) costs more on a larger wall.
+        if let Some(&(x0, c0)) = cpu.first() {
+            for (what, work, colour) in [
+                ("if it grew as the events", &events, m),
+                (
+                    "if it grew as the events x the courses",
+                    &events_x_courses,
+                    m + 4,
+                ),
+            ] {
+                if let Some(&(_, w0)) = work.first().filter(|p| p.0 == x0 && p.1 > 0.0) {
+                    charts[4].series.push(Series {
+                        dashed: true,
+                        ..line(
+                            label(what),
+                            colour,
+                            work.iter().map(|&(x, w)| (x, c0 * w / w0)).collect(),
+                        )
+                    });
+                }
             }
         }
         numbers.push(json!({
             "motion": motion.label,
             "cpu_exponent": power_law_exponent(&cpu),
+            "cpu_exponent_in_events_x_courses": power_law_exponent(
+                &by_work.iter().map(|p| (p.1, p.2)).collect::<Vec<_>>()
+            ),
             "events_exponent": power_law_exponent(&events),
             "transitions_exponent": power_law_exponent(&transitions),
             "decision_blocks_exponent":
