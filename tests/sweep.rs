@@ -141,6 +141,18 @@ fn an_interrupted_sweep_resumes_to_the_same_table() {
     let back = read_table(&cases, CASES_HEADER, CaseRow::from_csv).unwrap();
     assert_eq!(without_time(&back), without_time(&fresh));
 
+    // Without its blocks.csv (the studies in docs/ leave it out) a sweep cannot resume, and
+    // the message says what to do.
+    let blocks = dir.join("blocks.csv");
+    let kept = std::fs::read(&blocks).unwrap();
+    std::fs::remove_file(&blocks).unwrap();
+    let e = Store::open(&dir, &s, Existing::Resume)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("blocks.csv") && e.contains("--fresh"), "{e}");
+    std::fs::write(&blocks, kept).unwrap();
+
     // Another sweep's results are refused.
     let other = sweep(&SMALL.replace("seed: 11", "seed: 12")).unwrap();
     let e = Store::open(&dir, &other, Existing::Resume).err().unwrap();

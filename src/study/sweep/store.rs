@@ -321,6 +321,13 @@ impl Store {
                             "these results belong to another sweep (the sweep file, a wall or a record changed): pass --fresh to start again".into(),
                         ));
                     }
+                    if !blocks_path.exists() {
+                        return Err(table_error(
+                            &blocks_path,
+                            1,
+                            "missing: a sweep resumes from cases.csv and blocks.csv together (the studies in docs/ leave blocks.csv out): pass --fresh to run it again".into(),
+                        ));
+                    }
                     rows = read_table(&cases_path, CASES_HEADER, CaseRow::from_csv)?;
                     let done: HashSet<usize> = rows.iter().map(|r| r.case).collect();
                     block_rows = read_table(&blocks_path, BLOCKS_HEADER, BlockRow::from_csv)?;
