@@ -809,7 +809,28 @@ fn sweep_then_one_case_rerun_without_history_reproduces_itself() {
     assert!(ok, "{err}");
     let cases = std::fs::read_to_string(out.join("cases.csv")).unwrap();
     assert_eq!(cases.lines().count(), 3, "a header and two cases:\n{cases}");
-    assert!(out.join("results.json").exists());
+    let results = std::fs::read_to_string(out.join("results.json")).unwrap();
+
+    // Drawn again from cases.csv alone, to the same numbers; blocks.csv is neither needed nor
+    // written.
+    std::fs::remove_file(out.join("blocks.csv")).unwrap();
+    std::fs::remove_file(out.join("results.json")).unwrap();
+    let redraw = [
+        "sweep",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--redraw",
+    ];
+    let (ok, _, err) = pirqa(&redraw);
+    assert!(ok && err.contains("redrawn"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(out.join("results.json")).unwrap(),
+        results
+    );
+    assert!(!out.join("blocks.csv").exists());
+    let (ok, _, err) = pirqa(&[&redraw[..], &["--fresh"]].concat());
+    assert!(!ok && err.contains("--fresh"), "{err}");
 
     let (ok, _, err) = pirqa(&[
         "sweep",

@@ -94,3 +94,26 @@ fn relative_links_in_the_docs_point_to_files_that_exist() {
     }
     assert!(checked >= 10, "{checked} links");
 }
+
+/// The sweeps committed in docs/ (their cases.csv, without blocks.csv) draw to the very charts
+/// and results.json committed beside them: a change to the analysis or the charts must redraw
+/// them (`pirqa sweep FILE --out DIR --redraw`).
+#[test]
+fn committed_studies_are_what_their_cases_draw() {
+    use pirqa::study::sweep::{analysis::analyse, store::Store, Sweep};
+    for (file, dir) in [
+        ("walls/studies/block-count.ron", "docs/block-count"),
+        ("walls/studies/long-walls.ron", "docs/long-walls"),
+    ] {
+        let sweep = Sweep::load(std::path::Path::new(file)).unwrap();
+        let rows = Store::finished(std::path::Path::new(dir), &sweep).unwrap();
+        for (name, text) in analyse(&sweep, &rows).files() {
+            let committed = std::fs::read_to_string(format!("{dir}/{name}")).unwrap();
+            assert!(
+                committed == text,
+                "{dir}/{name} is not what its cases.csv draws: redraw it with \
+                 `pirqa sweep {file} --out {dir} --redraw`"
+            );
+        }
+    }
+}

@@ -142,7 +142,7 @@ fn an_interrupted_sweep_resumes_to_the_same_table() {
     assert_eq!(without_time(&back), without_time(&fresh));
 
     // Without its blocks.csv (the studies in docs/ leave it out) a sweep cannot resume, and
-    // the message says what to do.
+    // the message says what to do; its charts can still be drawn again from cases.csv alone.
     let blocks = dir.join("blocks.csv");
     let kept = std::fs::read(&blocks).unwrap();
     std::fs::remove_file(&blocks).unwrap();
@@ -151,11 +151,33 @@ fn an_interrupted_sweep_resumes_to_the_same_table() {
         .unwrap()
         .to_string();
     assert!(e.contains("blocks.csv") && e.contains("--fresh"), "{e}");
+    assert_eq!(Store::finished(&dir, &s).unwrap(), resumed);
+    assert!(!blocks.exists());
     std::fs::write(&blocks, kept).unwrap();
+
+    // Drawing again needs every case, and says how to run the rest.
+    let table = std::fs::read_to_string(&cases).unwrap();
+    let mut lines: Vec<&str> = table.lines().collect();
+    let gone = lines.remove(5);
+    std::fs::write(&cases, lines.join("\n") + "\n").unwrap();
+    let e = Store::finished(&dir, &s).err().unwrap().to_string();
+    assert!(
+        e.contains("cases.csv") && e.contains("1 of the sweep's 36 cases") && e.contains("case 4"),
+        "{e}"
+    );
+    assert!(e.contains("--resume"), "{e}");
+    lines.push(gone);
+    lines.push(gone);
+    std::fs::write(&cases, lines.join("\n") + "\n").unwrap();
+    let e = Store::finished(&dir, &s).err().unwrap().to_string();
+    assert!(e.contains("case 4 is listed twice"), "{e}");
+    std::fs::write(&cases, &table).unwrap();
 
     // Another sweep's results are refused.
     let other = sweep(&SMALL.replace("seed: 11", "seed: 12")).unwrap();
     let e = Store::open(&dir, &other, Existing::Resume).err().unwrap();
+    assert!(e.to_string().contains("another sweep"), "{e}");
+    let e = Store::finished(&dir, &other).err().unwrap();
     assert!(e.to_string().contains("another sweep"), "{e}");
 
     // A table with other columns (another version of pirqa) names the file and says what to do.

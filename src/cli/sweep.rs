@@ -4,7 +4,6 @@
 use super::write_file;
 use indicatif::{ProgressBar, ProgressStyle};
 use pirqa::integrate::Progress;
-use pirqa::plot::chart;
 use pirqa::study::sweep::analysis::{analyse, Report};
 use pirqa::study::sweep::store::{Existing, Store};
 use pirqa::study::sweep::Sweep;
@@ -26,6 +25,10 @@ pub struct SweepArgs {
     /// Discard results already in the output directory.
     #[arg(long)]
     pub fresh: bool,
+    /// Run nothing: draw the charts and results.json again from a finished sweep's cases.csv
+    /// (blocks.csv is not needed, and not touched).
+    #[arg(long, conflicts_with_all = ["resume", "fresh", "case"])]
+    pub redraw: bool,
     /// Worker threads (default: every core).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -88,18 +91,11 @@ pub fn run_sweep(sweep: &Sweep, out: &Path, existing: Existing) -> Result<Report
 }
 
 /// Writes each figure as SVG with its data as CSV, and results.json.
-pub fn write_report(report: &Report, out: &Path) -> Result<(), Error> {
-    for (stem, charts, columns) in &report.figures {
-        write_file(
-            &out.join(format!("{stem}.svg")),
-            &chart::render(charts, *columns, (620, 420)),
-        )?;
-        write_file(&out.join(format!("{stem}.csv")), &chart::to_csv(charts))?;
+fn write_report(report: &Report, out: &Path) -> Result<(), Error> {
+    for (name, text) in report.files() {
+        write_file(&out.join(name), &text)?;
     }
-    write_file(
-        &out.join("results.json"),
-        &(serde_json::to_string_pretty(&report.results).expect("json") + "\n"),
-    )
+    Ok(())
 }
 
 /// One case in full: its files and the command that reruns it.
@@ -167,6 +163,16 @@ pub fn run(args: &SweepArgs) -> Result<(), Error> {
     let sweep = Sweep::load(&args.file)?;
     if let Some(id) = args.case {
         return rerun_case(&sweep, id, &args.out, !args.no_history);
+    }
+    if args.redraw {
+        let rows = Store::finished(&args.out, &sweep)?;
+        write_report(&analyse(&sweep, &rows), &args.out)?;
+        eprintln!(
+            "{}: charts and results.json redrawn in {}",
+            sweep.name,
+            args.out.display()
+        );
+        return Ok(());
     }
     let existing = if args.resume {
         Existing::Resume

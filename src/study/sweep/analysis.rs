@@ -6,7 +6,7 @@
 
 use super::store::CaseRow;
 use super::{FrictionModel, Sweep};
-use crate::plot::chart::{Chart, Corner, Series};
+use crate::plot::chart::{self, Chart, Corner, Series};
 use crate::study::stats::{fit_fragility, power_law_exponent, quantile, wilson};
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
@@ -20,6 +20,26 @@ pub struct Report {
     pub figures: Vec<(String, Vec<Chart>, usize)>,
     /// Derived numbers (results.json).
     pub results: Value,
+}
+
+impl Report {
+    /// The files of the report: each figure as SVG with its data as CSV, and results.json
+    /// (name, contents).
+    pub fn files(&self) -> Vec<(String, String)> {
+        let mut files = Vec::new();
+        for (stem, charts, columns) in &self.figures {
+            files.push((
+                format!("{stem}.svg"),
+                chart::render(charts, *columns, (620, 420)),
+            ));
+            files.push((format!("{stem}.csv"), chart::to_csv(charts)));
+        }
+        files.push((
+            "results.json".into(),
+            serde_json::to_string_pretty(&self.results).expect("json") + "\n",
+        ));
+        files
+    }
 }
 
 /// The cases of one wall under one motion (one per friction sample), in sample order.

@@ -310,17 +310,7 @@ impl Store {
                 }
                 Existing::Overwrite => {}
                 Existing::Resume => {
-                    let manifest =
-                        std::fs::read_to_string(&manifest_path).map_err(io(&manifest_path))?;
-                    let found: serde_json::Value = serde_json::from_str(&manifest)
-                        .map_err(|e| table_error(&manifest_path, e.line(), e.to_string()))?;
-                    if found["fingerprint"] != sweep.fingerprint.as_str() {
-                        return Err(table_error(
-                            &manifest_path,
-                            1,
-                            "these results belong to another sweep (the sweep file, a wall or a record changed): pass --fresh to start again".into(),
-                        ));
-                    }
+                    check_manifest(&manifest_path, sweep)?;
                     if !blocks_path.exists() {
                         return Err(table_error(
                             &blocks_path,
@@ -362,6 +352,48 @@ impl Store {
             rows,
             block_rows,
         })
+    }
+
+    /// The rows of a sweep in `dir` whose every case is done, in case order, read from
+    /// `cases.csv` alone (nothing is run or written): what its charts and `results.json` are
+    /// drawn from again after a change to the analysis, with or without `blocks.csv`.
+    pub fn finished(dir: &Path, sweep: &Sweep) -> Result<Vec<CaseRow>, Error> {
+        check_manifest(&dir.join("manifest.json"), sweep)?;
+        let cases_path = dir.join("cases.csv");
+        let mut rows = read_table(&cases_path, CASES_HEADER, CaseRow::from_csv)?;
+        rows.sort_by_key(|r| r.case);
+        if let Some(w) = rows
+            .windows(2)
+            .find(|w| w[0].case == w[1].case)
+            .or_else(|| {
+                rows.last()
+                    .filter(|r| r.case >= sweep.len())
+                    .map(std::slice::from_ref)
+            })
+        {
+            return Err(table_error(
+                &cases_path,
+                1,
+                format!(
+                    "case {} is listed twice or is not one of the sweep's {} cases: pass --fresh to run it again",
+                    w[w.len() - 1].case,
+                    sweep.len()
+                ),
+            ));
+        }
+        let done: HashSet<usize> = rows.iter().map(|r| r.case).collect();
+        if let Some(first) = (0..sweep.len()).find(|k| !done.contains(k)) {
+            return Err(table_error(
+                &cases_path,
+                1,
+                format!(
+                    "{} of the sweep's {} cases are not done (the first is case {first}): pass --resume to run them",
+                    sweep.len() - done.len(),
+                    sweep.len()
+                ),
+            ));
+        }
+        Ok(rows)
     }
 
     /// Cases already finished.
@@ -409,6 +441,22 @@ impl Store {
         )?;
         Ok((self.rows, self.block_rows))
     }
+}
+
+/// Refuses results that another sweep wrote (its manifest's fingerprint differs: the sweep
+/// file, a wall or a record changed).
+fn check_manifest(path: &Path, sweep: &Sweep) -> Result<(), Error> {
+    let manifest = std::fs::read_to_string(path).map_err(io(path))?;
+    let found: serde_json::Value =
+        serde_json::from_str(&manifest).map_err(|e| table_error(path, e.line(), e.to_string()))?;
+    if found["fingerprint"] != sweep.fingerprint.as_str() {
+        return Err(table_error(
+            path,
+            1,
+            "these results belong to another sweep (the sweep file, a wall or a record changed): pass --fresh to start again".into(),
+        ));
+    }
+    Ok(())
 }
 
 /// Writes a table afresh (through a temporary file, so an interruption never leaves half of
