@@ -51,9 +51,25 @@ fn bad_sweep_files_get_errors_that_say_what_to_fix() {
     let e = sweep(&SMALL.replace("version: 1", "version: 7")).unwrap_err();
     assert!(e.to_string().contains("version 7"), "{e}");
     let e = sweep(&SMALL.replace("five-block-uniform", "nowhere")).unwrap_err();
-    assert!(e.to_string().contains("walls/nowhere.ron"), "{e}");
+    let e = e.to_string();
+    assert!(
+        e.starts_with("<test>: wall \"walls/nowhere.ron\"") && e.contains("relative to"),
+        "{e}"
+    );
+    // Every part of a sweep file refuses keys it does not know (none is silently ignored).
+    let e = parse_description(&SMALL.replace("seed: 11", "seed: 11, sead: 12")).unwrap_err();
+    assert!(e.to_string().contains("sead"), "{e}");
+    let e = parse_description(&SMALL.replace(".ron\")", ".ron\", mu: 0.3)")).unwrap_err();
+    assert!(e.to_string().contains("`mu`"), "{e}");
+    let e = parse_description(&SMALL.replace("duration_s: 5.0", "duration_s: 5.0, dt: 0.01"))
+        .unwrap_err();
+    assert!(e.to_string().contains("`dt`"), "{e}");
     let e = sweep(&SMALL.replace("\"350gal\"", "\"350 furlongs\"")).unwrap_err();
-    assert!(e.to_string().contains("350 furlongs"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("<test>: cannot read acceleration \"350 furlongs\""),
+        "{e}"
+    );
     let e = sweep(&SMALL.replace("cov: 0.15", "cov: 1.5")).unwrap_err();
     assert!(e.to_string().contains("cov"), "{e}");
     let records = format!(
@@ -62,6 +78,13 @@ fn bad_sweep_files_get_errors_that_say_what_to_fix() {
     );
     let e = sweep(&records).unwrap_err();
     assert!(e.to_string().contains("either `scales` or `pga`"), "{e}");
+    let e =
+        sweep(&records.replace("scales: [1.0], pga: [\"300gal\"]", "pga: [\"0gal\"]")).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("pga \"0gal\": a target peak must be positive"),
+        "{e}"
+    );
 }
 
 #[test]

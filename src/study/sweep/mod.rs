@@ -49,6 +49,7 @@ pub struct SweepDescription {
 
 /// Where a wall comes from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum WallSource {
     /// A wall file, relative to the sweep file; `friction` replaces every coefficient of the
     /// wall (default: the file's own).
@@ -68,6 +69,7 @@ pub enum WallSource {
 
 /// The motions of a sweep.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum MotionSet {
     /// Sines: every amplitude at every frequency.
     Sine {
@@ -97,6 +99,7 @@ pub enum MotionSet {
 
 /// A list of frequencies.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Frequencies {
     /// These values.
     List(Vec<f64>),
@@ -149,6 +152,7 @@ impl Frequencies {
 
 /// Friction in a sweep.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum FrictionModel {
     /// The walls' own coefficients: one case per wall and motion.
     #[default]
@@ -239,6 +243,23 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
     }
 }
 
+/// The bytes of a file a sweep file names (`what`, as written: `path`), relative to the sweep
+/// file's folder `base`; a file that cannot be read is an error of the sweep file `origin`,
+/// which says where it was looked for.
+fn named_file(origin: &Path, base: &Path, what: &str, path: &str) -> Result<Vec<u8>, Error> {
+    let file = base.join(path);
+    std::fs::read(&file).map_err(|e| {
+        invalid(
+            origin,
+            format!(
+                "{what} \"{path}\": cannot read {}: {e} (paths in a sweep file are relative to \
+                 the sweep file's own folder)",
+                file.display()
+            ),
+        )
+    })
+}
+
 /// FNV-1a, 64 bits: a fingerprint that is the same on every machine and version of Rust.
 fn fnv(hash: u64, bytes: &[u8]) -> u64 {
     bytes.iter().fold(hash, |h, &b| {
@@ -294,7 +315,7 @@ impl Sweep {
         let mut hash = fnv(FNV_OFFSET, format!("{d:?}").as_bytes());
         let mut walls = Vec::new();
         for source in &d.walls {
-            let w = resolve_wall(source, base, &mut hash)?;
+            let w = resolve_wall(source, base, origin, &mut hash)?;
             walls.push(w);
         }
         if walls.is_empty() {
@@ -546,7 +567,12 @@ fn draw(rng: &mut Rng, mean: f64, cov: f64, distribution: Distribution) -> Q {
     Q::frac(steps, 10_000)
 }
 
-fn resolve_wall(source: &WallSource, base: &Path, hash: &mut u64) -> Result<SweepWall, Error> {
+fn resolve_wall(
+    source: &WallSource,
+    base: &Path,
+    origin: &Path,
+    hash: &mut u64,
+) -> Result<SweepWall, Error> {
     match source {
         WallSource::File {
             path,
@@ -554,8 +580,10 @@ fn resolve_wall(source: &WallSource, base: &Path, hash: &mut u64) -> Result<Swee
             label,
         } => {
             let file: PathBuf = base.join(path);
-            let text = std::fs::read_to_string(&file).map_err(io(&file))?;
-            *hash = fnv(*hash, text.as_bytes());
+            let bytes = named_file(origin, base, "wall", path)?;
+            *hash = fnv(*hash, &bytes);
+            let text = String::from_utf8(bytes)
+                .map_err(|_| invalid(&file, "not a text file (UTF-8 expected)".into()))?;
             let mut d = crate::wall::parse_description(&text).map_err(|source| Error::Wall {
                 path: file.clone(),
                 source,
@@ -612,6 +640,7 @@ fn resolve_motions(
     hash: &mut u64,
 ) -> Result<Vec<SweepMotion>, Error> {
     let mut out = Vec::new();
+    let accel = |text: &str| parse_acceleration(text).map_err(|e| invalid(origin, e.to_string()));
     match set {
         MotionSet::Sine {
             amplitudes,
@@ -627,7 +656,7 @@ fn resolve_motions(
                 ));
             }
             for text in amplitudes {
-                let a = parse_acceleration(text)?;
+                let a = accel(text)?;
                 for &f in &freqs {
                     let sine =
                         Sine::new(a, f, phase_deg.to_radians(), *duration_s).map_err(|source| {
@@ -657,13 +686,20 @@ fn resolve_motions(
                         .into(),
                 ));
             }
-            let targets: Vec<f64> = pga
-                .iter()
-                .map(|t| parse_acceleration(t))
-                .collect::<Result<_, _>>()?;
+            let mut targets = Vec::new();
+            for text in pga {
+                let t = accel(text)?;
+                if t <= 0.0 {
+                    return Err(invalid(
+                        origin,
+                        format!("pga \"{text}\": a target peak must be positive"),
+                    ));
+                }
+                targets.push(t);
+            }
             for f in files {
                 let file = base.join(f);
-                let bytes = std::fs::read(&file).map_err(io(&file))?;
+                let bytes = named_file(origin, base, "record", f)?;
                 *hash = fnv(*hash, &bytes);
                 let record = read_record(&file, None, &ReadOptions::default())?;
                 let peak = record.pga_m_s2();
