@@ -868,3 +868,43 @@ fn sweep_then_one_case_rerun_without_history_reproduces_itself() {
     let (ok, _, err) = pirqa(&["sweep", file.to_str().unwrap(), "--no-history"]);
     assert!(!ok && err.contains("--case"), "{err}");
 }
+
+/// `pirqa generate`: about N blocks in the paper's proportions, or any cut, written to a file
+/// that loads; counts the proportions cannot give and impossible cuts refused with what to do.
+#[test]
+fn generated_walls_load_and_impossible_cuts_are_refused() {
+    let dir = temp_dir("generate-wall");
+    let file = dir.join("wall.ron");
+    let path = file.to_str().unwrap();
+    let blocks = |args: &[&str]| {
+        let (ok, _, err) = pirqa(&[&["generate", "-o", path], args].concat());
+        assert!(ok, "{args:?}: {err}");
+        let wall = pirqa::topology::load(&file).unwrap().0;
+        assert!(
+            err.contains(&format!("({} blocks)", wall.blocks.len())),
+            "{err}"
+        );
+        wall.blocks.len()
+    };
+    // n courses of n blocks give n^2 + floor(n / 2) (half blocks end the odd courses).
+    assert_eq!(blocks(&["--blocks", "100"]), 105);
+    assert_eq!(blocks(&["--blocks", "5"]), 5);
+    assert_eq!(blocks(&["--courses", "3", "--blocks-per-course", "4"]), 13);
+    for few in ["0", "4"] {
+        let (ok, _, err) = pirqa(&["generate", "-o", path, "--blocks", few]);
+        assert!(
+            !ok && err.contains("at least 5") && err.contains("--courses"),
+            "{err}"
+        );
+    }
+    let (ok, _, err) = pirqa(&[
+        "generate",
+        "-o",
+        path,
+        "--courses",
+        "2",
+        "--blocks-per-course",
+        "0",
+    ]);
+    assert!(!ok && err.contains("blocks_per_course = 0"), "{err}");
+}

@@ -17,7 +17,7 @@ pub struct GenerateArgs {
     pub blocks_per_course: Option<usize>,
     /// About this many blocks in the paper's proportions (as many courses as blocks per
     /// course), instead of --courses and --blocks-per-course.
-    #[arg(long, conflicts_with_all = ["courses", "blocks_per_course"])]
+    #[arg(long, conflicts_with_all = ["courses", "blocks_per_course"], value_parser = about_blocks)]
     pub blocks: Option<usize>,
     /// Overall width (`2.4m`, `240cm`).
     #[arg(long, default_value = "2.4m")]
@@ -47,6 +47,21 @@ pub struct Material {
     /// Coefficient of restitution.
     #[arg(long, default_value_t = 1.0)]
     pub restitution: f64,
+}
+
+/// `--blocks`: the fewest the paper's proportions give is 5 (two courses of two, the upper one
+/// with half blocks at its ends).
+fn about_blocks(text: &str) -> Result<usize, String> {
+    let n: usize = text
+        .parse()
+        .map_err(|_| format!("{text} is not a number of blocks"))?;
+    if n < 5 {
+        return Err(format!(
+            "{n}: the paper's proportions give at least 5 blocks (two courses of two); \
+             --courses and --blocks-per-course choose any other cut"
+        ));
+    }
+    Ok(n)
 }
 
 pub fn run(args: &GenerateArgs) -> Result<(), Error> {
