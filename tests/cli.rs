@@ -657,7 +657,8 @@ fn bench_failures_writes_the_panels_and_the_measured_numbers() {
 }
 
 /// `pirqa draw --run` draws where a run left the blocks: at the end (fallen blocks marked), or
-/// at a time before the first fall; a time outside the run is an error that says so.
+/// at a time before the first fall; a time outside the run, or a run of another wall, is an
+/// error that says so.
 #[test]
 fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
     let dir = temp_dir("draw-run");
@@ -713,6 +714,19 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
         "1",
     ]);
     assert!(!ok && err.contains("--run"), "{err}");
+    // A run of another wall with the same block names is refused, not drawn.
+    let (ok, _, err) = pirqa(&[
+        "draw",
+        "walls/five-block-uniform.ron",
+        "-o",
+        dir.join("x.svg").to_str().unwrap(),
+        "--run",
+        run.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && err.contains("summary.json") && err.contains("variable friction\", not of"),
+        "{err}"
+    );
 }
 
 /// `pirqa import` on the survey shipped in docs/walls: the report gives the topology, the

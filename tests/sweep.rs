@@ -53,7 +53,7 @@ fn bad_sweep_files_get_errors_that_say_what_to_fix() {
     let e = sweep(&SMALL.replace("five-block-uniform", "nowhere")).unwrap_err();
     let e = e.to_string();
     assert!(
-        e.starts_with("<test>: wall \"walls/nowhere.ron\"") && e.contains("relative to"),
+        e.starts_with("<test>: wall \"walls/nowhere.ron\"") && e.contains("start in ."),
         "{e}"
     );
     // Every part of a sweep file refuses keys it does not know (none is silently ignored).

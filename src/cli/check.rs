@@ -100,8 +100,7 @@ pub fn draw(
         ..WallDrawing::default()
     };
     if let Some((dir, at_s)) = run {
-        let names: Vec<String> = wall.blocks.iter().map(|b| b.name.clone()).collect();
-        let state = state_at(dir, &names, at_s)?;
+        let state = state_at(dir, &wall, at_s)?;
         let fell = state.fallen.iter().filter(|&&f| f).count();
         drawing.title = match at_s {
             None => format!("{}: final state, t = {} s", wall.name, state.time_s),

@@ -2,6 +2,7 @@
 //! state of every block at the end or at a chosen time, to draw it after the fact.
 
 use crate::error::Error;
+use crate::wall::Wall;
 use std::path::Path;
 
 /// Where each block of a wall was at one instant of a saved run.
@@ -30,13 +31,29 @@ fn read(path: &Path) -> Result<String, Error> {
     })
 }
 
-/// The state of the blocks `names` in the run saved in `dir`: at the end (`at_s` = `None`,
+/// The state of the blocks of `wall` in the run saved in `dir`: at the end (`at_s` = `None`,
 /// exact final displacements from summary.json) or at the last history sample at or before
-/// `at_s`. A block the run does not know, or a time outside the run, is an error.
-pub fn state_at(dir: &Path, names: &[String], at_s: Option<f64>) -> Result<SavedState, Error> {
+/// `at_s`. A run of another wall (by name), a block the run does not know, or a time outside
+/// the run is an error.
+pub fn state_at(dir: &Path, wall: &Wall, at_s: Option<f64>) -> Result<SavedState, Error> {
     let summary_path = dir.join("summary.json");
     let summary: serde_json::Value = serde_json::from_str(&read(&summary_path)?)
         .map_err(|e| table(&summary_path, e.line(), format!("not a pirqa summary: {e}")))?;
+    let ran = summary["wall"]
+        .as_str()
+        .ok_or_else(|| table(&summary_path, 1, "no `wall`: not a pirqa summary".into()))?;
+    if ran != wall.name {
+        return Err(table(
+            &summary_path,
+            1,
+            format!(
+                "this is a run of the wall \"{ran}\", not of \"{}\": draw it on the wall file it ran",
+                wall.name
+            ),
+        ));
+    }
+    let names: Vec<String> = wall.blocks.iter().map(|b| b.name.clone()).collect();
+    let names = names.as_slice();
     let duration_s = summary["duration_s"].as_f64().ok_or_else(|| {
         table(
             &summary_path,

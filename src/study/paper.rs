@@ -18,7 +18,7 @@ use crate::study::sweep::{
 };
 use serde_json::{json, Value};
 use std::collections::{BTreeMap, HashSet};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The Miyagi record's peak (gal), to which El Centro is scaled before the paper's factor 5.
 pub const MIYAGI_PGA_GAL: f64 = 258.0;
@@ -165,7 +165,8 @@ pub fn reproduce(
 ) -> Result<Output, Error> {
     let mut files = Vec::new();
     let mut numbers = serde_json::Map::new();
-    let origin = Path::new("<pirqa paper>");
+    let origin = PathBuf::from(format!("<pirqa paper --walls {}>", opts.walls.display()));
+    let origin = origin.as_path();
     let sweep = Sweep::from_description(
         &grid(opts.duration_s, opts.frequencies.clone()),
         &opts.walls,

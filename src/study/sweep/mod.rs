@@ -243,18 +243,22 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
     }
 }
 
-/// The bytes of a file a sweep file names (`what`, as written: `path`), relative to the sweep
-/// file's folder `base`; a file that cannot be read is an error of the sweep file `origin`,
-/// which says where it was looked for.
+/// The bytes of a file a sweep names (`what`, as written: `path`), relative to `base` (a sweep
+/// file's own folder); a file that cannot be read is an error of the sweep `origin`, which
+/// says where it was looked for.
 fn named_file(origin: &Path, base: &Path, what: &str, path: &str) -> Result<Vec<u8>, Error> {
     let file = base.join(path);
     std::fs::read(&file).map_err(|e| {
+        let start = match base.as_os_str().is_empty() {
+            true => Path::new("."),
+            false => base,
+        };
         invalid(
             origin,
             format!(
-                "{what} \"{path}\": cannot read {}: {e} (paths in a sweep file are relative to \
-                 the sweep file's own folder)",
-                file.display()
+                "{what} \"{path}\": cannot read {}: {e} (relative paths start in {})",
+                file.display(),
+                start.display()
             ),
         )
     })
