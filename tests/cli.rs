@@ -922,3 +922,33 @@ fn generated_walls_load_and_impossible_cuts_are_refused() {
     ]);
     assert!(!ok && err.contains("blocks_per_course = 0"), "{err}");
 }
+
+/// Record options beside a sine are refused, not ignored.
+#[test]
+fn record_options_with_a_sine_are_refused() {
+    for option in [
+        &["--start", "2"][..],
+        &["--baseline", "mean"],
+        &["--units", "gal"],
+    ] {
+        let args = [
+            &[
+                "run",
+                "walls/five-block-variable.ron",
+                "--sine",
+                "400gal",
+                "--freq",
+                "1",
+                "--duration",
+                "1",
+            ][..],
+            option,
+        ]
+        .concat();
+        let (ok, _, err) = pirqa(&args);
+        assert!(
+            !ok && err.contains("cannot be used with") && err.contains(option[0]),
+            "{err}"
+        );
+    }
+}

@@ -295,3 +295,107 @@ fn plain_files_and_formats_by_name() {
         .to_string();
     assert!(e.contains("unknown format \"sac\""), "{e}");
 }
+
+/// An option the record would not use, or one that contradicts what the file says, is refused
+/// with what to leave out, never ignored.
+#[test]
+fn options_a_record_would_not_use_or_contradicts_are_refused() {
+    use pirqa::units::AccelUnit;
+    let at2 = shared("elcentro1940_IELC180_peer_dt0p01_g.AT2");
+    let with = |path: &Path, opts: ReadOptions| {
+        read_record(path, None, &opts)
+            .map(|r| r.dt_s)
+            .map_err(|e| e.to_string())
+    };
+    for (opts, option) in [
+        (
+            ReadOptions {
+                dt_s: Some(0.02),
+                ..Default::default()
+            },
+            "--record-dt",
+        ),
+        (
+            ReadOptions {
+                units: Some(AccelUnit::Gal),
+                ..Default::default()
+            },
+            "--units",
+        ),
+        (
+            ReadOptions {
+                component: Some(1),
+                ..Default::default()
+            },
+            "--component",
+        ),
+    ] {
+        let e = with(&at2, opts).unwrap_err();
+        assert!(
+            e.contains("AT2")
+                && e.contains("at2 format")
+                && e.contains(&format!("leave {option} out")),
+            "{e}"
+        );
+    }
+    let cosmos = write("one.v2", &cosmos_text(10.0, &[1.0, 2.0, 3.0], 3));
+    let e = with(
+        &cosmos,
+        ReadOptions {
+            dt_s: Some(0.01),
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("cosmos format") && e.contains("--record-dt"),
+        "{e}"
+    );
+
+    // A plain file's own header lines and the options must agree; agreeing is fine.
+    let one = write("one.txt", "# units: gal\n# dt_s: 0.01\n1\n2\n3\n");
+    let gal = ReadOptions {
+        units: Some(AccelUnit::Gal),
+        ..Default::default()
+    };
+    assert_eq!(with(&one, gal), Ok(0.01));
+    let e = with(
+        &one,
+        ReadOptions {
+            units: Some(AccelUnit::G),
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("line 1") && e.contains("says units gal, but units g"),
+        "{e}"
+    );
+    let e = with(
+        &one,
+        ReadOptions {
+            dt_s: Some(0.02),
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("line 2") && e.contains("dt 0.01 s, but dt 0.02 s"),
+        "{e}"
+    );
+    let e = with(
+        &one,
+        ReadOptions {
+            component: Some(1),
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
+    assert!(e.contains("one column") && e.contains("--component"), "{e}");
+    let timed = write(
+        "timed.txt",
+        "# units: gal\n# dt_s: 0.02\n0 1\n0.01 2\n0.02 3\n",
+    );
+    let e = with(&timed, ReadOptions::default()).unwrap_err();
+    assert!(e.contains("0.02 s") && e.contains("spaced 0.01 s"), "{e}");
+}

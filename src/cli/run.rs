@@ -30,26 +30,26 @@ pub struct MotionArgs {
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
     /// Record format: at2, knet, cosmos, plain (default: recognised from the content).
-    #[arg(long, value_name = "FORMAT")]
+    #[arg(long, value_name = "FORMAT", conflicts_with = "sine")]
     pub format: Option<String>,
     /// Component: the column after time in a plain multi-column file (1-based), the channel of
     /// a multi-channel COSMOS file (0-based).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", conflicts_with = "sine")]
     pub component: Option<usize>,
     /// Units of a plain record whose header does not say: gal, g, m/s2.
-    #[arg(long, value_name = "UNITS")]
+    #[arg(long, value_name = "UNITS", conflicts_with = "sine")]
     pub units: Option<String>,
     /// Sample interval of a one-column plain record (s).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", conflicts_with = "sine")]
     pub record_dt: Option<f64>,
     /// Keep the record from this time (s).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", conflicts_with = "sine")]
     pub start: Option<f64>,
     /// Keep the record up to this time (s).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", conflicts_with = "sine")]
     pub end: Option<f64>,
     /// Baseline correction of the record.
-    #[arg(long, value_enum, default_value_t = Baseline::None)]
+    #[arg(long, value_enum, default_value_t = Baseline::None, conflicts_with = "sine")]
     pub baseline: Baseline,
     /// Scale the record (or the sine) to this peak: 258gal, 0.3g.
     #[arg(long, value_name = "PGA")]

@@ -5,7 +5,7 @@
 //! the data's units the code in the acceleration line (`units=cm/sec2 (04)`).
 
 use super::numbers::{free_format, FixedFormat};
-use super::{ReadOptions, RecordFormat};
+use super::{ReadOptions, Reads, RecordFormat};
 use crate::error::MotionError;
 use crate::motion::Record;
 
@@ -101,6 +101,13 @@ impl RecordFormat for Cosmos {
         text.lines()
             .next()
             .is_some_and(|l| l.to_ascii_lowercase().contains("(format v"))
+    }
+
+    fn reads(&self) -> Reads {
+        Reads {
+            component: true,
+            ..Reads::default()
+        }
     }
 
     fn read(&self, name: &str, text: &str, opts: &ReadOptions) -> Result<Record, MotionError> {

@@ -31,14 +31,59 @@ pub struct ReadOptions {
     pub component: Option<usize>,
 }
 
+/// Which of the [`ReadOptions`] a format reads; a file in it gives the others itself.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Reads {
+    /// [`ReadOptions::dt_s`].
+    pub dt_s: bool,
+    /// [`ReadOptions::units`].
+    pub units: bool,
+    /// [`ReadOptions::component`].
+    pub component: bool,
+}
+
 /// A record file format.
 pub trait RecordFormat {
     /// Name used by `--format`.
     fn name(&self) -> &'static str;
     /// Does this text look like this format?
     fn detect(&self, text: &str) -> bool;
+    /// The options this format reads (default: none, its header says everything).
+    fn reads(&self) -> Reads {
+        Reads::default()
+    }
     /// Reads the record; accelerations come back in m/s2.
     fn read(&self, name: &str, text: &str, opts: &ReadOptions) -> Result<Record, MotionError>;
+}
+
+/// Refuses options a format does not read: the file gives them itself, and an option that
+/// would be ignored is a mistake to report, not to pass over.
+fn refuse_unread(fmt: &dyn RecordFormat, opts: &ReadOptions) -> Result<(), MotionError> {
+    let reads = fmt.reads();
+    let unread = [
+        (
+            opts.dt_s.is_some() && !reads.dt_s,
+            "gives its sample interval in its header",
+            "--record-dt",
+        ),
+        (
+            opts.units.is_some() && !reads.units,
+            "gives its units in its header",
+            "--units",
+        ),
+        (
+            opts.component.is_some() && !reads.component,
+            "holds one component",
+            "--component",
+        ),
+    ];
+    match unread.iter().find(|(given, _, _)| *given) {
+        Some((_, says, option)) => Err(MotionError::Invalid(format!(
+            "a record in the {} format {says}: leave {option} out",
+            fmt.name()
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// Every format, most specific first; plain text matches anything and comes last.
@@ -83,7 +128,8 @@ pub fn read_record(path: &Path, format: Option<&str>, opts: &ReadOptions) -> Res
         || path.display().to_string(),
         |f| f.to_string_lossy().into_owned(),
     );
-    fmt.read(&name, &text, opts)
+    refuse_unread(fmt, opts)
+        .and_then(|()| fmt.read(&name, &text, opts))
         .map_err(|source| Error::Motion {
             path: path.to_path_buf(),
             source,

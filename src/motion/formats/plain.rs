@@ -2,7 +2,7 @@
 //! and acceleration. Units are never guessed: they come from a `# units: gal` header line or the
 //! caller.
 
-use super::{ReadOptions, RecordFormat};
+use super::{ReadOptions, Reads, RecordFormat};
 use crate::error::MotionError;
 use crate::motion::Record;
 use crate::units::AccelUnit;
@@ -19,6 +19,14 @@ impl RecordFormat for Plain {
         true
     }
 
+    fn reads(&self) -> Reads {
+        Reads {
+            dt_s: true,
+            units: true,
+            component: true,
+        }
+    }
+
     fn read(&self, name: &str, text: &str, opts: &ReadOptions) -> Result<Record, MotionError> {
         read_plain(name, text, opts)
     }
@@ -32,8 +40,7 @@ const SPACING_TOL: f64 = 1e-6;
 /// first column and accelerations in the others (`component` picks one, 1-based after time;
 /// default the last).
 pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, MotionError> {
-    let mut units = opts.units;
-    let mut dt = opts.dt_s;
+    let (mut units, mut dt) = (opts.units, opts.dt_s);
     let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
     for (k, raw) in text.lines().enumerate() {
         let line = raw.trim();
@@ -43,21 +50,49 @@ pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, 
         if let Some(comment) = line.strip_prefix('#') {
             let comment = comment.trim();
             if let Some((key, value)) = comment.split_once(':') {
+                // What the file says and what was given beside it must agree.
+                let disagree = |said: String, given: String, option: &str| MotionError::Line {
+                    line: k + 1,
+                    message: format!(
+                        "the file says {said}, but {given} was given ({option}): leave the \
+                         option out or correct the file"
+                    ),
+                };
                 match key.trim().to_ascii_lowercase().as_str() {
-                    "units" | "unit" if units.is_none() => {
-                        units = Some(AccelUnit::parse(value).ok_or_else(|| MotionError::Line {
+                    "units" | "unit" => {
+                        let said = AccelUnit::parse(value).ok_or_else(|| MotionError::Line {
                             line: k + 1,
                             message: format!(
                                 "unknown units \"{}\": use gal, g or m/s2",
                                 value.trim()
                             ),
-                        })?);
+                        })?;
+                        match opts.units {
+                            Some(u) if u != said => {
+                                return Err(disagree(
+                                    format!("units {}", said.name()),
+                                    format!("units {}", u.name()),
+                                    "--units",
+                                ))
+                            }
+                            _ => units = Some(said),
+                        }
                     }
-                    "dt_s" | "dt" if dt.is_none() => {
-                        dt = Some(value.trim().parse().map_err(|_| MotionError::Line {
+                    "dt_s" | "dt" => {
+                        let said: f64 = value.trim().parse().map_err(|_| MotionError::Line {
                             line: k + 1,
                             message: format!("dt \"{}\" is not a number of seconds", value.trim()),
-                        })?);
+                        })?;
+                        match opts.dt_s {
+                            Some(d) if d != said => {
+                                return Err(disagree(
+                                    format!("dt {said} s"),
+                                    format!("dt {d} s"),
+                                    "--record-dt",
+                                ))
+                            }
+                            _ => dt = Some(said),
+                        }
                     }
                     _ => {}
                 }
@@ -120,9 +155,16 @@ pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, 
     }
     let ncol = rows[0].1.len();
     let (dt, col) = if ncol == 1 {
+        if let Some(c) = opts.component {
+            return Err(MotionError::Invalid(format!(
+                "component {c} asked for, but the file has one column of accelerations: leave \
+                 --component out"
+            )));
+        }
         let dt = dt.ok_or_else(|| {
             MotionError::Invalid(
-                "one column of accelerations needs a time step: add `# dt_s: 0.01` or pass --dt"
+                "one column of accelerations needs a time step: add `# dt_s: 0.01` or pass \
+                 --record-dt"
                     .into(),
             )
         })?;
@@ -150,6 +192,12 @@ pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, 
                     ),
                 });
             }
+        }
+        if let Some(d) = dt.filter(|d| (d - step).abs() > SPACING_TOL * step.abs()) {
+            return Err(MotionError::Invalid(format!(
+                "a sample interval of {d} s was given (--record-dt or `# dt_s:`), but the time \
+                 column is spaced {step} s: leave the interval out or correct it"
+            )));
         }
         (step, col)
     };
@@ -190,7 +238,7 @@ mod tests {
         let e = read_plain("a", "1\n2\n", &ReadOptions::default()).unwrap_err();
         assert!(e.to_string().contains("units"), "{e}");
         let e = read_plain("a", "# units: g\n1\n2\n", &ReadOptions::default()).unwrap_err();
-        assert!(e.to_string().contains("--dt"), "{e}");
+        assert!(e.to_string().contains("--record-dt"), "{e}");
         let e = read_plain(
             "a",
             "# units: g\n# dt_s: 0.1\n1\nx\n",
