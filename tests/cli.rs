@@ -881,6 +881,9 @@ fn sweep_then_one_case_rerun_without_history_reproduces_itself() {
 
     let (ok, _, err) = pirqa(&["sweep", file.to_str().unwrap(), "--no-history"]);
     assert!(!ok && err.contains("--case"), "{err}");
+    // Zero worker threads would silently mean every core.
+    let (ok, _, err) = pirqa(&["sweep", file.to_str().unwrap(), "--threads", "0"]);
+    assert!(!ok && err.contains("--threads"), "{err}");
 }
 
 /// `pirqa generate`: about N blocks in the paper's proportions, or any cut, written to a file

@@ -30,8 +30,8 @@ pub struct SweepArgs {
     #[arg(long, conflicts_with_all = ["resume", "fresh", "case"])]
     pub redraw: bool,
     /// Worker threads (default: every core).
-    #[arg(long)]
-    pub threads: Option<usize>,
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    pub threads: Option<u16>,
     /// Rerun only this case in full detail into OUT/case-N: its wall with the sampled friction
     /// written out (wall.ron), its motion, summary.json, history.csv, events.jsonl, and the
     /// `pirqa run` command that reproduces it.
@@ -184,7 +184,7 @@ pub fn run(args: &SweepArgs) -> Result<(), Error> {
     let go = || run_sweep(&sweep, &args.out, existing);
     let report = match args.threads {
         Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
+            .num_threads(n.into())
             .build()
             .expect("a thread pool")
             .install(go)?,
