@@ -375,9 +375,23 @@ fn motion_info_json_has_units_in_its_keys() {
     assert!(std::fs::read_to_string(&svg)
         .unwrap()
         .contains("Fourier amplitude spectrum"));
-    assert!(std::fs::read_to_string(svg.with_extension("csv"))
-        .unwrap()
-        .starts_with("chart,series,x,y"));
+    let data = std::fs::read_to_string(svg.with_extension("csv")).unwrap();
+    assert!(data.starts_with("chart,series,x,y"));
+    // The acceleration drawn peaks at the record's PGA, exactly.
+    let drawn = data
+        .lines()
+        .filter(|l| l.starts_with("\"ground acceleration"))
+        .map(|l| l.rsplit(',').next().unwrap().parse::<f64>().unwrap().abs())
+        .fold(0.0, f64::max);
+    let (ok, out, err) = pirqa(&[
+        "motion",
+        "info",
+        "../shared/records/elcentro1940_ns_peknold_dt0p02_g.AT2",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(drawn, v["pga_m_s2"].as_f64().unwrap());
 }
 
 #[test]
@@ -954,4 +968,116 @@ fn record_options_with_a_sine_are_refused() {
             "{err}"
         );
     }
+}
+
+/// A run with a history draws its chart beside it: the ground acceleration and the blocks that
+/// moved most (all of them up to 8), each line thinned with its extremes kept, so the largest
+/// |u| read from response.csv is the summary's, exactly. Without a history the chart is
+/// removed with it.
+#[test]
+fn a_run_draws_its_response_with_every_peak_kept() {
+    let dir = temp_dir("response-chart");
+    let read_json = |path: &std::path::Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    };
+    let peaks = |dir: &std::path::Path| {
+        let text = std::fs::read_to_string(dir.join("response.csv")).unwrap();
+        let mut peak: std::collections::BTreeMap<String, (f64, usize)> = Default::default();
+        for line in text.lines().skip(1) {
+            let f: Vec<&str> = line.rsplitn(3, ',').collect();
+            let series = f[2].split("\",\"").nth(1).unwrap().trim_end_matches('"');
+            let e = peak.entry(series.to_string()).or_insert((0.0, 0));
+            e.0 = e.0.max(f[0].parse::<f64>().unwrap().abs());
+            e.1 += 1;
+        }
+        peak
+    };
+    // 18 blocks with lognormal friction (a sweep's case writes the wall) under El Centro at
+    // 600 gal, a history row every 2 ms: 20,000 rows a line.
+    let root = env!("CARGO_MANIFEST_DIR");
+    let sweep = common::file(
+        "chart.ron",
+        &format!(
+            r#"(
+    version: 1,
+    name: "chart",
+    walls: [RunningBond(courses: 4, blocks_per_course: 4, width_m: 2.4, height_m: 1.2,
+                        thickness_m: 0.8, density_kg_m3: 2650.0, friction: 0.3)],
+    motion: Records(
+        files: ["{root}/../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"],
+        pga: ["600gal"],
+    ),
+    friction: Random(distribution: Lognormal, cov: 0.2, samples: 1, seed: 7),
+)"#
+        ),
+    );
+    let (ok, _, err) = pirqa(&[
+        "sweep",
+        sweep.to_str().unwrap(),
+        "--case",
+        "0",
+        "--no-history",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let wall = dir.join("case-0").join("wall.ron");
+    let run = dir.join("run");
+    let (ok, _, err) = pirqa(&[
+        "run",
+        wall.to_str().unwrap(),
+        "--record",
+        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "--pga",
+        "600gal",
+        "--output-dt",
+        "0.002",
+        "--out",
+        run.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let summary = read_json(&run.join("summary.json"));
+    let mut most: Vec<(f64, String)> = summary["blocks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| {
+            let u = b["max_abs_displacement_m"].as_f64().unwrap();
+            (u, b["name"].as_str().unwrap().to_string())
+        })
+        .collect();
+    most.sort_by(|a, b| b.0.total_cmp(&a.0));
+    assert!(
+        most[7].0 > most[8].0,
+        "the eighth is not tied with the ninth"
+    );
+    let peak = peaks(&run);
+    assert!(std::fs::read_to_string(run.join("response.svg"))
+        .unwrap()
+        .contains("the 8 of 18 blocks that moved most"));
+    assert_eq!(peak.len(), 8 + 1, "the ground and eight blocks: {peak:?}");
+    for (u, name) in &most[..8] {
+        let (drawn, points) = peak[name];
+        assert_eq!(drawn, *u, "{name}");
+        assert!(points <= 6000, "{name}: {points} points");
+    }
+    let (ground, _) = peak[""];
+    assert!((ground - 6.0).abs() < 1e-12, "the record's peak: {ground}");
+
+    // Without a history, no chart (and the old one goes).
+    let (ok, _, err) = pirqa(&[
+        "run",
+        wall.to_str().unwrap(),
+        "--sine",
+        "100gal",
+        "--freq",
+        "1",
+        "--duration",
+        "1",
+        "--no-history",
+        "--out",
+        run.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(!run.join("response.svg").exists() && !run.join("response.csv").exists());
 }

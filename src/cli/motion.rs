@@ -342,17 +342,14 @@ fn info(args: &InfoArgs) -> Result<(), Error> {
 
 fn write_plot(svg: &Path, r: &Record) -> Result<(), Error> {
     let motion = Motion::Record(r.clone());
-    let step = (r.accel_m_s2.len() / 4000).max(1);
-    let times: Vec<f64> = (0..r.accel_m_s2.len())
-        .step_by(step)
-        .map(|k| k as f64 * r.dt_s)
-        .collect();
+    let times: Vec<f64> = (0..r.accel_m_s2.len()).map(|k| k as f64 * r.dt_s).collect();
+    // Every sample's extremes kept: the peaks on the chart are the record's.
     let panel = |title: &str, y: &str, f: &dyn Fn(f64) -> f64| Chart {
         title: format!("{title} — {}", r.name),
         x_label: "time (s)".into(),
         y_label: y.into(),
         series: vec![Series {
-            points: times.iter().map(|&t| (t, f(t))).collect(),
+            points: chart::envelope(&times.iter().map(|&t| (t, f(t))).collect::<Vec<_>>(), 1000),
             ..Default::default()
         }],
         ..Default::default()

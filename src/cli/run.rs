@@ -6,6 +6,7 @@ use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
 use pirqa::motion::{process, read_record, Baseline, Motion, Processing, ReadOptions, Sine};
+use pirqa::plot::{chart, response_charts};
 use pirqa::response::{DecisionCause, DecisionRecord, Response};
 use pirqa::topology;
 use pirqa::units::{parse_acceleration, AccelUnit};
@@ -271,7 +272,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     let mut response = response?;
     response.summary.motion_processing = notes;
     if let Some(dir) = &args.out {
-        write_outputs(dir, &response)?;
+        write_outputs(dir, &response, &motion)?;
     }
     if let Some(path) = &args.summary {
         write_file(path, &response.summary_json())?;
@@ -283,12 +284,23 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     Ok(())
 }
 
-pub fn write_outputs(dir: &Path, r: &Response) -> Result<(), Error> {
+/// Writes a run's files into `dir`; with a history, also its chart (`response.svg`) and the
+/// data it draws (`response.csv`).
+pub fn write_outputs(dir: &Path, r: &Response, motion: &Motion) -> Result<(), Error> {
     write_file(&dir.join("summary.json"), &r.summary_json())?;
     write_file(&dir.join("events.jsonl"), &r.events_jsonl())?;
     let decisions = (!r.decisions.is_empty()).then(|| r.decisions_jsonl());
     write_or_remove(&dir.join("decisions.jsonl"), decisions)?;
-    write_or_remove(&dir.join("history.csv"), r.history_csv())
+    write_or_remove(&dir.join("history.csv"), r.history_csv())?;
+    let charts = response_charts(r, motion);
+    write_or_remove(
+        &dir.join("response.svg"),
+        charts.as_ref().map(|c| chart::render(c, 1, (900, 300))),
+    )?;
+    write_or_remove(
+        &dir.join("response.csv"),
+        charts.as_deref().map(chart::to_csv),
+    )
 }
 
 /// Writes `text` to `path`, or removes a file an earlier run left there: a directory holds one

@@ -149,7 +149,7 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
     let r = sweep.run_case_in_full(id, history.then_some(0.01), progress);
     bar.finish_and_clear();
     let r = r?;
-    super::run::write_outputs(&dir, &r)?;
+    super::run::write_outputs(&dir, &r, &motion.motion)?;
     eprintln!(
         "case {id} ({}, {}) in {}",
         sweep.walls[sweep.case(id).0].label,

@@ -304,6 +304,42 @@ pub fn render(charts: &[Chart], columns: usize, panel: (u32, u32)) -> String {
     svg
 }
 
+/// A line of many points (x increasing) thinned to what a chart can show: the x range cut into
+/// `bins` equal bins, and of each bin its first and last points and its lowest and highest, in
+/// order. Every extreme of the line is kept exactly, so a peak read off the chart (or its CSV)
+/// is the peak of the data; at most 4 points per bin.
+pub fn envelope(points: &[(f64, f64)], bins: usize) -> Vec<(f64, f64)> {
+    let (Some(&(x0, _)), Some(&(x1, _))) = (points.first(), points.last()) else {
+        return Vec::new();
+    };
+    if points.len() <= 4 * bins || x1 <= x0 {
+        return points.to_vec();
+    }
+    let bin = |x: f64| (((x - x0) / (x1 - x0) * bins as f64) as usize).min(bins - 1);
+    let mut out = Vec::with_capacity(4 * bins);
+    let mut start = 0;
+    while start < points.len() {
+        let b = bin(points[start].0);
+        let end = start + points[start..].partition_point(|p| bin(p.0) == b);
+        let part = &points[start..end];
+        let by_y = |a: &&(usize, &(f64, f64)), c: &&(usize, &(f64, f64))| a.1 .1.total_cmp(&c.1 .1);
+        let indexed: Vec<(usize, &(f64, f64))> = part.iter().enumerate().collect();
+        let lo = indexed.iter().min_by(by_y).map_or(0, |p| p.0);
+        let hi = indexed.iter().max_by(by_y).map_or(0, |p| p.0);
+        let mut keep = [0, lo, hi, part.len() - 1];
+        keep.sort_unstable();
+        let mut last = None;
+        for k in keep {
+            if last != Some(k) {
+                out.push(part[k]);
+                last = Some(k);
+            }
+        }
+        start = end;
+    }
+    out
+}
+
 /// The data of charts as CSV: one row per point, with chart, series, x and y.
 pub fn to_csv(charts: &[Chart]) -> String {
     let mut s = String::from("chart,series,x,y\n");
@@ -323,7 +359,39 @@ pub fn to_csv(charts: &[Chart]) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{tick, tick_on};
+    use super::{envelope, tick, tick_on};
+
+    #[test]
+    fn an_envelope_keeps_every_bins_extremes_in_order() {
+        // A fast oscillation under a slow one, with one spike: 100,000 points into 50 bins.
+        let points: Vec<(f64, f64)> = (0..100_000)
+            .map(|k| {
+                let x = k as f64 * 1e-3;
+                let spike = if k == 61_234 { 7.0 } else { 0.0 };
+                (x, (x * 0.3).sin() + 0.1 * (x * 40.0).sin() + spike)
+            })
+            .collect();
+        let thin = envelope(&points, 50);
+        assert!(thin.len() <= 200, "{}", thin.len());
+        assert!(thin.windows(2).all(|w| w[0].0 < w[1].0));
+        assert_eq!(thin.first(), points.first());
+        assert_eq!(thin.last(), points.last());
+        // Every point kept is a point of the line, and in each bin the extremes are kept.
+        assert!(thin.iter().all(|p| points.contains(p)));
+        let x1 = points.last().unwrap().0;
+        for b in 0..50 {
+            let inside = |p: &&(f64, f64)| ((p.0 / x1 * 50.0) as usize).min(49) == b;
+            let max = |v: Vec<&(f64, f64)>| v.iter().map(|p| p.1).fold(f64::MIN, f64::max);
+            let min = |v: Vec<&(f64, f64)>| v.iter().map(|p| p.1).fold(f64::MAX, f64::min);
+            let all: Vec<&(f64, f64)> = points.iter().filter(inside).collect();
+            let kept: Vec<&(f64, f64)> = thin.iter().filter(inside).collect();
+            assert_eq!(max(kept.clone()), max(all.clone()), "bin {b}");
+            assert_eq!(min(kept), min(all), "bin {b}");
+        }
+        assert!(thin.contains(&points[61_234]));
+        // Short lines are left as they are.
+        assert_eq!(envelope(&points[..150], 50), points[..150].to_vec());
+    }
 
     #[test]
     fn round_off_next_to_zero_reads_zero_on_a_linear_axis() {

@@ -1,8 +1,11 @@
-//! Pictures: wall elevations (initial, displaced, collapsed) written as plain SVG, and charts.
+//! Pictures: wall elevations (initial, displaced, collapsed) written as plain SVG, charts, and
+//! the chart of a run.
 
 pub mod chart;
+mod response_chart;
 mod svg;
 mod wall_drawing;
 
+pub use response_chart::{response_charts, MOST_MOVED};
 pub use svg::{Style, Svg};
 pub use wall_drawing::{draw_wall, WallDrawing};
