@@ -5,7 +5,9 @@ use super::{print_out, write_file};
 use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
-use pirqa::motion::{process, read_record, Baseline, Motion, Processing, ReadOptions, Sine};
+use pirqa::motion::{
+    check_scale, process, read_record, Baseline, Motion, Processing, ReadOptions, Sine,
+};
 use pirqa::plot::{chart, response_charts};
 use pirqa::response::{DecisionCause, DecisionRecord, Response};
 use pirqa::topology;
@@ -55,7 +57,8 @@ pub struct MotionArgs {
     /// Scale the record (or the sine) to this peak: 258gal, 0.3g.
     #[arg(long, value_name = "PGA")]
     pub pga: Option<String>,
-    /// Then multiply by this factor (the paper's "amplified by 5").
+    /// Then multiply by this factor (the paper's "amplified by 5"; a negative one reverses the
+    /// motion, 0 is refused).
     #[arg(long, value_name = "X")]
     pub scale: Option<f64>,
     /// Vertical component (same time step as the record): every normal load, hence every
@@ -89,6 +92,10 @@ pub fn build_motion(
                 a = p;
             }
             if let Some(k) = m.scale {
+                check_scale(k).map_err(|source| Error::Motion {
+                    path: PathBuf::from("--scale"),
+                    source,
+                })?;
                 notes.push(format!("scaled by {k}"));
                 a *= k;
             }

@@ -10,7 +10,7 @@ mod segment;
 pub mod synthetic;
 
 pub use formats::{read_record, ReadOptions};
-pub use process::{process, Baseline, Processing};
+pub use process::{check_scale, process, Baseline, Processing};
 pub use segment::{Segment, Shape};
 
 use crate::error::MotionError;
@@ -69,7 +69,7 @@ impl Sine {
             && duration_s > 0.0;
         if !ok {
             return Err(MotionError::Invalid(format!(
-                "sine needs a finite amplitude, a positive frequency and duration (got {amplitude_m_s2} m/s2, {frequency_hz} Hz, {duration_s} s)"
+                "sine needs a finite amplitude and phase, a positive frequency and duration (got {amplitude_m_s2} m/s2, phase {phase_rad} rad, {frequency_hz} Hz, {duration_s} s)"
             )));
         }
         Ok(Sine {

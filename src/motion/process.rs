@@ -119,17 +119,26 @@ pub fn process(record: &Record, p: &Processing) -> Result<(Record, Vec<String>),
         ));
     }
     if let Some(k) = p.scale {
-        if !k.is_finite() {
-            return Err(MotionError::Invalid(format!(
-                "scale factor {k} is not a finite number"
-            )));
-        }
+        check_scale(k)?;
         if k != 1.0 {
             r = r.scaled(k);
             notes.push(format!("scaled by {k}"));
         }
     }
     Ok((r, notes))
+}
+
+/// A factor a motion may be multiplied by: finite and not zero (zero leaves no motion; a
+/// negative factor reverses the motion's direction, which an asymmetric wall feels).
+pub fn check_scale(k: f64) -> Result<(), MotionError> {
+    if k.is_finite() && k != 0.0 {
+        Ok(())
+    } else {
+        Err(MotionError::Invalid(format!(
+            "scale factor {k}: it must be a finite number other than 0 (a negative one reverses \
+             the motion)"
+        )))
+    }
 }
 
 #[cfg(test)]
@@ -155,5 +164,20 @@ mod tests {
         assert!((s.pga_m_s2() - 12.9).abs() < 1e-12);
         assert_eq!(notes.len(), 2);
         assert!(r.window(0.5, 0.2).is_err());
+        // A factor of zero leaves no motion and is refused; a negative one reverses it.
+        for k in [0.0, f64::NAN, f64::INFINITY] {
+            let p = Processing {
+                scale: Some(k),
+                ..Default::default()
+            };
+            let e = process(&r, &p).unwrap_err().to_string();
+            assert!(e.contains(&format!("scale factor {k}")), "{e}");
+        }
+        let p = Processing {
+            scale: Some(-1.0),
+            ..Default::default()
+        };
+        let (reversed, _) = process(&r, &p).unwrap();
+        assert_eq!(reversed.accel_m_s2, vec![-1.0, -2.0, -3.0, -4.0, -5.0]);
     }
 }
