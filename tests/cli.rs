@@ -1081,3 +1081,33 @@ fn a_run_draws_its_response_with_every_peak_kept() {
     assert!(ok, "{err}");
     assert!(!run.join("response.svg").exists() && !run.join("response.csv").exists());
 }
+
+/// Options given for the horizontal record that the vertical one's format gives itself are
+/// left aside for the vertical (an AT2 file says its units), not refused.
+#[test]
+fn a_vertical_record_ignores_options_meant_for_the_horizontal_one() {
+    let samples: String = (0..200).map(|k| format!("{}\n", 50 + k % 7)).collect();
+    let horizontal = common::file("h.txt", &format!("# dt_s: 0.01\n{samples}"));
+    let (ok, out, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--record",
+        horizontal.to_str().unwrap(),
+        "--units",
+        "gal",
+        "--vertical",
+        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+    ]);
+    assert!(ok, "{err}");
+    assert!(out.contains("200 samples at 0.01 s"), "{out}");
+    // The horizontal record itself still refuses what it would not use.
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--record",
+        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "--units",
+        "gal",
+    ]);
+    assert!(!ok && err.contains("leave --units out"), "{err}");
+}

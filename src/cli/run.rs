@@ -6,7 +6,8 @@ use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
 use pirqa::motion::{
-    check_scale, process, read_record, Baseline, Motion, Processing, ReadOptions, Sine,
+    check_scale, process, read_companion, read_record, Baseline, Motion, Processing, ReadOptions,
+    Sine,
 };
 use pirqa::plot::{chart, response_charts};
 use pirqa::response::{DecisionCause, DecisionRecord, Response};
@@ -153,7 +154,7 @@ pub fn build_motion(
                 } else {
                     1.0
                 };
-                let vertical = read_record(vpath, m.format.as_deref(), &opts)?;
+                let vertical = read_companion(vpath, m.format.as_deref(), &opts)?;
                 let (vertical, _) = process(
                     &vertical,
                     &Processing {

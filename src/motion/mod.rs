@@ -9,7 +9,7 @@ mod process;
 mod segment;
 pub mod synthetic;
 
-pub use formats::{read_record, ReadOptions};
+pub use formats::{read_companion, read_record, ReadOptions};
 pub use process::{check_scale, process, Baseline, Processing};
 pub use segment::{Segment, Shape};
 

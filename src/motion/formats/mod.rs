@@ -109,8 +109,29 @@ pub fn detect(text: &str) -> &'static dyn RecordFormat {
         .unwrap_or(&Plain)
 }
 
-/// Reads a record file, detecting its format unless one is given. Errors name the file.
+/// Reads a record file, detecting its format unless one is given; options the format does not
+/// read are refused. Errors name the file.
 pub fn read_record(path: &Path, format: Option<&str>, opts: &ReadOptions) -> Result<Record, Error> {
+    read_file(path, format, opts, true)
+}
+
+/// Reads a record that comes with another and was given the same options (a vertical
+/// component beside its horizontal record): options its format does not read were meant for
+/// the other record, and are left aside instead of refused.
+pub fn read_companion(
+    path: &Path,
+    format: Option<&str>,
+    opts: &ReadOptions,
+) -> Result<Record, Error> {
+    read_file(path, format, opts, false)
+}
+
+fn read_file(
+    path: &Path,
+    format: Option<&str>,
+    opts: &ReadOptions,
+    strict: bool,
+) -> Result<Record, Error> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -128,8 +149,19 @@ pub fn read_record(path: &Path, format: Option<&str>, opts: &ReadOptions) -> Res
         || path.display().to_string(),
         |f| f.to_string_lossy().into_owned(),
     );
-    refuse_unread(fmt, opts)
-        .and_then(|()| fmt.read(&name, &text, opts))
+    let reads = fmt.reads();
+    let used = ReadOptions {
+        dt_s: opts.dt_s.filter(|_| reads.dt_s),
+        units: opts.units.filter(|_| reads.units),
+        component: opts.component.filter(|_| reads.component),
+    };
+    let checked = if strict {
+        refuse_unread(fmt, opts)
+    } else {
+        Ok(())
+    };
+    checked
+        .and_then(|()| fmt.read(&name, &text, &used))
         .map_err(|source| Error::Motion {
             path: path.to_path_buf(),
             source,

@@ -249,9 +249,10 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
 fn named_file(origin: &Path, base: &Path, what: &str, path: &str) -> Result<Vec<u8>, Error> {
     let file = base.join(path);
     std::fs::read(&file).map_err(|e| {
-        let start = match base.as_os_str().is_empty() {
-            true => Path::new("."),
-            false => base,
+        let start = if base.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            base
         };
         invalid(
             origin,
