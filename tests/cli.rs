@@ -1083,7 +1083,8 @@ fn a_run_draws_its_response_with_every_peak_kept() {
 }
 
 /// Options given for the horizontal record that the vertical one's format gives itself are
-/// left aside for the vertical (an AT2 file says its units), not refused.
+/// left aside for the vertical (an AT2 file says its units), not refused; the vertical record's
+/// component is its own option.
 #[test]
 fn a_vertical_record_ignores_options_meant_for_the_horizontal_one() {
     let samples: String = (0..200).map(|k| format!("{}\n", 50 + k % 7)).collect();
@@ -1110,4 +1111,46 @@ fn a_vertical_record_ignores_options_meant_for_the_horizontal_one() {
         "gal",
     ]);
     assert!(!ok && err.contains("leave --units out"), "{err}");
+
+    // Both components in one file: each names its column, and the same column twice is refused.
+    let rows: String = (0..300)
+        .map(|k| format!("{} {} {}\n", k as f64 * 0.01, 100 + k % 5, 20 - k % 3))
+        .collect();
+    let both = common::file("hv.txt", &format!("# units: gal\n{rows}"));
+    let both = both.to_str().unwrap();
+    let run = |extra: &[&str]| {
+        let args = [
+            &[
+                "run",
+                "walls/five-block-variable.ron",
+                "--record",
+                both,
+                "--vertical",
+                both,
+            ][..],
+            extra,
+        ]
+        .concat();
+        pirqa(&args)
+    };
+    let (ok, _, err) = run(&[]);
+    assert!(!ok && err.contains("--vertical-component"), "{err}");
+    let (ok, _, err) = run(&["--component", "1", "--vertical-component", "2"]);
+    assert!(ok, "{err}");
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--record",
+        both,
+        "--component",
+        "1",
+        "--vertical",
+        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "--vertical-component",
+        "1",
+    ]);
+    assert!(
+        !ok && err.contains("leave --vertical-component out"),
+        "{err}"
+    );
 }

@@ -67,6 +67,10 @@ pub struct MotionArgs {
     /// horizontal record.
     #[arg(long, value_name = "FILE", requires = "record")]
     pub vertical: Option<PathBuf>,
+    /// Component of the vertical record, as --component is of the horizontal one (a column of
+    /// a plain file, a channel of a COSMOS file); --component does not apply to it.
+    #[arg(long, value_name = "N", requires = "vertical")]
+    pub vertical_component: Option<usize>,
 }
 
 fn bad(what: &str, message: String) -> Error {
@@ -154,7 +158,27 @@ pub fn build_motion(
                 } else {
                     1.0
                 };
-                let vertical = read_companion(vpath, m.format.as_deref(), &opts)?;
+                let same_file =
+                    std::fs::canonicalize(vpath).ok() == std::fs::canonicalize(path).ok();
+                if same_file && m.vertical_component == m.component {
+                    return Err(bad(
+                        "--vertical",
+                        format!(
+                            "{} is also the horizontal record, and the same component of it: pass --component and --vertical-component",
+                            vpath.display()
+                        ),
+                    ));
+                }
+                let vertical_opts = ReadOptions {
+                    component: m.vertical_component,
+                    ..opts
+                };
+                let vertical = read_companion(
+                    vpath,
+                    m.format.as_deref(),
+                    &vertical_opts,
+                    "--vertical-component",
+                )?;
                 let (vertical, _) = process(
                     &vertical,
                     &Processing {

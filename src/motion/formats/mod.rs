@@ -58,7 +58,11 @@ pub trait RecordFormat {
 
 /// Refuses options a format does not read: the file gives them itself, and an option that
 /// would be ignored is a mistake to report, not to pass over.
-fn refuse_unread(fmt: &dyn RecordFormat, opts: &ReadOptions) -> Result<(), MotionError> {
+fn refuse_unread(
+    fmt: &dyn RecordFormat,
+    opts: &ReadOptions,
+    component_option: &str,
+) -> Result<(), MotionError> {
     let reads = fmt.reads();
     let unread = [
         (
@@ -74,7 +78,7 @@ fn refuse_unread(fmt: &dyn RecordFormat, opts: &ReadOptions) -> Result<(), Motio
         (
             opts.component.is_some() && !reads.component,
             "holds one component",
-            "--component",
+            component_option,
         ),
     ];
     match unread.iter().find(|(given, _, _)| *given) {
@@ -112,25 +116,29 @@ pub fn detect(text: &str) -> &'static dyn RecordFormat {
 /// Reads a record file, detecting its format unless one is given; options the format does not
 /// read are refused. Errors name the file.
 pub fn read_record(path: &Path, format: Option<&str>, opts: &ReadOptions) -> Result<Record, Error> {
-    read_file(path, format, opts, true)
+    read_file(path, format, opts, None)
 }
 
-/// Reads a record that comes with another and was given the same options (a vertical
-/// component beside its horizontal record): options its format does not read were meant for
-/// the other record, and are left aside instead of refused.
+/// Reads a record that comes with another and shares its sample interval and units options (a
+/// vertical component beside its horizontal record): where its format gives those itself they
+/// were meant for the other record, and are left aside instead of refused. Its component is
+/// its own (given as `component_option`), refused where the format has one.
 pub fn read_companion(
     path: &Path,
     format: Option<&str>,
     opts: &ReadOptions,
+    component_option: &str,
 ) -> Result<Record, Error> {
-    read_file(path, format, opts, false)
+    read_file(path, format, opts, Some(component_option))
 }
 
+/// A record read alone (`companion` = `None`) or beside another, its component given by the
+/// option `companion` names.
 fn read_file(
     path: &Path,
     format: Option<&str>,
     opts: &ReadOptions,
-    strict: bool,
+    companion: Option<&str>,
 ) -> Result<Record, Error> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
@@ -155,10 +163,13 @@ fn read_file(
         units: opts.units.filter(|_| reads.units),
         component: opts.component.filter(|_| reads.component),
     };
-    let checked = if strict {
-        refuse_unread(fmt, opts)
-    } else {
-        Ok(())
+    let own = ReadOptions {
+        component: opts.component,
+        ..ReadOptions::default()
+    };
+    let checked = match companion {
+        None => refuse_unread(fmt, opts, "--component"),
+        Some(option) => refuse_unread(fmt, &own, option),
     };
     checked
         .and_then(|()| fmt.read(&name, &text, &used))
