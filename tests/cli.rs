@@ -728,6 +728,35 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
         "1",
     ]);
     assert!(!ok && err.contains("--run"), "{err}");
+    // A run without its history has no state at a time, and says what to do.
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--sine",
+        "500gal",
+        "--freq",
+        "1",
+        "--duration",
+        "1",
+        "--no-history",
+        "--out",
+        dir.join("bare").to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let (ok, _, err) = pirqa(&[
+        "draw",
+        "walls/five-block-variable.ron",
+        "-o",
+        dir.join("x.svg").to_str().unwrap(),
+        "--run",
+        dir.join("bare").to_str().unwrap(),
+        "--at",
+        "0.5",
+    ]);
+    assert!(
+        !ok && err.contains("history.csv") && err.contains("--no-history"),
+        "{err}"
+    );
     // A run of another wall with the same block names is refused, not drawn.
     let (ok, _, err) = pirqa(&[
         "draw",

@@ -110,6 +110,16 @@ pub fn state_at(dir: &Path, wall: &Wall, at_s: Option<f64>) -> Result<SavedState
 
 /// The last row of history.csv at or before `t`: its time and the named blocks' u.
 fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>), Error> {
+    if !path.exists() {
+        return Err(table(
+            path,
+            1,
+            "missing: the run was made without a history (--no-history); a state at a time \
+             needs one (run again without --no-history), the final state does not (leave --at \
+             out)"
+                .into(),
+        ));
+    }
     let text = read(path)?;
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
