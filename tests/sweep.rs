@@ -70,6 +70,13 @@ fn bad_sweep_files_get_errors_that_say_what_to_fix() {
             .contains("<test>: cannot read acceleration \"350 furlongs\""),
         "{e}"
     );
+    let e = sweep(&SMALL.replace("List([0.5, 1.0, 2.0])", "Log(from: 0.0, to: 2.0, count: 3)"))
+        .unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("a Log range needs `from` and `to` above 0"),
+        "{e}"
+    );
     let e = sweep(&SMALL.replace("cov: 0.15", "cov: 1.5")).unwrap_err();
     assert!(e.to_string().contains("cov"), "{e}");
     let records = format!(

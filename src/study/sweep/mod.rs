@@ -660,6 +660,15 @@ fn resolve_motions(
                     "Sine: give at least one amplitude and one frequency".into(),
                 ));
             }
+            if let Some(f) = freqs.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
+                return Err(invalid(
+                    origin,
+                    format!(
+                        "frequencies_hz {frequencies_hz:?} gives {f} Hz: every frequency must be \
+                         positive (a Log range needs `from` and `to` above 0)"
+                    ),
+                ));
+            }
             for text in amplitudes {
                 let a = accel(text)?;
                 for &f in &freqs {
