@@ -692,11 +692,12 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
         run.to_str().unwrap(),
     ]);
     assert!(ok, "{err}");
-    let draw = |extra: &[&str]| {
+    let draw_on = |wall: &str, run: &std::path::Path, extra: &[&str]| {
         let svg = dir.join("wall.svg");
+        let _ = std::fs::remove_file(&svg);
         let mut args = vec![
             "draw",
-            "walls/five-block-variable.ron",
+            wall,
             "-o",
             svg.to_str().unwrap(),
             "--run",
@@ -706,6 +707,7 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
         let (ok, _, err) = pirqa(&args);
         (ok, std::fs::read_to_string(&svg).unwrap_or_default(), err)
     };
+    let draw = |extra: &[&str]| draw_on("walls/five-block-variable.ron", &run, extra);
     // B5 falls at 2.7225 s, B3 right after (see docs/paper.md).
     let (ok, end, err) = draw(&[]);
     assert!(ok, "{err}");
@@ -743,29 +745,17 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
         dir.join("bare").to_str().unwrap(),
     ]);
     assert!(ok, "{err}");
-    let (ok, _, err) = pirqa(&[
-        "draw",
+    let (ok, _, err) = draw_on(
         "walls/five-block-variable.ron",
-        "-o",
-        dir.join("x.svg").to_str().unwrap(),
-        "--run",
-        dir.join("bare").to_str().unwrap(),
-        "--at",
-        "0.5",
-    ]);
+        &dir.join("bare"),
+        &["--at", "0.5"],
+    );
     assert!(
         !ok && err.contains("history.csv") && err.contains("--no-history"),
         "{err}"
     );
     // A run of another wall with the same block names is refused, not drawn.
-    let (ok, _, err) = pirqa(&[
-        "draw",
-        "walls/five-block-uniform.ron",
-        "-o",
-        dir.join("x.svg").to_str().unwrap(),
-        "--run",
-        run.to_str().unwrap(),
-    ]);
+    let (ok, _, err) = draw_on("walls/five-block-uniform.ron", &run, &[]);
     assert!(
         !ok && err.contains("summary.json") && err.contains("variable friction\", not of"),
         "{err}"

@@ -301,36 +301,23 @@ fn plain_files_and_formats_by_name() {
 #[test]
 fn options_a_record_would_not_use_or_contradicts_are_refused() {
     use pirqa::units::AccelUnit;
-    let at2 = shared("elcentro1940_IELC180_peer_dt0p01_g.AT2");
-    let with = |path: &Path, opts: ReadOptions| {
+    let with = |path: &Path, dt_s, units, component| {
+        let opts = ReadOptions {
+            dt_s,
+            units,
+            component,
+        };
         read_record(path, None, &opts)
             .map(|r| r.dt_s)
             .map_err(|e| e.to_string())
     };
-    for (opts, option) in [
-        (
-            ReadOptions {
-                dt_s: Some(0.02),
-                ..Default::default()
-            },
-            "--record-dt",
-        ),
-        (
-            ReadOptions {
-                units: Some(AccelUnit::Gal),
-                ..Default::default()
-            },
-            "--units",
-        ),
-        (
-            ReadOptions {
-                component: Some(1),
-                ..Default::default()
-            },
-            "--component",
-        ),
+    let at2 = shared("elcentro1940_IELC180_peer_dt0p01_g.AT2");
+    for (e, option) in [
+        (with(&at2, Some(0.02), None, None), "--record-dt"),
+        (with(&at2, None, Some(AccelUnit::Gal), None), "--units"),
+        (with(&at2, None, None, Some(1)), "--component"),
     ] {
-        let e = with(&at2, opts).unwrap_err();
+        let e = e.unwrap_err();
         assert!(
             e.contains("AT2")
                 && e.contains("at2 format")
@@ -339,14 +326,7 @@ fn options_a_record_would_not_use_or_contradicts_are_refused() {
         );
     }
     let cosmos = write("one.v2", &cosmos_text(10.0, &[1.0, 2.0, 3.0], 3));
-    let e = with(
-        &cosmos,
-        ReadOptions {
-            dt_s: Some(0.01),
-            ..Default::default()
-        },
-    )
-    .unwrap_err();
+    let e = with(&cosmos, Some(0.01), None, None).unwrap_err();
     assert!(
         e.contains("cosmos format") && e.contains("--record-dt"),
         "{e}"
@@ -354,48 +334,23 @@ fn options_a_record_would_not_use_or_contradicts_are_refused() {
 
     // A plain file's own header lines and the options must agree; agreeing is fine.
     let one = write("one.txt", "# units: gal\n# dt_s: 0.01\n1\n2\n3\n");
-    let gal = ReadOptions {
-        units: Some(AccelUnit::Gal),
-        ..Default::default()
-    };
-    assert_eq!(with(&one, gal), Ok(0.01));
-    let e = with(
-        &one,
-        ReadOptions {
-            units: Some(AccelUnit::G),
-            ..Default::default()
-        },
-    )
-    .unwrap_err();
+    assert_eq!(with(&one, None, Some(AccelUnit::Gal), None), Ok(0.01));
+    let e = with(&one, None, Some(AccelUnit::G), None).unwrap_err();
     assert!(
         e.contains("line 1") && e.contains("says units gal, but units g"),
         "{e}"
     );
-    let e = with(
-        &one,
-        ReadOptions {
-            dt_s: Some(0.02),
-            ..Default::default()
-        },
-    )
-    .unwrap_err();
+    let e = with(&one, Some(0.02), None, None).unwrap_err();
     assert!(
         e.contains("line 2") && e.contains("dt 0.01 s, but dt 0.02 s"),
         "{e}"
     );
-    let e = with(
-        &one,
-        ReadOptions {
-            component: Some(1),
-            ..Default::default()
-        },
-    )
-    .unwrap_err();
+    let e = with(&one, None, None, Some(1)).unwrap_err();
     assert!(e.contains("one column") && e.contains("--component"), "{e}");
     let timed = write(
         "timed.txt",
         "# units: gal\n# dt_s: 0.02\n0 1\n0.01 2\n0.02 3\n",
     );
-    let e = with(&timed, ReadOptions::default()).unwrap_err();
+    let e = with(&timed, None, None, None).unwrap_err();
     assert!(e.contains("0.02 s") && e.contains("spaced 0.01 s"), "{e}");
 }
