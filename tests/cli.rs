@@ -1042,7 +1042,7 @@ fn a_run_draws_its_response_with_every_peak_kept() {
     assert!(ok, "{err}");
     let wall = dir.join("case-0").join("wall.ron");
     let run = dir.join("run");
-    let (ok, _, err) = pirqa(&[
+    let (ok, out, err) = pirqa(&[
         "run",
         wall.to_str().unwrap(),
         "--record",
@@ -1055,6 +1055,10 @@ fn a_run_draws_its_response_with_every_peak_kept() {
         run.to_str().unwrap(),
     ]);
     assert!(ok, "{err}");
+    assert!(
+        out.contains("history.csv, response.svg, response.csv"),
+        "{out}"
+    );
     let summary = read_json(&run.join("summary.json"));
     let mut most: Vec<(f64, String)> = summary["blocks"]
         .as_array()

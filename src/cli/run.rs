@@ -398,6 +398,8 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
         let written: Vec<&str> = [
             Some("summary.json"),
             r.history.is_some().then_some("history.csv"),
+            r.history.is_some().then_some("response.svg"),
+            r.history.is_some().then_some("response.csv"),
             Some("events.jsonl"),
             (!r.decisions.is_empty()).then_some("decisions.jsonl"),
         ]
