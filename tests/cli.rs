@@ -341,7 +341,7 @@ fn motion_info_json_has_units_in_its_keys() {
     let (ok, out, err) = pirqa(&[
         "motion",
         "info",
-        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
         "--json",
     ]);
     assert!(ok, "{err}");
@@ -367,7 +367,7 @@ fn motion_info_json_has_units_in_its_keys() {
     let (ok, _, err) = pirqa(&[
         "motion",
         "info",
-        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
         "--plot",
         svg.to_str().unwrap(),
     ]);
@@ -831,7 +831,7 @@ fn sweep_then_one_case_rerun_without_history_reproduces_itself() {
     name: "small",
     walls: [File(path: "{root}/walls/five-block-variable.ron")],
     motion: Records(
-        files: ["{root}/../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"],
+        files: ["{root}/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"],
         pga: ["400gal"],
     ),
     friction: Random(distribution: Lognormal, cov: 0.2, samples: 2, seed: 3),
@@ -1015,7 +1015,7 @@ fn a_run_draws_its_response_with_every_peak_kept() {
     walls: [RunningBond(courses: 4, blocks_per_course: 4, width_m: 2.4, height_m: 1.2,
                         thickness_m: 0.8, density_kg_m3: 2650.0, friction: 0.3)],
     motion: Records(
-        files: ["{root}/../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"],
+        files: ["{root}/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"],
         pga: ["600gal"],
     ),
     friction: Random(distribution: Lognormal, cov: 0.2, samples: 1, seed: 7),
@@ -1038,7 +1038,7 @@ fn a_run_draws_its_response_with_every_peak_kept() {
         "run",
         wall.to_str().unwrap(),
         "--record",
-        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
         "--pga",
         "600gal",
         "--output-dt",
@@ -1112,7 +1112,7 @@ fn a_vertical_record_ignores_options_meant_for_the_horizontal_one() {
         "--units",
         "gal",
         "--vertical",
-        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
     ]);
     assert!(ok, "{err}");
     assert!(out.contains("200 samples at 0.01 s"), "{out}");
@@ -1121,7 +1121,7 @@ fn a_vertical_record_ignores_options_meant_for_the_horizontal_one() {
         "run",
         "walls/five-block-variable.ron",
         "--record",
-        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
         "--units",
         "gal",
     ]);
@@ -1160,7 +1160,7 @@ fn a_vertical_record_ignores_options_meant_for_the_horizontal_one() {
         "--component",
         "1",
         "--vertical",
-        "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
         "--vertical-component",
         "1",
     ]);

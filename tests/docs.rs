@@ -117,3 +117,95 @@ fn committed_studies_are_what_their_cases_draw() {
         }
     }
 }
+
+/// A clone is the whole project: no tracked file outside `.ci/` reaches above the repository's
+/// root for data. Every relative path that climbs (two dots, a slash) must land on something in the tree
+/// when started from one of the tree's folders (a sweep file's paths start in its own folder, a
+/// command in the docs at the root); one that only lands outside, like a record beside the
+/// development checkout, fails here with the file and line that names it.
+#[test]
+fn no_tracked_file_reads_data_from_above_the_repository() {
+    let files = tracked_files();
+    let mut folders: std::collections::BTreeSet<std::path::PathBuf> = files
+        .iter()
+        .filter_map(|f| f.parent().map(std::path::Path::to_path_buf))
+        .collect();
+    folders.insert(std::path::PathBuf::new());
+    let inside = |token: &str| {
+        folders.iter().any(|folder| {
+            let mut at = folder.clone();
+            for part in token.split('/').filter(|p| !p.is_empty() && *p != ".") {
+                if part == ".." {
+                    if !at.pop() {
+                        return false;
+                    }
+                } else {
+                    at.push(part);
+                }
+            }
+            at.exists()
+        })
+    };
+    let mut climbing = 0;
+    let mut outside = Vec::new();
+    for file in files.iter().filter(|f| !f.starts_with(".ci")) {
+        let Ok(text) = std::fs::read_to_string(file) else {
+            continue;
+        };
+        for (line, content) in text.lines().enumerate() {
+            for token in content
+                .split(|c: char| !(c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | '/')))
+            {
+                let Some(start) = token.find("../") else {
+                    continue;
+                };
+                let path = token[start..].trim_end_matches(['.', '/']);
+                climbing += 1;
+                if !inside(path) {
+                    outside.push(format!("{}:{}: {path}", file.display(), line + 1));
+                }
+            }
+        }
+    }
+    assert!(climbing >= 10, "only {climbing} relative paths found");
+    assert!(
+        outside.is_empty(),
+        "these paths name nothing inside the repository (ship the data in the tree, e.g. \
+         records/, and name it from there):\n{}",
+        outside.join("\n")
+    );
+}
+
+/// The files git tracks, or, outside a git checkout, every file but build output.
+fn tracked_files() -> Vec<std::path::PathBuf> {
+    if let Ok(out) = std::process::Command::new("git")
+        .args(["ls-files", "-z"])
+        .output()
+    {
+        if out.status.success() && !out.stdout.is_empty() {
+            return out
+                .stdout
+                .split(|&b| b == 0)
+                .filter(|name| !name.is_empty())
+                .map(|name| std::path::PathBuf::from(String::from_utf8_lossy(name).into_owned()))
+                .collect();
+        }
+    }
+    let mut files = Vec::new();
+    let mut stack = vec![std::path::PathBuf::from(".")];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy();
+            if name.starts_with('.') || name == "target" || name == "out" {
+                continue;
+            }
+            if path.is_dir() {
+                stack.push(path);
+            } else {
+                files.push(path.strip_prefix(".").unwrap().to_path_buf());
+            }
+        }
+    }
+    files
+}

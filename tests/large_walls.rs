@@ -15,7 +15,7 @@ use pirqa::{Topology, Wall};
 
 fn el_centro_first_s(seconds: usize, pga_m_s2: f64) -> Motion {
     let record = pirqa::motion::read_record(
-        std::path::Path::new("../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
         None,
         &pirqa::motion::ReadOptions::default(),
     )

@@ -1,4 +1,4 @@
-//! Record readers: the El Centro files in ../shared/records, and small K-NET, COSMOS, AT2 and
+//! Record readers: the El Centro files in records/, and small K-NET, COSMOS, AT2 and
 //! plain files written here, with their broken variants.
 
 mod common;
@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 
 const G: f64 = 9.81;
 
-fn shared(name: &str) -> PathBuf {
-    Path::new("../shared/records").join(name)
+fn shipped(name: &str) -> PathBuf {
+    Path::new("records").join(name)
 }
 
 fn read(path: &Path) -> Result<Record, String> {
@@ -20,7 +20,7 @@ fn read(path: &Path) -> Result<Record, String> {
 
 #[test]
 fn el_centro_peer_at2() {
-    let r = read(&shared("elcentro1940_IELC180_peer_dt0p01_g.AT2")).unwrap();
+    let r = read(&shipped("elcentro1940_IELC180_peer_dt0p01_g.AT2")).unwrap();
     assert_eq!(r.accel_m_s2.len(), 4000);
     assert_eq!(r.dt_s, 0.01);
     assert!(
@@ -33,7 +33,7 @@ fn el_centro_peer_at2() {
 
 #[test]
 fn el_centro_peknold_at2() {
-    let r = read(&shared("elcentro1940_ns_peknold_dt0p02_g.AT2")).unwrap();
+    let r = read(&shipped("elcentro1940_ns_peknold_dt0p02_g.AT2")).unwrap();
     assert_eq!(r.accel_m_s2.len(), 1559);
     assert_eq!(r.dt_s, 0.02);
     assert!(
@@ -311,7 +311,7 @@ fn options_a_record_would_not_use_or_contradicts_are_refused() {
             .map(|r| r.dt_s)
             .map_err(|e| e.to_string())
     };
-    let at2 = shared("elcentro1940_IELC180_peer_dt0p01_g.AT2");
+    let at2 = shipped("elcentro1940_IELC180_peer_dt0p01_g.AT2");
     for (e, option) in [
         (with(&at2, Some(0.02), None, None), "--record-dt"),
         (with(&at2, None, Some(AccelUnit::Gal), None), "--units"),

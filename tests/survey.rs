@@ -300,7 +300,7 @@ fn the_inca_library_walls_run_under_el_centro() {
     use pirqa::integrate::{Integrator, Scenario, Settings};
     use pirqa::motion::{read_record, Motion, ReadOptions};
     let record = read_record(
-        Path::new("../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
         None,
         &ReadOptions::default(),
     )

@@ -9,7 +9,7 @@ use pirqa::study::sweep::{parse_description, Sweep, SweepDescription, FRICTION_S
 use std::collections::HashSet;
 use std::path::Path;
 
-const EL_CENTRO: &str = "../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2";
+const EL_CENTRO: &str = "records/elcentro1940_IELC180_peer_dt0p01_g.AT2";
 
 fn sweep(text: &str) -> Result<Sweep, pirqa::Error> {
     let d: SweepDescription = parse_description(text).map_err(|source| pirqa::Error::Wall {
@@ -433,4 +433,40 @@ fn every_shipped_study_loads() {
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(s.len(), cases, "{name}");
     }
+}
+
+/// A sweep's fingerprint sees the names and contents of the files it reads, not their folders:
+/// the same sweep file, wall and record copied elsewhere resume the same results; a record with
+/// one number changed does not.
+#[test]
+fn a_sweep_moved_with_its_files_keeps_its_fingerprint() {
+    let text = |wall: &str, record: &str| {
+        format!(
+            r#"(version: 1, name: "moved", walls: [File(path: "{wall}")],
+                motion: Records(files: ["{record}"], pga: ["400gal"]))"#
+        )
+    };
+    let here = sweep(&text("walls/five-block-variable.ron", EL_CENTRO)).unwrap();
+    let dir = temp_dir("moved");
+    std::fs::create_dir_all(dir.join("data")).unwrap();
+    std::fs::copy(
+        "walls/five-block-variable.ron",
+        dir.join("data/five-block-variable.ron"),
+    )
+    .unwrap();
+    let record = std::fs::read_to_string(EL_CENTRO).unwrap();
+    let copied = dir.join("data/elcentro1940_IELC180_peer_dt0p01_g.AT2");
+    std::fs::write(&copied, &record).unwrap();
+    let file = dir.join("moved.ron");
+    std::fs::write(
+        &file,
+        text(
+            "data/five-block-variable.ron",
+            "data/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        ),
+    )
+    .unwrap();
+    assert_eq!(Sweep::load(&file).unwrap().fingerprint, here.fingerprint);
+    std::fs::write(&copied, record.replacen(".6403182E-02", ".6403183E-02", 1)).unwrap();
+    assert_ne!(Sweep::load(&file).unwrap().fingerprint, here.fingerprint);
 }

@@ -90,7 +90,7 @@ fn the_uniform_wall_stays_one_rigid_body_under_vertical_shaking() {
 #[test]
 fn el_centro_with_a_vertical_component_balances_energy() {
     let h = read_record(
-        std::path::Path::new("../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
         None,
         &ReadOptions::default(),
     )

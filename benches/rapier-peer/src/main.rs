@@ -203,7 +203,7 @@ fn weight_split(sc: &Scenario, dt_s: f64, upper: usize, supports: (usize, usize)
 
 fn main() {
     let arg = std::env::args().nth(1);
-    let record = std::path::Path::new("../shared/records/elcentro1940_IELC180_peer_dt0p01_g.AT2");
+    let record = std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2");
     let cases = work_precision::standard_cases(record)
         .expect("scenarios load (run from the repository root)");
     if arg.as_deref() != Some("split") {

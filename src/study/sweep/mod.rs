@@ -289,6 +289,30 @@ pub fn parse_description(text: &str) -> Result<SweepDescription, WallError> {
         })
 }
 
+impl SweepDescription {
+    /// The description with every path cut to its file name. The fingerprint hashes this and
+    /// the bytes of every file read, so results stay with their sweep when the sweep file, its
+    /// walls or its records move to another folder, and only the names (which label walls and
+    /// records in the results) and contents count.
+    fn by_file_name(&self) -> SweepDescription {
+        let name = |path: &String| {
+            Path::new(path)
+                .file_name()
+                .map_or_else(|| path.clone(), |n| n.to_string_lossy().into_owned())
+        };
+        let mut d = self.clone();
+        for source in &mut d.walls {
+            if let WallSource::File { path, .. } = source {
+                *path = name(path);
+            }
+        }
+        if let MotionSet::Records { files, .. } = &mut d.motion {
+            files.iter_mut().for_each(|f| *f = name(f));
+        }
+        d
+    }
+}
+
 impl Sweep {
     /// Reads a sweep file and everything it names.
     pub fn load(path: &Path) -> Result<Sweep, Error> {
@@ -317,7 +341,7 @@ impl Sweep {
                 ),
             ));
         }
-        let mut hash = fnv(FNV_OFFSET, format!("{d:?}").as_bytes());
+        let mut hash = fnv(FNV_OFFSET, format!("{:?}", d.by_file_name()).as_bytes());
         let mut walls = Vec::new();
         for source in &d.walls {
             let w = resolve_wall(source, base, origin, &mut hash)?;
