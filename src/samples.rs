@@ -14,6 +14,7 @@ fn description(friction: f64) -> WallDescription {
         unit_weight_kn_m3: None,
         friction,
         restitution: 1.0,
+        rocking_restitution_factor: 1.0,
         g_m_s2: 9.81,
         rows: Vec::new(),
         rectangles: Vec::new(),
@@ -278,4 +279,70 @@ pub fn broadband_record(duration_s: f64, dt_s: f64, pga_m_s2: f64) -> crate::mot
         *x *= pga_m_s2 / peak;
     }
     crate::motion::Record::new("broadband", dt_s, a).expect("finite samples")
+}
+
+/// Carlson's symmetric elliptic integral R_F(x, y, z) (x, y, z >= 0, at most one zero), by
+/// duplication to round-off (Carlson 1995, Numer. Algorithms 10).
+pub fn carlson_rf(mut x: f64, mut y: f64, mut z: f64) -> f64 {
+    loop {
+        let mean = (x + y + z) / 3.0;
+        let dx = 1.0 - x / mean;
+        let dy = 1.0 - y / mean;
+        let dz = 1.0 - z / mean;
+        if dx.abs().max(dy.abs()).max(dz.abs()) < 1e-4 {
+            // Fifth-order series in the deviations: the error is below 1e-20 here.
+            let e2 = dx * dy - dz * dz;
+            let e3 = dx * dy * dz;
+            return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0)
+                / mean.sqrt();
+        }
+        let (sx, sy, sz) = (x.sqrt(), y.sqrt(), z.sqrt());
+        let lambda = sx * sy + sy * sz + sz * sx;
+        x = 0.25 * (x + lambda);
+        y = 0.25 * (y + lambda);
+        z = 0.25 * (z + lambda);
+    }
+}
+
+/// Legendre's incomplete elliptic integral of the first kind F(phi, k), |phi| <= pi/2.
+pub fn elliptic_f(phi: f64, k: f64) -> f64 {
+    let (s, c) = phi.sin_cos();
+    s * carlson_rf(c * c, 1.0 - k * k * s * s, 1.0)
+}
+
+/// Time for a block released at rest from theta0 (0 < theta0 < alpha) on a still base to fall
+/// back to theta = 0, from the exact equations: the pendulum psi'' = -p^2 sin psi with
+/// psi = pi - (alpha - theta) gives t = [K(k) - F(phi1, k)] / p with k = cos((alpha - theta0)
+/// / 2), sin phi1 = cos(alpha / 2) / k (Housner 1963). The difference is written as one integral,
+/// F(phi2, k) with tan phi1 tan phi2 = 1 / k' (Legendre's addition), and tan phi2 from
+/// cos^2 A - cos^2 B = sin(B + A) sin(B - A), so that it keeps its digits for small theta0.
+pub fn free_rocking_quarter_s(alpha: f64, p: f64, theta0: f64) -> f64 {
+    let k = ((alpha - theta0) / 2.0).cos();
+    let k_prime = ((alpha - theta0) / 2.0).sin();
+    let spread = ((alpha - theta0 / 2.0).sin() * (theta0 / 2.0).sin()).sqrt();
+    let phi2 = (spread / (k_prime * (alpha / 2.0).cos())).atan();
+    elliptic_f(phi2, k) / p
+}
+
+/// The same for the linearised equations: acosh(1 / (1 - theta0 / alpha)) / p.
+pub fn linear_free_rocking_quarter_s(alpha: f64, p: f64, theta0: f64) -> f64 {
+    (1.0 / (1.0 - theta0 / alpha)).acosh() / p
+}
+
+/// The amplitude a block reaches after landing from amplitude theta_n (exact equations,
+/// Housner's r): E(theta_{n+1}) = r^2 E(theta_n) with E(theta) = cos(alpha - theta) - cos(alpha)
+/// = 2 sin(alpha - theta/2) sin(theta/2), solved by Newton's method (E' = sin(alpha - theta))
+/// in that form, which keeps its digits for small amplitudes.
+pub fn amplitude_after_landing(alpha: f64, r: f64, theta_n: f64) -> f64 {
+    let e = |x: f64| 2.0 * (alpha - x / 2.0).sin() * (x / 2.0).sin();
+    let target = r * r * e(theta_n);
+    let mut x = target / alpha.sin();
+    for _ in 0..50 {
+        let step = (e(x) - target) / (alpha - x).sin();
+        x -= step;
+        if step.abs() <= 1e-17 * x {
+            break;
+        }
+    }
+    x
 }

@@ -470,24 +470,30 @@ fn generated_motions_read_back_and_run() {
 }
 
 #[test]
-fn a_tall_block_gets_a_rocking_warning() {
+fn a_tall_block_rocks_and_the_sliding_model_says_it_would() {
     let dir = temp_dir("tall");
     std::fs::create_dir_all(&dir).unwrap();
     let wall = dir.join("tall.ron");
     std::fs::write(&wall, "(version: 1, thickness_m: 1, density_kg_m3: 2000, friction: 0.6, rows: [(height_m: 2.0, blocks: [(width_m: 0.5)])])").unwrap();
     let summary = dir.join("s.json");
-    let (ok, out, err) = pirqa(&[
-        "run",
-        wall.to_str().unwrap(),
-        "--sine",
-        "0.3g",
-        "--freq",
-        "1",
-        "--duration",
-        "3",
-        "--summary",
-        summary.to_str().unwrap(),
-    ]);
+    let run = |model: &str| {
+        pirqa(&[
+            "run",
+            wall.to_str().unwrap(),
+            "--sine",
+            "0.3g",
+            "--freq",
+            "1",
+            "--duration",
+            "3",
+            "--model",
+            model,
+            "--summary",
+            summary.to_str().unwrap(),
+        ])
+    };
+    // Sliding only, it is flagged.
+    let (ok, out, err) = run("slide");
     assert!(ok, "{err}");
     assert!(
         out.contains("warning: B1") && out.contains("Housner"),
@@ -496,6 +502,22 @@ fn a_tall_block_gets_a_rocking_warning() {
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
     assert_eq!(s["warnings"].as_array().unwrap().len(), 1);
+    assert_eq!(s["model"]["name"], "slide");
+    // By default (auto) it is computed: it lifts where the sine reaches g b/h = 0.25 g.
+    let (ok, out, err) = run("auto");
+    assert!(ok, "{err}");
+    assert!(!out.contains("warning:"), "{out}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
+    assert_eq!(s["model"]["name"], "slide-rock");
+    assert!(
+        s["model"]["why"].as_str().unwrap().contains("can lift"),
+        "{s}"
+    );
+    let uplift = s["blocks"][0]["uplift_time_s"].as_f64().unwrap();
+    let want = (0.25f64 / 0.3).asin() / (2.0 * std::f64::consts::PI);
+    assert!((uplift - want).abs() < 1e-13, "{uplift} vs {want}");
+    assert!(s["blocks"][0]["max_abs_rotation_rad"].as_f64().unwrap() > 0.0);
     // The squat five-block wall under the same motion gets none.
     let (ok, out, _) = pirqa(&[
         "run",
@@ -507,7 +529,7 @@ fn a_tall_block_gets_a_rocking_warning() {
         "--duration",
         "3",
     ]);
-    assert!(ok && !out.contains("warning"), "{out}");
+    assert!(ok && !out.contains("warning:"), "{out}");
 }
 
 #[test]
@@ -1168,4 +1190,254 @@ fn a_vertical_record_ignores_options_meant_for_the_horizontal_one() {
         !ok && err.contains("leave --vertical-component out"),
         "{err}"
     );
+}
+
+/// The rocking model from the command line: a block released on still ground, pulses (a
+/// rectangular one and a sine of a few cycles), what is logged and written, and the options
+/// that do not fit refused with what to do.
+#[test]
+fn rocking_runs_pulses_releases_and_refusals() {
+    let out = temp_dir("rocking");
+    let dir = out.to_str().unwrap();
+    let stela = "walls/inca/stela.ron";
+    // Released from 0.05 rad on still ground: it rocks down to rest.
+    let (ok, text, err) = pirqa(&[
+        "run",
+        stela,
+        "--initial-rotation",
+        "Huanca=0.05",
+        "--duration",
+        "30",
+        "--out",
+        dir,
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        text.contains("model slide-rock (exact equations)"),
+        "{text}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["motion"], "ground at rest");
+    assert_eq!(summary["blocks"][0]["max_abs_rotation_rad"], 0.05);
+    assert!(summary["energy"]["initial_j"].as_f64().unwrap() > 0.0);
+    let events = std::fs::read_to_string(out.join("events.jsonl")).unwrap();
+    for kind in ["\"uplift\"", "\"rocking_impact\"", "\"rest\""] {
+        assert!(events.contains(kind), "no {kind} in\n{events}");
+    }
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    assert!(
+        history.starts_with("time_s,u_Huanca_m,v_Huanca_m_s,theta_Huanca_rad,omega_Huanca_rad_s\n")
+    );
+    assert!(std::fs::read_to_string(out.join("response.csv"))
+        .unwrap()
+        .contains("rotation"));
+    // A rectangular pulse that overturns it, with the linearised equations too.
+    for rocking in ["exact", "linearised"] {
+        let (ok, text, err) = pirqa(&[
+            "run",
+            stela,
+            "--pulse",
+            "0.5g",
+            "--pulse-s",
+            "1",
+            "--duration",
+            "6",
+            "--rocking",
+            rocking,
+        ]);
+        assert!(ok, "{err}");
+        assert!(text.contains("(overturning)"), "{rocking}: {text}");
+    }
+    // One sine cycle, then still ground for the rest of the run.
+    let (ok, text, err) = pirqa(&[
+        "run",
+        stela,
+        "--sine",
+        "0.25g",
+        "--freq",
+        "1",
+        "--cycles",
+        "1",
+        "--duration",
+        "5",
+    ]);
+    assert!(ok, "{err}");
+    assert!(text.contains("| 5 s") && text.contains("1 s"), "{text}");
+    // Across the plane of the paper's wall: every section, and the one nearest to overturning.
+    let (ok, text, err) = pirqa(&[
+        "run",
+        "walls/five-block-variable.ron",
+        "--direction",
+        "out-of-plane",
+        "--sine",
+        "0.4g",
+        "--freq",
+        "2",
+        "--duration",
+        "3",
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        text.contains("above_0m")
+            && text.contains("above_0.6m")
+            && text.contains("no section lifted"),
+        "{text}"
+    );
+    for (args, expect) in [
+        (
+            vec![
+                "run",
+                stela,
+                "--initial-rotation",
+                "B9=0.1",
+                "--duration",
+                "1",
+            ],
+            "no block of that name",
+        ),
+        (
+            vec!["run", stela, "--initial-rotation", "Huanca=0.1"],
+            "needs --duration",
+        ),
+        (
+            vec![
+                "run",
+                stela,
+                "--initial-rotation",
+                "Huanca=2",
+                "--duration",
+                "1",
+            ],
+            "below pi/2",
+        ),
+        (
+            vec![
+                "run",
+                stela,
+                "--initial-rotation",
+                "Huanca=0.1",
+                "--duration",
+                "1",
+                "--model",
+                "slide",
+            ],
+            "--model slide-rock or auto",
+        ),
+        (
+            vec![
+                "run",
+                stela,
+                "--pulse",
+                "0.5g",
+                "--pulse-s",
+                "1",
+                "--method",
+                "paper",
+            ],
+            "leave --method out",
+        ),
+        (
+            vec![
+                "run",
+                "walls/five-block-variable.ron",
+                "--sine",
+                "0.4g",
+                "--freq",
+                "1",
+                "--duration",
+                "1",
+                "--model",
+                "slide-rock",
+            ],
+            "--direction out-of-plane",
+        ),
+        (
+            vec![
+                "run",
+                stela,
+                "--pulse",
+                "0.5g",
+                "--pulse-s",
+                "1",
+                "--model",
+                "slide",
+                "--rocking",
+                "linearised",
+            ],
+            "leave --rocking out",
+        ),
+        (
+            vec!["run", stela, "--pulse", "0.5g", "--pulse-s", "0"],
+            "positive duration",
+        ),
+        (
+            vec![
+                "run", stela, "--sine", "0.5g", "--freq", "1", "--cycles", "0",
+            ],
+            "positive number of cycles",
+        ),
+        (
+            vec![
+                "run",
+                "walls/five-block-variable.ron",
+                "--direction",
+                "out-of-plane",
+                "--sine",
+                "0.4g",
+                "--freq",
+                "1",
+                "--duration",
+                "1",
+                "--initial-rotation",
+                "B1=0.1",
+            ],
+            "sections: above_0m, above_0.6m",
+        ),
+    ] {
+        let (ok, _, err) = pirqa(&args);
+        assert!(!ok && err.contains(expect), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn check_out_of_plane_gives_thresholds_curves_and_a_chart() {
+    let out = temp_dir("capacity");
+    let plot = out.join("capacity.svg");
+    let (ok, text, err) = pirqa(&[
+        "check",
+        "walls/five-block-variable.ron",
+        "--out-of-plane",
+        "--top",
+        "restrained",
+        "--overburden-kn-m",
+        "10",
+        "--json",
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["top"], "restrained");
+    let ground = &v["sections"][0];
+    assert_eq!(ground["name"], "above_0m");
+    // 4 t / H (1 + 1.5 P / W): t 0.8 m, H 1.2 m, P 10 kN/m over 2.4 m, W the wall's weight.
+    let w = ground["mass_kg"].as_f64().unwrap() * 9.81;
+    let want = 4.0 * 0.8 / 1.2 * (1.0 + 1.5 * 24_000.0 / w);
+    assert!((ground["threshold_g"].as_f64().unwrap() - want).abs() < 1e-12 * want);
+    assert_eq!(ground["capacity_curve"].as_array().unwrap().len(), 41);
+    assert_eq!(v["lowest_threshold"], "above_0m");
+    assert!(plot.exists() && plot.with_extension("csv").exists());
+    let (ok, text, _) = pirqa(&["check", "walls/five-block-variable.ron", "--out-of-plane"]);
+    assert!(ok && text.contains("lowest threshold: above_0m"), "{text}");
+    let (ok, _, err) = pirqa(&[
+        "check",
+        "walls/five-block-variable.ron",
+        "--out-of-plane",
+        "--overburden-kn-m",
+        "-1",
+    ]);
+    assert!(!ok && err.contains("zero or more"), "{err}");
+    let (ok, _, err) = pirqa(&["check", "walls/five-block-variable.ron", "--top", "free"]);
+    assert!(!ok && err.contains("--out-of-plane"), "{err}");
 }

@@ -59,6 +59,7 @@ fn wall_strategy() -> impl Strategy<Value = WallDescription> {
                 unit_weight_kn_m3: None,
                 friction: (mu[7] * 100.0).round() / 100.0,
                 restitution: (e * 10.0).round() / 10.0,
+                rocking_restitution_factor: 1.0,
                 g_m_s2: 9.81,
                 rows: vec![
                     RowDescription {

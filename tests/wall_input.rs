@@ -161,6 +161,14 @@ fn friction_and_restitution_out_of_range() {
         msg.contains("restitution = 1.2") && msg.contains("[0, 1]"),
         "{msg}"
     );
+    let msg = error_of(
+        "r.ron",
+        &wall("    rocking_restitution_factor: -0.1,", GOOD_ROWS, ""),
+    );
+    assert!(
+        msg.contains("r.ron: rocking_restitution_factor = -0.1") && msg.contains("[0, 1]"),
+        "{msg}"
+    );
 }
 
 #[test]

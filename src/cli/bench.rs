@@ -29,6 +29,22 @@ pub enum BenchCommand {
         #[arg(long, value_name = "CSV", conflicts_with_all = ["quick", "peer"])]
         from: Option<PathBuf>,
     },
+    /// Error against CPU time of the rocking model: the exact engine against Moreau-Jean with
+    /// rotations on a free-standing block (CSV and SVG).
+    WorkPrecisionRocking {
+        /// Output directory for work-precision-rocking.csv, .svg and -reach.csv.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// A short ladder (a quick look, not the committed figure).
+        #[arg(long)]
+        quick: bool,
+        /// The El Centro record of the last scenario.
+        #[arg(long, default_value = "records/elcentro1940_IELC180_peer_dt0p01_g.AT2")]
+        record: PathBuf,
+        /// Extra points from a peer engine (CSV with the same columns), drawn on the same chart.
+        #[arg(long)]
+        peer: Option<PathBuf>,
+    },
     /// Where the time-stepping methods fail (drift, chatter, energy, stiffness, Zeno, grazing):
     /// failures.svg, the data behind it (failures.csv) and the measured numbers (failures.json).
     Failures {
@@ -36,6 +52,32 @@ pub enum BenchCommand {
         #[arg(long, default_value = "out")]
         out: PathBuf,
     },
+}
+
+/// Writes a speed-accuracy study: its points (`STEM.csv`), its chart (`STEM.svg`) and what each
+/// method costs to reach each error level (`STEM-reach.csv`, also printed).
+fn write_panel(
+    out: &std::path::Path,
+    stem: &str,
+    points: &[work_precision::Point],
+    charts: &[chart::Chart],
+) -> Result<(), Error> {
+    write_file(
+        &out.join(format!("{stem}.csv")),
+        &work_precision::csv(points),
+    )?;
+    write_file(
+        &out.join(format!("{stem}.svg")),
+        &chart::render(charts, 2, (620, 440)),
+    )?;
+    let reach = work_precision::reach_csv(points);
+    write_file(&out.join(format!("{stem}-reach.csv")), &reach)?;
+    print!("{reach}");
+    eprintln!(
+        "wrote {}/{stem}.csv, {stem}.svg and {stem}-reach.csv",
+        out.display()
+    );
+    Ok(())
 }
 
 pub fn run(cmd: &BenchCommand) -> Result<(), Error> {
@@ -67,23 +109,35 @@ pub fn run(cmd: &BenchCommand) -> Result<(), Error> {
             if let Some(p) = peer {
                 points.extend(work_precision::read_csv(p)?);
             }
-            write_file(
-                &out.join("work-precision.csv"),
-                &work_precision::csv(&points),
-            )?;
             let charts = work_precision::charts(&points);
-            write_file(
-                &out.join("work-precision.svg"),
-                &chart::render(&charts, 2, (620, 440)),
-            )?;
-            let reach = work_precision::reach_csv(&points);
-            write_file(&out.join("work-precision-reach.csv"), &reach)?;
-            print!("{reach}");
-            eprintln!(
-                "wrote {}/work-precision.csv, .svg and work-precision-reach.csv",
-                out.display()
-            );
-            Ok(())
+            write_panel(out, "work-precision", &points, &charts)
+        }
+        BenchCommand::WorkPrecisionRocking {
+            out,
+            quick,
+            record,
+            peer,
+        } => {
+            let steps: &[f64] = if *quick {
+                &[1e-2, 1e-3]
+            } else {
+                &[1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5]
+            };
+            let min_time = if *quick { 0.0 } else { 0.2 };
+            let mut points = Vec::new();
+            for case in &work_precision::rocking_cases(record)? {
+                points.extend(work_precision::run_rocking_case(
+                    case,
+                    steps,
+                    min_time,
+                    |what| eprintln!("  {what}"),
+                )?);
+            }
+            if let Some(p) = peer {
+                points.extend(work_precision::read_csv(p)?);
+            }
+            let charts = work_precision::rocking_charts(&points);
+            write_panel(out, "work-precision-rocking", &points, &charts)
         }
         BenchCommand::Failures { out } => {
             let demos = failures::all(|what| eprintln!("  {what}"))?;

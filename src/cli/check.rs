@@ -1,11 +1,143 @@
 //! `pirqa check` and `pirqa draw`.
 
 use super::{print_out, write_file};
+use pirqa::plot::chart::{self, Chart, Series};
 use pirqa::plot::{draw_wall, WallDrawing};
 use pirqa::response::saved::state_at;
 use pirqa::topology;
+use pirqa::topology::sections::{self, Top};
 use std::fmt::Write;
 use std::path::Path;
+
+/// `pirqa check --out-of-plane`: every section's static threshold and capacity curve, the
+/// lowest threshold named.
+pub fn out_of_plane(
+    path: &Path,
+    json: bool,
+    top: Top,
+    overburden_kn_m: Option<f64>,
+    plot: Option<&Path>,
+) -> Result<(), pirqa::Error> {
+    let (wall, topo) = topology::load(path)?;
+    let q = overburden_kn_m.unwrap_or(0.0);
+    if !(q.is_finite() && q >= 0.0) {
+        return Err(pirqa::Error::Motion {
+            path: "--overburden-kn-m".into(),
+            source: pirqa::error::MotionError::Invalid(format!(
+                "{q} kN/m: an overburden must be a finite load, zero or more"
+            )),
+        });
+    }
+    let report = sections::check(&wall, &topo, top, q);
+    if let Some(file) = plot {
+        let chart = Chart {
+            title: format!(
+                "{}: capacity across the plane, top {}",
+                wall.name,
+                top_name(top)
+            ),
+            x_label: "theta (rad)".into(),
+            y_label: "lambda (g)".into(),
+            series: report
+                .sections
+                .iter()
+                .enumerate()
+                .map(|(k, c)| Series {
+                    label: c.section.name.clone(),
+                    points: c
+                        .capacity_curve
+                        .iter()
+                        .map(|p| (p.theta_rad, p.lambda_g))
+                        .collect(),
+                    color: k,
+                    ..Series::default()
+                })
+                .collect(),
+            ..Chart::default()
+        };
+        write_file(
+            file,
+            &chart::render(std::slice::from_ref(&chart), 1, (700, 450)),
+        )?;
+        write_file(&file.with_extension("csv"), &chart::to_csv(&[chart]))?;
+    }
+    if json {
+        print_out(&(serde_json::to_string_pretty(&report).expect("report serialises") + "\n"));
+        return Ok(());
+    }
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "{} ({}) across its plane: top {}, overburden {q} kN/m, thickness {} m",
+        wall.name,
+        path.display(),
+        top_name(top),
+        wall.thickness_m.to_f64()
+    );
+    let width = report
+        .sections
+        .iter()
+        .map(|c| c.section.name.len())
+        .max()
+        .unwrap_or(0)
+        .max(8);
+    let _ = writeln!(
+        out,
+        "  {:<width$} {:>8} {:>9} {:>11} {:>8} {:>9} {:>10} {:>10} {:>15}",
+        "section",
+        "level_m",
+        "height_m",
+        "mass_kg",
+        "h_c_m",
+        "friction",
+        "lambda0_g",
+        "a0_m_s2",
+        "theta_zero_rad"
+    );
+    for c in &report.sections {
+        let s = &c.section;
+        let _ = writeln!(
+            out,
+            "  {:<width$} {:>8.3} {:>9.3} {:>11.1} {:>8.3} {:>9.3} {:>10.4} {:>10.4} {:>15.4}",
+            s.name,
+            s.level_m,
+            s.height_m,
+            s.mass_kg,
+            s.centroid_height_m,
+            s.friction,
+            c.threshold_g,
+            c.threshold_m_s2,
+            c.zero_capacity_rotation_rad
+        );
+    }
+    if let Some(w) = &report.lowest_threshold {
+        let _ = writeln!(
+            out,
+            "  lowest threshold: {w} (lambda0 g starts a section rocking if its base holds: a \
+             bed joint whose friction is below lambda0 slides first)"
+        );
+    }
+    for k in &report.skipped {
+        let _ = writeln!(out, "  level {} m not checked: {}", k.level_m, k.why);
+    }
+    if let Some(file) = plot {
+        let _ = writeln!(
+            out,
+            "  wrote {} and {}",
+            file.display(),
+            file.with_extension("csv").display()
+        );
+    }
+    print_out(&out);
+    Ok(())
+}
+
+fn top_name(top: Top) -> &'static str {
+    match top {
+        Top::Free => "free",
+        Top::Restrained => "restrained",
+    }
+}
 
 pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
     let (wall, topo) = topology::load(path)?;

@@ -6,12 +6,14 @@ mod check;
 mod generate;
 mod import;
 mod motion;
+mod overturning;
 mod paper;
 mod run;
 mod sweep;
 
 use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser, Subcommand};
+use pirqa::topology::sections::Top;
 use std::path::PathBuf;
 
 /// Exact event-driven dynamics of dry-stone block walls under earthquakes.
@@ -32,6 +34,27 @@ enum Command {
         /// Print JSON instead of tables.
         #[arg(long)]
         json: bool,
+        /// Check the wall across its plane instead: for the part above every bed joint, the
+        /// ground acceleration that starts it rocking and its capacity curve lambda(theta).
+        #[arg(long)]
+        out_of_plane: bool,
+        /// With --out-of-plane: the top free (a cantilever) or held sideways (a one-way
+        /// spanning wall).
+        #[arg(long, value_enum, default_value_t = Top::Free, requires = "out_of_plane")]
+        top: Top,
+        /// With --out-of-plane: a load on top of the wall (kN per metre of wall), carried down
+        /// without inertia of its own.
+        #[arg(
+            long,
+            value_name = "KN_M",
+            requires = "out_of_plane",
+            allow_hyphen_values = true
+        )]
+        overburden_kn_m: Option<f64>,
+        /// With --out-of-plane: draw the capacity curves to this SVG (their data beside it, as
+        /// CSV).
+        #[arg(long, value_name = "FILE", requires = "out_of_plane")]
+        plot: Option<PathBuf>,
     },
     /// Draw a wall's elevation as SVG with block names and joint friction.
     Draw {
@@ -64,6 +87,9 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Reproduce the paper's Fig. 3-6 (and the checks of docs/paper.md).
     Paper(paper::PaperArgs),
+    /// The smallest one-sine pulse that overturns a free-standing block, over the pulse's
+    /// frequency: exact equations, with friction, and Housner's linearisation.
+    Overturning(overturning::OverturningArgs),
     /// Generate a running-bond wall: one overall size cut into any number of blocks.
     Generate(generate::GenerateArgs),
     /// Import a survey of block outlines (CSV) into a wall file, snapping edges within a
@@ -75,7 +101,15 @@ enum Command {
 pub fn run() -> Result<(), pirqa::Error> {
     let cli = Cli::parse();
     match cli.command {
-        Command::Check { wall, json } => check::check(&wall, json),
+        Command::Check {
+            wall,
+            json,
+            out_of_plane: true,
+            top,
+            overburden_kn_m,
+            plot,
+        } => check::out_of_plane(&wall, json, top, overburden_kn_m, plot.as_deref()),
+        Command::Check { wall, json, .. } => check::check(&wall, json),
         Command::Draw {
             wall,
             output,
@@ -99,6 +133,7 @@ pub fn run() -> Result<(), pirqa::Error> {
         Command::Bench(cmd) => bench::run(&cmd),
         Command::Sweep(args) => sweep::run(&args),
         Command::Paper(args) => paper::run(&args),
+        Command::Overturning(args) => overturning::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Import(args) => import::run(&args),
     }

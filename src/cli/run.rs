@@ -2,12 +2,13 @@
 //! when asked, decisions.jsonl).
 
 use super::{print_out, write_file};
-use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
+use pirqa::integrate::baselines::{Moreau, MoreauRocking, PaperNewmark, Regularized};
 use pirqa::integrate::event::EventDriven;
+use pirqa::integrate::rocking::{self, Equations, ModelChoice, Rocking};
 use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
 use pirqa::motion::{
-    check_scale, process, read_companion, read_record, Baseline, Motion, Processing, ReadOptions,
-    Sine,
+    check_scale, process, read_companion, read_record, Baseline, Motion, Processing, Pulse,
+    ReadOptions, Sine,
 };
 use pirqa::plot::{chart, response_charts};
 use pirqa::response::{DecisionCause, DecisionRecord, Response};
@@ -30,6 +31,16 @@ pub struct MotionArgs {
     /// Sine phase at t = 0 (degrees).
     #[arg(long, value_name = "DEG", default_value_t = 0.0)]
     pub phase: f64,
+    /// Only this many cycles of the sine, then the ground rests (a pulse: one cycle is the
+    /// one-sine pulse of the rocking literature); --duration may run past them.
+    #[arg(long, value_name = "N", requires = "sine")]
+    pub cycles: Option<f64>,
+    /// A rectangular pulse of this amplitude with units (0.3g, 300gal), then the ground rests.
+    #[arg(long, value_name = "AMP", conflicts_with_all = ["sine", "record"], requires = "pulse_s")]
+    pub pulse: Option<String>,
+    /// Duration of the rectangular pulse (s).
+    #[arg(long, value_name = "S", requires = "pulse")]
+    pub pulse_s: Option<f64>,
     /// Acceleration record: PEER AT2, K-NET/KiK-net, COSMOS V2, or plain text/CSV.
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
@@ -80,6 +91,22 @@ fn bad(what: &str, message: String) -> Error {
     }
 }
 
+impl MotionArgs {
+    /// No ground motion was given.
+    pub fn is_empty(&self) -> bool {
+        self.sine.is_none() && self.record.is_none() && self.pulse.is_none()
+    }
+}
+
+/// `--scale` checked, naming the option.
+fn scale_factor(k: f64) -> Result<f64, Error> {
+    check_scale(k).map_err(|source| Error::Motion {
+        path: PathBuf::from("--scale"),
+        source,
+    })?;
+    Ok(k)
+}
+
 /// Builds the ground motion described by the options (`duration` is needed for a sine, `g` for
 /// a vertical component), with a log of the processing applied.
 pub fn build_motion(
@@ -88,27 +115,50 @@ pub fn build_motion(
     g: f64,
 ) -> Result<(Motion, Vec<String>), Error> {
     let pga = m.pga.as_deref().map(parse_acceleration).transpose()?;
+    // A sine's or a pulse's amplitude: as given, set to --pga, then times --scale.
+    let amplitude = |text: &str, notes: &mut Vec<String>| -> Result<f64, Error> {
+        let mut a = parse_acceleration(text)?;
+        if let Some(p) = pga {
+            notes.push(format!("amplitude set to PGA {p} m/s2"));
+            a = p;
+        }
+        if let Some(k) = m.scale {
+            notes.push(format!("scaled by {k}"));
+            a *= scale_factor(k)?;
+        }
+        Ok(a)
+    };
+    if let (Some(amp), Some(length)) = (&m.pulse, m.pulse_s) {
+        let mut notes = Vec::new();
+        let a = amplitude(amp, &mut notes)?;
+        let pulse = Pulse::new(a, length).map_err(|source| Error::Motion {
+            path: PathBuf::from("--pulse"),
+            source,
+        })?;
+        return Ok((Motion::Pulse(pulse), notes));
+    }
     match (&m.sine, &m.record) {
         (Some(amp), None) => {
-            let mut a = parse_acceleration(amp)?;
             let mut notes = Vec::new();
-            if let Some(p) = pga {
-                notes.push(format!("amplitude set to PGA {p} m/s2"));
-                a = p;
-            }
-            if let Some(k) = m.scale {
-                check_scale(k).map_err(|source| Error::Motion {
-                    path: PathBuf::from("--scale"),
-                    source,
-                })?;
-                notes.push(format!("scaled by {k}"));
-                a *= k;
-            }
+            let a = amplitude(amp, &mut notes)?;
             let freq = m
                 .freq
                 .ok_or_else(|| bad("--freq", "a sine needs --freq HZ".into()))?;
-            let duration =
-                duration.ok_or_else(|| bad("--duration", "a sine needs --duration S".into()))?;
+            let duration = match m.cycles {
+                Some(n) if n.is_finite() && n > 0.0 && freq.is_finite() && freq > 0.0 => {
+                    notes.push(format!("{n} cycles, then the ground rests"));
+                    n / freq
+                }
+                Some(n) => {
+                    return Err(bad(
+                        "--cycles",
+                        format!("{n} cycles: give a positive number of cycles"),
+                    ))
+                }
+                None => {
+                    duration.ok_or_else(|| bad("--duration", "a sine needs --duration S".into()))?
+                }
+            };
             let sine = Sine::new(a, freq, m.phase.to_radians(), duration).map_err(|source| {
                 Error::Motion {
                     path: PathBuf::from("--sine"),
@@ -198,7 +248,10 @@ pub fn build_motion(
         }
         _ => Err(bad(
             "motion",
-            "give the ground motion: --sine AMP --freq HZ, or --record FILE".into(),
+            "give the ground motion: --sine AMP --freq HZ, --record FILE or --pulse AMP \
+             --pulse-s S (or, to release a block from a rotation on still ground, \
+             --initial-rotation NAME=RAD with --duration)"
+                .into(),
         )),
     }
 }
@@ -249,6 +302,58 @@ pub struct RunArgs {
     /// Penalty contact stiffness of `regularized` (N/m).
     #[arg(long, default_value_t = 1e9)]
     pub stiffness: f64,
+    /// Model: blocks that only slide, blocks that may also lift, rock and overturn, or auto
+    /// (sliding while no block can lift, rocking from the first uplift). Rocking runs walls of
+    /// one free-standing block, and every wall across its plane.
+    #[arg(long, value_enum, default_value_t = ModelChoice::Auto)]
+    pub model: ModelChoice,
+    /// The rocking equations: exact, or Housner's slender-block linearisation (no sliding), for
+    /// comparison with the literature.
+    #[arg(long, value_enum, value_name = "EQUATIONS")]
+    pub rocking: Option<RockingEquations>,
+    /// In the wall's plane, or across it (the motion perpendicular to the wall: the part above
+    /// each bed joint rocks on it as one body).
+    #[arg(long, value_enum, default_value_t = Direction::InPlane)]
+    pub direction: Direction,
+    /// Start a block (or a section across the plane) from rest at this rotation, NAME=RAD
+    /// (positive: on its right corner, or towards the back face); repeatable. Without a
+    /// ground motion the ground rests for --duration.
+    #[arg(long, value_name = "NAME=RAD", value_parser = parse_rotation)]
+    pub initial_rotation: Vec<(String, f64)>,
+}
+
+/// The rocking equations, as the command line names them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum RockingEquations {
+    /// The exact nonlinear equations with sliding, slide-rock and free flight checked.
+    Exact,
+    /// Housner's linearisation on a base that never slips.
+    Linearised,
+}
+
+/// The direction of the ground motion relative to the wall.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Direction {
+    /// Along the wall, in its plane.
+    InPlane,
+    /// Across the wall.
+    OutOfPlane,
+}
+
+fn parse_rotation(text: &str) -> Result<(String, f64), String> {
+    let (name, value) = text
+        .split_once('=')
+        .ok_or_else(|| format!("\"{text}\": write NAME=RAD, e.g. B1=0.05"))?;
+    let theta: f64 = value
+        .trim()
+        .parse()
+        .map_err(|_| format!("\"{value}\" is not a number of radians"))?;
+    if !theta.is_finite() || theta.abs() >= std::f64::consts::FRAC_PI_2 {
+        return Err(format!(
+            "{theta} rad: a rotation must be finite and below pi/2 in size"
+        ));
+    }
+    Ok((name.trim().to_string(), theta))
 }
 
 /// Integrators.
@@ -282,7 +387,17 @@ impl RunArgs {
 
 pub fn run(args: &RunArgs) -> Result<(), Error> {
     let (wall, topo) = topology::load(&args.wall)?;
-    let (motion, notes) = build_motion(&args.motion, args.duration, wall.g_m_s2.to_f64())?;
+    let (motion, notes) = if args.motion.is_empty() && !args.initial_rotation.is_empty() {
+        if args.duration.is_none() {
+            return Err(bad(
+                "--duration",
+                "a block released on still ground needs --duration S".into(),
+            ));
+        }
+        (Motion::Pulse(Pulse::rest()), Vec::new())
+    } else {
+        build_motion(&args.motion, args.duration, wall.g_m_s2.to_f64())?
+    };
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
     let (bar, progress) = super::sweep::simulated_time_bar(duration, &wall.name);
     let settings = Settings {
@@ -299,7 +414,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         motion: &motion,
         settings: &settings,
     };
-    let response = args.integrator().run(&scenario);
+    let response = simulate(args, &scenario);
     bar.finish_and_clear();
     let mut response = response?;
     response.summary.motion_processing = notes;
@@ -314,6 +429,83 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         print_out(&decision_table(&response.decisions));
     }
     Ok(())
+}
+
+/// Runs the model the options ask for: sliding, or rocking (in the wall's plane for a
+/// free-standing block, across it for every wall), and says in the summary which and why.
+fn simulate(args: &RunArgs, sc: &Scenario) -> Result<Response, Error> {
+    let equations = match args.rocking {
+        Some(RockingEquations::Linearised) => Equations::Linearised,
+        _ => Equations::Exact,
+    };
+    let needs_event = |what: &str| -> Result<(), Error> {
+        if args.method != Method::Event {
+            return Err(bad(
+                "--method",
+                format!(
+                    "{what} runs on the exact event-driven integrator only: leave --method out \
+                     (or run with --model slide)"
+                ),
+            ));
+        }
+        Ok(())
+    };
+    if args.direction == Direction::OutOfPlane {
+        if args.model == ModelChoice::Slide {
+            return Err(bad(
+                "--direction",
+                "across the wall's plane the wall rocks: use --model slide-rock or auto".into(),
+            ));
+        }
+        needs_event("rocking across the plane")?;
+        return Ok(rocking::out_of_plane(
+            sc.wall,
+            sc.topology,
+            sc.motion,
+            sc.settings,
+            equations,
+            &args.initial_rotation,
+        )?);
+    }
+    if args.rocking.is_some() && args.model == ModelChoice::Slide {
+        return Err(bad(
+            "--rocking",
+            "--model slide rotates no block: leave --rocking out, or use --model slide-rock".into(),
+        ));
+    }
+    let (rocks, why) = rocking::rocks_in_plane(
+        args.model,
+        sc.wall,
+        sc.topology,
+        sc.motion,
+        sc.settings.duration_s,
+        &args.initial_rotation,
+    )?;
+    let initial = args.initial_rotation.first().map_or(0.0, |r| r.1);
+    let mut response = if rocks && args.method == Method::Moreau {
+        if args.rocking.is_some() {
+            return Err(bad(
+                "--rocking",
+                "Moreau-Jean steps the rigid body's own equations: leave --rocking out".into(),
+            ));
+        }
+        MoreauRocking {
+            initial_rotation_rad: initial,
+            ..MoreauRocking::new(args.dt)
+        }
+        .run(sc)?
+    } else if rocks {
+        needs_event("the rocking model (or --method moreau)")?;
+        Rocking {
+            equations,
+            initial_rotation_rad: initial,
+        }
+        .run(sc)?
+    } else {
+        args.integrator().run(sc)?
+    };
+    response.summary.model.why = why;
+    Ok(response)
 }
 
 /// Writes a run's files into `dir`; with a history, also its chart (`response.svg`) and the
@@ -356,21 +548,53 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
         "{} | {} | {} | {} s",
         s.wall, s.method, s.motion, s.duration_s
     );
+    let m = &s.model;
     let _ = writeln!(
         t,
-        "  {:<8} {:>12} {:>12} {:>12}",
+        "  model {}{}, {}: {}",
+        m.name,
+        m.equations
+            .as_deref()
+            .map_or(String::new(), |e| format!(" ({e} equations)")),
+        m.direction,
+        m.why
+    );
+    let rocking = m.name != "slide";
+    let width = s
+        .blocks
+        .iter()
+        .map(|b| b.name.len())
+        .max()
+        .unwrap_or(0)
+        .max(8);
+    let _ = write!(
+        t,
+        "  {:<width$} {:>12} {:>12} {:>12}",
         "block", "max|u| m", "final u m", "max|v| m/s"
     );
-    for b in &s.blocks {
-        let _ = writeln!(
+    if rocking {
+        let _ = write!(
             t,
-            "  {:<8} {:>12.6} {:>12.6} {:>12.6}{}",
-            b.name,
-            b.max_abs_displacement_m,
-            b.final_displacement_m,
-            b.max_abs_velocity_m_s,
-            if b.fell { "  fell" } else { "" }
+            " {:>14} {:>10} {:>8}",
+            "max|theta| rad", "uplift s", "landings"
         );
+    }
+    t.push('\n');
+    for b in &s.blocks {
+        let _ = write!(
+            t,
+            "  {:<width$} {:>12.6} {:>12.6} {:>12.6}",
+            b.name, b.max_abs_displacement_m, b.final_displacement_m, b.max_abs_velocity_m_s,
+        );
+        if rocking {
+            let uplift = b.uplift_time_s.map_or("-".into(), |u| format!("{u:.4}"));
+            let _ = write!(
+                t,
+                " {:>14.6} {:>10} {:>8}",
+                b.max_abs_rotation_rad, uplift, b.rocking_impacts
+            );
+        }
+        let _ = writeln!(t, "{}", if b.fell { "  fell" } else { "" });
     }
     let _ = writeln!(
         t,
@@ -379,18 +603,48 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
     );
     match &s.collapse {
         Some(c) => {
-            let _ = writeln!(t, "  COLLAPSE: {} fell at t = {:.6} s", c.block, c.time_s);
+            let cause = serde_json::to_value(c.cause).expect("a cause serialises");
+            let _ = writeln!(
+                t,
+                "  COLLAPSE: {} fell at t = {:.6} s ({})",
+                c.block,
+                c.time_s,
+                cause.as_str().unwrap_or_default()
+            );
         }
         None => {
             let _ = writeln!(t, "  no collapse");
         }
     }
+    match &s.worst {
+        Some(w) => {
+            let _ = writeln!(
+                t,
+                "  nearest to overturning: {} (max |theta| = {:.4} alpha){}",
+                w.block,
+                w.rotation_over_alpha,
+                if w.overturned { ", overturned" } else { "" }
+            );
+        }
+        None if m.direction == "out-of-plane" => {
+            let _ = writeln!(t, "  no section lifted");
+        }
+        None => {}
+    }
     let e = &s.energy;
-    let _ = writeln!(
+    let _ = write!(
         t,
-        "  energy J: input {:.6e}, friction {:.6e}, impacts {:.6e}, kinetic {:.6e}, residual {:.2e}",
-        e.input_j, e.friction_j, e.impact_loss_j, e.kinetic_j, e.residual_j
+        "  energy J: input {:.6e}, friction {:.6e}, impacts {:.6e}, kinetic {:.6e}",
+        e.input_j, e.friction_j, e.impact_loss_j, e.kinetic_j
     );
+    if rocking {
+        let _ = write!(
+            t,
+            ", potential {:.6e}, initial {:.6e}, fallen {:.6e}",
+            e.potential_j, e.initial_j, e.fallen_j
+        );
+    }
+    let _ = writeln!(t, ", residual {:.2e}", e.residual_j);
     for w in &s.warnings {
         let _ = writeln!(t, "  warning: {w}");
     }

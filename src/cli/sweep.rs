@@ -136,9 +136,15 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
             s.phase_rad.to_degrees(),
             s.duration_s
         ),
+        pirqa::motion::Motion::Pulse(p) => {
+            format!(
+                "--pulse {}m/s2 --pulse-s {}",
+                p.amplitude_m_s2, p.duration_s
+            )
+        }
     };
     let command = format!(
-        "pirqa run {}/wall.ron {motion_args} --duration {} --out {}{}\n",
+        "pirqa run {}/wall.ron {motion_args} --model slide --duration {} --out {}{}\n",
         dir.display(),
         motion.duration_s,
         dir.display(),

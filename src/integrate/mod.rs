@@ -4,6 +4,7 @@
 
 pub mod baselines;
 pub mod event;
+pub mod rocking;
 pub mod stepping;
 
 use crate::error::SimulationError;

@@ -6,7 +6,7 @@
 use crate::error::SimulationError;
 use crate::integrate::{AfterCollapse, Progress, Scenario};
 use crate::motion::Motion;
-use crate::response::{Collapse, EventKind, Recorder, Response};
+use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response};
 use crate::topology::Base;
 
 /// A method parameter (a step, a tolerance, a stiffness) must be finite and positive.
@@ -277,6 +277,7 @@ impl<'a> Observer<'a> {
                 self.rec.collapse = Some(Collapse {
                     time_s: t,
                     block: self.rec.names()[i].clone(),
+                    cause: CollapseCause::SlidingOff,
                 });
             }
             self.rec.event(t, EventKind::Collapse, &[i], None, None);
@@ -325,6 +326,6 @@ impl<'a> Observer<'a> {
         self.rec.warnings =
             crate::validity::rocking_warnings(sc.wall, sc.topology, self.rec.peak_accel());
         self.rec
-            .finish(method, sc.wall, sc.motion.describe(), t, &u, &v)
+            .finish(method, &sc.wall.name, sc.motion.describe(), t, &u, &v)
     }
 }

@@ -22,6 +22,41 @@ pub enum Motion {
     Sine(Sine),
     /// Piecewise-linear between samples, 0 after the last sample (reached linearly over one step).
     Record(Record),
+    /// a_g = amplitude for 0 <= t < duration, 0 after: a rectangular pulse, the classic test
+    /// of rocking (amplitude 0: the ground at rest).
+    Pulse(Pulse),
+}
+
+/// A rectangular pulse.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pulse {
+    /// Amplitude (m/s2).
+    pub amplitude_m_s2: f64,
+    /// Duration (s).
+    pub duration_s: f64,
+}
+
+impl Pulse {
+    /// A pulse; checks that the numbers make sense.
+    pub fn new(amplitude_m_s2: f64, duration_s: f64) -> Result<Pulse, MotionError> {
+        if !(amplitude_m_s2.is_finite() && duration_s.is_finite() && duration_s > 0.0) {
+            return Err(MotionError::Invalid(format!(
+                "a pulse needs a finite amplitude and a positive duration (got {amplitude_m_s2} m/s2 for {duration_s} s)"
+            )));
+        }
+        Ok(Pulse {
+            amplitude_m_s2,
+            duration_s,
+        })
+    }
+
+    /// The ground at rest.
+    pub fn rest() -> Pulse {
+        Pulse {
+            amplitude_m_s2: 0.0,
+            duration_s: 0.0,
+        }
+    }
 }
 
 /// A sine.
@@ -216,6 +251,7 @@ impl Motion {
         match self {
             Motion::Sine(s) => s.duration_s,
             Motion::Record(r) => r.duration_s(),
+            Motion::Pulse(p) => p.duration_s,
         }
     }
 
@@ -229,6 +265,7 @@ impl Motion {
         match self {
             Motion::Sine(s) => s.amplitude_m_s2.abs(),
             Motion::Record(r) => r.pga_m_s2(),
+            Motion::Pulse(p) => p.amplitude_m_s2.abs(),
         }
     }
 
@@ -263,6 +300,8 @@ impl Motion {
                     end = sine_arc(s, end).map_or(f64::INFINITY, |(_, t)| t);
                 }
             }
+            // Constant, then zero: the ends hold both.
+            Motion::Pulse(_) => {}
         }
         (lo, hi)
     }
@@ -287,6 +326,13 @@ impl Motion {
                 r.dt_s,
                 r.pga_m_s2()
             ),
+            Motion::Pulse(p) if p.amplitude_m_s2 == 0.0 => "ground at rest".into(),
+            Motion::Pulse(p) => format!(
+                "rectangular pulse {} m/s2 ({:.1} gal) for {} s",
+                p.amplitude_m_s2,
+                p.amplitude_m_s2 * 100.0,
+                p.duration_s
+            ),
         }
     }
 
@@ -294,6 +340,13 @@ impl Motion {
     pub fn accel(&self, t: f64) -> f64 {
         match self {
             Motion::Sine(s) => sine_accel(s, t),
+            Motion::Pulse(p) => {
+                if t < p.duration_s {
+                    p.amplitude_m_s2
+                } else {
+                    0.0
+                }
+            }
             Motion::Record(_) => {
                 let s = self.segment_at(t);
                 s.accel(t - s.t0)
@@ -306,6 +359,7 @@ impl Motion {
         match self {
             Motion::Sine(s) => sine_segment(s, t),
             Motion::Record(r) => record_segment(r, t),
+            Motion::Pulse(p) => pulse_segment(p, t),
         }
     }
 
@@ -397,6 +451,30 @@ fn sine_state(s: &Sine, t: f64) -> (f64, f64) {
         shape: Shape::sine(s.amplitude_m_s2, s.omega(), s.phase_rad),
     };
     (seg.dv(t), seg.dd(t))
+}
+
+fn pulse_segment(p: &Pulse, t: f64) -> Segment {
+    let (a, d) = (p.amplitude_m_s2, p.duration_s);
+    let flat = |a0: f64| Shape::Linear { a0, slope: 0.0 };
+    if t < d {
+        Segment {
+            t0: 0.0,
+            t1: d,
+            v0: 0.0,
+            d0: 0.0,
+            lambda: (1.0, 0.0),
+            shape: flat(a),
+        }
+    } else {
+        Segment {
+            t0: d,
+            t1: f64::INFINITY,
+            v0: a * d,
+            d0: 0.5 * a * d * d,
+            lambda: (1.0, 0.0),
+            shape: flat(0.0),
+        }
+    }
 }
 
 /// The sample interval [k dt, (k + 1) dt) holding t; n (the record's length) past its end.
@@ -547,6 +625,22 @@ mod tests {
             want = (want.0.min(x), want.1.max(x));
         }
         want
+    }
+
+    #[test]
+    fn a_pulse_is_constant_then_zero_with_exact_integrals() {
+        let m = Motion::Pulse(Pulse::new(-3.0, 0.5).unwrap());
+        assert_eq!(m.accel(0.49), -3.0);
+        assert_eq!(m.accel(0.5), 0.0);
+        assert_relative_eq!(m.velocity(0.25), -0.75, epsilon = 1e-15);
+        assert_relative_eq!(m.displacement(2.0), -0.375 - 1.5 * 1.5, epsilon = 1e-15);
+        assert_eq!(m.accel_range(0.1, 0.7), (-3.0, 0.0));
+        assert!(Pulse::new(1.0, 0.0).is_err() && Pulse::new(f64::NAN, 1.0).is_err());
+        let rest = Motion::Pulse(Pulse::rest());
+        assert_eq!(
+            (rest.accel(0.0), rest.describe().as_str()),
+            (0.0, "ground at rest")
+        );
     }
 
     #[test]

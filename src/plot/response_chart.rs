@@ -1,6 +1,6 @@
 //! The chart a run writes beside its history (`response.svg`, its data in `response.csv`): the
-//! ground acceleration, and the displacement of the blocks that moved most, each line thinned
-//! to what a chart shows with every extreme kept.
+//! ground acceleration, the displacement of the blocks that moved most and, when blocks rock,
+//! their rotation, each line thinned to what a chart shows with every extreme kept.
 
 use super::chart::{envelope, Chart, Series};
 use crate::motion::Motion;
@@ -15,13 +15,15 @@ const BINS: usize = 1500;
 /// Ground samples at most (a sine is sampled 40 times a period, a record at its own samples).
 const GROUND_SAMPLES: f64 = 1e6;
 
-/// The two panels of a run's chart, `None` without a history.
+/// The panels of a run's chart (two, three with rotations), `None` without a history.
 pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
     let h = r.history.as_ref()?;
     let end = *h.time_s.last()?;
     let step = match motion {
         Motion::Record(rec) => rec.dt_s,
         Motion::Sine(s) => 1.0 / (40.0 * s.frequency_hz),
+        // Constant stretches: the envelope keeps the jumps whatever the step.
+        Motion::Pulse(_) => end / 2000.0,
     }
     .max(end / GROUND_SAMPLES);
     let samples = (end / step).ceil() as usize;
@@ -40,24 +42,22 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
     });
     drawn.truncate(MOST_MOVED);
     drawn.sort_unstable();
-    let series = drawn
-        .iter()
-        .enumerate()
-        .map(|(colour, &i)| {
-            let line: Vec<(f64, f64)> = h
-                .time_s
-                .iter()
-                .zip(&h.displacement_m)
-                .map(|(&t, u)| (t, u[i]))
-                .collect();
-            Series {
-                label: blocks[i].name.clone(),
-                points: envelope(&line, BINS),
-                color: colour,
-                ..Series::default()
-            }
-        })
-        .collect();
+    let lines = |rows: &[Vec<f64>]| -> Vec<Series> {
+        drawn
+            .iter()
+            .enumerate()
+            .map(|(colour, &i)| {
+                let line: Vec<(f64, f64)> =
+                    h.time_s.iter().zip(rows).map(|(&t, x)| (t, x[i])).collect();
+                Series {
+                    label: blocks[i].name.clone(),
+                    points: envelope(&line, BINS),
+                    color: colour,
+                    ..Series::default()
+                }
+            })
+            .collect()
+    };
     let which = if blocks.len() <= MOST_MOVED {
         "every block".to_string()
     } else {
@@ -66,7 +66,7 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
             blocks.len()
         )
     };
-    Some(vec![
+    let mut charts = vec![
         Chart {
             title: "ground acceleration".into(),
             x_label: "t (s)".into(),
@@ -82,8 +82,18 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
             title: format!("displacement relative to the ground, {which}"),
             x_label: "t (s)".into(),
             y_label: "u (m)".into(),
-            series,
+            series: lines(&h.displacement_m),
             ..Chart::default()
         },
-    ])
+    ];
+    if !h.rotation_rad.is_empty() {
+        charts.push(Chart {
+            title: format!("rotation (positive: on the right corner), {which}"),
+            x_label: "t (s)".into(),
+            y_label: "theta (rad)".into(),
+            series: lines(&h.rotation_rad),
+            ..Chart::default()
+        });
+    }
+    Some(charts)
 }

@@ -12,7 +12,7 @@ use std::fmt::Write;
 
 /// Kinds of logged events.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub enum EventKind {
     /// A horizontal joint starts to slide.
     Slip,
@@ -28,6 +28,20 @@ pub enum EventKind {
     Collapse,
     /// A sequence of impacts with e < 1 accumulates; the faces stay in contact from here.
     Zeno,
+    /// A seated block lifts off one corner and starts to rock.
+    Uplift,
+    /// A rocking block lands on its other corner.
+    RockingImpact,
+    /// The corner a block rocks on stops slipping.
+    PivotStick,
+    /// The corner a block rocks on starts to slip (slide-rock).
+    PivotSlip,
+    /// A rocking block comes to rest seated on both corners (its impacts accumulated).
+    Rest,
+    /// A block overturns: it passed the point of no return, or lies on its face.
+    Overturning,
+    /// A block leaves the ground on both corners (free flight): beyond the model, the run stops.
+    Flight,
 }
 
 /// One logged event.
@@ -51,6 +65,15 @@ pub struct EventRecord {
     /// Velocities of the two blocks (left, right) just after an impact (m/s).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub after_m_s: Option<[f64; 2]>,
+    /// A rocking block's angular velocity just before the event (rad/s, clockwise positive).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angular_velocity_before_rad_s: Option<f64>,
+    /// Its angular velocity just after (rad/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angular_velocity_after_rad_s: Option<f64>,
+    /// The mode a rocking block goes on in ("rock on the left corner", ...).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mode: Option<String>,
 }
 
 /// What brought the event-driven integrator to decide the mode again.
@@ -136,8 +159,15 @@ pub struct BlockSummary {
     pub final_displacement_m: f64,
     /// Largest |v| relative to the ground (m/s).
     pub max_abs_velocity_m_s: f64,
-    /// Largest absolute acceleration (m/s2), for the rocking check.
+    /// Largest absolute acceleration (m/s2), for the rocking check (sliding model; with
+    /// rocking, the largest at its events and history samples).
     pub max_abs_accel_m_s2: f64,
+    /// Largest |theta| (rad): 0 when it never lifted (or the model slides only).
+    pub max_abs_rotation_rad: f64,
+    /// When it first lifted off a corner (s); `null` if never.
+    pub uplift_time_s: Option<f64>,
+    /// Landings on a corner while rocking (an accumulated series counts once).
+    pub rocking_impacts: u64,
     /// The block fell.
     pub fell: bool,
 }
@@ -158,6 +188,9 @@ pub struct JointSummary {
 /// Energy balance (J), relative to the moving ground.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Energy {
+    /// Mechanical energy at the start (a block released from a rotation holds potential
+    /// energy; 0 for a wall at rest).
+    pub initial_j: f64,
     /// Work of the inertial forces -m a_g on the blocks.
     pub input_j: f64,
     /// Dissipated by friction.
@@ -166,10 +199,13 @@ pub struct Energy {
     pub impact_loss_j: f64,
     /// Kinetic energy at the end.
     pub kinetic_j: f64,
+    /// Potential energy at the end, above the seated position (rocking blocks lift their
+    /// centroid; 0 for sliding).
+    pub potential_j: f64,
     /// Kinetic energy carried away by blocks that fell.
     pub fallen_j: f64,
-    /// input - friction - impact loss - kinetic - fallen: zero up to round-off for an exact
-    /// integrator.
+    /// initial + input - friction - impact loss - kinetic - potential - fallen: zero up to
+    /// round-off for an exact integrator.
     pub residual_j: f64,
 }
 
@@ -180,6 +216,45 @@ pub struct Collapse {
     pub time_s: f64,
     /// Which block fell first.
     pub block: String,
+    /// How it fell.
+    pub cause: CollapseCause,
+}
+
+/// How a block fell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum CollapseCause {
+    /// Its centroid left the span its supports give it.
+    #[serde(rename = "sliding off")]
+    SlidingOff,
+    /// It rocked past the point of no return, or onto its face.
+    #[serde(rename = "overturning")]
+    Overturning,
+}
+
+/// Which model ran, and why (`--model auto` chooses).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelUsed {
+    /// `"slide"` (blocks slide, one degree of freedom each) or `"slide-rock"` (they may also
+    /// lift, rock and overturn).
+    pub name: String,
+    /// The rocking equations (`"exact"` or `"linearised"`); absent for `"slide"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equations: Option<String>,
+    /// `"in-plane"` (the wall's own plane) or `"out-of-plane"` (across it).
+    pub direction: String,
+    /// Why this model.
+    pub why: String,
+}
+
+impl Default for ModelUsed {
+    fn default() -> ModelUsed {
+        ModelUsed {
+            name: "slide".into(),
+            equations: None,
+            direction: "in-plane".into(),
+            why: "asked for (--model slide)".into(),
+        }
+    }
 }
 
 /// Work counters of a run.
@@ -212,6 +287,8 @@ pub struct Stats {
 pub struct Summary {
     /// Integrator.
     pub method: String,
+    /// Model: sliding only, or sliding and rocking, and why.
+    pub model: ModelUsed,
     /// Wall name.
     pub wall: String,
     /// Ground motion.
@@ -240,6 +317,21 @@ pub struct Summary {
     pub stats: Stats,
     /// Warnings about the validity of the model for this run.
     pub warnings: Vec<String>,
+    /// Across the wall's plane: the section nearest to overturning (absent when none lifted).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst: Option<Worst>,
+}
+
+/// The body of a run nearest to overturning: the first to overturn, or the one whose largest
+/// rotation came nearest its slenderness alpha.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Worst {
+    /// Its name.
+    pub block: String,
+    /// Largest |theta| / alpha.
+    pub rotation_over_alpha: f64,
+    /// It overturned.
+    pub overturned: bool,
 }
 
 /// Time histories sampled at output times and at every event.
@@ -251,6 +343,10 @@ pub struct History {
     pub displacement_m: Vec<Vec<f64>>,
     /// v per row, per block (m/s).
     pub velocity_m_s: Vec<Vec<f64>>,
+    /// theta per row, per block (rad); empty when the model does not rotate blocks.
+    pub rotation_rad: Vec<Vec<f64>>,
+    /// theta' per row, per block (rad/s); empty likewise.
+    pub angular_velocity_rad_s: Vec<Vec<f64>>,
 }
 
 /// Everything a run returns.
@@ -276,6 +372,9 @@ pub struct Recorder {
     max_v: Vec<f64>,
     max_d: Vec<f64>,
     max_a: Vec<f64>,
+    max_theta: Vec<f64>,
+    uplift: Vec<Option<f64>>,
+    rocking_impacts: Vec<u64>,
     fell: Vec<bool>,
     history: Option<History>,
     /// Logged events.
@@ -299,12 +398,13 @@ pub struct Recorder {
     pub stats: Stats,
     /// Model-validity warnings.
     pub warnings: Vec<String>,
+    /// The model that ran.
+    pub model: ModelUsed,
 }
 
 impl Recorder {
     /// A recorder for this wall; `history` keeps sampled rows, `log_events` keeps the event log.
     pub fn new(wall: &Wall, topo: &Topology, history: bool, log_events: bool) -> Recorder {
-        let n = wall.blocks.len();
         let joints = topo
             .supports
             .iter()
@@ -321,13 +421,29 @@ impl Recorder {
                 )
             })
             .collect();
+        let names = wall.blocks.iter().map(|b| b.name.clone()).collect();
+        Recorder::for_bodies(names, joints, history, log_events)
+    }
+
+    /// A recorder for bodies named `names`, with horizontal joints (upper body, lower body or
+    /// `None` for the ground, and their names).
+    pub fn for_bodies(
+        names: Vec<String>,
+        joints: Vec<(usize, Option<usize>, String, String)>,
+        history: bool,
+        log_events: bool,
+    ) -> Recorder {
+        let n = names.len();
         Recorder {
-            names: wall.blocks.iter().map(|b| b.name.clone()).collect(),
+            max_d: vec![0.0; joints.len()],
+            names,
             joints,
             max_u: vec![0.0; n],
             max_v: vec![0.0; n],
-            max_d: vec![0.0; topo.supports.len()],
             max_a: vec![0.0; n],
+            max_theta: vec![0.0; n],
+            uplift: vec![None; n],
+            rocking_impacts: vec![0; n],
             fell: vec![false; n],
             history: history.then(History::default),
             events: Vec::new(),
@@ -341,7 +457,13 @@ impl Recorder {
             energy: Energy::default(),
             stats: Stats::default(),
             warnings: Vec::new(),
+            model: ModelUsed::default(),
         }
+    }
+
+    /// Time of the last history row, if rows are kept and there is one.
+    pub fn last_row_time(&self) -> Option<f64> {
+        self.history.as_ref()?.time_s.last().copied()
     }
 
     /// True when history rows are wanted.
@@ -383,6 +505,58 @@ impl Recorder {
         self.max_d[k] = self.max_d[k].max(d_abs);
     }
 
+    /// Notes that block i reached |theta| = `theta_abs` (rad).
+    pub fn rotation_extreme(&mut self, i: usize, theta_abs: f64) {
+        self.max_theta[i] = self.max_theta[i].max(theta_abs);
+    }
+
+    /// Notes that block i lifted at `time_s` (the first time counts).
+    pub fn uplift(&mut self, i: usize, time_s: f64) {
+        self.uplift[i].get_or_insert(time_s);
+    }
+
+    /// Counts a landing of rocking block i.
+    pub fn rocking_impact(&mut self, i: usize) {
+        self.rocking_impacts[i] += 1;
+    }
+
+    /// Logs an event of rocking block i: its angular velocity before and after, and the mode
+    /// it goes on in.
+    pub fn rocking_event(
+        &mut self,
+        time_s: f64,
+        kind: EventKind,
+        i: usize,
+        omega: Option<(f64, f64)>,
+        mode: String,
+    ) {
+        if self.log_events {
+            self.events.push(EventRecord {
+                time_s,
+                kind,
+                blocks: vec![self.names[i].clone()],
+                joint: Some(format!("{}/ground", self.names[i])),
+                approach_speed_m_s: None,
+                before_m_s: None,
+                after_m_s: None,
+                angular_velocity_before_rad_s: omega.map(|w| w.0),
+                angular_velocity_after_rad_s: omega.map(|w| w.1),
+                mode: Some(mode),
+            });
+        }
+    }
+
+    /// Adds a history row with rotations.
+    pub fn sample_rotating(&mut self, t: f64, u: &[f64], v: &[f64], theta: &[f64], omega: &[f64]) {
+        if let Some(h) = &mut self.history {
+            h.time_s.push(t);
+            h.displacement_m.push(u.to_vec());
+            h.velocity_m_s.push(v.to_vec());
+            h.rotation_rad.push(theta.to_vec());
+            h.angular_velocity_rad_s.push(omega.to_vec());
+        }
+    }
+
     /// Marks a block as fallen.
     pub fn fell(&mut self, i: usize) {
         self.fell[i] = true;
@@ -415,6 +589,9 @@ impl Recorder {
                 approach_speed_m_s: speed,
                 before_m_s: None,
                 after_m_s: None,
+                angular_velocity_before_rad_s: None,
+                angular_velocity_after_rad_s: None,
+                mode: None,
             });
         }
     }
@@ -439,6 +616,9 @@ impl Recorder {
                 approach_speed_m_s: Some(before[0] - before[1]),
                 before_m_s: Some(before),
                 after_m_s: Some(after),
+                angular_velocity_before_rad_s: None,
+                angular_velocity_after_rad_s: None,
+                mode: None,
             });
         }
     }
@@ -460,7 +640,7 @@ impl Recorder {
     pub fn finish(
         mut self,
         method: &str,
-        wall: &Wall,
+        wall: &str,
         motion: String,
         t_end: f64,
         u: &[f64],
@@ -472,7 +652,12 @@ impl Recorder {
         }
         self.events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
         let e = &mut self.energy;
-        e.residual_j = e.input_j - e.friction_j - e.impact_loss_j - e.kinetic_j - e.fallen_j;
+        e.residual_j = e.initial_j + e.input_j
+            - e.friction_j
+            - e.impact_loss_j
+            - e.kinetic_j
+            - e.potential_j
+            - e.fallen_j;
         let blocks = (0..u.len())
             .map(|i| BlockSummary {
                 name: self.names[i].clone(),
@@ -480,6 +665,9 @@ impl Recorder {
                 final_displacement_m: u[i],
                 max_abs_velocity_m_s: self.max_v[i],
                 max_abs_accel_m_s2: self.max_a[i],
+                max_abs_rotation_rad: self.max_theta[i],
+                uplift_time_s: self.uplift[i],
+                rocking_impacts: self.rocking_impacts[i],
                 fell: self.fell[i],
             })
             .collect();
@@ -497,7 +685,8 @@ impl Recorder {
         Response {
             summary: Summary {
                 method: method.to_string(),
-                wall: wall.name.clone(),
+                model: self.model,
+                wall: wall.to_string(),
                 motion,
                 motion_processing: Vec::new(),
                 duration_s: t_end,
@@ -511,6 +700,7 @@ impl Recorder {
                 energy: self.energy,
                 stats: self.stats,
                 warnings: self.warnings,
+                worst: None,
             },
             history: self.history,
             events: self.events,
@@ -563,10 +753,30 @@ impl Response {
         for n in &names {
             let _ = write!(s, ",v_{n}_m_s");
         }
+        let rotating = !h.rotation_rad.is_empty();
+        if rotating {
+            for n in &names {
+                let _ = write!(s, ",theta_{n}_rad");
+            }
+            for n in &names {
+                let _ = write!(s, ",omega_{n}_rad_s");
+            }
+        }
         s.push('\n');
+        let none: &[f64] = &[];
         for (k, t) in h.time_s.iter().enumerate() {
             let _ = write!(s, "{t}");
-            for x in h.displacement_m[k].iter().chain(&h.velocity_m_s[k]) {
+            let (theta, omega) = if rotating {
+                (&h.rotation_rad[k][..], &h.angular_velocity_rad_s[k][..])
+            } else {
+                (none, none)
+            };
+            for x in h.displacement_m[k]
+                .iter()
+                .chain(&h.velocity_m_s[k])
+                .chain(theta)
+                .chain(omega)
+            {
                 let _ = write!(s, ",{x:e}");
             }
             s.push('\n');

@@ -88,6 +88,30 @@ pub struct Point {
     pub failed: bool,
 }
 
+/// A point of the chart from a run's outcome: its errors (max |u|, history), or why it failed
+/// (the errors are then infinite).
+pub fn point(
+    scenario: &str,
+    method: &str,
+    parameter: String,
+    cpu_s: f64,
+    errors: Result<(f64, f64), String>,
+) -> Point {
+    let ((err_max_m, err_history_m), failed) = match errors {
+        Ok(e) => (e, false),
+        Err(_) => ((f64::INFINITY, f64::INFINITY), true),
+    };
+    Point {
+        scenario: scenario.to_string(),
+        method: method.to_string(),
+        parameter,
+        cpu_s,
+        err_max_m,
+        err_history_m,
+        failed,
+    }
+}
+
 /// Output interval of the histories compared (s).
 pub const OUTPUT_DT_S: f64 = 0.01;
 
@@ -229,22 +253,8 @@ pub fn run_case(
     for (method, parameter, integrator) in runs {
         progress(&format!("{} {method} {parameter}", case.name));
         let (cpu, r) = timed(integrator.as_ref(), &sc, min_time_s);
-        let (err_max_m, err_history_m, failed) = match r {
-            Ok(r) => {
-                let (a, b) = errors(&r, &reference);
-                (a, b, false)
-            }
-            Err(_) => (f64::INFINITY, f64::INFINITY, true),
-        };
-        points.push(Point {
-            scenario: case.name.clone(),
-            method,
-            parameter,
-            cpu_s: cpu,
-            err_max_m,
-            err_history_m,
-            failed,
-        });
+        let errors = r.map(|r| errors(&r, &reference));
+        points.push(point(&case.name, &method, parameter, cpu, errors));
     }
     points
 }
@@ -438,4 +448,155 @@ pub fn reach_csv(points: &[Point]) -> String {
         }
     }
     s
+}
+
+/// A scenario of the rocking panel: a wall of one free-standing block, released from a
+/// rotation or shaken.
+pub struct RockingCase {
+    /// The scenario.
+    pub case: Case,
+    /// Initial rotation (rad).
+    pub initial_rotation_rad: f64,
+}
+
+/// The rocking scenarios: the Inca standing stone (walls/inca/stela.ron) released from 0.1 rad
+/// on still ground, under one cycle of a sine (1.3 g tan alpha at omega_p = 3 p: it rocks and
+/// lands without overturning), and under the first 10 s of El Centro scaled to 0.4 g (from
+/// `record`).
+pub fn rocking_cases(record: &std::path::Path) -> Result<Vec<RockingCase>, crate::Error> {
+    use crate::motion::{read_record, Pulse, ReadOptions, Sine};
+    let (wall, topology) = crate::topology::load(std::path::Path::new("walls/inca/stela.ron"))?;
+    let body = crate::integrate::rocking::free_standing(&wall, &topology)?;
+    let (ratio, p) = (body.uplift_ratio(), body.frequency_parameter_rad_s());
+    let f = 3.0 * p / (2.0 * std::f64::consts::PI);
+    let pulse = Sine::new(1.3 * ratio * body.g_m_s2, f, 0.0, 1.0 / f).map_err(|source| {
+        crate::Error::Motion {
+            path: "rocking pulse".into(),
+            source,
+        }
+    })?;
+    let raw = read_record(record, None, &ReadOptions::default())?;
+    let el_centro = raw.scaled(0.4 * body.g_m_s2 / raw.pga_m_s2());
+    let case = |name: &str, motion: Motion, duration_s: f64, theta: f64| RockingCase {
+        case: Case {
+            name: name.into(),
+            wall: wall.clone(),
+            topology: topology.clone(),
+            motion,
+            duration_s,
+        },
+        initial_rotation_rad: theta,
+    };
+    Ok(vec![
+        case(
+            "huanca free rocking from 0.1 rad",
+            Motion::Pulse(Pulse::rest()),
+            3.0,
+            0.1,
+        ),
+        case(
+            "huanca one-sine pulse 1.3 g tan alpha",
+            Motion::Sine(pulse),
+            4.0,
+            0.0,
+        ),
+        case(
+            "huanca El Centro 0.4 g for 10 s",
+            Motion::Record(el_centro),
+            10.0,
+            0.0,
+        ),
+    ])
+}
+
+/// Errors of a rocking run against the reference, on the horizontal displacement of the top of
+/// the block (u of the base plus its height times sin theta, m): (error in its largest |value|,
+/// largest error over the sampled history).
+pub fn rocking_errors(r: &Response, reference: &Response, height_m: f64) -> (f64, f64) {
+    let top = |resp: &Response| -> Vec<(f64, f64)> {
+        let h = resp.history.as_ref().expect("history");
+        h.time_s
+            .iter()
+            .zip(&h.displacement_m)
+            .zip(&h.rotation_rad)
+            .map(|((&t, u), th)| (t, u[0] + height_m * th[0].sin()))
+            .collect()
+    };
+    let (a, b) = (top(r), top(reference));
+    let peak = |v: &[(f64, f64)]| v.iter().fold(0.0f64, |m, x| m.max(x.1.abs()));
+    let mut hist: f64 = 0.0;
+    for &(t, x) in &a {
+        let k = b.partition_point(|&(s, _)| s < t - 1e-9);
+        if let Some(&(_, y)) = b.get(k) {
+            hist = hist.max((x - y).abs());
+        }
+    }
+    ((peak(&a) - peak(&b)).abs(), hist)
+}
+
+/// The rocking panel for one scenario: the exact engine (the reference) and Moreau-Jean with
+/// rotations over the ladder of steps.
+pub fn run_rocking_case(
+    rc: &RockingCase,
+    steps: &[f64],
+    min_time_s: f64,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<Point>, crate::Error> {
+    use crate::integrate::baselines::MoreauRocking;
+    use crate::integrate::rocking::Rocking;
+    let case = &rc.case;
+    let s = settings(case.duration_s);
+    let sc = Scenario {
+        wall: &case.wall,
+        topology: &case.topology,
+        motion: &case.motion,
+        settings: &s,
+    };
+    let height = case.wall.blocks[0].height.to_f64();
+    let exact = Rocking {
+        initial_rotation_rad: rc.initial_rotation_rad,
+        ..Rocking::default()
+    };
+    let (cpu, reference) = timed(&exact, &sc, min_time_s);
+    let reference = reference.map_err(|e| {
+        crate::Error::Simulation(crate::error::SimulationError::Invalid(format!(
+            "{}: the exact reference failed: {e}",
+            case.name
+        )))
+    })?;
+    let mut points = vec![Point {
+        scenario: case.name.clone(),
+        method: "event".into(),
+        parameter: "exact".into(),
+        cpu_s: cpu,
+        err_max_m: 0.0,
+        err_history_m: 0.0,
+        failed: false,
+    }];
+    for &dt in steps {
+        progress(&format!("{} moreau dt={dt:e}", case.name));
+        let moreau = MoreauRocking {
+            initial_rotation_rad: rc.initial_rotation_rad,
+            ..MoreauRocking::new(dt)
+        };
+        let (cpu, r) = timed(&moreau, &sc, min_time_s);
+        let errors = r.map(|r| rocking_errors(&r, &reference, height));
+        points.push(point(
+            &case.name,
+            "moreau",
+            format!("dt={dt:e}"),
+            cpu,
+            errors,
+        ));
+    }
+    Ok(points)
+}
+
+/// The rocking panel's charts: as [`charts`], the error being that of the top's displacement.
+pub fn rocking_charts(points: &[Point]) -> Vec<Chart> {
+    let mut out = charts(points);
+    for c in &mut out {
+        c.y_label = "max error in the top's u(t) (m)".into();
+    }
+    out
 }

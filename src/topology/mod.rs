@@ -3,6 +3,7 @@
 //! tributary rule of the paper's eq. (3); everything here is exact.
 
 mod lists;
+pub mod sections;
 
 pub use lists::Lists;
 

@@ -30,6 +30,10 @@ pub struct WallDescription {
     /// Coefficient of restitution of the vertical joints (default 1: the paper's elastic impacts).
     #[serde(default = "one", skip_serializing_if = "is_one")]
     pub restitution: f64,
+    /// Factor on Housner's coefficient of restitution when a block rocks and lands on its
+    /// other corner (default 1: Housner's law as it is; measured values are often lower).
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub rocking_restitution_factor: f64,
     /// Gravity (m/s2, default 9.81).
     #[serde(default = "default_g", skip_serializing_if = "is_default_g")]
     pub g_m_s2: f64,

@@ -143,6 +143,7 @@ impl RunningBond {
             unit_weight_kn_m3: None,
             friction: self.friction,
             restitution: self.restitution,
+            rocking_restitution_factor: 1.0,
             g_m_s2: 9.81,
             rows,
             rectangles: Vec::new(),

@@ -79,6 +79,8 @@ pub struct Wall {
     pub g_m_s2: Q,
     /// Coefficient of restitution of vertical joints.
     pub restitution: Q,
+    /// Factor on Housner's coefficient of restitution of rocking landings.
+    pub rocking_restitution_factor: f64,
     /// Default friction coefficient of horizontal joints.
     pub friction: Q,
     /// Per-joint friction overrides.
@@ -178,6 +180,12 @@ impl Wall {
             d.restitution,
             (0.0..=1.0).contains(&d.restitution),
             "the coefficient of restitution must lie in [0, 1]",
+        )?;
+        field(
+            "rocking_restitution_factor",
+            d.rocking_restitution_factor,
+            (0.0..=1.0).contains(&d.rocking_restitution_factor),
+            "the factor on Housner's restitution must lie in [0, 1]",
         )?;
         let friction = field(
             "friction",
@@ -324,6 +332,7 @@ impl Wall {
             density_kg_m3,
             g_m_s2,
             restitution,
+            rocking_restitution_factor: d.rocking_restitution_factor,
             friction,
             joint_friction,
             blocks,

@@ -598,6 +598,7 @@ pub fn import(blocks: &[SurveyBlock], options: &SurveyOptions) -> Result<Importe
         unit_weight_kn_m3: None,
         friction: options.friction,
         restitution: options.restitution,
+        rocking_restitution_factor: 1.0,
         g_m_s2: 9.81,
         rows: Vec::new(),
         rectangles: blocks

@@ -8,7 +8,9 @@
 //! `cargo run --release -p rapier-peer -- [OUT.csv]` from the repository root writes the points
 //! (same columns as `pirqa bench work-precision`), to be drawn with
 //! `pirqa bench work-precision --peer OUT.csv`, and prints how rapier splits the weight of the
-//! bridging block B4 between B1 and B2.
+//! bridging block B4 between B1 and B2. `cargo run --release -p rapier-peer -- rocking [OUT.csv]`
+//! does the same for the rocking panel (`pirqa bench work-precision-rocking --peer OUT.csv`),
+//! with the block's rotation unlocked.
 
 use pirqa::integrate::stepping::{Model, Observer};
 use pirqa::integrate::{Integrator, Scenario};
@@ -63,6 +65,12 @@ struct Sim {
 
 impl Sim {
     fn new(sc: &Scenario, dt_s: f64) -> Sim {
+        Sim::with_rotation(sc, dt_s, None)
+    }
+
+    /// A world whose blocks keep their rotations locked (`None`), or whose one block may rotate,
+    /// starting at rest on a corner at rotation theta0 (clockwise, as pirqa's rocking engine).
+    fn with_rotation(sc: &Scenario, dt_s: f64, theta0: Option<f64>) -> Sim {
         let (wall, topo) = (sc.wall, sc.topology);
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::new(0.0, -wall.g_m_s2.to_f64());
@@ -77,13 +85,24 @@ impl Sim {
         let mut blocks = Vec::new();
         for (i, b) in wall.blocks.iter().enumerate() {
             let (w, h) = (b.width.to_f64(), b.height.to_f64());
-            let centre = Vector::new(b.centroid_x().to_f64(), b.y.to_f64() + h / 2.0);
-            let builder = if b.fixed {
-                RigidBodyBuilder::kinematic_velocity_based()
-            } else {
-                RigidBodyBuilder::dynamic()
+            let mut centre = Vector::new(b.centroid_x().to_f64(), b.y.to_f64() + h / 2.0);
+            let builder = match theta0 {
+                _ if b.fixed => RigidBodyBuilder::kinematic_velocity_based(),
+                None => RigidBodyBuilder::dynamic()
                     .lock_rotations()
-                    .can_sleep(false)
+                    .can_sleep(false),
+                Some(theta) => {
+                    // Resting on the corner it leans on: the centre is the corner plus the
+                    // corner-to-centre arm turned by phi = -theta.
+                    let (phi, c) = (-theta, if theta >= 0.0 { 1.0 } else { -1.0 });
+                    let (sn, cs) = phi.sin_cos();
+                    let arm = (-c * w / 2.0, h / 2.0);
+                    centre = Vector::new(
+                        centre.x + c * w / 2.0 + cs * arm.0 - sn * arm.1,
+                        b.y.to_f64() + sn * arm.0 + cs * arm.1,
+                    );
+                    RigidBodyBuilder::dynamic().can_sleep(false).rotation(phi)
+                }
             };
             let density = topo.blocks[i].mass_kg.to_f64() / (w * h);
             let (body, c) = world.insert(
@@ -93,7 +112,7 @@ impl Sim {
                     .active_hooks(hooks),
             );
             block_of.insert(c, i);
-            blocks.push((body, c, centre.x));
+            blocks.push((body, c, b.centroid_x().to_f64()));
         }
         let mut mu = HashMap::new();
         for s in &topo.supports {
@@ -201,8 +220,124 @@ fn weight_split(sc: &Scenario, dt_s: f64, upper: usize, supports: (usize, usize)
     [lo, sum / count.max(1) as f64, hi]
 }
 
+/// rapier2d-f64 with a fixed step on a wall of one free-standing block that may rotate.
+struct RockingPeer {
+    dt_s: f64,
+    theta0: f64,
+}
+
+impl Integrator for RockingPeer {
+    fn method(&self) -> &'static str {
+        "rapier2d"
+    }
+
+    fn run(&self, sc: &Scenario) -> Result<Response, pirqa::error::SimulationError> {
+        let name = sc.wall.blocks[0].name.clone();
+        let half = sc.wall.blocks[0].height.to_f64() / 2.0;
+        let settings = sc.settings;
+        let mut rec = pirqa::response::Recorder::for_bodies(
+            vec![name.clone()],
+            vec![(0, None, name, "ground".into())],
+            settings.output_dt_s.is_some(),
+            false,
+        );
+        let mut sim = Sim::with_rotation(sc, self.dt_s, Some(self.theta0));
+        let every = settings
+            .output_dt_s
+            .map_or(u64::MAX, |o| ((o / self.dt_s).round() as u64).max(1));
+        let steps = (settings.duration_s / self.dt_s).ceil() as u64;
+        let ground_x0 = sim.world.bodies[sim.ground].translation().x;
+        // The base centre relative to where it stood at rest; theta clockwise.
+        let state = |sim: &Sim, t: f64| {
+            let body = &sim.world.bodies[sim.blocks[0].0];
+            let phi = body.rotation().angle();
+            let gx = sim.world.bodies[sim.ground].translation().x - ground_x0;
+            let u = body.translation().x + half * phi.sin() - sim.blocks[0].2 - gx;
+            let v = body.linvel().x + half * phi.cos() * body.angvel() - sc.motion.velocity(t);
+            (u, v, -phi, -body.angvel())
+        };
+        let (u, v, th, om) = state(&sim, 0.0);
+        rec.sample_rotating(0.0, &[u], &[v], &[th], &[om]);
+        let mut t = 0.0;
+        for k in 1..=steps {
+            sim.step(k, sc.motion);
+            t = k as f64 * self.dt_s;
+            let (u, v, th, om) = state(&sim, t);
+            rec.block_extremes(0, u.abs(), v.abs());
+            rec.rotation_extreme(0, th.abs());
+            if k % every == 0 {
+                rec.sample_rotating(t, &[u], &[v], &[th], &[om]);
+            }
+        }
+        let (u, v, _, _) = state(&sim, t);
+        Ok(rec.finish(
+            "rapier2d",
+            &sc.wall.name,
+            sc.motion.describe(),
+            t,
+            &[u],
+            &[v],
+        ))
+    }
+}
+
+/// The rocking panel's ladder of steps, written as CSV to `out`.
+fn rocking_points(out: &str) {
+    let record = std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2");
+    let cases = work_precision::rocking_cases(record)
+        .expect("scenarios load (run from the repository root)");
+    let mut points: Vec<Point> = Vec::new();
+    for rc in &cases {
+        let case = &rc.case;
+        let settings = pirqa::integrate::Settings {
+            duration_s: case.duration_s,
+            output_dt_s: Some(work_precision::OUTPUT_DT_S),
+            log_events: false,
+            log_decisions: false,
+            after_collapse: Default::default(),
+            progress: None,
+        };
+        let sc = Scenario {
+            wall: &case.wall,
+            topology: &case.topology,
+            motion: &case.motion,
+            settings: &settings,
+        };
+        let reference = pirqa::integrate::rocking::Rocking {
+            initial_rotation_rad: rc.initial_rotation_rad,
+            ..Default::default()
+        }
+        .run(&sc)
+        .expect("reference");
+        let height = case.wall.blocks[0].height.to_f64();
+        for dt in [1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5] {
+            eprintln!("  {} rapier2d dt={dt:e}", case.name);
+            let peer = RockingPeer {
+                dt_s: dt,
+                theta0: rc.initial_rotation_rad,
+            };
+            let (cpu, r) = work_precision::timed(&peer, &sc, 0.2);
+            let errors = r.map(|r| work_precision::rocking_errors(&r, &reference, height));
+            let parameter = format!("dt={dt:e}");
+            points.push(work_precision::point(
+                &case.name, "rapier2d", parameter, cpu, errors,
+            ));
+        }
+    }
+    std::fs::write(out, work_precision::csv(&points)).expect("write the CSV");
+    eprintln!("wrote {out}");
+}
+
 fn main() {
     let arg = std::env::args().nth(1);
+    if arg.as_deref() == Some("rocking") {
+        let out = std::env::args().nth(2);
+        rocking_points(
+            out.as_deref()
+                .unwrap_or("docs/figures/work-precision-rocking-rapier.csv"),
+        );
+        return;
+    }
     let record = std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2");
     let cases = work_precision::standard_cases(record)
         .expect("scenarios load (run from the repository root)");
@@ -240,22 +375,11 @@ fn chart_points(cases: &[work_precision::Case], out: &str) {
         for dt in [1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5] {
             eprintln!("  {} rapier2d dt={dt:e}", case.name);
             let (cpu, r) = work_precision::timed(&RapierPeer { dt_s: dt }, &sc, 0.2);
-            let (err_max_m, err_history_m, failed) = match r {
-                Ok(r) => {
-                    let (a, b) = work_precision::errors(&r, &reference);
-                    (a, b, false)
-                }
-                Err(_) => (f64::INFINITY, f64::INFINITY, true),
-            };
-            points.push(Point {
-                scenario: case.name.clone(),
-                method: "rapier2d".into(),
-                parameter: format!("dt={dt:e}"),
-                cpu_s: cpu,
-                err_max_m,
-                err_history_m,
-                failed,
-            });
+            let errors = r.map(|r| work_precision::errors(&r, &reference));
+            let parameter = format!("dt={dt:e}");
+            points.push(work_precision::point(
+                &case.name, "rapier2d", parameter, cpu, errors,
+            ));
         }
     }
     std::fs::write(out, work_precision::csv(&points)).expect("write the CSV");

@@ -1,13 +1,15 @@
 //! Time-stepping baselines, for comparison with the exact integrator: the paper's own scheme,
-//! Moreau-Jean nonsmooth time stepping, and regularized friction with penalty contacts under an
-//! adaptive Runge-Kutta method. Same trait, same outputs; `docs/accuracy.md` says where each
+//! Moreau-Jean nonsmooth time stepping (also with rotations, for a rocking block), and
+//! regularized friction with penalty contacts under an adaptive Runge-Kutta method. Same trait, same outputs; `docs/accuracy.md` says where each
 //! fails.
 
 mod moreau;
+mod moreau_rocking;
 mod paper;
 mod regularized;
 
 pub use moreau::Moreau;
+pub use moreau_rocking::MoreauRocking;
 pub use paper::PaperNewmark;
 pub use regularized::Regularized;
 

@@ -28,7 +28,9 @@ use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario};
 use crate::motion::{Motion, Segment};
-use crate::response::{Collapse, DecisionCause as Cause, EventKind, Recorder, Response};
+use crate::response::{
+    Collapse, CollapseCause, DecisionCause as Cause, EventKind, Recorder, Response,
+};
 use crate::topology::{Base, Topology};
 use crate::wall::Wall;
 use cluster::{Cluster, Motion as ClusterMotion};
@@ -777,6 +779,7 @@ impl<'a> Engine<'a> {
             self.rec.collapse = Some(Collapse {
                 time_s: self.t,
                 block: self.wall.blocks[i].name.clone(),
+                cause: CollapseCause::SlidingOff,
             });
         }
         self.rec
@@ -809,7 +812,7 @@ impl<'a> Engine<'a> {
         self.rec.warnings =
             crate::validity::rocking_warnings(self.wall, self.topo, self.rec.peak_accel());
         let motion = self.motion.describe();
-        self.rec.finish("event", self.wall, motion, t, &u, &v)
+        self.rec.finish("event", &self.wall.name, motion, t, &u, &v)
     }
 }
 
@@ -820,6 +823,10 @@ fn motion_bounds(m: &Motion, t_end: f64) -> (f64, f64) {
             let w = 2.0 * std::f64::consts::PI * s.frequency_hz;
             let a = s.amplitude_m_s2.abs();
             (2.0 * a / w, a / w * t_end + 2.0 * a / (w * w))
+        }
+        Motion::Pulse(p) => {
+            let v = p.amplitude_m_s2.abs() * p.duration_s;
+            (v, v * t_end.max(p.duration_s))
         }
         Motion::Record(_) => {
             let mut v: f64 = 0.0;

@@ -467,6 +467,8 @@ impl Sweep {
             after_collapse: Default::default(),
             progress: Some(progress),
         };
+        // Sweeps slide (blocks that rock inside walls are not modelled yet): the summary says
+        // `--model slide`, which the rerun command gives.
         Ok(EventDriven::default().run(&Scenario {
             wall: &self.walls[w].wall,
             topology: &topology,

@@ -1,0 +1,924 @@
+//! The exact event-driven integrator of rocking bodies: free-standing blocks that rest, slide,
+//! rock and slide-rock on a moving base, land on their corners and overturn (Housner 1963,
+//! Shenton 1996). Between events each body follows a Taylor series of its mode's equations
+//! ([`series`], [`modes`]); every contact condition is a series too, and the first to fall is
+//! the next event, located to round-off. At an event the next mode is decided from the contact
+//! conditions of both corners ([`modes::decide`]); landings follow [`impact`]; a series of
+//! landings that accumulates (Zeno) is summed in closed form.
+//!
+//! Bodies are independent (the sections of a wall checked across its plane are run side by
+//! side): they advance in lockstep so that every event of one is a history row of all.
+//!
+//! | event | found by | handled by |
+//! |---|---|---|
+//! | stick limit, uplift, stop, pivot slip or stick, flight | a [`modes::Constraint`] falls | [`modes::decide`] |
+//! | landing (theta = 0) | the `Impact` constraint | [`impact::land`], then `decide` |
+//! | overturning | theta reaches pi/2, or alpha with the ground at rest from then on | `Engine::overturn` |
+//! | extremes of theta, u, u' | roots of their derivatives | recorded, nothing decided |
+//! | end of a ground-motion segment | the step stops there | `decide` if a_g jumps |
+
+pub mod body;
+pub mod impact;
+pub mod modes;
+pub mod series;
+
+pub use body::RockingBody;
+pub use modes::Equations;
+
+use crate::error::SimulationError;
+use crate::integrate::{AfterCollapse, Settings};
+use crate::motion::{Motion, Segment, Shape};
+use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response};
+use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
+use series::Coeffs;
+
+/// Stops at one instant (events that do not move the time) before a run is declared stuck.
+const STALL_STOPS: usize = 10_000;
+
+/// A landing after which the body would rise by less than this fraction of alpha starts a series
+/// of landings that is summed in closed form (Zeno). It must lie well above [`series::TIE`]: an
+/// excursion that small is a tie to the mode decisions, which could no longer tell it from
+/// rest. What the sum leaves out is rocking below 1e-9 alpha; its duration is computed as if
+/// a_g stayed as it is over the tail (exact on a still base; otherwise the instant the body is
+/// seated carries an error of about (da_g/dt / a_g) times the square of the tail's duration,
+/// while the state is right to that rotation).
+const ZENO_ROTATION: f64 = 1e-9;
+
+/// What stops a body's step: the time from the step's start and the condition that falls there
+/// (`None`: an extreme of theta, u or u', recorded and nothing decided).
+type Stop = (f64, Option<Guard>);
+
+/// A body's trajectory over a step and its first stop within it.
+type Plan = (Trajectory, Option<Stop>);
+
+/// One body as the engine carries it.
+struct Track {
+    mode: Mode,
+    state: State,
+    ended: bool,
+}
+
+/// Bodies to run side by side, and how.
+pub struct Scene<'a> {
+    /// The bodies.
+    pub bodies: &'a [RockingBody],
+    /// Initial rotation of each (rad; 0: seated at rest). A body released from a rotation
+    /// starts at rest on the corner of its sign.
+    pub initial_rotation_rad: &'a [f64],
+    /// The equations between events.
+    pub equations: Equations,
+    /// The ground motion.
+    pub motion: &'a Motion,
+    /// Duration, outputs, collapse policy.
+    pub settings: &'a Settings,
+}
+
+/// Runs the bodies of a scene under its ground motion.
+pub fn run(scene: &Scene) -> Result<Response, SimulationError> {
+    for b in scene.bodies {
+        b.validate()?;
+    }
+    if scene.initial_rotation_rad.len() != scene.bodies.len() {
+        return Err(SimulationError::Bug(
+            "one initial rotation per body expected".into(),
+        ));
+    }
+    if scene.equations == Equations::Linearised && scene.motion.has_vertical() {
+        return Err(SimulationError::Invalid(
+            "the linearised rocking equations take no vertical ground motion: use --rocking exact"
+                .into(),
+        ));
+    }
+    Engine::new(scene).run()
+}
+
+struct Engine<'a> {
+    scene: &'a Scene<'a>,
+    tracks: Vec<Track>,
+    rec: Recorder,
+    t: f64,
+    t_end: f64,
+}
+
+/// The event a change of mode is logged as (`start`: the first mode of the run, logged only
+/// when the body starts on a corner).
+fn transition(old: Mode, new: Mode, start: bool) -> Option<EventKind> {
+    use Mode::*;
+    match (old, new) {
+        (_, Rock(_) | SlideRock(..)) if start => Some(EventKind::Uplift),
+        _ if start || old == new => None,
+        (Rest | Slide(_), Rock(_) | SlideRock(..)) => Some(EventKind::Uplift),
+        (Rock(_), SlideRock(..)) => Some(EventKind::PivotSlip),
+        (SlideRock(..), Rock(_) | SlideRock(..)) => Some(EventKind::PivotStick),
+        (Rest, Slide(_)) => Some(EventKind::Slip),
+        (Slide(_), Rest | Slide(_)) => Some(EventKind::Stick),
+        (Rock(_) | SlideRock(..), Rest | Slide(_)) => Some(EventKind::Rest),
+        _ => None,
+    }
+}
+
+/// Is the ground at rest from this segment on?
+fn quiet(seg: &Segment) -> bool {
+    seg.t1.is_infinite()
+        && seg.shape
+            == Shape::Linear {
+                a0: 0.0,
+                slope: 0.0,
+            }
+        && seg.lambda == (1.0, 0.0)
+}
+
+/// The horizontal displacement of the middle of the base, as a series: the pivot's u while
+/// seated, u + s b (1 - cos theta) while rocking on the corner of sign s (cos theta from the
+/// arms: h_c G_y + s b dx = R^2 cos theta).
+fn base_series(body: &RockingBody, t: &Trajectory) -> Coeffs {
+    let Some(c) = t.mode.pivot() else {
+        return t.u;
+    };
+    let s = c.sign();
+    let (b, h) = (body.half_base_m, body.centroid_height_m);
+    let r2 = b * b + h * h;
+    let mut out = t.u;
+    for (k, (x, (gy, dx))) in out.iter_mut().zip(t.gy.iter().zip(&t.dx)).enumerate() {
+        let cos = (h * gy + s * b * dx) / r2;
+        *x += s * b * (if k == 0 { 1.0 } else { 0.0 } - cos);
+    }
+    out
+}
+
+impl<'a> Engine<'a> {
+    fn new(scene: &'a Scene<'a>) -> Engine<'a> {
+        let names: Vec<String> = scene.bodies.iter().map(|b| b.name.clone()).collect();
+        let joints = names
+            .iter()
+            .enumerate()
+            .map(|(i, n)| (i, None, n.clone(), "ground".to_string()))
+            .collect();
+        let s = scene.settings;
+        let rec = Recorder::for_bodies(names, joints, s.output_dt_s.is_some(), s.log_events);
+        let tracks = scene
+            .initial_rotation_rad
+            .iter()
+            .map(|&theta| Track {
+                mode: Mode::Rest,
+                state: State {
+                    theta,
+                    ..State::default()
+                },
+                ended: false,
+            })
+            .collect();
+        Engine {
+            scene,
+            tracks,
+            rec,
+            t: 0.0,
+            t_end: s.duration_s,
+        }
+    }
+
+    fn body(&self, i: usize) -> &'a RockingBody {
+        &self.scene.bodies[i]
+    }
+
+    fn inputs_at(&self, t: f64) -> (Segment, Inputs) {
+        let seg = self.scene.motion.segment_at(t);
+        let inputs = modes::inputs(&seg, t - seg.t0);
+        (seg, inputs)
+    }
+
+    fn trajectory(&self, i: usize, inputs: &Inputs) -> Trajectory {
+        let tr = &self.tracks[i];
+        modes::trajectory(
+            self.body(i),
+            self.scene.equations,
+            tr.mode,
+            &tr.state,
+            inputs,
+        )
+    }
+
+    /// Decides body i's mode now, from its state and the pivot it rocks on, and logs the
+    /// change (`start`: the first decision of the run).
+    fn decide(&mut self, i: usize, inputs: &Inputs, start: bool) -> Result<(), SimulationError> {
+        let body = self.body(i);
+        let tr = &self.tracks[i];
+        let old = tr.mode;
+        let seated = tr.state.theta == 0.0 && tr.state.omega == 0.0;
+        let pivot = if seated {
+            None
+        } else {
+            old.pivot().or(Some(Corner::of_sign(tr.state.theta)))
+        };
+        let next = modes::decide(body, self.scene.equations, &tr.state, pivot, inputs, self.t)?;
+        self.rec.stats.mode_decisions += 1;
+        let new = next.mode;
+        if new == Mode::Flight {
+            self.rec
+                .rocking_event(self.t, EventKind::Flight, i, None, new.name());
+            self.rec.warnings.push(format!(
+                "{} leaves the ground on both corners at t = {} s (free flight): the model \
+                 stops there, and the run with it",
+                body.name, self.t
+            ));
+            self.t_end = self.t;
+            self.tracks[i].mode = new;
+            return Ok(());
+        }
+        let kind = transition(old, new, start);
+        match kind {
+            Some(EventKind::Uplift) => self.rec.uplift(i, self.t),
+            Some(EventKind::Slip | EventKind::Stick) => self.rec.transitions += 1,
+            _ => {}
+        }
+        if let Some(kind) = kind {
+            self.rec.rocking_event(self.t, kind, i, None, new.name());
+        }
+        let tr = &mut self.tracks[i];
+        tr.mode = new;
+        if matches!(new, Mode::Rest | Mode::Rock(_)) {
+            // A contact that sticks does so from exactly zero slip.
+            tr.state.v = 0.0;
+        }
+        Ok(())
+    }
+
+    fn run(mut self) -> Result<Response, SimulationError> {
+        let (_, inputs) = self.inputs_at(0.0);
+        for i in 0..self.tracks.len() {
+            self.decide(i, &inputs, true)?;
+            let traj = self.trajectory(i, &inputs);
+            let body = self.body(i);
+            self.rec.energy.initial_j +=
+                modes::kinetic_j(body, &traj, 0.0) + modes::potential_j(body, &traj, 0.0);
+        }
+        let dt = self.scene.settings.output_dt_s;
+        let mut outputs = 0u64;
+        let mut next_out = dt.unwrap_or(f64::INFINITY);
+        self.record(&inputs, true);
+        let mut stalled = 0usize;
+        while self.t < self.t_end {
+            let (seg, inputs) = self.inputs_at(self.t);
+            let limit = seg.t1.min(self.t_end);
+            let span = limit - self.t;
+            let is_quiet = quiet(&seg);
+            // Each body's trajectory and its first event within the step.
+            let mut plans = Vec::with_capacity(self.tracks.len());
+            let mut tau = span;
+            for i in 0..self.tracks.len() {
+                if self.tracks[i].ended {
+                    plans.push(None);
+                    continue;
+                }
+                let traj = self.trajectory(i, &inputs);
+                let (h, event) = self.first_event(i, &traj, span, is_quiet);
+                tau = tau.min(event.map_or(h, |(x, _)| x));
+                plans.push(Some((traj, event)));
+            }
+            self.rec.stats.steps += 1;
+            let t_new = if tau >= span { limit } else { self.t + tau };
+            if t_new > self.t {
+                stalled = 0;
+            } else {
+                stalled += 1;
+                if stalled > STALL_STOPS {
+                    return Err(SimulationError::NoProgress {
+                        time_s: self.t,
+                        count: stalled,
+                        detail: "rocking events at one instant".into(),
+                    });
+                }
+            }
+            // History rows inside the step, from the series (dense output).
+            while next_out < t_new {
+                self.dense_row(&plans, next_out, next_out - self.t, &inputs);
+                outputs += 1;
+                next_out = (outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
+            }
+            // Advance every body to the stop.
+            for (i, plan) in plans.iter().enumerate() {
+                let Some((traj, _)) = plan else { continue };
+                let body = self.body(i);
+                let (input, friction) = modes::power_series(body, traj, &inputs);
+                self.rec.energy.input_j += series::integral(&input, tau);
+                self.rec.energy.friction_j += series::integral(&friction, tau);
+                let st = &mut self.tracks[i].state;
+                st.theta = series::eval(&traj.theta, tau);
+                st.omega = series::eval(&traj.omega, tau);
+                st.u = series::eval(&traj.u, tau);
+                st.v = series::eval(&traj.v, tau);
+            }
+            self.t = t_new;
+            let (_, now) = self.inputs_at(self.t);
+            // The events of the bodies whose first event is this stop.
+            let mut row = false;
+            for (i, plan) in plans.into_iter().enumerate() {
+                let Some((traj, Some((x, guard)))) = plan else {
+                    continue;
+                };
+                if x != tau || self.tracks[i].ended {
+                    continue;
+                }
+                if guard.is_some() {
+                    self.rec.stats.events += 1;
+                    row = true;
+                }
+                self.handle(i, guard, &traj, tau, &now)?;
+            }
+            if self.t >= next_out {
+                row = true;
+                outputs += 1;
+                next_out = (outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
+            }
+            if self.t == seg.t1 && self.t < self.t_end {
+                self.rec.stats.segments += 1;
+                // A jump of the ground motion (a pulse's end) is a new situation for every body.
+                let before = series::eval(&inputs.accel, tau);
+                let lam_before = series::eval(&inputs.lambda, tau);
+                let g = self.scene.bodies.first().map_or(9.81, |b| b.g_m_s2);
+                if (before - now.accel[0]).abs() > series::TIE * g
+                    || (lam_before - now.lambda[0]).abs() > series::TIE
+                {
+                    for i in 0..self.tracks.len() {
+                        if !self.tracks[i].ended {
+                            self.decide(i, &now, false)?;
+                        }
+                    }
+                }
+            }
+            self.record(&now, row);
+        }
+        self.finish()
+    }
+
+    /// Body i's step within `span` and its first event: the first condition of its mode to
+    /// fall, or the first extreme of theta, u or u' (recorded exactly, nothing decided).
+    fn first_event(
+        &self,
+        i: usize,
+        traj: &Trajectory,
+        span: f64,
+        is_quiet: bool,
+    ) -> (f64, Option<Stop>) {
+        let body = self.body(i);
+        let sc = Scales::of(body);
+        let p = body.frequency_parameter_rad_s();
+        let ts = body.time_scale_s();
+        let h = series::step_size(&[
+            (&traj.theta, 1.0),
+            (&traj.omega, p),
+            (&traj.u, body.size_m()),
+            (&traj.v, sc.velocity),
+        ])
+        .min(span);
+        let mut best: Option<Stop> = None;
+        let mut consider = |x: Option<f64>, what: Option<Guard>| {
+            if let Some(x) = x {
+                if best.is_none_or(|(b, _)| x < b) {
+                    best = Some((x, what));
+                }
+            }
+        };
+        let mut conditions = modes::constraints(body, self.scene.equations, traj, false);
+        if is_quiet {
+            if let Some(c) = traj.mode.pivot() {
+                let s = c.sign();
+                let inside = s * traj.theta[0] <= body.slenderness_rad();
+                if inside {
+                    // Past alpha with the ground at rest for good: it can only fall.
+                    let mut past = traj.theta.map(|x| -s * x);
+                    past[0] += body.slenderness_rad();
+                    conditions.push(modes::Constraint {
+                        series: past,
+                        scale: sc.angle,
+                        guard: Guard::Overturn,
+                        strict: false,
+                    });
+                } else {
+                    // Beyond alpha and coming back: if it stops before alpha, it falls.
+                    conditions.push(modes::Constraint {
+                        series: traj.omega.map(|x| -s * x),
+                        scale: sc.angle * p,
+                        guard: Guard::Overturn,
+                        strict: false,
+                    });
+                }
+            }
+        }
+        for c in &conditions {
+            consider(series::first_fall(&c.series, c.scale, ts, h), Some(c.guard));
+        }
+        // Extremes: where the derivatives of theta, u and u' vanish.
+        let base = base_series(body, traj);
+        let base_v = series::derivative(&base);
+        let base_a = series::derivative(&base_v);
+        for (d, scale) in [
+            (&traj.omega, sc.angle * p),
+            (&base_v, sc.velocity),
+            (&base_a, sc.velocity * p),
+        ] {
+            let sign = series::sign_after(d, scale, ts);
+            if sign != 0 {
+                let mut f = *d;
+                f.iter_mut().for_each(|x| *x *= f64::from(sign));
+                consider(series::first_fall(&f, scale, ts, h), None);
+            }
+        }
+        (h, best.filter(|(x, _)| *x <= h))
+    }
+
+    /// Handles body i's event `guard` (None: an extreme) reached after tau on `traj`.
+    fn handle(
+        &mut self,
+        i: usize,
+        guard: Option<Guard>,
+        traj: &Trajectory,
+        tau: f64,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
+        let Some(guard) = guard else {
+            return Ok(());
+        };
+        match guard {
+            Guard::Overturn => self.overturn(i, traj, tau),
+            Guard::Impact => self.land(i, now),
+            Guard::Stop | Guard::PivotStick => {
+                self.tracks[i].state.v = 0.0;
+                self.decide(i, now, false)
+            }
+            Guard::StickLimit | Guard::Uplift | Guard::PivotSlip | Guard::Flight => {
+                self.decide(i, now, false)
+            }
+        }
+    }
+
+    fn overturn(&mut self, i: usize, traj: &Trajectory, tau: f64) -> Result<(), SimulationError> {
+        let body = self.body(i);
+        let tr = &mut self.tracks[i];
+        tr.ended = true;
+        self.rec.fell(i);
+        self.rec.energy.fallen_j +=
+            modes::kinetic_j(body, traj, tau) + modes::potential_j(body, traj, tau);
+        self.rec.rocking_event(
+            self.t,
+            EventKind::Overturning,
+            i,
+            None,
+            format!("overturned at theta = {} rad", tr.state.theta),
+        );
+        if self.rec.collapse.is_none() {
+            self.rec.collapse = Some(Collapse {
+                time_s: self.t,
+                block: body.name.clone(),
+                cause: CollapseCause::Overturning,
+            });
+        }
+        if self.scene.settings.after_collapse == AfterCollapse::Stop
+            || self.tracks.iter().all(|t| t.ended)
+        {
+            self.t_end = self.t;
+        }
+        Ok(())
+    }
+
+    /// A landing on the other corner, then the mode after it; a series of landings that
+    /// accumulates is summed.
+    fn land(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+        let body = self.body(i);
+        let eq = self.scene.equations;
+        let tr = &self.tracks[i];
+        let pivot = tr.mode.pivot().expect("only a rocking body lands");
+        let (omega, v, u) = (tr.state.omega, tr.state.v, tr.state.u);
+        let landing = impact::land(body, eq, pivot, omega, v, self.t)?;
+        self.rec.energy.impact_loss_j += landing.loss_j;
+        self.rec.rocking_impact(i);
+        self.rec.impacts += 1;
+        let tr = &mut self.tracks[i];
+        tr.state = State { u, ..landing.state };
+        tr.mode = match landing.pivot {
+            Some(c) => Mode::Rock(c),
+            None => Mode::Rest,
+        };
+        let after = tr.state.omega;
+        self.rec.rocking_event(
+            self.t,
+            EventKind::RockingImpact,
+            i,
+            Some((omega, after)),
+            landing
+                .pivot
+                .map_or("seated".into(), |c| format!("on the {} corner", c.name())),
+        );
+        if let (Some(c), false) = (landing.pivot, landing.slipped) {
+            if let Some(tail) = self.zeno_tail(i, c, omega, after, now) {
+                let kinetic = {
+                    let t = self.trajectory(i, now);
+                    modes::kinetic_j(body, &t, 0.0)
+                };
+                self.rec.energy.impact_loss_j += kinetic;
+                self.rec.zeno += 1;
+                self.t += tail;
+                let tr = &mut self.tracks[i];
+                tr.state = State {
+                    u,
+                    ..State::default()
+                };
+                tr.mode = Mode::Rest;
+                self.rec.rocking_event(
+                    self.t,
+                    EventKind::Rest,
+                    i,
+                    Some((after, 0.0)),
+                    format!("its landings accumulate after {tail:e} s"),
+                );
+                let (_, at) = self.inputs_at(self.t);
+                return self.decide(i, &at, false);
+            }
+        }
+        self.decide(i, now, false)
+    }
+
+    /// The time left in a series of landings, if the landing leaves the body rising by less
+    /// than [`ZENO_ROTATION`] alpha (w^2 / (2 kappa)), the rocking stays pure (friction holds on
+    /// both corners) and returns on both sides; it ends at the end of the segment or run at
+    /// the latest. Near theta = 0
+    /// a body is a ball bouncing under the constant angular deceleration kappa of each side:
+    /// a half-cycle on side c lasts 2 w / kappa_c and the next starts at r w, so the rest of
+    /// the series lasts 2 w (1 / kappa_c + r / kappa_other) / (1 - r^2).
+    fn zeno_tail(&self, i: usize, c: Corner, before: f64, after: f64, now: &Inputs) -> Option<f64> {
+        let body = self.body(i);
+        let r = (after / before).abs();
+        if r >= 1.0 || after == 0.0 {
+            return None;
+        }
+        let seated = State {
+            u: self.tracks[i].state.u,
+            ..State::default()
+        };
+        let side = |corner: Corner| -> Option<f64> {
+            let t = modes::trajectory(body, self.scene.equations, Mode::Rock(corner), &seated, now);
+            let kappa = -corner.sign() * 2.0 * t.theta[2];
+            let holds = self.scene.equations == Equations::Linearised
+                || (t.normal[0] > 0.0 && t.tangential[0].abs() < body.friction * t.normal[0]);
+            (kappa > 0.0 && holds).then_some(kappa)
+        };
+        let (k_this, k_other) = (side(c)?, side(c.other())?);
+        if after * after / (2.0 * k_this) > ZENO_ROTATION * body.slenderness_rad() {
+            return None;
+        }
+        let tail = 2.0 * after.abs() * (1.0 / k_this + r / k_other) / (1.0 - r * r);
+        let (seg, _) = self.inputs_at(self.t);
+        Some(tail.min(seg.t1.min(self.t_end) - self.t))
+    }
+
+    /// A history row at `t` inside the current step, `tau` after its start, read off each
+    /// body's series (a body that fell stays where it fell).
+    fn dense_row(&mut self, plans: &[Option<Plan>], t: f64, tau: f64, inputs: &Inputs) {
+        let n = self.tracks.len();
+        let (mut u, mut v, mut theta, mut omega) =
+            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        for i in 0..n {
+            let body = self.body(i);
+            let (traj, at) = match &plans[i] {
+                Some((traj, _)) => (traj.clone(), tau),
+                None => (self.trajectory(i, inputs), 0.0),
+            };
+            let base = base_series(body, &traj);
+            u[i] = series::eval(&base, at);
+            v[i] = series::eval(&series::derivative(&base), at);
+            theta[i] = series::eval(&traj.theta, at);
+            omega[i] = series::eval(&traj.omega, at);
+        }
+        self.rec.sample_rotating(t, &u, &v, &theta, &omega);
+    }
+
+    /// Notes every body's extremes now and, when asked, a history row.
+    fn record(&mut self, now: &Inputs, row: bool) {
+        let n = self.tracks.len();
+        let (mut u, mut v, mut theta, mut omega) =
+            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        for i in 0..n {
+            let body = self.body(i);
+            let traj = self.trajectory(i, now);
+            let base = base_series(body, &traj);
+            u[i] = base[0];
+            v[i] = base[1];
+            theta[i] = self.tracks[i].state.theta;
+            omega[i] = self.tracks[i].state.omega;
+            self.rec.block_extremes(i, u[i].abs(), v[i].abs());
+            self.rec.rotation_extreme(i, theta[i].abs());
+            if !self.tracks[i].ended {
+                self.rec
+                    .block_accel(i, (now.accel[0] + 2.0 * base[2]).abs());
+            }
+        }
+        self.rec.joint_extremes(&u);
+        if row {
+            self.rec.sample_rotating(self.t, &u, &v, &theta, &omega);
+        }
+    }
+
+    fn finish(mut self) -> Result<Response, SimulationError> {
+        let (_, now) = self.inputs_at(self.t);
+        let last_row = self.rec.last_row_time();
+        if last_row.is_some_and(|r| r < self.t) {
+            self.record(&now, true);
+        }
+        let n = self.tracks.len();
+        let mut u = vec![0.0; n];
+        let mut v = vec![0.0; n];
+        for i in 0..n {
+            let body = self.body(i);
+            let traj = self.trajectory(i, &now);
+            let base = base_series(body, &traj);
+            u[i] = base[0];
+            v[i] = base[1];
+            if !self.tracks[i].ended {
+                self.rec.energy.kinetic_j += modes::kinetic_j(body, &traj, 0.0);
+                self.rec.energy.potential_j += modes::potential_j(body, &traj, 0.0);
+            }
+        }
+        let motion = self.scene.motion.describe();
+        let t = self.t;
+        let name = self
+            .scene
+            .bodies
+            .iter()
+            .map(|b| b.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ");
+        Ok(self.rec.finish("event", &name, motion, t, &u, &v))
+    }
+}
+
+/// The rocking model on a wall that is one free-standing block on the ground. (Blocks that rock
+/// inside walls are not modelled yet; the sliding engine runs those walls.)
+#[derive(Debug, Clone, Default)]
+pub struct Rocking {
+    /// The equations between events.
+    pub equations: Equations,
+    /// Initial rotation of the block (rad; 0: seated at rest).
+    pub initial_rotation_rad: f64,
+}
+
+impl crate::integrate::Integrator for Rocking {
+    fn method(&self) -> &'static str {
+        "event"
+    }
+
+    fn run(&self, sc: &crate::integrate::Scenario) -> Result<Response, SimulationError> {
+        let body = free_standing(sc.wall, sc.topology)?;
+        let mut response = run(&Scene {
+            bodies: std::slice::from_ref(&body),
+            initial_rotation_rad: &[self.initial_rotation_rad],
+            equations: self.equations,
+            motion: sc.motion,
+            settings: sc.settings,
+        })?;
+        response.summary.wall = sc.wall.name.clone();
+        response.summary.model = crate::response::ModelUsed {
+            name: "slide-rock".into(),
+            equations: Some(equations_name(self.equations).into()),
+            direction: "in-plane".into(),
+            why: "asked for (--model slide-rock)".into(),
+        };
+        Ok(response)
+    }
+}
+
+/// `"exact"` or `"linearised"`.
+pub fn equations_name(e: Equations) -> &'static str {
+    match e {
+        Equations::Exact => "exact",
+        Equations::Linearised => "linearised",
+    }
+}
+
+/// The rocking body of a wall that is one movable block standing on the ground, with nothing
+/// beside it or on it; an error says why another wall is not one.
+pub fn free_standing(
+    wall: &crate::wall::Wall,
+    topo: &crate::topology::Topology,
+) -> Result<RockingBody, SimulationError> {
+    let [block] = wall.blocks.as_slice() else {
+        return Err(SimulationError::Invalid(format!(
+            "the rocking model runs walls of one free-standing block (this one has {} blocks); \
+             blocks that rock inside walls are not modelled yet: run it with --model slide, or \
+             across its plane with --direction out-of-plane",
+            wall.blocks.len()
+        )));
+    };
+    if block.fixed || !block.y.is_zero() {
+        return Err(SimulationError::Invalid(format!(
+            "{}: the rocking model needs a movable block standing on the ground",
+            block.name
+        )));
+    }
+    let density = block
+        .density_kg_m3
+        .as_ref()
+        .unwrap_or(&wall.density_kg_m3)
+        .to_f64();
+    let (w, h) = (block.width.to_f64(), block.height.to_f64());
+    let mass = density * w * h * wall.thickness_m.to_f64();
+    let friction = topo.supports[0].friction.to_f64();
+    let mut body = RockingBody::rectangle(&block.name, w, h, mass, friction, wall.g_m_s2.to_f64());
+    body.restitution_factor = wall.rocking_restitution_factor;
+    Ok(body)
+}
+
+/// Whether a seated body can lift at all under a motion, and why: it lifts only if friction can
+/// carry the moment (mu >= b / h_c: a base that slips first never lifts, the friction moment
+/// mu m g h_c staying below m g b) and the ground acceleration reaches g lambda b / h_c.
+pub fn can_lift(body: &RockingBody, motion: &Motion, duration_s: f64) -> (bool, String) {
+    let ratio = body.uplift_ratio();
+    if body.friction < ratio {
+        return (
+            false,
+            format!(
+                "{} cannot lift: its friction {} is below b/h = {ratio:.4}, so its base slips \
+                 before the resultant reaches a corner (Shenton 1996)",
+                body.name, body.friction
+            ),
+        );
+    }
+    let (lo, hi) = motion.accel_range(0.0, duration_s);
+    let peak = lo.abs().max(hi.abs());
+    let lambda_min = vertical_minimum(motion, duration_s);
+    let limit = ratio * body.g_m_s2 * lambda_min;
+    if peak < limit {
+        return (
+            false,
+            format!(
+                "{} cannot lift: the peak ground acceleration {peak:.4} m/s2 stays below g b/h = \
+                 {limit:.4} m/s2 (Housner 1963)",
+                body.name
+            ),
+        );
+    }
+    (
+        true,
+        format!(
+            "{} can lift: the peak ground acceleration {peak:.4} m/s2 reaches g b/h = {limit:.4} \
+             m/s2 and its friction {} is at least b/h = {ratio:.4}",
+            body.name, body.friction
+        ),
+    )
+}
+
+/// The smallest vertical load factor 1 + a_v/g over the run (1 without a vertical component).
+fn vertical_minimum(motion: &Motion, duration_s: f64) -> f64 {
+    match motion {
+        Motion::Record(r) => r.lambda.as_ref().map_or(1.0, |l| {
+            let n = ((duration_s / r.dt_s).ceil() as usize + 1).min(l.len());
+            l[..n].iter().copied().fold(1.0, f64::min)
+        }),
+        _ => 1.0,
+    }
+}
+
+/// A wall run across its plane: the part above every bed joint that runs through it (the ground
+/// included) rocks as one body on the joint's edges, each on a base that moves with the ground
+/// (the wall below it taken as rigid), side by side under the same motion. `initial` gives
+/// sections a starting rotation by name. The summary names the section nearest to overturning
+/// (`worst`; none when no section lifts).
+pub fn out_of_plane(
+    wall: &crate::wall::Wall,
+    topo: &crate::topology::Topology,
+    motion: &Motion,
+    settings: &Settings,
+    equations: Equations,
+    initial: &[(String, f64)],
+) -> Result<Response, SimulationError> {
+    let (sections, skipped) = crate::topology::sections::sections(wall, topo);
+    if sections.is_empty() {
+        return Err(SimulationError::Invalid(format!(
+            "{}: no bed joint runs through the wall without an abutment above it, so no part \
+             of it can rock across its plane",
+            wall.name
+        )));
+    }
+    let bodies: Vec<RockingBody> = sections
+        .iter()
+        .map(|s| RockingBody::section(s, wall.rocking_restitution_factor))
+        .collect();
+    let mut rotations = vec![0.0; bodies.len()];
+    for (name, theta) in initial {
+        let Some(i) = bodies.iter().position(|b| &b.name == name) else {
+            let known: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+            return Err(SimulationError::Invalid(format!(
+                "--initial-rotation {name}: no section of that name across the plane (sections: \
+                 {})",
+                known.join(", ")
+            )));
+        };
+        rotations[i] = *theta;
+    }
+    let mut response = run(&Scene {
+        bodies: &bodies,
+        initial_rotation_rad: &rotations,
+        equations,
+        motion,
+        settings,
+    })?;
+    let s = &mut response.summary;
+    s.wall = wall.name.clone();
+    s.model = crate::response::ModelUsed {
+        name: "slide-rock".into(),
+        equations: Some(equations_name(equations).into()),
+        direction: "out-of-plane".into(),
+        why: format!(
+            "across the wall's plane the part above each of {} bed joints rocks as one body of \
+             the wall's thickness ({} m) on a base moving with the ground",
+            bodies.len(),
+            wall.thickness_m.to_f64()
+        ),
+    };
+    for k in &skipped {
+        s.warnings.push(format!(
+            "level {} m not checked across the plane: {}",
+            k.level_m, k.why
+        ));
+    }
+    let first_fall = s.collapse.as_ref().map(|c| c.block.clone());
+    s.worst = s
+        .blocks
+        .iter()
+        .zip(&bodies)
+        .filter(|(b, _)| b.uplift_time_s.is_some())
+        .map(|(b, body)| crate::response::Worst {
+            block: b.name.clone(),
+            rotation_over_alpha: b.max_abs_rotation_rad / body.slenderness_rad(),
+            overturned: b.fell,
+        })
+        .max_by(|a, b| {
+            let first = |w: &crate::response::Worst| Some(&w.block) == first_fall.as_ref();
+            first(a)
+                .cmp(&first(b))
+                .then(a.rotation_over_alpha.total_cmp(&b.rotation_over_alpha))
+        });
+    Ok(response)
+}
+
+/// The model a run asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum ModelChoice {
+    /// Blocks slide only (one degree of freedom each).
+    Slide,
+    /// Blocks may also lift, rock and overturn.
+    SlideRock,
+    /// Sliding while no block can lift, rocking from the first uplift.
+    #[default]
+    Auto,
+}
+
+/// Whether a run of `wall` in its own plane rocks, and why. The rocking model runs walls of one
+/// free-standing block; `auto` gives it to them when the block can lift at all
+/// ([`can_lift`]) or starts from a rotation. Walls of several blocks slide (rocking inside
+/// walls is not modelled yet: their warnings name the blocks that could rock).
+pub fn rocks_in_plane(
+    choice: ModelChoice,
+    wall: &crate::wall::Wall,
+    topo: &crate::topology::Topology,
+    motion: &Motion,
+    duration_s: f64,
+    initial: &[(String, f64)],
+) -> Result<(bool, String), SimulationError> {
+    for (name, _) in initial {
+        if wall.block_index(name).is_none() {
+            return Err(SimulationError::Invalid(format!(
+                "--initial-rotation {name}: the wall has no block of that name"
+            )));
+        }
+    }
+    match choice {
+        ModelChoice::Slide if !initial.is_empty() => Err(SimulationError::Invalid(
+            "--initial-rotation needs a model that rotates blocks: --model slide-rock or auto"
+                .into(),
+        )),
+        ModelChoice::Slide => Ok((false, "asked for (--model slide)".into())),
+        ModelChoice::SlideRock => {
+            free_standing(wall, topo)?;
+            Ok((true, "asked for (--model slide-rock)".into()))
+        }
+        ModelChoice::Auto => match free_standing(wall, topo) {
+            Err(e) if !initial.is_empty() => Err(e),
+            Err(_) if wall.blocks.len() > 1 => Ok((
+                false,
+                format!(
+                    "auto: blocks that rock inside walls are not modelled yet, so this wall of {} \
+                     blocks slides; the warnings name the blocks that could rock",
+                    wall.blocks.len()
+                ),
+            )),
+            Err(e) => Ok((false, format!("auto: {e}"))),
+            Ok(_) if !initial.is_empty() => {
+                Ok((true, "auto: the block starts from a rotation".into()))
+            }
+            Ok(body) => {
+                let (lifts, why) = can_lift(&body, motion, duration_s);
+                Ok((lifts, format!("auto: {why}")))
+            }
+        },
+    }
+}

@@ -1,0 +1,552 @@
+//! Rocking of single bodies against closed forms: Housner's free rocking (elliptic quarter
+//! periods, amplitude per landing, the finite time to rest), the linearised free rocking and
+//! rectangular-pulse overturning threshold, the uplift time under a sine, the Shenton regimes
+//! against an independent enumeration of both corners' contacts, the energy balance, and the
+//! sliding answer where the block cannot lift.
+
+use nalgebra::{SMatrix, SVector};
+use pirqa::integrate::rocking::modes::{self, Inputs, Mode, State};
+use pirqa::integrate::rocking::series::ZERO;
+use pirqa::integrate::rocking::{self, Equations, RockingBody, Scene};
+use pirqa::integrate::Settings;
+use pirqa::motion::{Motion, Pulse, Sine};
+use pirqa::response::{CollapseCause, EventKind, Response};
+use pirqa::samples;
+
+const G: f64 = 9.81;
+
+/// A 0.4 m x 1.6 m block (alpha = atan 0.25), 1 m thick, 2000 kg/m3.
+fn slender(friction: f64) -> RockingBody {
+    RockingBody::rectangle("B", 0.4, 1.6, 2000.0 * 0.64, friction, G)
+}
+
+fn run(body: &RockingBody, theta0: f64, eq: Equations, motion: &Motion, t: f64) -> Response {
+    let settings = Settings {
+        log_events: true,
+        ..Settings::summary_only(t)
+    };
+    rocking::run(&Scene {
+        bodies: std::slice::from_ref(body),
+        initial_rotation_rad: &[theta0],
+        equations: eq,
+        motion,
+        settings: &settings,
+    })
+    .unwrap()
+}
+
+fn times(r: &Response, kind: EventKind) -> Vec<f64> {
+    r.events
+        .iter()
+        .filter(|e| e.kind == kind)
+        .map(|e| e.time_s)
+        .collect()
+}
+
+fn balanced(r: &Response) {
+    let e = &r.summary.energy;
+    let scale = e.initial_j + e.input_j.abs() + e.kinetic_j + e.potential_j + e.fallen_j;
+    assert!(
+        e.residual_j.abs() <= 1e-11 * scale.max(1.0),
+        "energy residual {} of {scale}: {e:?}",
+        e.residual_j
+    );
+}
+
+#[test]
+fn free_rocking_lands_at_the_elliptic_quarter_period_and_loses_housners_share() {
+    let body = slender(0.8);
+    let (alpha, p, r) = (
+        body.slenderness_rad(),
+        body.frequency_parameter_rad_s(),
+        body.housner_restitution(),
+    );
+    let rest = Motion::Pulse(Pulse::rest());
+    for theta0 in [0.02, 0.1, 0.2] {
+        let run = run(&body, theta0, Equations::Exact, &rest, 3.0);
+        let landings = times(&run, EventKind::RockingImpact);
+        let first = samples::free_rocking_quarter_s(alpha, p, theta0);
+        assert!(
+            (landings[0] - first).abs() < 1e-13 * first.max(1.0),
+            "{} vs {first}",
+            landings[0]
+        );
+        // After the landing the block rises to theta_1 (energy times r^2) and falls back:
+        // two quarter periods of amplitude theta_1.
+        let theta1 = samples::amplitude_after_landing(alpha, r, theta0);
+        let second = first + 2.0 * samples::free_rocking_quarter_s(alpha, p, theta1);
+        assert!(
+            (landings[1] - second).abs() < 1e-13 * second.max(1.0),
+            "{} vs {second}",
+            landings[1]
+        );
+        assert_eq!(run.summary.blocks[0].max_abs_rotation_rad, theta0);
+        assert_eq!(run.summary.blocks[0].uplift_time_s, Some(0.0));
+        balanced(&run);
+    }
+}
+
+/// The landings of free rocking accumulate: the block comes to rest after the sum of all its
+/// half-cycles, each from the closed forms, and the engine sums the tail instead of landing
+/// for ever.
+#[test]
+fn free_rocking_comes_to_rest_after_its_summed_half_cycles() {
+    let body = slender(0.8);
+    let (alpha, p, r) = (
+        body.slenderness_rad(),
+        body.frequency_parameter_rad_s(),
+        body.housner_restitution(),
+    );
+    let theta0 = 0.15;
+    let mut want = samples::free_rocking_quarter_s(alpha, p, theta0);
+    let mut theta = theta0;
+    let mut landings = 1;
+    while theta > 1e-300 {
+        theta = samples::amplitude_after_landing(alpha, r, theta);
+        want += 2.0 * samples::free_rocking_quarter_s(alpha, p, theta);
+        landings += 1;
+    }
+    let run = run(
+        &body,
+        theta0,
+        Equations::Exact,
+        &Motion::Pulse(Pulse::rest()),
+        30.0,
+    );
+    let rest = times(&run, EventKind::Rest);
+    eprintln!("{} events, last {:?}", run.events.len(), run.events.last());
+    assert_eq!(rest.len(), 1, "{:?}", run.events.last());
+    assert!((rest[0] - want).abs() < 1e-11, "{} vs {want}", rest[0]);
+    assert_eq!(run.summary.zeno_accumulations, 1);
+    assert!(run.summary.blocks[0].rocking_impacts < landings);
+    assert_eq!(run.summary.energy.kinetic_j, 0.0);
+    balanced(&run);
+}
+
+#[test]
+fn linearised_free_rocking_lands_at_its_closed_form() {
+    let body = slender(0.8);
+    let (alpha, p) = (body.slenderness_rad(), body.frequency_parameter_rad_s());
+    for theta0 in [0.01, 0.1, 0.2] {
+        let run = run(
+            &body,
+            -theta0,
+            Equations::Linearised,
+            &Motion::Pulse(Pulse::rest()),
+            2.0,
+        );
+        let first = times(&run, EventKind::RockingImpact)[0];
+        let want = samples::linear_free_rocking_quarter_s(alpha, p, theta0);
+        assert!((first - want).abs() < 1e-13 * want, "{first} vs {want}");
+        balanced(&run);
+    }
+}
+
+fn overturns(body: &RockingBody, eq: Equations, a: f64, t1: f64) -> bool {
+    let pulse = Motion::Pulse(Pulse::new(a, t1).unwrap());
+    let r = run(body, 0.0, eq, &pulse, t1 + 20.0);
+    r.summary
+        .collapse
+        .is_some_and(|c| c.cause == CollapseCause::Overturning)
+}
+
+/// Under a rectangular pulse of A g for t1, the linearised block overturns iff
+/// A >= alpha / (1 - exp(-p t1)) (Housner 1963): the threshold found by bisection on the
+/// engine's answer agrees to 1e-10.
+#[test]
+fn linearised_pulse_overturning_threshold_is_housners() {
+    let body = slender(0.8);
+    let (alpha, p) = (body.slenderness_rad(), body.frequency_parameter_rad_s());
+    for t1 in [0.2, 0.5, 1.5] {
+        let want = alpha / (1.0 - (-p * t1).exp());
+        let (mut lo, mut hi) = (0.5 * want, 2.0 * want);
+        assert!(!overturns(&body, Equations::Linearised, lo * G, t1));
+        assert!(overturns(&body, Equations::Linearised, hi * G, t1));
+        while hi - lo > 1e-11 * want {
+            let mid = 0.5 * (lo + hi);
+            if overturns(&body, Equations::Linearised, mid * G, t1) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        assert!(
+            (lo - want).abs() < 1e-10 * want,
+            "t1 = {t1}: {lo} vs {want}"
+        );
+    }
+}
+
+/// A block on a base that holds it lifts when a_g first reaches g tan alpha: under
+/// a_p sin(w t), at asin(g tan alpha / a_p) / w.
+#[test]
+fn a_sine_lifts_the_block_when_it_reaches_g_tan_alpha() {
+    let body = slender(1.0);
+    let (a_p, f) = (0.5 * G, 2.0);
+    let w = 2.0 * std::f64::consts::PI * f;
+    let sine = Motion::Sine(Sine::new(a_p, f, 0.0, 1.0).unwrap());
+    let r = run(&body, 0.0, Equations::Exact, &sine, 0.3);
+    let want = (G * body.uplift_ratio() / a_p).asin() / w;
+    let got = r.summary.blocks[0].uplift_time_s.unwrap();
+    assert!((got - want).abs() < 1e-14, "{got} vs {want}");
+    assert_eq!(times(&r, EventKind::Uplift), vec![got]);
+    balanced(&r);
+}
+
+/// The regimes of a block at rest under a step of A g (Shenton 1996), by an enumeration of the
+/// 16 combinations of its two corners' contacts (separated, stuck, slipping either way), each a
+/// 7 x 7 linear system solved by nalgebra and checked for its signs: exactly one holds, and the
+/// engine decides the same; both agree with Shenton's closed-form boundaries.
+#[test]
+fn step_regimes_match_an_enumeration_of_both_corners_and_shenton() {
+    let (b, h) = (0.2, 0.8); // tan alpha = 0.25
+    let body = RockingBody::rectangle("B", 2.0 * b, 2.0 * h, 1000.0, 0.5, G);
+    let mut seen = std::collections::BTreeSet::new();
+    for mu in [0.1, 0.2, 0.24, 0.26, 0.3, 0.45, 0.6, 0.9, 1.3] {
+        for a in [0.05, 0.15, 0.23, 0.27, 0.35, 0.5, 0.8, 1.2, 1.9] {
+            let body = RockingBody {
+                friction: mu,
+                ..body.clone()
+            };
+            let enumerated = enumerate(&body, a);
+            assert_eq!(enumerated.len(), 1, "mu {mu}, A {a}: {enumerated:?}");
+            let mut inputs = Inputs {
+                accel: ZERO,
+                lambda: ZERO,
+            };
+            // a_g = -A g pushes the block to the right (theta > 0).
+            inputs.accel[0] = -a * G;
+            inputs.lambda[0] = 1.0;
+            let t = modes::decide(
+                &body,
+                Equations::Exact,
+                &State::default(),
+                None,
+                &inputs,
+                0.0,
+            )
+            .unwrap();
+            let regime = match t.mode {
+                Mode::Rest => "rest",
+                Mode::Slide(_) => "slide",
+                Mode::Rock(_) => "rock",
+                Mode::SlideRock(..) => "slide-rock",
+                Mode::Flight => "flight",
+            };
+            assert_eq!(regime, enumerated[0], "mu {mu}, A {a}");
+            assert_eq!(regime, shenton(b, h, mu, a), "mu {mu}, A {a}");
+            seen.insert(regime);
+        }
+    }
+    assert_eq!(seen.len(), 4, "{seen:?}");
+}
+
+/// Shenton's boundaries for a rectangle at rest under a step A g.
+fn shenton(b: f64, h: f64, mu: f64, a: f64) -> &'static str {
+    let ratio = b / h;
+    if a <= mu.min(ratio) {
+        return "rest";
+    }
+    if mu < ratio {
+        return "slide";
+    }
+    let phi = 3.0 * (a * h - b) / (4.0 * (b * b + h * h)); // phi'' / g
+    let needed = (a - h * phi) / (1.0 + b * phi);
+    if mu >= needed {
+        "rock"
+    } else {
+        "slide-rock"
+    }
+}
+
+/// Every combination of the corners' contacts of a seated block under a_g = -A g, by the
+/// Newton-Euler equations and the contact conditions: unknowns (x_G'', y_G'', theta'', F_L,
+/// N_L, F_R, N_R), theta clockwise, corners at (-+b, -h) from the centroid.
+fn enumerate(body: &RockingBody, a: f64) -> Vec<&'static str> {
+    #[derive(Clone, Copy, Debug)]
+    enum C {
+        Off,
+        Stuck,
+        Slip(f64),
+    }
+    let (m, ig, b, h, mu) = (
+        body.mass_kg,
+        body.inertia_kg_m2,
+        body.half_base_m,
+        body.centroid_height_m,
+        body.friction,
+    );
+    let all = [C::Off, C::Stuck, C::Slip(1.0), C::Slip(-1.0)];
+    let mut out = Vec::new();
+    for left in all {
+        for right in all {
+            let mut k = SMatrix::<f64, 7, 7>::zeros();
+            let mut rhs = SVector::<f64, 7>::zeros();
+            // m x'' = F_L + F_R - m a_g;  m y'' = N_L + N_R - m g.
+            k[(0, 0)] = m;
+            k[(0, 3)] = -1.0;
+            k[(0, 5)] = -1.0;
+            rhs[0] = m * a * G;
+            k[(1, 1)] = m;
+            k[(1, 4)] = -1.0;
+            k[(1, 6)] = -1.0;
+            rhs[1] = -m * G;
+            // I theta'' = sum over corners (r_y F - r_x N), r = (c b, -h), clockwise.
+            k[(2, 2)] = ig;
+            for (j, c) in [(3, -1.0), (5, 1.0)] {
+                k[(2, j)] = h;
+                k[(2, j + 1)] = c * b;
+            }
+            // Corner accelerations: tangential x'' - h theta'', normal y'' - c b theta''.
+            for (row, (contact, c, f, n)) in [(left, -1.0, 3, 4), (right, 1.0, 5, 6)]
+                .into_iter()
+                .enumerate()
+            {
+                let (r1, r2) = (3 + 2 * row, 4 + 2 * row);
+                match contact {
+                    C::Off => {
+                        k[(r1, f)] = 1.0;
+                        k[(r2, n)] = 1.0;
+                    }
+                    C::Stuck => {
+                        k[(r1, 0)] = 1.0;
+                        k[(r1, 2)] = -h;
+                        k[(r2, 1)] = 1.0;
+                        k[(r2, 2)] = -c * b;
+                    }
+                    C::Slip(s) => {
+                        k[(r1, f)] = 1.0;
+                        k[(r1, n)] = mu * s;
+                        k[(r2, 1)] = 1.0;
+                        k[(r2, 2)] = -c * b;
+                    }
+                }
+            }
+            if let (C::Stuck, C::Stuck) = (left, right) {
+                // Both corners stuck: their tangential rows coincide and the friction split is
+                // indeterminate; split it evenly and check the cone on the sums below.
+                k.row_mut(5).fill(0.0);
+                k[(5, 3)] = 1.0;
+                k[(5, 5)] = -1.0;
+            }
+            let Some(x) = k.lu().solve(&rhs) else {
+                continue;
+            };
+            let tol = 1e-9 * m * G;
+            let sums = (x[3] + x[5]).abs() <= mu * (x[4] + x[6]) + tol;
+            let ok =
+                [(left, -1.0, 3, 4), (right, 1.0, 5, 6)]
+                    .into_iter()
+                    .all(|(contact, c, f, n)| {
+                        let (ft, nn) = (x[f], x[n]);
+                        let tangential = x[0] - h * x[2];
+                        let normal = x[1] - c * b * x[2];
+                        match contact {
+                            C::Off => normal > 1e-9,
+                            C::Stuck if matches!((left, right), (C::Stuck, C::Stuck)) => {
+                                nn >= -tol && sums
+                            }
+                            C::Stuck => nn >= -tol && ft.abs() <= mu * nn + tol,
+                            C::Slip(s) => nn >= -tol && s * tangential > 1e-9,
+                        }
+                    });
+            if ok {
+                out.push(match (left, right) {
+                    (C::Stuck, C::Stuck) => "rest",
+                    (C::Slip(p), C::Slip(q)) if p == q => "slide",
+                    (C::Off, C::Stuck) | (C::Stuck, C::Off) => "rock",
+                    (C::Off, C::Slip(_)) | (C::Slip(_), C::Off) => "slide-rock",
+                    (C::Off, C::Off) => "flight",
+                    _ => "mixed",
+                });
+            }
+        }
+    }
+    out
+}
+
+/// A block whose friction is below b/h cannot lift: the rocking engine, made to run, slides it
+/// exactly as the sliding engine does.
+#[test]
+fn a_block_that_cannot_lift_slides_as_the_sliding_engine_says() {
+    use pirqa::integrate::event::EventDriven;
+    use pirqa::integrate::{Integrator, Scenario};
+    let wall = samples::one_block(0.3);
+    let topo = pirqa::Topology::new(&wall).unwrap();
+    let sine = Motion::Sine(Sine::new(4.0, 1.0, 0.3, 6.0).unwrap());
+    let settings = Settings::summary_only(6.0);
+    let scenario = Scenario {
+        wall: &wall,
+        topology: &topo,
+        motion: &sine,
+        settings: &settings,
+    };
+    let slide = EventDriven::default().run(&scenario).unwrap();
+    let rock = rocking::Rocking::default().run(&scenario).unwrap();
+    let (s, r) = (&slide.summary.blocks[0], &rock.summary.blocks[0]);
+    for (x, y) in [
+        (s.max_abs_displacement_m, r.max_abs_displacement_m),
+        (s.final_displacement_m, r.final_displacement_m),
+        (s.max_abs_velocity_m_s, r.max_abs_velocity_m_s),
+    ] {
+        assert!((x - y).abs() < 1e-12 * x.abs().max(1e-3), "{x} vs {y}");
+    }
+    assert_eq!(r.uplift_time_s, None);
+    assert_eq!(
+        slide.summary.stick_slip_transitions,
+        rock.summary.stick_slip_transitions
+    );
+    balanced(&rock);
+}
+
+/// Slender blocks under El Centro, from a base that holds to one that slips (slide-rock,
+/// overturning): every run balances its energy to round-off.
+#[test]
+fn rocking_under_el_centro_balances_its_energy_in_every_regime() {
+    let rec = pirqa::motion::read_record(
+        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        None,
+        &Default::default(),
+    )
+    .unwrap();
+    let mut fell = 0;
+    let mut slid = 0;
+    for (w, h, mu, pga) in [
+        (0.5, 2.5, 0.7, 0.4),
+        (0.5, 2.5, 0.25, 1.0),
+        (0.3, 1.2, 0.6, 0.5),
+        (0.2, 2.0, 0.15, 1.5),
+    ] {
+        let body = RockingBody::rectangle("B", w, h, 2600.0 * w * h, mu, G);
+        let m = Motion::Record(rec.scaled(pga * G / rec.pga_m_s2()));
+        let r = run(&body, 0.0, Equations::Exact, &m, 40.0);
+        balanced(&r);
+        fell += usize::from(r.summary.blocks[0].fell);
+        slid += usize::from(r.summary.energy.friction_j > 0.0);
+    }
+    assert!(fell >= 2 && slid >= 2, "fell {fell}, slid {slid}");
+}
+
+/// Moreau-Jean with rotations converges to the exact engine's first landing as its step falls.
+#[test]
+fn moreau_with_rotations_converges_to_the_exact_landing() {
+    use pirqa::integrate::baselines::MoreauRocking;
+    use pirqa::integrate::rocking::Rocking;
+    use pirqa::integrate::{Integrator, Scenario};
+    let (wall, topo) = pirqa::topology::load(std::path::Path::new("walls/inca/stela.ron")).unwrap();
+    let rest = Motion::Pulse(Pulse::rest());
+    let settings = Settings {
+        output_dt_s: Some(0.01),
+        ..Settings::summary_only(1.2)
+    };
+    let sc = Scenario {
+        wall: &wall,
+        topology: &topo,
+        motion: &rest,
+        settings: &settings,
+    };
+    let exact = Rocking {
+        initial_rotation_rad: 0.1,
+        ..Rocking::default()
+    }
+    .run(&sc)
+    .unwrap();
+    let height = wall.blocks[0].height.to_f64();
+    let errors: Vec<f64> = [1e-2, 1e-3, 1e-4]
+        .iter()
+        .map(|&dt| {
+            let r = MoreauRocking {
+                initial_rotation_rad: 0.1,
+                ..MoreauRocking::new(dt)
+            }
+            .run(&sc)
+            .unwrap();
+            pirqa::study::work_precision::rocking_errors(&r, &exact, height).1
+        })
+        .collect();
+    assert!(
+        errors[2] < errors[1] && errors[1] < errors[0] && errors[2] < 2e-3,
+        "{errors:?}"
+    );
+}
+
+/// A wall's section across its plane lifts when the ground reaches its static threshold
+/// lambda0 g (free top, base that holds): the dynamic engine and the static check agree.
+#[test]
+fn a_section_lifts_at_its_static_threshold() {
+    use pirqa::topology::sections::{self, Top};
+    let (mut wall, _) =
+        pirqa::topology::load(std::path::Path::new("walls/five-block-variable.ron")).unwrap();
+    // A base that holds: friction above every section's b / h_c.
+    wall.friction = pirqa::Q::from_decimal(1.5).unwrap();
+    wall.joint_friction.clear();
+    let topo = pirqa::Topology::new(&wall).unwrap();
+    let check = sections::check(&wall, &topo, Top::Free, 0.0);
+    let lowest = check
+        .sections
+        .iter()
+        .min_by(|a, b| a.threshold_g.total_cmp(&b.threshold_g))
+        .unwrap();
+    let (a_p, f) = (1.2 * G, 1.0);
+    let sine = Motion::Sine(Sine::new(a_p, f, 0.0, 2.0).unwrap());
+    let settings = Settings {
+        log_events: true,
+        ..Settings::summary_only(0.5)
+    };
+    let r = rocking::out_of_plane(&wall, &topo, &sine, &settings, Equations::Exact, &[]).unwrap();
+    let block = r
+        .summary
+        .blocks
+        .iter()
+        .find(|b| b.name == lowest.section.name)
+        .unwrap();
+    let want = (lowest.threshold_g * G / a_p).asin() / (2.0 * std::f64::consts::PI * f);
+    let got = block.uplift_time_s.unwrap();
+    assert!((got - want).abs() < 1e-13, "{got} vs {want}");
+    assert_eq!(r.summary.model.direction, "out-of-plane");
+    balanced(&r);
+}
+
+/// The static check against its closed forms: a free-standing rectangle's threshold b/h and
+/// curve tan(alpha - theta) (Housner), a one-way spanning uniform wall's 4 t / H raised by
+/// 1.5 P / W with an overburden P at the middle of its top, falling to zero at tan theta =
+/// 2 t / H.
+#[test]
+fn out_of_plane_thresholds_and_curves_are_the_closed_forms() {
+    use pirqa::topology::sections::{self, Top};
+    let wall = pirqa::Wall::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2000, friction: 0.6, rows: [
+            (height_m: 1.0, blocks: [(width_m: 2.0), (width_m: 1.0)]),
+            (height_m: 1.0, blocks: [(width_m: 1.5), (width_m: 1.5)])])",
+    )
+    .unwrap();
+    let topo = pirqa::Topology::new(&wall).unwrap();
+    let (t, h) = (0.5f64, 2.0f64);
+    let free = sections::check(&wall, &topo, Top::Free, 0.0);
+    let ground = &free.sections[0];
+    assert_eq!(ground.section.name, "above_0m");
+    assert!((ground.threshold_g - t / h).abs() < 1e-15);
+    let alpha = (t / h).atan();
+    for p in &ground.capacity_curve {
+        assert!(
+            (p.lambda_g - (alpha - p.theta_rad).tan().max(0.0)).abs() < 1e-14,
+            "{p:?}"
+        );
+    }
+    assert!((ground.zero_capacity_rotation_rad - alpha).abs() < 1e-15);
+    let q = 12.0; // kN/m
+    let held = sections::check(&wall, &topo, Top::Restrained, q);
+    let ground = &held.sections[0];
+    let weight = ground.section.mass_kg * G;
+    let p = q * 1e3 * 3.0;
+    let want = 4.0 * t / h * (1.0 + 1.5 * p / weight);
+    assert!(
+        (ground.threshold_g - want).abs() < 1e-14 * want,
+        "{} vs {want}",
+        ground.threshold_g
+    );
+    let bare = sections::check(&wall, &topo, Top::Restrained, 0.0);
+    let zero = bare.sections[0].zero_capacity_rotation_rad;
+    assert!((zero.tan() - 2.0 * t / h).abs() < 1e-14, "{zero}");
+    assert_eq!(bare.lowest_threshold.as_deref(), Some("above_0m"));
+}
