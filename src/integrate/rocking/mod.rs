@@ -55,7 +55,8 @@ type Plan = (Trajectory, Option<Stop>);
 struct Track {
     mode: Mode,
     state: State,
-    ended: bool,
+    /// Where it lies once it has overturned (its trajectory at rest there); it moves no more.
+    fallen: Option<Trajectory>,
 }
 
 /// Bodies to run side by side, and how.
@@ -165,7 +166,7 @@ impl<'a> Engine<'a> {
                     theta,
                     ..State::default()
                 },
-                ended: false,
+                fallen: None,
             })
             .collect();
         Engine {
@@ -255,7 +256,8 @@ impl<'a> Engine<'a> {
         let dt = self.scene.settings.output_dt_s;
         let mut outputs = 0u64;
         let mut next_out = dt.unwrap_or(f64::INFINITY);
-        self.record(&inputs, true);
+        // A history row at each stop that is an event or an output time (and at the start).
+        let mut row = true;
         let mut stalled = 0usize;
         while self.t < self.t_end {
             let (seg, inputs) = self.inputs_at(self.t);
@@ -266,7 +268,7 @@ impl<'a> Engine<'a> {
             let mut plans = Vec::with_capacity(self.tracks.len());
             let mut tau = span;
             for i in 0..self.tracks.len() {
-                if self.tracks[i].ended {
+                if self.tracks[i].fallen.is_some() {
                     plans.push(None);
                     continue;
                 }
@@ -275,6 +277,7 @@ impl<'a> Engine<'a> {
                 tau = tau.min(event.map_or(h, |(x, _)| x));
                 plans.push(Some((traj, event)));
             }
+            self.note(&plans, 0.0, self.t, inputs.accel[0], row);
             self.rec.stats.steps += 1;
             let t_new = if tau >= span { limit } else { self.t + tau };
             if t_new > self.t {
@@ -291,7 +294,9 @@ impl<'a> Engine<'a> {
             }
             // History rows inside the step, from the series (dense output).
             while next_out < t_new {
-                self.dense_row(&plans, next_out, next_out - self.t, &inputs);
+                let tau_out = next_out - self.t;
+                let a_g = series::eval(&inputs.accel, tau_out);
+                self.note(&plans, tau_out, next_out, a_g, true);
                 outputs += 1;
                 next_out = (outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
             }
@@ -311,12 +316,12 @@ impl<'a> Engine<'a> {
             self.t = t_new;
             let (_, now) = self.inputs_at(self.t);
             // The events of the bodies whose first event is this stop.
-            let mut row = false;
+            row = false;
             for (i, plan) in plans.into_iter().enumerate() {
                 let Some((traj, Some((x, guard)))) = plan else {
                     continue;
                 };
-                if x != tau || self.tracks[i].ended {
+                if x != tau || self.tracks[i].fallen.is_some() {
                     continue;
                 }
                 if guard.is_some() {
@@ -340,15 +345,14 @@ impl<'a> Engine<'a> {
                     || (lam_before - now.lambda[0]).abs() > series::TIE
                 {
                     for i in 0..self.tracks.len() {
-                        if !self.tracks[i].ended {
+                        if self.tracks[i].fallen.is_none() {
                             self.decide(i, &now, false)?;
                         }
                     }
                 }
             }
-            self.record(&now, row);
         }
-        self.finish()
+        self.finish(row)
     }
 
     /// Body i's step within `span` and its first event: the first condition of its mode to
@@ -379,7 +383,7 @@ impl<'a> Engine<'a> {
                 }
             }
         };
-        let mut conditions = modes::constraints(body, self.scene.equations, traj, false);
+        let mut conditions = modes::constraints(body, self.scene.equations, traj);
         if is_quiet {
             if let Some(c) = traj.mode.pivot() {
                 let s = c.sign();
@@ -454,8 +458,27 @@ impl<'a> Engine<'a> {
 
     fn overturn(&mut self, i: usize, traj: &Trajectory, tau: f64) -> Result<(), SimulationError> {
         let body = self.body(i);
+        // Its last motion, at the instant it falls: after this it is drawn lying still.
+        let base = base_series(body, traj);
+        self.rec.block_extremes(
+            i,
+            series::eval(&base, tau).abs(),
+            series::eval(&series::derivative(&base), tau).abs(),
+        );
+        let (_, now) = self.inputs_at(self.t);
+        let at_rest = State {
+            omega: 0.0,
+            v: 0.0,
+            ..self.tracks[i].state
+        };
         let tr = &mut self.tracks[i];
-        tr.ended = true;
+        tr.fallen = Some(modes::trajectory(
+            body,
+            self.scene.equations,
+            tr.mode,
+            &at_rest,
+            &now,
+        ));
         self.rec.fell(i);
         self.rec.energy.fallen_j +=
             modes::kinetic_j(body, traj, tau) + modes::potential_j(body, traj, tau);
@@ -474,7 +497,7 @@ impl<'a> Engine<'a> {
             });
         }
         if self.scene.settings.after_collapse == AfterCollapse::Stop
-            || self.tracks.iter().all(|t| t.ended)
+            || self.tracks.iter().all(|t| t.fallen.is_some())
         {
             self.t_end = self.t;
         }
@@ -571,71 +594,80 @@ impl<'a> Engine<'a> {
         Some(tail.min(seg.t1.min(self.t_end) - self.t))
     }
 
-    /// A history row at `t` inside the current step, `tau` after its start, read off each
-    /// body's series (a body that fell stays where it fell).
-    fn dense_row(&mut self, plans: &[Option<Plan>], t: f64, tau: f64, inputs: &Inputs) {
+    /// Notes at `t` every body's extremes and, when `row`, a history row, read off each body's
+    /// trajectory `tau` after the step's start (a body that fell, where it fell); `a_g` is the
+    /// ground acceleration then.
+    fn note(&mut self, plans: &[Option<Plan>], tau: f64, t: f64, a_g: f64, row: bool) {
         let n = self.tracks.len();
         let (mut u, mut v, mut theta, mut omega) =
             (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut accel = vec![None; n];
         for i in 0..n {
             let body = self.body(i);
-            let (traj, at) = match &plans[i] {
-                Some((traj, _)) => (traj.clone(), tau),
-                None => (self.trajectory(i, inputs), 0.0),
+            let (traj, at) = match (&plans[i], &self.tracks[i].fallen) {
+                (Some((traj, _)), _) => (traj, tau),
+                (None, Some(fallen)) => (fallen, 0.0),
+                (None, None) => unreachable!("a body without a step has fallen"),
             };
-            let base = base_series(body, &traj);
+            let base = base_series(body, traj);
+            let base_v = series::derivative(&base);
             u[i] = series::eval(&base, at);
-            v[i] = series::eval(&series::derivative(&base), at);
+            v[i] = series::eval(&base_v, at);
             theta[i] = series::eval(&traj.theta, at);
             omega[i] = series::eval(&traj.omega, at);
+            if plans[i].is_some() {
+                accel[i] = Some(a_g + series::eval(&series::derivative(&base_v), at));
+            }
         }
-        self.rec.sample_rotating(t, &u, &v, &theta, &omega);
-    }
-
-    /// Notes every body's extremes now and, when asked, a history row.
-    fn record(&mut self, now: &Inputs, row: bool) {
-        let n = self.tracks.len();
-        let (mut u, mut v, mut theta, mut omega) =
-            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         for i in 0..n {
-            let body = self.body(i);
-            let traj = self.trajectory(i, now);
-            let base = base_series(body, &traj);
-            u[i] = base[0];
-            v[i] = base[1];
-            theta[i] = self.tracks[i].state.theta;
-            omega[i] = self.tracks[i].state.omega;
             self.rec.block_extremes(i, u[i].abs(), v[i].abs());
             self.rec.rotation_extreme(i, theta[i].abs());
-            if !self.tracks[i].ended {
-                self.rec
-                    .block_accel(i, (now.accel[0] + 2.0 * base[2]).abs());
+            if let Some(a) = accel[i] {
+                self.rec.block_accel(i, a.abs());
             }
         }
         self.rec.joint_extremes(&u);
         if row {
-            self.rec.sample_rotating(self.t, &u, &v, &theta, &omega);
+            self.rec.sample_rotating(t, &u, &v, &theta, &omega);
         }
     }
 
-    fn finish(mut self) -> Result<Response, SimulationError> {
+    /// The end of the run: the last extremes and history row (`row`: the last stop was an
+    /// event or an output time; the end is a row in any case), the energy left, the summary.
+    fn finish(mut self, row: bool) -> Result<Response, SimulationError> {
         let (_, now) = self.inputs_at(self.t);
-        let last_row = self.rec.last_row_time();
-        if last_row.is_some_and(|r| r < self.t) {
-            self.record(&now, true);
-        }
         let n = self.tracks.len();
+        let plans: Vec<Option<Plan>> = (0..n)
+            .map(|i| {
+                self.tracks[i]
+                    .fallen
+                    .is_none()
+                    .then(|| (self.trajectory(i, &now), None))
+            })
+            .collect();
+        let last_row = self.rec.last_row_time();
+        self.note(
+            &plans,
+            0.0,
+            self.t,
+            now.accel[0],
+            row || last_row.is_some_and(|r| r < self.t),
+        );
         let mut u = vec![0.0; n];
         let mut v = vec![0.0; n];
-        for i in 0..n {
+        for (i, plan) in plans.iter().enumerate() {
             let body = self.body(i);
-            let traj = self.trajectory(i, &now);
-            let base = base_series(body, &traj);
+            let traj = match (plan, &self.tracks[i].fallen) {
+                (Some((traj, _)), _) => traj,
+                (None, Some(fallen)) => fallen,
+                (None, None) => unreachable!("a body without a step has fallen"),
+            };
+            let base = base_series(body, traj);
             u[i] = base[0];
             v[i] = base[1];
-            if !self.tracks[i].ended {
-                self.rec.energy.kinetic_j += modes::kinetic_j(body, &traj, 0.0);
-                self.rec.energy.potential_j += modes::potential_j(body, &traj, 0.0);
+            if plan.is_some() {
+                self.rec.energy.kinetic_j += modes::kinetic_j(body, traj, 0.0);
+                self.rec.energy.potential_j += modes::potential_j(body, traj, 0.0);
             }
         }
         let motion = self.scene.motion.describe();

@@ -416,14 +416,9 @@ fn friction_margins(t: &Trajectory, mu: f64) -> [Coeffs; 2] {
     ]
 }
 
-/// The conditions of a trajectory's mode; `quiet` when the ground rests from now on (then a
-/// body past alpha can only fall).
-pub fn constraints(
-    body: &RockingBody,
-    equations: Equations,
-    t: &Trajectory,
-    quiet: bool,
-) -> Vec<Constraint> {
+/// The conditions of a trajectory's mode. (With the ground at rest for good, the engine adds
+/// the overturning that follows from energy alone.)
+pub fn constraints(body: &RockingBody, equations: Equations, t: &Trajectory) -> Vec<Constraint> {
     let sc = Scales::of(body);
     let mu = body.friction;
     let mut out = Vec::new();
@@ -461,10 +456,6 @@ pub fn constraints(
             push(scaled(&t.theta, s), sc.angle, Guard::Impact, true);
             let fall = plus_const(&scaled(&t.theta, -s), std::f64::consts::FRAC_PI_2);
             push(fall, 1.0, Guard::Overturn, false);
-            if quiet {
-                let past = plus_const(&scaled(&t.theta, -s), body.slenderness_rad());
-                push(past, sc.angle, Guard::Overturn, false);
-            }
             if equations == Equations::Exact {
                 push(t.normal, sc.force, Guard::Flight, false);
                 match t.mode {
@@ -584,8 +575,7 @@ pub fn decide(
     for mode in candidates(equations, state, pivot) {
         if mode == Mode::Flight {
             if flight_lifts(body, state, pivot, inputs) {
-                holding.push(trajectory(body, equations, Mode::Rest, state, inputs));
-                holding.last_mut().expect("just pushed").mode = Mode::Flight;
+                holding.push(trajectory(body, equations, Mode::Flight, state, inputs));
             }
             continue;
         }
@@ -596,7 +586,7 @@ pub fn decide(
                 continue;
             }
         }
-        let ok = constraints(body, equations, &t, false).iter().all(|c| {
+        let ok = constraints(body, equations, &t).iter().all(|c| {
             let sign = sign_after(&c.series, c.scale, scale_t);
             if c.strict {
                 sign > 0
