@@ -279,9 +279,11 @@ fn draw(area: &DrawingArea<SVGBackend, Shift>, chart: &Chart) -> Result<(), Stri
     }
 }
 
-/// Draws charts as panels of one SVG figure, `columns` across, each `panel` pixels.
+/// Draws charts as panels of one SVG figure, `columns` across (at most one per chart), each
+/// `panel` pixels.
 pub fn render(charts: &[Chart], columns: usize, panel: (u32, u32)) -> String {
-    let columns = columns.max(1);
+    // The canvas follows the panels: fewer charts than columns take fewer columns.
+    let columns = columns.min(charts.len()).max(1);
     let rows = charts.len().div_ceil(columns).max(1);
     let mut svg = String::new();
     {
@@ -359,7 +361,25 @@ pub fn to_csv(charts: &[Chart]) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{envelope, tick, tick_on};
+    use super::{envelope, render, tick, tick_on, Chart};
+
+    /// A figure asked for two columns with one chart in it is one panel wide (the fragility and
+    /// IDA figures of a sweep with one wall were drawn on the left half of an empty canvas).
+    #[test]
+    fn the_canvas_follows_the_panels() {
+        let size = |svg: &str| {
+            let head = &svg[..svg.find('>').unwrap()];
+            let num = |key: &str| -> u32 {
+                let at = head.find(key).unwrap() + key.len() + 2;
+                head[at..].split('"').next().unwrap().parse().unwrap()
+            };
+            (num("width"), num("height"))
+        };
+        let one = vec![Chart::default()];
+        assert_eq!(size(&render(&one, 2, (620, 420))), (620, 420));
+        let three = vec![Chart::default(); 3];
+        assert_eq!(size(&render(&three, 2, (620, 420))), (1240, 840));
+    }
 
     #[test]
     fn an_envelope_keeps_every_bins_extremes_in_order() {
