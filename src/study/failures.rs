@@ -1,6 +1,6 @@
 //! Where the time-stepping methods fail: six small scenarios, each run by the exact integrator
 //! and the baselines, drawn as one chart panel and reduced to the measured numbers that
-//! docs/accuracy.md quotes (tests/baselines.rs pins the same behaviours on the same scenarios).
+//! docs/accuracy.md quotes (tests/suite/baselines.rs pins the same behaviours on the same scenarios).
 
 use crate::integrate::baselines::{Moreau, PaperNewmark, Regularized};
 use crate::integrate::event::EventDriven;

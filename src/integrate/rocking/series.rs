@@ -6,7 +6,7 @@
 //!
 //! Why series: the rocking equations have closed forms only for piecewise-constant ground
 //! acceleration; a record is piecewise linear and a sine is a sine. A series of order
-//! [`ORDER`] reproduces every closed form to round-off (tests/rocking.rs checks them), gives
+//! [`ORDER`] reproduces every closed form to round-off (tests/suite/rocking.rs checks them), gives
 //! dense output for free (the polynomial is the solution between events), and turns every event
 //! into a polynomial root.
 

@@ -10,7 +10,7 @@ use pirqa::{Topology, Wall};
 use proptest::prelude::*;
 use std::collections::BTreeMap;
 
-mod answers;
+use crate::answers;
 
 /// Two courses over the same length, cut at random; random friction per block and gaps.
 fn wall_strategy() -> impl Strategy<Value = WallDescription> {

@@ -1,6 +1,6 @@
 //! The command line end to end: what a user types and what they get back.
 
-mod common;
+use crate::common;
 
 use common::scratch as temp_dir;
 use std::process::Command;

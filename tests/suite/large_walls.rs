@@ -2,8 +2,8 @@
 //! counters and decision log, and the settings that change the work of the exact integrator but
 //! never its answer.
 
-mod answers;
-mod engine;
+use crate::answers;
+use crate::engine;
 
 use engine::{constant, exact_on, impacts, load, run, sine};
 use pirqa::integrate::event::EventDriven;

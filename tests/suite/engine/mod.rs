@@ -1,8 +1,5 @@
 //! Runs of the exact integrator for the integration tests, and the ground motions they share.
 
-// Each test crate uses the part it needs.
-#![allow(dead_code)]
-
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{Integrator, Scenario, Settings};
 use pirqa::motion::{Motion, Record, Sine};

@@ -1,7 +1,7 @@
 //! The exact event-driven integrator against closed forms, hand derivations, conservation laws
 //! and the paper's findings.
 
-mod engine;
+use crate::engine;
 
 use engine::{constant, impacts, load, run, sine};
 use pirqa::integrate::event::EventDriven;

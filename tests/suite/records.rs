@@ -1,7 +1,7 @@
 //! Record readers: the El Centro files in records/, and small K-NET, COSMOS, AT2 and
 //! plain files written here, with their broken variants.
 
-mod common;
+use crate::common;
 
 use common::file as write;
 use pirqa::motion::formats::{detect, format_named};

@@ -1,6 +1,6 @@
 //! Vertical shaking: every normal load, hence every friction capacity, scales by 1 + a_v/g.
 
-mod engine;
+use crate::engine;
 
 use engine::exact;
 use pirqa::integrate::Settings;

@@ -1,6 +1,6 @@
 //! Collapse: a block falls when its centroid leaves the span its supports give it.
 
-mod engine;
+use crate::engine;
 
 use engine::{constant, exact};
 use pirqa::integrate::{AfterCollapse, Settings};

@@ -1,7 +1,7 @@
 //! Sweeps: descriptions and their errors, reproducible friction samples, storage that survives
 //! an interruption, and what the analysis reports.
 
-mod common;
+use crate::common;
 
 use common::scratch as temp_dir;
 use pirqa::study::sweep::store::{read_table, CaseRow, Existing, Store, CASES_HEADER};

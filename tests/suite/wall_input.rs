@@ -1,6 +1,6 @@
 //! Bad wall input gets an error that names the file, the line or block, and what to fix.
 
-mod common;
+use crate::common;
 
 use common::file as write_temp;
 use pirqa::topology;

@@ -2,9 +2,6 @@
 //! system's temporary directory, removed with everything in it when the test ends, pass or fail
 //! (the tests write histories and charts; left behind, they filled /tmp run after run).
 
-// Each test crate uses the part it needs.
-#![allow(dead_code)]
-
 use std::ops::Deref;
 use std::path::{Path, PathBuf};
 

@@ -1,0 +1,22 @@
+//! pirqa's integration tests, one module per subject, in one test binary: a binary per file
+//! would link the whole library (with the release profile's fat LTO) once per file.
+
+mod answers;
+mod common;
+mod engine;
+
+mod baselines;
+mod cli;
+mod collapse;
+mod docs;
+mod event_driven;
+mod generate;
+mod large_walls;
+mod properties;
+mod records;
+mod rocking;
+mod survey;
+mod sweep;
+mod topology;
+mod vertical;
+mod wall_input;
