@@ -1,5 +1,5 @@
 //! Speed of the exact event-driven integrator on the paper's wall (figures in
-//! docs/performance.md): `cargo bench --bench event_driven`.
+//! docs/performance.md): `cargo bench --profile release --bench event_driven`.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use pirqa::integrate::event::EventDriven;
@@ -33,7 +33,15 @@ fn run_case(c: &mut Criterion, name: &str, wall: &str, motion: Motion, duration:
 }
 
 fn benches(c: &mut Criterion) {
-    let sine = || Motion::Sine(Sine::new(4.0, 1.0, 0.0, 20.0).unwrap());
+    let sine = || {
+        Motion::sine(Sine {
+            amplitude_m_s2: 4.0,
+            frequency_hz: 1.0,
+            phase_rad: 0.0,
+            duration_s: 20.0,
+        })
+        .unwrap()
+    };
     run_case(
         c,
         "five_block_uniform_sine_400gal_1hz_20s",

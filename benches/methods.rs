@@ -1,7 +1,7 @@
 //! Every method on the five-block variable wall (sine 400 gal, 1 Hz, 10 s, the chart's scenario)
 //! at the step or tolerance that reaches 1e-6 m, or, for a method that never does, at its most
 //! accurate point of the chart (docs/performance.md, docs/accuracy.md):
-//! `cargo bench --bench methods`.
+//! `cargo bench --profile release --bench methods`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};
@@ -14,7 +14,13 @@ use std::path::Path;
 
 fn benches(c: &mut Criterion) {
     let (wall, topo) = topology::load(Path::new("walls/five-block-variable.ron")).unwrap();
-    let motion = Motion::Sine(Sine::new(4.0, 1.0, 0.0, 10.0).unwrap());
+    let motion = Motion::sine(Sine {
+        amplitude_m_s2: 4.0,
+        frequency_hz: 1.0,
+        phase_rad: 0.0,
+        duration_s: 10.0,
+    })
+    .unwrap();
     let settings = Settings::summary_only(10.0);
     let sc = Scenario {
         wall: &wall,

@@ -37,6 +37,12 @@ pub enum Error {
     /// A quantity with units could not be read (command-line values such as `400gal`).
     #[error(transparent)]
     Unit(#[from] UnitError),
+    /// A ground motion built in code is unusable (a sine or pulse of impossible numbers).
+    #[error("ground motion: {0}")]
+    InvalidMotion(#[from] MotionError),
+    /// A wall written in code or text is unusable.
+    #[error("wall: {0}")]
+    InvalidWall(#[from] WallError),
     /// A ground-motion file or description is unusable.
     #[error("{}: {source}", path.display())]
     Motion {

@@ -5,11 +5,12 @@
 //! these limits and warns. The check treats each block as free-standing: neighbours and blocks
 //! above resist rocking, so it errs on the side of warning.
 
-use crate::topology::Topology;
+use crate::response::Warning;
+use crate::topology::{BlockId, Topology};
 use crate::wall::Wall;
 
 /// Warnings for blocks whose peak absolute acceleration (m/s2) reaches the rocking limit.
-pub fn rocking_warnings(wall: &Wall, topo: &Topology, peak_accel_m_s2: &[f64]) -> Vec<String> {
+pub fn rocking_warnings(wall: &Wall, topo: &Topology, peak_accel_m_s2: &[f64]) -> Vec<Warning> {
     let g = wall.g_m_s2.to_f64();
     let mut warnings = Vec::new();
     for (i, b) in wall.blocks.iter().enumerate() {
@@ -22,25 +23,24 @@ pub fn rocking_warnings(wall: &Wall, topo: &Topology, peak_accel_m_s2: &[f64]) -
         if peak < limit {
             continue;
         }
-        let mu = topo.below[i]
+        let friction = topo.below[i]
             .iter()
             .map(|s| topo.supports[s.0].friction.to_f64())
             .fold(f64::INFINITY, f64::min);
-        let order = if mu > ratio {
-            format!("its friction {mu} exceeds b/h = {ratio:.3}, so it would rock before sliding (Shenton 1996)")
-        } else {
-            format!("with friction {mu} <= b/h = {ratio:.3} it slides first, but may slide and rock (Shenton 1996)")
-        };
-        warnings.push(format!(
-            "{}: peak absolute acceleration {peak:.3} m/s2 reaches g b/h = {limit:.3} m/s2 (Housner): as a free block it could rock; {order}. The sliding-only answer is not reliable for it.",
-            b.name
-        ));
+        warnings.push(Warning::CouldRock {
+            block: BlockId(i),
+            name: b.name.clone(),
+            peak_accel_m_s2: peak,
+            limit_m_s2: limit,
+            friction,
+            ratio,
+        });
     }
     const SHOWN: usize = 12;
     if warnings.len() > SHOWN {
         let more = warnings.len() - SHOWN;
         warnings.truncate(SHOWN);
-        warnings.push(format!("... and {more} more blocks could rock"));
+        warnings.push(Warning::MoreCouldRock { more });
     }
     warnings
 }

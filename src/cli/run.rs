@@ -2,19 +2,17 @@
 //! when asked, decisions.jsonl).
 
 use super::{print_out, write_file};
-use pirqa::integrate::baselines::{Moreau, MoreauRocking, PaperNewmark, Regularized};
-use pirqa::integrate::event::EventDriven;
-use pirqa::integrate::rocking::{self, Equations, ModelChoice, Rocking};
-use pirqa::integrate::{AfterCollapse, Integrator, Scenario, Settings};
+use pirqa::integrate::baselines::Regularized;
+use pirqa::integrate::AfterCollapse;
 use pirqa::motion::{
     check_scale, process, read_companion, read_record, Baseline, Motion, Processing, Pulse,
     ReadOptions, Sine,
 };
 use pirqa::plot::{chart, response_charts};
 use pirqa::response::{DecisionCause, DecisionRecord, Response};
-use pirqa::topology;
 use pirqa::units::{parse_acceleration, AccelUnit};
 use pirqa::Error;
+use pirqa::{Direction, Equations, Model, ModelChoice, RunSettings};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -131,7 +129,12 @@ pub fn build_motion(
     if let (Some(amp), Some(length)) = (&m.pulse, m.pulse_s) {
         let mut notes = Vec::new();
         let a = amplitude(amp, &mut notes)?;
-        let pulse = Pulse::new(a, length).map_err(|source| Error::Motion {
+        let pulse = Pulse {
+            amplitude_m_s2: a,
+            duration_s: length,
+        }
+        .checked()
+        .map_err(|source| Error::Motion {
             path: PathBuf::from("--pulse"),
             source,
         })?;
@@ -159,11 +162,16 @@ pub fn build_motion(
                     duration.ok_or_else(|| bad("--duration", "a sine needs --duration S".into()))?
                 }
             };
-            let sine = Sine::new(a, freq, m.phase.to_radians(), duration).map_err(|source| {
-                Error::Motion {
-                    path: PathBuf::from("--sine"),
-                    source,
-                }
+            let sine = Sine {
+                amplitude_m_s2: a,
+                frequency_hz: freq,
+                phase_rad: m.phase.to_radians(),
+                duration_s: duration,
+            }
+            .checked()
+            .map_err(|source| Error::Motion {
+                path: PathBuf::from("--sine"),
+                source,
             })?;
             Ok((Motion::Sine(sine), notes))
         }
@@ -310,7 +318,7 @@ pub struct RunArgs {
     /// The rocking equations: exact, or Housner's slender-block linearisation (no sliding), for
     /// comparison with the literature.
     #[arg(long, value_enum, value_name = "EQUATIONS")]
-    pub rocking: Option<RockingEquations>,
+    pub rocking: Option<Equations>,
     /// In the wall's plane, or across it (the motion perpendicular to the wall: the part above
     /// each bed joint rocks on it as one body).
     #[arg(long, value_enum, default_value_t = Direction::InPlane)]
@@ -320,24 +328,6 @@ pub struct RunArgs {
     /// ground motion the ground rests for --duration.
     #[arg(long, value_name = "NAME=RAD", value_parser = parse_rotation)]
     pub initial_rotation: Vec<(String, f64)>,
-}
-
-/// The rocking equations, as the command line names them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum RockingEquations {
-    /// The exact nonlinear equations with sliding, slide-rock and free flight checked.
-    Exact,
-    /// Housner's linearisation on a base that never slips.
-    Linearised,
-}
-
-/// The direction of the ground motion relative to the wall.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Direction {
-    /// Along the wall, in its plane.
-    InPlane,
-    /// Across the wall.
-    OutOfPlane,
 }
 
 fn parse_rotation(text: &str) -> Result<(String, f64), String> {
@@ -371,12 +361,12 @@ pub enum Method {
 
 impl RunArgs {
     /// The integrator the options ask for.
-    pub fn integrator(&self) -> Box<dyn Integrator> {
+    pub fn method(&self) -> pirqa::Method {
         match self.method {
-            Method::Event => Box::new(EventDriven::default()),
-            Method::Paper => Box::new(PaperNewmark { dt_s: self.dt }),
-            Method::Moreau => Box::new(Moreau::new(self.dt)),
-            Method::Regularized => Box::new(Regularized {
+            Method::Event => pirqa::Method::Event,
+            Method::Paper => pirqa::Method::Paper { dt_s: self.dt },
+            Method::Moreau => pirqa::Method::Moreau { dt_s: self.dt },
+            Method::Regularized => pirqa::Method::Regularized(Regularized {
                 eps: self.eps,
                 stiffness: self.stiffness,
                 ..Regularized::new(self.rtol)
@@ -386,7 +376,8 @@ impl RunArgs {
 }
 
 pub fn run(args: &RunArgs) -> Result<(), Error> {
-    let (wall, topo) = topology::load(&args.wall)?;
+    let model = Model::from_file(&args.wall)?;
+    let wall = model.wall();
     let (motion, notes) = if args.motion.is_empty() && !args.initial_rotation.is_empty() {
         if args.duration.is_none() {
             return Err(bad(
@@ -400,21 +391,20 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     };
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
     let (bar, progress) = super::sweep::simulated_time_bar(duration, &wall.name);
-    let settings = Settings {
-        duration_s: duration,
+    let settings = RunSettings {
+        duration_s: Some(duration),
         output_dt_s: (args.out.is_some() && !args.no_history).then_some(args.output_dt),
         log_events: args.out.is_some(),
         log_decisions: args.decisions,
         after_collapse: args.after_collapse,
+        method: args.method(),
+        model: args.model,
+        rocking: args.rocking,
+        direction: args.direction,
+        initial_rotation: args.initial_rotation.clone(),
         progress: Some(progress),
     };
-    let scenario = Scenario {
-        wall: &wall,
-        topology: &topo,
-        motion: &motion,
-        settings: &settings,
-    };
-    let response = simulate(args, &scenario);
+    let response = pirqa::run(&model, &motion, &settings);
     bar.finish_and_clear();
     let mut response = response?;
     response.summary.motion_processing = notes;
@@ -429,83 +419,6 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         print_out(&decision_table(&response.decisions));
     }
     Ok(())
-}
-
-/// Runs the model the options ask for: sliding, or rocking (in the wall's plane for a
-/// free-standing block, across it for every wall), and says in the summary which and why.
-fn simulate(args: &RunArgs, sc: &Scenario) -> Result<Response, Error> {
-    let equations = match args.rocking {
-        Some(RockingEquations::Linearised) => Equations::Linearised,
-        _ => Equations::Exact,
-    };
-    let needs_event = |what: &str| -> Result<(), Error> {
-        if args.method != Method::Event {
-            return Err(bad(
-                "--method",
-                format!(
-                    "{what} runs on the exact event-driven integrator only: leave --method out \
-                     (or run with --model slide)"
-                ),
-            ));
-        }
-        Ok(())
-    };
-    if args.direction == Direction::OutOfPlane {
-        if args.model == ModelChoice::Slide {
-            return Err(bad(
-                "--direction",
-                "across the wall's plane the wall rocks: use --model slide-rock or auto".into(),
-            ));
-        }
-        needs_event("rocking across the plane")?;
-        return Ok(rocking::out_of_plane(
-            sc.wall,
-            sc.topology,
-            sc.motion,
-            sc.settings,
-            equations,
-            &args.initial_rotation,
-        )?);
-    }
-    if args.rocking.is_some() && args.model == ModelChoice::Slide {
-        return Err(bad(
-            "--rocking",
-            "--model slide rotates no block: leave --rocking out, or use --model slide-rock".into(),
-        ));
-    }
-    let (rocks, why) = rocking::rocks_in_plane(
-        args.model,
-        sc.wall,
-        sc.topology,
-        sc.motion,
-        sc.settings.duration_s,
-        &args.initial_rotation,
-    )?;
-    let initial = args.initial_rotation.first().map_or(0.0, |r| r.1);
-    let mut response = if rocks && args.method == Method::Moreau {
-        if args.rocking.is_some() {
-            return Err(bad(
-                "--rocking",
-                "Moreau-Jean steps the rigid body's own equations: leave --rocking out".into(),
-            ));
-        }
-        MoreauRocking {
-            initial_rotation_rad: initial,
-            ..MoreauRocking::new(args.dt)
-        }
-        .run(sc)?
-    } else if rocks {
-        needs_event("the rocking model (or --method moreau)")?;
-        Rocking {
-            equations,
-            initial_rotation_rad: initial,
-        }
-        .run(sc)?
-    } else {
-        args.integrator().run(sc)?
-    };
-    response.summary.model.why = why;
-    Ok(response)
 }
 
 /// Writes a run's files into `dir`; with a history, also its chart (`response.svg`) and the

@@ -14,7 +14,8 @@ use crate::topology::Topology;
 use crate::wall::Wall;
 
 /// What to do once a block falls.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum AfterCollapse {
     /// Stop the run at the first collapse.

@@ -37,17 +37,21 @@ pub struct Pulse {
 }
 
 impl Pulse {
-    /// A pulse; checks that the numbers make sense.
-    pub fn new(amplitude_m_s2: f64, duration_s: f64) -> Result<Pulse, MotionError> {
-        if !(amplitude_m_s2.is_finite() && duration_s.is_finite() && duration_s > 0.0) {
+    /// Checks the numbers: a finite amplitude, a positive duration.
+    pub fn validate(&self) -> Result<(), MotionError> {
+        let (a, d) = (self.amplitude_m_s2, self.duration_s);
+        if !(a.is_finite() && d.is_finite() && d > 0.0) {
             return Err(MotionError::Invalid(format!(
-                "a pulse needs a finite amplitude and a positive duration (got {amplitude_m_s2} m/s2 for {duration_s} s)"
+                "a pulse needs a finite amplitude and a positive duration (got {a} m/s2 for {d} s)"
             )));
         }
-        Ok(Pulse {
-            amplitude_m_s2,
-            duration_s,
-        })
+        Ok(())
+    }
+
+    /// The pulse, checked.
+    pub fn checked(self) -> Result<Pulse, MotionError> {
+        self.validate()?;
+        Ok(self)
     }
 
     /// The ground at rest.
@@ -59,7 +63,8 @@ impl Pulse {
     }
 }
 
-/// A sine.
+/// A sine, by its named numbers: `Sine { amplitude_m_s2: 4.0, frequency_hz: 1.0, duration_s:
+/// 20.0, ..Sine::default() }` (phase 0), checked by [`Motion::sine`] or [`Sine::checked`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sine {
     /// Amplitude (m/s2).
@@ -88,31 +93,41 @@ pub struct Record {
     displacement: Vec<f64>,
 }
 
+impl Default for Sine {
+    /// 1 Hz for 10 s from phase 0, of zero amplitude (give one).
+    fn default() -> Sine {
+        Sine {
+            amplitude_m_s2: 0.0,
+            frequency_hz: 1.0,
+            phase_rad: 0.0,
+            duration_s: 10.0,
+        }
+    }
+}
+
 impl Sine {
-    /// A sine; checks that the numbers make sense.
-    pub fn new(
-        amplitude_m_s2: f64,
-        frequency_hz: f64,
-        phase_rad: f64,
-        duration_s: f64,
-    ) -> Result<Sine, MotionError> {
-        let ok = amplitude_m_s2.is_finite()
-            && frequency_hz.is_finite()
-            && frequency_hz > 0.0
-            && phase_rad.is_finite()
-            && duration_s.is_finite()
-            && duration_s > 0.0;
+    /// Checks that the numbers make sense: a finite amplitude and phase, a positive frequency
+    /// and duration.
+    pub fn validate(&self) -> Result<(), MotionError> {
+        let ok = self.amplitude_m_s2.is_finite()
+            && self.frequency_hz.is_finite()
+            && self.frequency_hz > 0.0
+            && self.phase_rad.is_finite()
+            && self.duration_s.is_finite()
+            && self.duration_s > 0.0;
         if !ok {
             return Err(MotionError::Invalid(format!(
-                "sine needs a finite amplitude and phase, a positive frequency and duration (got {amplitude_m_s2} m/s2, phase {phase_rad} rad, {frequency_hz} Hz, {duration_s} s)"
+                "sine needs a finite amplitude and phase, a positive frequency and duration (got {} m/s2, phase {} rad, {} Hz, {} s)",
+                self.amplitude_m_s2, self.phase_rad, self.frequency_hz, self.duration_s
             )));
         }
-        Ok(Sine {
-            amplitude_m_s2,
-            frequency_hz,
-            phase_rad,
-            duration_s,
-        })
+        Ok(())
+    }
+
+    /// The sine, checked.
+    pub fn checked(self) -> Result<Sine, MotionError> {
+        self.validate()?;
+        Ok(self)
     }
 
     fn omega(&self) -> f64 {
@@ -246,6 +261,16 @@ impl Record {
 }
 
 impl Motion {
+    /// A sine, checked.
+    pub fn sine(sine: Sine) -> Result<Motion, MotionError> {
+        Ok(Motion::Sine(sine.checked()?))
+    }
+
+    /// A rectangular pulse, checked.
+    pub fn pulse(pulse: Pulse) -> Result<Motion, MotionError> {
+        Ok(Motion::Pulse(pulse.checked()?))
+    }
+
     /// Natural length of the motion (s): the sine's duration or the record's last sample.
     pub fn duration_s(&self) -> f64 {
         match self {
@@ -537,7 +562,14 @@ mod tests {
 
     #[test]
     fn sine_integrals_are_closed_form() {
-        let s = Sine::new(4.0, 1.3, 0.7, 10.0).unwrap();
+        let s = Sine {
+            amplitude_m_s2: 4.0,
+            frequency_hz: 1.3,
+            phase_rad: 0.7,
+            duration_s: 10.0,
+        }
+        .checked()
+        .unwrap();
         let m = Motion::Sine(s.clone());
         let w = s.omega();
         for &t in &[0.0, 0.01, 0.3, 1.234, 5.0, 9.99] {
@@ -559,7 +591,13 @@ mod tests {
 
     #[test]
     fn sine_segments_are_monotone_arcs() {
-        let m = Motion::Sine(Sine::new(1.0, 2.0, 0.0, 3.0).unwrap());
+        let m = Motion::sine(Sine {
+            amplitude_m_s2: 1.0,
+            frequency_hz: 2.0,
+            phase_rad: 0.0,
+            duration_s: 3.0,
+        })
+        .unwrap();
         let mut t = 0.0;
         let mut count = 0;
         while t < 3.0 {
@@ -629,13 +667,33 @@ mod tests {
 
     #[test]
     fn a_pulse_is_constant_then_zero_with_exact_integrals() {
-        let m = Motion::Pulse(Pulse::new(-3.0, 0.5).unwrap());
+        let m = Motion::Pulse(
+            Pulse {
+                amplitude_m_s2: -3.0,
+                duration_s: 0.5,
+            }
+            .checked()
+            .unwrap(),
+        );
         assert_eq!(m.accel(0.49), -3.0);
         assert_eq!(m.accel(0.5), 0.0);
         assert_relative_eq!(m.velocity(0.25), -0.75, epsilon = 1e-15);
         assert_relative_eq!(m.displacement(2.0), -0.375 - 1.5 * 1.5, epsilon = 1e-15);
         assert_eq!(m.accel_range(0.1, 0.7), (-3.0, 0.0));
-        assert!(Pulse::new(1.0, 0.0).is_err() && Pulse::new(f64::NAN, 1.0).is_err());
+        assert!(
+            Pulse {
+                amplitude_m_s2: 1.0,
+                duration_s: 0.0
+            }
+            .checked()
+            .is_err()
+                && Pulse {
+                    amplitude_m_s2: f64::NAN,
+                    duration_s: 1.0
+                }
+                .checked()
+                .is_err()
+        );
         let rest = Motion::Pulse(Pulse::rest());
         assert_eq!(
             (rest.accel(0.0), rest.describe().as_str()),
@@ -650,7 +708,13 @@ mod tests {
             (135.0, "phase 135 deg"),
             (0.1, "phase 0.1 deg"),
         ] {
-            let m = Motion::Sine(Sine::new(4.0, 1.0, f64::to_radians(deg), 20.0).unwrap());
+            let m = Motion::sine(Sine {
+                amplitude_m_s2: 4.0,
+                frequency_hz: 1.0,
+                phase_rad: f64::to_radians(deg),
+                duration_s: 20.0,
+            })
+            .unwrap();
             assert!(m.describe().contains(shown), "{}", m.describe());
         }
     }
@@ -658,7 +722,13 @@ mod tests {
     #[test]
     fn a_sine_is_read_as_its_segments_and_peaks_at_its_crests() {
         // Crests at t = (pi/2 + k pi - 0.7) / (2 pi 1.3); the sine ends between two of them.
-        let m = Motion::Sine(Sine::new(4.0, 1.3, 0.7, 4.9).unwrap());
+        let m = Motion::sine(Sine {
+            amplitude_m_s2: 4.0,
+            frequency_hz: 1.3,
+            phase_rad: 0.7,
+            duration_s: 4.9,
+        })
+        .unwrap();
         let w = 2.0 * std::f64::consts::PI * 1.3;
         let times: Vec<f64> = (0..14)
             .map(|k| (std::f64::consts::FRAC_PI_2 + k as f64 * std::f64::consts::PI - 0.7) / w)

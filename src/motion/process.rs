@@ -5,7 +5,8 @@ use super::Record;
 use crate::error::MotionError;
 
 /// Baseline correction.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Baseline {
     /// Leave the record as it is.

@@ -280,6 +280,14 @@ pub struct Stats {
     /// (event-driven): the scheduling work, which a decision beside a large sliding body
     /// keeps to the pairs it changed.
     pub pair_schedules: u64,
+    /// Steps whose Gauss-Seidel stopped at its sweep limit (Moreau-Jean; written only when
+    /// not zero).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub unconverged_steps: u64,
+}
+
+fn is_zero(x: &u64) -> bool {
+    *x == 0
 }
 
 /// `summary.json`.
@@ -316,7 +324,7 @@ pub struct Summary {
     /// Work counters.
     pub stats: Stats,
     /// Warnings about the validity of the model for this run.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// Across the wall's plane: the section nearest to overturning (absent when none lifted).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub worst: Option<Worst>,
@@ -332,6 +340,98 @@ pub struct Worst {
     pub rotation_over_alpha: f64,
     /// It overturned.
     pub overturned: bool,
+}
+
+/// A warning about a run: where the model stops being valid, or a method's own trouble. Written
+/// into `summary.json` as its text (the same words as the terminal's).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Warning {
+    /// A block's peak absolute acceleration reached Housner's g b/h: as a free block it could
+    /// rock, which the sliding model leaves out.
+    CouldRock {
+        /// The block.
+        block: crate::topology::BlockId,
+        /// Its name.
+        name: String,
+        /// Its peak absolute acceleration (m/s2).
+        peak_accel_m_s2: f64,
+        /// g b/h (m/s2).
+        limit_m_s2: f64,
+        /// The lowest friction coefficient under it.
+        friction: f64,
+        /// b/h.
+        ratio: f64,
+    },
+    /// More blocks could rock than the warnings list.
+    MoreCouldRock {
+        /// How many more.
+        more: usize,
+    },
+    /// A rocking body left the ground on both corners: the run stopped there.
+    Flight {
+        /// The body.
+        body: String,
+        /// When (s).
+        time_s: f64,
+    },
+    /// A level of the wall was not checked across its plane.
+    LevelSkipped {
+        /// Its height (m).
+        level_m: f64,
+        /// Why.
+        why: String,
+    },
+    /// Gauss-Seidel stopped at its sweep limit in some steps (Moreau-Jean).
+    Unconverged {
+        /// Steps that ended unconverged.
+        steps: u64,
+        /// The sweep limit.
+        sweeps: usize,
+    },
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Warning::CouldRock {
+                name,
+                peak_accel_m_s2,
+                limit_m_s2,
+                friction,
+                ratio,
+                ..
+            } => {
+                let order = if friction > ratio {
+                    format!("its friction {friction} exceeds b/h = {ratio:.3}, so it would rock before sliding (Shenton 1996)")
+                } else {
+                    format!("with friction {friction} <= b/h = {ratio:.3} it slides first, but may slide and rock (Shenton 1996)")
+                };
+                write!(
+                    f,
+                    "{name}: peak absolute acceleration {peak_accel_m_s2:.3} m/s2 reaches g b/h = {limit_m_s2:.3} m/s2 (Housner): as a free block it could rock; {order}. The sliding-only answer is not reliable for it."
+                )
+            }
+            Warning::MoreCouldRock { more } => write!(f, "... and {more} more blocks could rock"),
+            Warning::Flight { body, time_s } => write!(
+                f,
+                "{body} leaves the ground on both corners at t = {time_s} s (free flight): the \
+                 model stops there, and the run with it"
+            ),
+            Warning::LevelSkipped { level_m, why } => {
+                write!(f, "level {level_m} m not checked across the plane: {why}")
+            }
+            Warning::Unconverged { steps, sweeps } => write!(
+                f,
+                "Gauss-Seidel did not converge within {sweeps} sweeps in {steps} steps"
+            ),
+        }
+    }
+}
+
+impl Serialize for Warning {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
 }
 
 /// Time histories sampled at output times and at every event.
@@ -397,7 +497,7 @@ pub struct Recorder {
     /// Work counters.
     pub stats: Stats,
     /// Model-validity warnings.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
     /// The model that ran.
     pub model: ModelUsed,
 }

@@ -14,7 +14,13 @@ use crate::topology::Topology;
 
 /// Sine of 400 gal at 1 Hz, the paper's standard input.
 fn sine(phase_deg: f64, duration_s: f64) -> Motion {
-    Motion::Sine(Sine::new(4.0, 1.0, phase_deg.to_radians(), duration_s).expect("valid sine"))
+    Motion::sine(Sine {
+        amplitude_m_s2: 4.0,
+        frequency_hz: 1.0,
+        phase_rad: phase_deg.to_radians(),
+        duration_s,
+    })
+    .expect("valid sine")
 }
 
 fn case(name: &str, wall: crate::Wall, motion: Motion, duration_s: f64) -> Case {

@@ -108,7 +108,13 @@ pub fn spectra(opts: &Options) -> (Vec<SpectrumPoint>, f64, f64) {
 fn overturns(body: &RockingBody, eq: Equations, ratio: f64, amplitude: f64) -> Option<bool> {
     let p = body.frequency_parameter_rad_s();
     let f = ratio * p / (2.0 * std::f64::consts::PI);
-    let sine = Motion::Sine(Sine::new(amplitude, f, 0.0, 1.0 / f).ok()?);
+    let sine = Motion::sine(Sine {
+        amplitude_m_s2: amplitude,
+        frequency_hz: f,
+        phase_rad: 0.0,
+        duration_s: 1.0 / f,
+    })
+    .ok()?;
     let settings = Settings::summary_only(1.0 / f + 60.0 / p);
     let r = rocking::run(&Scene {
         bodies: std::slice::from_ref(body),

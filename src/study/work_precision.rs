@@ -17,7 +17,13 @@ use std::time::Instant;
 /// Centro scaled to 258 gal and by 5 (from `record`).
 pub fn standard_cases(record: &std::path::Path) -> Result<Vec<Case>, crate::Error> {
     use crate::motion::{read_record, ReadOptions, Sine};
-    let sine = Motion::Sine(Sine::new(4.0, 1.0, 0.0, 10.0).expect("valid sine"));
+    let sine = Motion::sine(Sine {
+        amplitude_m_s2: 4.0,
+        frequency_hz: 1.0,
+        phase_rad: 0.0,
+        duration_s: 10.0,
+    })
+    .expect("valid sine");
     let mut cases = Vec::new();
     let one = crate::samples::one_block(0.3);
     cases.push(Case {
@@ -469,11 +475,16 @@ pub fn rocking_cases(record: &std::path::Path) -> Result<Vec<RockingCase>, crate
     let body = crate::integrate::rocking::free_standing(&wall, &topology)?;
     let (ratio, p) = (body.uplift_ratio(), body.frequency_parameter_rad_s());
     let f = 3.0 * p / (2.0 * std::f64::consts::PI);
-    let pulse = Sine::new(1.3 * ratio * body.g_m_s2, f, 0.0, 1.0 / f).map_err(|source| {
-        crate::Error::Motion {
-            path: "rocking pulse".into(),
-            source,
-        }
+    let pulse = Sine {
+        amplitude_m_s2: 1.3 * ratio * body.g_m_s2,
+        frequency_hz: f,
+        phase_rad: 0.0,
+        duration_s: 1.0 / f,
+    }
+    .checked()
+    .map_err(|source| crate::Error::Motion {
+        path: "rocking pulse".into(),
+        source,
     })?;
     let raw = read_record(record, None, &ReadOptions::default())?;
     let el_centro = raw.scaled(0.4 * body.g_m_s2 / raw.pga_m_s2());

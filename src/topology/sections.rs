@@ -19,7 +19,8 @@ use super::{Base, Topology};
 use crate::wall::Wall;
 
 /// How the top of the wall is held across its plane.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Top {
     /// Free: each section is a cantilever rocking on its bed joint.

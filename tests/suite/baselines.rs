@@ -233,3 +233,30 @@ fn the_work_precision_errors_are_zero_for_the_reference_and_positive_otherwise()
          s,m,1e-9,never,,2e-7\n"
     );
 }
+
+/// Moreau-Jean's Gauss-Seidel stopped at its sweep limit is counted and said, not passed over:
+/// one sweep a step cannot settle the paper's wall with its bridging block.
+#[test]
+fn moreau_says_when_gauss_seidel_does_not_converge() {
+    let c = failures::drift_case().unwrap();
+    let enough = go(&Moreau::new(1e-3), &c);
+    assert_eq!(enough.summary.stats.unconverged_steps, 0);
+    assert!(enough.summary.warnings.is_empty());
+    let one_sweep = Moreau {
+        max_sweeps: 1,
+        ..Moreau::new(1e-3)
+    };
+    let r = go(&one_sweep, &c);
+    assert!(r.summary.stats.unconverged_steps > 0);
+    let said = r
+        .summary
+        .warnings
+        .iter()
+        .map(|w| w.to_string())
+        .collect::<Vec<_>>();
+    assert!(
+        said.iter()
+            .any(|w| w.contains("did not converge within 1 sweeps")),
+        "{said:?}"
+    );
+}

@@ -72,7 +72,13 @@ fn a_block_bridging_a_gap_stands_until_its_centroid_leaves_the_far_support() {
 #[test]
 fn after_collapse_continue_runs_on_without_the_fallen_block() {
     let wall = Wall::load(std::path::Path::new("walls/five-block-variable.ron")).unwrap();
-    let motion = Motion::Sine(pirqa::motion::Sine::new(5.0, 0.2, 0.0, 10.0).unwrap());
+    let motion = Motion::sine(pirqa::motion::Sine {
+        amplitude_m_s2: 5.0,
+        frequency_hz: 0.2,
+        phase_rad: 0.0,
+        duration_s: 10.0,
+    })
+    .unwrap();
     let stop = run(&wall, &motion, 10.0, AfterCollapse::Stop);
     let first = stop
         .summary

@@ -425,3 +425,30 @@ fn every_integrator_reports_its_progress_up_to_the_duration() {
         assert_eq!(seen.last(), Some(&3.0), "{method}");
     }
 }
+
+/// The work of the README's run (the paper's variable wall, 400 gal, 1 Hz, 20 s) is pinned:
+/// the counts are the same on every machine, so a change that doubles the work shows here
+/// (times are not tested; docs/performance.md has them).
+#[test]
+fn the_readme_runs_work_counters_are_pinned() {
+    let r = run(
+        &load("walls/five-block-variable.ron"),
+        &sine(4.0, 1.0, 0.0, 20.0),
+        20.0,
+        None,
+    );
+    assert_eq!(
+        r.summary.stats,
+        pirqa::response::Stats {
+            events: 245,
+            mode_decisions: 246,
+            segments: 40,
+            root_evaluations: 7578,
+            steps: 0,
+            decision_blocks: 735,
+            flow_nodes: 0,
+            pair_schedules: 169,
+            unconverged_steps: 0,
+        }
+    );
+}

@@ -91,7 +91,7 @@ proptest! {
         prop_assume!(topo.is_ok());
         let topo = topo.unwrap();
         if std::env::var("PIRQA_PROBE").is_ok() { eprintln!("CASE {}\n{amp} {freq} {phase}", pirqa::wall::to_ron_string(&d)); }
-        let motion = Motion::Sine(Sine::new(amp, freq, phase.to_radians(), 4.0).unwrap());
+        let motion = Motion::sine(Sine { amplitude_m_s2: amp, frequency_hz: freq, phase_rad: phase.to_radians(), duration_s: 4.0 }).unwrap();
         let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), log_events: true, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings }).unwrap();
 

@@ -143,7 +143,14 @@ fn linearised_free_rocking_lands_at_its_closed_form() {
 }
 
 fn overturns(body: &RockingBody, eq: Equations, a: f64, t1: f64) -> bool {
-    let pulse = Motion::Pulse(Pulse::new(a, t1).unwrap());
+    let pulse = Motion::Pulse(
+        Pulse {
+            amplitude_m_s2: a,
+            duration_s: t1,
+        }
+        .checked()
+        .unwrap(),
+    );
     let r = run(body, 0.0, eq, &pulse, t1 + 20.0);
     r.summary
         .collapse
@@ -184,7 +191,13 @@ fn a_sine_lifts_the_block_when_it_reaches_g_tan_alpha() {
     let body = slender(1.0);
     let (a_p, f) = (0.5 * G, 2.0);
     let w = 2.0 * std::f64::consts::PI * f;
-    let sine = Motion::Sine(Sine::new(a_p, f, 0.0, 1.0).unwrap());
+    let sine = Motion::sine(Sine {
+        amplitude_m_s2: a_p,
+        frequency_hz: f,
+        phase_rad: 0.0,
+        duration_s: 1.0,
+    })
+    .unwrap();
     let r = run(&body, 0.0, Equations::Exact, &sine, 0.3);
     let want = (G * body.uplift_ratio() / a_p).asin() / w;
     let got = r.summary.blocks[0].uplift_time_s.unwrap();
@@ -373,7 +386,13 @@ fn a_block_that_cannot_lift_slides_as_the_sliding_engine_says() {
     use pirqa::integrate::{Integrator, Scenario};
     let wall = samples::one_block(0.3);
     let topo = pirqa::Topology::new(&wall).unwrap();
-    let sine = Motion::Sine(Sine::new(4.0, 1.0, 0.3, 6.0).unwrap());
+    let sine = Motion::sine(Sine {
+        amplitude_m_s2: 4.0,
+        frequency_hz: 1.0,
+        phase_rad: 0.3,
+        duration_s: 6.0,
+    })
+    .unwrap();
     let settings = Settings::summary_only(6.0);
     let scenario = Scenario {
         wall: &wall,
@@ -488,7 +507,13 @@ fn a_section_lifts_at_its_static_threshold() {
         .min_by(|a, b| a.threshold_g.total_cmp(&b.threshold_g))
         .unwrap();
     let (a_p, f) = (1.2 * G, 1.0);
-    let sine = Motion::Sine(Sine::new(a_p, f, 0.0, 2.0).unwrap());
+    let sine = Motion::sine(Sine {
+        amplitude_m_s2: a_p,
+        frequency_hz: f,
+        phase_rad: 0.0,
+        duration_s: 2.0,
+    })
+    .unwrap();
     let settings = Settings {
         log_events: true,
         ..Settings::summary_only(0.5)

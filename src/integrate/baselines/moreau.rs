@@ -7,7 +7,7 @@
 use crate::error::SimulationError;
 use crate::integrate::stepping::{positive, Model, Observer};
 use crate::integrate::{Integrator, Scenario};
-use crate::response::Response;
+use crate::response::{Response, Warning};
 
 /// Approach speed above which a contact impulse counts as an impact in the log (m/s).
 const IMPACT_SPEED_M_S: f64 = 1e-9;
@@ -58,6 +58,7 @@ impl Integrator for Moreau {
         let scale = m.joints.iter().map(|j| j.capacity).fold(1.0, f64::max) * h;
         let steps = (sc.settings.duration_s / h).ceil() as u64;
         let th = self.theta;
+        let mut unconverged = 0u64;
         for k in 1..=steps {
             let t0 = (k - 1) as f64 * h;
             let t = (k as f64 * h).min(sc.settings.duration_s);
@@ -81,6 +82,7 @@ impl Integrator for Moreau {
                 .collect();
             p_joint.iter_mut().for_each(|p| *p = 0.0);
             p_face.iter_mut().for_each(|p| *p = 0.0);
+            let mut converged = false;
             for _ in 0..self.max_sweeps {
                 let mut change: f64 = 0.0;
                 for (kj, j) in m.joints.iter().enumerate() {
@@ -124,8 +126,12 @@ impl Integrator for Moreau {
                     }
                 }
                 if change <= self.tolerance * scale {
+                    converged = true;
                     break;
                 }
+            }
+            if !converged {
+                unconverged += 1;
             }
             for &(kf, un_old) in &active {
                 // Pressing faces carry an impulse every step; an impact is a face that was
@@ -149,6 +155,14 @@ impl Integrator for Moreau {
                 break;
             }
         }
-        Ok(obs.finish("moreau", sc, steps))
+        let mut r = obs.finish("moreau", sc, steps);
+        r.summary.stats.unconverged_steps = unconverged;
+        if unconverged > 0 {
+            r.summary.warnings.push(Warning::Unconverged {
+                steps: unconverged,
+                sweeps: self.max_sweeps,
+            });
+        }
+        Ok(r)
     }
 }

@@ -10,7 +10,7 @@ use crate::error::SimulationError;
 use crate::integrate::rocking::{self, RockingBody};
 use crate::integrate::stepping::positive;
 use crate::integrate::{Integrator, Scenario};
-use crate::response::{Collapse, CollapseCause, Recorder, Response};
+use crate::response::{Collapse, CollapseCause, Recorder, Response, Warning};
 use nalgebra::{Matrix2, Matrix2x3, Vector2, Vector3};
 
 /// Moreau-Jean with rotations, on a wall of one free-standing block.
@@ -198,11 +198,12 @@ impl Integrator for MoreauRocking {
         // attribute it to friction or landings one by one).
         let e = &mut rec.energy;
         e.friction_j = e.initial_j + e.input_j - e.kinetic_j - e.potential_j - e.fallen_j;
+        rec.stats.unconverged_steps = unconverged;
         if unconverged > 0 {
-            rec.warnings.push(format!(
-                "Gauss-Seidel did not converge within {} sweeps in {unconverged} steps",
-                self.max_sweeps
-            ));
+            rec.warnings.push(Warning::Unconverged {
+                steps: unconverged,
+                sweeps: self.max_sweeps,
+            });
         }
         let (u, uv) = base(&q, &v);
         let motion = sc.motion.describe();

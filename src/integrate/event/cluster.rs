@@ -269,7 +269,13 @@ mod tests {
     /// gives), whatever the order of the times asked for, before and after re-anchoring.
     #[test]
     fn remembered_states_are_the_computed_ones() {
-        let motion = Motion::Sine(Sine::new(4.0, 1.0, 30.0, 20.0).unwrap());
+        let motion = Motion::sine(Sine {
+            amplitude_m_s2: 4.0,
+            frequency_hz: 1.0,
+            phase_rad: 30.0,
+            duration_s: 20.0,
+        })
+        .unwrap();
         let seg = motion.segment_at(0.1);
         let mut sl = Slide::formed(&seg, 0.1, 0.05, Q::frac(-3, 2));
         let check = |sl: &Slide, t: f64| {

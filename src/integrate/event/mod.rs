@@ -862,7 +862,13 @@ mod tests {
         };
         let wall = Wall::from_description(&spec.description().unwrap()).unwrap();
         let topology = Topology::new(&wall).unwrap();
-        let motion = Motion::Sine(Sine::new(1.0, 1.0, 0.0, 1.0).unwrap());
+        let motion = Motion::sine(Sine {
+            amplitude_m_s2: 1.0,
+            frequency_hz: 1.0,
+            phase_rad: 0.0,
+            duration_s: 1.0,
+        })
+        .unwrap();
         let settings = Settings::summary_only(1.0);
         let params = Params::default();
         let scenario = Scenario {

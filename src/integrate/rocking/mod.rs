@@ -28,7 +28,7 @@ pub use modes::Equations;
 use crate::error::SimulationError;
 use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
-use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response};
+use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
 use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
 use series::Coeffs;
 
@@ -217,11 +217,10 @@ impl<'a> Engine<'a> {
         if new == Mode::Flight {
             self.rec
                 .rocking_event(self.t, EventKind::Flight, i, None, new.name());
-            self.rec.warnings.push(format!(
-                "{} leaves the ground on both corners at t = {} s (free flight): the model \
-                 stops there, and the run with it",
-                body.name, self.t
-            ));
+            self.rec.warnings.push(Warning::Flight {
+                body: body.name.clone(),
+                time_s: self.t,
+            });
             self.t_end = self.t;
             self.tracks[i].mode = new;
             return Ok(());
@@ -866,11 +865,11 @@ pub fn out_of_plane(
             wall.thickness_m.to_f64()
         ),
     };
-    for k in &skipped {
-        s.warnings.push(format!(
-            "level {} m not checked across the plane: {}",
-            k.level_m, k.why
-        ));
+    for k in skipped {
+        s.warnings.push(Warning::LevelSkipped {
+            level_m: k.level_m,
+            why: k.why,
+        });
     }
     let first_fall = s.collapse.as_ref().map(|c| c.block.clone());
     s.worst = s
@@ -893,7 +892,8 @@ pub fn out_of_plane(
 }
 
 /// The model a run asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum ModelChoice {
     /// Blocks slide only (one degree of freedom each).
     Slide,

@@ -138,6 +138,7 @@ fn slip_name(s: Slip) -> &'static str {
 
 /// The equations between events.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Equations {
     /// The exact nonlinear equations, with sliding, slide-rock and free flight checked.

@@ -698,13 +698,17 @@ fn resolve_motions(
             for text in amplitudes {
                 let a = accel(text)?;
                 for &f in &freqs {
-                    let sine =
-                        Sine::new(a, f, phase_deg.to_radians(), *duration_s).map_err(|source| {
-                            Error::Motion {
-                                path: origin.to_path_buf(),
-                                source,
-                            }
-                        })?;
+                    let sine = Sine {
+                        amplitude_m_s2: a,
+                        frequency_hz: f,
+                        phase_rad: phase_deg.to_radians(),
+                        duration_s: *duration_s,
+                    }
+                    .checked()
+                    .map_err(|source| Error::Motion {
+                        path: origin.to_path_buf(),
+                        source,
+                    })?;
                     out.push(SweepMotion {
                         label: format!("sine {:.0} gal {f} Hz", a * 100.0),
                         motion: Motion::Sine(sine),

@@ -40,7 +40,13 @@ pub fn run(wall: &Wall, motion: &Motion, duration: f64, output_dt: Option<f64>) 
 
 /// A sine of `amp` m/s2 at `freq` Hz starting at phase `phase_deg`, lasting `duration` s.
 pub fn sine(amp: f64, freq: f64, phase_deg: f64, duration: f64) -> Motion {
-    Motion::Sine(Sine::new(amp, freq, phase_deg.to_radians(), duration).unwrap())
+    Motion::sine(Sine {
+        amplitude_m_s2: amp,
+        frequency_hz: freq,
+        phase_rad: phase_deg.to_radians(),
+        duration_s: duration,
+    })
+    .unwrap()
 }
 
 /// A constant ground acceleration `a` (m/s2) for `duration` s, as a record sampled at 100 Hz.

@@ -1,0 +1,189 @@
+//! One run: a model under a ground motion with its settings, the model of the blocks chosen as
+//! asked (sliding, rocking, or auto: sliding while no block can lift), the response returned
+//! with a word on which model ran and why. `pirqa run` is this function behind its options.
+
+use crate::error::{Error, SimulationError};
+use crate::integrate::baselines::{Moreau, MoreauRocking, PaperNewmark, Regularized};
+use crate::integrate::event::EventDriven;
+use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
+use crate::integrate::stepping::positive;
+use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario, Settings};
+use crate::model::Model;
+use crate::motion::Motion;
+use crate::response::Response;
+
+/// The integrator.
+#[derive(Debug, Clone, Default)]
+pub enum Method {
+    /// The exact event-driven integrator.
+    #[default]
+    Event,
+    /// The paper's Newmark scheme with sgn(v) friction, step `dt_s`.
+    Paper {
+        /// Time step (s).
+        dt_s: f64,
+    },
+    /// Moreau-Jean time stepping (with rotations for a rocking block), step `dt_s`.
+    Moreau {
+        /// Time step (s).
+        dt_s: f64,
+    },
+    /// Regularized friction and penalty contacts under Dormand-Prince 5(4).
+    Regularized(Regularized),
+}
+
+/// The direction of the ground motion relative to the wall.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Direction {
+    /// Along the wall, in its plane.
+    #[default]
+    InPlane,
+    /// Across the wall: the part above each bed joint rocks (or slides) on it as one body.
+    OutOfPlane,
+}
+
+/// How to run: the defaults give the exact integrator, the model chosen by the motion (auto),
+/// in the wall's plane, for the motion's own length, with the summary only.
+#[derive(Debug, Clone, Default)]
+pub struct RunSettings {
+    /// Simulated time (s); `None`: the motion's length (a sine's or pulse's duration, a record's
+    /// last sample).
+    pub duration_s: Option<f64>,
+    /// History sampling interval (s); `None`: no history.
+    pub output_dt_s: Option<f64>,
+    /// Keep the event log.
+    pub log_events: bool,
+    /// Keep the log of mode decisions (event-driven sliding only).
+    pub log_decisions: bool,
+    /// What to do once a block falls.
+    pub after_collapse: AfterCollapse,
+    /// The integrator.
+    pub method: Method,
+    /// Sliding, rocking, or auto.
+    pub model: ModelChoice,
+    /// The rocking equations (default exact).
+    pub rocking: Option<Equations>,
+    /// In the wall's plane or across it.
+    pub direction: Direction,
+    /// Blocks (or sections across the plane) released from a rotation, by name (rad).
+    pub initial_rotation: Vec<(String, f64)>,
+    /// Told the simulated time as the run goes on.
+    pub progress: Option<Progress>,
+}
+
+fn invalid(message: String) -> Error {
+    Error::Simulation(SimulationError::Invalid(message))
+}
+
+impl RunSettings {
+    /// Checks the numbers and the combination of choices; the errors say what to change.
+    pub fn validate(&self) -> Result<(), Error> {
+        if let Some(d) = self.duration_s {
+            positive("duration", d, "s")?;
+        }
+        if let Some(dt) = self.output_dt_s {
+            positive("history interval", dt, "s")?;
+        }
+        match &self.method {
+            Method::Paper { dt_s } | Method::Moreau { dt_s } => positive("time step", *dt_s, "s")?,
+            Method::Event | Method::Regularized(_) => {}
+        }
+        for (name, theta) in &self.initial_rotation {
+            if !(theta.is_finite() && theta.abs() < std::f64::consts::FRAC_PI_2) {
+                return Err(invalid(format!(
+                    "initial rotation of {name}: {theta} rad: a rotation must be finite and \
+                     below pi/2 in size"
+                )));
+            }
+        }
+        if self.rocking.is_some() && self.model == ModelChoice::Slide {
+            return Err(invalid(
+                "--model slide rotates no block: leave --rocking out, or use --model slide-rock"
+                    .into(),
+            ));
+        }
+        if self.direction == Direction::OutOfPlane && self.model == ModelChoice::Slide {
+            return Err(invalid(
+                "across the wall's plane the wall rocks: use --model slide-rock or auto".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Runs `model` under `motion` as `settings` say.
+pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Response, Error> {
+    settings.validate()?;
+    let duration_s = settings.duration_s.unwrap_or_else(|| motion.duration_s());
+    let s = Settings {
+        duration_s,
+        output_dt_s: settings.output_dt_s,
+        log_events: settings.log_events,
+        log_decisions: settings.log_decisions,
+        after_collapse: settings.after_collapse,
+        progress: settings.progress.clone(),
+    };
+    let sc = Scenario {
+        wall: model.wall(),
+        topology: model.topology(),
+        motion,
+        settings: &s,
+    };
+    let equations = settings.rocking.unwrap_or_default();
+    let exact_only = |what: &str| -> Result<(), Error> {
+        match settings.method {
+            Method::Event => Ok(()),
+            _ => Err(invalid(format!(
+                "{what} runs on the exact event-driven integrator only: leave --method out (or \
+                 run with --model slide)"
+            ))),
+        }
+    };
+    if settings.direction == Direction::OutOfPlane {
+        exact_only("rocking across the plane")?;
+        return Ok(rocking::out_of_plane(
+            sc.wall,
+            sc.topology,
+            motion,
+            &s,
+            equations,
+            &settings.initial_rotation,
+        )?);
+    }
+    let (rocks, why) = rocking::rocks_in_plane(
+        settings.model,
+        sc.wall,
+        sc.topology,
+        motion,
+        duration_s,
+        &settings.initial_rotation,
+    )?;
+    let initial = settings.initial_rotation.first().map_or(0.0, |r| r.1);
+    let mut response = match (&settings.method, rocks) {
+        (Method::Moreau { .. }, true) if settings.rocking.is_some() => {
+            return Err(invalid(
+                "Moreau-Jean steps the rigid body's own equations: leave --rocking out".into(),
+            ))
+        }
+        (Method::Moreau { dt_s }, true) => MoreauRocking {
+            initial_rotation_rad: initial,
+            ..MoreauRocking::new(*dt_s)
+        }
+        .run(&sc)?,
+        (_, true) => {
+            exact_only("the rocking model (or --method moreau)")?;
+            Rocking {
+                equations,
+                initial_rotation_rad: initial,
+            }
+            .run(&sc)?
+        }
+        (Method::Event, false) => EventDriven::default().run(&sc)?,
+        (Method::Paper { dt_s }, false) => PaperNewmark { dt_s: *dt_s }.run(&sc)?,
+        (Method::Moreau { dt_s }, false) => Moreau::new(*dt_s).run(&sc)?,
+        (Method::Regularized(r), false) => r.run(&sc)?,
+    };
+    response.summary.model.why = why;
+    Ok(response)
+}
