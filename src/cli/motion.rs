@@ -230,8 +230,8 @@ fn synthetic(kind: &GenerateKind) -> Result<Synthetic, Error> {
 /// A record as plain text with the header lines pirqa's reader understands; every number in
 /// its shortest exact form, so reading it back gives the same record bit for bit.
 pub fn record_text(r: &Record, comment: &str) -> String {
-    let mut s = format!("# {comment}\n# units: m/s2\n# dt_s: {}\n", r.dt_s);
-    for a in &r.accel_m_s2 {
+    let mut s = format!("# {comment}\n# units: m/s2\n# dt_s: {}\n", r.dt_s());
+    for a in r.accel_m_s2() {
         let _ = writeln!(s, "{a:e}");
     }
     s
@@ -256,7 +256,7 @@ pub fn run(cmd: &MotionCommand) -> Result<(), Error> {
                     eprintln!(
                         "wrote {} ({} samples at {} s)",
                         path.display(),
-                        record.accel_m_s2.len(),
+                        record.accel_m_s2().len(),
                         dt
                     );
                 }
@@ -342,7 +342,9 @@ fn info(args: &InfoArgs) -> Result<(), Error> {
 
 fn write_plot(svg: &Path, r: &Record) -> Result<(), Error> {
     let motion = Motion::Record(r.clone());
-    let times: Vec<f64> = (0..r.accel_m_s2.len()).map(|k| k as f64 * r.dt_s).collect();
+    let times: Vec<f64> = (0..r.accel_m_s2().len())
+        .map(|k| k as f64 * r.dt_s())
+        .collect();
     // Every sample's extremes kept: the peaks on the chart are the record's.
     let panel = |title: &str, y: &str, f: &dyn Fn(f64) -> f64| Chart {
         title: format!("{title} — {}", r.name),

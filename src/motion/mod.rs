@@ -77,17 +77,15 @@ pub struct Sine {
     pub duration_s: f64,
 }
 
-/// A sampled record, linear between samples.
+/// A sampled record, linear between samples. Its samples are read through methods: the
+/// ground velocity and displacement it keeps are their integrals, and must not fall behind.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Record {
     /// Where it came from (file name, or a description).
     pub name: String,
-    /// Sample interval (s).
-    pub dt_s: f64,
-    /// Accelerations (m/s2), the first at t = 0.
-    pub accel_m_s2: Vec<f64>,
-    /// Vertical load factor 1 + a_v/g at each sample, when a vertical component is given.
-    pub lambda: Option<Vec<f64>>,
+    dt_s: f64,
+    accel_m_s2: Vec<f64>,
+    lambda: Option<Vec<f64>>,
     // Ground velocity and displacement at each sample, from rest (compensated sums).
     velocity: Vec<f64>,
     displacement: Vec<f64>,
@@ -208,6 +206,21 @@ impl Record {
             velocity,
             displacement,
         })
+    }
+
+    /// Sample interval (s).
+    pub fn dt_s(&self) -> f64 {
+        self.dt_s
+    }
+
+    /// Accelerations (m/s2), the first at t = 0.
+    pub fn accel_m_s2(&self) -> &[f64] {
+        &self.accel_m_s2
+    }
+
+    /// Vertical load factor 1 + a_v/g at each sample, when a vertical component is given.
+    pub fn lambda(&self) -> Option<&[f64]> {
+        self.lambda.as_deref()
     }
 
     /// Time of the last sample (s).

@@ -20,7 +20,7 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
     let h = r.history.as_ref()?;
     let end = *h.time_s.last()?;
     let step = match motion {
-        Motion::Record(rec) => rec.dt_s,
+        Motion::Record(rec) => rec.dt_s(),
         Motion::Sine(s) => 1.0 / (40.0 * s.frequency_hz),
         // Constant stretches: the envelope keeps the jumps whatever the step.
         Motion::Pulse(_) => end / 2000.0,

@@ -21,21 +21,21 @@ fn read(path: &Path) -> Result<Record, String> {
 #[test]
 fn el_centro_peer_at2() {
     let r = read(&shipped("elcentro1940_IELC180_peer_dt0p01_g.AT2")).unwrap();
-    assert_eq!(r.accel_m_s2.len(), 4000);
-    assert_eq!(r.dt_s, 0.01);
+    assert_eq!(r.accel_m_s2().len(), 4000);
+    assert_eq!(r.dt_s(), 0.01);
     assert!(
         (r.pga_m_s2() / G - 0.3129).abs() < 5e-5,
         "PGA {} g",
         r.pga_m_s2() / G
     );
-    assert!((r.accel_m_s2[0] / G - -0.006403182).abs() < 1e-15);
+    assert!((r.accel_m_s2()[0] / G - -0.006403182).abs() < 1e-15);
 }
 
 #[test]
 fn el_centro_peknold_at2() {
     let r = read(&shipped("elcentro1940_ns_peknold_dt0p02_g.AT2")).unwrap();
-    assert_eq!(r.accel_m_s2.len(), 1559);
-    assert_eq!(r.dt_s, 0.02);
+    assert_eq!(r.accel_m_s2().len(), 1559);
+    assert_eq!(r.dt_s(), 0.02);
     assert!(
         (r.pga_m_s2() / G - 0.3188).abs() < 5e-5,
         "PGA {} g",
@@ -47,10 +47,10 @@ fn el_centro_peknold_at2() {
 fn at2_header_variants_and_broken_files() {
     let old = "PEER NGA STRONG MOTION DATABASE RECORD\nTEST, 1/1/1\nACCELERATION TIME HISTORY IN UNITS OF G\n   5    0.0100    NPTS, DT\n .1181069E-02-.2E-02 .3 -.4\n 0.5\n";
     let r = read(&write("old.at2", old)).unwrap();
-    assert_eq!(r.accel_m_s2.len(), 5);
-    assert!((r.accel_m_s2[0] - 0.001181069 * G).abs() < 1e-15);
+    assert_eq!(r.accel_m_s2().len(), 5);
+    assert!((r.accel_m_s2()[0] - 0.001181069 * G).abs() < 1e-15);
     assert!(
-        (r.accel_m_s2[1] + 0.002 * G).abs() < 1e-15,
+        (r.accel_m_s2()[1] + 0.002 * G).abs() < 1e-15,
         "touching values are split"
     );
     let cases = [
@@ -126,11 +126,11 @@ fn knet_counts_to_gal_with_the_mean_removed() {
     );
     assert_eq!(detect(&std::fs::read_to_string(&p).unwrap()).name(), "knet");
     let r = read(&p).unwrap();
-    assert_eq!(r.dt_s, 0.01);
-    assert_eq!(r.accel_m_s2.len(), 9);
+    assert_eq!(r.dt_s(), 0.01);
+    assert_eq!(r.accel_m_s2().len(), 9);
     let factor = 3920.0 / 6182761.0 * 0.01;
-    assert!((r.accel_m_s2[0] - (1000.0 - 5000.0) * factor).abs() < 1e-15);
-    assert!(r.accel_m_s2.iter().sum::<f64>().abs() < 1e-12);
+    assert!((r.accel_m_s2()[0] - (1000.0 - 5000.0) * factor).abs() < 1e-15);
+    assert!(r.accel_m_s2().iter().sum::<f64>().abs() < 1e-12);
     assert!(r.name.contains("N-S"));
 }
 
@@ -246,10 +246,10 @@ fn cosmos_v2_fixed_width_values_that_touch() {
         "cosmos"
     );
     let r = read(&p).unwrap();
-    assert_eq!(r.dt_s, 0.02);
-    assert_eq!(r.accel_m_s2.len(), 11);
-    assert!((r.accel_m_s2[0] + 1.0012345).abs() < 1e-15);
-    assert!((r.accel_m_s2[1] - 2.505).abs() < 1e-15);
+    assert_eq!(r.dt_s(), 0.02);
+    assert_eq!(r.accel_m_s2().len(), 11);
+    assert!((r.accel_m_s2()[0] + 1.0012345).abs() < 1e-15);
+    assert!((r.accel_m_s2()[1] - 2.505).abs() < 1e-15);
 }
 
 #[test]
@@ -286,7 +286,7 @@ fn plain_files_and_formats_by_name() {
         },
     )
     .unwrap();
-    assert_eq!(r.accel_m_s2, vec![1.0, 2.0, -0.5]);
+    assert_eq!(r.accel_m_s2(), vec![1.0, 2.0, -0.5]);
     for name in ["at2", "knet", "cosmos", "plain", "csv"] {
         assert!(format_named(name).is_some(), "{name}");
     }
@@ -308,7 +308,7 @@ fn options_a_record_would_not_use_or_contradicts_are_refused() {
             component,
         };
         read_record(path, None, &opts)
-            .map(|r| r.dt_s)
+            .map(|r| r.dt_s())
             .map_err(|e| e.to_string())
     };
     let at2 = shipped("elcentro1940_IELC180_peer_dt0p01_g.AT2");

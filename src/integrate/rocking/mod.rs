@@ -800,8 +800,8 @@ pub fn can_lift(body: &RockingBody, motion: &Motion, duration_s: f64) -> (bool, 
 /// The smallest vertical load factor 1 + a_v/g over the run (1 without a vertical component).
 fn vertical_minimum(motion: &Motion, duration_s: f64) -> f64 {
     match motion {
-        Motion::Record(r) => r.lambda.as_ref().map_or(1.0, |l| {
-            let n = ((duration_s / r.dt_s).ceil() as usize + 1).min(l.len());
+        Motion::Record(r) => r.lambda().map_or(1.0, |l| {
+            let n = ((duration_s / r.dt_s()).ceil() as usize + 1).min(l.len());
             l[..n].iter().copied().fold(1.0, f64::min)
         }),
         _ => 1.0,
