@@ -52,6 +52,24 @@ pub enum Error {
         #[source]
         source: MotionError,
     },
+    /// A command-line option (or the setting it stands for) is missing, unreadable or out of
+    /// range, or does not go with the others.
+    #[error("{option}: {rule}")]
+    Option {
+        /// The option (`--freq`), or what the options describe (`motion`).
+        option: String,
+        /// What is wrong, and what to give.
+        rule: String,
+    },
+    /// A sweep file is malformed or names something unusable.
+    #[error("{}: {source}", path.display())]
+    Sweep {
+        /// The sweep file (or `<string>`).
+        path: PathBuf,
+        /// What is wrong (boxed, as a survey's error is: it is larger than most).
+        #[source]
+        source: Box<SweepError>,
+    },
     /// The simulation could not continue.
     #[error(transparent)]
     Simulation(#[from] SimulationError),
@@ -64,6 +82,55 @@ pub enum Error {
         line: usize,
         /// What was expected.
         message: String,
+    },
+}
+
+/// What is wrong with a sweep file.
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    /// Not RON, or not the sweep format (an unknown key, a missing field).
+    #[error("line {line}, column {col}: {message}")]
+    Syntax {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        col: usize,
+        /// What the parser expected.
+        message: String,
+    },
+    /// Written for another version of the format.
+    #[error("version {found}: this pirqa reads sweep files of version {supported}")]
+    Version {
+        /// The file's version.
+        found: u32,
+        /// The version this pirqa reads.
+        supported: u32,
+    },
+    /// A file the sweep names cannot be read.
+    #[error("{what} \"{name}\": cannot read {}: {source} (relative paths start in {})", file.display(), start.display())]
+    File {
+        /// What the file is (`wall`, `record`).
+        what: &'static str,
+        /// The path as the sweep file writes it.
+        name: String,
+        /// Where it was looked for.
+        file: PathBuf,
+        /// The folder relative paths start in.
+        start: PathBuf,
+        /// What the operating system said.
+        #[source]
+        source: std::io::Error,
+    },
+    /// An acceleration it gives cannot be read.
+    #[error(transparent)]
+    Unit(#[from] UnitError),
+    /// A field's value breaks a rule of the format (an empty list, a frequency of zero).
+    #[error("{field}: {rule}")]
+    Field {
+        /// The field, as the file writes it.
+        field: String,
+        /// The rule and the value that breaks it.
+        rule: String,
     },
 }
 
@@ -290,9 +357,12 @@ pub enum SurveyError {
     /// The imported wall fails the wall checks.
     #[error("the imported wall: {0}")]
     Wall(#[from] WallError),
-    /// An import option is out of range.
-    #[error("{0}")]
-    Invalid(String),
+    /// The snap tolerance is negative or not a number.
+    #[error("the snap tolerance must be 0 or more, found {snap_m} m")]
+    Tolerance {
+        /// The tolerance given (m).
+        snap_m: f64,
+    },
 }
 
 /// A quantity with units could not be read.
@@ -321,9 +391,66 @@ pub enum MotionError {
         /// What was expected.
         message: String,
     },
-    /// The record or motion as a whole is unusable.
+    /// A parameter of a motion (a sine's, a pulse's, a window, a scale, a time step) is out of
+    /// its range.
+    #[error("{what}: {rule}")]
+    Parameter {
+        /// The parameter and its value as given.
+        what: String,
+        /// The range it must lie in.
+        rule: String,
+    },
+    /// Fewer than two samples.
+    #[error("found {found} {counted}; a record needs at least two")]
+    TooFewSamples {
+        /// Samples found.
+        found: usize,
+        /// What was counted ("data lines", "samples").
+        counted: &'static str,
+    },
+    /// A file cut short before its data.
+    #[error(
+        "an {format} file has {header} header lines and then data; this one has {lines} lines"
+    )]
+    Truncated {
+        /// The format.
+        format: &'static str,
+        /// Its header lines.
+        header: usize,
+        /// Lines found.
+        lines: usize,
+    },
+    /// The file leaves out something a record needs, and no option gave it.
+    #[error("{missing}: {fix}")]
+    Missing {
+        /// What is missing.
+        missing: &'static str,
+        /// How to give it.
+        fix: &'static str,
+    },
+    /// The component or channel asked for is not in the file.
+    #[error("{asked}: {available}")]
+    NoComponent {
+        /// What was asked for.
+        asked: String,
+        /// What the file has, and what to do.
+        available: String,
+    },
+    /// The file's own description contradicts itself or an option (a channel that is not an
+    /// acceleration, a time column spaced otherwise than the interval given, an option the
+    /// format decides itself).
     #[error("{0}")]
-    Invalid(String),
+    Contradiction(String),
+    /// A name that names none of the choices.
+    #[error("unknown {what} \"{given}\": use {choices}")]
+    Unknown {
+        /// What was named (units, format).
+        what: &'static str,
+        /// The name given.
+        given: String,
+        /// The names accepted.
+        choices: &'static str,
+    },
 }
 
 /// The simulation stopped with an error (a model-validity limit or an internal inconsistency).
@@ -349,9 +476,72 @@ pub enum SimulationError {
         /// Collisions resolved.
         count: usize,
     },
-    /// The scenario asks for something the model cannot represent.
+    /// A setting of the run is out of its range.
+    #[error("{what} {value}{unit}: {rule}")]
+    Setting {
+        /// The setting (duration, output interval, a method's step or tolerance).
+        what: String,
+        /// Its value.
+        value: f64,
+        /// Its unit, with a leading space (or empty).
+        unit: &'static str,
+        /// The range it must lie in.
+        rule: &'static str,
+    },
+    /// A rocking body's size or property is out of its range.
+    #[error("{body}: {what} {value}: {rule}")]
+    Body {
+        /// The body.
+        body: String,
+        /// The property.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+        /// The range it must lie in.
+        rule: &'static str,
+    },
+    /// The model asked for does not apply to this wall or motion.
     #[error("{0}")]
-    Invalid(String),
+    NotApplicable(String),
+    /// An option names a block or section the wall does not have.
+    #[error("{option} {name}: {known}")]
+    UnknownName {
+        /// The option.
+        option: &'static str,
+        /// The name given.
+        name: String,
+        /// What the wall has.
+        known: String,
+    },
+    /// Two choices that do not go together.
+    #[error("{asked}: {fix}")]
+    Incompatible {
+        /// What was asked for.
+        asked: &'static str,
+        /// What to do instead.
+        fix: &'static str,
+    },
+    /// The rigid model with Coulomb friction has no motion, or no unique one, here
+    /// (Painleve-type paradoxes, a landing no impulse fits).
+    #[error("{at}: {why}")]
+    RigidModel {
+        /// The body, the time and its state.
+        at: String,
+        /// What fails.
+        why: String,
+    },
+    /// A time-stepping method's step fell below its floor.
+    #[error("{method}: the step fell below {min_step_s} s at t = {time_s} s ({detail})")]
+    StepTooSmall {
+        /// The method.
+        method: &'static str,
+        /// The floor (s).
+        min_step_s: f64,
+        /// When (s).
+        time_s: f64,
+        /// The method's parameters.
+        detail: String,
+    },
     /// A bug in pirqa stopped the run (caught so that a sweep's other cases still finish).
     #[error("internal error ({0}): a bug in pirqa, please report it with this case")]
     Bug(String),

@@ -48,7 +48,7 @@ pub mod units;
 pub mod validity;
 pub mod wall;
 
-pub use error::{Error, Result};
+pub use error::{Error, MotionError, Result, SimulationError, SweepError, WallError};
 pub use exact::Q;
 pub use integrate::rocking::{Equations, ModelChoice};
 pub use integrate::AfterCollapse;
@@ -56,5 +56,5 @@ pub use model::Model;
 pub use motion::{Motion, Pulse, Record, Sine};
 pub use response::{Response, Summary, Warning};
 pub use run::{run, Direction, Method, RunSettings};
-pub use topology::{Base, BlockId, JointId, SupportId, Topology};
+pub use topology::{Base, BlockId, JointId, JointRef, SupportId, Topology};
 pub use wall::Wall;

@@ -72,40 +72,43 @@ pub struct RunSettings {
     pub progress: Option<Progress>,
 }
 
-fn invalid(message: String) -> Error {
-    Error::Simulation(SimulationError::Invalid(message))
+fn incompatible(asked: &'static str, fix: &'static str) -> Error {
+    Error::Simulation(SimulationError::Incompatible { asked, fix })
 }
 
 impl RunSettings {
     /// Checks the numbers and the combination of choices; the errors say what to change.
     pub fn validate(&self) -> Result<(), Error> {
         if let Some(d) = self.duration_s {
-            positive("duration", d, "s")?;
+            positive("duration", d, " s")?;
         }
         if let Some(dt) = self.output_dt_s {
-            positive("history interval", dt, "s")?;
+            positive("history interval", dt, " s")?;
         }
         match &self.method {
-            Method::Paper { dt_s } | Method::Moreau { dt_s } => positive("time step", *dt_s, "s")?,
+            Method::Paper { dt_s } | Method::Moreau { dt_s } => positive("time step", *dt_s, " s")?,
             Method::Event | Method::Regularized(_) => {}
         }
         for (name, theta) in &self.initial_rotation {
             if !(theta.is_finite() && theta.abs() < std::f64::consts::FRAC_PI_2) {
-                return Err(invalid(format!(
-                    "initial rotation of {name}: {theta} rad: a rotation must be finite and \
-                     below pi/2 in size"
-                )));
+                return Err(Error::Simulation(SimulationError::Setting {
+                    what: format!("initial rotation of {name}:"),
+                    value: *theta,
+                    unit: " rad",
+                    rule: "a rotation must be finite and below pi/2 in size",
+                }));
             }
         }
         if self.rocking.is_some() && self.model == ModelChoice::Slide {
-            return Err(invalid(
-                "--model slide rotates no block: leave --rocking out, or use --model slide-rock"
-                    .into(),
+            return Err(incompatible(
+                "--model slide rotates no block",
+                "leave --rocking out, or use --model slide-rock",
             ));
         }
         if self.direction == Direction::OutOfPlane && self.model == ModelChoice::Slide {
-            return Err(invalid(
-                "across the wall's plane the wall rocks: use --model slide-rock or auto".into(),
+            return Err(incompatible(
+                "across the wall's plane the wall rocks",
+                "use --model slide-rock or auto",
             ));
         }
         Ok(())
@@ -134,10 +137,10 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
     let exact_only = |what: &str| -> Result<(), Error> {
         match settings.method {
             Method::Event => Ok(()),
-            _ => Err(invalid(format!(
+            _ => Err(Error::Simulation(SimulationError::NotApplicable(format!(
                 "{what} runs on the exact event-driven integrator only: leave --method out (or \
                  run with --model slide)"
-            ))),
+            )))),
         }
     };
     if settings.direction == Direction::OutOfPlane {
@@ -162,8 +165,9 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
     let initial = settings.initial_rotation.first().map_or(0.0, |r| r.1);
     let mut response = match (&settings.method, rocks) {
         (Method::Moreau { .. }, true) if settings.rocking.is_some() => {
-            return Err(invalid(
-                "Moreau-Jean steps the rigid body's own equations: leave --rocking out".into(),
+            return Err(incompatible(
+                "Moreau-Jean steps the rigid body's own equations",
+                "leave --rocking out",
             ))
         }
         (Method::Moreau { dt_s }, true) => MoreauRocking {

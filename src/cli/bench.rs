@@ -103,7 +103,7 @@ pub fn run(cmd: &BenchCommand) -> Result<(), Error> {
                 for case in &cases {
                     points.extend(work_precision::run_case(case, &ladder, min_time, |what| {
                         eprintln!("  {what}")
-                    }));
+                    })?);
                 }
             }
             if let Some(p) = peer {

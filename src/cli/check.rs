@@ -21,11 +21,9 @@ pub fn out_of_plane(
     let (wall, topo) = topology::load(path)?;
     let q = overburden_kn_m.unwrap_or(0.0);
     if !(q.is_finite() && q >= 0.0) {
-        return Err(pirqa::Error::Motion {
-            path: "--overburden-kn-m".into(),
-            source: pirqa::error::MotionError::Invalid(format!(
-                "{q} kN/m: an overburden must be a finite load, zero or more"
-            )),
+        return Err(pirqa::Error::Option {
+            option: "--overburden-kn-m".into(),
+            rule: format!("{q} kN/m: an overburden must be a finite load, zero or more"),
         });
     }
     let report = sections::check(&wall, &topo, top, q);

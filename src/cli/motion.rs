@@ -271,9 +271,11 @@ fn info(args: &InfoArgs) -> Result<(), Error> {
     let units = match &args.units {
         Some(u) => Some(AccelUnit::parse(u).ok_or_else(|| Error::Motion {
             path: PathBuf::from("--units"),
-            source: pirqa::error::MotionError::Invalid(format!(
-                "unknown units \"{u}\": use gal, g or m/s2"
-            )),
+            source: pirqa::error::MotionError::Unknown {
+                what: "units",
+                given: u.into(),
+                choices: "gal, g or m/s2",
+            },
         })?),
         None => None,
     };

@@ -30,13 +30,12 @@ pub struct OverturningArgs {
 pub fn run(args: &OverturningArgs) -> Result<(), Error> {
     let ok = |x: f64| x.is_finite() && x > 0.0;
     if !(ok(args.width_m) && ok(args.height_m) && ok(args.friction) && args.points >= 2) {
-        return Err(Error::Motion {
-            path: "pirqa overturning".into(),
-            source: pirqa::error::MotionError::Invalid(format!(
-                "--width-m {} --height-m {} --friction {} --points {}: sizes and friction must \
-                 be positive, and at least 2 points",
+        return Err(Error::Option {
+            option: format!(
+                "--width-m {} --height-m {} --friction {} --points {}",
                 args.width_m, args.height_m, args.friction, args.points
-            )),
+            ),
+            rule: "sizes and friction must be positive, and at least 2 points".into(),
         });
     }
     let n = args.points;

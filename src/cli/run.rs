@@ -82,10 +82,10 @@ pub struct MotionArgs {
     pub vertical_component: Option<usize>,
 }
 
-fn bad(what: &str, message: String) -> Error {
-    Error::Motion {
-        path: PathBuf::from(what),
-        source: pirqa::error::MotionError::Invalid(message),
+fn bad(option: &str, rule: String) -> Error {
+    Error::Option {
+        option: option.into(),
+        rule,
     }
 }
 

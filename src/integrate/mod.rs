@@ -5,6 +5,9 @@
 pub mod baselines;
 pub mod event;
 pub mod rocking;
+// Public for integrators outside the crate (the rapier peer engine): not part of the curated
+// surface, so hidden from the documentation.
+#[doc(hidden)]
 pub mod stepping;
 
 use crate::error::SimulationError;

@@ -7,21 +7,20 @@ use crate::error::SimulationError;
 use crate::integrate::{AfterCollapse, Progress, Scenario};
 use crate::motion::Motion;
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response};
-use crate::topology::Base;
+use crate::topology::{Base, JointId};
 
-/// A method parameter (a step, a tolerance, a stiffness) must be finite and positive.
-pub fn positive(what: &str, x: f64, unit: &str) -> Result<(), SimulationError> {
+/// A method parameter (a step, a tolerance, a stiffness) must be finite and positive; `unit`
+/// is written after the value (with its leading space, or empty).
+pub fn positive(what: &str, x: f64, unit: &'static str) -> Result<(), SimulationError> {
     if x.is_finite() && x > 0.0 {
         return Ok(());
     }
-    let unit = if unit.is_empty() {
-        String::new()
-    } else {
-        format!(" {unit}")
-    };
-    Err(SimulationError::Invalid(format!(
-        "{what} {x}{unit}: it must be positive"
-    )))
+    Err(SimulationError::Setting {
+        what: what.into(),
+        value: x,
+        unit,
+        rule: "it must be positive",
+    })
 }
 
 /// A horizontal joint in floats.
@@ -310,8 +309,7 @@ impl<'a> Observer<'a> {
         let ke = |v: [f64; 2]| 0.5 * (m(l) * v[0] * v[0] + m(r) * v[1] * v[1]);
         self.rec.energy.impact_loss_j += ke(before) - ke(after);
         self.impulsive = true;
-        let label = format!("{}|{}", self.rec.names()[l], self.rec.names()[r]);
-        self.rec.impact(t, l, r, label, before, after);
+        self.rec.impact(t, JointId(k), before, after);
     }
 
     /// Finishes the run at time t with the last state.

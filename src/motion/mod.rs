@@ -41,9 +41,10 @@ impl Pulse {
     pub fn validate(&self) -> Result<(), MotionError> {
         let (a, d) = (self.amplitude_m_s2, self.duration_s);
         if !(a.is_finite() && d.is_finite() && d > 0.0) {
-            return Err(MotionError::Invalid(format!(
-                "a pulse needs a finite amplitude and a positive duration (got {a} m/s2 for {d} s)"
-            )));
+            return Err(MotionError::Parameter {
+                what: format!("pulse of {a} m/s2 for {d} s"),
+                rule: "a pulse needs a finite amplitude and a positive duration".into(),
+            });
         }
         Ok(())
     }
@@ -114,10 +115,15 @@ impl Sine {
             && self.duration_s.is_finite()
             && self.duration_s > 0.0;
         if !ok {
-            return Err(MotionError::Invalid(format!(
-                "sine needs a finite amplitude and phase, a positive frequency and duration (got {} m/s2, phase {} rad, {} Hz, {} s)",
-                self.amplitude_m_s2, self.phase_rad, self.frequency_hz, self.duration_s
-            )));
+            return Err(MotionError::Parameter {
+                what: format!(
+                    "sine of {} m/s2, phase {} rad, {} Hz, {} s",
+                    self.amplitude_m_s2, self.phase_rad, self.frequency_hz, self.duration_s
+                ),
+                rule: "a sine needs a finite amplitude and phase, a positive frequency and \
+                       duration"
+                    .into(),
+            });
         }
         Ok(())
     }
@@ -163,22 +169,22 @@ impl Record {
         accel_m_s2: Vec<f64>,
     ) -> Result<Record, MotionError> {
         if !(dt_s.is_finite() && dt_s > 0.0) {
-            return Err(MotionError::Invalid(format!(
-                "time step dt = {dt_s} s: it must be positive"
-            )));
+            return Err(MotionError::Parameter {
+                what: format!("time step dt = {dt_s} s"),
+                rule: "it must be positive".into(),
+            });
         }
         if accel_m_s2.len() < 2 {
-            return Err(MotionError::Invalid(format!(
-                "a record needs at least two samples, found {}",
-                accel_m_s2.len()
-            )));
+            return Err(MotionError::TooFewSamples {
+                found: accel_m_s2.len(),
+                counted: "samples",
+            });
         }
         if let Some(k) = accel_m_s2.iter().position(|a| !a.is_finite()) {
-            return Err(MotionError::Invalid(format!(
-                "sample {} (t = {} s) is not a finite number",
-                k + 1,
-                k as f64 * dt_s
-            )));
+            return Err(MotionError::Parameter {
+                what: format!("sample {} (t = {} s)", k + 1, k as f64 * dt_s),
+                rule: "it is not a finite number".into(),
+            });
         }
         // Exact integrals of the piecewise-linear acceleration, summed with compensation so that
         // D_g stays accurate to a few ulps over tens of thousands of samples.
@@ -245,8 +251,9 @@ impl Record {
     /// lift off, which the sliding model cannot represent: an error names the time.
     pub fn with_vertical(&self, vertical: &Record, g: f64) -> Result<Record, MotionError> {
         if (vertical.dt_s - self.dt_s).abs() > 1e-9 * self.dt_s {
-            return Err(MotionError::Invalid(format!(
-                "the vertical component's time step {} s differs from the horizontal one's {} s: resample one of them",
+            return Err(MotionError::Contradiction(format!(
+                "the vertical component's time step {} s differs from the horizontal one's {} s: \
+                 resample one of them",
                 vertical.dt_s, self.dt_s
             )));
         }
@@ -255,7 +262,7 @@ impl Record {
             .map(|k| 1.0 + vertical.accel_m_s2.get(k).copied().unwrap_or(0.0) / g)
             .collect();
         if let Some(k) = lambda.iter().position(|&l| l <= 0.0) {
-            return Err(MotionError::Invalid(format!(
+            return Err(MotionError::Contradiction(format!(
                 "at t = {} s the vertical acceleration {:.4} m/s2 exceeds g downwards (1 + a_v/g = {:.4} <= 0): the blocks would lift off, which this sliding model cannot represent",
                 k as f64 * self.dt_s,
                 vertical.accel_m_s2[k],

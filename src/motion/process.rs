@@ -39,9 +39,10 @@ impl Record {
         let n = self.accel_m_s2.len();
         let last = self.duration_s();
         if !(start.is_finite() && end.is_finite() && start >= 0.0 && end > start && start < last) {
-            return Err(MotionError::Invalid(format!(
-                "window {start}..{end} s is not inside the record (0..{last} s)"
-            )));
+            return Err(MotionError::Parameter {
+                what: format!("window {start}..{end} s"),
+                rule: format!("it is not inside the record (0..{last} s)"),
+            });
         }
         let i0 = (start / self.dt_s).round() as usize;
         let i1 = ((end / self.dt_s).round() as usize).min(n - 1);
@@ -109,9 +110,10 @@ pub fn process(record: &Record, p: &Processing) -> Result<(Record, Vec<String>),
     if let Some(target) = p.pga_m_s2 {
         let peak = r.pga_m_s2();
         if !(target.is_finite() && target > 0.0) || peak == 0.0 {
-            return Err(MotionError::Invalid(format!(
-                "cannot scale a record of peak {peak} m/s2 to {target} m/s2"
-            )));
+            return Err(MotionError::Parameter {
+                what: format!("peak {target} m/s2"),
+                rule: format!("cannot scale a record of peak {peak} m/s2 to it"),
+            });
         }
         r = r.scaled(target / peak);
         notes.push(format!(
@@ -135,10 +137,11 @@ pub fn check_scale(k: f64) -> Result<(), MotionError> {
     if k.is_finite() && k != 0.0 {
         Ok(())
     } else {
-        Err(MotionError::Invalid(format!(
-            "scale factor {k}: it must be a finite number other than 0 (a negative one reverses \
-             the motion)"
-        )))
+        Err(MotionError::Parameter {
+            what: format!("scale factor {k}"),
+            rule: "it must be a finite number other than 0 (a negative one reverses the motion)"
+                .into(),
+        })
     }
 }
 

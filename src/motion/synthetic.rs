@@ -110,9 +110,10 @@ fn positive(what: &str, x: f64) -> Result<(), MotionError> {
     if x.is_finite() && x > 0.0 {
         Ok(())
     } else {
-        Err(MotionError::Invalid(format!(
-            "{what} = {x}: it must be positive"
-        )))
+        Err(MotionError::Parameter {
+            what: format!("{what} = {x}"),
+            rule: "it must be positive".into(),
+        })
     }
 }
 
@@ -233,9 +234,10 @@ impl Synthetic {
                 positive("PGA", pga)?;
                 positive("ground frequency", fg)?;
                 if !(zeta_g > 0.0 && zeta_g < 1.0) {
-                    return Err(MotionError::Invalid(format!(
-                        "ground damping {zeta_g}: it must lie in (0, 1)"
-                    )));
+                    return Err(MotionError::Parameter {
+                        what: format!("ground damping {zeta_g}"),
+                        rule: "it must lie in (0, 1)".into(),
+                    });
                 }
                 kanai_tajimi(&samples(duration)?, dt, pga, fg, zeta_g, duration, seed)
             }

@@ -96,12 +96,12 @@ pub struct Point {
 
 /// A point of the chart from a run's outcome: its errors (max |u|, history), or why it failed
 /// (the errors are then infinite).
-pub fn point(
+pub fn point<E>(
     scenario: &str,
     method: &str,
     parameter: String,
     cpu_s: f64,
-    errors: Result<(f64, f64), String>,
+    errors: Result<(f64, f64), E>,
 ) -> Point {
     let ((err_max_m, err_history_m), failed) = match errors {
         Ok(e) => (e, false),
@@ -138,11 +138,11 @@ pub fn timed(
     integrator: &dyn Integrator,
     sc: &Scenario,
     min_time_s: f64,
-) -> (f64, Result<Response, String>) {
+) -> (f64, Result<Response, crate::error::SimulationError>) {
     let start = Instant::now();
     let mut runs = 0u32;
     loop {
-        let r = integrator.run(sc).map_err(|e| e.to_string());
+        let r = integrator.run(sc);
         runs += 1;
         let elapsed = start.elapsed().as_secs_f64();
         if r.is_err() || elapsed >= min_time_s || runs >= 50 {
@@ -214,7 +214,7 @@ pub fn run_case(
     ladder: &Ladder,
     min_time_s: f64,
     mut progress: impl FnMut(&str),
-) -> Vec<Point> {
+) -> Result<Vec<Point>, crate::error::SimulationError> {
     let s = settings(case.duration_s);
     let sc = Scenario {
         wall: &case.wall,
@@ -223,7 +223,7 @@ pub fn run_case(
         settings: &s,
     };
     let (cpu, reference) = timed(&EventDriven::default(), &sc, min_time_s);
-    let reference = reference.expect("the event-driven reference runs");
+    let reference = reference?;
     let mut points = vec![Point {
         scenario: case.name.clone(),
         method: "event".into(),
@@ -262,7 +262,7 @@ pub fn run_case(
         let errors = r.map(|r| errors(&r, &reference));
         points.push(point(&case.name, &method, parameter, cpu, errors));
     }
-    points
+    Ok(points)
 }
 
 /// Error shown for the exact method on a log axis (its own error is round-off).
@@ -569,12 +569,8 @@ pub fn run_rocking_case(
         ..Rocking::default()
     };
     let (cpu, reference) = timed(&exact, &sc, min_time_s);
-    let reference = reference.map_err(|e| {
-        crate::Error::Simulation(crate::error::SimulationError::Invalid(format!(
-            "{}: the exact reference failed: {e}",
-            case.name
-        )))
-    })?;
+    // The reference's own error names the body, the time and what failed.
+    let reference = reference?;
     let mut points = vec![Point {
         scenario: case.name.clone(),
         method: "event".into(),

@@ -24,6 +24,16 @@ pub struct SupportId(pub usize);
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct JointId(pub usize);
 
+/// A joint of the wall, either kind: the horizontal joint of a support (where friction acts) or
+/// a vertical joint between neighbours (where they collide).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum JointRef {
+    /// A support's horizontal joint.
+    Horizontal(SupportId),
+    /// A vertical joint.
+    Vertical(JointId),
+}
+
 /// What a block rests on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Base {

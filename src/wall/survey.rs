@@ -372,10 +372,9 @@ fn group_names(
 pub fn import(blocks: &[SurveyBlock], options: &SurveyOptions) -> Result<Imported, SurveyError> {
     let n = blocks.len();
     if !(options.snap_m.is_finite() && options.snap_m >= 0.0) {
-        return Err(SurveyError::Invalid(format!(
-            "the snap tolerance must be 0 or more, found {} m",
-            options.snap_m
-        )));
+        return Err(SurveyError::Tolerance {
+            snap_m: options.snap_m,
+        });
     }
     // Edges that agree to the resolution are one edge even with --snap 0: the survey's units
     // (mm times 0.001) leave round-off in the metres compared here.

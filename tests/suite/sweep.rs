@@ -12,9 +12,9 @@ use std::path::Path;
 const EL_CENTRO: &str = "records/elcentro1940_IELC180_peer_dt0p01_g.AT2";
 
 fn sweep(text: &str) -> Result<Sweep, pirqa::Error> {
-    let d: SweepDescription = parse_description(text).map_err(|source| pirqa::Error::Wall {
+    let d: SweepDescription = parse_description(text).map_err(|source| pirqa::Error::Sweep {
         path: "<test>".into(),
-        source,
+        source: Box::new(source),
     })?;
     Sweep::from_description(&d, Path::new("."), Path::new("<test>"))
 }

@@ -45,7 +45,7 @@ impl Integrator for Moreau {
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
         let h = self.dt_s;
-        positive("time step", h, "s")?;
+        positive("time step", h, " s")?;
         let m = Model::new(sc);
         let mut obs = Observer::new(sc, &m, sc.motion);
         let n = m.n;

@@ -55,7 +55,7 @@ impl Integrator for MoreauRocking {
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
         let dt = self.dt_s;
-        positive("time step", dt, "s")?;
+        positive("time step", dt, " s")?;
         let body = rocking::free_standing(sc.wall, sc.topology)?;
         let (m, ig, mu, g, hc) = (
             body.mass_kg,

@@ -203,8 +203,8 @@ impl Integrator for Regularized {
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
         positive("rtol", self.rtol, "")?;
-        positive("eps", self.eps, "m/s")?;
-        positive("stiffness", self.stiffness, "N/m")?;
+        positive("eps", self.eps, " m/s")?;
+        positive("stiffness", self.stiffness, " N/m")?;
         let m = Model::new(sc);
         let mut obs = Observer::new(sc, &m, sc.motion);
         let n = m.n;
@@ -284,10 +284,12 @@ impl Integrator for Regularized {
             };
             h *= factor;
             if h < self.min_step {
-                return Err(SimulationError::Invalid(format!(
-                    "regularized: the step fell below {} s at t = {t} s (stiffness {} N/m, eps {} m/s)",
-                    self.min_step, self.stiffness, self.eps
-                )));
+                return Err(SimulationError::StepTooSmall {
+                    method: "regularized",
+                    min_step_s: self.min_step,
+                    time_s: t,
+                    detail: format!("stiffness {} N/m, eps {} m/s", self.stiffness, self.eps),
+                });
             }
         }
         Ok(obs.finish("regularized", sc, steps))

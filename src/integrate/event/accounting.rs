@@ -22,7 +22,7 @@ impl Engine<'_> {
         let Some(sl) = self.clusters[k].slide().cloned() else {
             // Stuck blocks move with the ground.
             if t > t_a {
-                let (lo, hi) = self.motion.accel_range(t_a, t);
+                let (lo, hi) = self.given.motion.accel_range(t_a, t);
                 let peak = &mut self.clusters[k].extremes.accel_m_s2;
                 *peak = peak.max(lo.abs().max(hi.abs()));
             }
@@ -126,18 +126,18 @@ impl Engine<'_> {
         }
         let d = self.support_d(s);
         let t_a = self.t_fric[s];
-        if self.seg.has_vertical() && self.dir[s] != 0 {
+        if self.seg.has_vertical() && !self.slip[s].is_stuck() {
             let seg = self.seg;
             let (la, lb) = (seg.lambda_at(t_a - seg.t0), seg.lambda_at(self.t - seg.t0));
-            let integral = self.block_disp_integral(self.topo.supports[s].upper.0, t_a)
+            let integral = self.block_disp_integral(self.given.topo.supports[s].upper.0, t_a)
                 - self
                     .lower_block(s)
                     .map_or(0.0, |l| self.block_disp_integral(l, t_a));
-            let work =
-                f64::from(self.dir[s]) * (lb * d - la * self.d_last[s] - seg.lambda.1 * integral);
-            self.rec.energy.friction_j += self.cap[s] * work;
+            let work = f64::from(self.slip[s].sign())
+                * (lb * d - la * self.d_last[s] - seg.lambda.1 * integral);
+            self.rec.energy.friction_j += self.given.cap[s] * work;
         } else {
-            self.rec.energy.friction_j += self.cap[s] * (d - self.d_last[s]).abs();
+            self.rec.energy.friction_j += self.given.cap[s] * (d - self.d_last[s]).abs();
         }
         self.d_last[s] = d;
         self.t_fric[s] = self.t;
@@ -160,10 +160,12 @@ impl Engine<'_> {
 
     /// History samples at every output instant up to t (when the run keeps a history).
     pub(super) fn output_until(&mut self, t: f64) {
-        let Some(dt) = self.output_dt else { return };
+        let Some(dt) = self.given.output_dt else {
+            return;
+        };
         loop {
             let tk = self.output_k as f64 * dt;
-            if tk > t || tk > self.t_end {
+            if tk > t || tk > self.given.t_end {
                 return;
             }
             let saved = self.t;
@@ -185,8 +187,8 @@ impl Engine<'_> {
 
     /// Every block's displacement and velocity now (m, m/s; a fallen block's velocity is zero).
     pub(super) fn state_now(&self) -> (Vec<f64>, Vec<f64>) {
-        let u = (0..self.n).map(|i| self.block_disp(i)).collect();
-        let v = (0..self.n)
+        let u = (0..self.given.n).map(|i| self.block_disp(i)).collect();
+        let v = (0..self.given.n)
             .map(|i| {
                 if self.fallen[i] {
                     0.0

@@ -25,7 +25,7 @@ pub enum Motion {
         /// Exact upper limit.
         hi_q: Option<Q>,
         /// Per side ([lo, hi]): the limit is only a bound from inside, worked out exactly when
-        /// a_g reaches it (`decide::Stick::bound_only`).
+        /// a_g reaches it (`solver::Stick::bound_only`).
         bound_only: [bool; 2],
     },
     /// Sliding with constant absolute acceleration.

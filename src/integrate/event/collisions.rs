@@ -6,6 +6,7 @@ use super::{cluster, impact, Engine, NONE};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::response::{DecisionCause as Cause, EventKind};
+use crate::topology::{JointId, JointRef};
 use std::collections::HashMap;
 
 /// The blocks an impact reaches through touching faces ([`impact::resolve`]'s input).
@@ -19,7 +20,10 @@ struct Chain {
 impl Engine<'_> {
     /// A vertical joint closes: an impact if the faces approach, a touch otherwise.
     pub(super) fn faces_meet(&mut self, j: usize) -> Result<(), SimulationError> {
-        let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
+        let (l, r) = (
+            self.given.topo.joints[j].left.0,
+            self.given.topo.joints[j].right.0,
+        );
         self.touching[j] = true;
         if self.approaching(j) {
             return self.impact(j);
@@ -30,7 +34,7 @@ impl Engine<'_> {
             self.t,
             EventKind::Touch,
             &[l, r],
-            Some(self.joint_label(j)),
+            Some(JointRef::Vertical(JointId(j))),
             None,
         );
         let v = match (self.grounded(l), self.grounded(r)) {
@@ -49,20 +53,12 @@ impl Engine<'_> {
                 seeds.extend(self.clusters[self.of[i]].blocks.iter().copied());
             }
         }
-        let snap: Vec<(usize, f64)> = seeds
+        let set_vel: Vec<(usize, f64)> = seeds
             .iter()
             .filter(|&&i| !self.grounded(i))
             .map(|&i| (i, v))
             .collect();
-        self.decide_from(&seeds, &snap, None, Cause::Touch)
-    }
-
-    pub(super) fn joint_label(&self, j: usize) -> String {
-        let jt = &self.topo.joints[j];
-        format!(
-            "{}|{}",
-            self.wall.blocks[jt.left.0].name, self.wall.blocks[jt.right.0].name
-        )
+        self.regroup(&seeds, &set_vel, None, Cause::Touch)
     }
 
     /// The chain of an impact at joint j: the blocks reachable from it through touching faces
@@ -76,10 +72,10 @@ impl Engine<'_> {
         let mut queue = vec![j];
         seen[j] = true;
         while let Some(jj) = queue.pop() {
-            let jt = &self.topo.joints[jj];
+            let jt = &self.given.topo.joints[jj];
             let mut ids = [0usize; 2];
             for (slot, blk) in [jt.left.0, jt.right.0].into_iter().enumerate() {
-                let key = if self.fixed[blk] {
+                let key = if self.given.fixed[blk] {
                     usize::MAX - blk
                 } else {
                     blk
@@ -88,7 +84,7 @@ impl Engine<'_> {
                     chain.bodies.push((
                         blk,
                         impact::Body {
-                            mass: (!self.fixed[blk]).then(|| self.mass_q[blk].clone()),
+                            mass: (!self.given.fixed[blk]).then(|| self.given.mass_q[blk].clone()),
                             velocity: Q::from_f64_exact(self.block_vel(blk))
                                 .expect("velocities are finite"),
                         },
@@ -96,8 +92,8 @@ impl Engine<'_> {
                     chain.bodies.len() - 1
                 });
                 ids[slot] = id;
-                if !self.fixed[blk] {
-                    for &side in &self.topo.sides[blk] {
+                if !self.given.fixed[blk] {
+                    for &side in &self.given.topo.sides[blk] {
                         if !seen[side.0] && self.closed(side.0, blk) {
                             seen[side.0] = true;
                             queue.push(side.0);
@@ -108,8 +104,8 @@ impl Engine<'_> {
             chain.faces.push((ids[0], ids[1], jj));
         }
         chain.faces.sort_by(|p, q| {
-            self.xl[self.topo.joints[p.2].right.0]
-                .total_cmp(&self.xl[self.topo.joints[q.2].right.0])
+            self.given.xl[self.given.topo.joints[p.2].right.0]
+                .total_cmp(&self.given.xl[self.given.topo.joints[q.2].right.0])
         });
         chain
     }
@@ -122,8 +118,8 @@ impl Engine<'_> {
     /// The faces of joint j approach: closed, they collide.
     fn approaching(&self, j: usize) -> bool {
         let (vl, vr) = (
-            self.block_vel(self.topo.joints[j].left.0),
-            self.block_vel(self.topo.joints[j].right.0),
+            self.block_vel(self.given.topo.joints[j].left.0),
+            self.block_vel(self.given.topo.joints[j].right.0),
         );
         vl - vr > self.vel_tol(vl, vr)
     }
@@ -145,19 +141,19 @@ impl Engine<'_> {
         let Some((collisions, loss)) = impact::resolve(
             &mut exact,
             &pairs,
-            &self.restitution,
+            &self.given.restitution,
             &negligible,
-            self.params.max_collisions_per_chain,
+            self.given.params.max_collisions_per_chain,
         ) else {
             let names: Vec<&str> = chain
                 .bodies
                 .iter()
-                .map(|b| self.wall.blocks[b.0].name.as_str())
+                .map(|b| self.given.wall.blocks[b.0].name.as_str())
                 .collect();
             return Err(SimulationError::ImpactChain {
                 time_s: self.t,
                 blocks: names.join(", "),
-                count: self.params.max_collisions_per_chain,
+                count: self.given.params.max_collisions_per_chain,
             });
         };
         Ok((collisions, loss, exact))
@@ -182,7 +178,7 @@ impl Engine<'_> {
                 .bodies
                 .iter()
                 .map(|b| b.0)
-                .filter(|&b| !self.fixed[b])
+                .filter(|&b| !self.given.fixed[b])
                 .collect();
             next += 1;
             for b in hit {
@@ -196,7 +192,7 @@ impl Engine<'_> {
                     }
                 };
                 for &m in members {
-                    for &side in &self.topo.sides[m] {
+                    for &side in &self.given.topo.sides[m] {
                         let jj = side.0;
                         if seen[jj] || !self.closed(jj, m) || !self.approaching(jj) {
                             continue;
@@ -218,7 +214,7 @@ impl Engine<'_> {
     /// every other chain that collides at this instant on the clusters they hit
     /// ([`Engine::simultaneous_chains`]); then one decision follows them all.
     fn impact(&mut self, j: usize) -> Result<(), SimulationError> {
-        let mut seen = vec![false; self.topo.joints.len()];
+        let mut seen = vec![false; self.given.topo.joints.len()];
         let first = self.chain(j, &mut seen);
         let (collisions, loss, exact) = self.resolve_chain(&first)?;
         if let Some(single) = (collisions.len() == 1).then(|| first.faces[collisions[0].face]) {
@@ -238,55 +234,51 @@ impl Engine<'_> {
                 let total_loss =
                     Q::frac(1, 2) * &ml * &mr / (&ml + &mr) * &c.approach * &c.approach;
                 self.rec.energy.impact_loss_j += total_loss.to_f64();
-                let (l, r) = (self.topo.joints[jj].left.0, self.topo.joints[jj].right.0);
+                let (l, r) = (
+                    self.given.topo.joints[jj].left.0,
+                    self.given.topo.joints[jj].right.0,
+                );
                 self.rec.event(
                     t_acc,
                     EventKind::Zeno,
                     &[l, r],
-                    Some(self.joint_label(jj)),
+                    Some(JointRef::Vertical(JointId(jj))),
                     None,
                 );
                 self.rec.zeno += 1;
                 let v = common.to_f64();
-                return self.decide_from(&[l, r], &[(l, v), (r, v)], None, Cause::Zeno);
+                return self.regroup(&[l, r], &[(l, v), (r, v)], None, Cause::Zeno);
             }
         }
         let mut chains = vec![(first, collisions, loss, exact)];
         self.simultaneous_chains(&mut chains, &mut seen)?;
         let mut seeds = Vec::new();
-        let mut snap = Vec::new();
+        let mut set_vel = Vec::new();
         for (chain, collisions, loss, exact) in &chains {
             self.record_collisions(chain, collisions);
             self.rec.energy.impact_loss_j += loss.to_f64();
             for (k, (blk, _)) in chain.bodies.iter().enumerate() {
-                if self.fixed[*blk] {
+                if self.given.fixed[*blk] {
                     continue;
                 }
                 let v = exact[k].velocity.to_f64();
                 if v != self.block_vel(*blk) {
-                    snap.push((*blk, v));
+                    set_vel.push((*blk, v));
                 }
                 seeds.push(*blk);
             }
         }
-        self.decide_from(&seeds, &snap, None, Cause::Impact)
+        self.regroup(&seeds, &set_vel, None, Cause::Impact)
     }
 
     /// Logs a chain's collisions; their faces touch from now on.
     fn record_collisions(&mut self, chain: &Chain, collisions: &[impact::Collision]) {
         for c in collisions {
             let jj = chain.faces[c.face].2;
-            let (l, r) = (self.topo.joints[jj].left.0, self.topo.joints[jj].right.0);
             self.touching[jj] = true;
             let pair = |v: &[Q; 2]| [v[0].to_f64(), v[1].to_f64()];
-            self.rec.impact(
-                self.t,
-                l,
-                r,
-                self.joint_label(jj),
-                pair(&c.before),
-                pair(&c.after),
-            );
+            self.rec
+                .impact(self.t, JointId(jj), pair(&c.before), pair(&c.after));
         }
     }
 
@@ -299,8 +291,11 @@ impl Engine<'_> {
     /// displacements. Until then each bounce is an ordinary impact, so the history between
     /// bounces is the exact one, not that of blocks merged early.
     fn zeno_accumulation(&self, j: usize, approach: &Q) -> Option<f64> {
-        let e = &self.restitution;
-        let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
+        let e = &self.given.restitution;
+        let (l, r) = (
+            self.given.topo.joints[j].left.0,
+            self.given.topo.joints[j].right.0,
+        );
         let (sl, sr) = self.alone_sliding(j)?;
         let closing = &sr.c_q - &sl.c_q;
         if !closing.is_negative() {
@@ -318,7 +313,7 @@ impl Engine<'_> {
         // in dt a relative velocity drifts towards zero by at most its worst-case acceleration
         // that way times dt.
         let v0 = approach.to_f64();
-        let (a_min, a_max) = self.motion.accel_range(self.t, t_acc);
+        let (a_min, a_max) = self.given.motion.accel_range(self.t, t_acc);
         for b in [l, r] {
             let vb = self.block_vel(b);
             let cb = self.clusters[self.of[b]].slide()?.c;
@@ -341,23 +336,21 @@ impl Engine<'_> {
                 }
             }
         }
-        let earliest = self
-            .heap
-            .iter()
-            .filter(|p| self.is_current(&p.0.ev))
-            .map(|p| p.0.t)
-            .fold(f64::INFINITY, f64::min);
-        (t_acc < earliest && t_acc < self.t_end).then_some(t_acc)
+        let earliest = self.queue.earliest(&self.clusters);
+        (t_acc < earliest && t_acc < self.given.t_end).then_some(t_acc)
     }
 
     /// The slides of the two blocks of joint j where a Zeno series is possible between them: 0 <
     /// e < 1, no vertical shaking, and each block sliding alone.
     fn alone_sliding(&self, j: usize) -> Option<(&cluster::Slide, &cluster::Slide)> {
-        let e = &self.restitution;
-        if !(e.is_positive() && *e < Q::one()) || self.motion.has_vertical() {
+        let e = &self.given.restitution;
+        if !(e.is_positive() && *e < Q::one()) || self.given.motion.has_vertical() {
             return None;
         }
-        let (l, r) = (self.topo.joints[j].left.0, self.topo.joints[j].right.0);
+        let (l, r) = (
+            self.given.topo.joints[j].left.0,
+            self.given.topo.joints[j].right.0,
+        );
         let (kl, kr) = (self.of[l], self.of[r]);
         if kl == NONE
             || kr == NONE

@@ -1,43 +1,63 @@
 //! The exact event-driven integrator (design note `event-driven.md`).
 //!
-//! No time step: between events every cluster moves in closed form (`cluster`); events are
-//! roots of closed-form functions, located to round-off ([`roots`]); at each event the new mode
-//! is decided exactly ([`decide`]) and impacts are resolved exactly ([`impact`]). Work per event
+//! No time step: between events every cluster (blocks that move as one body) follows its mode
+//! in closed form (`cluster`); events are roots of closed-form functions, located to round-off
+//! (`roots`); at each event the new mode is decided exactly by a pure solver on a value type
+//! (`solver::Problem`) and impacts are resolved exactly (`impact::resolve`). Work per event
 //! touches only the clusters whose mode changed and their neighbours; a stuck cluster costs one
 //! threshold check per segment of the ground motion.
 //!
-//! This module holds the engine's state, its event queue and run loop. Around it: `schedule`
-//! finds the next events of the current mode, `decision` re-decides the mode at an event and
-//! installs the new clusters, `stuck` gives stuck clusters their stick intervals, `collisions`
-//! takes an impact from the faces that meet to the velocities after it, and `accounting` keeps
-//! the energies, extremes and history between events.
+//! Two words are kept apart: the **solver** (`solver/`) decides accelerations and stick
+//! intervals of a `Problem` and knows nothing of the engine; **regrouping** (`regroup/`) is
+//! the engine's glue around it: it gathers the blocks an event concerns, builds their
+//! `Problem`, calls the solver and installs the clusters it returns. A joint's state is a
+//! `slip::Slip` (stuck, slipping forward or back), and the one place where a slip becomes a
+//! friction sign is `Slip::on_upper`.
+//!
+//! | event (`queue::Ev`) | found by | handled by (`Engine::handle`) | decided by |
+//! |---|---|---|---|
+//! | start (t = 0) | `Engine::run` | `Engine::regroup` (regroup/mod.rs) | `Problem::stick_sides` / `Problem::solve` |
+//! | stick limit: a_g leaves a stuck cluster's interval (`Threshold`) | `Engine::schedule_segment` (schedule.rs) | `Engine::regroup` | `Engine::solve_component` (regroup/solving.rs) -> `Engine::stuck_pieces` (stuck.rs) or `Engine::decide_general` -> `Problem::solve` (solver/solve.rs) |
+//! | a sliding cluster stops (`Stop`) | `Engine::schedule` (schedule.rs) | `Engine::regroup`, velocities set to 0 | as above |
+//! | two sliding clusters meet (`Meet`) | `Engine::schedule` | `Engine::regroup`, common velocity | as above |
+//! | faces close (`GroundBound`/`PairBound`, `Constraint::Gap`) | `Engine::schedule` | `Engine::faces_meet` (collisions.rs): a touch, or `impact` -> `impact::resolve`, `zeno_accumulation` | then `Engine::regroup` |
+//! | a support's span runs out (`Constraint::Collapse`) | `Engine::schedule` | `Engine::constraint_reached`, `Engine::stands`, `Engine::collapse` (collapse.rs) | `Engine::remove_fallen` (regroup/fallen.rs) then `Engine::regroup` |
+//! | a split: a sliding cluster whose friction changed | step 8 of `Engine::regroup` | `Engine::regroup` | as above |
+//! | end of a ground-motion segment | `Queue::pop_until` finds nothing before it | `Engine::enter_segment` | nothing, unless a_g jumps past a limit |
+//!
+//! Stuck clusters get their stick intervals in `stuck.rs` (`Engine::set_thresholds`, from
+//! `Problem::stick_sides_*` in solver/stick.rs); `accounting.rs` keeps the energies, extremes
+//! and history between events; `queue.rs` orders the events and drops stale ones; `memo.rs`
+//! remembers decisions and intervals met before (`Caches`).
 
 mod accounting;
 mod cluster;
+mod collapse;
 mod collisions;
-pub mod decide;
-mod decision;
-pub mod flow;
-pub mod impact;
+mod flow;
+mod impact;
 mod memo;
-pub mod roots;
+mod queue;
+mod regroup;
+mod roots;
 mod schedule;
+mod slip;
+mod solver;
 mod stuck;
 
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario};
 use crate::motion::{Motion, Segment};
-use crate::response::{
-    Collapse, CollapseCause, DecisionCause as Cause, EventKind, Recorder, Response,
-};
+use crate::response::{DecisionCause as Cause, Recorder, Response};
 use crate::topology::{Base, Topology};
 use crate::wall::Wall;
 use cluster::{Cluster, Motion as ClusterMotion};
 use memo::Memo;
+use queue::{Ev, Pending, Queue};
 use roots::Counter;
-use std::cmp::{Ordering, Reverse};
-use std::collections::{BinaryHeap, VecDeque};
+use slip::Slip;
+use std::collections::VecDeque;
 
 /// Settings of the event-driven integrator. None is a tolerance: the first two only stop a run
 /// that would otherwise never end, with an error that says where; the others change the work,
@@ -118,149 +138,97 @@ const PROGRESS_WINDOW_ULPS: f64 = 1e6;
 /// Marks a block that belongs to no cluster (fixed or fallen).
 const NONE: usize = usize::MAX;
 
-/// The event queue is first rid of stale events when it reaches this size (see `push`).
-const PURGE_FROM: usize = 1024;
-
-/// What limits a cluster's displacement relative to a neighbour.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Constraint {
-    /// A vertical joint closing.
-    Gap(usize),
-    /// A support's relative displacement crossing a collapse threshold.
-    Collapse(usize),
-}
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Ev {
-    Threshold {
-        k: usize,
-        ver: u64,
-        upper: bool,
-    },
-    Stop {
-        k: usize,
-        ver: u64,
-        ground: u64,
-    },
-    GroundBound {
-        k: usize,
-        ver: u64,
-        ground: u64,
-        c: Constraint,
-    },
-    Meet {
-        a: usize,
-        va: u64,
-        b: usize,
-        vb: u64,
-    },
-    PairBound {
-        a: usize,
-        va: u64,
-        b: usize,
-        vb: u64,
-        c: Constraint,
-    },
-}
-
-impl Ev {
-    /// Simultaneous events are handled contacts and collapse first, then joints stopping, then
-    /// thresholds, then in the order they were found.
-    fn priority(&self) -> u8 {
-        match self {
-            Ev::GroundBound { .. } | Ev::PairBound { .. } => 0,
-            Ev::Stop { .. } | Ev::Meet { .. } => 1,
-            Ev::Threshold { .. } => 2,
-        }
-    }
-}
-
-#[derive(Debug, Clone, Copy)]
-struct Pending {
-    t: f64,
-    seq: u64,
-    ev: Ev,
-}
-
-impl PartialEq for Pending {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Pending {}
-impl PartialOrd for Pending {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Pending {
-    fn cmp(&self, o: &Self) -> Ordering {
-        self.t
-            .total_cmp(&o.t)
-            .then(self.ev.priority().cmp(&o.ev.priority()))
-            .then(self.seq.cmp(&o.seq))
-    }
-}
-
-pub(crate) struct Engine<'a> {
+/// What a run is given and never changes: the wall, its graph, the motion and the settings,
+/// and the numbers of blocks and joints read off them once, exact and as floats.
+struct Given<'a> {
     wall: &'a Wall,
     topo: &'a Topology,
     motion: &'a Motion,
     after_collapse: AfterCollapse,
     params: &'a Params,
+    t_end: f64,
+    output_dt: Option<f64>,
+    progress: Option<Progress>,
+    /// Blocks.
     n: usize,
+    /// Per block: mass (kg), as a float and exact.
     mass: Vec<f64>,
     mass_q: Vec<Q>,
+    /// Per support: friction capacity mu N (N), as a float and exact.
     cap: Vec<f64>,
     cap_q: Vec<Q>,
+    /// Per block: fixed (an abutment).
     fixed: Vec<bool>,
-    fallen: Vec<bool>,
+    /// Per block: left edge, right edge and centroid at rest (m).
     xl: Vec<f64>,
     xr: Vec<f64>,
     xc: Vec<f64>,
+    /// Per vertical joint: the gap at rest (m).
     gap0: Vec<f64>,
     restitution: Q,
+    /// Scales of lengths (m) and velocities (m/s) that round-off is measured against.
+    len_scale: f64,
+    vel_scale: f64,
+}
+
+/// What the engine remembers to avoid working something out twice; dropping any of it changes
+/// the work, never the answer.
+struct Caches {
+    /// Stick intervals already worked out, by problem, with the blocks that leave at each limit.
+    stick_memo: Memo<solver::Problem, solver::Stick>,
+    /// Sets of blocks (global indices, sorted) that broke away at recent stick limits, newest
+    /// first: hints for the next stick intervals.
+    breaking: VecDeque<Vec<usize>>,
+    /// Decisions already worked out, by problem, and under it by ground acceleration (a
+    /// problem meets few: it is looked up without building a key).
+    free_memo: Memo<solver::Problem, Vec<(solver::Lex, Vec<solver::Group>)>>,
+}
+
+/// Working memory kept from one event to the next, empty between uses.
+#[derive(Default)]
+struct Scratch {
+    /// Of the mode decisions.
+    decisions: regroup::Buffers,
+    /// Of the scheduling: pairs of sliding clusters.
+    pairs: Vec<(usize, usize)>,
+}
+
+/// The event-driven engine of one run: what it was given, the state of the wall (clusters,
+/// joints, time, the segment of the ground motion), the event queue, the caches and the
+/// scratch space, and the recorder of results.
+pub(crate) struct Engine<'a> {
+    given: Given<'a>,
+    /// Per block: fallen.
+    fallen: Vec<bool>,
     t: f64,
-    t_end: f64,
-    progress: Option<Progress>,
     seg: Segment,
+    /// Per block: its cluster (`NONE`: fixed or fallen).
     of: Vec<usize>,
+    /// Clusters (slots of emptied ones are reused, listed in `free`).
     clusters: Vec<Cluster>,
     free: Vec<usize>,
+    /// Per block: its displacement when its cluster formed (m).
     u_ref: Vec<f64>,
-    /// Per support: sliding direction of the upper block relative to the lower (+1, -1), 0 = stuck.
-    dir: Vec<i8>,
+    /// Per support: its joint stuck or slipping, and which way.
+    slip: Vec<Slip>,
     /// Per vertical joint: the faces touch.
     touching: Vec<bool>,
     /// Per support: relative displacement when friction work was last accounted.
     d_last: Vec<f64>,
     /// Per support: when friction work was last accounted (s).
     t_fric: Vec<f64>,
-    heap: BinaryHeap<Reverse<Pending>>,
-    /// The queue's size at which its stale events are next purged.
-    purge_at: usize,
-    seq: u64,
+    /// Cluster versions: a changed cluster gets a new one, and its queued events go stale.
     version: u64,
-    rec: Recorder,
-    output_dt: Option<f64>,
+    /// History rows written so far at output times.
     output_k: u64,
+    /// The instant of the progress guard and the events counted at it.
     instant: (f64, usize),
-    len_scale: f64,
-    vel_scale: f64,
-    count: Counter,
     stopped: bool,
-    /// Stick intervals already worked out, by problem, with the blocks that leave at each limit.
-    stick_memo: Memo<decide::Problem, decide::Stick>,
-    /// Sets of blocks (global indices, sorted) that broke away at recent stick limits, newest
-    /// first: hints for the next stick intervals.
-    breaking: VecDeque<Vec<usize>>,
-    /// Decisions already worked out, by problem, and under it by ground acceleration (a
-    /// problem meets few: it is looked up without building a key).
-    free_memo: Memo<decide::Problem, Vec<(decide::Lex, Vec<decide::Group>)>>,
-    /// Working memory of the decisions.
-    buffers: decision::Buffers,
-    /// Working memory of the scheduling: pairs of sliding clusters (empty between calls).
-    pairs: Vec<(usize, usize)>,
+    queue: Queue,
+    caches: Caches,
+    scratch: Scratch,
+    count: Counter,
+    rec: Recorder,
 }
 
 impl<'a> Engine<'a> {
@@ -269,15 +237,21 @@ impl<'a> Engine<'a> {
         let n = wall.blocks.len();
         let t_end = sc.settings.duration_s;
         if !(t_end.is_finite() && t_end > 0.0) {
-            return Err(SimulationError::Invalid(format!(
-                "duration {t_end} s: it must be positive"
-            )));
+            return Err(SimulationError::Setting {
+                what: "duration".into(),
+                value: t_end,
+                unit: " s",
+                rule: "it must be positive",
+            });
         }
         if let Some(dt) = sc.settings.output_dt_s {
             if !(dt.is_finite() && dt > 0.0) {
-                return Err(SimulationError::Invalid(format!(
-                    "output interval {dt} s: it must be positive"
-                )));
+                return Err(SimulationError::Setting {
+                    what: "output interval".into(),
+                    value: dt,
+                    unit: " s",
+                    rule: "it must be positive",
+                });
             }
         }
         let mass_q: Vec<Q> = topo.blocks.iter().map(|b| b.mass_kg.clone()).collect();
@@ -300,56 +274,57 @@ impl<'a> Engine<'a> {
         );
         rec.decisions = sc.settings.log_decisions.then(Vec::new);
         Ok(Engine {
-            wall,
-            topo,
-            motion: sc.motion,
-            after_collapse: sc.settings.after_collapse,
-            params,
-            n,
-            mass: f(&mass_q),
-            mass_q,
-            cap: f(&cap_q),
-            cap_q,
-            fixed: wall.blocks.iter().map(|b| b.fixed).collect(),
+            given: Given {
+                wall,
+                topo,
+                motion: sc.motion,
+                after_collapse: sc.settings.after_collapse,
+                params,
+                t_end,
+                output_dt: sc.settings.output_dt_s,
+                progress: sc.settings.progress.clone(),
+                n,
+                mass: f(&mass_q),
+                mass_q,
+                cap: f(&cap_q),
+                cap_q,
+                fixed: wall.blocks.iter().map(|b| b.fixed).collect(),
+                xl: wall.blocks.iter().map(|b| b.x.to_f64()).collect(),
+                xr: wall.blocks.iter().map(|b| b.right().to_f64()).collect(),
+                xc: wall
+                    .blocks
+                    .iter()
+                    .map(|b| b.centroid_x().to_f64())
+                    .collect(),
+                gap0: topo.joints.iter().map(|j| j.gap_m.to_f64()).collect(),
+                restitution: wall.restitution.clone(),
+                len_scale: extent + d_max,
+                vel_scale: v_max + 1e-3,
+            },
             fallen: vec![false; n],
-            xl: wall.blocks.iter().map(|b| b.x.to_f64()).collect(),
-            xr: wall.blocks.iter().map(|b| b.right().to_f64()).collect(),
-            xc: wall
-                .blocks
-                .iter()
-                .map(|b| b.centroid_x().to_f64())
-                .collect(),
-            gap0: topo.joints.iter().map(|j| j.gap_m.to_f64()).collect(),
-            restitution: wall.restitution.clone(),
             t: 0.0,
-            t_end,
-            progress: sc.settings.progress.clone(),
             seg,
             of: vec![NONE; n],
             clusters: Vec::new(),
             free: Vec::new(),
             u_ref: vec![0.0; n],
-            dir: vec![0; topo.supports.len()],
+            slip: vec![Slip::Stuck; topo.supports.len()],
             touching: topo.joints.iter().map(|j| j.gap_m.is_zero()).collect(),
             d_last: vec![0.0; topo.supports.len()],
             t_fric: vec![0.0; topo.supports.len()],
-            heap: BinaryHeap::new(),
-            purge_at: PURGE_FROM,
-            seq: 0,
             version: 0,
-            rec,
-            output_dt: sc.settings.output_dt_s,
             output_k: 0,
             instant: (f64::NEG_INFINITY, 0),
-            len_scale: extent + d_max,
-            vel_scale: v_max + 1e-3,
-            count: Counter::default(),
             stopped: false,
-            stick_memo: Memo::new(),
-            breaking: VecDeque::new(),
-            free_memo: Memo::new(),
-            buffers: decision::Buffers::default(),
-            pairs: Vec::new(),
+            queue: Queue::default(),
+            caches: Caches {
+                stick_memo: Memo::new(),
+                breaking: VecDeque::new(),
+                free_memo: Memo::new(),
+            },
+            scratch: Scratch::default(),
+            count: Counter::default(),
+            rec,
         })
     }
 
@@ -358,11 +333,13 @@ impl<'a> Engine<'a> {
         // may have left some).
         flow::take_pass_nodes();
         // At rest at t = 0: every block is undecided against the ground.
-        let seeds: Vec<usize> = (0..self.n).filter(|&i| !self.fixed[i]).collect();
-        self.decide_from(&seeds, &[], None, Cause::Start)?;
+        let seeds: Vec<usize> = (0..self.given.n)
+            .filter(|&i| !self.given.fixed[i])
+            .collect();
+        self.regroup(&seeds, &[], None, Cause::Start)?;
         loop {
-            let seg_end = self.seg.t1.min(self.t_end);
-            match self.pop_until(seg_end) {
+            let seg_end = self.seg.t1.min(self.given.t_end);
+            match self.queue.pop_until(seg_end, &self.clusters) {
                 Some(p) => {
                     self.output_until(p.t);
                     self.t = p.t;
@@ -376,10 +353,10 @@ impl<'a> Engine<'a> {
                 None => {
                     self.output_until(seg_end);
                     self.t = seg_end;
-                    if let Some(p) = &self.progress {
+                    if let Some(p) = &self.given.progress {
                         p.at(seg_end);
                     }
-                    if seg_end >= self.t_end {
+                    if seg_end >= self.given.t_end {
                         break;
                     }
                     self.enter_segment(seg_end);
@@ -397,7 +374,7 @@ impl<'a> Engine<'a> {
         // The first event opens the first instant (before it, `instant` is -inf).
         if self.instant.0.is_finite() && p.t - self.instant.0 <= window {
             self.instant.1 += 1;
-            if self.instant.1 > self.params.max_events_per_instant {
+            if self.instant.1 > self.given.params.max_events_per_instant {
                 return Err(SimulationError::NoProgress {
                     time_s: p.t,
                     count: self.instant.1,
@@ -408,57 +385,6 @@ impl<'a> Engine<'a> {
             self.instant = (p.t, 1);
         }
         Ok(())
-    }
-
-    fn pop_until(&mut self, limit: f64) -> Option<Pending> {
-        while let Some(Reverse(p)) = self.heap.peek().copied() {
-            if p.t > limit {
-                return None;
-            }
-            self.heap.pop();
-            if self.is_current(&p.ev) {
-                return Some(p);
-            }
-        }
-        None
-    }
-
-    fn is_current(&self, ev: &Ev) -> bool {
-        let ok = |k: usize, v: u64| {
-            self.clusters
-                .get(k)
-                .is_some_and(|c| c.version == v && !c.blocks.is_empty())
-        };
-        match *ev {
-            Ev::Threshold { k, ver, .. } => ok(k, ver),
-            Ev::Stop { k, ver, ground } | Ev::GroundBound { k, ver, ground, .. } => {
-                ok(k, ver) && self.clusters[k].ground_version == ground
-            }
-            Ev::Meet { a, va, b, vb } | Ev::PairBound { a, va, b, vb, .. } => {
-                ok(a, va) && ok(b, vb)
-            }
-        }
-    }
-
-    /// Queues an event. Events of clusters that have changed since go stale and are skipped
-    /// when popped; on a large wall far more go stale than are popped (a pair's events are found
-    /// up to the end of the run), so the queue is purged of them whenever it has doubled. The
-    /// order of the events kept does not change.
-    fn push(&mut self, t: f64, ev: Ev) {
-        self.seq += 1;
-        self.heap.push(Reverse(Pending {
-            t,
-            seq: self.seq,
-            ev,
-        }));
-        if self.heap.len() >= self.purge_at {
-            let all = std::mem::take(&mut self.heap).into_vec();
-            self.heap = all
-                .into_iter()
-                .filter(|Reverse(p)| self.is_current(&p.ev))
-                .collect();
-            self.purge_at = (2 * self.heap.len()).max(PURGE_FROM);
-        }
     }
 
     fn s(&self) -> f64 {
@@ -500,16 +426,16 @@ impl<'a> Engine<'a> {
     }
 
     fn len_tol(&self, a: f64, b: f64) -> f64 {
-        ROUNDOFF_ULPS * f64::EPSILON * (self.len_scale + a.abs() + b.abs())
+        ROUNDOFF_ULPS * f64::EPSILON * (self.given.len_scale + a.abs() + b.abs())
     }
 
     fn vel_tol(&self, a: f64, b: f64) -> f64 {
-        ROUNDOFF_ULPS * f64::EPSILON * (self.vel_scale + a.abs() + b.abs())
+        ROUNDOFF_ULPS * f64::EPSILON * (self.given.vel_scale + a.abs() + b.abs())
     }
 
     /// The lower block of a support, if it is a block that can move.
     fn lower_block(&self, s: usize) -> Option<usize> {
-        match self.topo.supports[s].lower {
+        match self.given.topo.supports[s].lower {
             Base::Ground => None,
             Base::Block(b) => Some(b.0),
         }
@@ -517,7 +443,7 @@ impl<'a> Engine<'a> {
 
     /// A support still in the model (neither end fell).
     fn live_support(&self, s: usize) -> bool {
-        let sup = &self.topo.supports[s];
+        let sup = &self.given.topo.supports[s];
         !self.fallen[sup.upper.0] && self.lower_block(s).is_none_or(|l| !self.fallen[l])
     }
 
@@ -532,9 +458,13 @@ impl<'a> Engine<'a> {
                 .iter()
                 .copied()
                 .filter(|&i| {
-                    let supports = self.topo.below[i].iter().chain(&self.topo.above[i]);
+                    let supports = self.given.topo.below[i]
+                        .iter()
+                        .chain(&self.given.topo.above[i]);
                     let across_support = supports.map(|s| self.across_support(s.0, i));
-                    let faces = self.topo.sides[i].iter().map(|j| self.across_joint(j.0, i));
+                    let faces = self.given.topo.sides[i]
+                        .iter()
+                        .map(|j| self.across_joint(j.0, i));
                     across_support
                         .chain(faces.map(Some))
                         .any(|o| o.is_none_or(outside))
@@ -545,16 +475,16 @@ impl<'a> Engine<'a> {
 
     /// The other ends of block `b`'s live supports (under and over it); `None` is the ground.
     fn live_neighbours(&self, b: usize) -> impl Iterator<Item = Option<usize>> + '_ {
-        self.topo.below[b]
+        self.given.topo.below[b]
             .iter()
-            .chain(&self.topo.above[b])
+            .chain(&self.given.topo.above[b])
             .filter(|s| self.live_support(s.0))
             .map(move |s| self.across_support(s.0, b))
     }
 
     /// The block across support s from block b; `None` is the ground.
     fn across_support(&self, s: usize, b: usize) -> Option<usize> {
-        let upper = self.topo.supports[s].upper.0;
+        let upper = self.given.topo.supports[s].upper.0;
         if upper == b {
             self.lower_block(s)
         } else {
@@ -564,7 +494,7 @@ impl<'a> Engine<'a> {
 
     /// The block across vertical joint j from block b.
     fn across_joint(&self, j: usize, b: usize) -> usize {
-        let jt = &self.topo.joints[j];
+        let jt = &self.given.topo.joints[j];
         if jt.left.0 == b {
             jt.right.0
         } else {
@@ -573,17 +503,17 @@ impl<'a> Engine<'a> {
     }
 
     fn live_joint(&self, j: usize) -> bool {
-        let jt = &self.topo.joints[j];
+        let jt = &self.given.topo.joints[j];
         !self.fallen[jt.left.0] && !self.fallen[jt.right.0]
     }
 
     fn gap(&self, j: usize) -> f64 {
-        let jt = &self.topo.joints[j];
-        self.gap0[j] + self.block_disp(jt.right.0) - self.block_disp(jt.left.0)
+        let jt = &self.given.topo.joints[j];
+        self.given.gap0[j] + self.block_disp(jt.right.0) - self.block_disp(jt.left.0)
     }
 
     fn support_d(&self, s: usize) -> f64 {
-        let sup = &self.topo.supports[s];
+        let sup = &self.given.topo.supports[s];
         self.block_disp(sup.upper.0) - self.lower_block(s).map_or(0.0, |l| self.block_disp(l))
     }
 
@@ -595,7 +525,7 @@ impl<'a> Engine<'a> {
     fn enter_segment(&mut self, t: f64) {
         if self.seg.has_vertical() {
             // Friction work with a varying capacity is integrated segment by segment.
-            for s in 0..self.topo.supports.len() {
+            for s in 0..self.given.topo.supports.len() {
                 self.account_support(s);
             }
         }
@@ -607,7 +537,7 @@ impl<'a> Engine<'a> {
                 self.account(k, t);
             }
         }
-        self.seg = self.motion.segment_at(t);
+        self.seg = self.given.motion.segment_at(t);
         self.rec.stats.segments += 1;
         let seg = self.seg;
         for c in &mut self.clusters {
@@ -619,7 +549,7 @@ impl<'a> Engine<'a> {
                 }
             }
         }
-        if self.motion.has_vertical() {
+        if self.given.motion.has_vertical() {
             // Relative motion of sliding clusters involves lambda(t): re-found per segment.
             let live: Vec<usize> = (0..self.clusters.len())
                 .filter(|&k| !self.clusters[k].blocks.is_empty())
@@ -665,12 +595,12 @@ impl<'a> Engine<'a> {
                     (ag - at).abs() <= ROUNDOFF_ULPS * f64::EPSILON * (ag.abs() + at.abs())
                 });
                 let seeds = self.clusters[k].blocks.clone();
-                self.decide_from(&seeds, &[], snap, Cause::StickLimit)?;
+                self.regroup(&seeds, &[], snap, Cause::StickLimit)?;
             }
             Ev::Stop { k, .. } => {
                 let seeds = self.clusters[k].blocks.clone();
-                let snap: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, 0.0)).collect();
-                self.decide_from(&seeds, &snap, None, Cause::Stop)?;
+                let set_vel: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, 0.0)).collect();
+                self.regroup(&seeds, &set_vel, None, Cause::Stop)?;
             }
             Ev::Meet { a, b, .. } => {
                 let (ma, mb) = (self.clusters[a].mass, self.clusters[b].mass);
@@ -681,8 +611,8 @@ impl<'a> Engine<'a> {
                     .chain(&self.clusters[b].blocks)
                     .copied()
                     .collect();
-                let snap: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, v)).collect();
-                self.decide_from(&seeds, &snap, None, Cause::Meet)?;
+                let set_vel: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, v)).collect();
+                self.regroup(&seeds, &set_vel, None, Cause::Meet)?;
             }
             Ev::GroundBound { k, c, .. } => self.constraint_reached(k, None, c)?,
             Ev::PairBound { a, b, c, .. } => self.constraint_reached(a, Some(b), c)?,
@@ -693,126 +623,31 @@ impl<'a> Engine<'a> {
         Ok(())
     }
 
-    fn constraint_reached(
-        &mut self,
-        a: usize,
-        b: Option<usize>,
-        c: Constraint,
-    ) -> Result<(), SimulationError> {
-        match c {
-            Constraint::Gap(j) => self.faces_meet(j),
-            Constraint::Collapse(s) => {
-                let upper = self.topo.supports[s].upper.0;
-                if self.stands(upper) {
-                    // A threshold of the support span passed without toppling: look further.
-                    for k in std::iter::once(a).chain(b) {
-                        let v = self.new_version();
-                        self.clusters[k].version = v;
-                    }
-                    self.schedule(std::iter::once(a).chain(b));
-                    Ok(())
-                } else {
-                    self.collapse(upper)
-                }
-            }
-        }
-    }
-
-    /// Does block i still stand on its supports? Its centroid must lie in the span from the
-    /// leftmost to the rightmost point where its bottom face touches a support's top face; on the
-    /// edge of the span, it falls if it is moving out (velocity, then acceleration).
-    fn stands(&self, i: usize) -> bool {
-        let state = |b: usize| -> [f64; 3] {
-            if self.of[b] == NONE {
-                return [self.u_ref[b], 0.0, 0.0];
-            }
-            let k = self.of[b];
-            match self.clusters[k].slide() {
-                Some(sl) => [
-                    self.u_ref[b] + sl.disp(self.t),
-                    sl.vel(self.t),
-                    sl.acc(self.t),
-                ],
-                None => [self.u_ref[b], 0.0, 0.0],
-            }
-        };
-        let add = |p: [f64; 3], x: f64| [p[0] + x, p[1], p[2]];
-        let tol = self.len_tol(self.block_disp(i), 0.0);
-        let cmp = |a: [f64; 3], b: [f64; 3]| -> Ordering {
-            if (a[0] - b[0]).abs() > tol {
-                return a[0].total_cmp(&b[0]);
-            }
-            a[1].total_cmp(&b[1]).then(a[2].total_cmp(&b[2]))
-        };
-        let lex_max = |a: [f64; 3], b: [f64; 3]| if cmp(a, b) == Ordering::Less { b } else { a };
-        let lex_min = |a: [f64; 3], b: [f64; 3]| if cmp(a, b) == Ordering::Greater { b } else { a };
-        let ui = state(i);
-        let centroid = add(ui, self.xc[i]);
-        let mut hull: Option<([f64; 3], [f64; 3])> = None;
-        for &s in &self.topo.below[i] {
-            if !self.live_support(s.0) {
-                continue;
-            }
-            let Some(j) = self.lower_block(s.0) else {
-                return true;
-            };
-            let uj = state(j);
-            let lo = lex_max(add(ui, self.xl[i]), add(uj, self.xl[j]));
-            let hi = lex_min(add(ui, self.xr[i]), add(uj, self.xr[j]));
-            if cmp(hi, lo) == Ordering::Greater {
-                hull = Some(match hull {
-                    None => (lo, hi),
-                    Some((a, b)) => (lex_min(a, lo), lex_max(b, hi)),
-                });
-            }
-        }
-        match hull {
-            None => false,
-            Some((lo, hi)) => {
-                cmp(centroid, lo) != Ordering::Less && cmp(centroid, hi) != Ordering::Greater
-            }
-        }
-    }
-
-    fn collapse(&mut self, i: usize) -> Result<(), SimulationError> {
-        if self.rec.collapse.is_none() {
-            self.rec.collapse = Some(Collapse {
-                time_s: self.t,
-                block: self.wall.blocks[i].name.clone(),
-                cause: CollapseCause::SlidingOff,
-            });
-        }
-        self.rec
-            .event(self.t, EventKind::Collapse, &[i], None, None);
-        self.rec.fell(i);
-        if self.after_collapse == AfterCollapse::Stop {
-            self.stopped = true;
-            return Ok(());
-        }
-        self.remove_fallen(i)
-    }
-
     fn finish(mut self) -> Response {
-        let t = self.t.min(self.t_end);
+        let t = self.t.min(self.given.t_end);
         self.t = t;
         self.account_all(t);
         for k in 0..self.clusters.len() {
             self.record_extremes(k);
         }
-        for s in 0..self.topo.supports.len() {
+        for s in 0..self.given.topo.supports.len() {
             self.account_support(s);
         }
         let (u, v) = self.state_now();
-        self.rec.energy.kinetic_j = (0..self.n)
+        self.rec.energy.kinetic_j = (0..self.given.n)
             .filter(|&i| !self.fallen[i])
-            .map(|i| 0.5 * self.mass[i] * v[i] * v[i])
+            .map(|i| 0.5 * self.given.mass[i] * v[i] * v[i])
             .sum();
         self.rec.stats.root_evaluations = self.count.0;
         self.rec.stats.flow_nodes = flow::take_pass_nodes();
-        self.rec.warnings =
-            crate::validity::rocking_warnings(self.wall, self.topo, self.rec.peak_accel());
-        let motion = self.motion.describe();
-        self.rec.finish("event", &self.wall.name, motion, t, &u, &v)
+        self.rec.warnings = crate::validity::rocking_warnings(
+            self.given.wall,
+            self.given.topo,
+            self.rec.peak_accel(),
+        );
+        let motion = self.given.motion.describe();
+        self.rec
+            .finish("event", &self.given.wall.name, motion, t, &u, &v)
     }
 }
 
@@ -879,7 +714,7 @@ mod tests {
         };
         let mut engine = Engine::new(&scenario, &params).unwrap();
         let all: Vec<usize> = (0..wall.blocks.len()).collect();
-        engine.decide_from(&all, &[], None, Cause::Start).unwrap();
+        engine.regroup(&all, &[], None, Cause::Start).unwrap();
         let k = engine.of[0];
         assert!(all.iter().all(|&i| engine.of[i] == k), "one cluster");
         let bottom: Vec<usize> = all

@@ -10,8 +10,9 @@
 //!   polynomials, found once per mode, whatever the segments.
 
 use super::cluster::{GroundHits, Motion, Slide};
+use super::queue::{Constraint, Ev};
 use super::roots::{first_violation, polish, sign_changes, valid_after, Fun};
-use super::{Constraint, Engine, Ev};
+use super::Engine;
 
 fn constraint_bits(c: Constraint) -> u64 {
     match c {
@@ -63,7 +64,7 @@ impl Engine<'_> {
     /// Schedules the next events of the given clusters and of every pair of sliding clusters
     /// among them and their neighbours.
     pub(super) fn schedule(&mut self, ks: impl IntoIterator<Item = usize>) {
-        let mut pairs = std::mem::take(&mut self.pairs);
+        let mut pairs = std::mem::take(&mut self.scratch.pairs);
         for k in ks {
             if self.clusters[k].blocks.is_empty() {
                 continue;
@@ -80,13 +81,13 @@ impl Engine<'_> {
             self.schedule_pair(a, b);
         }
         pairs.clear();
-        self.pairs = pairs;
+        self.scratch.pairs = pairs;
     }
 
     /// Events of cluster k that involve a_g, up to the end of the current segment.
     pub(super) fn schedule_segment(&mut self, k: usize) {
         let seg = self.seg;
-        let (t0, t1) = (self.t, seg.t1.min(self.t_end));
+        let (t0, t1) = (self.t, seg.t1.min(self.given.t_end));
         let ver = self.clusters[k].version;
         let (r1, r2) = seg.accel_rates(self.s());
         let ag = move |x: f64| seg.accel(x - seg.t0);
@@ -113,7 +114,8 @@ impl Engine<'_> {
                         None
                     };
                     if let Some(t) = hit {
-                        self.push(t, Ev::Threshold { k, ver, upper });
+                        self.queue
+                            .push(t, Ev::Threshold { k, ver, upper }, &self.clusters);
                     }
                 }
             }
@@ -145,11 +147,13 @@ impl Engine<'_> {
                 };
                 let ground = self.clusters[k].ground_version;
                 if let Some(t) = hits[0] {
-                    self.push(t, Ev::Stop { k, ver, ground });
+                    self.queue
+                        .push(t, Ev::Stop { k, ver, ground }, &self.clusters);
                 }
                 for (hit, bound) in [(hits[1], bounds.lo), (hits[2], bounds.hi)] {
                     if let (Some(t), Some((_, c))) = (hit, bound) {
-                        self.push(t, Ev::GroundBound { k, ver, ground, c });
+                        self.queue
+                            .push(t, Ev::GroundBound { k, ver, ground, c }, &self.clusters);
                     }
                 }
             }
@@ -234,7 +238,7 @@ impl Engine<'_> {
     fn sliding_neighbours(&self, k: usize, mut f: impl FnMut(usize)) {
         for &i in self.boundary(k) {
             let others = self.live_neighbours(i).flatten();
-            let sides = self.topo.sides[i]
+            let sides = self.given.topo.sides[i]
                 .iter()
                 .filter(|j| self.live_joint(j.0))
                 .map(|j| self.across_joint(j.0, i));
@@ -252,10 +256,10 @@ impl Engine<'_> {
     /// ending on either side.
     fn collapse_thresholds(&self, upper: usize, lower: usize) -> [f64; 4] {
         [
-            self.xl[lower] - self.xc[upper],
-            self.xr[lower] - self.xc[upper],
-            self.xr[lower] - self.xl[upper],
-            self.xl[lower] - self.xr[upper],
+            self.given.xl[lower] - self.given.xc[upper],
+            self.given.xr[lower] - self.given.xc[upper],
+            self.given.xr[lower] - self.given.xl[upper],
+            self.given.xl[lower] - self.given.xr[upper],
         ]
     }
 
@@ -267,21 +271,19 @@ impl Engine<'_> {
         let mut sigma = 0i8;
         let mut b = Bounds::default();
         for &i in self.boundary(k) {
-            for &s in &self.topo.below[i] {
+            for &s in &self.given.topo.below[i] {
                 if !self.live_support(s.0) {
                     continue;
                 }
                 match self.lower_block(s.0) {
                     None => {
-                        sigma = if self.dir[s.0] != 0 {
-                            self.dir[s.0]
-                        } else {
-                            sigma
+                        if !self.slip[s.0].is_stuck() {
+                            sigma = self.slip[s.0].sign();
                         }
                     }
                     Some(j) if self.grounded(j) => {
-                        if self.dir[s.0] != 0 {
-                            sigma = self.dir[s.0];
+                        if !self.slip[s.0].is_stuck() {
+                            sigma = self.slip[s.0].sign();
                         }
                         for th in self.collapse_thresholds(i, j) {
                             b.threshold(th - self.u_ref[i] + self.u_ref[j], du, tol, s.0);
@@ -290,20 +292,20 @@ impl Engine<'_> {
                     Some(_) => {}
                 }
             }
-            for &s in &self.topo.above[i] {
-                let up = self.topo.supports[s.0].upper.0;
+            for &s in &self.given.topo.above[i] {
+                let up = self.given.topo.supports[s.0].upper.0;
                 if !self.live_support(s.0) || !self.grounded(up) {
                     continue;
                 }
-                if self.dir[s.0] != 0 {
-                    sigma = -self.dir[s.0];
+                if !self.slip[s.0].is_stuck() {
+                    sigma = -self.slip[s.0].sign();
                 }
                 for th in self.collapse_thresholds(up, i) {
                     b.threshold(self.u_ref[up] - self.u_ref[i] - th, du, tol, s.0);
                 }
             }
-            for &j in &self.topo.sides[i] {
-                let jt = &self.topo.joints[j.0];
+            for &j in &self.given.topo.sides[i] {
+                let jt = &self.given.topo.joints[j.0];
                 if !self.live_joint(j.0) {
                     continue;
                 }
@@ -317,12 +319,12 @@ impl Engine<'_> {
                 }
                 if left {
                     b.upper(
-                        self.gap0[j.0] + self.u_ref[o] - self.u_ref[i],
+                        self.given.gap0[j.0] + self.u_ref[o] - self.u_ref[i],
                         Constraint::Gap(j.0),
                     );
                 } else {
                     b.lower(
-                        -(self.gap0[j.0] + self.u_ref[i] - self.u_ref[o]),
+                        -(self.given.gap0[j.0] + self.u_ref[i] - self.u_ref[o]),
                         Constraint::Gap(j.0),
                     );
                 }
@@ -357,43 +359,46 @@ impl Engine<'_> {
             b
         };
         for &i in self.boundary(smaller) {
-            for &s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
+            for &s in self.given.topo.below[i]
+                .iter()
+                .chain(&self.given.topo.above[i])
+            {
                 if !self.live_support(s.0) {
                     continue;
                 }
-                let sup = &self.topo.supports[s.0];
+                let sup = &self.given.topo.supports[s.0];
                 let (up, low) = (sup.upper.0, self.lower_block(s.0));
                 let Some(low) = low else { continue };
                 if in_a(up) && in_b(low) {
                     slides_on = true;
                     // w = v_up - v_low = -r1.
-                    assumed = -f64::from(self.dir[s.0]);
+                    assumed = -f64::from(self.slip[s.0].sign());
                     // d = u_up - u_low = (u_ref[up] - u_ref[low]) - r.
                     for th in self.collapse_thresholds(up, low) {
                         bounds.threshold(self.u_ref[up] - self.u_ref[low] - th, r0, tol, s.0);
                     }
                 } else if in_a(low) && in_b(up) {
                     slides_on = true;
-                    assumed = f64::from(self.dir[s.0]);
+                    assumed = f64::from(self.slip[s.0].sign());
                     for th in self.collapse_thresholds(up, low) {
                         bounds.threshold(th - (self.u_ref[up] - self.u_ref[low]), r0, tol, s.0);
                     }
                 }
             }
-            for &j in &self.topo.sides[i] {
-                let jt = &self.topo.joints[j.0];
+            for &j in &self.given.topo.sides[i] {
+                let jt = &self.given.topo.joints[j.0];
                 if !self.live_joint(j.0) {
                     continue;
                 }
                 let (l, r) = (jt.left.0, jt.right.0);
                 if in_a(l) && in_b(r) {
                     bounds.lower(
-                        -(self.gap0[j.0] + self.u_ref[r] - self.u_ref[l]),
+                        -(self.given.gap0[j.0] + self.u_ref[r] - self.u_ref[l]),
                         Constraint::Gap(j.0),
                     );
                 } else if in_a(r) && in_b(l) {
                     bounds.upper(
-                        self.gap0[j.0] + self.u_ref[r] - self.u_ref[l],
+                        self.given.gap0[j.0] + self.u_ref[r] - self.u_ref[l],
                         Constraint::Gap(j.0),
                     );
                 }
@@ -402,13 +407,13 @@ impl Engine<'_> {
         // Relative acceleration (c_b - c_a) lambda(t): constant without vertical shaking (the
         // events hold for the whole mode), linear in time on a segment with it (found again on
         // each segment).
-        let vertical = self.motion.has_vertical();
+        let vertical = self.given.motion.has_vertical();
         let (t0, t1) = (
             self.t,
             if vertical {
-                self.seg.t1.min(self.t_end)
+                self.seg.t1.min(self.given.t_end)
             } else {
-                self.t_end
+                self.given.t_end
             },
         );
         let (lt, dl) = (self.seg.lambda_at(self.s()), self.seg.lambda.1);
@@ -446,7 +451,8 @@ impl Engine<'_> {
                 if let Some(h) =
                     first_violation(Fun::with(&f, &df), t0, t1, &[], start, 0.0, &mut self.count)
                 {
-                    self.push(h.t, Ev::Meet { a, va, b, vb });
+                    self.queue
+                        .push(h.t, Ev::Meet { a, va, b, vb }, &self.clusters);
                 }
             }
         }
@@ -463,7 +469,8 @@ impl Engine<'_> {
                 tol,
                 &mut self.count,
             ) {
-                self.push(h.t, Ev::PairBound { a, va, b, vb, c });
+                self.queue
+                    .push(h.t, Ev::PairBound { a, va, b, vb, c }, &self.clusters);
             }
         }
         if let Some((hi, c)) = bounds.hi {
@@ -479,7 +486,8 @@ impl Engine<'_> {
                 tol,
                 &mut self.count,
             ) {
-                self.push(h.t, Ev::PairBound { a, va, b, vb, c });
+                self.queue
+                    .push(h.t, Ev::PairBound { a, va, b, vb, c }, &self.clusters);
             }
         }
     }

@@ -3,8 +3,9 @@
 //! clusters it shows stuck without the general decision.
 
 use super::cluster::Motion;
-use super::decide::{weaker_limit, End, Group, Lex, Problem, Stick};
-use super::decision::{Local, BODY_FROM};
+use super::regroup::{Local, BODY_FROM};
+use super::slip::Slip;
+use super::solver::{weaker_limit, End, Group, Lex, Problem, Stick};
 use super::{Engine, NONE};
 use crate::exact::Q;
 use crate::topology::Base;
@@ -27,37 +28,44 @@ impl Engine<'_> {
     pub(super) fn set_thresholds(&mut self, k: usize, before: Option<&Before>) {
         self.clusters[k].blocks.sort_unstable();
         let members = self.clusters[k].blocks.clone();
-        let mut local = Local::reuse(std::mem::take(&mut self.buffers.local), self.n);
+        let mut local = Local::reuse(
+            std::mem::take(&mut self.scratch.decisions.local),
+            self.given.n,
+        );
         for (n, &b) in members.iter().enumerate() {
             local.insert(b, n);
         }
         let mut p = Problem {
-            mass: members.iter().map(|&i| self.mass_q[i].clone()).collect(),
+            mass: members
+                .iter()
+                .map(|&i| self.given.mass_q[i].clone())
+                .collect(),
             external: self.external_forces(k),
             ..Problem::default()
         };
         for &i in &members {
-            for &s in &self.topo.below[i] {
-                if !self.live_support(s.0) || self.dir[s.0] != 0 {
+            for &s in &self.given.topo.below[i] {
+                if !self.live_support(s.0) || !self.slip[s.0].is_stuck() {
                     continue;
                 }
-                let end = match self.topo.supports[s.0].lower {
+                let end = match self.given.topo.supports[s.0].lower {
                     Base::Ground => End::Ground,
-                    Base::Block(b) if self.fixed[b.0] => End::Ground,
+                    Base::Block(b) if self.given.fixed[b.0] => End::Ground,
                     Base::Block(b) => match local.get(&b.0) {
                         Some(&n) => End::Node(n),
                         None => continue,
                     },
                 };
-                p.friction.push((local[&i], end, self.cap_q[s.0].clone()));
+                p.friction
+                    .push((local[&i], end, self.given.cap_q[s.0].clone()));
             }
-            for &j in &self.topo.sides[i] {
-                let jt = &self.topo.joints[j.0];
+            for &j in &self.given.topo.sides[i] {
+                let jt = &self.given.topo.joints[j.0];
                 if jt.left.0 != i || !self.live_joint(j.0) || !self.is_touching(j.0) {
                     continue;
                 }
                 let end = |b: usize| {
-                    if self.fixed[b] {
+                    if self.given.fixed[b] {
                         Some(End::Ground)
                     } else {
                         local.get(&b).map(|&n| End::Node(n))
@@ -68,10 +76,10 @@ impl Engine<'_> {
                 }
             }
             // Faces against an abutment on the block's left.
-            for &j in &self.topo.sides[i] {
-                let jt = &self.topo.joints[j.0];
+            for &j in &self.given.topo.sides[i] {
+                let jt = &self.given.topo.joints[j.0];
                 if jt.right.0 == i
-                    && self.fixed[jt.left.0]
+                    && self.given.fixed[jt.left.0]
                     && self.live_joint(j.0)
                     && self.is_touching(j.0)
                 {
@@ -79,7 +87,7 @@ impl Engine<'_> {
                 }
             }
         }
-        self.buffers.local = local.release(&members);
+        self.scratch.decisions.local = local.release(&members);
         let p = p.canonical();
         let change = before.map_or(Change::Exact, |b| Change::After(Some(b)));
         let limits = self.stick_interval(&p, &members, change);
@@ -88,7 +96,7 @@ impl Engine<'_> {
 
     /// The stick interval of a problem whose blocks (`members`: global indices, sorted, in the
     /// problem's order) are all stuck, remembered per run. The sets that broke away at earlier
-    /// limits are the hints ([`Problem::stick_interval`]): a block joining or leaving a large
+    /// limits are the hints ([`Problem::stick_sides`]): a block joining or leaving a large
     /// stuck cluster seldom changes its weakest set. After a `change`, a bound the run already
     /// holds for the same problem stands, and a side the change cannot have narrowed is kept as
     /// a bound ([`Engine::kept_limits`], worked out only for the sides the run does not know).
@@ -107,7 +115,7 @@ impl Engine<'_> {
         change: Change,
         a0: Option<&Q>,
     ) -> Option<Limits> {
-        let known = self.stick_memo.get(p);
+        let known = self.caches.stick_memo.get(p);
         let exact = matches!(change, Change::Exact);
         let usable = |side: usize| known.is_some_and(|s| !(exact && s.bound_only[side]));
         if let (Some(s), true) = (known, usable(0) && usable(1)) {
@@ -119,6 +127,7 @@ impl Engine<'_> {
         };
         let want = [0, 1].map(|side| !usable(side) && kept[side].is_none());
         let hints: Vec<Vec<usize>> = self
+            .caches
             .breaking
             .iter()
             .map(|set| {
@@ -143,12 +152,12 @@ impl Engine<'_> {
         };
         for set in std::mem::take(&mut found.breaking) {
             let global: Vec<usize> = set.into_iter().map(|k| members[k]).collect();
-            self.breaking.retain(|known| *known != global);
-            self.breaking.push_front(global);
-            self.breaking.truncate(BREAKING_HINTS);
+            self.caches.breaking.retain(|known| *known != global);
+            self.caches.breaking.push_front(global);
+            self.caches.breaking.truncate(BREAKING_HINTS);
         }
         // Each side not worked out now is known exactly, kept as a bound, or a bound known.
-        let mut known = self.stick_memo.get_mut(p);
+        let mut known = self.caches.stick_memo.get_mut(p);
         for side in (0..2).filter(|&side| !want[side]) {
             let (limit, leaving) = match side {
                 0 => (&mut found.lo, &mut found.leaving_lo),
@@ -174,7 +183,10 @@ impl Engine<'_> {
         let limits = Limits::of(&found);
         match known {
             Some(s) => *s = found,
-            None => self.stick_memo.insert(p.clone(), found, members.len()),
+            None => self
+                .caches
+                .stick_memo
+                .insert(p.clone(), found, members.len()),
         }
         Some(limits)
     }
@@ -258,7 +270,7 @@ impl Engine<'_> {
         piece: &[usize],
         theta: &Lex,
     ) -> Option<(Group, Limits, Vec<Group>)> {
-        if piece.len() <= self.params.beside_stuck_from {
+        if piece.len() <= self.given.params.beside_stuck_from {
             return None;
         }
         let mut count: Vec<(usize, usize)> = Vec::new();
@@ -274,7 +286,7 @@ impl Engine<'_> {
         }
         let (held, size) = count.into_iter().max_by_key(|&(_, n)| n)?;
         let few = piece.len() - size;
-        if size < self.params.beside_stuck_from || few == 0 || few >= BODY_FROM {
+        if size < self.given.params.beside_stuck_from || few == 0 || few >= BODY_FROM {
             return None;
         }
         let beside: Vec<usize> = piece
@@ -357,7 +369,7 @@ impl Engine<'_> {
         before: Option<&Before>,
     ) -> [Option<Option<Q>>; 2] {
         let none = [None, None];
-        if members.len() < self.params.kept_limits_from {
+        if members.len() < self.given.params.kept_limits_from {
             return none;
         }
         let of = |b: usize| {
@@ -365,10 +377,10 @@ impl Engine<'_> {
                 .and_then(|x| x.of.get(&b).copied())
                 .unwrap_or(self.of[b])
         };
-        let dir = |s: usize| {
+        let slip = |s: usize| {
             before
-                .and_then(|x| x.dir.get(&s).copied())
-                .unwrap_or(self.dir[s])
+                .and_then(|x| x.slip.get(&s).copied())
+                .unwrap_or(self.slip[s])
         };
         // The limits of cluster k as it was (`None`: it slid, or there is none).
         let limits = |k: usize| -> Option<[&Option<Q>; 2]> {
@@ -394,7 +406,7 @@ impl Engine<'_> {
         let Some([lo_q, hi_q]) = limits(k) else {
             return none;
         };
-        let mut in_q = vec![false; self.n];
+        let mut in_q = vec![false; self.given.n];
         for &i in members {
             in_q[i] = true;
         }
@@ -409,24 +421,27 @@ impl Engine<'_> {
             // whose joints all stick within K and q (most of a large group) changed in nothing.
             let mut c = Q::zero();
             let mut changed = false;
-            for s in self.topo.below[i].iter().chain(&self.topo.above[i]) {
+            for s in self.given.topo.below[i]
+                .iter()
+                .chain(&self.given.topo.above[i])
+            {
                 let s = s.0;
                 if !self.live_support(s) {
                     continue;
                 }
-                changed |= dir(s) != 0;
-                let Some(b) = self.across_support(s, i).filter(|&b| !self.fixed[b]) else {
+                changed |= !slip(s).is_stuck();
+                let Some(b) = self.across_support(s, i).filter(|&b| !self.given.fixed[b]) else {
                     continue;
                 };
                 let (in_k, in_q) = (of(b) == k, in_q[b]);
                 changed |= !(in_k && in_q);
-                if (in_k && !in_q && dir(s) == 0) || (!in_k && in_q) {
-                    c = c + &self.cap_q[s];
+                if (in_k && !in_q && slip(s).is_stuck()) || (!in_k && in_q) {
+                    c = c + &self.given.cap_q[s];
                 }
             }
-            for &j in &self.topo.sides[i] {
+            for &j in &self.given.topo.sides[i] {
                 let d = self.across_joint(j.0, i);
-                if !self.fixed[d]
+                if !self.given.fixed[d]
                     && of(d) == k
                     && !in_q[d]
                     && self.live_joint(j.0)
@@ -434,13 +449,13 @@ impl Engine<'_> {
                 {
                     // The face held i back from moving towards d: lagging (hi) if d is on
                     // its left, running ahead (lo) if on its right.
-                    holds[usize::from(self.topo.joints[j.0].left.0 == d)] = false;
+                    holds[usize::from(self.given.topo.joints[j.0].left.0 == d)] = false;
                 }
             }
             if !changed {
                 continue;
             }
-            let d = &q.external[n] - &self.external_force_by(i, dir);
+            let d = &q.external[n] - &self.external_force_by(i, slip);
             if !c.is_zero() || !d.is_zero() {
                 holds[1] &= !(&d - &c).is_negative();
                 holds[0] &= !(&d + &c).is_positive();
@@ -495,7 +510,7 @@ enum Change<'a> {
 pub(super) struct Before {
     pub(super) of: FxHashMap<usize, usize>,
     pub(super) limits: FxHashMap<usize, Option<[Option<Q>; 2]>>,
-    pub(super) dir: FxHashMap<usize, i8>,
+    pub(super) slip: FxHashMap<usize, Slip>,
 }
 
 pub(super) fn stuck(limits: Limits) -> Motion {

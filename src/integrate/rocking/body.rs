@@ -80,17 +80,21 @@ impl RockingBody {
         ];
         for (what, x) in positive {
             if !(x.is_finite() && x > 0.0) {
-                return Err(SimulationError::Invalid(format!(
-                    "{}: {what} = {x}: it must be a positive number",
-                    self.name
-                )));
+                return Err(SimulationError::Body {
+                    body: self.name.clone(),
+                    what,
+                    value: x,
+                    rule: "it must be a positive number",
+                });
             }
         }
         if !(0.0..=1.0).contains(&self.restitution_factor) {
-            return Err(SimulationError::Invalid(format!(
-                "{}: rocking restitution factor {}: it must lie in [0, 1]",
-                self.name, self.restitution_factor
-            )));
+            return Err(SimulationError::Body {
+                body: self.name.clone(),
+                what: "rocking restitution factor",
+                value: self.restitution_factor,
+                rule: "it must lie in [0, 1]",
+            });
         }
         Ok(())
     }

@@ -75,13 +75,15 @@ pub fn land(
         let dir = pt_stick.signum();
         let inv_mass = 1.0 / m + (b * b - s * dir * mu * b * h) / ig;
         if inv_mass <= 0.0 {
-            return Err(SimulationError::Invalid(format!(
-                "{} at t = {time_s} s: landing on its {} corner with friction {mu}, the \
-                 corner's effective mass is not positive (Painleve's paradox in impact): the \
-                 rigid model with Coulomb friction cannot go on",
-                body.name,
-                next.name()
-            )));
+            return Err(SimulationError::RigidModel {
+                at: format!("{} at t = {time_s} s", body.name),
+                why: format!(
+                    "landing on its {} corner with friction {mu}, the corner's effective mass \
+                     is not positive (Painleve's paradox in impact): the rigid model with \
+                     Coulomb friction cannot go on",
+                    next.name()
+                ),
+            });
         }
         let pn = -2.0 * s * b * omega / inv_mass;
         let pt = dir * mu * pn;
@@ -141,11 +143,13 @@ fn land_flat(
     let diff = (-body.inertia_kg_m2 * omega + h * pt) / b;
     let (right, left) = (0.5 * (pn + diff), 0.5 * (pn - diff));
     if right < 0.0 || left < 0.0 {
-        return Err(SimulationError::Invalid(format!(
-            "{} at t = {time_s} s: landing flat needs a pulling impulse at a corner (left \
-             {left} N s, right {right} N s): no landing of the rigid model fits",
-            body.name
-        )));
+        return Err(SimulationError::RigidModel {
+            at: format!("{} at t = {time_s} s", body.name),
+            why: format!(
+                "landing flat needs a pulling impulse at a corner (left {left} N s, right \
+                 {right} N s): no landing of the rigid model fits"
+            ),
+        });
     }
     let state = State {
         v: xg,

@@ -606,23 +606,23 @@ pub fn decide(
         )
     };
     match holding.len() {
-        0 => Err(SimulationError::Invalid(if paradox.is_empty() {
-            format!(
-                "{}: no mode of the contacts holds (rest, slide, rock, slide-rock and flight all \
+        0 => Err(SimulationError::RigidModel {
+            at: where_(),
+            why: if paradox.is_empty() {
+                "no mode of the contacts holds (rest, slide, rock, slide-rock and flight all \
                  break a contact condition): the rigid model with Coulomb friction has no \
-                 solution here",
-                where_()
-            )
-        } else {
-            format!(
-                "{}: Painleve's paradox: friction {} makes the acceleration of {} \
-                 indeterminate (the effective mass of the slipping corner is not positive); \
-                 the rigid model with Coulomb friction cannot go on",
-                where_(),
-                body.friction,
-                paradox.join(", ")
-            )
-        })),
+                 solution here"
+                    .into()
+            } else {
+                format!(
+                    "Painleve's paradox: friction {} makes the acceleration of {} indeterminate \
+                     (the effective mass of the slipping corner is not positive); the rigid \
+                     model with Coulomb friction cannot go on",
+                    body.friction,
+                    paradox.join(", ")
+                )
+            },
+        }),
         1 => Ok(holding.pop().expect("one")),
         _ => {
             // Several modes hold: they must be one motion (the same series), else the decision
@@ -638,12 +638,14 @@ pub fn decide(
                 Ok(holding.swap_remove(0))
             } else {
                 let names: Vec<String> = holding.iter().map(|t| t.mode.name()).collect();
-                Err(SimulationError::Invalid(format!(
-                    "{}: the contact conditions allow several motions ({}): Painleve-type \
-                     indeterminacy of the rigid model with Coulomb friction",
-                    where_(),
-                    names.join(", ")
-                )))
+                Err(SimulationError::RigidModel {
+                    at: where_(),
+                    why: format!(
+                        "the contact conditions allow several motions ({}): Painleve-type \
+                         indeterminacy of the rigid model with Coulomb friction",
+                        names.join(", ")
+                    ),
+                })
             }
         }
     }

@@ -78,10 +78,11 @@ impl RecordFormat for At2 {
     fn read(&self, name: &str, text: &str, _opts: &ReadOptions) -> Result<Record, MotionError> {
         let lines: Vec<&str> = text.lines().collect();
         if lines.len() < 5 {
-            return Err(MotionError::Invalid(format!(
-                "an AT2 file has 4 header lines and then data; this one has {} lines",
-                lines.len()
-            )));
+            return Err(MotionError::Truncated {
+                format: "AT2",
+                header: 4,
+                lines: lines.len(),
+            });
         }
         let header = lines[..3].join(" ").to_ascii_uppercase();
         // The format is defined in g; a header saying otherwise is followed.

@@ -125,11 +125,13 @@ impl RecordFormat for Cosmos {
         }
         let which = opts.component.unwrap_or(0);
         let count = channels.len();
-        channels.into_iter().nth(which).ok_or_else(|| {
-            MotionError::Invalid(format!(
-                "channel {which} asked for, but the file has {count} (numbered from 0)"
-            ))
-        })
+        channels
+            .into_iter()
+            .nth(which)
+            .ok_or_else(|| MotionError::NoComponent {
+                asked: format!("channel {which} asked for"),
+                available: format!("the file has {count} (numbered from 0)"),
+            })
     }
 }
 
@@ -180,7 +182,7 @@ fn read_channel(name: &str, lines: &[&str], start: usize) -> Result<(Record, usi
         ));
     }
     if ints.get(1).is_some_and(|&kind| kind != 1.0) {
-        return Err(MotionError::Invalid(format!(
+        return Err(MotionError::Contradiction(format!(
             "integer-header value 2 is {}: this channel is not an acceleration record",
             ints[1]
         )));

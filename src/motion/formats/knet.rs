@@ -102,10 +102,10 @@ impl RecordFormat for Knet {
             counts.extend(v);
         }
         if counts.len() < 2 {
-            return Err(MotionError::Invalid(format!(
-                "found {} data values after the 17 header lines; a record needs at least two",
-                counts.len()
-            )));
+            return Err(MotionError::TooFewSamples {
+                found: counts.len(),
+                counted: "data values after the 17 header lines",
+            });
         }
         let gal: Vec<f64> = counts.iter().map(|c| c * factor).collect();
         let mean = gal.iter().sum::<f64>() / gal.len() as f64;

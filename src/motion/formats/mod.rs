@@ -82,7 +82,7 @@ fn refuse_unread(
         ),
     ];
     match unread.iter().find(|(given, _, _)| *given) {
-        Some((_, says, option)) => Err(MotionError::Invalid(format!(
+        Some((_, says, option)) => Err(MotionError::Contradiction(format!(
             "a record in the {} format {says}: leave {option} out",
             fmt.name()
         ))),
@@ -147,9 +147,11 @@ fn read_file(
     let fmt = match format {
         Some(f) => format_named(f).ok_or_else(|| Error::Motion {
             path: path.to_path_buf(),
-            source: MotionError::Invalid(format!(
-                "unknown format \"{f}\": use at2, knet, cosmos or plain"
-            )),
+            source: MotionError::Unknown {
+                what: "format",
+                given: f.into(),
+                choices: "at2, knet, cosmos or plain",
+            },
         })?,
         None => detect(&text),
     };

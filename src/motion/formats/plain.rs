@@ -142,40 +142,40 @@ pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, 
             rows.push((k + 1, values));
         }
     }
-    let units = units.ok_or_else(|| {
-        MotionError::Invalid(
-            "the file does not say its units: add a line `# units: gal` (or g, m/s2) or pass --units".into(),
-        )
+    let units = units.ok_or(MotionError::Missing {
+        missing: "the file does not say its units",
+        fix: "add a line `# units: gal` (or g, m/s2) or pass --units",
     })?;
     if rows.len() < 2 {
-        return Err(MotionError::Invalid(format!(
-            "found {} data lines; a record needs at least two",
-            rows.len()
-        )));
+        return Err(MotionError::TooFewSamples {
+            found: rows.len(),
+            counted: "data lines",
+        });
     }
     let ncol = rows[0].1.len();
     let (dt, col) = if ncol == 1 {
         if let Some(c) = opts.component {
-            return Err(MotionError::Invalid(format!(
-                "component {c} asked for, but the file has one column of accelerations: leave \
-                 --component out"
-            )));
+            return Err(MotionError::NoComponent {
+                asked: format!("component {c} asked for"),
+                available: "the file has one column of accelerations: leave --component out".into(),
+            });
         }
-        let dt = dt.ok_or_else(|| {
-            MotionError::Invalid(
-                "one column of accelerations needs a time step: add `# dt_s: 0.01` or pass \
-                 --record-dt"
-                    .into(),
-            )
+        let dt = dt.ok_or(MotionError::Missing {
+            missing: "one column of accelerations needs a time step",
+            fix: "add `# dt_s: 0.01` or pass --record-dt",
         })?;
         (dt, 0)
     } else {
         let col = opts.component.unwrap_or(ncol - 1);
         if col == 0 || col >= ncol {
-            return Err(MotionError::Invalid(format!(
-                "column {col} is not an acceleration column of this {ncol}-column file (column 0 is time; use 1..{})",
-                ncol - 1
-            )));
+            return Err(MotionError::NoComponent {
+                asked: format!("column {col}"),
+                available: format!(
+                    "not an acceleration column of this {ncol}-column file (column 0 is time; \
+                     use 1..{})",
+                    ncol - 1
+                ),
+            });
         }
         let t0 = rows[0].1[0];
         let step = rows[1].1[0] - t0;
@@ -194,7 +194,7 @@ pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, 
             }
         }
         if let Some(d) = dt.filter(|d| (d - step).abs() > SPACING_TOL * step.abs()) {
-            return Err(MotionError::Invalid(format!(
+            return Err(MotionError::Contradiction(format!(
                 "a sample interval of {d} s was given (--record-dt or `# dt_s:`), but the time \
                  column is spaced {step} s: leave the interval out or correct it"
             )));

@@ -7,7 +7,7 @@ pub mod analysis;
 pub mod store;
 
 use crate::clock::ThreadClock;
-use crate::error::{Error, MotionError, SimulationError, WallError};
+use crate::error::{Error, MotionError, SimulationError, SweepError};
 use crate::exact::Q;
 use crate::integrate::event::EventDriven;
 use crate::integrate::{Integrator, Progress, Scenario, Settings};
@@ -229,11 +229,23 @@ pub struct Sweep {
     pub fingerprint: String,
 }
 
-fn invalid(path: &Path, message: String) -> Error {
-    Error::Motion {
+/// An error of the sweep file `path`.
+fn sweep_error(path: &Path, source: SweepError) -> Error {
+    Error::Sweep {
         path: path.to_path_buf(),
-        source: MotionError::Invalid(message),
+        source: Box::new(source),
     }
+}
+
+/// A rule of the format that `field` breaks, in the sweep file `path`.
+fn field(path: &Path, field: &str, rule: String) -> Error {
+    sweep_error(
+        path,
+        SweepError::Field {
+            field: field.into(),
+            rule,
+        },
+    )
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
@@ -246,21 +258,28 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
 /// The bytes of a file a sweep names (`what`, as written: `path`), relative to `base` (a sweep
 /// file's own folder); a file that cannot be read is an error of the sweep `origin`, which
 /// says where it was looked for.
-fn named_file(origin: &Path, base: &Path, what: &str, path: &str) -> Result<Vec<u8>, Error> {
+fn named_file(
+    origin: &Path,
+    base: &Path,
+    what: &'static str,
+    path: &str,
+) -> Result<Vec<u8>, Error> {
     let file = base.join(path);
-    std::fs::read(&file).map_err(|e| {
+    std::fs::read(&file).map_err(|source| {
         let start = if base.as_os_str().is_empty() {
             Path::new(".")
         } else {
             base
         };
-        invalid(
+        sweep_error(
             origin,
-            format!(
-                "{what} \"{path}\": cannot read {}: {e} (relative paths start in {})",
-                file.display(),
-                start.display()
-            ),
+            SweepError::File {
+                what,
+                name: path.into(),
+                file: file.clone(),
+                start: start.to_path_buf(),
+                source,
+            },
         )
     })
 }
@@ -275,14 +294,14 @@ fn fnv(hash: u64, bytes: &[u8]) -> u64 {
 const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
 
 /// Parses a sweep description (RON).
-pub fn parse_description(text: &str) -> Result<SweepDescription, WallError> {
+pub fn parse_description(text: &str) -> Result<SweepDescription, SweepError> {
     ron::Options::default()
         .with_default_extension(
             ron::extensions::Extensions::IMPLICIT_SOME
                 | ron::extensions::Extensions::UNWRAP_VARIANT_NEWTYPES,
         )
         .from_str(text)
-        .map_err(|e| WallError::Syntax {
+        .map_err(|e| SweepError::Syntax {
             line: e.span.start.line,
             col: e.span.start.col,
             message: e.code.to_string(),
@@ -317,10 +336,7 @@ impl Sweep {
     /// Reads a sweep file and everything it names.
     pub fn load(path: &Path) -> Result<Sweep, Error> {
         let text = std::fs::read_to_string(path).map_err(io(path))?;
-        let d = parse_description(&text).map_err(|source| Error::Wall {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let d = parse_description(&text).map_err(|source| sweep_error(path, source))?;
         let base = path.parent().unwrap_or(Path::new("."));
         Sweep::from_description(&d, base, path)
     }
@@ -333,12 +349,12 @@ impl Sweep {
         origin: &Path,
     ) -> Result<Sweep, Error> {
         if d.version != SWEEP_FORMAT_VERSION {
-            return Err(invalid(
+            return Err(sweep_error(
                 origin,
-                format!(
-                    "version {}: this pirqa reads sweep files of version {SWEEP_FORMAT_VERSION}",
-                    d.version
-                ),
+                SweepError::Version {
+                    found: d.version,
+                    supported: SWEEP_FORMAT_VERSION,
+                },
             ));
         }
         let mut hash = fnv(FNV_OFFSET, format!("{:?}", d.by_file_name()).as_bytes());
@@ -348,18 +364,17 @@ impl Sweep {
             walls.push(w);
         }
         if walls.is_empty() {
-            return Err(invalid(
-                origin,
-                "`walls` is empty: name at least one".into(),
-            ));
+            return Err(field(origin, "walls", "empty: name at least one".into()));
         }
         let motions = resolve_motions(&d.motion, base, origin, &mut hash)?;
         if let FrictionModel::Random { cov, samples, .. } = d.friction {
             if !(cov.is_finite() && cov > 0.0 && cov < 1.0) || samples == 0 {
-                return Err(invalid(
+                return Err(field(
                     origin,
+                    "friction",
                     format!(
-                        "friction: cov {cov} and samples {samples}: cov must be in (0, 1) and samples at least 1"
+                        "cov {cov} and samples {samples}: cov must be in (0, 1) and samples at \
+                         least 1"
                     ),
                 ));
             }
@@ -613,8 +628,13 @@ fn resolve_wall(
             let file: PathBuf = base.join(path);
             let bytes = named_file(origin, base, "wall", path)?;
             *hash = fnv(*hash, &bytes);
-            let text = String::from_utf8(bytes)
-                .map_err(|_| invalid(&file, "not a text file (UTF-8 expected)".into()))?;
+            let text = String::from_utf8(bytes).map_err(|_| Error::Io {
+                path: file.clone(),
+                source: std::io::Error::new(
+                    std::io::ErrorKind::InvalidData,
+                    "not a text file (UTF-8 expected)",
+                ),
+            })?;
             let mut d = crate::wall::parse_description(&text).map_err(|source| Error::Wall {
                 path: file.clone(),
                 source,
@@ -671,7 +691,8 @@ fn resolve_motions(
     hash: &mut u64,
 ) -> Result<Vec<SweepMotion>, Error> {
     let mut out = Vec::new();
-    let accel = |text: &str| parse_acceleration(text).map_err(|e| invalid(origin, e.to_string()));
+    let accel =
+        |text: &str| parse_acceleration(text).map_err(|e| sweep_error(origin, SweepError::Unit(e)));
     match set {
         MotionSet::Sine {
             amplitudes,
@@ -681,17 +702,19 @@ fn resolve_motions(
         } => {
             let freqs = frequencies_hz.values();
             if amplitudes.is_empty() || freqs.is_empty() {
-                return Err(invalid(
+                return Err(field(
                     origin,
-                    "Sine: give at least one amplitude and one frequency".into(),
+                    "Sine",
+                    "give at least one amplitude and one frequency".into(),
                 ));
             }
             if let Some(f) = freqs.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
-                return Err(invalid(
+                return Err(field(
                     origin,
+                    "frequencies_hz",
                     format!(
-                        "frequencies_hz {frequencies_hz:?} gives {f} Hz: every frequency must be \
-                         positive (a Log range needs `from` and `to` above 0)"
+                        "{frequencies_hz:?} gives {f} Hz: every frequency must be positive (a Log \
+                         range needs `from` and `to` above 0)"
                     ),
                 ));
             }
@@ -724,19 +747,20 @@ fn resolve_motions(
         }
         MotionSet::Records { files, scales, pga } => {
             if files.is_empty() || scales.is_empty() == pga.is_empty() {
-                return Err(invalid(
+                return Err(field(
                     origin,
-                    "Records: give at least one file, and either `scales` or `pga` (not both)"
-                        .into(),
+                    "Records",
+                    "give at least one file, and either `scales` or `pga` (not both)".into(),
                 ));
             }
             let mut targets = Vec::new();
             for text in pga {
                 let t = accel(text)?;
                 if t <= 0.0 {
-                    return Err(invalid(
+                    return Err(field(
                         origin,
-                        format!("pga \"{text}\": a target peak must be positive"),
+                        &format!("pga \"{text}\""),
+                        "a target peak must be positive".into(),
                     ));
                 }
                 targets.push(t);
@@ -748,7 +772,13 @@ fn resolve_motions(
                 let record = read_record(&file, None, &ReadOptions::default())?;
                 let peak = record.pga_m_s2();
                 if peak == 0.0 {
-                    return Err(invalid(&file, "the record is all zeros".into()));
+                    return Err(Error::Motion {
+                        path: file,
+                        source: MotionError::Parameter {
+                            what: "the record".into(),
+                            rule: "it is all zeros: there is nothing to scale".into(),
+                        },
+                    });
                 }
                 let name = file
                     .file_stem()
@@ -760,9 +790,10 @@ fn resolve_motions(
                 };
                 for (k, &factor) in factors.iter().enumerate() {
                     if !(factor.is_finite() && factor > 0.0) {
-                        return Err(invalid(
+                        return Err(field(
                             origin,
-                            format!("scale factor {factor}: it must be positive"),
+                            "scales",
+                            format!("factor {factor}: it must be positive"),
                         ));
                     }
                     let scaled = record.scaled(factor);

@@ -21,13 +21,8 @@ impl Problem {
     /// (local indices) that broke away from earlier intervals of the same blocks: the iteration
     /// starts from the best of them that could break away here, so when the weakest set has not
     /// changed one cut confirms it instead of several finding it again. Problems of at most
-    /// `ENUMERATE_UP_TO` blocks try every set instead.
-    pub fn stick_interval(&self, hints: &[Vec<usize>]) -> Stick {
-        self.stick_sides(hints, [true, true])
-    }
-
-    /// [`Problem::stick_interval`] for the sides `want` ([lo, hi]) only: a side not wanted comes
-    /// back as no limit, for the caller to fill in.
+    /// `ENUMERATE_UP_TO` blocks try every set instead. `want` ([lo, hi]) asks for one side or both: a side
+    /// not wanted comes back as no limit, for the caller to fill in.
     pub fn stick_sides(&self, hints: &[Vec<usize>], want: [bool; 2]) -> Stick {
         self.stick_sides_beyond(hints, want, [None, None])
     }
@@ -431,7 +426,7 @@ pub fn weaker_limit(a: Option<Q>, b: Option<Q>, hi: bool) -> Option<Q> {
     }
 }
 
-/// Where blocks stuck to the ground stop being stuck ([`Problem::stick_interval`]).
+/// Where blocks stuck to the ground stop being stuck ([`Problem::stick_sides`]).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Stick {
     /// The lowest ground acceleration they stay stuck at (m/s2); `None`: no limit.
@@ -462,7 +457,7 @@ mod tests {
     #[test]
     fn variable_wall_first_break_is_the_weakest_set() {
         let p = five_block([0.29, 0.31, 0.28, 0.30, 0.30, 0.28]);
-        let Stick { lo, hi, .. } = p.stick_interval(&[]);
+        let Stick { lo, hi, .. } = p.stick_sides(&[], [true, true]);
         // B3 and B5 on 0.28 go first: a_hi = 0.28 g; leftward the faces hold B3 against B4 and
         // B5 is the one that lags: also 0.28 g.
         assert_eq!(hi, Some(q(0.28) * q(9.81)));
@@ -762,10 +757,10 @@ mod tests {
                 let own = if joined.is_empty() {
                     None
                 } else {
-                    let c = q.with_ground(&joined).stick_interval(&[]);
+                    let c = q.with_ground(&joined).stick_sides(&[], [true, true]);
                     if side == 1 { c.hi } else { c.lo }
                 };
-                let (new, old) = (q.stick_interval(&[]), old.stick_interval(&[]));
+                let (new, old) = (q.stick_sides(&[], [true, true]), old.stick_sides(&[], [true, true]));
                 let (new, old) = if side == 1 { (new.hi, old.hi) } else { (new.lo, old.lo) };
                 let bound = if joined.is_empty() { old } else { weaker_limit(old, own, side == 1) };
                 let inside = match (&new, &bound) {

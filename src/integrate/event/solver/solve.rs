@@ -257,7 +257,7 @@ mod tests {
     fn one_block_sticks_within_mu_g_and_slides_beyond() {
         let p = one_block(0.3);
         let mug = q(0.3) * q(9.81);
-        let stick = p.stick_interval(&[]);
+        let stick = p.stick_sides(&[], [true, true]);
         assert_eq!((stick.lo, stick.hi), (Some(-&mug), Some(mug.clone())));
         let g = p.solve(&just_after(q(1.0), 0), &[]);
         assert_eq!(
@@ -298,7 +298,7 @@ mod tests {
     fn uniform_wall_breaks_away_as_one_body() {
         let p = five_block([0.3; 6]);
         let mug = q(0.3) * q(9.81);
-        let stick = p.stick_interval(&[]);
+        let stick = p.stick_sides(&[], [true, true]);
         assert_eq!((stick.lo, stick.hi), (Some(-&mug), Some(mug.clone())));
         // At the threshold, rising: the whole wall moves, every upper joint exactly at its limit
         // and sticking.
@@ -441,7 +441,7 @@ mod tests {
                         ..g
                     });
                 }
-                let stick = q.stick_interval(&[]);
+                let stick = q.stick_sides(&[], [true, true]);
                 let a0 = &theta.0[0];
                 let inside = stick.lo.as_ref().is_none_or(|lo| a0 > lo)
                     && stick.hi.as_ref().is_none_or(|hi| a0 < hi);
@@ -557,7 +557,7 @@ mod tests {
         // Block on the ground, abutment (ground) on its left, face touching.
         let mut p = one_block(0.3);
         p.contacts.push((End::Ground, End::Node(0)));
-        let Stick { lo, hi, .. } = p.stick_interval(&[]);
+        let Stick { lo, hi, .. } = p.stick_sides(&[], [true, true]);
         assert_eq!(hi, None, "lagging behind means pushing into the abutment");
         assert_eq!(lo, Some(-(q(0.3) * q(9.81))));
         let g = p.solve(&just_after(q(50.0), 0), &[]);

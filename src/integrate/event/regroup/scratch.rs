@@ -1,0 +1,109 @@
+//! SCRATCH
+
+use crate::integrate::event::solver::Problem;
+use crate::integrate::event::NONE;
+
+/// The local index of each block in a decision problem (`NONE` outside it): a table over all
+/// blocks, because a decision can take in most of a large wall.
+pub(in crate::integrate::event) struct Local(Vec<usize>);
+
+impl Local {
+    /// The table over n blocks, in the memory of an earlier one (all `NONE`) if given.
+    pub(in crate::integrate::event) fn reuse(mut table: Vec<usize>, n: usize) -> Local {
+        if table.len() != n {
+            table = vec![NONE; n];
+        }
+        Local(table)
+    }
+
+    /// Empties the entries of `used` and hands the memory back.
+    pub(in crate::integrate::event) fn release(mut self, used: &[usize]) -> Vec<usize> {
+        for &b in used {
+            self.0[b] = NONE;
+        }
+        self.0
+    }
+
+    pub(in crate::integrate::event) fn get(&self, b: &usize) -> Option<&usize> {
+        Some(&self.0[*b]).filter(|&&k| k != NONE)
+    }
+
+    pub(super) fn contains_key(&self, b: &usize) -> bool {
+        self.0[*b] != NONE
+    }
+
+    pub(in crate::integrate::event) fn insert(&mut self, b: usize, k: usize) {
+        self.0[b] = k;
+    }
+}
+
+/// Velocities set for the decision (m/s), over all blocks (NaN: none set): where a block stops,
+/// where two clusters meet, after an impact, and where round-off was evened out.
+pub(super) struct SetVel {
+    vel: Vec<f64>,
+    set: Vec<usize>,
+}
+
+impl SetVel {
+    /// The table over n blocks, in the memory of an earlier one (all NaN) if given.
+    pub(super) fn reuse(mut vel: Vec<f64>, mut set: Vec<usize>, n: usize) -> SetVel {
+        if vel.len() != n {
+            vel = vec![f64::NAN; n];
+        }
+        set.clear();
+        SetVel { vel, set }
+    }
+
+    pub(super) fn get(&self, b: usize) -> Option<f64> {
+        Some(self.vel[b]).filter(|v| !v.is_nan())
+    }
+
+    pub(super) fn insert(&mut self, b: usize, v: f64) {
+        if self.vel[b].is_nan() {
+            self.set.push(b);
+        }
+        self.vel[b] = v;
+    }
+
+    /// Empties the table and hands the memory back.
+    pub(super) fn release(mut self) -> (Vec<f64>, Vec<usize>) {
+        for &b in &self.set {
+            self.vel[b] = f64::NAN;
+        }
+        (self.vel, self.set)
+    }
+}
+
+impl std::ops::Index<&usize> for Local {
+    type Output = usize;
+
+    fn index(&self, b: &usize) -> &usize {
+        self.get(b).expect("block in the problem")
+    }
+}
+
+/// Working memory of the decisions, kept from one event to the next (allocated afresh at every
+/// decision it cost the paper's wall about 5 % of its run). Between decisions every vector is
+/// empty and `local` is all `NONE`.
+#[derive(Default)]
+pub(in crate::integrate::event) struct Buffers {
+    /// The table of [`Local`].
+    pub(in crate::integrate::event) local: Vec<usize>,
+    /// The table of [`SetVel`] and the blocks set in it.
+    pub(super) set_vel: Vec<f64>,
+    pub(super) set_vel_blocks: Vec<usize>,
+    /// The component's blocks, and the queue that gathers them.
+    pub(super) blocks: Vec<usize>,
+    pub(super) queue: Vec<usize>,
+    /// The clusters the component's blocks belonged to.
+    pub(super) old: Vec<usize>,
+    /// The supports and vertical joints at the component's blocks.
+    pub(super) supports: Vec<usize>,
+    pub(super) joints: Vec<usize>,
+    /// The decision problem.
+    pub(super) problem: Problem,
+    /// The blocks' displacements and velocities (m, m/s), and the new group of each.
+    pub(super) u: Vec<f64>,
+    pub(super) v: Vec<f64>,
+    pub(super) group_of: Vec<usize>,
+}

@@ -1,0 +1,287 @@
+//! Which walls rock and how: the rocking integrator of a wall that is one free-standing block
+//! ([`Rocking`]), whether a run rocks ([`rocks_in_plane`], [`can_lift`]), and the sections of a
+//! wall across its plane run as rocking bodies ([`out_of_plane`]).
+
+use super::{run, Equations, RockingBody, Scene};
+use crate::error::SimulationError;
+use crate::integrate::Settings;
+use crate::motion::Motion;
+use crate::response::{Response, Warning};
+
+/// The rocking model on a wall that is one free-standing block on the ground. (Blocks that rock
+/// inside walls are not modelled yet; the sliding engine runs those walls.)
+#[derive(Debug, Clone, Default)]
+pub struct Rocking {
+    /// The equations between events.
+    pub equations: Equations,
+    /// Initial rotation of the block (rad; 0: seated at rest).
+    pub initial_rotation_rad: f64,
+}
+
+impl crate::integrate::Integrator for Rocking {
+    fn method(&self) -> &'static str {
+        "event"
+    }
+
+    fn run(&self, sc: &crate::integrate::Scenario) -> Result<Response, SimulationError> {
+        let body = free_standing(sc.wall, sc.topology)?;
+        let mut response = run(&Scene {
+            bodies: std::slice::from_ref(&body),
+            initial_rotation_rad: &[self.initial_rotation_rad],
+            equations: self.equations,
+            motion: sc.motion,
+            settings: sc.settings,
+        })?;
+        response.summary.wall = sc.wall.name.clone();
+        response.summary.model = crate::response::ModelUsed {
+            name: "slide-rock".into(),
+            equations: Some(equations_name(self.equations).into()),
+            direction: "in-plane".into(),
+            why: "asked for (--model slide-rock)".into(),
+        };
+        Ok(response)
+    }
+}
+
+/// `"exact"` or `"linearised"`.
+pub fn equations_name(e: Equations) -> &'static str {
+    match e {
+        Equations::Exact => "exact",
+        Equations::Linearised => "linearised",
+    }
+}
+
+/// The rocking body of a wall that is one movable block standing on the ground, with nothing
+/// beside it or on it; an error says why another wall is not one.
+pub fn free_standing(
+    wall: &crate::wall::Wall,
+    topo: &crate::topology::Topology,
+) -> Result<RockingBody, SimulationError> {
+    let [block] = wall.blocks.as_slice() else {
+        return Err(SimulationError::NotApplicable(format!(
+            "the rocking model runs walls of one free-standing block (this one has {} blocks); \
+             blocks that rock inside walls are not modelled yet: run it with --model slide, or \
+             across its plane with --direction out-of-plane",
+            wall.blocks.len()
+        )));
+    };
+    if block.fixed || !block.y.is_zero() {
+        return Err(SimulationError::NotApplicable(format!(
+            "{}: the rocking model needs a movable block standing on the ground",
+            block.name
+        )));
+    }
+    let density = block
+        .density_kg_m3
+        .as_ref()
+        .unwrap_or(&wall.density_kg_m3)
+        .to_f64();
+    let (w, h) = (block.width.to_f64(), block.height.to_f64());
+    let mass = density * w * h * wall.thickness_m.to_f64();
+    let friction = topo.supports[0].friction.to_f64();
+    let mut body = RockingBody::rectangle(&block.name, w, h, mass, friction, wall.g_m_s2.to_f64());
+    body.restitution_factor = wall.rocking_restitution_factor;
+    Ok(body)
+}
+
+/// Whether a seated body can lift at all under a motion, and why: it lifts only if friction can
+/// carry the moment (mu >= b / h_c: a base that slips first never lifts, the friction moment
+/// mu m g h_c staying below m g b) and the ground acceleration reaches g lambda b / h_c.
+pub fn can_lift(body: &RockingBody, motion: &Motion, duration_s: f64) -> (bool, String) {
+    let ratio = body.uplift_ratio();
+    if body.friction < ratio {
+        return (
+            false,
+            format!(
+                "{} cannot lift: its friction {} is below b/h = {ratio:.4}, so its base slips \
+                 before the resultant reaches a corner (Shenton 1996)",
+                body.name, body.friction
+            ),
+        );
+    }
+    let (lo, hi) = motion.accel_range(0.0, duration_s);
+    let peak = lo.abs().max(hi.abs());
+    let lambda_min = vertical_minimum(motion, duration_s);
+    let limit = ratio * body.g_m_s2 * lambda_min;
+    if peak < limit {
+        return (
+            false,
+            format!(
+                "{} cannot lift: the peak ground acceleration {peak:.4} m/s2 stays below g b/h = \
+                 {limit:.4} m/s2 (Housner 1963)",
+                body.name
+            ),
+        );
+    }
+    (
+        true,
+        format!(
+            "{} can lift: the peak ground acceleration {peak:.4} m/s2 reaches g b/h = {limit:.4} \
+             m/s2 and its friction {} is at least b/h = {ratio:.4}",
+            body.name, body.friction
+        ),
+    )
+}
+
+/// The smallest vertical load factor 1 + a_v/g over the run (1 without a vertical component).
+fn vertical_minimum(motion: &Motion, duration_s: f64) -> f64 {
+    match motion {
+        Motion::Record(r) => r.lambda().map_or(1.0, |l| {
+            let n = ((duration_s / r.dt_s()).ceil() as usize + 1).min(l.len());
+            l[..n].iter().copied().fold(1.0, f64::min)
+        }),
+        _ => 1.0,
+    }
+}
+
+/// A wall run across its plane: the part above every bed joint that runs through it (the ground
+/// included) rocks as one body on the joint's edges, each on a base that moves with the ground
+/// (the wall below it taken as rigid), side by side under the same motion. `initial` gives
+/// sections a starting rotation by name. The summary names the section nearest to overturning
+/// (`worst`; none when no section lifts).
+pub fn out_of_plane(
+    wall: &crate::wall::Wall,
+    topo: &crate::topology::Topology,
+    motion: &Motion,
+    settings: &Settings,
+    equations: Equations,
+    initial: &[(String, f64)],
+) -> Result<Response, SimulationError> {
+    let (sections, skipped) = crate::topology::sections::sections(wall, topo);
+    if sections.is_empty() {
+        return Err(SimulationError::NotApplicable(format!(
+            "{}: no bed joint runs through the wall without an abutment above it, so no part \
+             of it can rock across its plane",
+            wall.name
+        )));
+    }
+    let bodies: Vec<RockingBody> = sections
+        .iter()
+        .map(|s| RockingBody::section(s, wall.rocking_restitution_factor))
+        .collect();
+    let mut rotations = vec![0.0; bodies.len()];
+    for (name, theta) in initial {
+        let Some(i) = bodies.iter().position(|b| &b.name == name) else {
+            let known: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+            return Err(SimulationError::UnknownName {
+                option: "--initial-rotation",
+                name: name.clone(),
+                known: format!(
+                    "no section of that name across the plane (sections: {})",
+                    known.join(", ")
+                ),
+            });
+        };
+        rotations[i] = *theta;
+    }
+    let mut response = run(&Scene {
+        bodies: &bodies,
+        initial_rotation_rad: &rotations,
+        equations,
+        motion,
+        settings,
+    })?;
+    let s = &mut response.summary;
+    s.wall = wall.name.clone();
+    s.model = crate::response::ModelUsed {
+        name: "slide-rock".into(),
+        equations: Some(equations_name(equations).into()),
+        direction: "out-of-plane".into(),
+        why: format!(
+            "across the wall's plane the part above each of {} bed joints rocks as one body of \
+             the wall's thickness ({} m) on a base moving with the ground",
+            bodies.len(),
+            wall.thickness_m.to_f64()
+        ),
+    };
+    for k in skipped {
+        s.warnings.push(Warning::LevelSkipped {
+            level_m: k.level_m,
+            why: k.why,
+        });
+    }
+    let first_fall = s.collapse.as_ref().map(|c| c.block.clone());
+    s.worst = s
+        .blocks
+        .iter()
+        .zip(&bodies)
+        .filter(|(b, _)| b.uplift_time_s.is_some())
+        .map(|(b, body)| crate::response::Worst {
+            block: b.name.clone(),
+            rotation_over_alpha: b.max_abs_rotation_rad / body.slenderness_rad(),
+            overturned: b.fell,
+        })
+        .max_by(|a, b| {
+            let first = |w: &crate::response::Worst| Some(&w.block) == first_fall.as_ref();
+            first(a)
+                .cmp(&first(b))
+                .then(a.rotation_over_alpha.total_cmp(&b.rotation_over_alpha))
+        });
+    Ok(response)
+}
+
+/// The model a run asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum ModelChoice {
+    /// Blocks slide only (one degree of freedom each).
+    Slide,
+    /// Blocks may also lift, rock and overturn.
+    SlideRock,
+    /// Sliding while no block can lift, rocking from the first uplift.
+    #[default]
+    Auto,
+}
+
+/// Whether a run of `wall` in its own plane rocks, and why. The rocking model runs walls of one
+/// free-standing block; `auto` gives it to them when the block can lift at all
+/// ([`can_lift`]) or starts from a rotation. Walls of several blocks slide (rocking inside
+/// walls is not modelled yet: their warnings name the blocks that could rock).
+pub fn rocks_in_plane(
+    choice: ModelChoice,
+    wall: &crate::wall::Wall,
+    topo: &crate::topology::Topology,
+    motion: &Motion,
+    duration_s: f64,
+    initial: &[(String, f64)],
+) -> Result<(bool, String), SimulationError> {
+    for (name, _) in initial {
+        if wall.block_index(name).is_none() {
+            return Err(SimulationError::UnknownName {
+                option: "--initial-rotation",
+                name: name.clone(),
+                known: "the wall has no block of that name".into(),
+            });
+        }
+    }
+    match choice {
+        ModelChoice::Slide if !initial.is_empty() => Err(SimulationError::Incompatible {
+            asked: "--initial-rotation needs a model that rotates blocks",
+            fix: "--model slide-rock or auto",
+        }),
+        ModelChoice::Slide => Ok((false, "asked for (--model slide)".into())),
+        ModelChoice::SlideRock => {
+            free_standing(wall, topo)?;
+            Ok((true, "asked for (--model slide-rock)".into()))
+        }
+        ModelChoice::Auto => match free_standing(wall, topo) {
+            Err(e) if !initial.is_empty() => Err(e),
+            Err(_) if wall.blocks.len() > 1 => Ok((
+                false,
+                format!(
+                    "auto: blocks that rock inside walls are not modelled yet, so this wall of {} \
+                     blocks slides; the warnings name the blocks that could rock",
+                    wall.blocks.len()
+                ),
+            )),
+            Err(e) => Ok((false, format!("auto: {e}"))),
+            Ok(_) if !initial.is_empty() => {
+                Ok((true, "auto: the block starts from a rotation".into()))
+            }
+            Ok(body) => {
+                let (lifts, why) = can_lift(&body, motion, duration_s);
+                Ok((lifts, format!("auto: {why}")))
+            }
+        },
+    }
+}

@@ -1,0 +1,364 @@
+//! The recorder integrators feed as they run: extremes, counts, energy terms, history rows and
+//! the event log, turned into a [`Response`] when the run ends.
+
+use super::{
+    BlockSummary, Collapse, DecisionRecord, Energy, EventKind, EventRecord, History, JointSummary,
+    ModelUsed, Response, Stats, Summary, Warning,
+};
+use crate::topology::{Base, BlockId, JointId, JointRef, SupportId, Topology};
+use crate::wall::Wall;
+
+/// Collects results as an integrator runs. Public for integrators outside the crate (the rapier
+/// peer engine), hidden from the documentation: not part of the curated surface.
+#[doc(hidden)]
+pub struct Recorder {
+    names: Vec<String>,
+    joints: Vec<(usize, Option<usize>, String, String)>,
+    /// The blocks left and right of each vertical joint.
+    vertical: Vec<(usize, usize)>,
+    max_u: Vec<f64>,
+    max_v: Vec<f64>,
+    max_d: Vec<f64>,
+    max_a: Vec<f64>,
+    max_theta: Vec<f64>,
+    uplift: Vec<Option<f64>>,
+    rocking_impacts: Vec<u64>,
+    fell: Vec<bool>,
+    history: Option<History>,
+    /// Logged events.
+    pub events: Vec<EventRecord>,
+    log_events: bool,
+    /// Logged mode decisions, when the integrator keeps them.
+    pub decisions: Option<Vec<DecisionRecord>>,
+    /// Impacts counted.
+    pub impacts: u64,
+    /// Touches counted.
+    pub touches: u64,
+    /// Zeno accumulations (infinite impact series summed in closed form).
+    pub zeno: u64,
+    /// Stick-slip transitions counted.
+    pub transitions: u64,
+    /// First collapse.
+    pub collapse: Option<Collapse>,
+    /// Energy terms accumulated by the integrator.
+    pub energy: Energy,
+    /// Work counters.
+    pub stats: Stats,
+    /// Model-validity warnings.
+    pub warnings: Vec<Warning>,
+    /// The model that ran.
+    pub model: ModelUsed,
+}
+
+impl Recorder {
+    /// A recorder for this wall; `history` keeps sampled rows, `log_events` keeps the event log.
+    pub fn new(wall: &Wall, topo: &Topology, history: bool, log_events: bool) -> Recorder {
+        let joints = topo
+            .supports
+            .iter()
+            .map(|s| {
+                let lower = match s.lower {
+                    Base::Ground => None,
+                    Base::Block(b) => Some(b.0),
+                };
+                (
+                    s.upper.0,
+                    lower,
+                    wall.blocks[s.upper.0].name.clone(),
+                    topo.base_name(wall, s.lower).to_string(),
+                )
+            })
+            .collect();
+        let names = wall.blocks.iter().map(|b| b.name.clone()).collect();
+        Recorder {
+            vertical: topo.joints.iter().map(|j| (j.left.0, j.right.0)).collect(),
+            ..Recorder::for_bodies(names, joints, history, log_events)
+        }
+    }
+
+    /// A recorder for bodies named `names`, with horizontal joints (upper body, lower body or
+    /// `None` for the ground, and their names) and no vertical joints.
+    pub fn for_bodies(
+        names: Vec<String>,
+        joints: Vec<(usize, Option<usize>, String, String)>,
+        history: bool,
+        log_events: bool,
+    ) -> Recorder {
+        let n = names.len();
+        Recorder {
+            max_d: vec![0.0; joints.len()],
+            names,
+            joints,
+            vertical: Vec::new(),
+            max_u: vec![0.0; n],
+            max_v: vec![0.0; n],
+            max_a: vec![0.0; n],
+            max_theta: vec![0.0; n],
+            uplift: vec![None; n],
+            rocking_impacts: vec![0; n],
+            fell: vec![false; n],
+            history: history.then(History::default),
+            events: Vec::new(),
+            log_events,
+            decisions: None,
+            impacts: 0,
+            touches: 0,
+            zeno: 0,
+            transitions: 0,
+            collapse: None,
+            energy: Energy::default(),
+            stats: Stats::default(),
+            warnings: Vec::new(),
+            model: ModelUsed::default(),
+        }
+    }
+
+    /// Time of the last history row, if rows are kept and there is one.
+    pub fn last_row_time(&self) -> Option<f64> {
+        self.history.as_ref()?.time_s.last().copied()
+    }
+
+    /// True when history rows are wanted.
+    pub fn wants_history(&self) -> bool {
+        self.history.is_some()
+    }
+
+    /// Block names.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// Notes that block i reached |u| = `u_abs` and |v| = `v_abs`.
+    pub fn block_extremes(&mut self, i: usize, u_abs: f64, v_abs: f64) {
+        self.max_u[i] = self.max_u[i].max(u_abs);
+        self.max_v[i] = self.max_v[i].max(v_abs);
+    }
+
+    /// Notes the relative displacement of every joint from block displacements u.
+    pub fn joint_extremes(&mut self, u: &[f64]) {
+        for (k, (upper, lower, _, _)) in self.joints.iter().enumerate() {
+            let d = u[*upper] - lower.map_or(0.0, |l| u[l]);
+            self.max_d[k] = self.max_d[k].max(d.abs());
+        }
+    }
+
+    /// Notes that block i reached an absolute acceleration of magnitude `a_abs` (m/s2).
+    pub fn block_accel(&mut self, i: usize, a_abs: f64) {
+        self.max_a[i] = self.max_a[i].max(a_abs);
+    }
+
+    /// Peak absolute acceleration of each block so far (m/s2).
+    pub fn peak_accel(&self) -> &[f64] {
+        &self.max_a
+    }
+
+    /// Notes that support k reached |u_upper - u_lower| = `d_abs`.
+    pub fn joint_extreme(&mut self, k: usize, d_abs: f64) {
+        self.max_d[k] = self.max_d[k].max(d_abs);
+    }
+
+    /// Notes that block i reached |theta| = `theta_abs` (rad).
+    pub fn rotation_extreme(&mut self, i: usize, theta_abs: f64) {
+        self.max_theta[i] = self.max_theta[i].max(theta_abs);
+    }
+
+    /// Notes that block i lifted at `time_s` (the first time counts).
+    pub fn uplift(&mut self, i: usize, time_s: f64) {
+        self.uplift[i].get_or_insert(time_s);
+    }
+
+    /// Counts a landing of rocking block i.
+    pub fn rocking_impact(&mut self, i: usize) {
+        self.rocking_impacts[i] += 1;
+    }
+
+    /// Logs an event of rocking block i: its angular velocity before and after, and the mode
+    /// it goes on in.
+    pub fn rocking_event(
+        &mut self,
+        time_s: f64,
+        kind: EventKind,
+        i: usize,
+        omega: Option<(f64, f64)>,
+        mode: String,
+    ) {
+        if self.log_events {
+            self.events.push(EventRecord {
+                time_s,
+                kind,
+                blocks: vec![self.names[i].clone()],
+                block_ids: vec![BlockId(i)],
+                joint: Some(self.label(JointRef::Horizontal(SupportId(i)))),
+                joint_id: Some(JointRef::Horizontal(SupportId(i))),
+                approach_speed_m_s: None,
+                before_m_s: None,
+                after_m_s: None,
+                angular_velocity_before_rad_s: omega.map(|w| w.0),
+                angular_velocity_after_rad_s: omega.map(|w| w.1),
+                mode: Some(mode),
+            });
+        }
+    }
+
+    /// Adds a history row with rotations.
+    pub fn sample_rotating(&mut self, t: f64, u: &[f64], v: &[f64], theta: &[f64], omega: &[f64]) {
+        if let Some(h) = &mut self.history {
+            h.time_s.push(t);
+            h.displacement_m.push(u.to_vec());
+            h.velocity_m_s.push(v.to_vec());
+            h.rotation_rad.push(theta.to_vec());
+            h.angular_velocity_rad_s.push(omega.to_vec());
+        }
+    }
+
+    /// Marks a block as fallen.
+    pub fn fell(&mut self, i: usize) {
+        self.fell[i] = true;
+    }
+
+    /// Adds a history row.
+    pub fn sample(&mut self, t: f64, u: &[f64], v: &[f64]) {
+        if let Some(h) = &mut self.history {
+            h.time_s.push(t);
+            h.displacement_m.push(u.to_vec());
+            h.velocity_m_s.push(v.to_vec());
+        }
+    }
+
+    /// Logs an event (when logging) — counting is the caller's business.
+    pub fn event(
+        &mut self,
+        time_s: f64,
+        kind: EventKind,
+        blocks: &[usize],
+        joint: Option<JointRef>,
+        speed: Option<f64>,
+    ) {
+        if self.log_events {
+            self.events.push(EventRecord {
+                time_s,
+                kind,
+                blocks: blocks.iter().map(|&b| self.names[b].clone()).collect(),
+                block_ids: blocks.iter().map(|&b| BlockId(b)).collect(),
+                joint: joint.map(|j| self.label(j)),
+                joint_id: joint,
+                approach_speed_m_s: speed,
+                before_m_s: None,
+                after_m_s: None,
+                angular_velocity_before_rad_s: None,
+                angular_velocity_after_rad_s: None,
+                mode: None,
+            });
+        }
+    }
+
+    /// Logs an impact at vertical joint j with the velocities of its left and right blocks
+    /// before and after (m/s).
+    pub fn impact(&mut self, time_s: f64, j: JointId, before: [f64; 2], after: [f64; 2]) {
+        self.impacts += 1;
+        if self.log_events {
+            let (l, r) = self.vertical[j.0];
+            let joint = JointRef::Vertical(j);
+            self.events.push(EventRecord {
+                time_s,
+                kind: EventKind::Impact,
+                blocks: vec![self.names[l].clone(), self.names[r].clone()],
+                block_ids: vec![BlockId(l), BlockId(r)],
+                joint: Some(self.label(joint)),
+                joint_id: Some(joint),
+                approach_speed_m_s: Some(before[0] - before[1]),
+                before_m_s: Some(before),
+                after_m_s: Some(after),
+                angular_velocity_before_rad_s: None,
+                angular_velocity_after_rad_s: None,
+                mode: None,
+            });
+        }
+    }
+
+    /// A joint's name: `"upper/lower"` for a support's, `"left|right"` for a vertical one.
+    fn label(&self, joint: JointRef) -> String {
+        match joint {
+            JointRef::Horizontal(k) => format!("{}/{}", self.joints[k.0].2, self.joints[k.0].3),
+            JointRef::Vertical(j) => {
+                let (l, r) = self.vertical[j.0];
+                format!("{}|{}", self.names[l], self.names[r])
+            }
+        }
+    }
+
+    /// Finishes the run: final state u, v (m, m/s) at time `t_end`.
+    pub fn finish(
+        mut self,
+        method: &str,
+        wall: &str,
+        motion: String,
+        t_end: f64,
+        u: &[f64],
+        v: &[f64],
+    ) -> Response {
+        self.joint_extremes(u);
+        for (i, (&ui, &vi)) in u.iter().zip(v).enumerate() {
+            self.block_extremes(i, ui.abs(), vi.abs());
+        }
+        self.events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+        let e = &mut self.energy;
+        e.residual_j = e.initial_j + e.input_j
+            - e.friction_j
+            - e.impact_loss_j
+            - e.kinetic_j
+            - e.potential_j
+            - e.fallen_j;
+        let blocks = (0..u.len())
+            .map(|i| BlockSummary {
+                id: BlockId(i),
+                name: self.names[i].clone(),
+                max_abs_displacement_m: self.max_u[i],
+                final_displacement_m: u[i],
+                max_abs_velocity_m_s: self.max_v[i],
+                max_abs_accel_m_s2: self.max_a[i],
+                max_abs_rotation_rad: self.max_theta[i],
+                uplift_time_s: self.uplift[i],
+                rocking_impacts: self.rocking_impacts[i],
+                fell: self.fell[i],
+            })
+            .collect();
+        let joints = self
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(k, (upper, lower, un, ln))| JointSummary {
+                support: SupportId(k),
+                upper: un.clone(),
+                lower: ln.clone(),
+                max_abs_relative_displacement_m: self.max_d[k],
+                final_relative_displacement_m: u[*upper] - lower.map_or(0.0, |l| u[l]),
+            })
+            .collect();
+        Response {
+            summary: Summary {
+                method: method.to_string(),
+                model: self.model,
+                wall: wall.to_string(),
+                motion,
+                motion_processing: Vec::new(),
+                duration_s: t_end,
+                blocks,
+                joints,
+                impacts: self.impacts,
+                touches: self.touches,
+                zeno_accumulations: self.zeno,
+                stick_slip_transitions: self.transitions,
+                collapse: self.collapse,
+                energy: self.energy,
+                stats: self.stats,
+                warnings: self.warnings,
+                worst: None,
+            },
+            history: self.history,
+            events: self.events,
+            decisions: self.decisions.unwrap_or_default(),
+            final_displacement_m: u.to_vec(),
+        }
+    }
+}
