@@ -43,6 +43,7 @@ pub mod run;
 pub mod samples;
 pub mod sets;
 pub mod study;
+mod table;
 pub mod topology;
 pub mod units;
 pub mod validity;

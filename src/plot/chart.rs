@@ -342,21 +342,21 @@ pub fn envelope(points: &[(f64, f64)], bins: usize) -> Vec<(f64, f64)> {
     out
 }
 
-/// The data of charts as CSV: one row per point, with chart, series, x and y.
+/// The data of charts as CSV: one row per point, with chart, series, x and y (titles and
+/// labels quoted, so any text round-trips; numbers as the shortest decimal that reads back).
 pub fn to_csv(charts: &[Chart]) -> String {
-    let mut s = String::from("chart,series,x,y\n");
+    let mut w = csv::WriterBuilder::new()
+        .quote_style(csv::QuoteStyle::NonNumeric)
+        .from_writer(Vec::new());
     for c in charts {
         for ser in &c.series {
             for (x, y) in &ser.points {
-                s.push_str(&format!(
-                    "\"{}\",\"{}\",{x},{y}\n",
-                    c.title.replace('"', "'"),
-                    ser.label.replace('"', "'")
-                ));
+                w.write_record([&c.title, &ser.label, &x.to_string(), &y.to_string()])
+                    .unwrap_or_else(|e| unreachable!("memory takes every write: {e}"));
             }
         }
     }
-    s
+    String::from("chart,series,x,y\n") + &crate::table::text(w)
 }
 
 #[cfg(test)]

@@ -515,23 +515,25 @@ impl Response {
             .iter()
             .map(|b| b.name.as_str())
             .collect();
-        let mut s = String::from("time_s");
-        for n in &names {
-            let _ = write!(s, ",u_{n}_m");
-        }
-        for n in &names {
-            let _ = write!(s, ",v_{n}_m_s");
-        }
         let rotating = !h.rotation_rad.is_empty();
-        if rotating {
-            for n in &names {
-                let _ = write!(s, ",theta_{n}_rad");
-            }
-            for n in &names {
-                let _ = write!(s, ",omega_{n}_rad_s");
-            }
+        let quantities: &[(&str, &str)] = if rotating {
+            &[
+                ("u", "m"),
+                ("v", "m_s"),
+                ("theta", "rad"),
+                ("omega", "rad_s"),
+            ]
+        } else {
+            &[("u", "m"), ("v", "m_s")]
+        };
+        let mut columns = vec!["time_s".to_string()];
+        for (q, unit) in quantities {
+            columns.extend(names.iter().map(|n| format!("{q}_{n}_{unit}")));
         }
-        s.push('\n');
+        // The header through the CSV writer (a block name may hold a comma or a quote); the
+        // rows are numbers only.
+        let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
+        let mut s = crate::table::header(&columns);
         let none: &[f64] = &[];
         for (k, t) in h.time_s.iter().enumerate() {
             let _ = write!(s, "{t}");

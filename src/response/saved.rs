@@ -121,16 +121,19 @@ fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>), 
         ));
     }
     let text = read(path)?;
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    if header.first() != Some(&"time_s") {
+    let mut reader = csv::ReaderBuilder::new().from_reader(text.as_bytes());
+    let header = reader
+        .headers()
+        .map_err(|e| table(path, 1, e.to_string()))?
+        .clone();
+    if header.get(0) != Some("time_s") {
         return Err(table(path, 1, "the header must start with time_s".into()));
     }
     let columns = names
         .iter()
         .map(|n| {
             let col = format!("u_{n}_m");
-            header.iter().position(|h| *h == col).ok_or_else(|| {
+            header.iter().position(|h| h == col).ok_or_else(|| {
                 table(
                     path,
                     1,
@@ -140,13 +143,20 @@ fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>), 
         })
         .collect::<Result<Vec<usize>, Error>>()?;
     let mut found = None;
-    for (k, line) in lines.enumerate() {
-        let fields: Vec<&str> = line.split(',').collect();
+    for record in reader.records() {
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, |p| p.line() as usize);
+            table(path, line, e.to_string())
+        })?;
+        let line = record.position().map_or(0, |p| p.line() as usize);
         let num = |i: usize| -> Result<f64, Error> {
-            fields
-                .get(i)
-                .and_then(|f| f.parse().ok())
-                .ok_or_else(|| table(path, k + 2, format!("field {} is not a number", i + 1)))
+            record.get(i).and_then(|f| f.parse().ok()).ok_or_else(|| {
+                table(
+                    path,
+                    line,
+                    format!("column `{}` is not a number", &header[i]),
+                )
+            })
         };
         let time = num(0)?;
         if time > t {

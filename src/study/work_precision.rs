@@ -75,8 +75,8 @@ pub struct Case {
     pub duration_s: f64,
 }
 
-/// One point of the chart.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+/// One point of the chart (a row of its CSV).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Point {
     /// Scenario.
     pub scenario: String,
@@ -85,10 +85,13 @@ pub struct Point {
     /// Step (s) or tolerance.
     pub parameter: String,
     /// CPU time of one run (s).
+    #[serde(serialize_with = "crate::table::sci")]
     pub cpu_s: f64,
     /// Largest error in a block's max |u| (m).
+    #[serde(serialize_with = "crate::table::sci")]
     pub err_max_m: f64,
     /// Largest error in u(t) at the history samples (m).
+    #[serde(serialize_with = "crate::table::sci")]
     pub err_history_m: f64,
     /// The run failed (stalled, blew up); the errors are then infinite.
     pub failed: bool,
@@ -358,62 +361,18 @@ pub const CSV_HEADER: &str = "scenario,method,parameter,cpu_s,err_max_m,err_hist
 /// The points as CSV.
 pub fn csv(points: &[Point]) -> String {
     let mut s = format!("{CSV_HEADER}\n");
-    for p in points {
-        s.push_str(&format!(
-            "{},{},{},{:e},{:e},{:e},{}\n",
-            p.scenario, p.method, p.parameter, p.cpu_s, p.err_max_m, p.err_history_m, p.failed
-        ));
-    }
+    s.extend(points.iter().map(crate::table::line));
     s
 }
 
-/// Reads points back from the CSV that [`csv`] writes.
+/// Reads points back from the CSV that [`csv`] writes, by column name.
 pub fn read_csv(path: &std::path::Path) -> Result<Vec<Point>, crate::Error> {
     let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
         path: path.to_path_buf(),
         source,
     })?;
-    let bad = |line: usize, message: String| crate::Error::Table {
-        path: path.to_path_buf(),
-        line,
-        message,
-    };
-    let mut lines = text.lines().enumerate();
-    match lines.next() {
-        Some((_, header)) if header == CSV_HEADER => {}
-        _ => return Err(bad(1, format!("expected the header `{CSV_HEADER}`"))),
-    }
-    let mut out = Vec::new();
-    for (k, line) in lines {
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 7 {
-            return Err(bad(k + 1, format!("expected 7 fields, found {}", f.len())));
-        }
-        let num = |i: usize| -> Result<f64, crate::Error> {
-            f[i].parse::<f64>()
-                .map_err(|_| bad(k + 1, format!("field {} `{}` is not a number", i + 1, f[i])))
-        };
-        let failed = match f[6] {
-            "true" => true,
-            "false" => false,
-            other => {
-                return Err(bad(
-                    k + 1,
-                    format!("field 7 `{other}` must be true or false"),
-                ))
-            }
-        };
-        out.push(Point {
-            scenario: f[0].into(),
-            method: f[1].into(),
-            parameter: f[2].into(),
-            cpu_s: num(3)?,
-            err_max_m: num(4)?,
-            err_history_m: num(5)?,
-            failed,
-        });
-    }
-    Ok(out)
+    let columns: Vec<&str> = CSV_HEADER.split(',').collect();
+    crate::table::read_rows(path, &text, &columns)
 }
 
 /// Error levels the chart marks (m).
@@ -440,17 +399,25 @@ pub fn reach_csv(points: &[Point]) -> String {
                 .iter()
                 .filter(|p| p.err_history_m <= level)
                 .min_by(|a, b| a.cpu_s.total_cmp(&b.cpu_s));
-            let row = match cheapest {
-                Some(p) => format!("{},{:e},{:e}", p.parameter, p.cpu_s, p.err_history_m),
+            let (parameter, cpu, err) = match cheapest {
+                Some(p) => (
+                    p.parameter.clone(),
+                    format!("{:e}", p.cpu_s),
+                    p.err_history_m,
+                ),
                 None => {
                     let best = pts
                         .iter()
                         .map(|p| p.err_history_m)
                         .fold(f64::INFINITY, f64::min);
-                    format!("never,,{best:e}")
+                    ("never".into(), String::new(), best)
                 }
             };
-            s.push_str(&format!("{scenario},{method},{level:e},{row}\n"));
+            let level = format!("{level:e}");
+            let err = format!("{err:e}");
+            s.push_str(&crate::table::line(&(
+                scenario, method, level, parameter, cpu, err,
+            )));
         }
     }
     s

@@ -168,7 +168,7 @@ fn an_interrupted_sweep_resumes_to_the_same_table() {
     drop(store);
     let resumed = run_all(&s, &dir, Existing::Resume);
     assert_eq!(without_time(&resumed), without_time(&fresh));
-    let back = read_table(&cases, CASES_HEADER, CaseRow::from_csv).unwrap();
+    let back: Vec<CaseRow> = read_table(&cases, CASES_HEADER).unwrap();
     assert_eq!(without_time(&back), without_time(&fresh));
 
     // Without its blocks.csv (the studies in docs/ leave it out) a sweep cannot resume, and
@@ -214,7 +214,7 @@ fn an_interrupted_sweep_resumes_to_the_same_table() {
     let old_columns = CASES_HEADER.replace("transitions,decision_blocks,flow_nodes,", "");
     let text = std::fs::read_to_string(&cases).unwrap();
     std::fs::write(&cases, text.replacen(CASES_HEADER, &old_columns, 1)).unwrap();
-    let e = read_table(&cases, CASES_HEADER, CaseRow::from_csv)
+    let e = read_table::<CaseRow>(&cases, CASES_HEADER)
         .err()
         .unwrap()
         .to_string();

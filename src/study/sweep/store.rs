@@ -5,6 +5,7 @@
 
 use super::Sweep;
 use crate::error::Error;
+use crate::table;
 use std::collections::{HashMap, HashSet};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -12,8 +13,8 @@ use std::path::{Path, PathBuf};
 /// A vertical joint counts as opened when its faces end further apart than this (m).
 pub const OPEN_JOINT_M: f64 = 1e-3;
 
-/// One case: its inputs and what the run gave.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// One case: its inputs and what the run gave (a row of `cases.csv`, its fields the columns).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CaseRow {
     /// Case number (wall-major, then motion, then sample).
     pub case: usize,
@@ -22,29 +23,37 @@ pub struct CaseRow {
     /// Motion label.
     pub motion: String,
     /// Sine amplitude (gal).
+    #[serde(serialize_with = "table::plain_opt")]
     pub amplitude_gal: Option<f64>,
     /// Sine frequency (Hz).
+    #[serde(serialize_with = "table::plain_opt")]
     pub frequency_hz: Option<f64>,
     /// Record label.
     pub record: Option<String>,
     /// Record scale factor.
+    #[serde(serialize_with = "table::plain_opt")]
     pub scale: Option<f64>,
     /// Peak ground acceleration (gal).
+    #[serde(serialize_with = "table::plain")]
     pub pga_gal: f64,
     /// Friction sample (0 for nominal friction).
     pub sample: usize,
     /// Number of blocks.
     pub blocks: usize,
     /// Largest |u| of any block (m).
+    #[serde(serialize_with = "table::sci")]
     pub max_abs_u_m: f64,
     /// The block that reached it.
     pub max_abs_u_block: String,
     /// Largest |final u| of a block still standing (m).
+    #[serde(serialize_with = "table::sci")]
     pub residual_u_m: f64,
     /// Largest |relative displacement| at a joint between two blocks (m): the ground joints
     /// are the blocks' own u.
+    #[serde(serialize_with = "table::sci")]
     pub max_rel_u_m: f64,
     /// Widest final opening of a vertical joint (m).
+    #[serde(serialize_with = "table::sci")]
     pub max_opening_m: f64,
     /// Vertical joints that end open by more than [`OPEN_JOINT_M`].
     pub open_joints: usize,
@@ -63,31 +72,37 @@ pub struct CaseRow {
     /// [`Stats`]: crate::response::Stats
     pub flow_nodes: u64,
     /// Work of the ground motion on the blocks (J).
+    #[serde(serialize_with = "table::sci")]
     pub energy_input_j: f64,
     /// Energy balance residual (J): round-off for the exact integrator, a check on every case.
+    #[serde(serialize_with = "table::sci")]
     pub energy_residual_j: f64,
     /// A block fell.
     pub collapsed: bool,
     /// When (s).
+    #[serde(serialize_with = "table::plain_opt")]
     pub collapse_time_s: Option<f64>,
     /// Which block.
     pub collapse_block: Option<String>,
     /// CPU time of the run (s).
+    #[serde(serialize_with = "table::sci")]
     pub cpu_s: f64,
     /// Why the run failed, if it did.
     pub error: Option<String>,
 }
 
-/// One block of one case.
-#[derive(Debug, Clone, PartialEq)]
+/// One block of one case (a row of `blocks.csv`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BlockRow {
     /// Case number.
     pub case: usize,
     /// Block name.
     pub block: String,
     /// Largest |u| (m).
+    #[serde(serialize_with = "table::sci")]
     pub max_abs_u_m: f64,
     /// Final u (m).
+    #[serde(serialize_with = "table::sci")]
     pub final_u_m: f64,
     /// It fell.
     pub fell: bool,
@@ -98,145 +113,6 @@ pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,reco
 
 /// Columns of `blocks.csv`.
 pub const BLOCKS_HEADER: &str = "case,block,max_abs_u_m,final_u_m,fell";
-
-/// Text fields never hold the CSV's separators.
-fn clean(s: &str) -> String {
-    s.replace([',', '\n', '\r', '"'], ";")
-}
-
-fn opt<T: std::fmt::Display>(x: &Option<T>) -> String {
-    x.as_ref().map_or_else(String::new, |v| v.to_string())
-}
-
-impl CaseRow {
-    /// The row as CSV (no newline).
-    pub fn to_csv(&self) -> String {
-        [
-            self.case.to_string(),
-            clean(&self.wall),
-            clean(&self.motion),
-            opt(&self.amplitude_gal),
-            opt(&self.frequency_hz),
-            opt(&self.record.as_deref().map(clean)),
-            opt(&self.scale),
-            self.pga_gal.to_string(),
-            self.sample.to_string(),
-            self.blocks.to_string(),
-            format!("{:e}", self.max_abs_u_m),
-            clean(&self.max_abs_u_block),
-            format!("{:e}", self.residual_u_m),
-            format!("{:e}", self.max_rel_u_m),
-            format!("{:e}", self.max_opening_m),
-            self.open_joints.to_string(),
-            self.impacts.to_string(),
-            self.events.to_string(),
-            self.transitions.to_string(),
-            self.decision_blocks.to_string(),
-            self.flow_nodes.to_string(),
-            format!("{:e}", self.energy_input_j),
-            format!("{:e}", self.energy_residual_j),
-            self.collapsed.to_string(),
-            opt(&self.collapse_time_s),
-            opt(&self.collapse_block.as_deref().map(clean)),
-            format!("{:e}", self.cpu_s),
-            opt(&self.error.as_deref().map(clean)),
-        ]
-        .join(",")
-    }
-
-    /// Reads a row written by [`CaseRow::to_csv`].
-    pub fn from_csv(line: &str) -> Result<CaseRow, String> {
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 28 {
-            return Err(format!("expected 28 fields, found {}", f.len()));
-        }
-        let num = |i: usize| -> Result<f64, String> {
-            f[i].parse()
-                .map_err(|_| format!("field {} `{}` is not a number", i + 1, f[i]))
-        };
-        let int = |i: usize| -> Result<u64, String> {
-            f[i].parse()
-                .map_err(|_| format!("field {} `{}` is not a whole number", i + 1, f[i]))
-        };
-        let some_num = |i: usize| -> Result<Option<f64>, String> {
-            if f[i].is_empty() {
-                Ok(None)
-            } else {
-                num(i).map(Some)
-            }
-        };
-        let some_text = |i: usize| (!f[i].is_empty()).then(|| f[i].to_string());
-        Ok(CaseRow {
-            case: int(0)? as usize,
-            wall: f[1].into(),
-            motion: f[2].into(),
-            amplitude_gal: some_num(3)?,
-            frequency_hz: some_num(4)?,
-            record: some_text(5),
-            scale: some_num(6)?,
-            pga_gal: num(7)?,
-            sample: int(8)? as usize,
-            blocks: int(9)? as usize,
-            max_abs_u_m: num(10)?,
-            max_abs_u_block: f[11].into(),
-            residual_u_m: num(12)?,
-            max_rel_u_m: num(13)?,
-            max_opening_m: num(14)?,
-            open_joints: int(15)? as usize,
-            impacts: int(16)?,
-            events: int(17)?,
-            transitions: int(18)?,
-            decision_blocks: int(19)?,
-            flow_nodes: int(20)?,
-            energy_input_j: num(21)?,
-            energy_residual_j: num(22)?,
-            collapsed: match f[23] {
-                "true" => true,
-                "false" => false,
-                other => return Err(format!("field 24 `{other}` must be true or false")),
-            },
-            collapse_time_s: some_num(24)?,
-            collapse_block: some_text(25),
-            cpu_s: num(26)?,
-            error: some_text(27),
-        })
-    }
-}
-
-impl BlockRow {
-    /// The row as CSV (no newline).
-    pub fn to_csv(&self) -> String {
-        format!(
-            "{},{},{:e},{:e},{}",
-            self.case,
-            clean(&self.block),
-            self.max_abs_u_m,
-            self.final_u_m,
-            self.fell
-        )
-    }
-
-    /// Reads a row written by [`BlockRow::to_csv`].
-    pub fn from_csv(line: &str) -> Result<BlockRow, String> {
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 5 {
-            return Err(format!("expected 5 fields, found {}", f.len()));
-        }
-        let num = |i: usize| -> Result<f64, String> {
-            f[i].parse()
-                .map_err(|_| format!("field {} `{}` is not a number", i + 1, f[i]))
-        };
-        Ok(BlockRow {
-            case: f[0]
-                .parse()
-                .map_err(|_| format!("field 1 `{}` is not a case number", f[0]))?,
-            block: f[1].into(),
-            max_abs_u_m: num(2)?,
-            final_u_m: num(3)?,
-            fell: f[4] == "true",
-        })
-    }
-}
 
 /// What to do with results already in the output directory.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -275,19 +151,6 @@ fn table_error(path: &Path, line: usize, message: String) -> Error {
     }
 }
 
-/// Complete lines of a table written by an earlier run: a last line without its newline was cut
-/// off by the interruption and is dropped.
-fn complete_lines(text: &str) -> Vec<&str> {
-    let mut lines: Vec<&str> = text.split_inclusive('\n').collect();
-    if lines.last().is_some_and(|l| !l.ends_with('\n')) {
-        lines.pop();
-    }
-    lines
-        .into_iter()
-        .map(|l| l.trim_end_matches('\n'))
-        .collect()
-}
-
 impl Store {
     /// Opens the output directory of `sweep`.
     pub fn open(dir: &Path, sweep: &Sweep, existing: Existing) -> Result<Store, Error> {
@@ -297,8 +160,8 @@ impl Store {
             dir.join("blocks.csv"),
             dir.join("manifest.json"),
         );
-        let mut rows = Vec::new();
-        let mut block_rows = Vec::new();
+        let mut rows: Vec<CaseRow> = Vec::new();
+        let mut block_rows: Vec<BlockRow> = Vec::new();
         if cases_path.exists() {
             match existing {
                 Existing::Refuse => {
@@ -318,9 +181,9 @@ impl Store {
                             "missing: a sweep resumes from cases.csv and blocks.csv together (the studies in docs/ leave blocks.csv out): pass --fresh to run it again".into(),
                         ));
                     }
-                    rows = read_table(&cases_path, CASES_HEADER, CaseRow::from_csv)?;
+                    rows = read_table(&cases_path, CASES_HEADER)?;
                     let done: HashSet<usize> = rows.iter().map(|r| r.case).collect();
-                    block_rows = read_table(&blocks_path, BLOCKS_HEADER, BlockRow::from_csv)?;
+                    block_rows = read_table(&blocks_path, BLOCKS_HEADER)?;
                     // Block rows are written before their case row: drop those of unfinished cases.
                     block_rows.retain(|b| done.contains(&b.case));
                 }
@@ -339,12 +202,8 @@ impl Store {
             serde_json::to_string_pretty(&manifest).expect("json") + "\n",
         )
         .map_err(io(&manifest_path))?;
-        let cases = rewrite(&cases_path, CASES_HEADER, rows.iter().map(CaseRow::to_csv))?;
-        let blocks = rewrite(
-            &blocks_path,
-            BLOCKS_HEADER,
-            block_rows.iter().map(BlockRow::to_csv),
-        )?;
+        let cases = rewrite(&cases_path, CASES_HEADER, &rows)?;
+        let blocks = rewrite(&blocks_path, BLOCKS_HEADER, &block_rows)?;
         Ok(Store {
             dir: dir.to_path_buf(),
             cases,
@@ -360,7 +219,7 @@ impl Store {
     pub fn finished(dir: &Path, sweep: &Sweep) -> Result<Vec<CaseRow>, Error> {
         check_manifest(&dir.join("manifest.json"), sweep)?;
         let cases_path = dir.join("cases.csv");
-        let mut rows = read_table(&cases_path, CASES_HEADER, CaseRow::from_csv)?;
+        let mut rows: Vec<CaseRow> = read_table(&cases_path, CASES_HEADER)?;
         rows.sort_by_key(|r| r.case);
         if let Some(w) = rows
             .windows(2)
@@ -404,15 +263,13 @@ impl Store {
     /// Stores a finished case: its block rows first, then the case row that marks it done.
     pub fn append(&mut self, row: CaseRow, blocks: Vec<BlockRow>) -> Result<(), Error> {
         let bpath = self.dir.join("blocks.csv");
-        let mut text = String::new();
-        for b in &blocks {
-            text.push_str(&b.to_csv());
-            text.push('\n');
-        }
+        let text: String = blocks.iter().map(table::line).collect();
         self.blocks.write_all(text.as_bytes()).map_err(io(&bpath))?;
         self.blocks.flush().map_err(io(&bpath))?;
         let cpath = self.dir.join("cases.csv");
-        writeln!(self.cases, "{}", row.to_csv()).map_err(io(&cpath))?;
+        self.cases
+            .write_all(table::line(&row).as_bytes())
+            .map_err(io(&cpath))?;
         self.cases.flush().map_err(io(&cpath))?;
         self.rows.push(row);
         self.block_rows.extend(blocks);
@@ -429,15 +286,11 @@ impl Store {
             .map(|(k, r)| (r.case, k))
             .collect();
         self.block_rows.sort_by_key(|b| order[&b.case]);
-        rewrite(
-            &self.dir.join("cases.csv"),
-            CASES_HEADER,
-            self.rows.iter().map(CaseRow::to_csv),
-        )?;
+        rewrite(&self.dir.join("cases.csv"), CASES_HEADER, &self.rows)?;
         rewrite(
             &self.dir.join("blocks.csv"),
             BLOCKS_HEADER,
-            self.block_rows.iter().map(BlockRow::to_csv),
+            &self.block_rows,
         )?;
         Ok((self.rows, self.block_rows))
     }
@@ -461,16 +314,13 @@ fn check_manifest(path: &Path, sweep: &Sweep) -> Result<(), Error> {
 
 /// Writes a table afresh (through a temporary file, so an interruption never leaves half of
 /// it) and returns it open for appending.
-fn rewrite(
+fn rewrite<T: serde::Serialize>(
     path: &Path,
     header: &str,
-    lines: impl Iterator<Item = String>,
+    rows: &[T],
 ) -> Result<std::fs::File, Error> {
     let mut text = format!("{header}\n");
-    for l in lines {
-        text.push_str(&l);
-        text.push('\n');
-    }
+    text.extend(rows.iter().map(table::line));
     let tmp = path.with_extension("csv.tmp");
     std::fs::write(&tmp, text).map_err(io(&tmp))?;
     std::fs::rename(&tmp, path).map_err(io(path))?;
@@ -480,31 +330,13 @@ fn rewrite(
         .map_err(io(path))
 }
 
-/// Reads a table written by a sweep.
-pub fn read_table<T>(
+/// Reads a table written by a sweep (`header`: its columns), by column name; a last row cut
+/// off by an interruption is dropped.
+pub fn read_table<T: serde::de::DeserializeOwned>(
     path: &Path,
     header: &str,
-    parse: impl Fn(&str) -> Result<T, String>,
 ) -> Result<Vec<T>, Error> {
     let text = std::fs::read_to_string(path).map_err(io(path))?;
-    let lines = complete_lines(&text);
-    match lines.first() {
-        Some(h) if *h == header => {}
-        _ => {
-            return Err(table_error(
-                path,
-                1,
-                format!(
-                    "expected the header `{header}` (a table written by another version of \
-                     pirqa cannot be resumed: rerun with --fresh)"
-                ),
-            ))
-        }
-    }
-    lines
-        .iter()
-        .enumerate()
-        .skip(1)
-        .map(|(k, l)| parse(l).map_err(|m| table_error(path, k + 1, m)))
-        .collect()
+    let columns: Vec<&str> = header.split(',').collect();
+    table::read_rows(path, &text, &columns)
 }
