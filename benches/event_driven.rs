@@ -1,5 +1,5 @@
 //! Speed of the exact event-driven integrator on the paper's wall (figures in
-//! docs/performance.md): `cargo bench --profile release --bench event_driven`.
+//! docs/performance.md): `cargo bench --features bench --bench event_driven`.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use pirqa::integrate::event::EventDriven;

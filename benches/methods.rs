@@ -1,7 +1,7 @@
 //! Every method on the five-block variable wall (sine 400 gal, 1 Hz, 10 s, the chart's scenario)
 //! at the step or tolerance that reaches 1e-6 m, or, for a method that never does, at its most
 //! accurate point of the chart (docs/performance.md, docs/accuracy.md):
-//! `cargo bench --profile release --bench methods`.
+//! `cargo bench --features bench --bench methods`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use pirqa::integrate::baselines::{Moreau, PaperNewmark, Regularized};

@@ -1,7 +1,7 @@
 //! Sweeps at the sizes issue 6 sets targets for (docs/performance.md): the grid behind the
 //! paper's Fig. 3 and 4 (1,200 sine cases of 20 s) and a 1,000-case friction Monte Carlo on the
 //! five-block wall under El Centro, each run on all cores as `pirqa sweep` runs them, without
-//! writing files: `cargo bench --profile release --bench studies`.
+//! writing files: `cargo bench --features bench --bench studies`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use pirqa::study::sweep::Sweep;
