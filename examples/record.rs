@@ -9,7 +9,7 @@ fn main() -> Result<(), pirqa::Error> {
     let path = std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2");
     // Format, units, interval and point count come from the file's header.
     let record = read_record(path, None, &ReadOptions::default())?;
-    let scaled = record.scaled(0.4 * 9.81 / record.pga_m_s2());
+    let scaled = record.scaled(0.4 * 9.81 / record.pga_m_s2())?;
     let model = Model::from_file("walls/inca/stela.ron")?;
     let settings = RunSettings {
         log_events: true,

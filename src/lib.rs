@@ -30,6 +30,7 @@
 
 #![warn(missing_docs)]
 
+pub mod bounds;
 pub mod clock;
 pub mod error;
 pub mod exact;

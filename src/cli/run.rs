@@ -21,20 +21,37 @@ use std::path::{Path, PathBuf};
 #[derive(clap::Args, Debug, Clone)]
 pub struct MotionArgs {
     /// Sine amplitude with units: 400gal, 0.41g, 4.0m/s2.
-    #[arg(long, value_name = "AMP", conflicts_with = "record", requires = "freq")]
+    #[arg(
+        long,
+        value_name = "AMP",
+        conflicts_with = "record",
+        requires = "freq",
+        allow_hyphen_values = true
+    )]
     pub sine: Option<String>,
     /// Sine frequency (Hz).
     #[arg(long, value_name = "HZ")]
     pub freq: Option<f64>,
     /// Sine phase at t = 0 (degrees).
-    #[arg(long, value_name = "DEG", default_value_t = 0.0)]
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 0.0,
+        allow_hyphen_values = true
+    )]
     pub phase: f64,
     /// Only this many cycles of the sine, then the ground rests (a pulse: one cycle is the
     /// one-sine pulse of the rocking literature); --duration may run past them.
     #[arg(long, value_name = "N", requires = "sine")]
     pub cycles: Option<f64>,
     /// A rectangular pulse of this amplitude with units (0.3g, 300gal), then the ground rests.
-    #[arg(long, value_name = "AMP", conflicts_with_all = ["sine", "record"], requires = "pulse_s")]
+    #[arg(
+        long,
+        value_name = "AMP",
+        conflicts_with_all = ["sine", "record"],
+        requires = "pulse_s",
+        allow_hyphen_values = true
+    )]
     pub pulse: Option<String>,
     /// Duration of the rectangular pulse (s).
     #[arg(long, value_name = "S", requires = "pulse")]
@@ -69,7 +86,7 @@ pub struct MotionArgs {
     pub pga: Option<String>,
     /// Then multiply by this factor (the paper's "amplified by 5"; a negative one reverses the
     /// motion, 0 is refused).
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
     pub scale: Option<f64>,
     /// Vertical component (same time step as the record): every normal load, hence every
     /// friction capacity, is multiplied by 1 + a_v/g. Windowed, corrected and scaled like the
@@ -165,7 +182,8 @@ pub fn build_motion(
             let sine = Sine {
                 amplitude_m_s2: a,
                 frequency_hz: freq,
-                phase_rad: m.phase.to_radians(),
+                // Reduced in degrees, where the remainder is exact; radians cannot be.
+                phase_rad: m.phase.rem_euclid(360.0).to_radians(),
                 duration_s: duration,
             }
             .checked()

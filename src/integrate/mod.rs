@@ -65,6 +65,36 @@ impl std::fmt::Debug for Progress {
 }
 
 impl Settings {
+    /// Checks the duration and the history's size for a wall of `blocks` blocks (every
+    /// integrator calls it before it starts): a duration within the bounds, and a history that
+    /// fits in memory (`--output-dt 1e-9` would fill it before the run ends).
+    pub fn validate(&self, blocks: usize) -> Result<(), SimulationError> {
+        let t = self.duration_s;
+        if !(t > 0.0 && t <= crate::bounds::MAX_DURATION_S) {
+            return Err(SimulationError::Setting {
+                what: "duration".into(),
+                value: t,
+                unit: " s",
+                rule: "it must be positive and at most 1e6 s",
+            });
+        }
+        if let Some(dt) = self.output_dt_s {
+            // Rows at output times (events add some), each with u and v of every block.
+            let values = (t / dt) * (1.0 + 2.0 * blocks as f64);
+            if !(dt > 0.0 && values <= crate::bounds::MAX_HISTORY_VALUES) {
+                return Err(SimulationError::Setting {
+                    what: "history interval".into(),
+                    value: dt,
+                    unit: " s",
+                    rule: "it must be positive, and the history it asks for (duration / \
+                           interval rows of every block) at most 5e7 numbers: take a larger \
+                           interval, or no history",
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Summary only, for `duration_s`.
     pub fn summary_only(duration_s: f64) -> Settings {
         Settings {

@@ -9,6 +9,22 @@ use crate::motion::Motion;
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response};
 use crate::topology::{Base, JointId};
 
+/// A fixed time step `dt_s` for the scenario's run: positive, and few enough steps
+/// (`bounds::MAX_STEPS`) that the run ends; the run's own settings checked too.
+pub fn time_step(sc: &Scenario, dt_s: f64) -> Result<(), SimulationError> {
+    sc.settings.validate(sc.wall.blocks.len())?;
+    positive("time step", dt_s, " s")?;
+    if sc.settings.duration_s / dt_s > crate::bounds::MAX_STEPS {
+        return Err(SimulationError::Setting {
+            what: "time step".into(),
+            value: dt_s,
+            unit: " s",
+            rule: "it would take more than 1e9 steps over the duration: take a larger step",
+        });
+    }
+    Ok(())
+}
+
 /// A method parameter (a step, a tolerance, a stiffness) must be finite and positive; `unit`
 /// is written after the value (with its leading space, or empty).
 pub fn positive(what: &str, x: f64, unit: &'static str) -> Result<(), SimulationError> {

@@ -13,6 +13,7 @@ pub use formats::{read_companion, read_record, ReadOptions};
 pub use process::{check_scale, process, Baseline, Processing};
 pub use segment::{Segment, Shape};
 
+use crate::bounds;
 use crate::error::MotionError;
 
 /// A horizontal ground acceleration history.
@@ -40,10 +41,15 @@ impl Pulse {
     /// Checks the numbers: a finite amplitude, a positive duration.
     pub fn validate(&self) -> Result<(), MotionError> {
         let (a, d) = (self.amplitude_m_s2, self.duration_s);
-        if !(a.is_finite() && d.is_finite() && d > 0.0) {
+        if !(a.abs() <= bounds::MAX_ACCEL_M_S2 && d > 0.0 && d <= bounds::MAX_DURATION_S) {
             return Err(MotionError::Parameter {
                 what: format!("pulse of {a} m/s2 for {d} s"),
-                rule: "a pulse needs a finite amplitude and a positive duration".into(),
+                rule: format!(
+                    "a pulse needs an amplitude of at most {} m/s2 (about 100 g) and a positive \
+                     duration of at most {} s",
+                    bounds::MAX_ACCEL_M_S2,
+                    bounds::MAX_DURATION_S
+                ),
             });
         }
         Ok(())
@@ -108,21 +114,31 @@ impl Sine {
     /// Checks that the numbers make sense: a finite amplitude and phase, a positive frequency
     /// and duration.
     pub fn validate(&self) -> Result<(), MotionError> {
-        let ok = self.amplitude_m_s2.is_finite()
-            && self.frequency_hz.is_finite()
-            && self.frequency_hz > 0.0
-            && self.phase_rad.is_finite()
-            && self.duration_s.is_finite()
-            && self.duration_s > 0.0;
+        let (f, d) = (self.frequency_hz, self.duration_s);
+        let ok = self.amplitude_m_s2.abs() <= bounds::MAX_ACCEL_M_S2
+            && f > 0.0
+            && f <= bounds::MAX_FREQUENCY_HZ
+            && self.phase_rad.abs() <= bounds::MAX_PHASE_RAD
+            && d > 0.0
+            && d <= bounds::MAX_DURATION_S
+            && f * d <= bounds::MAX_CYCLES;
         if !ok {
             return Err(MotionError::Parameter {
                 what: format!(
-                    "sine of {} m/s2, phase {} rad, {} Hz, {} s",
-                    self.amplitude_m_s2, self.phase_rad, self.frequency_hz, self.duration_s
+                    "sine of {} m/s2, phase {} rad, {f} Hz, {d} s",
+                    self.amplitude_m_s2, self.phase_rad
                 ),
-                rule: "a sine needs a finite amplitude and phase, a positive frequency and \
-                       duration"
-                    .into(),
+                rule: format!(
+                    "a sine needs an amplitude of at most {} m/s2 (about 100 g), a positive \
+                     frequency of at most {} Hz, a phase within {} rad (reduce a larger one), a \
+                     positive duration of at most {} s and at most {:e} cycles \
+                     (docs/reliability.md: bounds)",
+                    bounds::MAX_ACCEL_M_S2,
+                    bounds::MAX_FREQUENCY_HZ,
+                    bounds::MAX_PHASE_RAD,
+                    bounds::MAX_DURATION_S,
+                    bounds::MAX_CYCLES
+                ),
             });
         }
         Ok(())
@@ -168,10 +184,20 @@ impl Record {
         dt_s: f64,
         accel_m_s2: Vec<f64>,
     ) -> Result<Record, MotionError> {
-        if !(dt_s.is_finite() && dt_s > 0.0) {
+        if !bounds::within(dt_s, bounds::RECORD_DT_S) {
             return Err(MotionError::Parameter {
                 what: format!("time step dt = {dt_s} s"),
-                rule: "it must be positive".into(),
+                rule: format!(
+                    "it must lie from {} to {} s",
+                    bounds::RECORD_DT_S.0,
+                    bounds::RECORD_DT_S.1
+                ),
+            });
+        }
+        if accel_m_s2.len() as f64 * dt_s > bounds::MAX_DURATION_S {
+            return Err(MotionError::Parameter {
+                what: format!("{} samples at {dt_s} s", accel_m_s2.len()),
+                rule: format!("a record may last {} s at most", bounds::MAX_DURATION_S),
             });
         }
         if accel_m_s2.len() < 2 {
@@ -180,10 +206,21 @@ impl Record {
                 counted: "samples",
             });
         }
-        if let Some(k) = accel_m_s2.iter().position(|a| !a.is_finite()) {
+        if let Some(k) = accel_m_s2
+            .iter()
+            .position(|a| a.is_nan() || a.abs() > bounds::MAX_ACCEL_M_S2)
+        {
             return Err(MotionError::Parameter {
-                what: format!("sample {} (t = {} s)", k + 1, k as f64 * dt_s),
-                rule: "it is not a finite number".into(),
+                what: format!(
+                    "sample {} (t = {} s) = {} m/s2",
+                    k + 1,
+                    k as f64 * dt_s,
+                    accel_m_s2[k]
+                ),
+                rule: format!(
+                    "a ground acceleration must be a number of at most {} m/s2 (about 100 g)",
+                    bounds::MAX_ACCEL_M_S2
+                ),
             });
         }
         // Exact integrals of the piecewise-linear acceleration, summed with compensation so that
@@ -235,15 +272,14 @@ impl Record {
     }
 
     /// The same record scaled by a factor (the vertical component, if any, is kept).
-    pub fn scaled(&self, factor: f64) -> Record {
+    pub fn scaled(&self, factor: f64) -> Result<Record, MotionError> {
         let mut r = Record::new(
             self.name.clone(),
             self.dt_s,
             self.accel_m_s2.iter().map(|a| a * factor).collect(),
-        )
-        .expect("scaling a valid record by a finite factor keeps it valid");
+        )?;
         r.lambda = self.lambda.clone();
-        r
+        Ok(r)
     }
 
     /// Adds a vertical component: every normal load is multiplied by 1 + a_v/g. It must share

@@ -115,7 +115,7 @@ pub fn process(record: &Record, p: &Processing) -> Result<(Record, Vec<String>),
                 rule: format!("cannot scale a record of peak {peak} m/s2 to it"),
             });
         }
-        r = r.scaled(target / peak);
+        r = r.scaled(target / peak)?;
         notes.push(format!(
             "scaled to PGA {target} m/s2 (factor {:.6})",
             target / peak
@@ -124,7 +124,7 @@ pub fn process(record: &Record, p: &Processing) -> Result<(Record, Vec<String>),
     if let Some(k) = p.scale {
         check_scale(k)?;
         if k != 1.0 {
-            r = r.scaled(k);
+            r = r.scaled(k)?;
             notes.push(format!("scaled by {k}"));
         }
     }

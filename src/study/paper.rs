@@ -18,7 +18,7 @@ use crate::study::sweep::{
 };
 use serde_json::{json, Value};
 use std::collections::{BTreeMap, HashSet};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The Miyagi record's peak (gal), to which El Centro is scaled before the paper's factor 5.
 pub const MIYAGI_PGA_GAL: f64 = 258.0;
@@ -282,14 +282,17 @@ pub fn reproduce(
 
     // Fig. 5 and 6: the records scaled by 5.
     let raw = read_record(&opts.record, None, &ReadOptions::default())?;
-    let el_centro = raw.scaled(MIYAGI_PGA_GAL / 100.0 / raw.pga_m_s2() * 5.0);
+    let motion_error = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| Error::Motion { path, source }
+    };
+    let el_centro = raw
+        .scaled(MIYAGI_PGA_GAL / 100.0 / raw.pga_m_s2() * 5.0)
+        .map_err(motion_error(&opts.record))?;
     let miyagi = Synthetic::miyagi_like()
         .record(0.01)
-        .map_err(|source| Error::Motion {
-            path: PathBuf::from("<miyagi-like>"),
-            source,
-        })?
-        .scaled(5.0);
+        .and_then(|r| r.scaled(5.0))
+        .map_err(motion_error(Path::new("<miyagi-like>")))?;
     let mut records = serde_json::Map::new();
     for (tag, record) in [("elcentro", el_centro), ("miyagi-like", miyagi)] {
         let numbers = record_figures(opts, tag, &record, &mut files)?;

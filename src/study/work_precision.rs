@@ -47,7 +47,12 @@ pub fn standard_cases(record: &std::path::Path) -> Result<Vec<Case>, crate::Erro
         });
     }
     let raw = read_record(record, None, &ReadOptions::default())?;
-    let el_centro = raw.scaled(2.58 / raw.pga_m_s2() * 5.0);
+    let el_centro =
+        raw.scaled(2.58 / raw.pga_m_s2() * 5.0)
+            .map_err(|source| crate::Error::Motion {
+                path: record.to_path_buf(),
+                source,
+            })?;
     let (wall, topology) =
         crate::topology::load(std::path::Path::new("walls/five-block-variable.ron"))?;
     let duration_s = el_centro.duration_s();
@@ -365,7 +370,7 @@ pub fn csv(points: &[Point]) -> String {
     s
 }
 
-/// Reads points back from the CSV that [`csv`] writes, by column name.
+/// Reads points back from the CSV that [`csv()`] writes, by column name.
 pub fn read_csv(path: &std::path::Path) -> Result<Vec<Point>, crate::Error> {
     let text = std::fs::read_to_string(path).map_err(|source| crate::Error::Io {
         path: path.to_path_buf(),
@@ -454,7 +459,12 @@ pub fn rocking_cases(record: &std::path::Path) -> Result<Vec<RockingCase>, crate
         source,
     })?;
     let raw = read_record(record, None, &ReadOptions::default())?;
-    let el_centro = raw.scaled(0.4 * body.g_m_s2 / raw.pga_m_s2());
+    let el_centro = raw
+        .scaled(0.4 * body.g_m_s2 / raw.pga_m_s2())
+        .map_err(|source| crate::Error::Motion {
+            path: record.to_path_buf(),
+            source,
+        })?;
     let case = |name: &str, motion: Motion, duration_s: f64, theta: f64| RockingCase {
         case: Case {
             name: name.into(),

@@ -11,6 +11,7 @@ pub use description::{
 };
 pub use generate::RunningBond;
 
+use crate::bounds;
 use crate::error::{Error, WallError};
 use crate::exact::Q;
 use std::cmp::Reverse;
@@ -126,8 +127,13 @@ fn block_number(
     }
 }
 
-const POSITIVE_M: &str = "must be a positive number of metres";
-const DENSITY: &str = "must be positive (kg/m3)";
+const POSITIVE_M: &str = "must be a length from 0.001 to 10000 m (docs/reliability.md: bounds)";
+const DENSITY: &str = "must lie from 1 to 100000 kg/m3 (docs/reliability.md: bounds)";
+
+/// A length within the bounds of a block, course or wall.
+fn length(x: f64) -> bool {
+    bounds::within(x, (bounds::MIN_LENGTH_M, bounds::MAX_LENGTH_M))
+}
 
 impl Wall {
     /// Reads and checks a wall file.
@@ -166,14 +172,14 @@ impl Wall {
         let thickness_m = field(
             "thickness_m",
             d.thickness_m,
-            d.thickness_m > 0.0,
+            length(d.thickness_m),
             POSITIVE_M,
         )?;
         let g_m_s2 = field(
             "g_m_s2",
             d.g_m_s2,
-            d.g_m_s2 > 0.0,
-            "gravity must be positive (m/s2)",
+            bounds::within(d.g_m_s2, bounds::GRAVITY_M_S2),
+            "gravity must lie from 0.1 to 100 m/s2",
         )?;
         let restitution = field(
             "restitution",
@@ -194,13 +200,18 @@ impl Wall {
             "a friction coefficient must lie in (0, 2]",
         )?;
         let density_kg_m3 = match (d.density_kg_m3, d.unit_weight_kn_m3) {
-            (Some(rho), None) => field("density_kg_m3", rho, rho > 0.0, DENSITY)?,
+            (Some(rho), None) => field(
+                "density_kg_m3",
+                rho,
+                bounds::within(rho, bounds::DENSITY_KG_M3),
+                DENSITY,
+            )?,
             (None, Some(gamma)) => {
                 field(
                     "unit_weight_kn_m3",
                     gamma,
-                    gamma > 0.0,
-                    "must be positive (kN/m3)",
+                    bounds::within(gamma, (0.01, 1000.0)),
+                    "must lie from 0.01 to 1000 kN/m3",
                 )? * Q::int(1000)
                     / &g_m_s2
             }
@@ -227,32 +238,35 @@ impl Wall {
             let row_height = field(
                 &format!("{row_name}: height_m"),
                 row.height_m,
-                row.height_m > 0.0,
+                length(row.height_m),
                 POSITIVE_M,
             )?;
             let mut x = field(
                 &format!("{row_name}: x_m"),
                 row.x_m,
-                true,
-                "must be a finite number of metres",
+                row.x_m.abs() <= bounds::MAX_POSITION_M,
+                "must be a number of metres within 1000 km of the origin",
             )?;
             for (k, spec) in row.blocks.iter().enumerate() {
                 let origin = format!("{row_name}, block {}", k + 1);
                 let num = |f, v: f64, ok, rule| block_number(&spec.name, &origin, f, v, ok, rule);
-                let width = num("width_m", spec.width_m, spec.width_m > 0.0, POSITIVE_M)?;
+                let width = num("width_m", spec.width_m, length(spec.width_m), POSITIVE_M)?;
                 let gap = num(
                     "gap_m",
                     spec.gap_m,
-                    spec.gap_m >= 0.0,
-                    "must be a finite number of metres, 0 or more",
+                    (0.0..=bounds::MAX_LENGTH_M).contains(&spec.gap_m),
+                    "must be a number of metres from 0 to 10000",
                 )?;
                 let height = match spec.height_m {
-                    Some(h) => num("height_m", h, h > 0.0, POSITIVE_M)?,
+                    Some(h) => num("height_m", h, length(h), POSITIVE_M)?,
                     None => row_height.clone(),
                 };
                 let density_kg_m3 = spec
                     .density_kg_m3
-                    .map(|rho| num("density_kg_m3", rho, rho > 0.0, DENSITY))
+                    .map(|rho| {
+                        let ok = bounds::within(rho, bounds::DENSITY_KG_M3);
+                        num("density_kg_m3", rho, ok, DENSITY)
+                    })
                     .transpose()?;
                 let left = x + gap;
                 x = &left + &width;
@@ -274,19 +288,27 @@ impl Wall {
             let num = |f, v: f64, ok, rule| block_number(&rect.name, &origin, f, v, ok, rule);
             blocks.push(Block {
                 name: rect.name.clone().unwrap_or_default(),
-                x: num("x_m", rect.x_m, true, "must be a finite number of metres")?,
+                x: num(
+                    "x_m",
+                    rect.x_m,
+                    rect.x_m.abs() <= bounds::MAX_POSITION_M,
+                    "must be a number of metres within 1000 km of the origin",
+                )?,
                 y: num(
                     "y_m",
                     rect.y_m,
-                    rect.y_m >= 0.0,
-                    "must be a finite number of metres, 0 or more (0 = on the ground)",
+                    (0.0..=bounds::MAX_POSITION_M).contains(&rect.y_m),
+                    "must be a number of metres from 0 (on the ground) to 1000 km",
                 )?,
-                width: num("width_m", rect.width_m, rect.width_m > 0.0, POSITIVE_M)?,
-                height: num("height_m", rect.height_m, rect.height_m > 0.0, POSITIVE_M)?,
+                width: num("width_m", rect.width_m, length(rect.width_m), POSITIVE_M)?,
+                height: num("height_m", rect.height_m, length(rect.height_m), POSITIVE_M)?,
                 fixed: rect.fixed,
                 density_kg_m3: rect
                     .density_kg_m3
-                    .map(|rho| num("density_kg_m3", rho, rho > 0.0, DENSITY))
+                    .map(|rho| {
+                        let ok = bounds::within(rho, bounds::DENSITY_KG_M3);
+                        num("density_kg_m3", rho, ok, DENSITY)
+                    })
                     .transpose()?,
                 origin,
             });

@@ -22,7 +22,7 @@ fn el_centro_first_s(seconds: usize, pga_m_s2: f64) -> Motion {
     .unwrap();
     let n = seconds * 100 + 1;
     let first = Record::new("El Centro", 0.01, record.accel_m_s2()[..n].to_vec()).unwrap();
-    Motion::Record(first.scaled(pga_m_s2 / record.pga_m_s2()))
+    Motion::Record(first.scaled(pga_m_s2 / record.pga_m_s2()).unwrap())
 }
 
 /// The wall's topology with every joint's friction drawn uniformly from lowest / 10,000 to

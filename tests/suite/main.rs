@@ -11,6 +11,7 @@ mod collapse;
 mod docs;
 mod event_driven;
 mod generate;
+mod hardening;
 mod large_walls;
 mod properties;
 mod records;

@@ -263,7 +263,7 @@ fn rocking_under_el_centro_balances_its_energy_in_every_regime() {
         (0.2, 2.0, 0.15, 1.5),
     ] {
         let body = RockingBody::rectangle("B", w, h, 2600.0 * w * h, mu, G);
-        let m = Motion::Record(rec.scaled(pga * G / rec.pga_m_s2()));
+        let m = Motion::Record(rec.scaled(pga * G / rec.pga_m_s2()).unwrap());
         let r = run(&body, 0.0, Equations::Exact, &m, 40.0);
         balanced(&r);
         fell += usize::from(r.summary.blocks[0].fell);

@@ -305,7 +305,7 @@ fn the_inca_library_walls_run_under_el_centro() {
         &ReadOptions::default(),
     )
     .unwrap();
-    let record = record.scaled(0.5 * 9.81 / record.pga_m_s2());
+    let record = record.scaled(0.5 * 9.81 / record.pga_m_s2()).unwrap();
     for wall in &library()[..4] {
         let topo = Topology::new(wall).unwrap();
         let settings = Settings::summary_only(record.duration_s());

@@ -96,7 +96,7 @@ fn el_centro_with_a_vertical_component_balances_energy() {
     )
     .unwrap();
     let v = samples::broadband_record(39.99, 0.01, 1.5);
-    let m = Motion::Record(h.scaled(2.0).with_vertical(&v, 9.81).unwrap());
+    let m = Motion::Record(h.scaled(2.0).unwrap().with_vertical(&v, 9.81).unwrap());
     let wall = Wall::load(std::path::Path::new("walls/five-block-variable.ron")).unwrap();
     let r = run(&wall, &m, 39.99);
     let e = r.summary.energy;

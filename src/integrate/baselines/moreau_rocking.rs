@@ -8,7 +8,7 @@
 
 use crate::error::SimulationError;
 use crate::integrate::rocking::{self, RockingBody};
-use crate::integrate::stepping::positive;
+use crate::integrate::stepping::time_step;
 use crate::integrate::{Integrator, Scenario};
 use crate::response::{Collapse, CollapseCause, Recorder, Response, Warning};
 use nalgebra::{Matrix2, Matrix2x3, Vector2, Vector3};
@@ -55,7 +55,7 @@ impl Integrator for MoreauRocking {
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
         let dt = self.dt_s;
-        positive("time step", dt, " s")?;
+        time_step(sc, dt)?;
         let body = rocking::free_standing(sc.wall, sc.topology)?;
         let (m, ig, mu, g, hc) = (
             body.mass_kg,

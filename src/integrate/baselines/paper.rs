@@ -13,7 +13,7 @@
 
 use super::collide;
 use crate::error::SimulationError;
-use crate::integrate::stepping::{positive, Model, Observer};
+use crate::integrate::stepping::{time_step, Model, Observer};
 use crate::integrate::{Integrator, Scenario};
 use crate::response::Response;
 
@@ -58,7 +58,7 @@ impl Integrator for PaperNewmark {
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
         let h = self.dt_s;
-        positive("time step", h, " s")?;
+        time_step(sc, h)?;
         let m = Model::new(sc);
         let mut obs = Observer::new(sc, &m, sc.motion);
         let n = m.n;

@@ -202,6 +202,7 @@ impl Integrator for Regularized {
     }
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
+        sc.settings.validate(sc.wall.blocks.len())?;
         positive("rtol", self.rtol, "")?;
         positive("eps", self.eps, " m/s")?;
         positive("stiffness", self.stiffness, " N/m")?;

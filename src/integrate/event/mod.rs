@@ -236,24 +236,7 @@ impl<'a> Engine<'a> {
         let (wall, topo) = (sc.wall, sc.topology);
         let n = wall.blocks.len();
         let t_end = sc.settings.duration_s;
-        if !(t_end.is_finite() && t_end > 0.0) {
-            return Err(SimulationError::Setting {
-                what: "duration".into(),
-                value: t_end,
-                unit: " s",
-                rule: "it must be positive",
-            });
-        }
-        if let Some(dt) = sc.settings.output_dt_s {
-            if !(dt.is_finite() && dt > 0.0) {
-                return Err(SimulationError::Setting {
-                    what: "output interval".into(),
-                    value: dt,
-                    unit: " s",
-                    rule: "it must be positive",
-                });
-            }
-        }
+        sc.settings.validate(n)?;
         let mass_q: Vec<Q> = topo.blocks.iter().map(|b| b.mass_kg.clone()).collect();
         let cap_q: Vec<Q> = topo.supports.iter().map(|s| s.capacity_n.clone()).collect();
         let f = |v: &[Q]| v.iter().map(Q::to_f64).collect::<Vec<f64>>();

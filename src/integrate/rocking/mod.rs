@@ -82,6 +82,7 @@ pub struct Scene<'a> {
 
 /// Runs the bodies of a scene under its ground motion.
 pub fn run(scene: &Scene) -> Result<Response, SimulationError> {
+    scene.settings.validate(scene.bodies.len())?;
     for b in scene.bodies {
         b.validate()?;
     }

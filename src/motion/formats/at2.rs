@@ -94,7 +94,9 @@ impl RecordFormat for At2 {
             AccelUnit::G
         };
         let (npts, dt) = npts_dt(lines[3], 4)?;
-        let mut values = Vec::with_capacity(npts);
+        // Sized by what the file can hold (a value takes two bytes at least), never by the
+        // header's claim: `NPTS= 1e30` must not allocate before one sample is read.
+        let mut values = Vec::with_capacity(npts.min(text.len() / 2));
         let mut last_line = 4;
         for (k, line) in lines.iter().enumerate().skip(4) {
             if values.len() >= npts {

@@ -57,7 +57,8 @@ fn fixed_values(
     fmt: FixedFormat,
     what: &str,
 ) -> Result<(Vec<f64>, usize), MotionError> {
-    let mut out = Vec::with_capacity(count);
+    // Sized by the lines left (a fixed-width line holds a few values), not by the header.
+    let mut out = Vec::with_capacity(count.min(lines.len().saturating_sub(start) * 10));
     let mut k = start;
     while out.len() < count {
         let line = lines.get(k).ok_or_else(|| {

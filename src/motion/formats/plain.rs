@@ -41,6 +41,8 @@ const SPACING_TOL: f64 = 1e-6;
 /// default the last).
 pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, MotionError> {
     let (mut units, mut dt) = (opts.units, opts.dt_s);
+    // A file that says its units or interval twice is refused, not read by its last line.
+    let (mut said_units, mut said_dt) = (false, false);
     let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
     for (k, raw) in text.lines().enumerate() {
         let line = raw.trim();
@@ -60,6 +62,12 @@ pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, 
                 };
                 match key.trim().to_ascii_lowercase().as_str() {
                     "units" | "unit" => {
+                        if std::mem::replace(&mut said_units, true) {
+                            return Err(MotionError::Line {
+                                line: k + 1,
+                                message: "a second `# units:` line: give the units once".into(),
+                            });
+                        }
                         let said = AccelUnit::parse(value).ok_or_else(|| MotionError::Line {
                             line: k + 1,
                             message: format!(
@@ -79,6 +87,12 @@ pub fn read_plain(name: &str, text: &str, opts: &ReadOptions) -> Result<Record, 
                         }
                     }
                     "dt_s" | "dt" => {
+                        if std::mem::replace(&mut said_dt, true) {
+                            return Err(MotionError::Line {
+                                line: k + 1,
+                                message: "a second `# dt_s:` line: give the interval once".into(),
+                            });
+                        }
                         let said: f64 = value.trim().parse().map_err(|_| MotionError::Line {
                             line: k + 1,
                             message: format!("dt \"{}\" is not a number of seconds", value.trim()),

@@ -796,7 +796,10 @@ fn resolve_motions(
                             format!("factor {factor}: it must be positive"),
                         ));
                     }
-                    let scaled = record.scaled(factor);
+                    let scaled = record.scaled(factor).map_err(|source| Error::Motion {
+                        path: file.clone(),
+                        source,
+                    })?;
                     let label = if scales.is_empty() {
                         format!("{name} pga {}", pga[k])
                     } else {

@@ -1,0 +1,203 @@
+//! Hostile and extreme inputs (issue 34): each class gets a clear error naming what to change,
+//! or a run whose answer is right; never a panic (exit code 101), a hang or a silent default.
+
+use crate::common;
+use std::process::Command;
+
+const WALL: &str = "walls/five-block-variable.ron";
+
+/// Runs pirqa; returns (exit code, stdout, stderr).
+fn pirqa(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_pirqa"))
+        .args(args)
+        .output()
+        .expect("pirqa runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A refused input: exit code 1 (not a panic's 101) and a message holding `says`.
+fn refused(args: &[&str], says: &str) {
+    let (code, _, err) = pirqa(args);
+    assert_eq!(code, 1, "{args:?}: {err}");
+    assert!(err.contains(says), "{args:?}: {err}");
+}
+
+fn sine(extra: &[&str]) -> Vec<String> {
+    let mut v: Vec<String> = [
+        "run",
+        WALL,
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "2",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    v.extend(extra.iter().map(|s| s.to_string()));
+    v
+}
+
+fn strs(v: &[String]) -> Vec<&str> {
+    v.iter().map(String::as_str).collect()
+}
+
+#[test]
+fn motions_beyond_the_bounds_are_refused_with_the_bound() {
+    refused(
+        &[
+            "run",
+            WALL,
+            "--sine",
+            "1e307m/s2",
+            "--freq",
+            "1",
+            "--duration",
+            "2",
+        ],
+        "at most 1000 m/s2",
+    );
+    refused(
+        &[
+            "run",
+            WALL,
+            "--sine",
+            "4m/s2",
+            "--freq",
+            "1e12",
+            "--duration",
+            "2",
+        ],
+        "a positive frequency of at most 1000 Hz",
+    );
+    refused(
+        &[
+            "run",
+            WALL,
+            "--sine",
+            "4m/s2",
+            "--freq",
+            "1",
+            "--duration",
+            "1e12",
+        ],
+        "a positive duration of at most 1000000 s",
+    );
+    refused(
+        &strs(&sine(&["--output-dt", "1e-9", "--out", "unused"])),
+        "history interval",
+    );
+    refused(
+        &strs(&sine(&["--method", "moreau", "--dt", "1e-9"])),
+        "more than 1e9 steps",
+    );
+}
+
+/// A phase is reduced exactly (in degrees): 1e18 degrees is 280 degrees to the bit, so the
+/// runs agree to the last digit; negative values are values, not unknown options.
+#[test]
+fn phases_reduce_exactly_and_negative_numbers_are_numbers() {
+    let file = common::scratch("summary.json");
+    let path = file.to_str().unwrap();
+    let summary = |phase: &str| {
+        let (code, _, err) = pirqa(&strs(&sine(&["--phase", phase, "--summary", path])));
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        v["blocks"].clone()
+    };
+    assert_eq!(summary("1e18"), summary("280"));
+    assert_eq!(summary("-80"), summary("280"));
+    let (code, _, err) = pirqa(&strs(&sine(&["--scale", "-1"])));
+    assert_eq!(code, 0, "{err}");
+    let (code, _, err) = pirqa(&[
+        "run",
+        WALL,
+        "--sine",
+        "-4m/s2",
+        "--freq",
+        "1",
+        "--duration",
+        "2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+}
+
+/// A header's point count is a claim, not an allocation: NPTS = 1e30 reads what is there and
+/// says the data end early.
+#[test]
+fn an_absurd_point_count_is_an_error_not_an_allocation() {
+    for npts in ["1e30", "1000000000000"] {
+        let f = common::file(
+            "huge.at2",
+            &format!(
+                "PEER STRONG MOTION DATABASE RECORD\nTEST\nACCELERATION TIME SERIES IN UNITS OF G\n\
+                 NPTS= {npts}, DT= .0100 SEC\n0.01 0.02 0.03\n"
+            ),
+        );
+        let path = f.to_str().unwrap();
+        refused(
+            &strs(&["run", WALL, "--record", path].map(String::from)),
+            "NPTS",
+        );
+    }
+}
+
+/// A plain record that says its units or interval twice is refused, naming the line (it was
+/// read by its last line, so a record in gal followed by a stray `# units: g` was 981 times off).
+#[test]
+fn a_record_that_says_its_units_twice_is_refused() {
+    let f = common::file(
+        "twice.txt",
+        "# units: gal\n# dt_s: 0.01\n# units: g\n1\n2\n3\n",
+    );
+    refused(
+        &[
+            "run",
+            WALL,
+            "--record",
+            f.to_str().unwrap(),
+            "--duration",
+            "1",
+        ],
+        "line 3: a second `# units:` line",
+    );
+    let f = common::file(
+        "dt.txt",
+        "# units: gal\n# dt_s: 0.01\n# dt_s: 0.02\n1\n2\n3\n",
+    );
+    refused(
+        &[
+            "run",
+            WALL,
+            "--record",
+            f.to_str().unwrap(),
+            "--duration",
+            "1",
+        ],
+        "line 3: a second `# dt_s:` line",
+    );
+}
+
+/// Sizes where masses fall towards f64's subnormals (the answer, which does not depend on the
+/// thickness, started to) are refused with the bound.
+#[test]
+fn walls_outside_the_size_bounds_are_refused() {
+    let text = std::fs::read_to_string(WALL).unwrap();
+    for thickness in ["1e-50", "5e-324", "1e9"] {
+        let f = common::file(
+            "thin.ron",
+            &text.replace("thickness_m: 0.8", &format!("thickness_m: {thickness}")),
+        );
+        refused(
+            &["check", f.to_str().unwrap()],
+            "must be a length from 0.001 to 10000 m",
+        );
+    }
+}
