@@ -45,6 +45,7 @@ pub mod samples;
 pub mod sets;
 pub mod study;
 mod table;
+pub mod text;
 pub mod topology;
 pub mod units;
 pub mod validity;

@@ -44,8 +44,39 @@ pub struct WallDescription {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub rectangles: Vec<RectangleDescription>,
     /// Friction per horizontal joint, keyed `"upper/lower"` (`"B3/B1"`, `"B1/ground"`).
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    #[serde(
+        default,
+        skip_serializing_if = "BTreeMap::is_empty",
+        deserialize_with = "unique_keys"
+    )]
     pub joint_friction: BTreeMap<String, f64>,
+}
+
+/// A map whose keys are each given once: a second value for a joint is an error, not a silent
+/// replacement of the first (which of two differing frictions did the author mean?).
+fn unique_keys<'de, D: serde::Deserializer<'de>>(d: D) -> Result<BTreeMap<String, f64>, D::Error> {
+    struct Unique;
+    impl<'de> serde::de::Visitor<'de> for Unique {
+        type Value = BTreeMap<String, f64>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("a map from joints (\"upper/lower\") to friction coefficients")
+        }
+        fn visit_map<A: serde::de::MapAccess<'de>>(
+            self,
+            mut map: A,
+        ) -> Result<Self::Value, A::Error> {
+            let mut out = BTreeMap::new();
+            while let Some((key, value)) = map.next_entry::<String, f64>()? {
+                if out.insert(key.clone(), value).is_some() {
+                    return Err(serde::de::Error::custom(format!(
+                        "joint_friction key \"{key}\" is given twice: give each joint once"
+                    )));
+                }
+            }
+            Ok(out)
+        }
+    }
+    d.deserialize_map(Unique)
 }
 
 /// One course: blocks laid left to right from `x_m`.

@@ -138,10 +138,7 @@ fn length(x: f64) -> bool {
 impl Wall {
     /// Reads and checks a wall file.
     pub fn load(path: &Path) -> Result<Wall, Error> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::text::read(path, "wall")?;
         let mut wall = Wall::from_ron_str(&text).map_err(|source| Error::Wall {
             path: path.to_path_buf(),
             source,

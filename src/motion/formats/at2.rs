@@ -70,9 +70,15 @@ impl RecordFormat for At2 {
     }
 
     fn detect(&self, text: &str) -> bool {
-        text.lines()
-            .take(6)
-            .any(|l| l.to_ascii_uppercase().contains("NPTS"))
+        // The NPTS line, or (for a file cut before it) the PEER title line that opens the
+        // format: then the reader says the file is cut short, not that a plain file lacks units.
+        let mut lines = text.lines();
+        let first = lines.next().unwrap_or_default().to_ascii_uppercase();
+        (first.starts_with("PEER") && first.contains("RECORD"))
+            || text
+                .lines()
+                .take(6)
+                .any(|l| l.to_ascii_uppercase().contains("NPTS"))
     }
 
     fn read(&self, name: &str, text: &str, _opts: &ReadOptions) -> Result<Record, MotionError> {

@@ -140,10 +140,7 @@ fn read_file(
     opts: &ReadOptions,
     companion: Option<&str>,
 ) -> Result<Record, Error> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::text::read(path, "record")?;
     let fmt = match format {
         Some(f) => format_named(f).ok_or_else(|| Error::Motion {
             path: path.to_path_buf(),

@@ -248,13 +248,6 @@ fn field(path: &Path, field: &str, rule: String) -> Error {
     )
 }
 
-fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
-    move |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    }
-}
-
 /// The bytes of a file a sweep names (`what`, as written: `path`), relative to `base` (a sweep
 /// file's own folder); a file that cannot be read is an error of the sweep `origin`, which
 /// says where it was looked for.
@@ -335,7 +328,7 @@ impl SweepDescription {
 impl Sweep {
     /// Reads a sweep file and everything it names.
     pub fn load(path: &Path) -> Result<Sweep, Error> {
-        let text = std::fs::read_to_string(path).map_err(io(path))?;
+        let text = crate::text::read(path, "sweep")?;
         let d = parse_description(&text).map_err(|source| sweep_error(path, source))?;
         let base = path.parent().unwrap_or(Path::new("."));
         Sweep::from_description(&d, base, path)
