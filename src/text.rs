@@ -1,6 +1,8 @@
-//! Reading the text files pirqa takes (walls, records, sweep files): UTF-8 with a byte-order
-//! mark dropped (spreadsheets and Windows editors write one), and a file that is empty or not
-//! text at all said to be so, instead of failing later on its first line with another name.
+//! The text files pirqa reads and writes. Reading (walls, records, sweep files): UTF-8 with a
+//! byte-order mark dropped (spreadsheets and Windows editors write one), and a file that is
+//! empty or not text at all said to be so, instead of failing later on its first line with
+//! another name. Writing (every result file): whole or not at all, so a killed run never leaves
+//! a truncated summary or table that a later run would trust.
 
 use crate::error::Error;
 use std::path::Path;
@@ -30,9 +32,47 @@ pub fn read(path: &Path, what: &str) -> Result<String, Error> {
     Ok(text)
 }
 
+/// Writes `contents` to `path` atomically: into a temporary file beside it, then renamed over
+/// it (a rename within a folder replaces the file at once), creating the folder if needed.
+pub fn write(path: &Path, contents: &str) -> Result<(), Error> {
+    let io = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| Error::Io { path, source }
+    };
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty());
+    if let Some(dir) = dir {
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+    }
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    std::fs::write(&tmp, contents).map_err(io(&tmp))?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        // Leave nothing behind: the error is about the rename.
+        let _ = std::fs::remove_file(&tmp);
+        io(path)(e)
+    })
+}
+
 #[cfg(test)]
 mod tests {
-    use super::read;
+    use super::{read, write};
+
+    #[test]
+    fn a_write_replaces_the_file_whole_and_leaves_no_temporary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("deep").join("summary.json");
+        write(&path, "first").unwrap();
+        write(&path, "second").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "second");
+        let left: Vec<_> = std::fs::read_dir(path.parent().unwrap()).unwrap().collect();
+        assert_eq!(left.len(), 1);
+        let e = write(&dir.path().join("deep"), "x")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("deep"), "{e}");
+    }
 
     #[test]
     fn a_byte_order_mark_is_dropped_and_empty_or_binary_files_are_named() {

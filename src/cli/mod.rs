@@ -139,19 +139,8 @@ pub fn run() -> Result<(), pirqa::Error> {
     }
 }
 
-/// Writes a file, naming it in the error.
-pub fn write_file(path: &std::path::Path, contents: &str) -> Result<(), pirqa::Error> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|source| pirqa::Error::Io {
-            path: dir.to_path_buf(),
-            source,
-        })?;
-    }
-    std::fs::write(path, contents).map_err(|source| pirqa::Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })
-}
+/// Writes a result file whole or not at all, naming it in the error.
+pub use pirqa::text::write as write_file;
 
 /// Prints to stdout; a closed pipe (`pirqa check ... | head`) ends the output quietly.
 pub fn print_out(text: &str) {

@@ -197,11 +197,10 @@ impl Store {
             "motions": sweep.motions.len(),
             "samples": sweep.samples(),
         });
-        std::fs::write(
+        crate::text::write(
             &manifest_path,
-            serde_json::to_string_pretty(&manifest).expect("json") + "\n",
-        )
-        .map_err(io(&manifest_path))?;
+            &(serde_json::to_string_pretty(&manifest).expect("json") + "\n"),
+        )?;
         let cases = rewrite(&cases_path, CASES_HEADER, &rows)?;
         let blocks = rewrite(&blocks_path, BLOCKS_HEADER, &block_rows)?;
         Ok(Store {
