@@ -258,3 +258,62 @@ fn a_joint_given_twice_is_refused() {
         "joint_friction key \"B5/B2\" is given twice",
     );
 }
+
+/// A sweep killed (SIGKILL) at several points and resumed each time ends with the results of an
+/// uninterrupted sweep: every row but its CPU time, in the same order.
+#[test]
+fn a_sweep_killed_and_resumed_equals_an_uninterrupted_one() {
+    let study = "walls/studies/paper-fig3-4.ron";
+    let base = common::scratch("kill");
+    let (whole, cut) = (base.join("whole"), base.join("cut"));
+    let (code, _, err) = pirqa(&["sweep", study, "--out", whole.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    // Kill the first run and each resumption after a different delay (ms).
+    let mut finished = false;
+    for (k, delay) in [150u64, 400, 250, 700].into_iter().enumerate() {
+        let mut args = vec![
+            "sweep",
+            study,
+            "--out",
+            cut.to_str().unwrap(),
+            "--threads",
+            "1",
+        ];
+        if k > 0 {
+            args.push("--resume");
+        }
+        let mut child = Command::new(env!("CARGO_BIN_EXE_pirqa"))
+            .args(&args)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(delay));
+        if child.try_wait().unwrap().is_some() {
+            finished = true;
+            break;
+        }
+        child.kill().unwrap();
+        child.wait().unwrap();
+    }
+    if !finished {
+        let (code, _, err) = pirqa(&["sweep", study, "--out", cut.to_str().unwrap(), "--resume"]);
+        assert_eq!(code, 0, "{err}");
+    }
+    let rows = |dir: &std::path::Path| -> Vec<String> {
+        let text = std::fs::read_to_string(dir.join("cases.csv")).unwrap();
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let cpu = header.iter().position(|h| *h == "cpu_s").unwrap();
+        lines
+            .map(|l| {
+                let mut f: Vec<&str> = l.split(',').collect();
+                f.remove(cpu);
+                f.join(",")
+            })
+            .collect()
+    };
+    let whole_rows = rows(&whole);
+    assert_eq!(whole_rows.len(), 1200);
+    assert_eq!(rows(&cut), whole_rows);
+}
