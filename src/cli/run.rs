@@ -129,6 +129,16 @@ pub fn build_motion(
     duration: Option<f64>,
     g: f64,
 ) -> Result<(Motion, Vec<String>), Error> {
+    // clap's `requires = "record"` is not enforced beside `--sine` (which conflicts with
+    // `--record`), and a vertical component given there would be dropped without a word.
+    if m.vertical.is_some() && m.record.is_none() {
+        return Err(bad(
+            "--vertical",
+            "a vertical component goes with --record; a sine or a pulse has none: leave \
+             --vertical out"
+                .into(),
+        ));
+    }
     let pga = m.pga.as_deref().map(parse_acceleration).transpose()?;
     // A sine's or a pulse's amplitude: as given, set to --pga, then times --scale.
     let amplitude = |text: &str, notes: &mut Vec<String>| -> Result<f64, Error> {

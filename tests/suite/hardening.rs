@@ -317,3 +317,13 @@ fn a_sweep_killed_and_resumed_equals_an_uninterrupted_one() {
     assert_eq!(whole_rows.len(), 1200);
     assert_eq!(rows(&cut), whole_rows);
 }
+
+/// A vertical component beside a sine was dropped without a word, even from a file that does
+/// not exist.
+#[test]
+fn a_vertical_component_beside_a_sine_is_refused() {
+    refused(
+        &strs(&sine(&["--vertical", "nowhere.at2"])),
+        "--vertical: a vertical component goes with --record",
+    );
+}
