@@ -2,13 +2,14 @@
 //! energy input and the friction work, displacement and velocity extremes, and the sampled
 //! history.
 
+use super::cluster::ClusterId;
 use super::roots::{self, Fun};
-use super::{cluster, Engine, NONE};
+use super::{cluster, Engine};
 
 impl Engine<'_> {
     /// Energy input and displacement/velocity extremes of every sliding cluster up to t.
     pub(super) fn account_all(&mut self, t: f64) {
-        for k in 0..self.clusters.len() {
+        for k in self.clusters.ids() {
             if !self.clusters[k].blocks.is_empty() {
                 self.account(k, t);
             }
@@ -16,7 +17,7 @@ impl Engine<'_> {
     }
 
     /// Energy input and extremes of cluster k from where it was accounted to t (same segment).
-    pub(super) fn account(&mut self, k: usize, t: f64) {
+    pub(super) fn account(&mut self, k: ClusterId, t: f64) {
         let t_a = self.clusters[k].accounted_to;
         self.clusters[k].accounted_to = t;
         let Some(sl) = self.clusters[k].slide().cloned() else {
@@ -63,7 +64,7 @@ impl Engine<'_> {
     }
 
     /// Hands cluster k's extremes to its blocks: before their references change, and at the end.
-    pub(super) fn record_extremes(&mut self, k: usize) {
+    pub(super) fn record_extremes(&mut self, k: ClusterId) {
         let e = std::mem::take(&mut self.clusters[k].extremes);
         for &i in &self.clusters[k].blocks {
             self.rec.block_accel(i, e.accel_m_s2);
@@ -148,7 +149,7 @@ impl Engine<'_> {
     fn block_disp_integral(&self, i: usize, t_a: f64) -> f64 {
         let span = self.t - t_a;
         match self.of[i] {
-            NONE => self.u_ref[i] * span,
+            ClusterId::NONE => self.u_ref[i] * span,
             k => {
                 self.u_ref[i] * span
                     + self.clusters[k]

@@ -202,6 +202,56 @@ pub struct GroundHits {
     pub hits: [Option<f64>; 3],
 }
 
+/// Index of a cluster in the engine's [`Clusters`] (the slot of a dissolved cluster is reused,
+/// so an id names a cluster only with its version).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct ClusterId(pub usize);
+
+impl ClusterId {
+    /// No cluster: a fixed or fallen block's.
+    pub const NONE: ClusterId = ClusterId(usize::MAX);
+}
+
+/// The clusters of a run, indexed by [`ClusterId`].
+#[derive(Debug, Clone, Default)]
+pub struct Clusters(Vec<Cluster>);
+
+impl Clusters {
+    /// Every slot's id, live or emptied.
+    pub fn ids(&self) -> impl Iterator<Item = ClusterId> + use<> {
+        (0..self.0.len()).map(ClusterId)
+    }
+
+    /// The cluster in slot k, if there is such a slot.
+    pub fn get(&self, k: ClusterId) -> Option<&Cluster> {
+        self.0.get(k.0)
+    }
+
+    /// Every cluster, emptied slots included.
+    pub fn iter_mut(&mut self) -> std::slice::IterMut<'_, Cluster> {
+        self.0.iter_mut()
+    }
+
+    /// A new slot.
+    pub fn push(&mut self, c: Cluster) -> ClusterId {
+        self.0.push(c);
+        ClusterId(self.0.len() - 1)
+    }
+}
+
+impl std::ops::Index<ClusterId> for Clusters {
+    type Output = Cluster;
+    fn index(&self, k: ClusterId) -> &Cluster {
+        &self.0[k.0]
+    }
+}
+
+impl std::ops::IndexMut<ClusterId> for Clusters {
+    fn index_mut(&mut self, k: ClusterId) -> &mut Cluster {
+        &mut self.0[k.0]
+    }
+}
+
 /// A cluster.
 #[derive(Debug, Clone)]
 pub struct Cluster {

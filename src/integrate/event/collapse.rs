@@ -2,8 +2,9 @@
 //! its span is checked against the block's centroid (does it still stand?), and a block that
 //! no longer stands falls, ending the run or leaving it (`AfterCollapse`).
 
+use super::cluster::ClusterId;
 use super::queue::Constraint;
-use super::{Engine, NONE};
+use super::Engine;
 use crate::error::SimulationError;
 use crate::integrate::AfterCollapse;
 use crate::response::{Collapse, CollapseCause, EventKind};
@@ -12,8 +13,8 @@ use std::cmp::Ordering;
 impl Engine<'_> {
     pub(super) fn constraint_reached(
         &mut self,
-        a: usize,
-        b: Option<usize>,
+        a: ClusterId,
+        b: Option<ClusterId>,
         c: Constraint,
     ) -> Result<(), SimulationError> {
         match c {
@@ -40,7 +41,7 @@ impl Engine<'_> {
     /// edge of the span, it falls if it is moving out (velocity, then acceleration).
     pub(super) fn stands(&self, i: usize) -> bool {
         let state = |b: usize| -> [f64; 3] {
-            if self.of[b] == NONE {
+            if self.of[b] == ClusterId::NONE {
                 return [self.u_ref[b], 0.0, 0.0];
             }
             let k = self.of[b];

@@ -2,7 +2,8 @@
 //! (resolved exactly by [`impact::resolve`]), other chains that collide at the same instant on
 //! the same clusters, and Zeno series of bounces summed in closed form.
 
-use super::{cluster, impact, Engine, NONE};
+use super::cluster::ClusterId;
+use super::{cluster, impact, Engine};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::response::{DecisionCause as Cause, EventKind};
@@ -49,7 +50,7 @@ impl Engine<'_> {
         };
         let mut seeds = Vec::new();
         for i in [l, r] {
-            if self.of[i] != NONE {
+            if self.of[i] != ClusterId::NONE {
                 seeds.extend(self.clusters[self.of[i]].blocks.iter().copied());
             }
         }
@@ -170,7 +171,7 @@ impl Engine<'_> {
         chains: &mut Vec<(Chain, Vec<impact::Collision>, Q, Vec<impact::Body>)>,
         seen: &mut [bool],
     ) -> Result<(), SimulationError> {
-        let mut scanned: Vec<usize> = Vec::new();
+        let mut scanned: Vec<ClusterId> = Vec::new();
         let mut next = 0;
         while next < chains.len() {
             let hit: Vec<usize> = chains[next]
@@ -184,7 +185,7 @@ impl Engine<'_> {
             for b in hit {
                 let k = self.of[b];
                 let members = match k {
-                    NONE => std::slice::from_ref(&b),
+                    ClusterId::NONE => std::slice::from_ref(&b),
                     k if scanned.contains(&k) => continue,
                     k => {
                         scanned.push(k);
@@ -320,7 +321,7 @@ impl Engine<'_> {
             for other in self.live_neighbours(b) {
                 let w = vb - other.map_or(0.0, |o| self.block_vel(o));
                 let (dw_lo, dw_hi) = match other
-                    .filter(|&o| self.of[o] != NONE)
+                    .filter(|&o| self.of[o] != ClusterId::NONE)
                     .and_then(|o| self.clusters[self.of[o]].slide())
                 {
                     Some(so) => (cb - so.c, cb - so.c),
@@ -352,8 +353,8 @@ impl Engine<'_> {
             self.given.topo.joints[j].right.0,
         );
         let (kl, kr) = (self.of[l], self.of[r]);
-        if kl == NONE
-            || kr == NONE
+        if kl == ClusterId::NONE
+            || kr == ClusterId::NONE
             || self.clusters[kl].blocks.len() != 1
             || self.clusters[kr].blocks.len() != 1
         {

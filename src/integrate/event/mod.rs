@@ -25,6 +25,11 @@
 //! | a split: a sliding cluster whose friction changed | step 8 of `Engine::regroup` | `Engine::regroup` | as above |
 //! | end of a ground-motion segment | `Queue::pop_until` finds nothing before it | `Engine::enter_segment` | nothing, unless a_g jumps past a limit |
 //!
+//! Clusters are named by `ClusterId` (`cluster.rs`, with `Clusters`, the table they live in,
+//! and `ClusterId::NONE` for a fixed or fallen block's), beside the topology's `BlockId`,
+//! `SupportId` and `JointId`; blocks, supports and joints are plain indices inside the engine,
+//! where every table is indexed by them.
+//!
 //! Stuck clusters get their stick intervals in `stuck.rs` (`Engine::set_thresholds`, from
 //! `Problem::stick_sides_*` in solver/stick.rs); `accounting.rs` keeps the energies, extremes
 //! and history between events; `queue.rs` orders the events and drops stale ones; `memo.rs`
@@ -52,7 +57,7 @@ use crate::motion::{Motion, Segment};
 use crate::response::{DecisionCause as Cause, Recorder, Response};
 use crate::topology::{Base, Topology};
 use crate::wall::Wall;
-use cluster::{Cluster, Motion as ClusterMotion};
+use cluster::{ClusterId, Clusters, Motion as ClusterMotion};
 use memo::Memo;
 use queue::{Ev, Pending, Queue};
 use roots::Counter;
@@ -135,9 +140,6 @@ const ROUNDOFF_ULPS: f64 = 1024.0;
 /// guard ([`Params::max_events_per_instant`]).
 const PROGRESS_WINDOW_ULPS: f64 = 1e6;
 
-/// Marks a block that belongs to no cluster (fixed or fallen).
-const NONE: usize = usize::MAX;
-
 /// What a run is given and never changes: the wall, its graph, the motion and the settings,
 /// and the numbers of blocks and joints read off them once, exact and as floats.
 struct Given<'a> {
@@ -190,7 +192,7 @@ struct Scratch {
     /// Of the mode decisions.
     decisions: regroup::Buffers,
     /// Of the scheduling: pairs of sliding clusters.
-    pairs: Vec<(usize, usize)>,
+    pairs: Vec<(ClusterId, ClusterId)>,
 }
 
 /// The event-driven engine of one run: what it was given, the state of the wall (clusters,
@@ -202,11 +204,11 @@ pub(crate) struct Engine<'a> {
     fallen: Vec<bool>,
     t: f64,
     seg: Segment,
-    /// Per block: its cluster (`NONE`: fixed or fallen).
-    of: Vec<usize>,
+    /// Per block: its cluster (`ClusterId::NONE`: fixed or fallen).
+    of: Vec<ClusterId>,
     /// Clusters (slots of emptied ones are reused, listed in `free`).
-    clusters: Vec<Cluster>,
-    free: Vec<usize>,
+    clusters: Clusters,
+    free: Vec<ClusterId>,
     /// Per block: its displacement when its cluster formed (m).
     u_ref: Vec<f64>,
     /// Per support: its joint stuck or slipping, and which way.
@@ -287,8 +289,8 @@ impl<'a> Engine<'a> {
             fallen: vec![false; n],
             t: 0.0,
             seg,
-            of: vec![NONE; n],
-            clusters: Vec::new(),
+            of: vec![ClusterId::NONE; n],
+            clusters: Clusters::default(),
             free: Vec::new(),
             u_ref: vec![0.0; n],
             slip: vec![Slip::Stuck; topo.supports.len()],
@@ -375,25 +377,25 @@ impl<'a> Engine<'a> {
     }
 
     /// Displacement gained by cluster k since it formed (m), at the current time.
-    fn cluster_disp(&self, k: usize) -> f64 {
+    fn cluster_disp(&self, k: ClusterId) -> f64 {
         self.clusters[k].slide().map_or(0.0, |sl| sl.disp(self.t))
     }
 
     /// Velocity of cluster k relative to the ground (m/s), at the current time.
-    fn cluster_vel(&self, k: usize) -> f64 {
+    fn cluster_vel(&self, k: ClusterId) -> f64 {
         self.clusters[k].slide().map_or(0.0, |sl| sl.vel(self.t))
     }
 
     fn block_disp(&self, i: usize) -> f64 {
         match self.of[i] {
-            NONE => self.u_ref[i],
+            ClusterId::NONE => self.u_ref[i],
             k => self.u_ref[i] + self.cluster_disp(k),
         }
     }
 
     fn block_vel(&self, i: usize) -> f64 {
         match self.of[i] {
-            NONE => 0.0,
+            ClusterId::NONE => 0.0,
             k => self.cluster_vel(k),
         }
     }
@@ -401,7 +403,7 @@ impl<'a> Engine<'a> {
     /// True for the ground side of a joint: the ground, an abutment, or a block stuck to the
     /// ground.
     fn grounded(&self, i: usize) -> bool {
-        self.of[i] == NONE
+        self.of[i] == ClusterId::NONE
             || matches!(
                 self.clusters[self.of[i]].motion,
                 ClusterMotion::Stuck { .. }
@@ -433,7 +435,7 @@ impl<'a> Engine<'a> {
     /// The blocks of cluster k that have a support or a face to the ground or to a block
     /// outside it ([`Cluster::boundary`](cluster::Cluster)): a large body's contacts with the
     /// rest of the wall, found from a fraction of its blocks.
-    fn boundary(&self, k: usize) -> &[usize] {
+    fn boundary(&self, k: ClusterId) -> &[usize] {
         self.clusters[k].boundary.get_or_init(|| {
             let outside = |o: usize| self.of[o] != k;
             self.clusters[k]
@@ -515,7 +517,7 @@ impl<'a> Engine<'a> {
         // A sliding cluster's closed form is rebased on the new segment: what it did on this
         // one is booked first. A stuck one moves with the ground, whatever the segment, and is
         // booked when it dissolves (a stuck wall costs nothing per block and segment).
-        for k in 0..self.clusters.len() {
+        for k in self.clusters.ids() {
             if !self.clusters[k].blocks.is_empty() && self.clusters[k].slide().is_some() {
                 self.account(k, t);
             }
@@ -523,7 +525,7 @@ impl<'a> Engine<'a> {
         self.seg = self.given.motion.segment_at(t);
         self.rec.stats.segments += 1;
         let seg = self.seg;
-        for c in &mut self.clusters {
+        for c in self.clusters.iter_mut() {
             if let ClusterMotion::Sliding(sl) = &mut c.motion {
                 if !c.blocks.is_empty() {
                     sl.rebase(&seg);
@@ -534,12 +536,14 @@ impl<'a> Engine<'a> {
         }
         if self.given.motion.has_vertical() {
             // Relative motion of sliding clusters involves lambda(t): re-found per segment.
-            let live: Vec<usize> = (0..self.clusters.len())
+            let live: Vec<ClusterId> = self
+                .clusters
+                .ids()
                 .filter(|&k| !self.clusters[k].blocks.is_empty())
                 .collect();
             self.schedule(live);
         } else {
-            for k in 0..self.clusters.len() {
+            for k in self.clusters.ids() {
                 if !self.clusters[k].blocks.is_empty() {
                     self.schedule_segment(k);
                 }
@@ -610,7 +614,7 @@ impl<'a> Engine<'a> {
         let t = self.t.min(self.given.t_end);
         self.t = t;
         self.account_all(t);
-        for k in 0..self.clusters.len() {
+        for k in self.clusters.ids() {
             self.record_extremes(k);
         }
         for s in 0..self.given.topo.supports.len() {

@@ -2,7 +2,7 @@
 //! joints stopping, then thresholds), then by the order they were found; stale events (of
 //! clusters that changed since) are skipped when popped and purged when they pile up.
 
-use super::cluster::Cluster;
+use super::cluster::{ClusterId, Clusters};
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
@@ -23,31 +23,31 @@ pub(super) enum Constraint {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Ev {
     Threshold {
-        k: usize,
+        k: ClusterId,
         ver: u64,
         upper: bool,
     },
     Stop {
-        k: usize,
+        k: ClusterId,
         ver: u64,
         ground: u64,
     },
     GroundBound {
-        k: usize,
+        k: ClusterId,
         ver: u64,
         ground: u64,
         c: Constraint,
     },
     Meet {
-        a: usize,
+        a: ClusterId,
         va: u64,
-        b: usize,
+        b: ClusterId,
         vb: u64,
     },
     PairBound {
-        a: usize,
+        a: ClusterId,
         va: u64,
-        b: usize,
+        b: ClusterId,
         vb: u64,
         c: Constraint,
     },
@@ -94,8 +94,8 @@ impl Ord for Pending {
 }
 
 /// Is the event still one of the current clusters (their versions unchanged)?
-pub(super) fn is_current(clusters: &[Cluster], ev: &Ev) -> bool {
-    let ok = |k: usize, v: u64| {
+pub(super) fn is_current(clusters: &Clusters, ev: &Ev) -> bool {
+    let ok = |k: ClusterId, v: u64| {
         clusters
             .get(k)
             .is_some_and(|c| c.version == v && !c.blocks.is_empty())
@@ -130,7 +130,7 @@ impl Default for Queue {
 impl Queue {
     /// The first current event at or before `limit`, taken off the queue (the stale ones
     /// before it are dropped).
-    pub(super) fn pop_until(&mut self, limit: f64, clusters: &[Cluster]) -> Option<Pending> {
+    pub(super) fn pop_until(&mut self, limit: f64, clusters: &Clusters) -> Option<Pending> {
         while let Some(Reverse(p)) = self.heap.peek().copied() {
             if p.t > limit {
                 return None;
@@ -144,7 +144,7 @@ impl Queue {
     }
 
     /// The time of the earliest current event (infinite if none).
-    pub(super) fn earliest(&self, clusters: &[Cluster]) -> f64 {
+    pub(super) fn earliest(&self, clusters: &Clusters) -> f64 {
         self.heap
             .iter()
             .filter(|p| is_current(clusters, &p.0.ev))
@@ -156,7 +156,7 @@ impl Queue {
     /// when popped; on a large wall far more go stale than are popped (a pair's events are found
     /// up to the end of the run), so the queue is purged of them whenever it has doubled. The
     /// order of the events kept does not change.
-    pub(super) fn push(&mut self, t: f64, ev: Ev, clusters: &[Cluster]) {
+    pub(super) fn push(&mut self, t: f64, ev: Ev, clusters: &Clusters) {
         self.seq += 1;
         self.heap.push(Reverse(Pending {
             t,

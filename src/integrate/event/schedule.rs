@@ -9,6 +9,7 @@
 //!   their relative displacement reaching a gap or collapse threshold. a_g cancels: these are
 //!   polynomials, found once per mode, whatever the segments.
 
+use super::cluster::ClusterId;
 use super::cluster::{GroundHits, Motion, Slide};
 use super::queue::{Constraint, Ev};
 use super::roots::{first_violation, polish, sign_changes, valid_after, Fun};
@@ -63,7 +64,7 @@ impl Bounds {
 impl Engine<'_> {
     /// Schedules the next events of the given clusters and of every pair of sliding clusters
     /// among them and their neighbours.
-    pub(super) fn schedule(&mut self, ks: impl IntoIterator<Item = usize>) {
+    pub(super) fn schedule(&mut self, ks: impl IntoIterator<Item = ClusterId>) {
         let mut pairs = std::mem::take(&mut self.scratch.pairs);
         for k in ks {
             if self.clusters[k].blocks.is_empty() {
@@ -85,7 +86,7 @@ impl Engine<'_> {
     }
 
     /// Events of cluster k that involve a_g, up to the end of the current segment.
-    pub(super) fn schedule_segment(&mut self, k: usize) {
+    pub(super) fn schedule_segment(&mut self, k: ClusterId) {
         let seg = self.seg;
         let (t0, t1) = (self.t, seg.t1.min(self.given.t_end));
         let ver = self.clusters[k].version;
@@ -165,7 +166,7 @@ impl Engine<'_> {
     #[allow(clippy::too_many_arguments)]
     fn ground_hits(
         &mut self,
-        k: usize,
+        k: ClusterId,
         sl: &Slide,
         sigma: i8,
         bounds: &Bounds,
@@ -235,7 +236,7 @@ impl Engine<'_> {
     }
 
     /// Calls `f` with each sliding cluster sharing a joint with cluster k (once per joint).
-    fn sliding_neighbours(&self, k: usize, mut f: impl FnMut(usize)) {
+    fn sliding_neighbours(&self, k: ClusterId, mut f: impl FnMut(ClusterId)) {
         for &i in self.boundary(k) {
             let others = self.live_neighbours(i).flatten();
             let sides = self.given.topo.sides[i]
@@ -244,7 +245,7 @@ impl Engine<'_> {
                 .map(|j| self.across_joint(j.0, i));
             for o in others.chain(sides) {
                 let m = self.of[o];
-                if m != super::NONE && m != k && self.clusters[m].slide().is_some() {
+                if m != ClusterId::NONE && m != k && self.clusters[m].slide().is_some() {
                     f(m);
                 }
             }
@@ -265,7 +266,7 @@ impl Engine<'_> {
 
     /// For sliding cluster k against the ground side: the direction it slides on it (0 if it
     /// slides on nothing grounded) and the bounds on its displacement since formation.
-    fn ground_constraints(&self, k: usize) -> (i8, Bounds) {
+    fn ground_constraints(&self, k: ClusterId) -> (i8, Bounds) {
         let du = self.cluster_disp(k);
         let tol = self.len_tol(du, 0.0);
         let mut sigma = 0i8;
@@ -334,7 +335,7 @@ impl Engine<'_> {
     }
 
     /// Events between sliding clusters a and b: polynomials in time, found once for the mode.
-    fn schedule_pair(&mut self, a: usize, b: usize) {
+    fn schedule_pair(&mut self, a: ClusterId, b: ClusterId) {
         let (ca, cb) = (&self.clusters[a], &self.clusters[b]);
         let (Some(sa), Some(sb)) = (ca.slide(), cb.slide()) else {
             return;

@@ -2,11 +2,12 @@
 //! remembered or kept as bounds from inside after a change, and the pieces of a decision whose
 //! clusters it shows stuck without the general decision.
 
+use super::cluster::ClusterId;
 use super::cluster::Motion;
 use super::regroup::{Local, BODY_FROM};
 use super::slip::Slip;
 use super::solver::{weaker_limit, End, Group, Lex, Problem, Stick};
-use super::{Engine, NONE};
+use super::Engine;
 use crate::exact::Q;
 use crate::topology::Base;
 use rustc_hash::FxHashMap;
@@ -18,14 +19,14 @@ const BREAKING_HINTS: usize = 32;
 
 impl Engine<'_> {
     /// The exact stick interval of stuck cluster k (a_g has reached a bound of it).
-    pub(super) fn set_exact_thresholds(&mut self, k: usize) {
+    pub(super) fn set_exact_thresholds(&mut self, k: ClusterId) {
         self.set_thresholds(k, None);
     }
 
     /// The stick interval of stuck cluster k after a decision that changed `before` (limits
     /// it cannot have narrowed are kept as bounds, [`Engine::kept_limits`]); without it, exact
     /// (no limit is a bound, [`Stick::bound_only`]).
-    pub(super) fn set_thresholds(&mut self, k: usize, before: Option<&Before>) {
+    pub(super) fn set_thresholds(&mut self, k: ClusterId, before: Option<&Before>) {
         self.clusters[k].blocks.sort_unstable();
         let members = self.clusters[k].blocks.clone();
         let mut local = Local::reuse(
@@ -273,10 +274,10 @@ impl Engine<'_> {
         if piece.len() <= self.given.params.beside_stuck_from {
             return None;
         }
-        let mut count: Vec<(usize, usize)> = Vec::new();
+        let mut count: Vec<(ClusterId, usize)> = Vec::new();
         for &k in piece {
             let c = self.of[blocks[k]];
-            if c == NONE || self.clusters[c].slide().is_some() {
+            if c == ClusterId::NONE || self.clusters[c].slide().is_some() {
                 continue;
             }
             match count.iter_mut().find(|(d, _)| *d == c) {
@@ -383,10 +384,10 @@ impl Engine<'_> {
                 .unwrap_or(self.slip[s])
         };
         // The limits of cluster k as it was (`None`: it slid, or there is none).
-        let limits = |k: usize| -> Option<[&Option<Q>; 2]> {
+        let limits = |k: ClusterId| -> Option<[&Option<Q>; 2]> {
             match before.and_then(|x| x.limits.get(&k)) {
                 Some(kept) => kept.as_ref().map(|[lo, hi]| [lo, hi]),
-                None if k == NONE => None,
+                None if k == ClusterId::NONE => None,
                 None => match &self.clusters[k].motion {
                     Motion::Stuck { lo_q, hi_q, .. } => Some([lo_q, hi_q]),
                     Motion::Sliding(_) => None,
@@ -508,8 +509,8 @@ enum Change<'a> {
 /// is as it was.
 #[derive(Debug, Default)]
 pub(super) struct Before {
-    pub(super) of: FxHashMap<usize, usize>,
-    pub(super) limits: FxHashMap<usize, Option<[Option<Q>; 2]>>,
+    pub(super) of: FxHashMap<usize, ClusterId>,
+    pub(super) limits: FxHashMap<ClusterId, Option<[Option<Q>; 2]>>,
     pub(super) slip: FxHashMap<usize, Slip>,
 }
 

@@ -3,10 +3,11 @@
 use super::scratch::{Local, SetVel};
 use super::solving::BODY_FROM;
 use crate::exact::Q;
+use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::cluster::Motion;
 use crate::integrate::event::slip::Slip;
 use crate::integrate::event::solver::{End, Problem};
-use crate::integrate::event::{Engine, NONE};
+use crate::integrate::event::Engine;
 use crate::response::StuckGroup;
 use crate::sets::DisjointSets;
 use rustc_hash::FxHashMap;
@@ -26,18 +27,18 @@ impl Engine<'_> {
         set_vel: &SetVel,
         local: &mut Local,
         blocks: &mut Vec<usize>,
-        old_clusters: &mut Vec<usize>,
+        old_clusters: &mut Vec<ClusterId>,
         queue: &mut Vec<usize>,
     ) {
         let add = |b: usize,
                    this: &Engine,
                    local: &mut Local,
                    blocks: &mut Vec<usize>,
-                   old: &mut Vec<usize>,
+                   old: &mut Vec<ClusterId>,
                    queue: &mut Vec<usize>| {
             // Once per cluster: its first block brings in all the others.
             let members: &[usize] = match this.of[b] {
-                NONE => std::slice::from_ref(&b),
+                ClusterId::NONE => std::slice::from_ref(&b),
                 k => {
                     old.push(k);
                     &this.clusters[k].blocks
@@ -168,7 +169,7 @@ impl Engine<'_> {
     /// held to the rest they would fail the first try, which costs a cut over the body.
     pub(super) fn sliding_bodies(
         &self,
-        old_clusters: &[usize],
+        old_clusters: &[ClusterId],
         local: &Local,
         set_vel: &SetVel,
     ) -> Vec<Vec<usize>> {
@@ -203,7 +204,7 @@ impl Engine<'_> {
     }
 
     /// The largest of these clusters that is stuck to the ground, for the decision log.
-    pub(super) fn largest_stuck(&self, clusters: &[usize]) -> Option<StuckGroup> {
+    pub(super) fn largest_stuck(&self, clusters: &[ClusterId]) -> Option<StuckGroup> {
         clusters
             .iter()
             .filter_map(|&k| match &self.clusters[k].motion {

@@ -2,9 +2,10 @@
 
 use crate::error::SimulationError;
 use crate::exact::Q;
+use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::cluster::{Cluster, Motion, Slide};
 use crate::integrate::event::slip::Slip;
-use crate::integrate::event::{Engine, NONE};
+use crate::integrate::event::Engine;
 use crate::response::{DecisionCause as Cause, EventKind};
 use std::cell::OnceCell;
 
@@ -28,7 +29,7 @@ impl Engine<'_> {
             {
                 self.account_support(s.0);
             }
-            if self.of[i] != NONE {
+            if self.of[i] != ClusterId::NONE {
                 let k = self.of[i];
                 self.account(k, self.t);
                 self.record_extremes(k);
@@ -59,7 +60,7 @@ impl Engine<'_> {
             .filter(|&i| !self.given.fixed[i] && !self.fallen[i])
             .collect();
         let set_vel: Vec<(usize, f64)> = live.iter().map(|&i| (i, self.block_vel(i))).collect();
-        for k in 0..self.clusters.len() {
+        for k in self.clusters.ids() {
             if self.clusters[k].blocks.is_empty() {
                 continue;
             }
@@ -69,7 +70,7 @@ impl Engine<'_> {
             let members = std::mem::take(&mut self.clusters[k].blocks);
             for i in members {
                 self.u_ref[i] += moved;
-                self.of[i] = NONE;
+                self.of[i] = ClusterId::NONE;
             }
             self.clusters[k].version = self.new_version();
             self.free.push(k);

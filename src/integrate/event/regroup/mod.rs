@@ -7,6 +7,7 @@ mod fallen;
 mod scratch;
 mod solving;
 
+use super::cluster::ClusterId;
 use scratch::SetVel;
 pub(super) use scratch::{Buffers, Local};
 pub(super) use solving::BODY_FROM;
@@ -16,7 +17,7 @@ use super::flow;
 use super::slip::Slip;
 use super::solver::Lex;
 use super::stuck::{stuck, Before};
-use super::{Engine, NONE};
+use super::Engine;
 use crate::clock::ThreadClock;
 use crate::error::SimulationError;
 use crate::exact::Q;
@@ -214,13 +215,14 @@ impl Engine<'_> {
         for (v, kept) in [
             (blocks, &mut buf.blocks),
             (queue, &mut buf.queue),
-            (old_clusters, &mut buf.old),
             (touched_supports, &mut buf.supports),
             (touched_joints, &mut buf.joints),
         ] {
             *kept = v;
             kept.clear();
         }
+        buf.old = old_clusters;
+        buf.old.clear();
         buf.u.clear();
         buf.v.clear();
         buf.group_of.clear();
@@ -236,7 +238,7 @@ impl Engine<'_> {
         // against has changed, so its events against the ground side are found again. A large
         // body beside a small decision then costs a pass over its own blocks, not one over every
         // sliding cluster along it.
-        let quiet: Vec<usize> = neighbours
+        let quiet: Vec<ClusterId> = neighbours
             .into_iter()
             .filter(|k| pushed.binary_search(k).is_err() && self.clusters[*k].slide().is_some())
             .collect();
@@ -301,16 +303,16 @@ impl Engine<'_> {
         set_vel: &SetVel,
         accel_of: &dyn Fn(Option<usize>) -> Lex,
         before: &mut Before,
-    ) -> (Vec<usize>, Vec<usize>) {
-        let mut neighbours: Vec<usize> = Vec::new();
-        let mut pushed: Vec<usize> = Vec::new();
+    ) -> (Vec<ClusterId>, Vec<ClusterId>) {
+        let mut neighbours: Vec<ClusterId> = Vec::new();
+        let mut pushed: Vec<ClusterId> = Vec::new();
         for &s in touched_supports {
             if !self.live_support(s) {
                 continue;
             }
             let (up, lo) = self.support_ends(s);
             for b in std::iter::once(up).chain(lo) {
-                if !local.contains_key(&b) && self.of[b] != NONE {
+                if !local.contains_key(&b) && self.of[b] != ClusterId::NONE {
                     neighbours.push(self.of[b]);
                 }
             }
@@ -334,7 +336,7 @@ impl Engine<'_> {
             if old != new {
                 before.slip.insert(s, old);
                 for b in std::iter::once(up).chain(lo) {
-                    if !local.contains_key(&b) && self.of[b] != NONE {
+                    if !local.contains_key(&b) && self.of[b] != ClusterId::NONE {
                         pushed.push(self.of[b]);
                     }
                 }
@@ -366,11 +368,11 @@ impl Engine<'_> {
             let jt = &self.given.topo.joints[j];
             let (l, r) = (jt.left.0, jt.right.0);
             for b in [l, r] {
-                if !local.contains_key(&b) && self.of[b] != NONE {
+                if !local.contains_key(&b) && self.of[b] != ClusterId::NONE {
                     neighbours.push(self.of[b]);
                 }
             }
-            let together = (self.of[l] == self.of[r] && self.of[l] != NONE)
+            let together = (self.of[l] == self.of[r] && self.of[l] != ClusterId::NONE)
                 || (self.grounded(l) && self.grounded(r));
             if self.touching[j] && !together && self.is_touching(j) {
                 self.touching[j] = false;
@@ -388,22 +390,19 @@ impl Engine<'_> {
         (neighbours, pushed)
     }
 
-    fn alloc(&mut self, c: Cluster) -> usize {
+    fn alloc(&mut self, c: Cluster) -> ClusterId {
         match self.free.pop() {
             Some(k) => {
                 self.clusters[k] = c;
                 k
             }
-            None => {
-                self.clusters.push(c);
-                self.clusters.len() - 1
-            }
+            None => self.clusters.push(c),
         }
     }
 
     /// A neighbour of the re-decided clusters one of whose joints the decision turned (after an
     /// impact): its friction forces have changed; it gets a new version and fresh events.
-    fn refresh(&mut self, k: usize, before: &Before) {
+    fn refresh(&mut self, k: ClusterId, before: &Before) {
         let t = self.t;
         match &self.clusters[k].motion {
             Motion::Stuck { .. } => self.set_thresholds(k, Some(before)),

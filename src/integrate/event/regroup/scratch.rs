@@ -1,7 +1,10 @@
 //! SCRATCH
 
+use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::solver::Problem;
-use crate::integrate::event::NONE;
+
+/// No local index: a block outside the decision problem.
+pub(in crate::integrate::event) const NONE: usize = usize::MAX;
 
 /// The local index of each block in a decision problem (`NONE` outside it): a table over all
 /// blocks, because a decision can take in most of a large wall.
@@ -96,7 +99,7 @@ pub(in crate::integrate::event) struct Buffers {
     pub(super) blocks: Vec<usize>,
     pub(super) queue: Vec<usize>,
     /// The clusters the component's blocks belonged to.
-    pub(super) old: Vec<usize>,
+    pub(super) old: Vec<ClusterId>,
     /// The supports and vertical joints at the component's blocks.
     pub(super) supports: Vec<usize>,
     pub(super) joints: Vec<usize>,

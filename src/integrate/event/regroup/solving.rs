@@ -1,11 +1,13 @@
 //! SOLVING
 
+use super::scratch::NONE;
 use super::scratch::{Local, SetVel};
 use crate::exact::Q;
+use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::slip::Slip;
 use crate::integrate::event::solver::{End, Group, Lex, Problem};
 use crate::integrate::event::stuck::Limits;
-use crate::integrate::event::{Engine, NONE};
+use crate::integrate::event::Engine;
 
 /// A ground acceleration within rounding of a breakpoint of the decision is snapped to it; the
 /// set_vel can move the breakpoint that matters at most this many times.
@@ -50,7 +52,7 @@ impl Engine<'_> {
         &mut self,
         p: &Problem,
         blocks: &[usize],
-        old_clusters: &[usize],
+        old_clusters: &[ClusterId],
         local: &Local,
         set_vel: &SetVel,
         theta: Option<&Q>,
@@ -101,7 +103,7 @@ impl Engine<'_> {
     }
 
     /// Constant external friction on each block of cluster k from joints that slide.
-    pub(in crate::integrate::event) fn external_forces(&self, k: usize) -> Vec<Q> {
+    pub(in crate::integrate::event) fn external_forces(&self, k: ClusterId) -> Vec<Q> {
         self.clusters[k]
             .blocks
             .iter()
