@@ -11,9 +11,10 @@ use crate::exact::Q;
 use crate::motion::Segment;
 use std::cell::{Cell, OnceCell};
 
-/// How a cluster moves.
+/// A cluster's mode: stuck to the ground within its stick interval, or sliding in closed
+/// form ("motion" is the ground's, everywhere else).
 #[derive(Debug, Clone)]
-pub enum Motion {
+pub enum Mode {
     /// Stuck to the ground while lo <= a_g <= hi (m/s2; infinite where no a_g would move it).
     Stuck {
         /// Lower limit of a_g, rounded to the nearest float.
@@ -268,7 +269,7 @@ pub struct Cluster {
     /// sliding clusters stand.
     pub ground_version: u64,
     /// How it moves.
-    pub motion: Motion,
+    pub mode: Mode,
     /// Energy and extremes are accounted up to this time (s).
     pub accounted_to: f64,
     /// Zeros found on the current segment; `None` until scheduled, and whenever the motion
@@ -303,9 +304,9 @@ pub struct Extremes {
 impl Cluster {
     /// The sliding motion, if sliding.
     pub fn slide(&self) -> Option<&Slide> {
-        match &self.motion {
-            Motion::Sliding(s) => Some(s),
-            Motion::Stuck { .. } => None,
+        match &self.mode {
+            Mode::Sliding(s) => Some(s),
+            Mode::Stuck { .. } => None,
         }
     }
 }

@@ -57,7 +57,7 @@ use crate::motion::{Motion, Segment};
 use crate::response::{DecisionCause as Cause, Recorder, Response};
 use crate::topology::{Base, Topology};
 use crate::wall::Wall;
-use cluster::{ClusterId, Clusters, Motion as ClusterMotion};
+use cluster::{ClusterId, Clusters, Mode};
 use memo::Memo;
 use queue::{Ev, Pending, Queue};
 use roots::Counter;
@@ -404,10 +404,7 @@ impl<'a> Engine<'a> {
     /// ground.
     fn grounded(&self, i: usize) -> bool {
         self.of[i] == ClusterId::NONE
-            || matches!(
-                self.clusters[self.of[i]].motion,
-                ClusterMotion::Stuck { .. }
-            )
+            || matches!(self.clusters[self.of[i]].mode, Mode::Stuck { .. })
     }
 
     fn len_tol(&self, a: f64, b: f64) -> f64 {
@@ -526,7 +523,7 @@ impl<'a> Engine<'a> {
         self.rec.stats.segments += 1;
         let seg = self.seg;
         for c in self.clusters.iter_mut() {
-            if let ClusterMotion::Sliding(sl) = &mut c.motion {
+            if let Mode::Sliding(sl) = &mut c.mode {
                 if !c.blocks.is_empty() {
                     sl.rebase(&seg);
                     c.roots = None;
@@ -555,18 +552,18 @@ impl<'a> Engine<'a> {
         match ev {
             Ev::Threshold { k, upper, .. } => {
                 let side = usize::from(upper);
-                let limit = |motion: &ClusterMotion| match motion {
-                    ClusterMotion::Stuck { lo_q, hi_q, .. } => [lo_q, hi_q][side].clone(),
-                    ClusterMotion::Sliding(_) => None,
+                let limit = |mode: &Mode| match mode {
+                    Mode::Stuck { lo_q, hi_q, .. } => [lo_q, hi_q][side].clone(),
+                    Mode::Sliding(_) => None,
                 };
-                let bound = limit(&self.clusters[k].motion);
-                if matches!(&self.clusters[k].motion, ClusterMotion::Stuck { bound_only, .. } if bound_only[side])
+                let bound = limit(&self.clusters[k].mode);
+                if matches!(&self.clusters[k].mode, Mode::Stuck { bound_only, .. } if bound_only[side])
                 {
                     // a_g has reached a bound: the exact limit is at it or beyond. Beyond it,
                     // nothing happens (no history row either: the run is the same as if the
                     // limit had been worked out at once).
                     self.set_exact_thresholds(k);
-                    if limit(&self.clusters[k].motion) != bound {
+                    if limit(&self.clusters[k].mode) != bound {
                         self.clusters[k].version = self.new_version();
                         self.schedule([k]);
                         return Ok(());

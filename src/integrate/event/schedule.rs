@@ -10,7 +10,7 @@
 //!   polynomials, found once per mode, whatever the segments.
 
 use super::cluster::ClusterId;
-use super::cluster::{GroundHits, Motion, Slide};
+use super::cluster::{GroundHits, Mode, Slide};
 use super::queue::{Constraint, Ev};
 use super::roots::{first_violation, polish, sign_changes, valid_after, Fun};
 use super::Engine;
@@ -92,8 +92,8 @@ impl Engine<'_> {
         let ver = self.clusters[k].version;
         let (r1, r2) = seg.accel_rates(self.s());
         let ag = move |x: f64| seg.accel(x - seg.t0);
-        match &self.clusters[k].motion {
-            Motion::Stuck { lo, hi, .. } => {
+        match &self.clusters[k].mode {
+            Mode::Stuck { lo, hi, .. } => {
                 let (lo, hi) = (*lo, *hi);
                 // a_g/lambda leaves [lo, hi]: a_g - limit lambda changes sign (linear with a
                 // vertical component, a_g alone otherwise, monotone on a segment either way).
@@ -120,7 +120,7 @@ impl Engine<'_> {
                     }
                 }
             }
-            Motion::Sliding(sl) => {
+            Mode::Sliding(sl) => {
                 let sl = sl.clone();
                 let (sigma, bounds) = self.ground_constraints(k);
                 let key = (

@@ -3,7 +3,7 @@
 //! clusters it shows stuck without the general decision.
 
 use super::cluster::ClusterId;
-use super::cluster::Motion;
+use super::cluster::Mode;
 use super::regroup::{Local, BODY_FROM};
 use super::slip::Slip;
 use super::solver::{weaker_limit, End, Group, Lex, Problem, Stick};
@@ -92,7 +92,7 @@ impl Engine<'_> {
         let p = p.canonical();
         let change = before.map_or(Change::Exact, |b| Change::After(Some(b)));
         let limits = self.stick_interval(&p, &members, change);
-        self.clusters[k].motion = stuck(limits);
+        self.clusters[k].mode = stuck(limits);
     }
 
     /// The stick interval of a problem whose blocks (`members`: global indices, sorted, in the
@@ -388,9 +388,9 @@ impl Engine<'_> {
             match before.and_then(|x| x.limits.get(&k)) {
                 Some(kept) => kept.as_ref().map(|[lo, hi]| [lo, hi]),
                 None if k == ClusterId::NONE => None,
-                None => match &self.clusters[k].motion {
-                    Motion::Stuck { lo_q, hi_q, .. } => Some([lo_q, hi_q]),
-                    Motion::Sliding(_) => None,
+                None => match &self.clusters[k].mode {
+                    Mode::Stuck { lo_q, hi_q, .. } => Some([lo_q, hi_q]),
+                    Mode::Sliding(_) => None,
                 },
             }
         };
@@ -514,9 +514,9 @@ pub(super) struct Before {
     pub(super) slip: FxHashMap<usize, Slip>,
 }
 
-pub(super) fn stuck(limits: Limits) -> Motion {
+pub(super) fn stuck(limits: Limits) -> Mode {
     let Limits { lo, hi, bound_only } = limits;
-    Motion::Stuck {
+    Mode::Stuck {
         lo: lo.as_ref().map_or(f64::NEG_INFINITY, Q::to_f64),
         hi: hi.as_ref().map_or(f64::INFINITY, Q::to_f64),
         lo_q: lo,

@@ -4,7 +4,7 @@ use super::scratch::{Local, SetVel};
 use super::solving::BODY_FROM;
 use crate::exact::Q;
 use crate::integrate::event::cluster::ClusterId;
-use crate::integrate::event::cluster::Motion;
+use crate::integrate::event::cluster::Mode;
 use crate::integrate::event::slip::Slip;
 use crate::integrate::event::solver::{End, Problem};
 use crate::integrate::event::Engine;
@@ -207,8 +207,8 @@ impl Engine<'_> {
     pub(super) fn largest_stuck(&self, clusters: &[ClusterId]) -> Option<StuckGroup> {
         clusters
             .iter()
-            .filter_map(|&k| match &self.clusters[k].motion {
-                Motion::Stuck {
+            .filter_map(|&k| match &self.clusters[k].mode {
+                Mode::Stuck {
                     lo_q,
                     hi_q,
                     bound_only,
@@ -220,7 +220,7 @@ impl Engine<'_> {
                     lo_is_bound: bound_only[0],
                     hi_is_bound: bound_only[1],
                 }),
-                Motion::Sliding(_) => None,
+                Mode::Sliding(_) => None,
             })
             .max_by_key(|g| g.blocks)
     }

@@ -3,7 +3,7 @@
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::integrate::event::cluster::ClusterId;
-use crate::integrate::event::cluster::{Cluster, Motion, Slide};
+use crate::integrate::event::cluster::{Cluster, Mode, Slide};
 use crate::integrate::event::slip::Slip;
 use crate::integrate::event::Engine;
 use crate::response::{DecisionCause as Cause, EventKind};
@@ -83,7 +83,7 @@ impl Engine<'_> {
                 blocks: vec![i],
                 version: 0,
                 ground_version: 0,
-                motion: Motion::Sliding(Slide::formed(&self.seg, self.t, v, Q::zero())),
+                mode: Mode::Sliding(Slide::formed(&self.seg, self.t, v, Q::zero())),
                 accounted_to: self.t,
                 roots: None,
                 ground_hits: None,

@@ -12,7 +12,7 @@ use scratch::SetVel;
 pub(super) use scratch::{Buffers, Local};
 pub(super) use solving::BODY_FROM;
 
-use super::cluster::{Cluster, Motion, Slide};
+use super::cluster::{Cluster, Mode, Slide};
 use super::flow;
 use super::slip::Slip;
 use super::solver::Lex;
@@ -134,9 +134,9 @@ impl Engine<'_> {
                 before.of.insert(b, self.of[b]);
             }
             for &k in &old_clusters {
-                let limits = match &self.clusters[k].motion {
-                    Motion::Stuck { lo_q, hi_q, .. } => Some([lo_q.clone(), hi_q.clone()]),
-                    Motion::Sliding(_) => None,
+                let limits = match &self.clusters[k].mode {
+                    Mode::Stuck { lo_q, hi_q, .. } => Some([lo_q.clone(), hi_q.clone()]),
+                    Mode::Sliding(_) => None,
                 };
                 before.limits.insert(k, limits);
             }
@@ -163,11 +163,11 @@ impl Engine<'_> {
                 self.u_ref[i] = u_now[node];
             }
             let mass_q: Q = members.iter().map(|&i| self.given.mass_q[i].clone()).sum();
-            let motion = if g.grounded {
+            let mode = if g.grounded {
                 stuck(intervals[g_idx].clone().unwrap_or_default())
             } else {
                 let v = v_now[g.nodes[0]];
-                Motion::Sliding(Slide::formed(&self.seg, self.t, v, g.accel.clone()))
+                Mode::Sliding(Slide::formed(&self.seg, self.t, v, g.accel.clone()))
             };
             let k = self.alloc(Cluster {
                 mass: mass_q.to_f64(),
@@ -175,7 +175,7 @@ impl Engine<'_> {
                 blocks: members,
                 version: 0,
                 ground_version: 0,
-                motion,
+                mode,
                 accounted_to: t,
                 roots: None,
                 ground_hits: None,
@@ -404,9 +404,9 @@ impl Engine<'_> {
     /// impact): its friction forces have changed; it gets a new version and fresh events.
     fn refresh(&mut self, k: ClusterId, before: &Before) {
         let t = self.t;
-        match &self.clusters[k].motion {
-            Motion::Stuck { .. } => self.set_thresholds(k, Some(before)),
-            Motion::Sliding(sl) => {
+        match &self.clusters[k].mode {
+            Mode::Stuck { .. } => self.set_thresholds(k, Some(before)),
+            Mode::Sliding(sl) => {
                 let force: Q = self.external_forces(k).into_iter().sum();
                 let c_q = force / &self.clusters[k].mass_q;
                 if c_q != sl.c_q {
@@ -417,8 +417,7 @@ impl Engine<'_> {
                     for &i in &members {
                         self.u_ref[i] = self.block_disp(i);
                     }
-                    self.clusters[k].motion =
-                        Motion::Sliding(Slide::formed(&self.seg, self.t, v, c_q));
+                    self.clusters[k].mode = Mode::Sliding(Slide::formed(&self.seg, self.t, v, c_q));
                     self.clusters[k].roots = None;
                     self.clusters[k].ground_hits = None;
                 }
