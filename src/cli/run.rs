@@ -2,8 +2,9 @@
 //! when asked, decisions.jsonl).
 
 use super::{print_out, write_file};
+use indicatif::{ProgressBar, ProgressStyle};
 use pirqa::integrate::baselines::Regularized;
-use pirqa::integrate::AfterCollapse;
+use pirqa::integrate::{AfterCollapse, Progress};
 use pirqa::motion::{
     check_scale, process, read_companion, read_record, Baseline, Motion, Processing, Pulse,
     ReadOptions, Sine,
@@ -16,6 +17,7 @@ use pirqa::{Direction, Equations, Model, ModelChoice, RunSettings};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Ground motion options shared by the commands that run simulations.
 #[derive(clap::Args, Debug, Clone)]
@@ -418,7 +420,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         build_motion(&args.motion, args.duration, wall.g_m_s2.to_f64())?
     };
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
-    let (bar, progress) = super::sweep::simulated_time_bar(duration, &wall.name);
+    let (bar, progress) = simulated_time_bar(duration, &wall.name);
     let settings = RunSettings {
         duration_s: Some(duration),
         output_dt_s: (args.out.is_some() && !args.no_history).then_some(args.output_dt),
@@ -651,4 +653,22 @@ fn decision_table(decisions: &[DecisionRecord]) -> String {
         );
     }
     t
+}
+
+/// A bar of simulated time for one long run (hidden, like every bar, when stderr is not a
+/// terminal), and the [`Progress`] that moves it.
+pub fn simulated_time_bar(duration_s: f64, what: &str) -> (ProgressBar, Progress) {
+    let ms = |t: f64| (t * 1000.0).round() as u64;
+    let bar = ProgressBar::new(ms(duration_s));
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{msg} [{bar:40}] {percent}% of the simulated time, {elapsed} elapsed, eta {eta}",
+        )
+        .expect("a valid template")
+        .progress_chars("=> "),
+    );
+    bar.set_message(what.to_string());
+    let moved = bar.clone();
+    let progress = Progress(Arc::new(move |t| moved.set_position(ms(t))));
+    (bar, progress)
 }

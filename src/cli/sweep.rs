@@ -3,13 +3,11 @@
 
 use super::write_file;
 use indicatif::{ProgressBar, ProgressStyle};
-use pirqa::integrate::Progress;
 use pirqa::study::sweep::analysis::{analyse, Report};
 use pirqa::study::sweep::store::{Existing, Store};
 use pirqa::study::sweep::Sweep;
 use pirqa::Error;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 /// Options of `pirqa sweep`.
 #[derive(clap::Args, Debug)]
@@ -54,24 +52,6 @@ pub fn progress_bar(total: u64, done: u64, what: &str) -> ProgressBar {
     bar.set_message(what.to_string());
     bar.set_position(done);
     bar
-}
-
-/// A bar of simulated time for one long run (hidden, like every bar, when stderr is not a
-/// terminal), and the [`Progress`] that moves it.
-pub fn simulated_time_bar(duration_s: f64, what: &str) -> (ProgressBar, Progress) {
-    let ms = |t: f64| (t * 1000.0).round() as u64;
-    let bar = ProgressBar::new(ms(duration_s));
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{msg} [{bar:40}] {percent}% of the simulated time, {elapsed} elapsed, eta {eta}",
-        )
-        .expect("a valid template")
-        .progress_chars("=> "),
-    );
-    bar.set_message(what.to_string());
-    let moved = bar.clone();
-    let progress = Progress(Arc::new(move |t| moved.set_position(ms(t))));
-    (bar, progress)
 }
 
 /// Runs a sweep into `out` and writes its report.
@@ -151,7 +131,7 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
         if history { "" } else { " --no-history" }
     );
     write_file(&dir.join("rerun.txt"), &command)?;
-    let (bar, progress) = simulated_time_bar(motion.duration_s, &format!("case {id}"));
+    let (bar, progress) = super::run::simulated_time_bar(motion.duration_s, &format!("case {id}"));
     let r = sweep.run_case_in_full(id, history.then_some(0.01), progress);
     bar.finish_and_clear();
     let r = r?;

@@ -4,9 +4,9 @@
 
 use super::cluster::ClusterId;
 use super::cluster::Mode;
-use super::regroup::{Local, BODY_FROM};
+use super::regroup::scratch::Local;
 use super::slip::Slip;
-use super::solver::{weaker_limit, End, Group, Lex, Problem, Stick};
+use super::solver::{weaker_limit, End, Group, Lex, Problem, Stick, BODY_FROM};
 use super::Engine;
 use crate::exact::Q;
 use crate::topology::Base;

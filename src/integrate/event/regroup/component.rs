@@ -1,11 +1,11 @@
 //! COMPONENT
 
 use super::scratch::{Local, SetVel};
-use super::solving::BODY_FROM;
 use crate::exact::Q;
 use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::cluster::Mode;
 use crate::integrate::event::slip::Slip;
+use crate::integrate::event::solver::BODY_FROM;
 use crate::integrate::event::solver::{End, Problem};
 use crate::integrate::event::Engine;
 use crate::response::StuckGroup;

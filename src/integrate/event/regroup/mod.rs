@@ -4,13 +4,12 @@
 
 mod component;
 mod fallen;
-mod scratch;
+pub(super) mod scratch;
 mod solving;
 
 use super::cluster::ClusterId;
 use scratch::SetVel;
 pub(super) use scratch::{Buffers, Local};
-pub(super) use solving::BODY_FROM;
 
 use super::cluster::{Cluster, Mode, Slide};
 use super::flow;

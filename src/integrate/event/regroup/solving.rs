@@ -18,10 +18,6 @@ const MAX_SNAPS: usize = 8;
 /// ground at none.
 const THETAS_KEPT: usize = 16;
 
-/// Sliding clusters of at least this many blocks are held together in a decision's first try
-/// (`Problem::solve`); below it the general decision costs no more.
-pub(in crate::integrate::event) const BODY_FROM: usize = 32;
-
 impl Engine<'_> {
     /// The ground acceleration just after now, divided by the vertical load factor (every
     /// friction force scales with it, so the decision at lambda is the decision at 1 with

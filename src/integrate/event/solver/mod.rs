@@ -32,6 +32,10 @@ mod testing;
 
 pub use stick::{weaker_limit, Stick};
 
+/// Sliding clusters of at least this many blocks are held together in a decision's first try
+/// (`Problem::solve` with bodies); below it the general decision costs no more.
+pub const BODY_FROM: usize = 32;
+
 /// c0 + c1 eps + c2 eps^2 for an infinitesimal eps > 0, ordered lexicographically: the value of a
 /// ground acceleration "just after" an instant, a_g(t) + a_g'(t) eps + a_g''(t) eps^2 / 2.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
