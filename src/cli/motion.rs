@@ -168,7 +168,7 @@ fn synthetic(kind: &GenerateKind) -> Result<Synthetic, Error> {
         } => Synthetic::Sine {
             amplitude: acc(amp)?,
             frequency: *freq,
-            phase: phase.to_radians(),
+            phase: pirqa::motion::phase_rad(*phase),
             duration: *duration,
             ramp_s: *ramp,
             taper_s: *taper,

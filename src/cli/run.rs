@@ -194,8 +194,7 @@ pub fn build_motion(
             let sine = Sine {
                 amplitude_m_s2: a,
                 frequency_hz: freq,
-                // Reduced in degrees, where the remainder is exact; radians cannot be.
-                phase_rad: m.phase.rem_euclid(360.0).to_radians(),
+                phase_rad: pirqa::motion::phase_rad(m.phase),
                 duration_s: duration,
             }
             .checked()

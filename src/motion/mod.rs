@@ -84,6 +84,13 @@ pub struct Sine {
     pub duration_s: f64,
 }
 
+/// A phase given in degrees, in radians: reduced to [0, 360) first, where the remainder is exact
+/// for any float, so 1e18 degrees is 280 degrees to the bit (reducing radians would lose the
+/// digits, and 2 pi is not a float).
+pub fn phase_rad(degrees: f64) -> f64 {
+    degrees.rem_euclid(360.0).to_radians()
+}
+
 /// A sampled record, linear between samples. Its samples are read through methods: the
 /// ground velocity and displacement it keeps are their integrals, and must not fall behind.
 #[derive(Debug, Clone, PartialEq)]

@@ -17,7 +17,7 @@ fn sine(phase_deg: f64, duration_s: f64) -> Motion {
     Motion::sine(Sine {
         amplitude_m_s2: 4.0,
         frequency_hz: 1.0,
-        phase_rad: phase_deg.to_radians(),
+        phase_rad: crate::motion::phase_rad(phase_deg),
         duration_s,
     })
     .expect("valid sine")

@@ -717,7 +717,7 @@ fn resolve_motions(
                     let sine = Sine {
                         amplitude_m_s2: a,
                         frequency_hz: f,
-                        phase_rad: phase_deg.to_radians(),
+                        phase_rad: crate::motion::phase_rad(*phase_deg),
                         duration_s: *duration_s,
                     }
                     .checked()
