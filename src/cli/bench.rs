@@ -19,7 +19,7 @@ pub enum BenchCommand {
         #[arg(long)]
         quick: bool,
         /// The El Centro record used by the last scenario.
-        #[arg(long, default_value = "records/elcentro1940_IELC180_peer_dt0p01_g.AT2")]
+        #[arg(long, default_value = pirqa::motion::EL_CENTRO)]
         record: PathBuf,
         /// Extra points from a peer engine (CSV with the same columns), drawn on the same chart.
         #[arg(long)]
@@ -39,7 +39,7 @@ pub enum BenchCommand {
         #[arg(long)]
         quick: bool,
         /// The El Centro record of the last scenario.
-        #[arg(long, default_value = "records/elcentro1940_IELC180_peer_dt0p01_g.AT2")]
+        #[arg(long, default_value = pirqa::motion::EL_CENTRO)]
         record: PathBuf,
         /// Extra points from a peer engine (CSV with the same columns), drawn on the same chart.
         #[arg(long)]

@@ -16,7 +16,7 @@ pub struct PaperArgs {
     #[arg(long, default_value = "walls")]
     pub walls: PathBuf,
     /// Record for Fig. 5 and 6, scaled to 258 gal (Miyagi's peak) and then by 5.
-    #[arg(long, default_value = "records/elcentro1940_IELC180_peer_dt0p01_g.AT2")]
+    #[arg(long, default_value = pirqa::motion::EL_CENTRO)]
     pub record: PathBuf,
     /// Sine duration (s); the paper does not give it.
     #[arg(long, default_value_t = 20.0)]

@@ -84,6 +84,10 @@ pub struct Sine {
     pub duration_s: f64,
 }
 
+/// The El Centro 1940 record (PEER IELC180, in records/) that the paper's figures, the
+/// benchmarks and the command line's defaults use.
+pub const EL_CENTRO: &str = "records/elcentro1940_IELC180_peer_dt0p01_g.AT2";
+
 /// A phase given in degrees, in radians: reduced to [0, 360) first, where the remainder is exact
 /// for any float, so 1e18 degrees is 280 degrees to the bit (reducing radians would lose the
 /// digits, and 2 pi is not a float).

@@ -40,7 +40,7 @@ impl Default for Options {
     fn default() -> Options {
         Options {
             walls: PathBuf::from("walls"),
-            record: PathBuf::from("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+            record: PathBuf::from(crate::motion::EL_CENTRO),
             duration_s: 20.0,
             frequencies: Frequencies::Log {
                 from: 0.2,

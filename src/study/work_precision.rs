@@ -102,6 +102,21 @@ pub struct Point {
     pub failed: bool,
 }
 
+impl Point {
+    /// The exact method's point of a scenario: the reference, so its errors are zero.
+    pub fn exact(scenario: &str, cpu_s: f64) -> Point {
+        Point {
+            scenario: scenario.to_string(),
+            method: "event".into(),
+            parameter: "exact".into(),
+            cpu_s,
+            err_max_m: 0.0,
+            err_history_m: 0.0,
+            failed: false,
+        }
+    }
+}
+
 /// A point of the chart from a run's outcome: its errors (max |u|, history), or why it failed
 /// (the errors are then infinite).
 pub fn point<E>(
@@ -232,15 +247,7 @@ pub fn run_case(
     };
     let (cpu, reference) = timed(&EventDriven::default(), &sc, min_time_s);
     let reference = reference?;
-    let mut points = vec![Point {
-        scenario: case.name.clone(),
-        method: "event".into(),
-        parameter: "exact".into(),
-        cpu_s: cpu,
-        err_max_m: 0.0,
-        err_history_m: 0.0,
-        failed: false,
-    }];
+    let mut points = vec![Point::exact(&case.name, cpu)];
     let mut runs: Vec<(String, String, Box<dyn Integrator>)> = Vec::new();
     for &dt in &ladder.steps {
         runs.push((
@@ -548,15 +555,7 @@ pub fn run_rocking_case(
     let (cpu, reference) = timed(&exact, &sc, min_time_s);
     // The reference's own error names the body, the time and what failed.
     let reference = reference?;
-    let mut points = vec![Point {
-        scenario: case.name.clone(),
-        method: "event".into(),
-        parameter: "exact".into(),
-        cpu_s: cpu,
-        err_max_m: 0.0,
-        err_history_m: 0.0,
-        failed: false,
-    }];
+    let mut points = vec![Point::exact(&case.name, cpu)];
     for &dt in steps {
         progress(&format!("{} moreau dt={dt:e}", case.name));
         let moreau = MoreauRocking {

@@ -206,36 +206,45 @@ fn walls_outside_the_size_bounds_are_refused() {
 /// record cut after its title; a byte-order mark (spreadsheets write one) is read past.
 #[test]
 fn empty_binary_and_cut_files_are_named_and_a_byte_order_mark_is_read_past() {
-    let run = |f: &common::Scratch| {
-        let path = f.to_str().unwrap().to_string();
-        pirqa(&["run", WALL, "--record", &path, "--duration", "1"])
+    let read = |f: &common::Scratch, says: &str| {
+        refused(
+            &[
+                "run",
+                WALL,
+                "--record",
+                f.to_str().unwrap(),
+                "--duration",
+                "1",
+            ],
+            says,
+        )
     };
-    let (code, _, err) = run(&common::file("empty.txt", "\n  \n"));
-    assert_eq!(code, 1);
-    assert!(err.contains("empty.txt: the file is empty"), "{err}");
+    read(
+        &common::file("empty.txt", "\n  \n"),
+        "empty.txt: the file is empty",
+    );
     let garbage = common::scratch("garbage.bin");
     std::fs::write(&*garbage, [0x7f, b'E', b'L', b'F', 0xff, 0x00, 0x13]).unwrap();
-    let (code, _, err) = run(&garbage);
-    assert_eq!(code, 1);
-    assert!(
-        err.contains("not a text file (byte 5 is not UTF-8)"),
-        "{err}"
-    );
-    let cut = common::file(
-        "cut.at2",
-        "PEER NGA STRONG MOTION DATABASE RECORD\nIMPERIAL VALLEY 5/19/40, EL CENTRO ARRAY #9\n",
-    );
-    let (code, _, err) = run(&cut);
-    assert_eq!(code, 1);
-    assert!(
-        err.contains("an AT2 file has 4 header lines and then data; this one has 2"),
-        "{err}"
+    read(&garbage, "not a text file (byte 5 is not UTF-8)");
+    read(
+        &common::file(
+            "cut.at2",
+            "PEER NGA STRONG MOTION DATABASE RECORD\nIMPERIAL VALLEY 5/19/40, EL CENTRO ARRAY #9\n",
+        ),
+        "an AT2 file has 4 header lines and then data; this one has 2",
     );
     let bom = common::file(
         "bom.txt",
         "\u{feff}# units: gal\n# dt_s: 0.01\n100\n-100\n50\n",
     );
-    let (code, _, err) = run(&bom);
+    let (code, _, err) = pirqa(&[
+        "run",
+        WALL,
+        "--record",
+        bom.to_str().unwrap(),
+        "--duration",
+        "1",
+    ]);
     assert_eq!(code, 0, "{err}");
     let text = std::fs::read_to_string(WALL).unwrap();
     let wall = common::file("bom.ron", &format!("\u{feff}{text}"));
