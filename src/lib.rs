@@ -59,5 +59,5 @@ pub use model::Model;
 pub use motion::{Motion, Pulse, Record, Sine};
 pub use response::{Response, Summary, Warning};
 pub use run::{run, Direction, Method, RunSettings};
-pub use topology::{Base, BlockId, JointId, JointRef, SupportId, Topology};
+pub use topology::{Base, BlockId, HorizontalId, JointRef, Topology, VerticalId};
 pub use wall::Wall;

@@ -25,7 +25,7 @@ pub fn rocking_warnings(wall: &Wall, topo: &Topology, peak_accel_m_s2: &[f64]) -
         }
         let friction = topo.below[i]
             .iter()
-            .map(|s| topo.supports[s.0].friction.to_f64())
+            .map(|s| topo.horizontal[s.0].friction.to_f64())
             .fold(f64::INFINITY, f64::min);
         warnings.push(Warning::CouldRock {
             block: BlockId(i),

@@ -185,7 +185,7 @@ pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
         "  {:<8} {:<8} {:>10} {:>11} {:>9} {:>12}",
         "upper", "lower", "overlap_m", "load_n", "friction", "capacity_n"
     );
-    for s in &r.supports {
+    for s in &r.horizontal {
         let _ = writeln!(
             out,
             "  {:<8} {:<8} {:>10.3} {:>11.2} {:>9.3} {:>12.2}",
@@ -193,7 +193,7 @@ pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
         );
     }
     let _ = writeln!(out, "\nvertical joints");
-    if r.joints.is_empty() {
+    if r.vertical.is_empty() {
         let _ = writeln!(out, "  (none)");
     } else {
         let _ = writeln!(
@@ -201,7 +201,7 @@ pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
             "  {:<8} {:<8} {:>8} {:>9}",
             "left", "right", "gap_m", "height_m"
         );
-        for j in &r.joints {
+        for j in &r.vertical {
             let _ = writeln!(
                 out,
                 "  {:<8} {:<8} {:>8.3} {:>9.3}",

@@ -87,7 +87,7 @@ pub fn run(args: &ImportArgs) -> Result<(), Error> {
     })?;
     let largest = imported.largest_snap();
     let gaps: Vec<f64> = topo
-        .joints
+        .vertical
         .iter()
         .map(|j| j.gap_m.to_f64())
         .filter(|&g| g > 0.0)
@@ -98,8 +98,8 @@ pub fn run(args: &ImportArgs) -> Result<(), Error> {
         "{}: {} blocks, {} supports, {} vertical joints ({} with a measured gap{})",
         args.survey.display(),
         wall.blocks.len(),
-        topo.supports.len(),
-        topo.joints.len(),
+        topo.horizontal.len(),
+        topo.vertical.len(),
         gaps.len(),
         gaps.iter()
             .copied()

@@ -7,7 +7,7 @@ use crate::error::SimulationError;
 use crate::integrate::{AfterCollapse, Progress, Scenario};
 use crate::motion::Motion;
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response};
-use crate::topology::{Base, JointId};
+use crate::topology::{Base, VerticalId};
 
 /// A fixed time step `dt_s` for the scenario's run: positive, and few enough steps
 /// (`bounds::MAX_STEPS`) that the run ends; the run's own settings checked too.
@@ -41,7 +41,7 @@ pub fn positive(what: &str, x: f64, unit: &'static str) -> Result<(), Simulation
 
 /// A horizontal joint in floats.
 #[derive(Debug, Clone, Copy)]
-pub struct Joint {
+pub struct Horizontal {
     /// Upper block.
     pub upper: usize,
     /// Lower block; `None` for the ground or a fixed block.
@@ -56,7 +56,7 @@ pub struct Joint {
 
 /// A vertical joint in floats.
 #[derive(Debug, Clone, Copy)]
-pub struct Face {
+pub struct Vertical {
     /// Left block (`None`: fixed).
     pub left: Option<usize>,
     /// Right block (`None`: fixed).
@@ -77,9 +77,9 @@ pub struct Model {
     /// Moves (not fixed).
     pub movable: Vec<bool>,
     /// Horizontal joints.
-    pub joints: Vec<Joint>,
+    pub horizontal: Vec<Horizontal>,
     /// Vertical joints.
-    pub faces: Vec<Face>,
+    pub vertical: Vec<Vertical>,
     /// Left edges, right edges, centroids (m).
     pub xl: Vec<f64>,
     /// Right edges (m).
@@ -100,15 +100,15 @@ impl Model {
         Model {
             n: w.blocks.len(),
             mass: t.blocks.iter().map(|b| b.mass_kg.to_f64()).collect(),
-            joints: t
-                .supports
+            horizontal: t
+                .horizontal
                 .iter()
                 .map(|s| {
                     let lower_any = match s.lower {
                         Base::Ground => None,
                         Base::Block(b) => Some(b.0),
                     };
-                    Joint {
+                    Horizontal {
                         upper: s.upper.0,
                         lower: lower_any.filter(|&b| movable[b]),
                         lower_any,
@@ -117,10 +117,10 @@ impl Model {
                     }
                 })
                 .collect(),
-            faces: t
-                .joints
+            vertical: t
+                .vertical
                 .iter()
-                .map(|j| Face {
+                .map(|j| Vertical {
                     left: Some(j.left.0).filter(|&b| movable[b]),
                     right: Some(j.right.0).filter(|&b| movable[b]),
                     pair: (j.left.0, j.right.0),
@@ -137,12 +137,12 @@ impl Model {
     }
 
     /// Relative velocity across joint j (upper minus lower).
-    pub fn slip_velocity(&self, j: &Joint, v: &[f64]) -> f64 {
+    pub fn slip_velocity(&self, j: &Horizontal, v: &[f64]) -> f64 {
         v[j.upper] - j.lower.map_or(0.0, |l| v[l])
     }
 
     /// Gap of face f.
-    pub fn gap(&self, f: &Face, u: &[f64]) -> f64 {
+    pub fn gap(&self, f: &Vertical, u: &[f64]) -> f64 {
         f.gap0 + f.right.map_or(0.0, |r| u[r]) - f.left.map_or(0.0, |l| u[l])
     }
 
@@ -155,7 +155,7 @@ impl Model {
             }
             let mut on_ground = false;
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-            for j in self.joints.iter().filter(|j| j.upper == i) {
+            for j in self.horizontal.iter().filter(|j| j.upper == i) {
                 match j.lower_any {
                     None => on_ground = true,
                     Some(l) if gone[l] => {}
@@ -224,7 +224,7 @@ impl<'a> Observer<'a> {
             output_dt: sc.settings.output_dt_s,
             next_output: 0,
             last: (0.0, vec![0.0; n], vec![0.0; n]),
-            d_last: vec![0.0; model.joints.len()],
+            d_last: vec![0.0; model.horizontal.len()],
             after_collapse: sc.settings.after_collapse,
             gone: vec![false; n],
             stopped: false,
@@ -235,7 +235,7 @@ impl<'a> Observer<'a> {
     }
 
     /// Relative displacement of joint j.
-    fn d(&self, j: &Joint, u: &[f64]) -> f64 {
+    fn d(&self, j: &Horizontal, u: &[f64]) -> f64 {
         u[j.upper] - j.lower.map_or(0.0, |l| u[l])
     }
 
@@ -278,14 +278,14 @@ impl<'a> Observer<'a> {
             }
         }
         self.rec.energy.input_j += work;
-        for (k, j) in m.joints.iter().enumerate() {
+        for (k, j) in m.horizontal.iter().enumerate() {
             if self.gone[j.upper] || j.lower_any.is_some_and(|l| self.gone[l]) {
                 continue;
             }
             let d = self.d(j, u);
             self.rec.energy.friction_j += j.capacity * (d - self.d_last[k]).abs();
             self.d_last[k] = d;
-            self.rec.joint_extreme(k, d.abs());
+            self.rec.horizontal_extreme(k, d.abs());
         }
         if let Some(i) = m.fallen(u, &self.gone) {
             if self.rec.collapse.is_none() {
@@ -314,7 +314,7 @@ impl<'a> Observer<'a> {
 
     /// Logs an impact at face k with velocities before and after, and its energy loss.
     pub fn impact(&mut self, t: f64, k: usize, before: [f64; 2], after: [f64; 2]) {
-        let (l, r) = self.model.faces[k].pair;
+        let (l, r) = self.model.vertical[k].pair;
         let m = |b: usize| {
             if self.model.movable[b] {
                 self.model.mass[b]
@@ -325,7 +325,7 @@ impl<'a> Observer<'a> {
         let ke = |v: [f64; 2]| 0.5 * (m(l) * v[0] * v[0] + m(r) * v[1] * v[1]);
         self.rec.energy.impact_loss_j += ke(before) - ke(after);
         self.impulsive = true;
-        self.rec.impact(t, JointId(k), before, after);
+        self.rec.impact(t, VerticalId(k), before, after);
     }
 
     /// Finishes the run at time t with the last state.

@@ -110,7 +110,7 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
         );
     }
     if d.support_graph {
-        for s in &topo.supports {
+        for s in &topo.horizontal {
             let u = s.upper.0;
             let b = &wall.blocks[u];
             let (cx, cy) = (
@@ -136,7 +136,7 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
             svg.line((px(cx), py(cy)), (px(lx), py(ly)), &edge);
             svg.circle(px(cx), py(cy), 3.0, "#1f5fa8");
         }
-        for j in &topo.joints {
+        for j in &topo.vertical {
             let (l, r) = (&wall.blocks[j.left.0], &wall.blocks[j.right.0]);
             let y = (l.y.clone().max(r.y.clone()).to_f64() + l.top().min(r.top()).to_f64()) / 2.0;
             let (xa, xb) = (
@@ -154,7 +154,7 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
     }
     if d.friction_labels {
         let size = (name_size * 0.75).max(8.0);
-        for s in &topo.supports {
+        for s in &topo.horizontal {
             let u = s.upper.0;
             let b = &wall.blocks[u];
             let (lo, hi) = match s.lower {
@@ -177,7 +177,7 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
                 &format!("\u{3bc} {}", s.friction),
             );
         }
-        for j in &topo.joints {
+        for j in &topo.vertical {
             if j.gap_m.is_positive() {
                 let l = &wall.blocks[j.left.0];
                 let y = l.y.to_f64() + l.height.to_f64() * 0.8;

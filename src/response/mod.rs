@@ -9,7 +9,7 @@ pub mod saved;
 #[doc(hidden)]
 pub use recorder::Recorder;
 
-use crate::topology::{BlockId, JointRef, SupportId};
+use crate::topology::{BlockId, HorizontalId, JointRef};
 use serde::Serialize;
 use std::fmt::Write;
 
@@ -186,10 +186,10 @@ pub struct BlockSummary {
 
 /// Per horizontal joint results.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct JointSummary {
-    /// The support whose joint this is (not written, the names are).
+pub struct HorizontalJointSummary {
+    /// Which joint (not written, the names are).
     #[serde(skip)]
-    pub support: SupportId,
+    pub joint: HorizontalId,
     /// Upper block.
     pub upper: String,
     /// Lower block or `ground`.
@@ -322,8 +322,9 @@ pub struct Summary {
     pub duration_s: f64,
     /// Per block.
     pub blocks: Vec<BlockSummary>,
-    /// Per horizontal joint.
-    pub joints: Vec<JointSummary>,
+    /// Per horizontal joint (`joints` in summary.json, its name there since the first release).
+    #[serde(rename = "joints")]
+    pub horizontal_joints: Vec<HorizontalJointSummary>,
     /// Impacts (positive approach speed).
     pub impacts: u64,
     /// Contacts made at zero approach speed.

@@ -2,10 +2,10 @@
 //! the event log, turned into a [`Response`] when the run ends.
 
 use super::{
-    BlockSummary, Collapse, DecisionRecord, Energy, EventKind, EventRecord, History, JointSummary,
-    ModelUsed, Response, Stats, Summary, Warning,
+    BlockSummary, Collapse, DecisionRecord, Energy, EventKind, EventRecord, History,
+    HorizontalJointSummary, ModelUsed, Response, Stats, Summary, Warning,
 };
-use crate::topology::{Base, BlockId, JointId, JointRef, SupportId, Topology};
+use crate::topology::{Base, BlockId, HorizontalId, JointRef, Topology, VerticalId};
 use crate::wall::Wall;
 
 /// Collects results as an integrator runs. Public for integrators outside the crate (the rapier
@@ -13,7 +13,7 @@ use crate::wall::Wall;
 #[doc(hidden)]
 pub struct Recorder {
     names: Vec<String>,
-    joints: Vec<(usize, Option<usize>, String, String)>,
+    horizontal: Vec<(usize, Option<usize>, String, String)>,
     /// The blocks left and right of each vertical joint.
     vertical: Vec<(usize, usize)>,
     max_u: Vec<f64>,
@@ -53,8 +53,8 @@ pub struct Recorder {
 impl Recorder {
     /// A recorder for this wall; `history` keeps sampled rows, `log_events` keeps the event log.
     pub fn new(wall: &Wall, topo: &Topology, history: bool, log_events: bool) -> Recorder {
-        let joints = topo
-            .supports
+        let horizontal = topo
+            .horizontal
             .iter()
             .map(|s| {
                 let lower = match s.lower {
@@ -71,8 +71,12 @@ impl Recorder {
             .collect();
         let names = wall.blocks.iter().map(|b| b.name.clone()).collect();
         Recorder {
-            vertical: topo.joints.iter().map(|j| (j.left.0, j.right.0)).collect(),
-            ..Recorder::for_bodies(names, joints, history, log_events)
+            vertical: topo
+                .vertical
+                .iter()
+                .map(|j| (j.left.0, j.right.0))
+                .collect(),
+            ..Recorder::for_bodies(names, horizontal, history, log_events)
         }
     }
 
@@ -80,15 +84,15 @@ impl Recorder {
     /// `None` for the ground, and their names) and no vertical joints.
     pub fn for_bodies(
         names: Vec<String>,
-        joints: Vec<(usize, Option<usize>, String, String)>,
+        horizontal: Vec<(usize, Option<usize>, String, String)>,
         history: bool,
         log_events: bool,
     ) -> Recorder {
         let n = names.len();
         Recorder {
-            max_d: vec![0.0; joints.len()],
+            max_d: vec![0.0; horizontal.len()],
             names,
-            joints,
+            horizontal,
             vertical: Vec::new(),
             max_u: vec![0.0; n],
             max_v: vec![0.0; n],
@@ -136,7 +140,7 @@ impl Recorder {
 
     /// Notes the relative displacement of every joint from block displacements u.
     pub fn joint_extremes(&mut self, u: &[f64]) {
-        for (k, (upper, lower, _, _)) in self.joints.iter().enumerate() {
+        for (k, (upper, lower, _, _)) in self.horizontal.iter().enumerate() {
             let d = u[*upper] - lower.map_or(0.0, |l| u[l]);
             self.max_d[k] = self.max_d[k].max(d.abs());
         }
@@ -152,8 +156,8 @@ impl Recorder {
         &self.max_a
     }
 
-    /// Notes that support k reached |u_upper - u_lower| = `d_abs`.
-    pub fn joint_extreme(&mut self, k: usize, d_abs: f64) {
+    /// Notes that horizontal joint k reached |u_upper - u_lower| = `d_abs`.
+    pub fn horizontal_extreme(&mut self, k: usize, d_abs: f64) {
         self.max_d[k] = self.max_d[k].max(d_abs);
     }
 
@@ -188,8 +192,8 @@ impl Recorder {
                 kind,
                 blocks: vec![self.names[i].clone()],
                 block_ids: vec![BlockId(i)],
-                joint: Some(self.label(JointRef::Horizontal(SupportId(i)))),
-                joint_id: Some(JointRef::Horizontal(SupportId(i))),
+                joint: Some(self.label(JointRef::Horizontal(HorizontalId(i)))),
+                joint_id: Some(JointRef::Horizontal(HorizontalId(i))),
                 approach_speed_m_s: None,
                 before_m_s: None,
                 after_m_s: None,
@@ -254,7 +258,7 @@ impl Recorder {
 
     /// Logs an impact at vertical joint j with the velocities of its left and right blocks
     /// before and after (m/s).
-    pub fn impact(&mut self, time_s: f64, j: JointId, before: [f64; 2], after: [f64; 2]) {
+    pub fn impact(&mut self, time_s: f64, j: VerticalId, before: [f64; 2], after: [f64; 2]) {
         self.impacts += 1;
         if self.log_events {
             let (l, r) = self.vertical[j.0];
@@ -276,10 +280,12 @@ impl Recorder {
         }
     }
 
-    /// A joint's name: `"upper/lower"` for a support's, `"left|right"` for a vertical one.
+    /// A joint's name: `"upper/lower"` for a horizontal one, `"left|right"` for a vertical one.
     fn label(&self, joint: JointRef) -> String {
         match joint {
-            JointRef::Horizontal(k) => format!("{}/{}", self.joints[k.0].2, self.joints[k.0].3),
+            JointRef::Horizontal(k) => {
+                format!("{}/{}", self.horizontal[k.0].2, self.horizontal[k.0].3)
+            }
             JointRef::Vertical(j) => {
                 let (l, r) = self.vertical[j.0];
                 format!("{}|{}", self.names[l], self.names[r])
@@ -323,12 +329,12 @@ impl Recorder {
                 fell: self.fell[i],
             })
             .collect();
-        let joints = self
-            .joints
+        let horizontal_joints = self
+            .horizontal
             .iter()
             .enumerate()
-            .map(|(k, (upper, lower, un, ln))| JointSummary {
-                support: SupportId(k),
+            .map(|(k, (upper, lower, un, ln))| HorizontalJointSummary {
+                joint: HorizontalId(k),
                 upper: un.clone(),
                 lower: ln.clone(),
                 max_abs_relative_displacement_m: self.max_d[k],
@@ -344,7 +350,7 @@ impl Recorder {
                 motion_processing: Vec::new(),
                 duration_s: t_end,
                 blocks,
-                joints,
+                horizontal_joints,
                 impacts: self.impacts,
                 touches: self.touches,
                 zeno_accumulations: self.zeno,

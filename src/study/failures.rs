@@ -126,7 +126,7 @@ pub fn run(
 /// Largest |u_upper - u_lower| at the joint named by the two blocks (m).
 pub fn creep_m(r: &Response, upper: &str, lower: &str) -> f64 {
     r.summary
-        .joints
+        .horizontal_joints
         .iter()
         .find(|j| j.upper == upper && j.lower == lower)
         .map_or(f64::NAN, |j| j.max_abs_relative_displacement_m)

@@ -453,7 +453,7 @@ fn record_figures(
         let s = &r.summary;
         let fallen: Vec<bool> = s.blocks.iter().map(|b| b.fell).collect();
         let opening = topo
-            .joints
+            .vertical
             .iter()
             .filter(|j| !fallen[j.left.0] && !fallen[j.right.0])
             .map(|j| r.final_displacement_m[j.right.0] - r.final_displacement_m[j.left.0])
@@ -503,7 +503,7 @@ fn record_figures(
                 "widest_final_opening_m": opening,
                 "impacts": s.impacts,
                 "collapse": s.collapse.as_ref().map(|c| json!({"block": c.block, "time_s": c.time_s})),
-                "max_block_on_block_slip_m": s.joints.iter().filter(|j| j.lower != "ground").map(|j| j.max_abs_relative_displacement_m).fold(0.0, f64::max),
+                "max_block_on_block_slip_m": s.horizontal_joints.iter().filter(|j| j.lower != "ground").map(|j| j.max_abs_relative_displacement_m).fold(0.0, f64::max),
             }),
         );
         let h = r.history.as_ref().expect("history asked for");

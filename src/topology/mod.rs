@@ -1,6 +1,13 @@
-//! The wall's graph: support edges (who rests on whom, with which overlap, load and friction
-//! capacity) and vertical-joint edges (who can hit whom, across which gap). Loads follow the
+//! The wall's graph: horizontal joints (who rests on whom, with which overlap, load and friction
+//! capacity) and vertical joints (who can hit whom, across which gap). Loads follow the
 //! tributary rule of the paper's eq. (3); everything here is exact.
+//!
+//! One vocabulary throughout the code: a *joint* is a contact between two blocks (or a block and
+//! the ground); a *horizontal joint* ([`HorizontalJoint`], [`HorizontalId`],
+//! [`Topology::horizontal`]) is where a block rests on another and friction acts; a *vertical
+//! joint* ([`VerticalJoint`], [`VerticalId`], [`Topology::vertical`]) is where neighbours can
+//! collide; [`JointRef`] names either. *Support* is the relation (the lower block supports the
+//! upper one: the support graph, a block's support span), not an edge.
 
 mod lists;
 pub mod sections;
@@ -16,22 +23,22 @@ use std::collections::{BTreeMap, HashMap};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
 pub struct BlockId(pub usize);
 
-/// Index of a support edge in [`Topology::supports`].
+/// Index of a horizontal joint in [`Topology::horizontal`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct SupportId(pub usize);
+pub struct HorizontalId(pub usize);
 
-/// Index of a vertical joint in [`Topology::joints`].
+/// Index of a vertical joint in [`Topology::vertical`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct JointId(pub usize);
+pub struct VerticalId(pub usize);
 
-/// A joint of the wall, either kind: the horizontal joint of a support (where friction acts) or
+/// A joint of the wall, either kind: a horizontal joint (where a block rests on another and friction acts) or
 /// a vertical joint between neighbours (where they collide).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum JointRef {
-    /// A support's horizontal joint.
-    Horizontal(SupportId),
+    /// A horizontal joint.
+    Horizontal(HorizontalId),
     /// A vertical joint.
-    Vertical(JointId),
+    Vertical(VerticalId),
 }
 
 /// What a block rests on.
@@ -45,7 +52,7 @@ pub enum Base {
 
 /// A horizontal joint: `upper` rests on `lower` along `overlap_m`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Support {
+pub struct HorizontalJoint {
     /// The block on top.
     pub upper: BlockId,
     /// What it rests on.
@@ -90,21 +97,21 @@ pub struct Topology {
     /// Per block, in wall order.
     pub blocks: Vec<BlockData>,
     /// Horizontal joints, ordered by upper block then by position.
-    pub supports: Vec<Support>,
+    pub horizontal: Vec<HorizontalJoint>,
     /// Vertical joints, ordered by left block then by position.
-    pub joints: Vec<VerticalJoint>,
+    pub vertical: Vec<VerticalJoint>,
     /// Per block: the supports it rests on.
-    pub below: Lists<SupportId>,
+    pub below: Lists<HorizontalId>,
     /// Per block: the supports resting on it.
-    pub above: Lists<SupportId>,
+    pub above: Lists<HorizontalId>,
     /// Per block: vertical joints on its left and right faces.
-    pub sides: Lists<JointId>,
+    pub sides: Lists<VerticalId>,
 }
 
 impl Topology {
     /// Builds the graph and checks what needs it: every movable block rests on something, no
     /// block would topple at rest, abutments stand on fixed ground, and every friction override
-    /// names a real support edge. The wall is one [`Wall::from_description`] accepted (no two
+    /// names a real horizontal joint. The wall is one [`Wall::from_description`] accepted (no two
     /// blocks overlap, which the searches here rely on).
     pub fn new(wall: &Wall) -> Result<Topology, WallError> {
         let n = wall.blocks.len();
@@ -119,7 +126,7 @@ impl Topology {
             row.sort_by(|&p, &q| wall.blocks[p].x.cmp(&wall.blocks[q].x));
         }
 
-        let mut supports = Vec::new();
+        let mut horizontal = Vec::new();
         let mut below = vec![Vec::new(); n];
         let mut above = vec![Vec::new(); n];
         for (i, b) in wall.blocks.iter().enumerate() {
@@ -159,12 +166,12 @@ impl Topology {
                 });
             }
             for (lower, overlap_m) in found {
-                let id = SupportId(supports.len());
+                let id = HorizontalId(horizontal.len());
                 below[i].push(id);
                 if let Base::Block(j) = lower {
                     above[j.0].push(id);
                 }
-                supports.push(Support {
+                horizontal.push(HorizontalJoint {
                     upper: BlockId(i),
                     lower,
                     overlap_m,
@@ -194,15 +201,15 @@ impl Topology {
             let p = blocks[i].weight_n.clone()
                 + above[i]
                     .iter()
-                    .map(|s| supports[s.0].load_n.clone())
+                    .map(|s| horizontal[s.0].load_n.clone())
                     .sum::<Q>();
             blocks[i].load_n = p.clone();
             let total: Q = below[i]
                 .iter()
-                .map(|s| supports[s.0].overlap_m.clone())
+                .map(|s| horizontal[s.0].overlap_m.clone())
                 .sum();
             for s in &below[i] {
-                supports[s.0].load_n = &p * &supports[s.0].overlap_m / &total;
+                horizontal[s.0].load_n = &p * &horizontal[s.0].overlap_m / &total;
             }
         }
 
@@ -218,22 +225,26 @@ impl Topology {
                 .collect()
         };
         for o in &wall.joint_friction {
-            let (upper, lower) = resolve_key(wall, &index, &supports, &below, &o.key)?;
+            let (upper, lower) = resolve_key(wall, &index, &horizontal, &below, &o.key)?;
             let s = below[upper]
                 .iter()
-                .find(|s| supports[s.0].lower == lower)
+                .find(|s| horizontal[s.0].lower == lower)
                 .expect("resolve_key checks the edge exists");
-            supports[s.0].friction = o.value.clone();
+            horizontal[s.0].friction = o.value.clone();
         }
-        for s in &mut supports {
+        for s in &mut horizontal {
             s.capacity_n = &s.friction * &s.load_n;
         }
 
         for (i, b) in wall.blocks.iter().enumerate() {
-            if b.fixed || below[i].iter().any(|s| supports[s.0].lower == Base::Ground) {
+            if b.fixed
+                || below[i]
+                    .iter()
+                    .any(|s| horizontal[s.0].lower == Base::Ground)
+            {
                 continue;
             }
-            let (lo, hi) = contact_hull(wall, &supports, &below[i], &Q::zero(), |_| Q::zero())
+            let (lo, hi) = contact_hull(wall, &horizontal, &below[i], &Q::zero(), |_| Q::zero())
                 .expect("a movable block has supports");
             let c = b.centroid_x();
             if c < lo || c > hi {
@@ -247,32 +258,32 @@ impl Topology {
             }
         }
 
-        let joints = vertical_joints(wall);
+        let vertical = vertical_joints(wall);
         let mut sides = vec![Vec::new(); n];
-        for (k, j) in joints.iter().enumerate() {
-            sides[j.left.0].push(JointId(k));
-            sides[j.right.0].push(JointId(k));
+        for (k, j) in vertical.iter().enumerate() {
+            sides[j.left.0].push(VerticalId(k));
+            sides[j.right.0].push(VerticalId(k));
         }
         Ok(Topology {
             blocks,
-            supports,
-            joints,
+            horizontal,
+            vertical,
             below: below.into(),
             above: above.into(),
             sides: sides.into(),
         })
     }
 
-    /// The same graph with other friction coefficients, one per support (a friction-variability
+    /// The same graph with other friction coefficients, one per horizontal joint (a friction-variability
     /// sample): capacities follow as mu x load.
     pub fn with_frictions(&self, friction: Vec<Q>) -> Topology {
         assert_eq!(
             friction.len(),
-            self.supports.len(),
-            "one coefficient per support"
+            self.horizontal.len(),
+            "one coefficient per horizontal joint"
         );
         let mut t = self.clone();
-        for (s, mu) in t.supports.iter_mut().zip(friction) {
+        for (s, mu) in t.horizontal.iter_mut().zip(friction) {
             s.capacity_n = &mu * &s.load_n;
             s.friction = mu;
         }
@@ -283,9 +294,10 @@ impl Topology {
     /// is left. Supports touching a removed block carry nothing.
     pub fn loads_without(&self, wall: &Wall, removed: &[bool]) -> Vec<Q> {
         let n = wall.blocks.len();
-        let gone =
-            |s: &Support| removed[s.upper.0] || matches!(s.lower, Base::Block(b) if removed[b.0]);
-        let mut loads = vec![Q::zero(); self.supports.len()];
+        let gone = |s: &HorizontalJoint| {
+            removed[s.upper.0] || matches!(s.lower, Base::Block(b) if removed[b.0])
+        };
+        let mut loads = vec![Q::zero(); self.horizontal.len()];
         let mut order: Vec<usize> = (0..n)
             .filter(|&i| !wall.blocks[i].fixed && !removed[i])
             .collect();
@@ -293,17 +305,17 @@ impl Topology {
         for &i in &order {
             let p = self.blocks[i].weight_n.clone()
                 + self.above[i].iter().map(|s| loads[s.0].clone()).sum::<Q>();
-            let live: Vec<SupportId> = self.below[i]
+            let live: Vec<HorizontalId> = self.below[i]
                 .iter()
                 .copied()
-                .filter(|s| !gone(&self.supports[s.0]))
+                .filter(|s| !gone(&self.horizontal[s.0]))
                 .collect();
             let total: Q = live
                 .iter()
-                .map(|s| self.supports[s.0].overlap_m.clone())
+                .map(|s| self.horizontal[s.0].overlap_m.clone())
                 .sum();
             for s in live {
-                loads[s.0] = &p * &self.supports[s.0].overlap_m / &total;
+                loads[s.0] = &p * &self.horizontal[s.0].overlap_m / &total;
             }
         }
         loads
@@ -318,7 +330,7 @@ impl Topology {
         for &i in &order {
             depth[i] = 1 + self.below[i]
                 .iter()
-                .filter_map(|s| match self.supports[s.0].lower {
+                .filter_map(|s| match self.horizontal[s.0].lower {
                     Base::Block(b) => Some(depth[b.0]),
                     Base::Ground => None,
                 })
@@ -350,14 +362,14 @@ impl Topology {
 /// displacement and `du_of` gives each support's. `None` when no support touches any more.
 pub fn contact_hull(
     wall: &Wall,
-    supports: &[Support],
-    below: &[SupportId],
+    horizontal: &[HorizontalJoint],
+    below: &[HorizontalId],
     du: &Q,
     du_of: impl Fn(BlockId) -> Q,
 ) -> Option<(Q, Q)> {
     let mut hull: Option<(Q, Q)> = None;
     for s in below {
-        let sup = &supports[s.0];
+        let sup = &horizontal[s.0];
         let b = &wall.blocks[sup.upper.0];
         let (x0, x1) = (&b.x + du, b.right() + du);
         let (l0, l1) = match sup.lower {
@@ -383,8 +395,8 @@ pub fn contact_hull(
 fn resolve_key(
     wall: &Wall,
     index: &HashMap<&str, usize>,
-    supports: &[Support],
-    below: &[Vec<SupportId>],
+    horizontal: &[HorizontalJoint],
+    below: &[Vec<HorizontalId>],
     key: &str,
 ) -> Result<(usize, Base), WallError> {
     let parts: Vec<&str> = key.split('/').map(str::trim).collect();
@@ -418,12 +430,12 @@ fn resolve_key(
             },
         )?))
     };
-    if below[upper].iter().any(|s| supports[s.0].lower == lower) {
+    if below[upper].iter().any(|s| horizontal[s.0].lower == lower) {
         return Ok((upper, lower));
     }
     let actual: Vec<String> = below[upper]
         .iter()
-        .map(|s| match supports[s.0].lower {
+        .map(|s| match horizontal[s.0].lower {
             Base::Ground => "ground".to_string(),
             Base::Block(b) => wall.blocks[b.0].name.clone(),
         })
@@ -532,10 +544,12 @@ pub struct TopologyReport {
     pub restitution: f64,
     /// Blocks.
     pub blocks: Vec<BlockReport>,
-    /// Horizontal joints.
-    pub supports: Vec<SupportReport>,
-    /// Vertical joints.
-    pub joints: Vec<JointReport>,
+    /// Horizontal joints (`supports` in the JSON, the name it had before issue 33).
+    #[serde(rename = "supports")]
+    pub horizontal: Vec<HorizontalJointReport>,
+    /// Vertical joints (`joints` in the JSON).
+    #[serde(rename = "joints")]
+    pub vertical: Vec<VerticalJointReport>,
 }
 
 /// One block in a [`TopologyReport`].
@@ -561,9 +575,9 @@ pub struct BlockReport {
     pub load_n: f64,
 }
 
-/// One support edge in a [`TopologyReport`].
+/// One horizontal joint in a [`TopologyReport`].
 #[derive(Debug, Clone, serde::Serialize)]
-pub struct SupportReport {
+pub struct HorizontalJointReport {
     /// Upper block.
     pub upper: String,
     /// Lower block or `ground`.
@@ -580,7 +594,7 @@ pub struct SupportReport {
 
 /// One vertical joint in a [`TopologyReport`].
 #[derive(Debug, Clone, serde::Serialize)]
-pub struct JointReport {
+pub struct VerticalJointReport {
     /// Left block.
     pub left: String,
     /// Right block.
@@ -617,10 +631,10 @@ impl Topology {
                     load_n: if b.fixed { 0.0 } else { d.load_n.to_f64() },
                 })
                 .collect(),
-            supports: self
-                .supports
+            horizontal: self
+                .horizontal
                 .iter()
-                .map(|s| SupportReport {
+                .map(|s| HorizontalJointReport {
                     upper: name(s.upper),
                     lower: self.base_name(wall, s.lower).to_string(),
                     overlap_m: s.overlap_m.to_f64(),
@@ -629,10 +643,10 @@ impl Topology {
                     capacity_n: s.capacity_n.to_f64(),
                 })
                 .collect(),
-            joints: self
-                .joints
+            vertical: self
+                .vertical
                 .iter()
-                .map(|j| JointReport {
+                .map(|j| VerticalJointReport {
                     left: name(j.left),
                     right: name(j.right),
                     gap_m: j.gap_m.to_f64(),

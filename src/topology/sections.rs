@@ -154,7 +154,7 @@ fn section(wall: &Wall, topo: &Topology, level: &crate::Q, above: &[usize], t: f
     // Friction of the bed joint: the contacts of the blocks resting at this level, weighted by
     // the loads they carry.
     let (mut weighted, mut load) = (0.0, 0.0);
-    for s in &topo.supports {
+    for s in &topo.horizontal {
         let upper_block = &wall.blocks[s.upper.0];
         let here = &upper_block.y == level
             && match s.lower {

@@ -167,7 +167,7 @@ fn uniform_friction_wall_moves_as_one_rigid_body() {
         let stats = r.summary.stats;
         assert_eq!(stats.decision_blocks, 5 * stats.mode_decisions);
         assert_eq!(stats.flow_nodes, 0);
-        for j in &r.summary.joints {
+        for j in &r.summary.horizontal_joints {
             if j.lower != "ground" {
                 assert_eq!(
                     j.max_abs_relative_displacement_m, 0.0,
@@ -217,7 +217,7 @@ fn variable_friction_gives_relative_slip_impacts_and_larger_maxima() {
     assert!(v.summary.impacts > 0);
     let b3b1 = v
         .summary
-        .joints
+        .horizontal_joints
         .iter()
         .find(|j| j.upper == "B3" && j.lower == "B1")
         .unwrap();

@@ -21,7 +21,7 @@ fn five_blocks_are_the_papers_wall() {
         Topology::new(&shipped).unwrap(),
     );
     let caps =
-        |t: &Topology| -> Vec<Q> { t.supports.iter().map(|s| s.capacity_n.clone()).collect() };
+        |t: &Topology| -> Vec<Q> { t.horizontal.iter().map(|s| s.capacity_n.clone()).collect() };
     assert_eq!(caps(&tg), caps(&ts));
 }
 

@@ -31,7 +31,7 @@ fn random_friction(wall: &Wall, lowest: i128, span: i128) -> Topology {
     let mut rng = pirqa::rng::Rng::new(5);
     let nominal = Topology::new(wall).unwrap();
     let mu: Vec<pirqa::Q> = nominal
-        .supports
+        .horizontal
         .iter()
         .map(|_| pirqa::Q::frac(lowest + (rng.uniform() * span as f64) as i128, 10_000))
         .collect();
@@ -67,7 +67,12 @@ fn a_uniform_wall_of_two_thousand_blocks_moves_as_one_body() {
     );
     let first = r.summary.blocks[0].max_abs_displacement_m;
     assert!(first > 1e-3, "it slides: {first} m");
-    for j in r.summary.joints.iter().filter(|j| j.lower != "ground") {
+    for j in r
+        .summary
+        .horizontal_joints
+        .iter()
+        .filter(|j| j.lower != "ground")
+    {
         assert_eq!(
             j.max_abs_relative_displacement_m, 0.0,
             "{}/{}",
@@ -141,7 +146,7 @@ fn a_sliding_cluster_splits_when_an_impact_reverses_the_friction_on_it() {
     let expected = 0.5 * a_rel * (0.6 - impact.time_s).powi(2);
     let yx = r
         .summary
-        .joints
+        .horizontal_joints
         .iter()
         .find(|j| j.upper == "Y" && j.lower == "X")
         .unwrap();

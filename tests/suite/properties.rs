@@ -99,7 +99,7 @@ proptest! {
         prop_assert!(e.residual_j.abs() <= 1e-9 * e.input_j.max(1.0), "energy residual {:e} of {:e}", e.residual_j, e.input_j);
 
         let h = r.history.as_ref().unwrap();
-        for j in &topo.joints {
+        for j in &topo.vertical {
             let (l, rr) = (j.left.0, j.right.0);
             let fell = r.summary.blocks[l].fell || r.summary.blocks[rr].fell;
             if fell { continue; }
@@ -141,7 +141,7 @@ fn coursed_wall(
     let nominal = Topology::new(&wall).unwrap();
     let mut rng = pirqa::rng::Rng::new(seed);
     let mu: Vec<pirqa::exact::Q> = nominal
-        .supports
+        .horizontal
         .iter()
         .map(|_| pirqa::exact::Q::frac(lowest + (rng.uniform() * span as f64) as i128, 10_000))
         .collect();

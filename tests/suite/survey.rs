@@ -58,7 +58,7 @@ fn graph(wall: &Wall) -> Graph {
     let topo = Topology::new(wall).unwrap();
     let name = |i: pirqa::BlockId| wall.blocks[i.0].name.clone();
     let supports = topo
-        .supports
+        .horizontal
         .iter()
         .map(|s| {
             let lower = match s.lower {
@@ -69,7 +69,7 @@ fn graph(wall: &Wall) -> Graph {
         })
         .collect();
     let joints = topo
-        .joints
+        .vertical
         .iter()
         .map(|j| ((name(j.left), name(j.right)), j.gap_m.to_f64()))
         .collect();

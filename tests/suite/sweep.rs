@@ -104,7 +104,7 @@ fn friction_samples_are_reproducible_rounded_and_centred_on_the_wall() {
     let many = sweep(&SMALL.replace("samples: 3", "samples: 4000")).unwrap();
     let nominal: Vec<f64> = many.walls[1]
         .topology
-        .supports
+        .horizontal
         .iter()
         .map(|sup| sup.friction.to_f64())
         .collect();

@@ -24,10 +24,10 @@ fn capacities_match_eq_3_exactly() {
         ("B4", "B2", (&b - &e) * &t * &h2 * &gamma * dec(0.30)),
         ("B5", "B2", &e * &t * &h2 * &gamma * dec(0.28)),
     ];
-    assert_eq!(topo.supports.len(), 6);
+    assert_eq!(topo.horizontal.len(), 6);
     for (upper, lower, f) in expected {
         let s = topo
-            .supports
+            .horizontal
             .iter()
             .find(|s| {
                 wall.blocks[s.upper.0].name == upper && topo.base_name(&wall, s.lower) == lower
@@ -37,7 +37,7 @@ fn capacities_match_eq_3_exactly() {
     }
     // Spot value: F10 = 1.2 * 0.8 * 1.2 * 2650 * 9.81 * 0.29 N.
     assert_eq!(
-        topo.supports[0].capacity_n,
+        topo.horizontal[0].capacity_n,
         Q::parse_decimal("8684.91072").unwrap()
     );
 }
@@ -47,7 +47,7 @@ fn loads_are_tributary_and_conserve_weight() {
     let (wall, topo) = topology::load(Path::new("walls/inca-coursed.ron")).unwrap();
     let total: Q = topo.blocks.iter().map(|b| b.weight_n.clone()).sum();
     let on_ground: Q = topo
-        .supports
+        .horizontal
         .iter()
         .filter(|s| s.lower == Base::Ground)
         .map(|s| s.load_n.clone())
@@ -59,12 +59,12 @@ fn loads_are_tributary_and_conserve_weight() {
     for (i, b) in topo.blocks.iter().enumerate() {
         let carried: Q = topo.below[i]
             .iter()
-            .map(|s| topo.supports[s.0].load_n.clone())
+            .map(|s| topo.horizontal[s.0].load_n.clone())
             .sum();
         assert_eq!(carried, b.load_n, "{}", wall.blocks[i].name);
         let from_above: Q = topo.above[i]
             .iter()
-            .map(|s| topo.supports[s.0].load_n.clone())
+            .map(|s| topo.horizontal[s.0].load_n.clone())
             .sum();
         assert_eq!(&b.weight_n + &from_above, b.load_n);
     }
@@ -74,7 +74,7 @@ fn loads_are_tributary_and_conserve_weight() {
 fn vertical_joints_of_the_reference_wall() {
     let (wall, topo) = topology::load(Path::new("walls/five-block-uniform.ron")).unwrap();
     let pairs: Vec<(String, String)> = topo
-        .joints
+        .vertical
         .iter()
         .map(|j| {
             (
@@ -92,7 +92,7 @@ fn vertical_joints_of_the_reference_wall() {
         );
     }
     assert!(topo
-        .joints
+        .vertical
         .iter()
         .all(|j| j.gap_m.is_zero() && j.height_m == dec(0.6)));
 }
@@ -152,13 +152,13 @@ fn a_block_bridging_a_gap_and_faces_seen_past_short_blocks() {
             wall.blocks[j.left.0].name, wall.blocks[j.right.0].name, j.gap_m
         )
     };
-    let got: Vec<String> = topo.joints.iter().map(names).collect();
+    let got: Vec<String> = topo.vertical.iter().map(names).collect();
     assert_eq!(got, vec!["B1|B2:0.2", "B3|B4:0.1", "B3|B5:0.1"]);
     // B3's load splits 0.5 : 0.5 over its two supports.
     let b3 = wall.block_index("B3").unwrap();
     let loads: Vec<Q> = topo.below[b3]
         .iter()
-        .map(|s| topo.supports[s.0].load_n.clone())
+        .map(|s| topo.horizontal[s.0].load_n.clone())
         .collect();
     assert_eq!(loads[0], loads[1]);
 }
@@ -259,7 +259,7 @@ proptest::proptest! {
             }
             let got: Vec<(Base, Q)> = topo.below[i]
                 .iter()
-                .map(|s| (topo.supports[s.0].lower, topo.supports[s.0].overlap_m.clone()))
+                .map(|s| (topo.horizontal[s.0].lower, topo.horizontal[s.0].overlap_m.clone()))
                 .collect();
             proptest::prop_assert_eq!(got, expected);
         }
@@ -296,7 +296,7 @@ proptest::proptest! {
             a.0.cmp(&b.0).then(p.y.cmp(&q.y)).then(p.x.cmp(&q.x))
         });
         let got: Vec<_> = topo
-            .joints
+            .vertical
             .iter()
             .map(|j| (j.left.0, j.right.0, j.gap_m.clone(), j.height_m.clone()))
             .collect();

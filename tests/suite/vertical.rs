@@ -75,7 +75,12 @@ fn the_uniform_wall_stays_one_rigid_body_under_vertical_shaking() {
     let v = samples::broadband_record(20.0, 0.01, 2.0);
     let m = Motion::Record(h.with_vertical(&v, 9.81).unwrap());
     let r = run(&wall, &m, 20.0);
-    for j in r.summary.joints.iter().filter(|j| j.lower != "ground") {
+    for j in r
+        .summary
+        .horizontal_joints
+        .iter()
+        .filter(|j| j.lower != "ground")
+    {
         assert_eq!(
             j.max_abs_relative_displacement_m, 0.0,
             "{}/{}",

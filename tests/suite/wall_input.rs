@@ -30,7 +30,7 @@ fn the_reference_wall_is_accepted() {
     let path = write_temp("ok.ron", &wall("", GOOD_ROWS, ""));
     let (w, t) = topology::load(&path).unwrap();
     assert_eq!(w.blocks.len(), 5);
-    assert_eq!(t.supports.len(), 6);
+    assert_eq!(t.horizontal.len(), 6);
     assert_eq!(w.name, "ok");
 }
 

@@ -115,7 +115,7 @@ impl Sim {
             blocks.push((body, c, b.centroid_x().to_f64()));
         }
         let mut mu = HashMap::new();
-        for s in &topo.supports {
+        for s in &topo.horizontal {
             let lower = match s.lower {
                 Base::Ground => GROUND,
                 Base::Block(l) => l.0,

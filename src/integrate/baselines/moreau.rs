@@ -53,9 +53,9 @@ impl Integrator for Moreau {
             .map(|i| if m.movable[i] { 1.0 / m.mass[i] } else { 0.0 })
             .collect();
         let (mut u, mut v, mut v_old) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let mut p_joint = vec![0.0; m.joints.len()];
-        let mut p_face = vec![0.0; m.faces.len()];
-        let scale = m.joints.iter().map(|j| j.capacity).fold(1.0, f64::max) * h;
+        let mut p_joint = vec![0.0; m.horizontal.len()];
+        let mut p_face = vec![0.0; m.vertical.len()];
+        let scale = m.horizontal.iter().map(|j| j.capacity).fold(1.0, f64::max) * h;
         let steps = (sc.settings.duration_s / h).ceil() as u64;
         let th = self.theta;
         let mut unconverged = 0u64;
@@ -71,7 +71,7 @@ impl Integrator for Moreau {
             }
             // Contacts predicted closed, with their approach speed at the start of the step.
             let active: Vec<(usize, f64)> = m
-                .faces
+                .vertical
                 .iter()
                 .enumerate()
                 .filter(|(_, f)| !obs.gone[f.pair.0] && !obs.gone[f.pair.1])
@@ -85,7 +85,7 @@ impl Integrator for Moreau {
             let mut converged = false;
             for _ in 0..self.max_sweeps {
                 let mut change: f64 = 0.0;
-                for (kj, j) in m.joints.iter().enumerate() {
+                for (kj, j) in m.horizontal.iter().enumerate() {
                     if obs.gone[j.upper] || j.lower_any.is_some_and(|l| obs.gone[l]) {
                         continue;
                     }
@@ -105,7 +105,7 @@ impl Integrator for Moreau {
                     }
                 }
                 for &(kf, un_old) in &active {
-                    let f = &m.faces[kf];
+                    let f = &m.vertical[kf];
                     let (il, ir) = (
                         f.left.map_or(0.0, |b| inv[b]),
                         f.right.map_or(0.0, |b| inv[b]),
@@ -137,7 +137,7 @@ impl Integrator for Moreau {
                 // Pressing faces carry an impulse every step; an impact is a face that was
                 // approaching at more than round-off speed.
                 if p_face[kf] > 0.0 && un_old < -IMPACT_SPEED_M_S {
-                    let f = &m.faces[kf];
+                    let f = &m.vertical[kf];
                     let side = |b: Option<usize>, vv: &[f64]| b.map_or(0.0, |b| vv[b]);
                     obs.impact(
                         t,

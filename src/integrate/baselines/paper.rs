@@ -39,7 +39,7 @@ fn accelerations(m: &Model, gone: &[bool], ag: f64, v_sign: &[f64], out: &mut [f
     for i in 0..m.n {
         out[i] = if m.movable[i] && !gone[i] { -ag } else { 0.0 };
     }
-    for j in &m.joints {
+    for j in &m.horizontal {
         if gone[j.upper] || j.lower_any.is_some_and(|l| gone[l]) {
             continue;
         }
@@ -64,7 +64,11 @@ impl Integrator for PaperNewmark {
         let n = m.n;
         let (mut d, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let (mut a1, mut pred) = (vec![0.0; n], vec![0.0; n]);
-        let mu_min = m.joints.iter().map(|j| j.mu).fold(f64::INFINITY, f64::min);
+        let mu_min = m
+            .horizontal
+            .iter()
+            .map(|j| j.mu)
+            .fold(f64::INFINITY, f64::min);
         let mut started = false;
         let steps = (sc.settings.duration_s / h).ceil() as u64;
         for k in 1..=steps {
@@ -84,7 +88,7 @@ impl Integrator for PaperNewmark {
                 v[i] += 0.5 * h * (a[i] + a1[i]);
             }
             std::mem::swap(&mut a, &mut a1);
-            for (kf, f) in m.faces.iter().enumerate() {
+            for (kf, f) in m.vertical.iter().enumerate() {
                 let (l, r) = f.pair;
                 if obs.gone[l] || obs.gone[r] || m.gap(f, &d) >= 0.0 {
                     continue;

@@ -56,7 +56,7 @@ impl Rhs<'_> {
                 0.0
             };
         }
-        for j in &self.m.joints {
+        for j in &self.m.horizontal {
             if self.gone[j.upper] || j.lower_any.is_some_and(|l| self.gone[l]) {
                 continue;
             }
@@ -66,7 +66,7 @@ impl Rhs<'_> {
                 out[n + l] += f / self.m.mass[l];
             }
         }
-        for (kf, face) in self.m.faces.iter().enumerate() {
+        for (kf, face) in self.m.vertical.iter().enumerate() {
             if self.gone[face.pair.0] || self.gone[face.pair.1] {
                 continue;
             }
@@ -219,7 +219,7 @@ impl Integrator for Regularized {
             -l / (std::f64::consts::PI.powi(2) + l * l).sqrt()
         };
         let damping: Vec<f64> = m
-            .faces
+            .vertical
             .iter()
             .map(|f| {
                 let inv = f.left.map_or(0.0, |b| 1.0 / m.mass[b])
@@ -233,7 +233,7 @@ impl Integrator for Regularized {
         let mut h = 1e-4f64.min(t_end);
         let mut stages = Stages::new(2 * n);
         let mut steps = 0u64;
-        let mut touching = vec![false; m.faces.len()];
+        let mut touching = vec![false; m.vertical.len()];
         while t < t_end && !obs.stopped {
             h = h.min(t_end - t);
             let rhs = Rhs {
@@ -256,7 +256,7 @@ impl Integrator for Regularized {
                 steps += 1;
                 let fallen = obs.gone.iter().filter(|&&g| g).count();
                 let (u, v) = y.split_at(n);
-                for (kf, f) in m.faces.iter().enumerate() {
+                for (kf, f) in m.vertical.iter().enumerate() {
                     let now = m.gap(f, u) < 0.0;
                     if now && !touching[kf] {
                         let side = |b: Option<usize>| b.map_or(0.0, |b| v[b]);

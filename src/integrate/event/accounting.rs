@@ -118,19 +118,19 @@ impl Engine<'_> {
         }
     }
 
-    /// Friction work on support s since it was last accounted, and its displacement extreme.
+    /// Friction work on horizontal joint s since it was last accounted, and its displacement extreme.
     /// With vertical shaking the capacity is F lambda(t): the work is F sigma (lambda d |_a^b -
     /// lambda' integral d dt) over the stretch (within one segment).
-    pub(super) fn account_support(&mut self, s: usize) {
-        if !self.live_support(s) {
+    pub(super) fn account_horizontal(&mut self, s: usize) {
+        if !self.live_horizontal(s) {
             return;
         }
-        let d = self.support_d(s);
+        let d = self.horizontal_d(s);
         let t_a = self.t_fric[s];
         if self.seg.has_vertical() && !self.slip[s].is_stuck() {
             let seg = self.seg;
             let (la, lb) = (seg.lambda_at(t_a - seg.t0), seg.lambda_at(self.t - seg.t0));
-            let integral = self.block_disp_integral(self.given.topo.supports[s].upper.0, t_a)
+            let integral = self.block_disp_integral(self.given.topo.horizontal[s].upper.0, t_a)
                 - self
                     .lower_block(s)
                     .map_or(0.0, |l| self.block_disp_integral(l, t_a));
@@ -142,7 +142,7 @@ impl Engine<'_> {
         }
         self.d_last[s] = d;
         self.t_fric[s] = self.t;
-        self.rec.joint_extreme(s, d.abs());
+        self.rec.horizontal_extreme(s, d.abs());
     }
 
     /// Integral of block i's displacement from t_a to now (m s), within the current segment.

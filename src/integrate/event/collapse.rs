@@ -20,7 +20,7 @@ impl Engine<'_> {
         match c {
             Constraint::Gap(j) => self.faces_meet(j),
             Constraint::Collapse(s) => {
-                let upper = self.given.topo.supports[s].upper.0;
+                let upper = self.given.topo.horizontal[s].upper.0;
                 if self.stands(upper) {
                     // A threshold of the support span passed without toppling: look further.
                     for k in std::iter::once(a).chain(b) {
@@ -68,7 +68,7 @@ impl Engine<'_> {
         let centroid = add(ui, self.given.xc[i]);
         let mut hull: Option<([f64; 3], [f64; 3])> = None;
         for &s in &self.given.topo.below[i] {
-            if !self.live_support(s.0) {
+            if !self.live_horizontal(s.0) {
                 continue;
             }
             let Some(j) = self.lower_block(s.0) else {

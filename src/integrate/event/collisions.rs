@@ -7,7 +7,7 @@ use super::{cluster, impact, Engine};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::response::{DecisionCause as Cause, EventKind};
-use crate::topology::{JointId, JointRef};
+use crate::topology::{JointRef, VerticalId};
 use std::collections::HashMap;
 
 /// The blocks an impact reaches through touching faces ([`impact::resolve`]'s input).
@@ -22,8 +22,8 @@ impl Engine<'_> {
     /// A vertical joint closes: an impact if the faces approach, a touch otherwise.
     pub(super) fn faces_meet(&mut self, j: usize) -> Result<(), SimulationError> {
         let (l, r) = (
-            self.given.topo.joints[j].left.0,
-            self.given.topo.joints[j].right.0,
+            self.given.topo.vertical[j].left.0,
+            self.given.topo.vertical[j].right.0,
         );
         self.touching[j] = true;
         if self.approaching(j) {
@@ -35,7 +35,7 @@ impl Engine<'_> {
             self.t,
             EventKind::Touch,
             &[l, r],
-            Some(JointRef::Vertical(JointId(j))),
+            Some(JointRef::Vertical(VerticalId(j))),
             None,
         );
         let v = match (self.grounded(l), self.grounded(r)) {
@@ -73,7 +73,7 @@ impl Engine<'_> {
         let mut queue = vec![j];
         seen[j] = true;
         while let Some(jj) = queue.pop() {
-            let jt = &self.given.topo.joints[jj];
+            let jt = &self.given.topo.vertical[jj];
             let mut ids = [0usize; 2];
             for (slot, blk) in [jt.left.0, jt.right.0].into_iter().enumerate() {
                 let key = if self.given.fixed[blk] {
@@ -105,22 +105,22 @@ impl Engine<'_> {
             chain.faces.push((ids[0], ids[1], jj));
         }
         chain.faces.sort_by(|p, q| {
-            self.given.xl[self.given.topo.joints[p.2].right.0]
-                .total_cmp(&self.given.xl[self.given.topo.joints[q.2].right.0])
+            self.given.xl[self.given.topo.vertical[p.2].right.0]
+                .total_cmp(&self.given.xl[self.given.topo.vertical[q.2].right.0])
         });
         chain
     }
 
     /// Joint j, a side of block `blk`, is live and its faces touch.
     fn closed(&self, j: usize, blk: usize) -> bool {
-        self.live_joint(j) && self.gap(j).abs() <= self.len_tol(self.block_disp(blk), 0.0)
+        self.live_vertical(j) && self.gap(j).abs() <= self.len_tol(self.block_disp(blk), 0.0)
     }
 
     /// The faces of joint j approach: closed, they collide.
     fn approaching(&self, j: usize) -> bool {
         let (vl, vr) = (
-            self.block_vel(self.given.topo.joints[j].left.0),
-            self.block_vel(self.given.topo.joints[j].right.0),
+            self.block_vel(self.given.topo.vertical[j].left.0),
+            self.block_vel(self.given.topo.vertical[j].right.0),
         );
         vl - vr > self.vel_tol(vl, vr)
     }
@@ -215,7 +215,7 @@ impl Engine<'_> {
     /// every other chain that collides at this instant on the clusters they hit
     /// ([`Engine::simultaneous_chains`]); then one decision follows them all.
     fn impact(&mut self, j: usize) -> Result<(), SimulationError> {
-        let mut seen = vec![false; self.given.topo.joints.len()];
+        let mut seen = vec![false; self.given.topo.vertical.len()];
         let first = self.chain(j, &mut seen);
         let (collisions, loss, exact) = self.resolve_chain(&first)?;
         if let Some(single) = (collisions.len() == 1).then(|| first.faces[collisions[0].face]) {
@@ -236,14 +236,14 @@ impl Engine<'_> {
                     Q::frac(1, 2) * &ml * &mr / (&ml + &mr) * &c.approach * &c.approach;
                 self.rec.energy.impact_loss_j += total_loss.to_f64();
                 let (l, r) = (
-                    self.given.topo.joints[jj].left.0,
-                    self.given.topo.joints[jj].right.0,
+                    self.given.topo.vertical[jj].left.0,
+                    self.given.topo.vertical[jj].right.0,
                 );
                 self.rec.event(
                     t_acc,
                     EventKind::Zeno,
                     &[l, r],
-                    Some(JointRef::Vertical(JointId(jj))),
+                    Some(JointRef::Vertical(VerticalId(jj))),
                     None,
                 );
                 self.rec.zeno += 1;
@@ -279,7 +279,7 @@ impl Engine<'_> {
             self.touching[jj] = true;
             let pair = |v: &[Q; 2]| [v[0].to_f64(), v[1].to_f64()];
             self.rec
-                .impact(self.t, JointId(jj), pair(&c.before), pair(&c.after));
+                .impact(self.t, VerticalId(jj), pair(&c.before), pair(&c.after));
         }
     }
 
@@ -294,8 +294,8 @@ impl Engine<'_> {
     fn zeno_accumulation(&self, j: usize, approach: &Q) -> Option<f64> {
         let e = &self.given.restitution;
         let (l, r) = (
-            self.given.topo.joints[j].left.0,
-            self.given.topo.joints[j].right.0,
+            self.given.topo.vertical[j].left.0,
+            self.given.topo.vertical[j].right.0,
         );
         let (sl, sr) = self.alone_sliding(j)?;
         let closing = &sr.c_q - &sl.c_q;
@@ -349,8 +349,8 @@ impl Engine<'_> {
             return None;
         }
         let (l, r) = (
-            self.given.topo.joints[j].left.0,
-            self.given.topo.joints[j].right.0,
+            self.given.topo.vertical[j].left.0,
+            self.given.topo.vertical[j].right.0,
         );
         let (kl, kr) = (self.of[l], self.of[r]);
         if kl == ClusterId::NONE

@@ -27,8 +27,8 @@
 //!
 //! Clusters are named by `ClusterId` (`cluster.rs`, with `Clusters`, the table they live in,
 //! and `ClusterId::NONE` for a fixed or fallen block's), beside the topology's `BlockId`,
-//! `SupportId` and `JointId`; blocks, supports and joints are plain indices inside the engine,
-//! where every table is indexed by them.
+//! `HorizontalId` and `VerticalId`; blocks, horizontal and vertical joints are plain indices
+//! inside the engine, where every table is indexed by them.
 //!
 //! Stuck clusters get their stick intervals in `stuck.rs` (`Engine::set_thresholds`, from
 //! `Problem::stick_sides_*` in solver/stick.rs); `accounting.rs` keeps the energies, extremes
@@ -156,7 +156,7 @@ struct Given<'a> {
     /// Per block: mass (kg), as a float and exact.
     mass: Vec<f64>,
     mass_q: Vec<Q>,
-    /// Per support: friction capacity mu N (N), as a float and exact.
+    /// Per horizontal joint: friction capacity mu N (N), as a float and exact.
     cap: Vec<f64>,
     cap_q: Vec<Q>,
     /// Per block: fixed (an abutment).
@@ -211,13 +211,13 @@ pub(crate) struct Engine<'a> {
     free: Vec<ClusterId>,
     /// Per block: its displacement when its cluster formed (m).
     u_ref: Vec<f64>,
-    /// Per support: its joint stuck or slipping, and which way.
+    /// Per horizontal joint: its joint stuck or slipping, and which way.
     slip: Vec<Slip>,
     /// Per vertical joint: the faces touch.
     touching: Vec<bool>,
-    /// Per support: relative displacement when friction work was last accounted.
+    /// Per horizontal joint: relative displacement when friction work was last accounted.
     d_last: Vec<f64>,
-    /// Per support: when friction work was last accounted (s).
+    /// Per horizontal joint: when friction work was last accounted (s).
     t_fric: Vec<f64>,
     /// Cluster versions: a changed cluster gets a new one, and its queued events go stale.
     version: u64,
@@ -240,7 +240,11 @@ impl<'a> Engine<'a> {
         let t_end = sc.settings.duration_s;
         sc.settings.validate(n)?;
         let mass_q: Vec<Q> = topo.blocks.iter().map(|b| b.mass_kg.clone()).collect();
-        let cap_q: Vec<Q> = topo.supports.iter().map(|s| s.capacity_n.clone()).collect();
+        let cap_q: Vec<Q> = topo
+            .horizontal
+            .iter()
+            .map(|s| s.capacity_n.clone())
+            .collect();
         let f = |v: &[Q]| v.iter().map(Q::to_f64).collect::<Vec<f64>>();
         // Over the whole motion, so a run's round-off scales, and with them its answer up to any
         // instant, do not depend on how long it is asked to run.
@@ -281,7 +285,7 @@ impl<'a> Engine<'a> {
                     .iter()
                     .map(|b| b.centroid_x().to_f64())
                     .collect(),
-                gap0: topo.joints.iter().map(|j| j.gap_m.to_f64()).collect(),
+                gap0: topo.vertical.iter().map(|j| j.gap_m.to_f64()).collect(),
                 restitution: wall.restitution.clone(),
                 len_scale: extent + d_max,
                 vel_scale: v_max + 1e-3,
@@ -293,10 +297,10 @@ impl<'a> Engine<'a> {
             clusters: Clusters::default(),
             free: Vec::new(),
             u_ref: vec![0.0; n],
-            slip: vec![Slip::Stuck; topo.supports.len()],
-            touching: topo.joints.iter().map(|j| j.gap_m.is_zero()).collect(),
-            d_last: vec![0.0; topo.supports.len()],
-            t_fric: vec![0.0; topo.supports.len()],
+            slip: vec![Slip::Stuck; topo.horizontal.len()],
+            touching: topo.vertical.iter().map(|j| j.gap_m.is_zero()).collect(),
+            d_last: vec![0.0; topo.horizontal.len()],
+            t_fric: vec![0.0; topo.horizontal.len()],
             version: 0,
             output_k: 0,
             instant: (f64::NEG_INFINITY, 0),
@@ -415,17 +419,17 @@ impl<'a> Engine<'a> {
         ROUNDOFF_ULPS * f64::EPSILON * (self.given.vel_scale + a.abs() + b.abs())
     }
 
-    /// The lower block of a support, if it is a block that can move.
+    /// The lower block of a horizontal joint, if it is a block that can move.
     fn lower_block(&self, s: usize) -> Option<usize> {
-        match self.given.topo.supports[s].lower {
+        match self.given.topo.horizontal[s].lower {
             Base::Ground => None,
             Base::Block(b) => Some(b.0),
         }
     }
 
-    /// A support still in the model (neither end fell).
-    fn live_support(&self, s: usize) -> bool {
-        let sup = &self.given.topo.supports[s];
+    /// A horizontal joint still in the model (neither end fell).
+    fn live_horizontal(&self, s: usize) -> bool {
+        let sup = &self.given.topo.horizontal[s];
         !self.fallen[sup.upper.0] && self.lower_block(s).is_none_or(|l| !self.fallen[l])
     }
 
@@ -443,11 +447,11 @@ impl<'a> Engine<'a> {
                     let supports = self.given.topo.below[i]
                         .iter()
                         .chain(&self.given.topo.above[i]);
-                    let across_support = supports.map(|s| self.across_support(s.0, i));
+                    let across_horizontal = supports.map(|s| self.across_horizontal(s.0, i));
                     let faces = self.given.topo.sides[i]
                         .iter()
-                        .map(|j| self.across_joint(j.0, i));
-                    across_support
+                        .map(|j| self.across_vertical(j.0, i));
+                    across_horizontal
                         .chain(faces.map(Some))
                         .any(|o| o.is_none_or(outside))
                 })
@@ -460,13 +464,13 @@ impl<'a> Engine<'a> {
         self.given.topo.below[b]
             .iter()
             .chain(&self.given.topo.above[b])
-            .filter(|s| self.live_support(s.0))
-            .map(move |s| self.across_support(s.0, b))
+            .filter(|s| self.live_horizontal(s.0))
+            .map(move |s| self.across_horizontal(s.0, b))
     }
 
-    /// The block across support s from block b; `None` is the ground.
-    fn across_support(&self, s: usize, b: usize) -> Option<usize> {
-        let upper = self.given.topo.supports[s].upper.0;
+    /// The block across horizontal joint s from block b; `None` is the ground.
+    fn across_horizontal(&self, s: usize, b: usize) -> Option<usize> {
+        let upper = self.given.topo.horizontal[s].upper.0;
         if upper == b {
             self.lower_block(s)
         } else {
@@ -475,8 +479,8 @@ impl<'a> Engine<'a> {
     }
 
     /// The block across vertical joint j from block b.
-    fn across_joint(&self, j: usize, b: usize) -> usize {
-        let jt = &self.given.topo.joints[j];
+    fn across_vertical(&self, j: usize, b: usize) -> usize {
+        let jt = &self.given.topo.vertical[j];
         if jt.left.0 == b {
             jt.right.0
         } else {
@@ -484,18 +488,18 @@ impl<'a> Engine<'a> {
         }
     }
 
-    fn live_joint(&self, j: usize) -> bool {
-        let jt = &self.given.topo.joints[j];
+    fn live_vertical(&self, j: usize) -> bool {
+        let jt = &self.given.topo.vertical[j];
         !self.fallen[jt.left.0] && !self.fallen[jt.right.0]
     }
 
     fn gap(&self, j: usize) -> f64 {
-        let jt = &self.given.topo.joints[j];
+        let jt = &self.given.topo.vertical[j];
         self.given.gap0[j] + self.block_disp(jt.right.0) - self.block_disp(jt.left.0)
     }
 
-    fn support_d(&self, s: usize) -> f64 {
-        let sup = &self.given.topo.supports[s];
+    fn horizontal_d(&self, s: usize) -> f64 {
+        let sup = &self.given.topo.horizontal[s];
         self.block_disp(sup.upper.0) - self.lower_block(s).map_or(0.0, |l| self.block_disp(l))
     }
 
@@ -507,8 +511,8 @@ impl<'a> Engine<'a> {
     fn enter_segment(&mut self, t: f64) {
         if self.seg.has_vertical() {
             // Friction work with a varying capacity is integrated segment by segment.
-            for s in 0..self.given.topo.supports.len() {
-                self.account_support(s);
+            for s in 0..self.given.topo.horizontal.len() {
+                self.account_horizontal(s);
             }
         }
         // A sliding cluster's closed form is rebased on the new segment: what it did on this
@@ -614,8 +618,8 @@ impl<'a> Engine<'a> {
         for k in self.clusters.ids() {
             self.record_extremes(k);
         }
-        for s in 0..self.given.topo.supports.len() {
-            self.account_support(s);
+        for s in 0..self.given.topo.horizontal.len() {
+            self.account_horizontal(s);
         }
         let (u, v) = self.state_now();
         self.rec.energy.kinetic_j = (0..self.given.n)

@@ -14,7 +14,7 @@ const PURGE_FROM: usize = 1024;
 pub(super) enum Constraint {
     /// A vertical joint closing.
     Gap(usize),
-    /// A support's relative displacement crossing a collapse threshold.
+    /// A horizontal joint's relative displacement crossing a collapse threshold.
     Collapse(usize),
 }
 

@@ -241,8 +241,8 @@ impl Engine<'_> {
             let others = self.live_neighbours(i).flatten();
             let sides = self.given.topo.sides[i]
                 .iter()
-                .filter(|j| self.live_joint(j.0))
-                .map(|j| self.across_joint(j.0, i));
+                .filter(|j| self.live_vertical(j.0))
+                .map(|j| self.across_vertical(j.0, i));
             for o in others.chain(sides) {
                 let m = self.of[o];
                 if m != ClusterId::NONE && m != k && self.clusters[m].slide().is_some() {
@@ -273,7 +273,7 @@ impl Engine<'_> {
         let mut b = Bounds::default();
         for &i in self.boundary(k) {
             for &s in &self.given.topo.below[i] {
-                if !self.live_support(s.0) {
+                if !self.live_horizontal(s.0) {
                     continue;
                 }
                 match self.lower_block(s.0) {
@@ -294,8 +294,8 @@ impl Engine<'_> {
                 }
             }
             for &s in &self.given.topo.above[i] {
-                let up = self.given.topo.supports[s.0].upper.0;
-                if !self.live_support(s.0) || !self.grounded(up) {
+                let up = self.given.topo.horizontal[s.0].upper.0;
+                if !self.live_horizontal(s.0) || !self.grounded(up) {
                     continue;
                 }
                 if !self.slip[s.0].is_stuck() {
@@ -306,8 +306,8 @@ impl Engine<'_> {
                 }
             }
             for &j in &self.given.topo.sides[i] {
-                let jt = &self.given.topo.joints[j.0];
-                if !self.live_joint(j.0) {
+                let jt = &self.given.topo.vertical[j.0];
+                if !self.live_vertical(j.0) {
                     continue;
                 }
                 let (o, left) = if jt.left.0 == i {
@@ -364,10 +364,10 @@ impl Engine<'_> {
                 .iter()
                 .chain(&self.given.topo.above[i])
             {
-                if !self.live_support(s.0) {
+                if !self.live_horizontal(s.0) {
                     continue;
                 }
-                let sup = &self.given.topo.supports[s.0];
+                let sup = &self.given.topo.horizontal[s.0];
                 let (up, low) = (sup.upper.0, self.lower_block(s.0));
                 let Some(low) = low else { continue };
                 if in_a(up) && in_b(low) {
@@ -387,8 +387,8 @@ impl Engine<'_> {
                 }
             }
             for &j in &self.given.topo.sides[i] {
-                let jt = &self.given.topo.joints[j.0];
-                if !self.live_joint(j.0) {
+                let jt = &self.given.topo.vertical[j.0];
+                if !self.live_vertical(j.0) {
                     continue;
                 }
                 let (l, r) = (jt.left.0, jt.right.0);

@@ -5,7 +5,7 @@
 use crate::exact::Q;
 use std::cmp::Ordering;
 
-/// The state of a support's horizontal joint: stuck, or slipping with its upper block moving
+/// The state of a horizontal joint: stuck, or slipping with its upper block moving
 /// forward (+x) or backward (-x) relative to the lower one (or to the ground).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(super) enum Slip {

@@ -46,10 +46,10 @@ impl Engine<'_> {
         };
         for &i in &members {
             for &s in &self.given.topo.below[i] {
-                if !self.live_support(s.0) || !self.slip[s.0].is_stuck() {
+                if !self.live_horizontal(s.0) || !self.slip[s.0].is_stuck() {
                     continue;
                 }
-                let end = match self.given.topo.supports[s.0].lower {
+                let end = match self.given.topo.horizontal[s.0].lower {
                     Base::Ground => End::Ground,
                     Base::Block(b) if self.given.fixed[b.0] => End::Ground,
                     Base::Block(b) => match local.get(&b.0) {
@@ -61,8 +61,8 @@ impl Engine<'_> {
                     .push((local[&i], end, self.given.cap_q[s.0].clone()));
             }
             for &j in &self.given.topo.sides[i] {
-                let jt = &self.given.topo.joints[j.0];
-                if jt.left.0 != i || !self.live_joint(j.0) || !self.is_touching(j.0) {
+                let jt = &self.given.topo.vertical[j.0];
+                if jt.left.0 != i || !self.live_vertical(j.0) || !self.is_touching(j.0) {
                     continue;
                 }
                 let end = |b: usize| {
@@ -78,10 +78,10 @@ impl Engine<'_> {
             }
             // Faces against an abutment on the block's left.
             for &j in &self.given.topo.sides[i] {
-                let jt = &self.given.topo.joints[j.0];
+                let jt = &self.given.topo.vertical[j.0];
                 if jt.right.0 == i
                     && self.given.fixed[jt.left.0]
-                    && self.live_joint(j.0)
+                    && self.live_vertical(j.0)
                     && self.is_touching(j.0)
                 {
                     p.contacts.push((End::Ground, End::Node(local[&i])));
@@ -427,11 +427,14 @@ impl Engine<'_> {
                 .chain(&self.given.topo.above[i])
             {
                 let s = s.0;
-                if !self.live_support(s) {
+                if !self.live_horizontal(s) {
                     continue;
                 }
                 changed |= !slip(s).is_stuck();
-                let Some(b) = self.across_support(s, i).filter(|&b| !self.given.fixed[b]) else {
+                let Some(b) = self
+                    .across_horizontal(s, i)
+                    .filter(|&b| !self.given.fixed[b])
+                else {
                     continue;
                 };
                 let (in_k, in_q) = (of(b) == k, in_q[b]);
@@ -441,16 +444,16 @@ impl Engine<'_> {
                 }
             }
             for &j in &self.given.topo.sides[i] {
-                let d = self.across_joint(j.0, i);
+                let d = self.across_vertical(j.0, i);
                 if !self.given.fixed[d]
                     && of(d) == k
                     && !in_q[d]
-                    && self.live_joint(j.0)
+                    && self.live_vertical(j.0)
                     && self.is_touching(j.0)
                 {
                     // The face held i back from moving towards d: lagging (hi) if d is on
                     // its left, running ahead (lo) if on its right.
-                    holds[usize::from(self.given.topo.joints[j.0].left.0 == d)] = false;
+                    holds[usize::from(self.given.topo.vertical[j.0].left.0 == d)] = false;
                 }
             }
             if !changed {

@@ -157,13 +157,13 @@ fn base_series(body: &RockingBody, t: &Trajectory) -> Coeffs {
 impl<'a> Engine<'a> {
     fn new(scene: &'a Scene<'a>) -> Engine<'a> {
         let names: Vec<String> = scene.bodies.iter().map(|b| b.name.clone()).collect();
-        let joints = names
+        let horizontal = names
             .iter()
             .enumerate()
             .map(|(i, n)| (i, None, n.clone(), "ground".to_string()))
             .collect();
         let s = scene.settings;
-        let rec = Recorder::for_bodies(names, joints, s.output_dt_s.is_some(), s.log_events);
+        let rec = Recorder::for_bodies(names, horizontal, s.output_dt_s.is_some(), s.log_events);
         let tracks = scene
             .initial_rotation_rad
             .iter()

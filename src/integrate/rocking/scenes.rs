@@ -78,7 +78,7 @@ pub fn free_standing(
         .to_f64();
     let (w, h) = (block.width.to_f64(), block.height.to_f64());
     let mass = density * w * h * wall.thickness_m.to_f64();
-    let friction = topo.supports[0].friction.to_f64();
+    let friction = topo.horizontal[0].friction.to_f64();
     let mut body = RockingBody::rectangle(&block.name, w, h, mass, friction, wall.g_m_s2.to_f64());
     body.restitution_factor = wall.rocking_restitution_factor;
     Ok(body)

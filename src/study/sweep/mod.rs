@@ -409,11 +409,11 @@ impl Sweep {
         )
     }
 
-    /// The friction coefficients of a wall's supports for a sample: nominal, or drawn.
+    /// The friction coefficients of a wall's horizontal joints for a sample: nominal, or drawn.
     pub fn frictions(&self, wall: usize, sample: usize) -> Vec<Q> {
         let nominal = self.walls[wall]
             .topology
-            .supports
+            .horizontal
             .iter()
             .map(|s| s.friction.clone());
         let FrictionModel::Random {
@@ -439,7 +439,7 @@ impl Sweep {
         let sw = &self.walls[w];
         let mut d = sw.description.clone();
         if let FrictionModel::Random { .. } = self.friction {
-            for (sup, mu) in sw.topology.supports.iter().zip(self.frictions(w, s)) {
+            for (sup, mu) in sw.topology.horizontal.iter().zip(self.frictions(w, s)) {
                 let key = format!(
                     "{}/{}",
                     sw.wall.blocks[sup.upper.0].name,
@@ -837,7 +837,7 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         .map(|b| b.final_displacement_m.abs())
         .fold(0.0, f64::max);
     row.max_rel_u_m = s
-        .joints
+        .horizontal_joints
         .iter()
         .filter(|j| j.lower != "ground")
         .map(|j| j.max_abs_relative_displacement_m)
@@ -845,7 +845,7 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
     // Final opening of each vertical joint: how far its faces moved apart.
     let mut widest = 0.0f64;
     let mut opened = 0;
-    for j in &topo.joints {
+    for j in &topo.vertical {
         let (l, r) = (j.left.0, j.right.0);
         if s.blocks[l].fell || s.blocks[r].fell {
             continue;

@@ -70,10 +70,10 @@ impl Engine<'_> {
                 }
             }
             for &j in &self.given.topo.sides[i] {
-                if !self.live_joint(j.0) || !self.is_touching(j.0) {
+                if !self.live_vertical(j.0) || !self.is_touching(j.0) {
                     continue;
                 }
-                let o = self.across_joint(j.0, i);
+                let o = self.across_vertical(j.0, i);
                 if !self.given.fixed[o]
                     && !local.contains_key(&o)
                     && self.same_velocity(vi, self.vel_with(o, set_vel))
@@ -98,17 +98,17 @@ impl Engine<'_> {
         blocks: &[usize],
         local: &Local,
         set_vel: &SetVel,
-        touched_supports: &[usize],
-        touched_joints: &[usize],
+        touched_horizontal: &[usize],
+        touched_vertical: &[usize],
     ) {
         p.mass
             .extend(blocks.iter().map(|&i| self.given.mass_q[i].clone()));
         p.external.resize(blocks.len(), Q::zero());
-        for &s in touched_supports {
-            if !self.live_support(s) {
+        for &s in touched_horizontal {
+            if !self.live_horizontal(s) {
                 continue;
             }
-            let (up, lo) = self.support_ends(s);
+            let (up, lo) = self.horizontal_ends(s);
             let (vu, vl) = (
                 self.vel_with(up, set_vel),
                 lo.map_or(0.0, |l| self.vel_with(l, set_vel)),
@@ -142,11 +142,11 @@ impl Engine<'_> {
                 }
             }
         }
-        for &j in touched_joints {
-            if !self.live_joint(j) || !self.is_touching(j) {
+        for &j in touched_vertical {
+            if !self.live_vertical(j) || !self.is_touching(j) {
                 continue;
             }
-            let jt = &self.given.topo.joints[j];
+            let jt = &self.given.topo.vertical[j];
             let (l, r) = (jt.left.0, jt.right.0);
             let end = |b: usize| {
                 if self.given.fixed[b] {
@@ -198,8 +198,8 @@ impl Engine<'_> {
 
     /// Support s's upper block, and its lower block where that can move (`None`: the ground or
     /// an abutment).
-    pub(super) fn support_ends(&self, s: usize) -> (usize, Option<usize>) {
-        let up = self.given.topo.supports[s].upper.0;
+    pub(super) fn horizontal_ends(&self, s: usize) -> (usize, Option<usize>) {
+        let up = self.given.topo.horizontal[s].upper.0;
         (up, self.lower_block(s).filter(|&l| !self.given.fixed[l]))
     }
 
@@ -230,7 +230,7 @@ impl Engine<'_> {
         (a - b).abs() <= self.vel_tol(a, b)
     }
 
-    /// Calls `f(k, other)` for each live support and touching vertical joint of the component's
+    /// Calls `f(k, other)` for each live horizontal joint and touching vertical joint of the component's
     /// block `blocks[k]`: `other` is the local index of the block on the other side, or `None`
     /// for the ground or an abutment; joints to blocks outside the component are left out.
     pub(super) fn for_each_pair(
@@ -251,10 +251,10 @@ impl Engine<'_> {
                 }
             }
             for &j in &self.given.topo.sides[b] {
-                if !self.live_joint(j.0) || !self.is_touching(j.0) {
+                if !self.live_vertical(j.0) || !self.is_touching(j.0) {
                     continue;
                 }
-                let o = self.across_joint(j.0, b);
+                let o = self.across_vertical(j.0, b);
                 if self.given.fixed[o] {
                     f(k, None);
                 } else if let Some(&m) = local.get(&o) {
@@ -332,7 +332,7 @@ impl Engine<'_> {
 
     /// Faces of joint j touch (their gap is zero within round-off).
     pub(in crate::integrate::event) fn is_touching(&self, j: usize) -> bool {
-        let jt = &self.given.topo.joints[j];
+        let jt = &self.given.topo.vertical[j];
         let (ul, ur) = (self.block_disp(jt.left.0), self.block_disp(jt.right.0));
         (self.given.gap0[j] + ur - ul).abs() <= self.len_tol(ul, ur)
     }

@@ -27,7 +27,7 @@ impl Engine<'_> {
                 .iter()
                 .chain(&self.given.topo.above[i])
             {
-                self.account_support(s.0);
+                self.account_horizontal(s.0);
             }
             if self.of[i] != ClusterId::NONE {
                 let k = self.of[i];
@@ -38,7 +38,7 @@ impl Engine<'_> {
             self.fallen[i] = true;
             self.rec.fell(i);
             for &s in &self.given.topo.above[i] {
-                let up = self.given.topo.supports[s.0].upper.0;
+                let up = self.given.topo.horizontal[s.0].upper.0;
                 if !self.fallen[up] && !self.stands(up) {
                     self.rec
                         .event(self.t, EventKind::Collapse, &[up], None, None);
@@ -47,12 +47,12 @@ impl Engine<'_> {
             }
         }
         // Capacities change with the loads: friction work so far is owed at the old ones.
-        for s in 0..self.given.topo.supports.len() {
-            self.account_support(s);
+        for s in 0..self.given.topo.horizontal.len() {
+            self.account_horizontal(s);
         }
         let loads = self.given.topo.loads_without(self.given.wall, &self.fallen);
         for (s, load) in loads.into_iter().enumerate() {
-            self.given.cap_q[s] = &self.given.topo.supports[s].friction * &load;
+            self.given.cap_q[s] = &self.given.topo.horizontal[s].friction * &load;
             self.given.cap[s] = self.given.cap_q[s].to_f64();
         }
         // Dissolve every cluster; blocks keep their velocities.
@@ -93,7 +93,7 @@ impl Engine<'_> {
             self.of[i] = k;
         }
         for s in 0..self.slip.len() {
-            if !self.live_support(s) {
+            if !self.live_horizontal(s) {
                 self.slip[s] = Slip::Stuck;
             }
         }

@@ -21,7 +21,7 @@ use crate::clock::ThreadClock;
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::response::{DecisionCause as Cause, DecisionRecord, EventKind};
-use crate::topology::{JointId, JointRef, SupportId};
+use crate::topology::{HorizontalId, JointRef, VerticalId};
 use std::cell::OnceCell;
 
 impl Engine<'_> {
@@ -87,23 +87,23 @@ impl Engine<'_> {
         for &k in &old_clusters {
             self.account(k, t);
         }
-        let mut touched_supports = std::mem::take(&mut buf.supports);
-        let mut touched_joints = std::mem::take(&mut buf.joints);
+        let mut touched_horizontal = std::mem::take(&mut buf.horizontal);
+        let mut touched_vertical = std::mem::take(&mut buf.vertical);
         for &i in &blocks {
-            touched_supports.extend(
+            touched_horizontal.extend(
                 self.given.topo.below[i]
                     .iter()
                     .chain(&self.given.topo.above[i])
                     .map(|s| s.0),
             );
-            touched_joints.extend(self.given.topo.sides[i].iter().map(|j| j.0));
+            touched_vertical.extend(self.given.topo.sides[i].iter().map(|j| j.0));
         }
-        for touched in [&mut touched_supports, &mut touched_joints] {
+        for touched in [&mut touched_horizontal, &mut touched_vertical] {
             touched.sort_unstable();
             touched.dedup();
         }
-        for &s in &touched_supports {
-            self.account_support(s);
+        for &s in &touched_horizontal {
+            self.account_horizontal(s);
         }
         let (u_now, v_now) = (&mut buf.u, &mut buf.v);
         u_now.extend(blocks.iter().map(|&i| self.block_disp(i)));
@@ -117,8 +117,8 @@ impl Engine<'_> {
             &blocks,
             &local,
             &set_vel,
-            &touched_supports,
-            &touched_joints,
+            &touched_horizontal,
+            &touched_vertical,
         );
         let p = p.canonical();
 
@@ -200,8 +200,8 @@ impl Engine<'_> {
             }
         };
         let (mut neighbours, mut pushed) = self.turn_joints(
-            &touched_supports,
-            &touched_joints,
+            &touched_horizontal,
+            &touched_vertical,
             &local,
             &set_vel,
             &accel_of,
@@ -214,8 +214,8 @@ impl Engine<'_> {
         for (v, kept) in [
             (blocks, &mut buf.blocks),
             (queue, &mut buf.queue),
-            (touched_supports, &mut buf.supports),
-            (touched_joints, &mut buf.joints),
+            (touched_horizontal, &mut buf.horizontal),
+            (touched_vertical, &mut buf.vertical),
         ] {
             *kept = v;
             kept.clear();
@@ -296,8 +296,8 @@ impl Engine<'_> {
     /// both sides).
     fn turn_joints(
         &mut self,
-        touched_supports: &[usize],
-        touched_joints: &[usize],
+        touched_horizontal: &[usize],
+        touched_vertical: &[usize],
         local: &Local,
         set_vel: &SetVel,
         accel_of: &dyn Fn(Option<usize>) -> Lex,
@@ -305,11 +305,11 @@ impl Engine<'_> {
     ) -> (Vec<ClusterId>, Vec<ClusterId>) {
         let mut neighbours: Vec<ClusterId> = Vec::new();
         let mut pushed: Vec<ClusterId> = Vec::new();
-        for &s in touched_supports {
-            if !self.live_support(s) {
+        for &s in touched_horizontal {
+            if !self.live_horizontal(s) {
                 continue;
             }
-            let (up, lo) = self.support_ends(s);
+            let (up, lo) = self.horizontal_ends(s);
             for b in std::iter::once(up).chain(lo) {
                 if !local.contains_key(&b) && self.of[b] != ClusterId::NONE {
                     neighbours.push(self.of[b]);
@@ -355,16 +355,16 @@ impl Engine<'_> {
                     self.t,
                     kind,
                     who,
-                    Some(JointRef::Horizontal(SupportId(s))),
+                    Some(JointRef::Horizontal(HorizontalId(s))),
                     None,
                 );
             }
         }
-        for &j in touched_joints {
-            if !self.live_joint(j) {
+        for &j in touched_vertical {
+            if !self.live_vertical(j) {
                 continue;
             }
-            let jt = &self.given.topo.joints[j];
+            let jt = &self.given.topo.vertical[j];
             let (l, r) = (jt.left.0, jt.right.0);
             for b in [l, r] {
                 if !local.contains_key(&b) && self.of[b] != ClusterId::NONE {
@@ -379,7 +379,7 @@ impl Engine<'_> {
                     self.t,
                     EventKind::Separation,
                     &[l, r],
-                    Some(JointRef::Vertical(JointId(j))),
+                    Some(JointRef::Vertical(VerticalId(j))),
                     None,
                 );
             } else if together && self.is_touching(j) {

@@ -100,9 +100,9 @@ pub(in crate::integrate::event) struct Buffers {
     pub(super) queue: Vec<usize>,
     /// The clusters the component's blocks belonged to.
     pub(super) old: Vec<ClusterId>,
-    /// The supports and vertical joints at the component's blocks.
-    pub(super) supports: Vec<usize>,
-    pub(super) joints: Vec<usize>,
+    /// The horizontal and vertical joints at the component's blocks.
+    pub(super) horizontal: Vec<usize>,
+    pub(super) vertical: Vec<usize>,
     /// The decision problem.
     pub(super) problem: Problem,
     /// The blocks' displacements and velocities (m, m/s), and the new group of each.

@@ -112,7 +112,7 @@ impl Engine<'_> {
         self.external_force_by(i, |s| self.slip[s])
     }
 
-    /// The same with each support's state given by `slip`.
+    /// The same with each horizontal joint's state given by `slip`.
     pub(in crate::integrate::event) fn external_force_by(
         &self,
         i: usize,
@@ -121,13 +121,13 @@ impl Engine<'_> {
         let mut e = Q::zero();
         for &s in &self.given.topo.below[i] {
             let state = slip(s.0);
-            if self.live_support(s.0) && !state.is_stuck() {
+            if self.live_horizontal(s.0) && !state.is_stuck() {
                 e = e + state.on_upper(&self.given.cap_q[s.0]);
             }
         }
         for &s in &self.given.topo.above[i] {
             let state = slip(s.0);
-            if self.live_support(s.0) && !state.is_stuck() {
+            if self.live_horizontal(s.0) && !state.is_stuck() {
                 e = e - state.on_upper(&self.given.cap_q[s.0]);
             }
         }

@@ -77,7 +77,7 @@ impl Problem {
         // Only the amounts the cut uses go over the common denominator: a decision's recursion
         // cuts small parts of a large problem, and each should cost its part.
         let members: Vec<usize> = (0..self.n()).filter(|&i| set[i]).collect();
-        let joints: Vec<usize> = (0..self.friction.len())
+        let inside: Vec<usize> = (0..self.friction.len())
             .filter(|&k| {
                 let (i, j, _) = &self.friction[k];
                 set[*i]
@@ -90,14 +90,14 @@ impl Problem {
         let amounts = members
             .iter()
             .map(|&i| &weight[i])
-            .chain(joints.iter().map(|&k| &self.friction[k].2));
+            .chain(inside.iter().map(|&k| &self.friction[k].2));
         if let Some((ints, _)) = over_common_denominator(amounts) {
             let mut w = vec![0i128; self.n()];
             let mut caps = vec![0i128; self.friction.len()];
             for (&i, &x) in members.iter().zip(&ints) {
                 w[i] = x;
             }
-            for (&k, &x) in joints.iter().zip(&ints[members.len()..]) {
+            for (&k, &x) in inside.iter().zip(&ints[members.len()..]) {
                 caps[k] = x;
             }
             if let Some(sides) = self.min_cut_in_integers(set, &w, &caps, side, pinned, want) {

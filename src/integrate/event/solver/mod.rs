@@ -304,18 +304,18 @@ impl Problem {
         out
     }
 
-    /// The blocks joined by each undecided joint or face between blocks.
+    /// The blocks joined by each undecided friction link or contact between blocks.
     fn adjacency(&self) -> Adjacency {
         let pairs = || {
-            let joints = self.friction.iter().filter_map(|&(i, j, _)| match j {
+            let friction = self.friction.iter().filter_map(|&(i, j, _)| match j {
                 End::Node(j) => Some((i, j)),
                 End::Ground => None,
             });
-            let faces = self.contacts.iter().filter_map(|&(l, r)| match (l, r) {
+            let contacts = self.contacts.iter().filter_map(|&(l, r)| match (l, r) {
                 (End::Node(l), End::Node(r)) => Some((l, r)),
                 _ => None,
             });
-            joints.chain(faces)
+            friction.chain(contacts)
         };
         // Counting sort: each node's neighbours end at start[i + 1], then fill backwards.
         let mut start = vec![0; self.n() + 1];

@@ -63,15 +63,15 @@ pub(super) fn free_problem() -> impl Strategy<Value = Problem> {
             prop::collection::vec((0..n, 0..n, 1i64..9), 1..2 * n),
             prop::collection::vec((0..n, 0..n), 0..n),
         )
-            .prop_map(|(mass, external, joints, faces)| Problem {
+            .prop_map(|(mass, external, friction, contacts)| Problem {
                 mass: mass.into_iter().map(Q::int).collect(),
                 external: external.into_iter().map(Q::int).collect(),
-                friction: joints
+                friction: friction
                     .into_iter()
                     .filter(|(i, j, _)| i != j)
                     .map(|(i, j, f)| (i, End::Node(j), Q::int(f)))
                     .collect(),
-                contacts: faces
+                contacts: contacts
                     .into_iter()
                     .filter(|(l, r)| l != r)
                     .map(|(l, r)| (End::Node(l), End::Node(r)))
