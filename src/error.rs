@@ -456,22 +456,61 @@ pub enum MotionError {
 /// The simulation stopped with an error (a model-validity limit or an internal inconsistency).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SimulationError {
-    /// The integrator found events piling up at one instant without progress.
-    #[error("at t = {time_s} s: {count} events at one instant without progress ({detail})")]
+    /// The state at one instant came back, the same, every `period` events: the run would
+    /// never leave that instant.
+    #[error(
+        "at t = {time_s} s: no progress: the blocks' modes and velocities came back to the same \
+         values every {period} events, {count} events at this instant (last: {detail}); please \
+         report the wall and the motion"
+    )]
     NoProgress {
         /// Time (s).
         time_s: f64,
-        /// Events processed at that instant.
+        /// Events handled at that instant.
         count: usize,
-        /// The last event.
+        /// Events between two visits of one state.
+        period: usize,
+        /// The last event, in words.
         detail: String,
     },
-    /// A chain of impacts did not settle.
-    #[error("at t = {time_s} s: the impact chain among {blocks} did not settle after {count} pairwise collisions")]
+    /// Events at one instant reached the backstop without a repeated state.
+    #[error(
+        "at t = {time_s} s: {count} events at one instant ({detail}), the most allowed for this \
+         wall; raise `Params::max_events_per_instant` if the wall needs more"
+    )]
+    TooManyEvents {
+        /// Time (s).
+        time_s: f64,
+        /// Events handled at that instant.
+        count: usize,
+        /// The last event, in words.
+        detail: String,
+    },
+    /// A chain of impacts came back to the same velocities again and again.
+    #[error(
+        "at t = {time_s} s: the impact chain among {blocks} came back to the same velocities every \
+         {period} pairwise collisions ({count} so far) and would never settle"
+    )]
+    ImpactCycle {
+        /// Time (s).
+        time_s: f64,
+        /// Blocks involved (at most a few named).
+        blocks: String,
+        /// Collisions resolved.
+        count: usize,
+        /// Collisions between two visits of one state.
+        period: usize,
+    },
+    /// A chain of impacts reached the backstop on its collisions without a repeated state.
+    #[error(
+        "at t = {time_s} s: the impact chain among {blocks} had not settled after {count} \
+         pairwise collisions, the most allowed for a chain of its size; raise \
+         `Params::max_collisions_per_chain` if it needs more"
+    )]
     ImpactChain {
         /// Time (s).
         time_s: f64,
-        /// Blocks involved.
+        /// Blocks involved (at most a few named).
         blocks: String,
         /// Collisions resolved.
         count: usize,
@@ -555,5 +594,32 @@ fn block_place(block: &Option<String>, origin: &str) -> String {
     match block {
         Some(name) => format!("block {name} ({origin})"),
         None => format!("the block at {origin}"),
+    }
+}
+
+/// A list of names for a message: all of them up to `most`, else the first `most` and how many
+/// more (a chain of thousands of blocks is not spelled out).
+pub(crate) fn name_list<'a>(names: impl ExactSizeIterator<Item = &'a str>, most: usize) -> String {
+    let n = names.len();
+    let shown: Vec<&str> = names.take(most).collect();
+    if n > most {
+        format!("{} and {} more ({n} blocks)", shown.join(", "), n - most)
+    } else {
+        shown.join(", ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::name_list;
+
+    #[test]
+    fn long_name_lists_are_cut_with_a_count() {
+        let names = ["B1", "B2", "B3", "B4"];
+        assert_eq!(name_list(names.iter().copied(), 4), "B1, B2, B3, B4");
+        assert_eq!(
+            name_list(names.iter().copied(), 2),
+            "B1, B2 and 2 more (4 blocks)"
+        );
     }
 }

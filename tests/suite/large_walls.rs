@@ -278,7 +278,7 @@ fn work_counters_count_the_run_alone() {
     // No impact allowed: the run stops with an error at the first one, after the flows of the
     // decisions before it.
     let strict = Params {
-        max_collisions_per_chain: 0,
+        max_collisions_per_chain: Some(0),
         ..Params::default()
     };
     assert!(counters(strict).is_err());
@@ -544,4 +544,51 @@ fn a_shorter_run_logs_the_first_events_of_a_longer_one() {
     );
     assert!(long.len() > short.len());
     assert!(long.starts_with(&short));
+}
+
+/// The backstops on events at one instant and on collisions in a chain say where they stopped
+/// with the blocks named, a few of them and how many more: never thousands of names, never a
+/// debug structure.
+#[test]
+fn backstops_name_a_few_blocks_and_the_event_in_words() {
+    use pirqa::integrate::event::Params;
+    use pirqa::SimulationError;
+    let (wall, topo, motion) = shaken_running_bond();
+    let settings = Settings::summary_only(10.0);
+    let scenario = Scenario {
+        wall: &wall,
+        topology: &topo,
+        motion: &motion,
+        settings: &settings,
+    };
+    let fail = |params: Params| match (EventDriven { params }).run(&scenario) {
+        Err(e) => e,
+        other => panic!("expected a stop, got {:?}", other.map(|r| r.summary.stats)),
+    };
+    let chain = fail(Params {
+        max_collisions_per_chain: Some(0),
+        ..Params::default()
+    });
+    assert!(
+        matches!(chain, SimulationError::ImpactChain { count: 0, .. }),
+        "{chain}"
+    );
+    let events = fail(Params {
+        max_events_per_instant: Some(1),
+        ..Params::default()
+    });
+    let SimulationError::TooManyEvents {
+        count: 2, detail, ..
+    } = &events
+    else {
+        panic!("{events}");
+    };
+    for message in [chain.to_string(), events.to_string()] {
+        assert!(message.len() < 400, "{message}");
+        assert!(
+            !message.contains('{') && !message.contains("ClusterId"),
+            "{message}"
+        );
+    }
+    assert!(detail.contains('B'), "the event names its blocks: {detail}");
 }

@@ -4,7 +4,7 @@
 
 use super::cluster::ClusterId;
 use super::{cluster, impact, Engine};
-use crate::error::SimulationError;
+use crate::error::{name_list, SimulationError};
 use crate::exact::Q;
 use crate::response::{DecisionCause as Cause, EventKind};
 use crate::topology::{JointRef, VerticalId};
@@ -139,23 +139,44 @@ impl Engine<'_> {
             .map(|b| b.1.velocity.abs().to_f64())
             .fold(0.0, f64::max);
         let negligible = Q::from_f64_exact(self.vel_tol(scale, 0.0)).expect("finite tolerance");
-        let Some((collisions, loss)) = impact::resolve(
+        let n = chain.bodies.len();
+        let most = self
+            .given
+            .params
+            .max_collisions_per_chain
+            .unwrap_or(100_000 + n * n);
+        let names = || {
+            name_list(
+                chain
+                    .bodies
+                    .iter()
+                    .map(|b| self.given.wall.blocks[b.0].name.as_str()),
+                6,
+            )
+        };
+        let (collisions, loss) = match impact::resolve(
             &mut exact,
             &pairs,
             &self.given.restitution,
             &negligible,
-            self.given.params.max_collisions_per_chain,
-        ) else {
-            let names: Vec<&str> = chain
-                .bodies
-                .iter()
-                .map(|b| self.given.wall.blocks[b.0].name.as_str())
-                .collect();
-            return Err(SimulationError::ImpactChain {
-                time_s: self.t,
-                blocks: names.join(", "),
-                count: self.given.params.max_collisions_per_chain,
-            });
+            most,
+        ) {
+            Ok(done) => done,
+            Err((impact::Unsettled::Cycle { period }, count)) => {
+                return Err(SimulationError::ImpactCycle {
+                    time_s: self.t,
+                    blocks: names(),
+                    count,
+                    period,
+                })
+            }
+            Err((impact::Unsettled::Backstop, count)) => {
+                return Err(SimulationError::ImpactChain {
+                    time_s: self.t,
+                    blocks: names(),
+                    count,
+                })
+            }
         };
         Ok((collisions, loss, exact))
     }

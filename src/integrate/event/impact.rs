@@ -4,9 +4,11 @@
 //! arithmetic, so momentum is conserved exactly, energy too when e = 1, and equal blocks exchange
 //! velocities exactly (Newton's cradle).
 
+use super::cycle::Cycle;
 use crate::exact::Q;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
+use std::hash::{DefaultHasher, Hash, Hasher};
 
 /// A body in an impact: a block (finite mass) or the ground and its abutments (infinite mass,
 /// velocity zero relative to the ground).
@@ -31,18 +33,36 @@ pub struct Collision {
     pub after: [Q; 2],
 }
 
+/// Why a chain was given up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unsettled {
+    /// The bodies' velocities came back to the same values, again and again, every `period`
+    /// collisions: the chain would never settle.
+    Cycle {
+        /// Collisions between two visits of one state.
+        period: usize,
+    },
+    /// The backstop on the number of collisions was reached without a repeated state.
+    Backstop,
+}
+
 /// Resolves a chain. `faces` are (left body, right body) pairs that touch, ordered left to
 /// right. Faces approaching at `negligible` or less are left alone: with e < 1 a chain settles
 /// only geometrically, so its last approach speeds fall below round-off after a few dozen
 /// collisions and are touches from then on. Returns the collisions and the kinetic energy lost
-/// (J), or `None` if the chain has not settled after `max_collisions`.
+/// (J), or why the chain was given up after the collisions it had (their count beside it).
+///
+/// The next collision is a function of the velocities alone, so velocities seen again mean a
+/// chain that never ends ([`Cycle`]); a long chain is not one (n equal blocks with e = 1 sort
+/// their velocities by exchanges, up to n (n - 1) / 2 of them), and only `max_collisions`, a
+/// backstop the caller sizes to the chain, ends it.
 pub fn resolve(
     bodies: &mut [Body],
     faces: &[(usize, usize)],
     e: &Q,
     negligible: &Q,
     max_collisions: usize,
-) -> Option<(Vec<Collision>, Q)> {
+) -> Result<(Vec<Collision>, Q), (Unsettled, usize)> {
     let mut collisions = Vec::new();
     let mut loss = Q::zero();
     // A collision changes the approach of its two bodies' faces only: the faces approaching,
@@ -63,14 +83,38 @@ pub fn resolve(
     for k in 0..faces.len() {
         queue.look(k, faces, bodies, negligible);
     }
+    // The state's key is a sum of one term per body, so a collision updates it in O(1).
+    let term = |i: usize, v: &Q| {
+        let mut h = DefaultHasher::new();
+        (i, v).hash(&mut h);
+        h.finish()
+    };
+    let mut key = bodies
+        .iter()
+        .enumerate()
+        .fold(0u64, |s, (i, b)| s.wrapping_add(term(i, &b.velocity)));
+    let mut cycle = Cycle::default();
     while let Some((approach, k)) = queue.pop() {
         if collisions.len() >= max_collisions {
-            return None;
+            return Err((Unsettled::Backstop, collisions.len()));
         }
         let (l, r) = faces[k];
         let before = [bodies[l].velocity.clone(), bodies[r].velocity.clone()];
         loss = loss + collide(bodies, faces[k], &approach, e);
         let after = [bodies[l].velocity.clone(), bodies[r].velocity.clone()];
+        key = key
+            .wrapping_sub(term(l, &before[0]))
+            .wrapping_sub(term(r, &before[1]))
+            .wrapping_add(term(l, &after[0]))
+            .wrapping_add(term(r, &after[1]));
+        if let Some(period) = cycle.step(key, || {
+            bodies
+                .iter()
+                .map(|b| b.velocity.clone())
+                .collect::<Vec<Q>>()
+        }) {
+            return Err((Unsettled::Cycle { period }, collisions.len() + 1));
+        }
         collisions.push(Collision {
             face: k,
             approach,
@@ -81,7 +125,7 @@ pub fn resolve(
             queue.look(j, faces, bodies, negligible);
         }
     }
-    Some((collisions, loss))
+    Ok((collisions, loss))
 }
 
 /// One collision at the face (l, r) approaching at `approach`: the bodies' velocities after it

@@ -39,9 +39,11 @@ mod accounting;
 mod cluster;
 mod collapse;
 mod collisions;
+mod cycle;
 mod flow;
 mod impact;
 mod memo;
+mod progress;
 mod queue;
 mod regroup;
 mod roots;
@@ -59,20 +61,22 @@ use crate::topology::{Base, Topology};
 use crate::wall::Wall;
 use cluster::{ClusterId, Clusters, Mode};
 use memo::Memo;
-use queue::{Ev, Pending, Queue};
+use queue::{Ev, Queue};
 use roots::Counter;
 use slip::Slip;
 use std::collections::VecDeque;
 
-/// Settings of the event-driven integrator. None is a tolerance: the first two only stop a run
-/// that would otherwise never end, with an error that says where; the others change the work,
-/// never the answer.
+/// Settings of the event-driven integrator. None is a tolerance: the first two are backstops
+/// that stop a run which neither repeats a state nor ends (a run whose state repeats is
+/// stopped by the check for that, `cycle.rs`), with an error that says where; the others
+/// change the work, never the answer.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Params {
-    /// Events allowed at one instant.
-    pub max_events_per_instant: usize,
-    /// Pairwise collisions allowed in one impact chain.
-    pub max_collisions_per_chain: usize,
+    /// Events allowed at one instant; `None`: 10,000 plus 100 per block and joint of the wall.
+    pub max_events_per_instant: Option<usize>,
+    /// Pairwise collisions allowed in one impact chain; `None`: 100,000 plus the square of the
+    /// chain's blocks (n equal blocks with e = 1 may need n (n - 1) / 2).
+    pub max_collisions_per_chain: Option<usize>,
     /// A stuck group of at least this many blocks that a decision leaves, forms or turns a
     /// joint of keeps the limits its change cannot have narrowed, as bounds, and works them out
     /// only when a_g reaches them (`usize::MAX`: always at once). Below it, working a limit out
@@ -88,8 +92,8 @@ pub struct Params {
 impl Default for Params {
     fn default() -> Params {
         Params {
-            max_events_per_instant: 10_000,
-            max_collisions_per_chain: 100_000,
+            max_events_per_instant: None,
+            max_collisions_per_chain: None,
             kept_limits_from: KEPT_LIMITS_FROM,
             beside_stuck_from: BESIDE_STUCK_FROM,
         }
@@ -135,10 +139,6 @@ impl Integrator for EventDriven {
 /// ulps of zero are zero: a gap that closes to within it is touching, an approach speed within it
 /// is a touch, not an impact.
 const ROUNDOFF_ULPS: f64 = 1024.0;
-
-/// Events closer together than this many ulps of time count as one instant for the progress
-/// guard ([`Params::max_events_per_instant`]).
-const PROGRESS_WINDOW_ULPS: f64 = 1e6;
 
 /// What a run is given and never changes: the wall, its graph, the motion and the settings,
 /// and the numbers of blocks and joints read off them once, exact and as floats.
@@ -223,8 +223,8 @@ pub(crate) struct Engine<'a> {
     version: u64,
     /// History rows written so far at output times.
     output_k: u64,
-    /// The instant of the progress guard and the events counted at it.
-    instant: (f64, usize),
+    /// The instant the progress guard watches (`progress.rs`).
+    instant: progress::Instant,
     stopped: bool,
     queue: Queue,
     caches: Caches,
@@ -303,7 +303,7 @@ impl<'a> Engine<'a> {
             t_fric: vec![0.0; topo.horizontal.len()],
             version: 0,
             output_k: 0,
-            instant: (f64::NEG_INFINITY, 0),
+            instant: progress::Instant::start(),
             stopped: false,
             queue: Queue::default(),
             caches: Caches {
@@ -353,27 +353,6 @@ impl<'a> Engine<'a> {
             }
         }
         Ok(self.finish())
-    }
-
-    /// Events piling up at one instant, or creeping forward by a few ulps, mean the run would
-    /// never end: stop with an error that says where. Within `PROGRESS_WINDOW_ULPS` ulps of
-    /// time counts as the same instant.
-    fn progress_guard(&mut self, p: &Pending) -> Result<(), SimulationError> {
-        let window = PROGRESS_WINDOW_ULPS * f64::EPSILON * self.instant.0.abs().max(1.0);
-        // The first event opens the first instant (before it, `instant` is -inf).
-        if self.instant.0.is_finite() && p.t - self.instant.0 <= window {
-            self.instant.1 += 1;
-            if self.instant.1 > self.given.params.max_events_per_instant {
-                return Err(SimulationError::NoProgress {
-                    time_s: p.t,
-                    count: self.instant.1,
-                    detail: format!("{:?}", p.ev),
-                });
-            }
-        } else {
-            self.instant = (p.t, 1);
-        }
-        Ok(())
     }
 
     fn s(&self) -> f64 {

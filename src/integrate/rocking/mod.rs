@@ -291,7 +291,7 @@ impl<'a> Engine<'a> {
             } else {
                 stalled += 1;
                 if stalled > STALL_STOPS {
-                    return Err(SimulationError::NoProgress {
+                    return Err(SimulationError::TooManyEvents {
                         time_s: self.t,
                         count: stalled,
                         detail: "rocking events at one instant".into(),
