@@ -6,6 +6,8 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     match cli::run() {
+        // Stopped by Ctrl-C after writing what it had: the shell's code for SIGINT.
+        Ok(()) if cli::interrupted() => ExitCode::from(130),
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");

@@ -15,6 +15,8 @@ use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser, Subcommand};
 use pirqa::topology::sections::Top;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, OnceLock};
 
 /// Exact event-driven dynamics of dry-stone block walls under earthquakes.
 #[derive(Parser, Debug)]
@@ -97,7 +99,7 @@ enum Command {
     Import(import::ImportArgs),
 }
 
-/// Runs the command line; returns the process exit code.
+/// Runs the command line.
 pub fn run() -> Result<(), pirqa::Error> {
     let cli = Cli::parse();
     match cli.command {
@@ -137,6 +139,35 @@ pub fn run() -> Result<(), pirqa::Error> {
         Command::Generate(args) => generate::run(&args),
         Command::Import(args) => import::run(&args),
     }
+}
+
+/// The request to stop, set by the first Ctrl-C (or SIGTERM): a run then ends at the time it
+/// reached and writes what it has, flagged; a second Ctrl-C ends the process at once. The
+/// handler is installed at the first call (a command that never asks keeps the default).
+pub fn stop_flag() -> Arc<AtomicBool> {
+    STOP.get_or_init(|| {
+        let flag = Arc::new(AtomicBool::new(false));
+        let set = flag.clone();
+        // Without a handler (another one installed, an odd platform) Ctrl-C keeps its default:
+        // the process ends, and the results written so far stay whole (files are written by
+        // rename); nothing is lost by going on.
+        let _ = ctrlc::set_handler(move || {
+            if set.swap(true, Ordering::SeqCst) {
+                std::process::exit(130);
+            }
+            eprintln!("\nstopping at the time reached (Ctrl-C again to quit at once)");
+        });
+        flag
+    })
+    .clone()
+}
+
+static STOP: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+
+/// A run was asked to stop through [`stop_flag`]: the process exits with 130, as after a
+/// Ctrl-C, once it has written what it has.
+pub fn interrupted() -> bool {
+    STOP.get().is_some_and(|f| f.load(Ordering::SeqCst))
 }
 
 /// Writes a result file whole or not at all, naming it in the error.

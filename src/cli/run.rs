@@ -17,7 +17,6 @@ use pirqa::{Direction, Equations, Model, ModelChoice, RunSettings};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 /// Ground motion options shared by the commands that run simulations.
 #[derive(clap::Args, Debug, Clone)]
@@ -490,6 +489,13 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
         "{} | {} | {} | {} s",
         s.wall, s.method, s.motion, s.duration_s
     );
+    if let Some(at) = s.interrupted_at_s {
+        let _ = writeln!(
+            t,
+            "  INTERRUPTED at t = {at} s: every number below is of the motion up to then \
+             (summary.json: interrupted_at_s)"
+        );
+    }
     let m = &s.model;
     let _ = writeln!(
         t,
@@ -668,6 +674,6 @@ pub fn simulated_time_bar(duration_s: f64, what: &str) -> (ProgressBar, Progress
     );
     bar.set_message(what.to_string());
     let moved = bar.clone();
-    let progress = Progress(Arc::new(move |t| moved.set_position(ms(t))));
+    let progress = Progress::new(move |t| moved.set_position(ms(t))).with_stop(super::stop_flag());
     (bar, progress)
 }

@@ -15,6 +15,8 @@ use crate::motion::Motion;
 use crate::response::Response;
 use crate::topology::Topology;
 use crate::wall::Wall;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 /// What to do once a block falls.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
@@ -45,16 +47,50 @@ pub struct Settings {
     pub progress: Option<Progress>,
 }
 
-/// Told the simulated time reached (s), once per segment of the ground motion (event-driven)
-/// or per step (time stepping), never past the duration: a run of thousands of blocks takes
-/// minutes, and a bar is the only sign it moves.
+/// Told the simulated time reached (s), once per segment of the ground motion and every
+/// [`Progress::EVERY_EVENTS`] events (event-driven) or per step (time stepping), never past the
+/// duration: a run of thousands of blocks takes minutes, and a bar is the only sign it moves.
+/// It also carries the caller's request to stop (Ctrl-C): a run asked to stop ends at the time
+/// it reached with what it has, the summary saying so (`Summary::interrupted_at_s`).
 #[derive(Clone)]
-pub struct Progress(pub std::sync::Arc<dyn Fn(f64) + Send + Sync>);
+pub struct Progress {
+    report: Arc<dyn Fn(f64) + Send + Sync>,
+    stop: Option<Arc<AtomicBool>>,
+}
 
 impl Progress {
-    /// Reports time t.
-    pub fn at(&self, t_s: f64) {
-        (self.0)(t_s)
+    /// The event-driven integrator also looks at the stop request this often between segments
+    /// of the ground motion (a sine is one segment however long).
+    pub const EVERY_EVENTS: u64 = 4096;
+
+    /// Reports each time to `report`.
+    pub fn new(report: impl Fn(f64) + Send + Sync + 'static) -> Progress {
+        Progress {
+            report: Arc::new(report),
+            stop: None,
+        }
+    }
+
+    /// The same, also stopping the run once `stop` is set (by a Ctrl-C handler, a notebook's
+    /// interrupt, a time limit).
+    pub fn with_stop(self, stop: Arc<AtomicBool>) -> Progress {
+        Progress {
+            stop: Some(stop),
+            ..self
+        }
+    }
+
+    /// Reports time t; false when the run is asked to stop.
+    pub fn at(&self, t_s: f64) -> bool {
+        (self.report)(t_s);
+        !self.stop_requested()
+    }
+
+    /// The run is asked to stop.
+    pub fn stop_requested(&self) -> bool {
+        self.stop
+            .as_ref()
+            .is_some_and(|s| s.load(Ordering::Relaxed))
     }
 }
 

@@ -242,9 +242,6 @@ impl<'a> Observer<'a> {
     /// Records the state after a step ending at t: history rows at output times in between
     /// (interpolated), extremes, input work (trapezoid), friction work F |delta d|, collapse.
     pub fn step(&mut self, t: f64, u: &[f64], v: &[f64]) {
-        if let Some(p) = &self.progress {
-            p.at(t.min(self.t_end));
-        }
         let (t0, u0, v0) = (self.last.0, self.last.1.clone(), self.last.2.clone());
         if let Some(dt) = self.output_dt {
             loop {
@@ -305,6 +302,12 @@ impl<'a> Observer<'a> {
         }
         self.last = (t, u.to_vec(), v.to_vec());
         self.impulsive = false;
+        if let Some(p) = &self.progress {
+            if !p.at(t.min(self.t_end)) && t < self.t_end {
+                self.stopped = true;
+                self.rec.interrupted_at_s = Some(t);
+            }
+        }
     }
 
     /// Marks the current step as carrying an impulse (an impact, a penalty contact).

@@ -320,6 +320,10 @@ pub struct Summary {
     pub motion_processing: Vec<String>,
     /// Simulated time (s).
     pub duration_s: f64,
+    /// The run was asked to stop (Ctrl-C) and ended at this time (s), before its duration:
+    /// every number here is of the motion up to it. Absent for a run that went to its end.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interrupted_at_s: Option<f64>,
     /// Per block.
     pub blocks: Vec<BlockSummary>,
     /// Per horizontal joint (`joints` in summary.json, its name there since the first release).

@@ -46,6 +46,8 @@ pub struct Recorder {
     pub stats: Stats,
     /// Model-validity warnings.
     pub warnings: Vec<Warning>,
+    /// The run was asked to stop and ended at this time (s).
+    pub interrupted_at_s: Option<f64>,
     /// The model that ran.
     pub model: ModelUsed,
 }
@@ -113,6 +115,7 @@ impl Recorder {
             energy: Energy::default(),
             stats: Stats::default(),
             warnings: Vec::new(),
+            interrupted_at_s: None,
             model: ModelUsed::default(),
         }
     }
@@ -349,6 +352,7 @@ impl Recorder {
                 motion,
                 motion_processing: Vec::new(),
                 duration_s: t_end,
+                interrupted_at_s: self.interrupted_at_s,
                 blocks,
                 horizontal_joints,
                 impacts: self.impacts,

@@ -406,7 +406,7 @@ fn every_integrator_reports_its_progress_up_to_the_duration() {
         let seen = Arc::new(Mutex::new(Vec::new()));
         let log = seen.clone();
         let settings = Settings {
-            progress: Some(Progress(Arc::new(move |t| log.lock().unwrap().push(t)))),
+            progress: Some(Progress::new(move |t| log.lock().unwrap().push(t))),
             ..Settings::summary_only(3.0)
         };
         integrator

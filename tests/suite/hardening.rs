@@ -336,3 +336,77 @@ fn a_vertical_component_beside_a_sine_is_refused() {
         "--vertical: a vertical component goes with --record",
     );
 }
+
+/// Ctrl-C (SIGINT) stops a long run at the time it reached: exit code 130, and the files of the
+/// motion up to then, the summary saying where it stopped. Both kinds of integrator: the
+/// event-driven one on a sine of one segment (it looks at the request every few thousand
+/// events) and a time stepper (at every step).
+#[test]
+#[cfg(unix)]
+fn ctrl_c_stops_a_run_and_writes_what_it_has() {
+    let base = common::scratch("ctrl-c");
+    let long = [
+        [
+            "--duration",
+            "1000000",
+            "--output-dt",
+            "100",
+            "--method",
+            "event",
+        ],
+        [
+            "--duration",
+            "5000",
+            "--output-dt",
+            "1",
+            "--method",
+            "moreau",
+        ],
+    ];
+    for (k, extra) in long.iter().enumerate() {
+        let dir = base.join(format!("run{k}"));
+        let mut args = vec!["run", WALL, "--sine", "400gal", "--freq", "1"];
+        args.extend(extra);
+        args.extend(["--out", dir.to_str().unwrap()]);
+        let child = Command::new(env!("CARGO_BIN_EXE_pirqa"))
+            .args(&args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(800));
+        let sent = Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let out = child.wait_with_output().unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(130), "{args:?}: {stdout}");
+        assert!(stdout.contains("INTERRUPTED at t = "), "{stdout}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        let at = summary["interrupted_at_s"]
+            .as_f64()
+            .expect("flagged partial");
+        let duration: f64 = extra[1].parse().unwrap();
+        assert!(at > 0.0 && at < duration, "{at}");
+        assert_eq!(summary["duration_s"].as_f64().unwrap(), at);
+        // The history ends where the run stopped.
+        let history = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+        let last: f64 = history
+            .lines()
+            .last()
+            .unwrap()
+            .split(',')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(
+            last <= at && last > at - 100.0,
+            "history ends at {last}, run at {at}"
+        );
+    }
+}

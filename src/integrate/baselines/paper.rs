@@ -76,6 +76,9 @@ impl Integrator for PaperNewmark {
             let ag = sc.motion.accel(t);
             if !started && ag.abs() <= mu_min * m.g {
                 obs.step(t, &d, &v);
+                if obs.stopped {
+                    break;
+                }
                 continue;
             }
             started = true;

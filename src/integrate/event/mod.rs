@@ -338,14 +338,16 @@ impl<'a> Engine<'a> {
                     if self.stopped {
                         break;
                     }
+                    if self.rec.stats.events.is_multiple_of(Progress::EVERY_EVENTS)
+                        && !self.keep_going()
+                    {
+                        break;
+                    }
                 }
                 None => {
                     self.output_until(seg_end);
                     self.t = seg_end;
-                    if let Some(p) = &self.given.progress {
-                        p.at(seg_end);
-                    }
-                    if seg_end >= self.given.t_end {
+                    if !self.keep_going() || seg_end >= self.given.t_end {
                         break;
                     }
                     self.enter_segment(seg_end);
@@ -353,6 +355,19 @@ impl<'a> Engine<'a> {
             }
         }
         Ok(self.finish())
+    }
+
+    /// Tells the caller how far the run is; false (and the run marked interrupted) when it is
+    /// asked to stop.
+    fn keep_going(&mut self) -> bool {
+        let Some(p) = &self.given.progress else {
+            return true;
+        };
+        if p.at(self.t.min(self.given.t_end)) || self.t >= self.given.t_end {
+            return true;
+        }
+        self.rec.interrupted_at_s = Some(self.t);
+        false
     }
 
     fn s(&self) -> f64 {
