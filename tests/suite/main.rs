@@ -8,6 +8,7 @@ mod engine;
 mod baselines;
 mod cli;
 mod collapse;
+mod differential;
 mod docs;
 mod event_driven;
 mod generate;
