@@ -7,7 +7,7 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A file could not be read or written.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {source}{}", path.display(), io_advice(source))]
     Io {
         /// The file.
         path: PathBuf,
@@ -597,6 +597,22 @@ fn block_place(block: &Option<String>, origin: &str) -> String {
     }
 }
 
+/// What to do about a failed read or write, where the system's words alone do not say it.
+fn io_advice(e: &std::io::Error) -> &'static str {
+    use std::io::ErrorKind;
+    match e.kind() {
+        ErrorKind::StorageFull | ErrorKind::QuotaExceeded => {
+            ": the disk is full; free some space or give another folder (--out), and resume a \
+             sweep with --resume: its finished cases are kept"
+        }
+        ErrorKind::PermissionDenied | ErrorKind::ReadOnlyFilesystem => {
+            ": this folder cannot be written; give one you can write (--out)"
+        }
+        ErrorKind::NotADirectory => ": a file stands where a folder is needed; give another path",
+        _ => "",
+    }
+}
+
 /// A list of names for a message: all of them up to `most`, else the first `most` and how many
 /// more (a chain of thousands of blocks is not spelled out).
 pub(crate) fn name_list<'a>(names: impl ExactSizeIterator<Item = &'a str>, most: usize) -> String {
@@ -611,7 +627,23 @@ pub(crate) fn name_list<'a>(names: impl ExactSizeIterator<Item = &'a str>, most:
 
 #[cfg(test)]
 mod tests {
-    use super::name_list;
+    use super::{name_list, Error};
+    use std::io::ErrorKind;
+
+    #[test]
+    fn a_full_disk_and_an_unwritable_folder_say_what_to_do() {
+        let say = |kind: ErrorKind| {
+            Error::Io {
+                path: "out/summary.json".into(),
+                source: kind.into(),
+            }
+            .to_string()
+        };
+        assert!(say(ErrorKind::StorageFull).contains("the disk is full"));
+        assert!(say(ErrorKind::StorageFull).starts_with("out/summary.json: "));
+        assert!(say(ErrorKind::PermissionDenied).contains("give one you can write"));
+        assert!(!say(ErrorKind::NotFound).contains("; "));
+    }
 
     #[test]
     fn long_name_lists_are_cut_with_a_count() {

@@ -47,7 +47,12 @@ pub fn write(path: &Path, contents: &str) -> Result<(), Error> {
         .file_name()
         .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
     let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    std::fs::write(&tmp, contents).map_err(io(&tmp))?;
+    std::fs::write(&tmp, contents).map_err(|e| {
+        // A disk that filled up part-way leaves a cut temporary file: take it away, so that
+        // nothing but whole results is ever left.
+        let _ = std::fs::remove_file(&tmp);
+        io(path)(e)
+    })?;
     std::fs::rename(&tmp, path).map_err(|e| {
         // Leave nothing behind: the error is about the rename.
         let _ = std::fs::remove_file(&tmp);

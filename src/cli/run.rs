@@ -450,9 +450,12 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
 }
 
 /// Writes a run's files into `dir`; with a history, also its chart (`response.svg`) and the
-/// data it draws (`response.csv`).
+/// data it draws (`response.csv`); the summary last.
 pub fn write_outputs(dir: &Path, r: &Response, motion: &Motion) -> Result<(), Error> {
-    write_file(&dir.join("summary.json"), &r.summary_json())?;
+    // summary.json goes last, an older run's first: where it is, every file of its run is
+    // there whole (a disk that fills up part-way leaves no summary).
+    let summary = dir.join("summary.json");
+    write_or_remove(&summary, None)?;
     write_file(&dir.join("events.jsonl"), &r.events_jsonl())?;
     let decisions = (!r.decisions.is_empty()).then(|| r.decisions_jsonl());
     write_or_remove(&dir.join("decisions.jsonl"), decisions)?;
@@ -465,7 +468,8 @@ pub fn write_outputs(dir: &Path, r: &Response, motion: &Motion) -> Result<(), Er
     write_or_remove(
         &dir.join("response.csv"),
         charts.as_deref().map(chart::to_csv),
-    )
+    )?;
+    write_file(&summary, &r.summary_json())
 }
 
 /// Writes `text` to `path`, or removes a file an earlier run left there: a directory holds one

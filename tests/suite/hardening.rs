@@ -410,3 +410,56 @@ fn ctrl_c_stops_a_run_and_writes_what_it_has() {
         );
     }
 }
+
+/// A disk that fills up during the writing of a run's files: a clear error that says so and
+/// what to do, no cut file, and no summary.json (which is written last, so its presence means
+/// the run's files are whole). Needs a small tmpfs, so root; elsewhere the test says it could
+/// not run (the message itself is checked by a unit test in error.rs).
+#[test]
+#[cfg(target_os = "linux")]
+fn a_full_disk_is_a_clear_error_and_leaves_no_summary() {
+    struct Mounted(std::path::PathBuf);
+    impl Drop for Mounted {
+        fn drop(&mut self) {
+            let _ = Command::new("umount").arg(&self.0).status();
+        }
+    }
+    let dir = common::scratch("full-disk");
+    std::fs::create_dir_all(&*dir).unwrap();
+    let mounted = Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=32k", "tmpfs"])
+        .arg(&*dir)
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !mounted {
+        eprintln!("a_full_disk_is_a_clear_error: no tmpfs could be mounted here (not root)");
+        return;
+    }
+    let _guard = Mounted(dir.to_path_buf());
+    let out = dir.join("out");
+    let (code, _, err) = pirqa(&[
+        "run",
+        WALL,
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "20",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("the disk is full"), "{err}");
+    let left: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        !left
+            .iter()
+            .any(|f| f == "summary.json" || f.ends_with(".tmp")),
+        "{left:?}"
+    );
+}

@@ -11,6 +11,7 @@ mod collapse;
 mod differential;
 mod docs;
 mod event_driven;
+mod fuzz;
 mod generate;
 mod hardening;
 mod large_walls;
