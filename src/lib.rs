@@ -33,6 +33,7 @@
 pub mod bounds;
 pub mod clock;
 pub mod error;
+pub mod estimate;
 pub mod exact;
 pub mod integrate;
 pub mod model;
@@ -52,6 +53,7 @@ pub mod validity;
 pub mod wall;
 
 pub use error::{Error, MotionError, Result, SimulationError, SweepError, WallError};
+pub use estimate::{estimate, Estimate};
 pub use exact::Q;
 pub use integrate::rocking::{Equations, ModelChoice};
 pub use integrate::AfterCollapse;

@@ -317,6 +317,10 @@ pub struct RunArgs {
     /// Write only the summary, to this file.
     #[arg(long, value_name = "FILE")]
     pub summary: Option<PathBuf>,
+    /// Print what the run would cost (episodes of sliding, events, steps, history size) and
+    /// stop without running it; a run that is large says so on its own before it starts.
+    #[arg(long)]
+    pub estimate: bool,
     /// History sampling interval (s); every event time is added.
     #[arg(long, value_name = "S", default_value_t = 0.01)]
     pub output_dt: f64,
@@ -419,7 +423,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     };
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
     let (bar, progress) = simulated_time_bar(duration, &wall.name);
-    let settings = RunSettings {
+    let mut settings = RunSettings {
         duration_s: Some(duration),
         output_dt_s: (args.out.is_some() && !args.no_history).then_some(args.output_dt),
         log_events: args.out.is_some(),
@@ -430,8 +434,19 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         rocking: args.rocking,
         direction: args.direction,
         initial_rotation: args.initial_rotation.clone(),
-        progress: Some(progress),
+        progress: None,
     };
+    let cost = pirqa::estimate(&model, &motion, &settings);
+    if args.estimate {
+        print_out(&cost.to_string());
+        return Ok(());
+    }
+    for why in cost.large() {
+        eprintln!(
+            "note: a large run: {why}; it shows its progress and stops at Ctrl-C with what it has"
+        );
+    }
+    settings.progress = Some(progress);
     let response = pirqa::run(&model, &motion, &settings);
     bar.finish_and_clear();
     let mut response = response?;

@@ -463,3 +463,42 @@ fn a_full_disk_is_a_clear_error_and_leaves_no_summary() {
         "{left:?}"
     );
 }
+
+/// A run estimates its work before it starts: `--estimate` prints it without running, and a
+/// large run says so before it starts (here refused afterwards for its history's size).
+#[test]
+fn a_run_estimates_its_work_and_says_when_it_is_large() {
+    let (code, out, err) = pirqa(&[
+        "run",
+        WALL,
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "1000000",
+        "--estimate",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("episodes of sliding  2000000"), "{out}");
+    assert!(out.contains("events (exact)       2.4e7"), "{out}");
+    let dir = common::scratch("large");
+    let (code, _, err) = pirqa(&[
+        "run",
+        WALL,
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "1000000",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("note: a large run: about 2.4e7 events"),
+        "{err}"
+    );
+    assert!(err.contains("about 32.7 GB"), "{err}");
+}
