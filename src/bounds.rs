@@ -24,8 +24,10 @@ pub const GRAVITY_M_S2: (f64, f64) = (0.1, 100.0);
 /// about 1e154 m/s2 energies overflow f64 and come out as NaN.
 pub const MAX_ACCEL_M_S2: f64 = 1000.0;
 
-/// Highest sine frequency (Hz): records are sampled at 1 kHz at most.
-pub const MAX_FREQUENCY_HZ: f64 = 1000.0;
+/// Sine frequencies (Hz): from a period of about three hours (quasi-static for any wall; at
+/// 5e-324 Hz the ground's displacement A / omega^2 overflows and energies came out NaN) to
+/// 1 kHz (records are sampled at 1 kHz at most).
+pub const FREQUENCY_HZ: (f64, f64) = (1e-4, 1000.0);
 
 /// Longest motion or run (s): eleven days of shaking.
 pub const MAX_DURATION_S: f64 = 1e6;
@@ -43,8 +45,12 @@ pub const RECORD_DT_S: (f64, f64) = (1e-6, 10.0);
 /// Most steps of a time-stepping run (duration / step).
 pub const MAX_STEPS: f64 = 1e9;
 
-/// Most numbers a run may keep in its history (rows x columns): 400 MB of f64.
+/// Most numbers a run may keep in its history in memory (rows x columns): 400 MB of f64.
 pub const MAX_HISTORY_VALUES: f64 = 5e7;
+
+/// Most numbers a run may write to a history file as it goes (memory stays bounded): about
+/// 50 GB of CSV; `--output-dt 1e-9` wrote 63 GB in ten minutes before this bound.
+pub const MAX_HISTORY_FILE_VALUES: f64 = 2e9;
 
 /// Is x within [lo, hi] (and so finite)?
 pub fn within(x: f64, (lo, hi): (f64, f64)) -> bool {

@@ -283,6 +283,49 @@ impl Q {
         }
     }
 
+    /// Bits of its numerator and denominator together: the size its arithmetic costs.
+    pub fn bits(&self) -> u64 {
+        match &self.0 {
+            Repr::Small(n, d) => {
+                u64::from(128 - n.unsigned_abs().leading_zeros())
+                    + u64::from(128 - d.leading_zeros())
+            }
+            Repr::Big(b) => b.0.bits() + b.1.bits(),
+        }
+    }
+
+    /// The nearest number m 2^k with an integer m of at most `significant` bits (ties away from
+    /// zero): for keeping a computation that would otherwise grow without end (a long chain of
+    /// impacts) at a size, with a relative error of at most 2^-significant.
+    pub fn rounded(&self, significant: u64) -> Q {
+        if self.is_zero() {
+            return Q::zero();
+        }
+        let (n, d) = self.parts();
+        // |n / d| lies within a factor of two of 2^(bits n - bits d): start from the shift
+        // that gives `significant` bits or one more, and take one more if it did.
+        let mut shift = n.bits() as i64 - d.bits() as i64 - significant as i64;
+        loop {
+            let (num, den) = if shift < 0 {
+                (n.as_ref() << (-shift) as usize, d.as_ref().clone())
+            } else {
+                (n.as_ref().clone(), d.as_ref() << shift as usize)
+            };
+            // Round half away from zero: (2 num + sign den) / (2 den), truncated.
+            let two = BigInt::from(2);
+            let m = (&two * &num + num.signum() * &den) / (&two * &den);
+            if m.bits() > significant {
+                shift += 1;
+                continue;
+            }
+            return if shift < 0 {
+                Q::from_big(m, BigInt::one() << (-shift) as usize)
+            } else {
+                Q::from_big(m << shift as usize, BigInt::one())
+            };
+        }
+    }
+
     /// The nearest `f64` (round half to even).
     pub fn to_f64(&self) -> f64 {
         const EXACT: i128 = 1 << 53;
@@ -607,6 +650,35 @@ mod tests {
             let (n, d) = self.parts();
             (n.into_owned(), d.into_owned())
         }
+    }
+
+    #[test]
+    fn rounding_keeps_the_bits_asked_for_and_the_nearest_value() {
+        // 1/3 to 64 bits: a dyadic within 2^-64 of it, relative.
+        for x in [
+            Q::frac(1, 3),
+            Q::frac(-1, 3),
+            Q::frac(22, 7) * Q::frac(1, 1 << 70),
+        ] {
+            let r = x.rounded(64);
+            let err = ((&r - &x) / &x).abs();
+            assert!(err <= Q::frac(1, 1 << 64), "{x:?} -> {r:?}");
+            assert_eq!(r.signum(), x.signum());
+            let (_, d) = r.big_parts();
+            assert_eq!(
+                d.clone() & (d - 1u8),
+                BigInt::zero(),
+                "a power of two below"
+            );
+        }
+        // A number of fewer bits comes back as it was.
+        assert_eq!(Q::frac(3, 8).rounded(64), Q::frac(3, 8));
+        assert_eq!(Q::int(-5).rounded(3), Q::int(-5));
+        assert_eq!(Q::zero().rounded(8), Q::zero());
+        // Ties away from zero: 5 to 2 bits is 6, -5 is -6.
+        assert_eq!(Q::int(5).rounded(2), Q::int(6));
+        assert_eq!(Q::int(-5).rounded(2), Q::int(-6));
+        assert!(Q::frac(1, 3).bits() == 3 && Q::frac(1, 3).rounded(200).bits() > 200);
     }
 
     /// Numerators and denominators of every size that matters: zero and small values, values

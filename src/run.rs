@@ -52,6 +52,9 @@ pub struct RunSettings {
     pub duration_s: Option<f64>,
     /// History sampling interval (s); `None`: no history.
     pub output_dt_s: Option<f64>,
+    /// Write the history to this CSV file as the run goes (bounded memory) instead of keeping
+    /// it in the response.
+    pub history_file: Option<std::path::PathBuf>,
     /// Keep the event log.
     pub log_events: bool,
     /// Keep the log of mode decisions (event-driven sliding only).
@@ -122,6 +125,7 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
     let s = Settings {
         duration_s,
         output_dt_s: settings.output_dt_s,
+        history_file: settings.history_file.clone(),
         log_events: settings.log_events,
         log_decisions: settings.log_decisions,
         after_collapse: settings.after_collapse,

@@ -423,9 +423,12 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     };
     let duration = args.duration.unwrap_or_else(|| motion.duration_s());
     let (bar, progress) = simulated_time_bar(duration, &wall.name);
+    let history = args.out.as_ref().filter(|_| !args.no_history);
     let mut settings = RunSettings {
         duration_s: Some(duration),
-        output_dt_s: (args.out.is_some() && !args.no_history).then_some(args.output_dt),
+        output_dt_s: history.map(|_| args.output_dt),
+        // Straight to disk as the run goes: memory stays bounded however long the history.
+        history_file: history.map(|dir| dir.join("history.csv")),
         log_events: args.out.is_some(),
         log_decisions: args.decisions,
         after_collapse: args.after_collapse,
@@ -445,6 +448,10 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         eprintln!(
             "note: a large run: {why}; it shows its progress and stops at Ctrl-C with what it has"
         );
+    }
+    if let Some(dir) = &args.out {
+        // An older run's summary would stand beside this run's files while it runs.
+        write_or_remove(&dir.join("summary.json"), None)?;
     }
     settings.progress = Some(progress);
     let response = pirqa::run(&model, &motion, &settings);
@@ -474,8 +481,19 @@ pub fn write_outputs(dir: &Path, r: &Response, motion: &Motion) -> Result<(), Er
     write_file(&dir.join("events.jsonl"), &r.events_jsonl())?;
     let decisions = (!r.decisions.is_empty()).then(|| r.decisions_jsonl());
     write_or_remove(&dir.join("decisions.jsonl"), decisions)?;
-    write_or_remove(&dir.join("history.csv"), r.history_csv())?;
-    let charts = response_charts(r, motion);
+    match &r.history_file {
+        // Written as the run went; only a failure is left to report.
+        Some(file) => {
+            if let Some((kind, message)) = &file.failed {
+                return Err(Error::Io {
+                    path: file.path.clone(),
+                    source: std::io::Error::new(*kind, message.clone()),
+                });
+            }
+        }
+        None => write_or_remove(&dir.join("history.csv"), r.history_csv())?,
+    }
+    let charts = response_charts(r, motion)?;
     write_or_remove(
         &dir.join("response.svg"),
         charts.as_ref().map(|c| chart::render(c, 1, (900, 300))),
@@ -616,11 +634,12 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
         let _ = writeln!(t, "  warning: {w}");
     }
     if let Some(dir) = out {
+        let history = r.history.is_some() || r.history_file.is_some();
         let written: Vec<&str> = [
             Some("summary.json"),
-            r.history.is_some().then_some("history.csv"),
-            r.history.is_some().then_some("response.svg"),
-            r.history.is_some().then_some("response.csv"),
+            history.then_some("history.csv"),
+            history.then_some("response.svg"),
+            history.then_some("response.csv"),
             Some("events.jsonl"),
             (!r.decisions.is_empty()).then_some("decisions.jsonl"),
         ]

@@ -12,9 +12,10 @@ pub mod stepping;
 
 use crate::error::SimulationError;
 use crate::motion::Motion;
-use crate::response::Response;
+use crate::response::{HistoryTo, Response};
 use crate::topology::Topology;
 use crate::wall::Wall;
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
@@ -37,6 +38,10 @@ pub struct Settings {
     pub duration_s: f64,
     /// History sampling interval (s); `None` for summary only.
     pub output_dt_s: Option<f64>,
+    /// Write the history rows to this CSV file as the run goes instead of keeping them in the
+    /// response (memory stays bounded however long the history): `Response::history` is then
+    /// `None` and `Response::history_file` says where it went.
+    pub history_file: Option<PathBuf>,
     /// Keep the event log.
     pub log_events: bool,
     /// Keep the log of mode decisions (event-driven only: what each took in and cost).
@@ -48,7 +53,8 @@ pub struct Settings {
 }
 
 /// Told the simulated time reached (s), once per segment of the ground motion and every
-/// [`Progress::EVERY_EVENTS`] events (event-driven) or per step (time stepping), never past the
+/// [`Progress::EVERY_EVENTS`] events or history rows (event-driven) or per step (time
+/// stepping), never past the
 /// duration: a run of thousands of blocks takes minutes, and a bar is the only sign it moves.
 /// It also carries the caller's request to stop (Ctrl-C): a run asked to stop ends at the time
 /// it reached with what it has, the summary saying so (`Summary::interrupted_at_s`).
@@ -59,8 +65,9 @@ pub struct Progress {
 }
 
 impl Progress {
-    /// The event-driven integrator also looks at the stop request this often between segments
-    /// of the ground motion (a sine is one segment however long).
+    /// The event-driven integrator also looks at the stop request this often, in events and in
+    /// history rows, between segments of the ground motion (a sine is one segment however
+    /// long, and a fine history between two far events is most of a run's time).
     pub const EVERY_EVENTS: u64 = 4096;
 
     /// Reports each time to `report`.
@@ -115,20 +122,43 @@ impl Settings {
             });
         }
         if let Some(dt) = self.output_dt_s {
-            // Rows at output times (events add some), each with u and v of every block.
+            // Rows at output times (events add some), each with u and v of every block: held in
+            // memory unless they go to a file.
             let values = (t / dt) * (1.0 + 2.0 * blocks as f64);
-            if !(dt > 0.0 && values <= crate::bounds::MAX_HISTORY_VALUES) {
+            let (most, rule) = if self.history_file.is_some() {
+                (
+                    crate::bounds::MAX_HISTORY_FILE_VALUES,
+                    "it must be positive, and a history written to a file (duration / interval \
+                     rows of every block) at most 2e9 numbers, about 50 GB: take a larger \
+                     interval, or no history",
+                )
+            } else {
+                (
+                    crate::bounds::MAX_HISTORY_VALUES,
+                    "it must be positive, and a history kept in memory (duration / interval \
+                     rows of every block) at most 5e7 numbers: take a larger interval, write it \
+                     to a file (--out does), or keep no history",
+                )
+            };
+            if !(dt > 0.0 && values <= most) {
                 return Err(SimulationError::Setting {
                     what: "history interval".into(),
                     value: dt,
                     unit: " s",
-                    rule: "it must be positive, and the history it asks for (duration / \
-                           interval rows of every block) at most 5e7 numbers: take a larger \
-                           interval, or no history",
+                    rule,
                 });
             }
         }
         Ok(())
+    }
+
+    /// Where the history goes.
+    pub fn history_to(&self) -> HistoryTo {
+        match (self.output_dt_s, &self.history_file) {
+            (None, _) => HistoryTo::Nowhere,
+            (Some(_), None) => HistoryTo::Memory,
+            (Some(_), Some(path)) => HistoryTo::File(path.clone()),
+        }
     }
 
     /// Summary only, for `duration_s`.
@@ -136,6 +166,7 @@ impl Settings {
         Settings {
             duration_s,
             output_dt_s: None,
+            history_file: None,
             log_events: false,
             log_decisions: false,
             after_collapse: AfterCollapse::Stop,

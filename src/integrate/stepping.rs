@@ -213,7 +213,7 @@ impl<'a> Observer<'a> {
         let rec = Recorder::new(
             sc.wall,
             sc.topology,
-            sc.settings.output_dt_s.is_some(),
+            sc.settings.history_to(),
             sc.settings.log_events,
         );
         let n = model.n;

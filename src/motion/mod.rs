@@ -122,13 +122,13 @@ impl Default for Sine {
 }
 
 impl Sine {
-    /// Checks that the numbers make sense: a finite amplitude and phase, a positive frequency
-    /// and duration.
+    /// Checks that the numbers make sense: a finite amplitude and phase, a frequency and a
+    /// duration within the bounds of [`bounds`].
     pub fn validate(&self) -> Result<(), MotionError> {
         let (f, d) = (self.frequency_hz, self.duration_s);
         let ok = self.amplitude_m_s2.abs() <= bounds::MAX_ACCEL_M_S2
-            && f > 0.0
-            && f <= bounds::MAX_FREQUENCY_HZ
+            && f >= bounds::FREQUENCY_HZ.0
+            && f <= bounds::FREQUENCY_HZ.1
             && self.phase_rad.abs() <= bounds::MAX_PHASE_RAD
             && d > 0.0
             && d <= bounds::MAX_DURATION_S
@@ -140,12 +140,13 @@ impl Sine {
                     self.amplitude_m_s2, self.phase_rad
                 ),
                 rule: format!(
-                    "a sine needs an amplitude of at most {} m/s2 (about 100 g), a positive \
-                     frequency of at most {} Hz, a phase within {} rad (reduce a larger one), a \
+                    "a sine needs an amplitude of at most {} m/s2 (about 100 g), a frequency \
+                     from {} to {} Hz, a phase within {} rad (reduce a larger one), a \
                      positive duration of at most {} s and at most {:e} cycles \
                      (docs/reliability.md: bounds)",
                     bounds::MAX_ACCEL_M_S2,
-                    bounds::MAX_FREQUENCY_HZ,
+                    bounds::FREQUENCY_HZ.0,
+                    bounds::FREQUENCY_HZ.1,
                     bounds::MAX_PHASE_RAD,
                     bounds::MAX_DURATION_S,
                     bounds::MAX_CYCLES

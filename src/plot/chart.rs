@@ -314,32 +314,94 @@ pub fn envelope(points: &[(f64, f64)], bins: usize) -> Vec<(f64, f64)> {
     let (Some(&(x0, _)), Some(&(x1, _))) = (points.first(), points.last()) else {
         return Vec::new();
     };
-    if points.len() <= 4 * bins || x1 <= x0 {
-        return points.to_vec();
+    let mut e = Envelope::new(x0, x1, points.len(), bins);
+    for &p in points {
+        e.push(p);
     }
-    let bin = |x: f64| (((x - x0) / (x1 - x0) * bins as f64) as usize).min(bins - 1);
-    let mut out = Vec::with_capacity(4 * bins);
-    let mut start = 0;
-    while start < points.len() {
-        let b = bin(points[start].0);
-        let end = start + points[start..].partition_point(|p| bin(p.0) == b);
-        let part = &points[start..end];
-        let by_y = |a: &&(usize, &(f64, f64)), c: &&(usize, &(f64, f64))| a.1 .1.total_cmp(&c.1 .1);
-        let indexed: Vec<(usize, &(f64, f64))> = part.iter().enumerate().collect();
-        let lo = indexed.iter().min_by(by_y).map_or(0, |p| p.0);
-        let hi = indexed.iter().max_by(by_y).map_or(0, |p| p.0);
-        let mut keep = [0, lo, hi, part.len() - 1];
-        keep.sort_unstable();
-        let mut last = None;
-        for k in keep {
-            if last != Some(k) {
-                out.push(part[k]);
-                last = Some(k);
+    e.finish()
+}
+
+/// The points an envelope keeps of one bin, each with its position in the bin: its first,
+/// lowest, highest and last.
+type Kept = [(usize, (f64, f64)); 4];
+
+/// [`envelope`] of a line given point by point, in memory of its result alone (a history read
+/// back from a file of gigabytes): the line's first and last x and its number of points are
+/// given first. Lines of at most 4 points per bin are kept whole.
+#[derive(Debug, Clone)]
+pub struct Envelope {
+    x0: f64,
+    x1: f64,
+    bins: usize,
+    whole: bool,
+    /// The current bin: its index, and its first, lowest, highest and last points with their
+    /// positions in the bin (the lowest the first of equals, the highest the last, as
+    /// `min_by` and `max_by` choose).
+    bin: Option<(usize, Kept)>,
+    seen: usize,
+    out: Vec<(f64, f64)>,
+}
+
+impl Envelope {
+    /// For a line from x0 to x1 of `count` points.
+    pub fn new(x0: f64, x1: f64, count: usize, bins: usize) -> Envelope {
+        Envelope {
+            x0,
+            x1,
+            bins,
+            whole: count <= 4 * bins || x1 <= x0,
+            bin: None,
+            seen: 0,
+            out: Vec::new(),
+        }
+    }
+
+    /// The next point.
+    pub fn push(&mut self, p: (f64, f64)) {
+        if self.whole {
+            self.out.push(p);
+            return;
+        }
+        let b = (((p.0 - self.x0) / (self.x1 - self.x0) * self.bins as f64) as usize)
+            .min(self.bins - 1);
+        match &mut self.bin {
+            Some((current, kept)) if *current == b => {
+                self.seen += 1;
+                let k = self.seen;
+                if p.1.total_cmp(&kept[1].1 .1).is_lt() {
+                    kept[1] = (k, p);
+                }
+                if p.1.total_cmp(&kept[2].1 .1).is_ge() {
+                    kept[2] = (k, p);
+                }
+                kept[3] = (k, p);
+            }
+            _ => {
+                self.flush();
+                self.seen = 0;
+                self.bin = Some((b, [(0, p); 4]));
             }
         }
-        start = end;
     }
-    out
+
+    fn flush(&mut self) {
+        if let Some((_, mut kept)) = self.bin.take() {
+            kept.sort_by_key(|k| k.0);
+            let mut last = None;
+            for (k, p) in kept {
+                if last != Some(k) {
+                    self.out.push(p);
+                    last = Some(k);
+                }
+            }
+        }
+    }
+
+    /// The thinned line.
+    pub fn finish(mut self) -> Vec<(f64, f64)> {
+        self.flush();
+        self.out
+    }
 }
 
 /// The data of charts as CSV: one row per point, with chart, series, x and y (titles and

@@ -2,9 +2,10 @@
 //! ground acceleration, the displacement of the blocks that moved most and, when blocks rock,
 //! their rotation, each line thinned to what a chart shows with every extreme kept.
 
-use super::chart::{envelope, Chart, Series};
+use super::chart::{envelope, Chart, Envelope, Series};
 use crate::motion::Motion;
-use crate::response::Response;
+use crate::response::{each_row, Response, RowVisitor};
+use crate::Error;
 
 /// Blocks drawn at most: those with the largest max |u| (more lines could not be told apart).
 pub const MOST_MOVED: usize = 8;
@@ -15,10 +16,34 @@ const BINS: usize = 1500;
 /// Ground samples at most (a sine is sampled 40 times a period, a record at its own samples).
 const GROUND_SAMPLES: f64 = 1e6;
 
-/// The panels of a run's chart (two, three with rotations), `None` without a history.
-pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
-    let h = r.history.as_ref()?;
-    let end = *h.time_s.last()?;
+/// The panels of a run's chart (two, three with rotations), `None` without a history; from
+/// the history in memory, or read back from its file (twice, holding only the lines drawn).
+pub fn response_charts(r: &Response, motion: &Motion) -> Result<Option<Vec<Chart>>, Error> {
+    let blocks = &r.summary.blocks;
+    let each = |f: &mut RowVisitor| -> Result<(), Error> {
+        match (&r.history, &r.history_file) {
+            (Some(h), _) => {
+                for (k, &t) in h.time_s.iter().enumerate() {
+                    let theta = h.rotation_rad.get(k).map_or(&[][..], |x| &x[..]);
+                    f(t, &h.displacement_m[k], theta);
+                }
+                Ok(())
+            }
+            (None, Some(file)) => each_row(&file.path, blocks.len(), f),
+            (None, None) => Ok(()),
+        }
+    };
+    // The first pass: the rows' number, first and last times, and whether blocks rotate.
+    let (mut count, mut first, mut end, mut rotating) = (0, None, 0.0, false);
+    each(&mut |t, _, theta| {
+        count += 1;
+        first.get_or_insert(t);
+        end = t;
+        rotating = !theta.is_empty();
+    })?;
+    let Some(first) = first else {
+        return Ok(None);
+    };
     let step = match motion {
         Motion::Record(rec) => rec.dt_s(),
         Motion::Sine(s) => 1.0 / (40.0 * s.frequency_hz),
@@ -33,7 +58,6 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
             (t, motion.accel(t))
         })
         .collect();
-    let blocks = &r.summary.blocks;
     let mut drawn: Vec<usize> = (0..blocks.len()).collect();
     drawn.sort_by(|&a, &b| {
         blocks[b]
@@ -42,19 +66,27 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
     });
     drawn.truncate(MOST_MOVED);
     drawn.sort_unstable();
-    let lines = |rows: &[Vec<f64>]| -> Vec<Series> {
-        drawn
-            .iter()
+    // The second pass: the drawn lines, thinned as they come.
+    let fresh = || vec![Envelope::new(first, end, count, BINS); drawn.len()];
+    let (mut u_lines, mut theta_lines) = (fresh(), fresh());
+    each(&mut |t, u, theta| {
+        for (k, &i) in drawn.iter().enumerate() {
+            u_lines[k].push((t, u[i]));
+            if rotating {
+                theta_lines[k].push((t, theta[i]));
+            }
+        }
+    })?;
+    let series = |lines: Vec<Envelope>| -> Vec<Series> {
+        lines
+            .into_iter()
+            .zip(&drawn)
             .enumerate()
-            .map(|(colour, &i)| {
-                let line: Vec<(f64, f64)> =
-                    h.time_s.iter().zip(rows).map(|(&t, x)| (t, x[i])).collect();
-                Series {
-                    label: blocks[i].name.clone(),
-                    points: envelope(&line, BINS),
-                    color: colour,
-                    ..Series::default()
-                }
+            .map(|(colour, (line, &i))| Series {
+                label: blocks[i].name.clone(),
+                points: line.finish(),
+                color: colour,
+                ..Series::default()
             })
             .collect()
     };
@@ -82,18 +114,18 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Option<Vec<Chart>> {
             title: format!("displacement relative to the ground, {which}"),
             x_label: "t (s)".into(),
             y_label: "u (m)".into(),
-            series: lines(&h.displacement_m),
+            series: series(u_lines),
             ..Chart::default()
         },
     ];
-    if !h.rotation_rad.is_empty() {
+    if rotating {
         charts.push(Chart {
             title: format!("rotation (positive: on the right corner), {which}"),
             x_label: "t (s)".into(),
             y_label: "theta (rad)".into(),
-            series: lines(&h.rotation_rad),
+            series: series(theta_lines),
             ..Chart::default()
         });
     }
-    Some(charts)
+    Ok(Some(charts))
 }

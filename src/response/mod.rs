@@ -3,6 +3,8 @@
 //! event-driven integrator when asked, the log of its mode decisions (`decisions.jsonl`).
 //! Integrators feed a recorder; nothing here knows how the numbers were computed.
 
+mod history_file;
+pub use history_file::{each_row, RowVisitor, Stream};
 mod recorder;
 pub mod saved;
 
@@ -11,7 +13,6 @@ pub use recorder::Recorder;
 
 use crate::topology::{BlockId, HorizontalId, JointRef};
 use serde::Serialize;
-use std::fmt::Write;
 
 /// Kinds of logged events.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -469,13 +470,39 @@ pub struct History {
     pub angular_velocity_rad_s: Vec<Vec<f64>>,
 }
 
+/// Where a run keeps its history.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum HistoryTo {
+    /// No history.
+    #[default]
+    Nowhere,
+    /// In the response ([`Response::history`]).
+    Memory,
+    /// Written to this CSV file as the run goes ([`Response::history_file`]).
+    File(std::path::PathBuf),
+}
+
+/// A history written to a file as the run went.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryFile {
+    /// The file.
+    pub path: std::path::PathBuf,
+    /// Rows written.
+    pub rows: u64,
+    /// Why the file could not be written whole (the run itself went on): what kind of
+    /// failure, and the system's words.
+    pub failed: Option<(std::io::ErrorKind, String)>,
+}
+
 /// Everything a run returns.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Response {
     /// The summary.
     pub summary: Summary,
-    /// The history, when asked for.
+    /// The history, when asked for in memory.
     pub history: Option<History>,
+    /// The history, when asked for in a file.
+    pub history_file: Option<HistoryFile>,
     /// Logged events.
     pub events: Vec<EventRecord>,
     /// Logged mode decisions (event-driven, when asked for; otherwise empty).
@@ -511,7 +538,7 @@ impl Response {
         jsonl(&self.decisions)
     }
 
-    /// `history.csv` text, or `None` without a history.
+    /// `history.csv` text, or `None` without a history kept in memory.
     pub fn history_csv(&self) -> Option<String> {
         let h = self.history.as_ref()?;
         let names: Vec<&str> = self
@@ -521,41 +548,19 @@ impl Response {
             .map(|b| b.name.as_str())
             .collect();
         let rotating = !h.rotation_rad.is_empty();
-        let quantities: &[(&str, &str)] = if rotating {
-            &[
-                ("u", "m"),
-                ("v", "m_s"),
-                ("theta", "rad"),
-                ("omega", "rad_s"),
-            ]
-        } else {
-            &[("u", "m"), ("v", "m_s")]
-        };
-        let mut columns = vec!["time_s".to_string()];
-        for (q, unit) in quantities {
-            columns.extend(names.iter().map(|n| format!("{q}_{n}_{unit}")));
-        }
-        // The header through the CSV writer (a block name may hold a comma or a quote); the
-        // rows are numbers only.
-        let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
-        let mut s = crate::table::header(&columns);
+        let mut s = history_file::header(&names, rotating);
         let none: &[f64] = &[];
-        for (k, t) in h.time_s.iter().enumerate() {
-            let _ = write!(s, "{t}");
+        for (k, &t) in h.time_s.iter().enumerate() {
             let (theta, omega) = if rotating {
                 (&h.rotation_rad[k][..], &h.angular_velocity_rad_s[k][..])
             } else {
                 (none, none)
             };
-            for x in h.displacement_m[k]
-                .iter()
-                .chain(&h.velocity_m_s[k])
-                .chain(theta)
-                .chain(omega)
-            {
-                let _ = write!(s, ",{x:e}");
-            }
-            s.push('\n');
+            history_file::push_row(
+                &mut s,
+                t,
+                [&h.displacement_m[k], &h.velocity_m_s[k], theta, omega],
+            );
         }
         Some(s)
     }

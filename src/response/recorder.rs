@@ -2,8 +2,8 @@
 //! the event log, turned into a [`Response`] when the run ends.
 
 use super::{
-    BlockSummary, Collapse, DecisionRecord, Energy, EventKind, EventRecord, History,
-    HorizontalJointSummary, ModelUsed, Response, Stats, Summary, Warning,
+    BlockSummary, Collapse, DecisionRecord, Energy, EventKind, EventRecord, History, HistoryFile,
+    HistoryTo, HorizontalJointSummary, ModelUsed, Response, Stats, Stream, Summary, Warning,
 };
 use crate::topology::{Base, BlockId, HorizontalId, JointRef, Topology, VerticalId};
 use crate::wall::Wall;
@@ -25,6 +25,8 @@ pub struct Recorder {
     rocking_impacts: Vec<u64>,
     fell: Vec<bool>,
     history: Option<History>,
+    /// The history going to a file instead, and the time of its last row.
+    stream: Option<(Stream, f64)>,
     /// Logged events.
     pub events: Vec<EventRecord>,
     log_events: bool,
@@ -53,8 +55,9 @@ pub struct Recorder {
 }
 
 impl Recorder {
-    /// A recorder for this wall; `history` keeps sampled rows, `log_events` keeps the event log.
-    pub fn new(wall: &Wall, topo: &Topology, history: bool, log_events: bool) -> Recorder {
+    /// A recorder for this wall; `history` says where sampled rows go, `log_events` keeps the
+    /// event log.
+    pub fn new(wall: &Wall, topo: &Topology, history: HistoryTo, log_events: bool) -> Recorder {
         let horizontal = topo
             .horizontal
             .iter()
@@ -87,10 +90,14 @@ impl Recorder {
     pub fn for_bodies(
         names: Vec<String>,
         horizontal: Vec<(usize, Option<usize>, String, String)>,
-        history: bool,
+        history: HistoryTo,
         log_events: bool,
     ) -> Recorder {
         let n = names.len();
+        let stream = match &history {
+            HistoryTo::File(path) => Some((Stream::new(path, &names), f64::NEG_INFINITY)),
+            HistoryTo::Nowhere | HistoryTo::Memory => None,
+        };
         Recorder {
             max_d: vec![0.0; horizontal.len()],
             names,
@@ -103,7 +110,8 @@ impl Recorder {
             uplift: vec![None; n],
             rocking_impacts: vec![0; n],
             fell: vec![false; n],
-            history: history.then(History::default),
+            history: (history == HistoryTo::Memory).then(History::default),
+            stream,
             events: Vec::new(),
             log_events,
             decisions: None,
@@ -122,12 +130,15 @@ impl Recorder {
 
     /// Time of the last history row, if rows are kept and there is one.
     pub fn last_row_time(&self) -> Option<f64> {
-        self.history.as_ref()?.time_s.last().copied()
+        match &self.stream {
+            Some((_, t)) => t.is_finite().then_some(*t),
+            None => self.history.as_ref()?.time_s.last().copied(),
+        }
     }
 
     /// True when history rows are wanted.
     pub fn wants_history(&self) -> bool {
-        self.history.is_some()
+        self.history.is_some() || self.stream.is_some()
     }
 
     /// Block names.
@@ -209,6 +220,10 @@ impl Recorder {
 
     /// Adds a history row with rotations.
     pub fn sample_rotating(&mut self, t: f64, u: &[f64], v: &[f64], theta: &[f64], omega: &[f64]) {
+        if let Some((stream, last)) = &mut self.stream {
+            stream.row(t, [u, v, theta, omega]);
+            *last = t;
+        }
         if let Some(h) = &mut self.history {
             h.time_s.push(t);
             h.displacement_m.push(u.to_vec());
@@ -225,6 +240,10 @@ impl Recorder {
 
     /// Adds a history row.
     pub fn sample(&mut self, t: f64, u: &[f64], v: &[f64]) {
+        if let Some((stream, last)) = &mut self.stream {
+            stream.row(t, [u, v, &[], &[]]);
+            *last = t;
+        }
         if let Some(h) = &mut self.history {
             h.time_s.push(t);
             h.displacement_m.push(u.to_vec());
@@ -366,6 +385,21 @@ impl Recorder {
                 worst: None,
             },
             history: self.history,
+            history_file: self.stream.map(|(stream, _)| {
+                let rows = stream.rows();
+                match stream.finish() {
+                    Ok(path) => HistoryFile {
+                        path,
+                        rows,
+                        failed: None,
+                    },
+                    Err((path, e)) => HistoryFile {
+                        path,
+                        rows,
+                        failed: Some((e.kind(), e.to_string())),
+                    },
+                }
+            }),
             events: self.events,
             decisions: self.decisions.unwrap_or_default(),
             final_displacement_m: u.to_vec(),

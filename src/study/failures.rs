@@ -110,6 +110,7 @@ pub fn run(
     let settings = Settings {
         duration_s: case.duration_s,
         output_dt_s,
+        history_file: None,
         log_events: true,
         log_decisions: false,
         after_collapse: Default::default(),

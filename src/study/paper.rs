@@ -439,6 +439,7 @@ fn record_figures(
         let settings = Settings {
             duration_s: record.duration_s(),
             output_dt_s: Some(0.02),
+            history_file: None,
             log_events: false,
             log_decisions: false,
             after_collapse: AfterCollapse::Continue,

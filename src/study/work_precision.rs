@@ -148,6 +148,7 @@ fn settings(duration: f64) -> Settings {
     Settings {
         duration_s: duration,
         output_dt_s: Some(OUTPUT_DT_S),
+        history_file: None,
         log_events: false,
         log_decisions: false,
         after_collapse: Default::default(),

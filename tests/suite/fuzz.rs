@@ -5,8 +5,9 @@
 //! no panic, and an error or a run; on every run: finite outputs, the energy balance closed, no
 //! block through its neighbour, and no input taking more than a few seconds.
 //!
-//! The suite runs a short campaign (`PIRQA_FUZZ_INPUTS`, default 3,000); docs/reliability.md gives
-//! the command of the 10^6-input run and what it found.
+//! The suite runs a short campaign (`PIRQA_FUZZ_INPUTS`, default 3,000); `PIRQA_FUZZ_ONLY=i` runs
+//! and prints input i alone; docs/reliability.md gives the command of the 10^6-input run and
+//! what it found.
 
 use pirqa::motion::formats::{detect, ReadOptions};
 use pirqa::rng::Rng;
@@ -290,6 +291,9 @@ fn library_input(corpus: &Corpus, rng: &mut Rng) -> Result<(), Finding> {
         "wall:\n{wall_text}\nrecord:\n{}\nsine {sine:?}, {duration} s",
         record_text.as_deref().unwrap_or("(sine)")
     );
+    if std::env::var_os("PIRQA_FUZZ_ONLY").is_some() {
+        eprintln!("{input}");
+    }
     let outcome = catch_unwind(AssertUnwindSafe(|| -> Result<Option<Finding>, String> {
         let model = Model::from_ron_str(&wall_text).map_err(|e| e.to_string())?;
         let motion = match &record_text {
@@ -344,20 +348,8 @@ fn library_input(corpus: &Corpus, rng: &mut Rng) -> Result<(), Finding> {
             class: "error without a message".into(),
             detail: input,
         }),
-        Ok(Err(message)) => {
+        Ok(Err(_)) => {
             REFUSED.fetch_add(1, Ordering::Relaxed);
-            if std::env::var("FUZZ_WHY").is_ok() {
-                eprintln!(
-                    "WHY {}",
-                    message
-                        .lines()
-                        .next()
-                        .unwrap_or("")
-                        .chars()
-                        .take(90)
-                        .collect::<String>()
-                );
-            }
             Ok(())
         }
         Ok(Ok(None)) => {
@@ -518,9 +510,9 @@ fn command_line_input(rng: &mut Rng, scratch: &std::path::Path) -> Result<(), Fi
     }
 }
 
-/// Runs inputs `0..count` of the campaign on every core; returns the findings by class with
-/// the first input of each (its index and details).
-pub fn campaign(count: u64) -> BTreeMap<String, (u64, u64, String)> {
+/// Runs inputs `inputs` of the campaign on every core; returns the findings by class with the
+/// first input of each (its index and details).
+pub fn campaign(inputs: std::ops::Range<u64>) -> BTreeMap<String, (u64, u64, String)> {
     let corpus = Corpus::load();
     let threads = std::thread::available_parallelism().map_or(2, |n| n.get()) as u64;
     let scratch = crate::common::scratch("fuzz");
@@ -539,7 +531,7 @@ pub fn campaign(count: u64) -> BTreeMap<String, (u64, u64, String)> {
                 s.spawn(move || {
                     FUZZING.with(|f| f.set(true));
                     let mut found: BTreeMap<String, (u64, u64, String)> = BTreeMap::new();
-                    for i in (w..count).step_by(threads as usize) {
+                    for i in (inputs.start + w..inputs.end).step_by(threads as usize) {
                         let mut rng = Rng::new(SEED ^ i.wrapping_mul(0x9e37_79b9_7f4a_7c15));
                         let started = Instant::now();
                         let mut result = if i % COMMAND_LINE_EVERY == COMMAND_LINE_EVERY - 1 {
@@ -550,7 +542,10 @@ pub fn campaign(count: u64) -> BTreeMap<String, (u64, u64, String)> {
                         if result.is_ok() && started.elapsed() > SLOW {
                             result = Err(Finding {
                                 class: "slow input".into(),
-                                detail: format!("{:?}", started.elapsed()),
+                                detail: format!(
+                                    "{:?}; see it with PIRQA_FUZZ_ONLY={i}",
+                                    started.elapsed()
+                                ),
                             });
                         }
                         if let Err(f) = result {
@@ -588,12 +583,15 @@ thread_local! {
 
 #[test]
 fn a_seeded_fuzz_campaign_finds_nothing() {
-    let count = std::env::var("PIRQA_FUZZ_INPUTS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(3000);
+    let number = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<u64>().ok());
+    // One input alone, printed: a finding replayed.
+    let inputs = match number("PIRQA_FUZZ_ONLY") {
+        Some(i) => i..i + 1,
+        None => 0..number("PIRQA_FUZZ_INPUTS").unwrap_or(3000),
+    };
+    let count = inputs.end - inputs.start;
     let started = Instant::now();
-    let found = campaign(count);
+    let found = campaign(inputs);
     eprintln!(
         "fuzz: {count} inputs in {:.1} s: {} ran, {} refused with a message, {} classes of finding",
         started.elapsed().as_secs_f64(),

@@ -370,6 +370,7 @@ fn kept_limits_change_the_work_not_the_answer() {
         let settings = Settings {
             duration_s,
             output_dt_s: Some(0.01),
+            history_file: None,
             log_events: true,
             log_decisions: true,
             after_collapse,
@@ -445,6 +446,7 @@ fn events_logged(duration_s: f64) -> Settings {
     Settings {
         duration_s,
         output_dt_s: None,
+        history_file: None,
         log_events: true,
         log_decisions: false,
         after_collapse: Default::default(),

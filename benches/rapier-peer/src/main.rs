@@ -238,7 +238,7 @@ impl Integrator for RockingPeer {
         let mut rec = pirqa::response::Recorder::for_bodies(
             vec![name.clone()],
             vec![(0, None, name, "ground".into())],
-            settings.output_dt_s.is_some(),
+            settings.history_to(),
             false,
         );
         let mut sim = Sim::with_rotation(sc, self.dt_s, Some(self.theta0));
@@ -292,6 +292,7 @@ fn rocking_points(out: &str) {
         let settings = pirqa::integrate::Settings {
             duration_s: case.duration_s,
             output_dt_s: Some(work_precision::OUTPUT_DT_S),
+            history_file: None,
             log_events: false,
             log_decisions: false,
             after_collapse: Default::default(),
@@ -358,6 +359,7 @@ fn chart_points(cases: &[work_precision::Case], out: &str) {
         let settings = pirqa::integrate::Settings {
             duration_s: case.duration_s,
             output_dt_s: Some(work_precision::OUTPUT_DT_S),
+            history_file: None,
             log_events: false,
             log_decisions: false,
             after_collapse: Default::default(),

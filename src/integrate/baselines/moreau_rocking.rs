@@ -69,7 +69,7 @@ impl Integrator for MoreauRocking {
         let mut rec = Recorder::for_bodies(
             vec![body.name.clone()],
             vec![(0, None, body.name.clone(), "ground".to_string())],
-            settings.output_dt_s.is_some(),
+            settings.history_to(),
             settings.log_events,
         );
         // The centroid relative to the base centre's place at rest; phi counter-clockwise.

@@ -5,6 +5,7 @@
 use super::cluster::ClusterId;
 use super::roots::{self, Fun};
 use super::{cluster, Engine};
+use crate::integrate::Progress;
 
 impl Engine<'_> {
     /// Energy input and displacement/velocity extremes of every sliding cluster up to t.
@@ -160,20 +161,25 @@ impl Engine<'_> {
     }
 
     /// History samples at every output instant up to t (when the run keeps a history).
-    pub(super) fn output_until(&mut self, t: f64) {
+    /// False when the run was asked to stop while writing them (a fine history between two
+    /// far events is most of a run's time): the run then ends at the last row written.
+    pub(super) fn output_until(&mut self, t: f64) -> bool {
         let Some(dt) = self.given.output_dt else {
-            return;
+            return true;
         };
         loop {
             let tk = self.output_k as f64 * dt;
             if tk > t || tk > self.given.t_end {
-                return;
+                return true;
             }
             let saved = self.t;
             self.t = tk;
             self.sample();
-            self.t = saved;
             self.output_k += 1;
+            if self.output_k.is_multiple_of(Progress::EVERY_EVENTS) && !self.keep_going() {
+                return false;
+            }
+            self.t = saved;
         }
     }
 

@@ -128,27 +128,53 @@ pub fn resolve(
     Ok((collisions, loss))
 }
 
+/// Numbers of a chain larger than this many bits are rounded to [`KEPT_BITS`] significant
+/// bits: a course of touching blocks with e < 1 settles only after hundreds of collisions, and
+/// each adds the bits of the masses and of e to the velocities, until the arithmetic of one
+/// collision takes seconds (a fuzzed course of six blocks: 510 impacts in 37 s). Rounding the
+/// impulse keeps momentum exact (each block gets it divided by its own mass) and moves the
+/// velocities by 2^-256 of themselves, 10^-61 of what f64 resolves; short chains (Newton's
+/// cradle, every shipped wall's) never reach the size and stay exact to the last bit.
+const ROUND_FROM_BITS: u64 = 1024;
+
+/// Significant bits kept where a chain's numbers are rounded.
+const KEPT_BITS: u64 = 256;
+
+fn kept(x: Q) -> Q {
+    if x.bits() > ROUND_FROM_BITS {
+        x.rounded(KEPT_BITS)
+    } else {
+        x
+    }
+}
+
 /// One collision at the face (l, r) approaching at `approach`: the bodies' velocities after it
-/// (Newton's restitution e, momentum conserved), and the kinetic energy it loses (J).
+/// (Newton's restitution e, momentum conserved), and the kinetic energy it loses (J), exactly
+/// the kinetic energy before less after.
 fn collide(bodies: &mut [Body], (l, r): (usize, usize), approach: &Q, e: &Q) -> Q {
-    // The loss per kilogram of the pair's reduced mass.
-    let per_kg = Q::frac(1, 2) * (Q::one() - e * e) * approach * approach;
+    let half = Q::frac(1, 2);
     match (bodies[l].mass.clone(), bodies[r].mass.clone()) {
         (Some(ml), Some(mr)) => {
             let total = &ml + &mr;
-            let impulse = (Q::one() + e) * &ml * &mr / &total * approach;
-            bodies[l].velocity = &bodies[l].velocity - &impulse / &ml;
-            bodies[r].velocity = &bodies[r].velocity + &impulse / &mr;
-            ml * mr / total * per_kg
+            let impulse = kept((Q::one() + e) * &ml * &mr / &total * approach);
+            let (vl, vr) = (bodies[l].velocity.clone(), bodies[r].velocity.clone());
+            bodies[l].velocity = &vl - &impulse / &ml;
+            bodies[r].velocity = &vr + &impulse / &mr;
+            let (nl, nr) = (&bodies[l].velocity, &bodies[r].velocity);
+            half * (ml * (&vl * &vl - nl * nl) + mr * (&vr * &vr - nr * nr))
         }
         (None, Some(mr)) => {
             // Rebound off the ground side: v_r' = v_l + e (v_l - v_r) with v_l = 0.
-            bodies[r].velocity = e * approach;
-            mr * per_kg
+            let before = bodies[r].velocity.clone();
+            bodies[r].velocity = kept(e * approach);
+            let after = &bodies[r].velocity;
+            half * mr * (&before * &before - after * after)
         }
         (Some(ml), None) => {
-            bodies[l].velocity = -(e * approach);
-            ml * per_kg
+            let before = bodies[l].velocity.clone();
+            bodies[l].velocity = kept(-(e * approach));
+            let after = &bodies[l].velocity;
+            half * ml * (&before * &before - after * after)
         }
         (None, None) => unreachable!("two ground bodies never approach"),
     }

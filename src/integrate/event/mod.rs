@@ -255,12 +255,7 @@ impl<'a> Engine<'a> {
             .map(|b| b.right().to_f64().abs().max(b.top().to_f64()))
             .fold(1.0, f64::max);
         let seg = sc.motion.segment_at(0.0);
-        let mut rec = Recorder::new(
-            wall,
-            topo,
-            sc.settings.output_dt_s.is_some(),
-            sc.settings.log_events,
-        );
+        let mut rec = Recorder::new(wall, topo, sc.settings.history_to(), sc.settings.log_events);
         rec.decisions = sc.settings.log_decisions.then(Vec::new);
         Ok(Engine {
             given: Given {
@@ -330,7 +325,9 @@ impl<'a> Engine<'a> {
             let seg_end = self.seg.t1.min(self.given.t_end);
             match self.queue.pop_until(seg_end, &self.clusters) {
                 Some(p) => {
-                    self.output_until(p.t);
+                    if !self.output_until(p.t) {
+                        break;
+                    }
                     self.t = p.t;
                     self.rec.stats.events += 1;
                     self.progress_guard(&p)?;
@@ -345,7 +342,9 @@ impl<'a> Engine<'a> {
                     }
                 }
                 None => {
-                    self.output_until(seg_end);
+                    if !self.output_until(seg_end) {
+                        break;
+                    }
                     self.t = seg_end;
                     if !self.keep_going() || seg_end >= self.given.t_end {
                         break;
@@ -359,7 +358,7 @@ impl<'a> Engine<'a> {
 
     /// Tells the caller how far the run is; false (and the run marked interrupted) when it is
     /// asked to stop.
-    fn keep_going(&mut self) -> bool {
+    pub(super) fn keep_going(&mut self) -> bool {
         let Some(p) = &self.given.progress else {
             return true;
         };

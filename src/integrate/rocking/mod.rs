@@ -163,7 +163,7 @@ impl<'a> Engine<'a> {
             .map(|(i, n)| (i, None, n.clone(), "ground".to_string()))
             .collect();
         let s = scene.settings;
-        let rec = Recorder::for_bodies(names, horizontal, s.output_dt_s.is_some(), s.log_events);
+        let rec = Recorder::for_bodies(names, horizontal, s.history_to(), s.log_events);
         let tracks = scene
             .initial_rotation_rad
             .iter()

@@ -470,6 +470,7 @@ impl Sweep {
         let settings = Settings {
             duration_s: motion.duration_s,
             output_dt_s,
+            history_file: None,
             log_events: true,
             log_decisions: false,
             after_collapse: Default::default(),

@@ -1,0 +1,169 @@
+//! history.csv: its header and rows, written whole from a history kept in memory or row by row
+//! to disk as a run goes (bounded memory: a history of gigabytes never sits in memory). A
+//! streamed file is named `.history.csv.partial` beside its final name until the run ends, so a
+//! killed run leaves a file that says it is partial, never a history.csv cut short.
+
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The header: time, then u and v of every block (and theta, omega when blocks rotate), with
+/// units in the names; through the CSV writer, since a block name may hold a comma or a quote.
+pub(crate) fn header(names: &[&str], rotating: bool) -> String {
+    let quantities: &[(&str, &str)] = if rotating {
+        &[
+            ("u", "m"),
+            ("v", "m_s"),
+            ("theta", "rad"),
+            ("omega", "rad_s"),
+        ]
+    } else {
+        &[("u", "m"), ("v", "m_s")]
+    };
+    let mut columns = vec!["time_s".to_string()];
+    for (q, unit) in quantities {
+        columns.extend(names.iter().map(|n| format!("{q}_{n}_{unit}")));
+    }
+    let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
+    crate::table::header(&columns)
+}
+
+/// One row, numbers only: the time as the shortest decimal that reads back, the rest in
+/// scientific notation.
+pub(crate) fn push_row(out: &mut String, t: f64, parts: [&[f64]; 4]) {
+    let _ = write!(out, "{t}");
+    for x in parts.into_iter().flatten() {
+        let _ = write!(out, ",{x:e}");
+    }
+    out.push('\n');
+}
+
+/// A history written to disk as it comes.
+#[derive(Debug)]
+pub struct Stream {
+    path: PathBuf,
+    partial: PathBuf,
+    names: Vec<String>,
+    file: Option<std::io::BufWriter<std::fs::File>>,
+    line: String,
+    rows: u64,
+    /// The first failure, kept until the run ends (a run does not stop for its history).
+    failed: Option<std::io::Error>,
+}
+
+impl Stream {
+    /// A history for blocks `names`, to be written at `path`.
+    pub fn new(path: &Path, names: &[String]) -> Stream {
+        let name = path.file_name().map_or_else(
+            || "history.csv".into(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        Stream {
+            partial: path.with_file_name(format!(".{name}.partial")),
+            path: path.to_path_buf(),
+            names: names.to_vec(),
+            file: None,
+            line: String::new(),
+            rows: 0,
+            failed: None,
+        }
+    }
+
+    /// Writes one row (the header before the first, rotating or not as the first row is).
+    pub fn row(&mut self, t: f64, parts: [&[f64]; 4]) {
+        if self.failed.is_some() {
+            return;
+        }
+        self.line.clear();
+        if self.file.is_none() {
+            let opened = self
+                .partial
+                .parent()
+                .filter(|d| !d.as_os_str().is_empty())
+                .map_or(Ok(()), std::fs::create_dir_all)
+                .and_then(|()| std::fs::File::create(&self.partial));
+            match opened {
+                Ok(f) => self.file = Some(std::io::BufWriter::with_capacity(1 << 20, f)),
+                Err(e) => {
+                    self.failed = Some(e);
+                    return;
+                }
+            }
+            let names: Vec<&str> = self.names.iter().map(String::as_str).collect();
+            self.line = header(&names, !parts[2].is_empty());
+        }
+        push_row(&mut self.line, t, parts);
+        self.rows += 1;
+        let file = self.file.as_mut().expect("opened above");
+        if let Err(e) = file.write_all(self.line.as_bytes()) {
+            self.failed = Some(e);
+        }
+    }
+
+    /// Rows written.
+    pub fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Ends the file: flushed and given its name; on a failure the partial file is taken away
+    /// and the error returned with the final name.
+    pub fn finish(mut self) -> Result<PathBuf, (PathBuf, std::io::Error)> {
+        let done = match (self.failed.take(), self.file.take()) {
+            (Some(e), _) => Err(e),
+            (None, Some(mut f)) => f
+                .flush()
+                .and_then(|()| f.get_ref().sync_all())
+                .and_then(|()| std::fs::rename(&self.partial, &self.path)),
+            (None, None) => Ok(()),
+        };
+        done.map(|()| self.path.clone()).map_err(|e| {
+            let _ = std::fs::remove_file(&self.partial);
+            (self.path.clone(), e)
+        })
+    }
+}
+
+/// What is done with each row of a history read back: its time, u of every block, and theta of
+/// every block (empty when no block rotates).
+pub type RowVisitor<'a> = dyn FnMut(f64, &[f64], &[f64]) + 'a;
+
+/// Reads a history.csv of `blocks` blocks back row by row. Memory holds one row.
+pub fn each_row(path: &Path, blocks: usize, f: &mut RowVisitor) -> Result<(), crate::Error> {
+    use std::io::BufRead;
+    let io = |source| crate::Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let bad = |line: usize, what: &str| {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("line {line}: {what}"),
+        ))
+    };
+    let mut lines = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?).lines();
+    let header = lines.next().transpose().map_err(io)?.unwrap_or_default();
+    let rotating = header.contains(",theta_");
+    let per_row = 1 + blocks * if rotating { 4 } else { 2 };
+    let mut row = Vec::with_capacity(per_row);
+    for (k, line) in lines.enumerate() {
+        let line = line.map_err(io)?;
+        row.clear();
+        for field in line.split(',') {
+            row.push(
+                field
+                    .parse::<f64>()
+                    .map_err(|_| bad(k + 2, "not a number"))?,
+            );
+        }
+        if row.len() != per_row {
+            return Err(bad(k + 2, "a row of another length than the header"));
+        }
+        let theta = if rotating {
+            &row[1 + 2 * blocks..1 + 3 * blocks]
+        } else {
+            &[]
+        };
+        f(row[0], &row[1..1 + blocks], theta);
+    }
+    Ok(())
+}
