@@ -33,7 +33,8 @@
 //! Stuck clusters get their stick intervals in `stuck.rs` (`Engine::set_thresholds`, from
 //! `Problem::stick_sides_*` in solver/stick.rs); `accounting.rs` keeps the energies, extremes
 //! and history between events; `queue.rs` orders the events and drops stale ones; `memo.rs`
-//! remembers decisions and intervals met before (`Caches`).
+//! remembers decisions and intervals met before (`Caches`); `progress.rs` stops a run whose
+//! state at one instant keeps coming back (with `cycle.rs`, which impact chains use too).
 
 mod accounting;
 mod cluster;
