@@ -8,7 +8,6 @@ use super::cycle::Cycle;
 use crate::exact::Q;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
-use std::hash::{DefaultHasher, Hash, Hasher};
 
 /// A body in an impact: a block (finite mass) or the ground and its abutments (infinite mass,
 /// velocity zero relative to the ground).
@@ -83,11 +82,13 @@ pub fn resolve(
     for k in 0..faces.len() {
         queue.look(k, faces, bodies, negligible);
     }
-    // The state's key is a sum of one term per body, so a collision updates it in O(1).
+    // The state's key is a sum of one term per body, so a collision updates it in O(1); a
+    // term mixes the body's index into its velocity's word (splitmix64's finaliser).
     let term = |i: usize, v: &Q| {
-        let mut h = DefaultHasher::new();
-        (i, v).hash(&mut h);
-        h.finish()
+        let mut z = v.hash_word() ^ (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
     };
     let mut key = bodies
         .iter()
