@@ -475,8 +475,7 @@ pub enum SimulationError {
     },
     /// Events at one instant reached the backstop without a repeated state.
     #[error(
-        "at t = {time_s} s: {count} events at one instant ({detail}), the most allowed for this \
-         wall; raise `Params::max_events_per_instant` if the wall needs more"
+        "at t = {time_s} s: {count} events at one instant ({detail}), the most allowed: {limit}"
     )]
     TooManyEvents {
         /// Time (s).
@@ -485,6 +484,8 @@ pub enum SimulationError {
         count: usize,
         /// The last event, in words.
         detail: String,
+        /// Which limit, and what to do about it.
+        limit: &'static str,
     },
     /// A chain of impacts came back to the same velocities again and again.
     #[error(

@@ -69,6 +69,8 @@ impl Engine<'_> {
                 time_s: p.t,
                 count: events,
                 detail: self.describe(&p.ev),
+                limit: "for a wall of this size; raise `integrate::event::Params::\
+                        max_events_per_instant` if it needs more",
             });
         }
         Ok(())

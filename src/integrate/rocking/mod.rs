@@ -294,7 +294,9 @@ impl<'a> Engine<'a> {
                     return Err(SimulationError::TooManyEvents {
                         time_s: self.t,
                         count: stalled,
-                        detail: "rocking events at one instant".into(),
+                        detail: "a rocking body's events".into(),
+                        limit: "a body that changes its mode this often without time passing is \
+                                beyond the rocking model; please report the body and the motion",
                     });
                 }
             }
