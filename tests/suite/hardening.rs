@@ -26,22 +26,28 @@ fn refused(args: &[&str], says: &str) {
     assert!(err.contains(says), "{args:?}: {err}");
 }
 
-fn sine(extra: &[&str]) -> Vec<String> {
-    let mut v: Vec<String> = [
+/// `pirqa run` of the paper's wall under a sine of `amplitude`, `freq` Hz for `duration` s, and
+/// the options `extra`.
+fn sine_of(amplitude: &str, freq: &str, duration: &str, extra: &[&str]) -> Vec<String> {
+    [
         "run",
         WALL,
         "--sine",
-        "400gal",
+        amplitude,
         "--freq",
-        "1",
+        freq,
         "--duration",
-        "2",
+        duration,
     ]
     .iter()
+    .chain(extra)
     .map(|s| s.to_string())
-    .collect();
-    v.extend(extra.iter().map(|s| s.to_string()));
-    v
+    .collect()
+}
+
+/// The same under 400 gal, 1 Hz for 2 s.
+fn sine(extra: &[&str]) -> Vec<String> {
+    sine_of("400gal", "1", "2", extra)
 }
 
 fn strs(v: &[String]) -> Vec<&str> {
@@ -50,59 +56,21 @@ fn strs(v: &[String]) -> Vec<&str> {
 
 #[test]
 fn motions_beyond_the_bounds_are_refused_with_the_bound() {
-    refused(
-        &[
-            "run",
-            WALL,
-            "--sine",
-            "1e307m/s2",
-            "--freq",
+    let frequency = "a frequency from 0.0001 to 1000 Hz";
+    for (amplitude, freq, duration, says) in [
+        ("1e307m/s2", "1", "2", "at most 1000 m/s2"),
+        ("4m/s2", "1e12", "2", frequency),
+        // Found by the fuzzer: a subnormal frequency overflowed A / omega^2 into NaN energies.
+        ("4m/s2", "5e-324", "2", frequency),
+        (
+            "4m/s2",
             "1",
-            "--duration",
-            "2",
-        ],
-        "at most 1000 m/s2",
-    );
-    refused(
-        &[
-            "run",
-            WALL,
-            "--sine",
-            "4m/s2",
-            "--freq",
             "1e12",
-            "--duration",
-            "2",
-        ],
-        "a frequency from 0.0001 to 1000 Hz",
-    );
-    // Found by the fuzzer: a subnormal frequency overflowed A / omega^2 into NaN energies.
-    refused(
-        &[
-            "run",
-            WALL,
-            "--sine",
-            "4m/s2",
-            "--freq",
-            "5e-324",
-            "--duration",
-            "2",
-        ],
-        "a frequency from 0.0001 to 1000 Hz",
-    );
-    refused(
-        &[
-            "run",
-            WALL,
-            "--sine",
-            "4m/s2",
-            "--freq",
-            "1",
-            "--duration",
-            "1e12",
-        ],
-        "a positive duration of at most 1000000 s",
-    );
+            "a positive duration of at most 1000000 s",
+        ),
+    ] {
+        refused(&strs(&sine_of(amplitude, freq, duration, &[])), says);
+    }
     refused(
         &strs(&sine(&["--output-dt", "1e-9", "--out", "unused"])),
         "a history written to a file (duration / interval rows of every block) at most 2e9",
@@ -130,16 +98,7 @@ fn phases_reduce_exactly_and_negative_numbers_are_numbers() {
     assert_eq!(summary("-80"), summary("280"));
     let (code, _, err) = pirqa(&strs(&sine(&["--scale", "-1"])));
     assert_eq!(code, 0, "{err}");
-    let (code, _, err) = pirqa(&[
-        "run",
-        WALL,
-        "--sine",
-        "-4m/s2",
-        "--freq",
-        "1",
-        "--duration",
-        "2",
-    ]);
+    let (code, _, err) = pirqa(&strs(&sine_of("-4m/s2", "1", "2", &[])));
     assert_eq!(code, 0, "{err}");
 }
 
@@ -452,18 +411,12 @@ fn a_full_disk_is_a_clear_error_and_leaves_no_summary() {
     }
     let _guard = Mounted(dir.to_path_buf());
     let out = dir.join("out");
-    let (code, _, err) = pirqa(&[
-        "run",
-        WALL,
-        "--sine",
+    let (code, _, err) = pirqa(&strs(&sine_of(
         "400gal",
-        "--freq",
         "1",
-        "--duration",
         "20",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+        &["--out", out.to_str().unwrap()],
+    )));
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("the disk is full"), "{err}");
     let left: Vec<String> = std::fs::read_dir(&out)
@@ -483,19 +436,12 @@ fn a_full_disk_is_a_clear_error_and_leaves_no_summary() {
 #[test]
 fn a_run_estimates_its_work_and_says_when_it_is_large() {
     let dir = common::scratch("estimate");
-    let (code, out, err) = pirqa(&[
-        "run",
-        WALL,
-        "--sine",
+    let (code, out, err) = pirqa(&strs(&sine_of(
         "400gal",
-        "--freq",
         "1",
-        "--duration",
         "1000000",
-        "--estimate",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
+        &["--estimate", "--out", dir.to_str().unwrap()],
+    )));
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("episodes of sliding  2000000"), "{out}");
     assert!(out.contains("events (exact)       2.4e7"), "{out}");
@@ -504,20 +450,12 @@ fn a_run_estimates_its_work_and_says_when_it_is_large() {
         "{out}"
     );
     assert!(!dir.exists(), "an estimate writes nothing");
-    let (code, _, err) = pirqa(&[
-        "run",
-        WALL,
-        "--sine",
+    let (code, _, err) = pirqa(&strs(&sine_of(
         "400gal",
-        "--freq",
         "1",
-        "--duration",
         "1000000",
-        "--method",
-        "moreau",
-        "--dt",
-        "1e-6",
-    ]);
+        &["--method", "moreau", "--dt", "1e-6"],
+    )));
     assert_eq!(code, 1, "{err}");
     assert!(
         err.contains("note: a large run: about 2.4e7 events"),

@@ -6,12 +6,12 @@ use crate::answers;
 use crate::engine;
 
 use engine::{constant, exact_on, impacts, load, run, sine};
-use pirqa::integrate::event::EventDriven;
+use pirqa::integrate::event::{EventDriven, Params};
 use pirqa::integrate::{Integrator, Scenario, Settings};
 use pirqa::motion::{Motion, Record};
 use pirqa::response::{EventKind, Response};
 use pirqa::samples;
-use pirqa::{Topology, Wall};
+use pirqa::{SimulationError, Topology, Wall};
 
 fn el_centro_first_s(seconds: usize, pga_m_s2: f64) -> Motion {
     let record = pirqa::motion::read_record(
@@ -251,21 +251,24 @@ fn shaken_running_bond() -> (Wall, Topology, Motion) {
     (wall, topo, el_centro_first_s(10, 4.0))
 }
 
-/// The work counters are the run's own: a run that failed part-way on the same thread, after
-/// flows of its own, leaves nothing in them.
-#[test]
-fn work_counters_count_the_run_alone() {
-    use pirqa::integrate::event::Params;
+/// The shaken running bond, summary only, with the engine's `params`.
+fn shaken_with(params: Params) -> Result<Response, SimulationError> {
     let (wall, topo, motion) = shaken_running_bond();
     let settings = Settings::summary_only(10.0);
-    let scenario = Scenario {
+    EventDriven { params }.run(&Scenario {
         wall: &wall,
         topology: &topo,
         motion: &motion,
         settings: &settings,
-    };
+    })
+}
+
+/// The work counters are the run's own: a run that failed part-way on the same thread, after
+/// flows of its own, leaves nothing in them.
+#[test]
+fn work_counters_count_the_run_alone() {
     let counters = |params: Params| {
-        EventDriven { params }.run(&scenario).map(|r| {
+        shaken_with(params).map(|r| {
             let stats = r.summary.stats;
             assert!(r.summary.impacts > 0, "the wall meets impacts");
             (stats.decision_blocks, stats.flow_nodes)
@@ -348,7 +351,6 @@ fn decision_log_adds_up_to_the_run() {
 /// that changes nothing).
 #[test]
 fn kept_limits_change_the_work_not_the_answer() {
-    use pirqa::integrate::event::Params;
     use pirqa::integrate::AfterCollapse::{Continue, Stop};
     let (wall, topo, motion) = shaken_running_bond();
     let Motion::Record(horizontal) = &motion else {
@@ -463,7 +465,6 @@ fn events_logged(duration_s: f64) -> Settings {
 /// nodes (416,367 -> 390,917).
 #[test]
 fn a_decision_beside_a_stuck_group_changes_the_work_not_the_answer() {
-    use pirqa::integrate::event::Params;
     let (long, long_topo) = thousand_block_wall();
     let (short, short_topo, motion) = shaken_running_bond();
     for (wall, topo, duration_s) in [(&long, &long_topo, 4.0), (&short, &short_topo, 10.0)] {
@@ -553,17 +554,7 @@ fn a_shorter_run_logs_the_first_events_of_a_longer_one() {
 /// debug structure.
 #[test]
 fn backstops_name_a_few_blocks_and_the_event_in_words() {
-    use pirqa::integrate::event::Params;
-    use pirqa::SimulationError;
-    let (wall, topo, motion) = shaken_running_bond();
-    let settings = Settings::summary_only(10.0);
-    let scenario = Scenario {
-        wall: &wall,
-        topology: &topo,
-        motion: &motion,
-        settings: &settings,
-    };
-    let fail = |params: Params| match (EventDriven { params }).run(&scenario) {
+    let fail = |params: Params| match shaken_with(params) {
         Err(e) => e,
         other => panic!("expected a stop, got {:?}", other.map(|r| r.summary.stats)),
     };

@@ -27,13 +27,18 @@ pub(super) struct Instant {
 }
 
 impl Instant {
-    /// Before the first event.
-    pub(super) fn start() -> Instant {
+    /// The instant t, before its first event.
+    fn at(t: f64) -> Instant {
         Instant {
-            t: f64::NEG_INFINITY,
+            t,
             events: 0,
             cycle: Cycle::default(),
         }
+    }
+
+    /// Before the run's first event.
+    pub(super) fn start() -> Instant {
+        Instant::at(f64::NEG_INFINITY)
     }
 }
 
@@ -44,8 +49,7 @@ impl Engine<'_> {
         let window = WINDOW_ULPS * f64::EPSILON * self.instant.t.abs().max(1.0);
         // The first event opens the first instant (before it, `t` is -inf).
         if !(self.instant.t.is_finite() && p.t - self.instant.t <= window) {
-            self.instant = Instant::start();
-            self.instant.t = p.t;
+            self.instant = Instant::at(p.t);
         }
         self.instant.events += 1;
         let events = self.instant.events;
