@@ -1,7 +1,7 @@
 """How the CPU time per case of the block-count and long-wall studies follows the events and the
 wall's height in courses (docs/block-count.md, "What it costs"). Reads the committed results
-(docs/block-count/cases.csv, docs/long-walls/cases.csv) and the study files they came from (for
-each wall's courses); runs nothing.
+(docs/block-count/cases.csv and timing.csv, the same for docs/long-walls) and the study files
+they came from (for each wall's courses); runs nothing.
 
     python3 docs/experiments/cost-law.py
 """
@@ -34,7 +34,12 @@ def fit(x, y):
 
 for name, study_file in STUDIES:
     courses = courses_by_blocks(study_file)
-    rows = [r for r in csv.DictReader(open(ROOT / "docs" / name / "cases.csv")) if not r["error"]]
+    timing = {t["case"]: t["cpu_s"] for t in csv.DictReader(open(ROOT / "docs" / name / "timing.csv"))}
+    rows = [
+        {**r, "cpu_s": timing[r["case"]]}
+        for r in csv.DictReader(open(ROOT / "docs" / name / "cases.csv"))
+        if not r["error"]
+    ]
     for label, keep in (("all walls", lambda b: True), ("below 10,000 blocks", lambda b: b < 10000)):
         cases = [r for r in rows if keep(int(r["blocks"]))]
         cpu = [math.log(float(r["cpu_s"])) for r in cases]

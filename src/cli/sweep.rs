@@ -1,9 +1,11 @@
-//! `pirqa sweep`: run a sweep file with a progress bar, then write its tables, charts and
-//! derived numbers.
+//! `pirqa sweep`: run a sweep file (or one shard of it) with a progress bar, then write its
+//! tables, charts and derived numbers; `pirqa sweep merge`: the shards' parts into the files of
+//! one sweep.
 
 use super::write_file;
 use indicatif::{ProgressBar, ProgressStyle};
 use pirqa::study::sweep::analysis::{analyse, Report};
+use pirqa::study::sweep::shard::{self, Shard};
 use pirqa::study::sweep::store::{Existing, Store};
 use pirqa::study::sweep::Sweep;
 use pirqa::Error;
@@ -11,10 +13,15 @@ use std::path::{Path, PathBuf};
 
 /// Options of `pirqa sweep`.
 #[derive(clap::Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct SweepArgs {
+    /// Merge the parts of a sharded sweep.
+    #[command(subcommand)]
+    pub command: Option<SweepCommand>,
     /// Sweep description (RON; see docs/sweeps.md).
-    pub file: PathBuf,
-    /// Output directory: cases.csv, blocks.csv, manifest.json, results.json, charts.
+    #[arg(required = true)]
+    pub file: Option<PathBuf>,
+    /// Output directory: cases.csv, blocks.csv, timing.csv, manifest.json, results.json, charts.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
     /// Keep the finished cases of an interrupted run of the same sweep and run the rest.
@@ -39,6 +46,26 @@ pub struct SweepArgs {
     /// 10,000-block case, and most of its time); `rerun.txt` then says --no-history too.
     #[arg(long, requires = "case")]
     pub no_history: bool,
+    /// Run only part I of N (from 0; case k is in part k mod N) into OUT/parts/I-of-N, for a
+    /// job array: `auto` reads the part from Slurm's SLURM_ARRAY_TASK_* variables. Merge the
+    /// parts with `pirqa sweep merge OUT`.
+    #[arg(long, value_name = "I/N|auto", conflicts_with_all = ["redraw", "case"])]
+    pub shard: Option<String>,
+}
+
+/// What `pirqa sweep` does besides running a sweep.
+#[derive(clap::Subcommand, Debug)]
+pub enum SweepCommand {
+    /// Merge the parts that `pirqa sweep FILE --shard I/N --out DIR` wrote into DIR/parts: checks
+    /// that every part is there and finished and that all come from one sweep, then writes the
+    /// files a sweep on one machine writes (byte for byte the same results) and its charts.
+    Merge {
+        /// The output directory the shards wrote into.
+        dir: PathBuf,
+        /// The sweep file, when it is no longer where the shards read it.
+        #[arg(long)]
+        sweep: Option<PathBuf>,
+    },
 }
 
 /// A progress bar on the terminal, nothing when output is redirected (indicatif hides itself).
@@ -66,16 +93,8 @@ pub fn run_sweep(sweep: &Sweep, out: &Path, existing: Existing) -> Result<Report
     bar.finish_and_clear();
     let (rows, _) = store.finish()?;
     let report = analyse(sweep, &rows);
-    write_report(&report, out)?;
+    report.write(out)?;
     Ok(report)
-}
-
-/// Writes each figure as SVG with its data as CSV, and results.json.
-fn write_report(report: &Report, out: &Path) -> Result<(), Error> {
-    for (name, text) in report.files() {
-        write_file(&out.join(name), &text)?;
-    }
-    Ok(())
 }
 
 /// One case in full: its files and the command that reruns it.
@@ -145,14 +164,72 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
     Ok(())
 }
 
+/// Runs `go` on a pool of `threads` threads (default: rayon's, one per core).
+fn in_pool<T: Send>(threads: Option<u16>, go: impl FnOnce() -> T + Send) -> T {
+    match threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n.into())
+            .build()
+            .expect("a thread pool")
+            .install(go),
+        None => go(),
+    }
+}
+
+/// Runs one shard of a sweep into its part folder.
+fn run_shard(sweep: &Sweep, shard: Shard, out: &Path, existing: Existing) -> Result<(), Error> {
+    let mut store = Store::open_shard(out, sweep, shard, existing)?;
+    let pending = store.pending(sweep);
+    let total = shard.len(sweep.len()) as u64;
+    let bar = progress_bar(
+        total,
+        total - pending.len() as u64,
+        &format!("{} part {shard}", sweep.name),
+    );
+    sweep.run_ids(&pending, |row, blocks| {
+        bar.inc(1);
+        store.append(row, blocks)
+    })?;
+    bar.finish_and_clear();
+    store.finish()?;
+    eprintln!(
+        "{}: part {shard} ({total} cases) in {}; merge the parts with `pirqa sweep merge {}`",
+        sweep.name,
+        shard.folder(out).display(),
+        out.display()
+    );
+    Ok(())
+}
+
+/// Merges the parts in `dir` and writes the sweep's report.
+fn merge(dir: &Path, sweep_file: Option<&Path>) -> Result<(), Error> {
+    let merged = shard::merge(dir, sweep_file)?;
+    analyse(&merged.sweep, &merged.rows).write(dir)?;
+    eprintln!(
+        "{}: {} cases merged from {} into {}",
+        merged.sweep.name,
+        merged.rows.len(),
+        shard::parts(dir).display(),
+        dir.display()
+    );
+    Ok(())
+}
+
 pub fn run(args: &SweepArgs) -> Result<(), Error> {
-    let sweep = Sweep::load(&args.file)?;
+    if let Some(SweepCommand::Merge { dir, sweep }) = &args.command {
+        return merge(dir, sweep.as_deref());
+    }
+    let file = args
+        .file
+        .as_deref()
+        .expect("clap requires the file without a subcommand");
+    let sweep = Sweep::load(file)?;
     if let Some(id) = args.case {
         return rerun_case(&sweep, id, &args.out, !args.no_history);
     }
     if args.redraw {
         let rows = Store::finished(&args.out, &sweep)?;
-        write_report(&analyse(&sweep, &rows), &args.out)?;
+        analyse(&sweep, &rows).write(&args.out)?;
         eprintln!(
             "{}: charts and results.json redrawn in {}",
             sweep.name,
@@ -167,15 +244,13 @@ pub fn run(args: &SweepArgs) -> Result<(), Error> {
     } else {
         Existing::Refuse
     };
-    let go = || run_sweep(&sweep, &args.out, existing);
-    let report = match args.threads {
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n.into())
-            .build()
-            .expect("a thread pool")
-            .install(go)?,
-        None => go()?,
-    };
+    if let Some(text) = &args.shard {
+        let shard = Shard::parse(text, |name| std::env::var(name).ok())?;
+        return in_pool(args.threads, || {
+            run_shard(&sweep, shard, &args.out, existing)
+        });
+    }
+    let report = in_pool(args.threads, || run_sweep(&sweep, &args.out, existing))?;
     let failed = report.results["failed_runs"].as_u64().unwrap_or(0);
     eprintln!(
         "{}: {} cases in {}{}",

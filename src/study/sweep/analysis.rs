@@ -40,6 +40,14 @@ impl Report {
         ));
         files
     }
+
+    /// Writes [`Report::files`] into `dir`, each file whole or not at all.
+    pub fn write(&self, dir: &std::path::Path) -> Result<(), crate::Error> {
+        for (name, text) in self.files() {
+            crate::text::write(&dir.join(name), &text)?;
+        }
+        Ok(())
+    }
 }
 
 /// The cases of one wall under one motion (one per friction sample), in sample order.

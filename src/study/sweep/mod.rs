@@ -4,6 +4,8 @@
 //! what the rows show.
 
 pub mod analysis;
+pub mod batch;
+pub mod shard;
 pub mod store;
 
 use crate::clock::ThreadClock;
@@ -227,6 +229,8 @@ pub struct Sweep {
     pub friction: FrictionModel,
     /// Hash of the description and of every file it reads: a resumed sweep must match.
     pub fingerprint: String,
+    /// The sweep file it was read from (`<string>` for a description given as text).
+    pub origin: PathBuf,
 }
 
 /// An error of the sweep file `path`.
@@ -378,6 +382,7 @@ impl Sweep {
             motions,
             friction: d.friction.clone(),
             fingerprint: format!("{hash:016x}"),
+            origin: origin.to_path_buf(),
         })
     }
 
@@ -560,10 +565,34 @@ impl Sweep {
     pub fn run_cases(
         &self,
         done: &std::collections::HashSet<usize>,
+        sink: impl FnMut(CaseRow, Vec<BlockRow>) -> Result<(), Error> + Send,
+    ) -> Result<(), Error> {
+        let pending: Vec<usize> = (0..self.len()).filter(|i| !done.contains(i)).collect();
+        self.run_ids(&pending, sink)
+    }
+
+    /// Refuses case ids the sweep does not have.
+    pub fn check_ids(&self, ids: &[usize]) -> Result<(), Error> {
+        match ids.iter().find(|&&id| id >= self.len()) {
+            Some(id) => Err(Error::Option {
+                option: "case ids".into(),
+                rule: format!(
+                    "case {id} does not exist: the sweep has {} cases",
+                    self.len()
+                ),
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Runs the cases `ids` as [`Sweep::run_cases`] does.
+    pub fn run_ids(
+        &self,
+        ids: &[usize],
         mut sink: impl FnMut(CaseRow, Vec<BlockRow>) -> Result<(), Error> + Send,
     ) -> Result<(), Error> {
         use std::sync::atomic::{AtomicBool, Ordering};
-        let pending: Vec<usize> = (0..self.len()).filter(|i| !done.contains(i)).collect();
+        self.check_ids(ids)?;
         let stop = AtomicBool::new(false);
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::scope(|scope| {
@@ -578,7 +607,7 @@ impl Sweep {
                 Ok(())
             });
             // On the calling thread, so that a pool the caller installed is the one used.
-            pending.par_iter().for_each_with(tx, |tx, &id| {
+            ids.par_iter().for_each_with(tx, |tx, &id| {
                 if !stop.load(Ordering::Relaxed) {
                     let _ = tx.send(self.run_case(id));
                 }

@@ -1,8 +1,12 @@
 //! A sweep's files: `cases.csv` (one row per case), `blocks.csv` (one row per case and block),
-//! `manifest.json` (what sweep they belong to). Rows are appended and flushed as cases finish, so
-//! an interrupted sweep keeps every finished case; a resumed one reads them back and runs the
-//! rest. At the end both tables are rewritten in case order.
+//! `timing.csv` (the CPU time of each case), `manifest.json` (what sweep they belong to). Rows
+//! are appended and flushed as cases finish, so an interrupted sweep keeps every finished case;
+//! a resumed one reads them back and runs the rest. At the end the tables are rewritten in case
+//! order. The results (cases.csv, blocks.csv) hold only what the runs compute, so the same sweep
+//! gives the same bytes on any machine, number of threads or shards; what was measured (CPU time)
+//! is kept apart in timing.csv.
 
+use super::shard::Shard;
 use super::Sweep;
 use crate::error::Error;
 use crate::table;
@@ -84,8 +88,8 @@ pub struct CaseRow {
     pub collapse_time_s: Option<f64>,
     /// Which block.
     pub collapse_block: Option<String>,
-    /// CPU time of the run (s).
-    #[serde(serialize_with = "table::sci")]
+    /// CPU time of the run (s): a measurement, kept in timing.csv, not in cases.csv.
+    #[serde(skip)]
     pub cpu_s: f64,
     /// Why the run failed, if it did.
     pub error: Option<String>,
@@ -108,8 +112,21 @@ pub struct BlockRow {
     pub fell: bool,
 }
 
+/// The CPU time of one case (a row of `timing.csv`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct TimingRow {
+    /// Case number.
+    pub case: usize,
+    /// CPU time of the thread that ran it (s).
+    #[serde(serialize_with = "table::sci")]
+    pub cpu_s: f64,
+}
+
 /// Columns of `cases.csv`.
-pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,cpu_s,error";
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,error";
+
+/// Columns of `timing.csv`.
+pub const TIMING_HEADER: &str = "case,cpu_s";
 
 /// Columns of `blocks.csv`.
 pub const BLOCKS_HEADER: &str = "case,block,max_abs_u_m,final_u_m,fell";
@@ -125,25 +142,28 @@ pub enum Existing {
     Overwrite,
 }
 
-/// The open files of a running sweep.
+/// The open files of a running sweep, or of one shard of it.
 pub struct Store {
     dir: PathBuf,
+    /// The cases this store holds: every case of the sweep, or a shard's.
+    scope: Option<Shard>,
     cases: std::fs::File,
     blocks: std::fs::File,
+    timing: std::fs::File,
     /// Rows so far (read back when resuming, then appended).
     pub rows: Vec<CaseRow>,
     /// Block rows so far.
     pub block_rows: Vec<BlockRow>,
 }
 
-fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+pub(super) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
     move |source| Error::Io {
         path: path.to_path_buf(),
         source,
     }
 }
 
-fn table_error(path: &Path, line: usize, message: String) -> Error {
+pub(super) fn table_error(path: &Path, line: usize, message: String) -> Error {
     Error::Table {
         path: path.to_path_buf(),
         line,
@@ -151,107 +171,104 @@ fn table_error(path: &Path, line: usize, message: String) -> Error {
     }
 }
 
+/// The manifest of a sweep's files: what sweep they hold (its fingerprint) and, for a shard,
+/// which part and the sweep file (so that `pirqa sweep merge` finds it).
+pub(super) fn manifest(sweep: &Sweep, shard: Option<Shard>) -> String {
+    let mut m = serde_json::json!({
+        "name": sweep.name,
+        "fingerprint": sweep.fingerprint,
+        "cases": sweep.len(),
+        "walls": sweep.walls.iter().map(|w| w.label.clone()).collect::<Vec<_>>(),
+        "motions": sweep.motions.len(),
+        "samples": sweep.samples(),
+    });
+    if let Some(shard) = shard {
+        m["shard"] = serde_json::json!({"index": shard.index, "count": shard.count});
+        m["sweep_file"] = serde_json::json!(
+            std::path::absolute(&sweep.origin).unwrap_or_else(|_| sweep.origin.clone())
+        );
+    }
+    serde_json::to_string_pretty(&m).expect("json") + "\n"
+}
+
 impl Store {
     /// Opens the output directory of `sweep`.
     pub fn open(dir: &Path, sweep: &Sweep, existing: Existing) -> Result<Store, Error> {
+        Store::open_scope(dir, sweep, None, existing)
+    }
+
+    /// Opens the folder of one shard of `sweep` in the output directory `out`
+    /// (`out/parts/I-of-N`).
+    pub fn open_shard(
+        out: &Path,
+        sweep: &Sweep,
+        shard: Shard,
+        existing: Existing,
+    ) -> Result<Store, Error> {
+        Store::open_scope(&shard.folder(out), sweep, Some(shard), existing)
+    }
+
+    fn open_scope(
+        dir: &Path,
+        sweep: &Sweep,
+        scope: Option<Shard>,
+        existing: Existing,
+    ) -> Result<Store, Error> {
         std::fs::create_dir_all(dir).map_err(io(dir))?;
-        let (cases_path, blocks_path, manifest_path) = (
-            dir.join("cases.csv"),
-            dir.join("blocks.csv"),
-            dir.join("manifest.json"),
-        );
+        let paths = Paths::of(dir);
         let mut rows: Vec<CaseRow> = Vec::new();
         let mut block_rows: Vec<BlockRow> = Vec::new();
-        if cases_path.exists() {
+        if paths.cases.exists() {
             match existing {
                 Existing::Refuse => {
                     return Err(table_error(
-                        &cases_path,
+                        &paths.cases,
                         1,
                         "results of a sweep are already here: pass --resume to finish it or --fresh to start again".into(),
                     ))
                 }
                 Existing::Overwrite => {}
                 Existing::Resume => {
-                    check_manifest(&manifest_path, sweep)?;
-                    if !blocks_path.exists() {
-                        return Err(table_error(
-                            &blocks_path,
-                            1,
-                            "missing: a sweep resumes from cases.csv and blocks.csv together (the studies in docs/ leave blocks.csv out): pass --fresh to run it again".into(),
-                        ));
+                    check_manifest(&paths.manifest, sweep, scope)?;
+                    for (path, what) in [(&paths.blocks, "blocks.csv"), (&paths.timing, "timing.csv")] {
+                        if !path.exists() {
+                            return Err(table_error(
+                                path,
+                                1,
+                                format!("missing: a sweep resumes from cases.csv and {what} together (the studies in docs/ leave blocks.csv out): pass --fresh to run it again"),
+                            ));
+                        }
                     }
-                    rows = read_table(&cases_path, CASES_HEADER)?;
+                    rows = read_cases(&paths)?;
                     let done: HashSet<usize> = rows.iter().map(|r| r.case).collect();
-                    block_rows = read_table(&blocks_path, BLOCKS_HEADER)?;
+                    block_rows = read_table(&paths.blocks, BLOCKS_HEADER)?;
                     // Block rows are written before their case row: drop those of unfinished cases.
                     block_rows.retain(|b| done.contains(&b.case));
                 }
             }
         }
-        let manifest = serde_json::json!({
-            "name": sweep.name,
-            "fingerprint": sweep.fingerprint,
-            "cases": sweep.len(),
-            "walls": sweep.walls.iter().map(|w| w.label.clone()).collect::<Vec<_>>(),
-            "motions": sweep.motions.len(),
-            "samples": sweep.samples(),
-        });
-        crate::text::write(
-            &manifest_path,
-            &(serde_json::to_string_pretty(&manifest).expect("json") + "\n"),
-        )?;
-        let cases = rewrite(&cases_path, CASES_HEADER, &rows)?;
-        let blocks = rewrite(&blocks_path, BLOCKS_HEADER, &block_rows)?;
+        crate::text::write(&paths.manifest, &manifest(sweep, scope))?;
+        let (cases, blocks, timing) = write_tables(&paths, &rows, &block_rows)?;
         Ok(Store {
             dir: dir.to_path_buf(),
+            scope,
             cases,
             blocks,
+            timing,
             rows,
             block_rows,
         })
     }
 
     /// The rows of a sweep in `dir` whose every case is done, in case order, read from
-    /// `cases.csv` alone (nothing is run or written): what its charts and `results.json` are
-    /// drawn from again after a change to the analysis, with or without `blocks.csv`.
+    /// `cases.csv` and `timing.csv` (nothing is run or written): what its charts and
+    /// `results.json` are drawn from again after a change to the analysis, with or without
+    /// `blocks.csv`.
     pub fn finished(dir: &Path, sweep: &Sweep) -> Result<Vec<CaseRow>, Error> {
-        check_manifest(&dir.join("manifest.json"), sweep)?;
-        let cases_path = dir.join("cases.csv");
-        let mut rows: Vec<CaseRow> = read_table(&cases_path, CASES_HEADER)?;
-        rows.sort_by_key(|r| r.case);
-        if let Some(w) = rows
-            .windows(2)
-            .find(|w| w[0].case == w[1].case)
-            .or_else(|| {
-                rows.last()
-                    .filter(|r| r.case >= sweep.len())
-                    .map(std::slice::from_ref)
-            })
-        {
-            return Err(table_error(
-                &cases_path,
-                1,
-                format!(
-                    "case {} is listed twice or is not one of the sweep's {} cases: pass --fresh to run it again",
-                    w[w.len() - 1].case,
-                    sweep.len()
-                ),
-            ));
-        }
-        let done: HashSet<usize> = rows.iter().map(|r| r.case).collect();
-        if let Some(first) = (0..sweep.len()).find(|k| !done.contains(k)) {
-            return Err(table_error(
-                &cases_path,
-                1,
-                format!(
-                    "{} of the sweep's {} cases are not done (the first is case {first}): pass --resume to run them",
-                    sweep.len() - done.len(),
-                    sweep.len()
-                ),
-            ));
-        }
-        Ok(rows)
+        let paths = Paths::of(dir);
+        check_manifest(&paths.manifest, sweep, None)?;
+        let rows = read_cases(&paths)?;
+        check_complete(&paths.cases, rows, sweep, None, "--resume")
     }
 
     /// Cases already finished.
@@ -259,48 +276,180 @@ impl Store {
         self.rows.iter().map(|r| r.case).collect()
     }
 
-    /// Stores a finished case: its block rows first, then the case row that marks it done.
+    /// The cases of this store's scope (the sweep, or the shard) not finished yet, in order.
+    pub fn pending(&self, sweep: &Sweep) -> Vec<usize> {
+        let done = self.done();
+        (0..sweep.len())
+            .filter(|&id| self.scope.is_none_or(|s| s.contains(id)) && !done.contains(&id))
+            .collect()
+    }
+
+    /// Stores a finished case: its block rows and its time first, then the case row that marks
+    /// it done.
     pub fn append(&mut self, row: CaseRow, blocks: Vec<BlockRow>) -> Result<(), Error> {
-        let bpath = self.dir.join("blocks.csv");
+        let paths = Paths::of(&self.dir);
         let text: String = blocks.iter().map(table::line).collect();
-        self.blocks.write_all(text.as_bytes()).map_err(io(&bpath))?;
-        self.blocks.flush().map_err(io(&bpath))?;
-        let cpath = self.dir.join("cases.csv");
-        self.cases
-            .write_all(table::line(&row).as_bytes())
-            .map_err(io(&cpath))?;
-        self.cases.flush().map_err(io(&cpath))?;
+        append(&mut self.blocks, &paths.blocks, &text)?;
+        let timing = TimingRow {
+            case: row.case,
+            cpu_s: row.cpu_s,
+        };
+        append(&mut self.timing, &paths.timing, &table::line(&timing))?;
+        append(&mut self.cases, &paths.cases, &table::line(&row))?;
         self.rows.push(row);
         self.block_rows.extend(blocks);
         Ok(())
     }
 
-    /// Rewrites both tables in case order and returns the rows.
+    /// Stores the finished cases of a batch run elsewhere.
+    pub fn append_batch(&mut self, batch: &super::batch::Batch) -> Result<(), Error> {
+        let done = self.done();
+        for (row, blocks) in batch.rows(&self.dir)? {
+            // A case stored already (an executor that ran a task twice) is kept as it was: its
+            // rows do not depend on where it ran.
+            if !done.contains(&row.case) {
+                self.append(row, blocks)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Rewrites the tables in case order and returns the rows.
     pub fn finish(mut self) -> Result<(Vec<CaseRow>, Vec<BlockRow>), Error> {
-        self.rows.sort_by_key(|r| r.case);
-        let order: HashMap<usize, usize> = self
-            .rows
-            .iter()
-            .enumerate()
-            .map(|(k, r)| (r.case, k))
-            .collect();
-        self.block_rows.sort_by_key(|b| order[&b.case]);
-        rewrite(&self.dir.join("cases.csv"), CASES_HEADER, &self.rows)?;
-        rewrite(
-            &self.dir.join("blocks.csv"),
-            BLOCKS_HEADER,
-            &self.block_rows,
-        )?;
+        sort(&mut self.rows, &mut self.block_rows);
+        write_tables(&Paths::of(&self.dir), &self.rows, &self.block_rows)?;
         Ok((self.rows, self.block_rows))
     }
 }
 
+/// The files of a sweep (or of a shard) in `dir`.
+pub(super) struct Paths {
+    pub cases: PathBuf,
+    pub blocks: PathBuf,
+    pub timing: PathBuf,
+    pub manifest: PathBuf,
+}
+
+impl Paths {
+    pub fn of(dir: &Path) -> Paths {
+        Paths {
+            cases: dir.join("cases.csv"),
+            blocks: dir.join("blocks.csv"),
+            timing: dir.join("timing.csv"),
+            manifest: dir.join("manifest.json"),
+        }
+    }
+}
+
+fn append(file: &mut std::fs::File, path: &Path, text: &str) -> Result<(), Error> {
+    file.write_all(text.as_bytes()).map_err(io(path))?;
+    file.flush().map_err(io(path))
+}
+
+/// Puts rows in case order, each case's block rows in the order its run gave them.
+pub(super) fn sort(rows: &mut [CaseRow], block_rows: &mut [BlockRow]) {
+    rows.sort_by_key(|r| r.case);
+    let order: HashMap<usize, usize> = rows.iter().enumerate().map(|(k, r)| (r.case, k)).collect();
+    block_rows.sort_by_key(|b| order[&b.case]);
+}
+
+/// Writes the three tables afresh and returns them open for appending.
+pub(super) fn write_tables(
+    paths: &Paths,
+    rows: &[CaseRow],
+    block_rows: &[BlockRow],
+) -> Result<(std::fs::File, std::fs::File, std::fs::File), Error> {
+    let timing: Vec<TimingRow> = rows
+        .iter()
+        .map(|r| TimingRow {
+            case: r.case,
+            cpu_s: r.cpu_s,
+        })
+        .collect();
+    Ok((
+        rewrite(&paths.cases, CASES_HEADER, rows)?,
+        rewrite(&paths.blocks, BLOCKS_HEADER, block_rows)?,
+        rewrite(&paths.timing, TIMING_HEADER, &timing)?,
+    ))
+}
+
+/// The case rows in `paths`, each with its CPU time from timing.csv.
+pub(super) fn read_cases(paths: &Paths) -> Result<Vec<CaseRow>, Error> {
+    let mut rows: Vec<CaseRow> = read_table(&paths.cases, CASES_HEADER)?;
+    let timing: Vec<TimingRow> = read_table(&paths.timing, TIMING_HEADER)?;
+    let cpu: HashMap<usize, f64> = timing.into_iter().map(|t| (t.case, t.cpu_s)).collect();
+    for r in &mut rows {
+        // The time is written before the case row, so a finished case always has one.
+        r.cpu_s = *cpu.get(&r.case).ok_or_else(|| {
+            table_error(
+                &paths.timing,
+                1,
+                format!(
+                    "case {} of cases.csv has no time here: pass --fresh to run it again",
+                    r.case
+                ),
+            )
+        })?;
+    }
+    Ok(rows)
+}
+
+/// `rows` sorted, once each, and every case of `scope` (the sweep, or a shard) among them;
+/// the errors name `path` and what to do (`fix`).
+pub(super) fn check_complete(
+    path: &Path,
+    mut rows: Vec<CaseRow>,
+    sweep: &Sweep,
+    scope: Option<Shard>,
+    fix: &str,
+) -> Result<Vec<CaseRow>, Error> {
+    rows.sort_by_key(|r| r.case);
+    let within = |id: usize| id < sweep.len() && scope.is_none_or(|s| s.contains(id));
+    let expected = scope.map_or(sweep.len(), |s| s.len(sweep.len()));
+    let cases = match scope {
+        None => format!("the sweep's {expected} cases"),
+        Some(s) => format!("the {expected} cases of shard {s}"),
+    };
+    if let Some(w) = rows
+        .windows(2)
+        .find(|w| w[0].case == w[1].case)
+        .or_else(|| {
+            rows.iter()
+                .find(|r| !within(r.case))
+                .map(std::slice::from_ref)
+        })
+    {
+        return Err(table_error(
+            path,
+            1,
+            format!(
+                "case {} is listed twice or is not one of {cases}: pass --fresh to run it again",
+                w[w.len() - 1].case,
+            ),
+        ));
+    }
+    let done: HashSet<usize> = rows.iter().map(|r| r.case).collect();
+    if let Some(first) = (0..sweep.len()).find(|&k| within(k) && !done.contains(&k)) {
+        return Err(table_error(
+            path,
+            1,
+            format!(
+                "{} of {cases} are not done (the first is case {first}): pass {fix} to run them",
+                expected - done.len(),
+            ),
+        ));
+    }
+    Ok(rows)
+}
+
 /// Refuses results that another sweep wrote (its manifest's fingerprint differs: the sweep
-/// file, a wall or a record changed).
-fn check_manifest(path: &Path, sweep: &Sweep) -> Result<(), Error> {
-    let manifest = std::fs::read_to_string(path).map_err(io(path))?;
-    let found: serde_json::Value =
-        serde_json::from_str(&manifest).map_err(|e| table_error(path, e.line(), e.to_string()))?;
+/// file, a wall or a record changed), or another shard.
+pub(super) fn check_manifest(
+    path: &Path,
+    sweep: &Sweep,
+    scope: Option<Shard>,
+) -> Result<(), Error> {
+    let found = read_manifest(path)?;
     if found["fingerprint"] != sweep.fingerprint.as_str() {
         return Err(table_error(
             path,
@@ -308,7 +457,22 @@ fn check_manifest(path: &Path, sweep: &Sweep) -> Result<(), Error> {
             "these results belong to another sweep (the sweep file, a wall or a record changed): pass --fresh to start again".into(),
         ));
     }
+    let shard = |index: usize, count: usize| serde_json::json!({"index": index, "count": count});
+    let expected = scope.map(|s| shard(s.index, s.count));
+    if found.get("shard") != expected.as_ref() {
+        return Err(table_error(
+            path,
+            1,
+            "these results belong to another shard of the sweep (or to the whole sweep): pass --fresh to start again".into(),
+        ));
+    }
     Ok(())
+}
+
+/// A manifest read back.
+pub(super) fn read_manifest(path: &Path) -> Result<serde_json::Value, Error> {
+    let manifest = std::fs::read_to_string(path).map_err(io(path))?;
+    serde_json::from_str(&manifest).map_err(|e| table_error(path, e.line(), e.to_string()))
 }
 
 /// Writes a table afresh (through a temporary file, so an interruption never leaves half of

@@ -40,3 +40,37 @@ pub fn file(name: &str, text: &str) -> Scratch {
     std::fs::write(&*f, text).expect("a temporary file");
     f
 }
+
+/// Asserts that two sweep output folders hold the same results byte for byte: every file of
+/// `expected` but timing.csv (CPU times, measured) and the shards' `parts/` is in `found` with the
+/// same bytes, and `found` has no other result file. Returns how many files were compared.
+pub fn same_sweep_files(expected: &Path, found: &Path) -> usize {
+    let names = |dir: &Path| -> std::collections::BTreeSet<String> {
+        std::fs::read_dir(dir)
+            .expect("a sweep's output folder")
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n != "timing.csv" && n != "parts")
+            .collect()
+    };
+    let files = names(expected);
+    assert_eq!(
+        files,
+        names(found),
+        "{} against {}",
+        expected.display(),
+        found.display()
+    );
+    for name in &files {
+        let (a, b) = (
+            std::fs::read(expected.join(name)).unwrap(),
+            std::fs::read(found.join(name)).unwrap(),
+        );
+        assert!(
+            a == b,
+            "{name} differs: {} against {}",
+            expected.display(),
+            found.display()
+        );
+    }
+    files.len()
+}

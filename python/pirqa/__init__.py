@@ -1,0 +1,114 @@
+"""pirqa: how dry-stone block walls slide, rock, collide and fail in earthquakes, computed
+exactly (every stick-slip transition and impact found to round-off, no time step).
+
+A first run, the paper's five-block wall under a record given as a numpy array::
+
+    import numpy as np, pirqa
+    wall = pirqa.Wall.from_file("walls/five-block-variable.ron")
+    t = np.arange(0, 20, 0.01)
+    motion = pirqa.Motion.from_array(4.0 * np.sin(2 * np.pi * t), dt_s=0.01)
+    result = pirqa.run(wall, motion, output_dt_s=0.01)
+    print(result.summary["blocks"][0]["max_abs_displacement_m"])
+
+Sweeps over many walls, motions and friction samples run on any
+``concurrent.futures.Executor`` (Dask, mpi4py, a process pool; Ray through
+``pirqa.executors.RayExecutor``): see ``pirqa.sweep`` and docs/python.md.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from . import errors
+from ._pirqa import Motion, Wall, __version__
+from ._pirqa import run as _run
+from ._sweep import read_sweep, sweep
+from .errors import (
+    FileError,
+    MotionError,
+    OptionError,
+    PirqaError,
+    ResultsError,
+    SimulationError,
+    SweepError,
+    WallError,
+)
+
+
+@dataclass(frozen=True)
+class History:
+    """The state of every block at each output time: arrays of shape (times, blocks)."""
+
+    time_s: np.ndarray
+    displacement_m: np.ndarray
+    velocity_m_s: np.ndarray
+    blocks: list[str]
+    rotation_rad: np.ndarray | None = None
+    angular_velocity_rad_s: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class Result:
+    """What a run returns: ``summary`` is summary.json as a dict, ``history`` the sampled
+    motion (when ``output_dt_s`` was given), ``events`` the event log (when ``log_events``)."""
+
+    summary: dict[str, Any]
+    history: History | None = None
+    events: list[dict[str, Any]] = field(default_factory=list)
+
+
+def run(
+    wall: Wall,
+    motion: Motion,
+    *,
+    duration_s: float | None = None,
+    output_dt_s: float | None = None,
+    method: str = "event",
+    dt_s: float | None = None,
+    model: str = "auto",
+    log_events: bool = False,
+) -> Result:
+    """Runs ``wall`` under ``motion`` (the GIL is released while it runs).
+
+    ``duration_s``: simulated time (default: the motion's length). ``output_dt_s``: sample the
+    history this often (default: no history). ``method``: "event" (exact), "moreau" or
+    "paper" (time stepping, with ``dt_s``). ``model``: "auto", "slide" or "slide-rock".
+    """
+    raw = _run(
+        wall,
+        motion,
+        duration_s=duration_s,
+        output_dt_s=output_dt_s,
+        method=method,
+        dt_s=dt_s,
+        model=model,
+        log_events=log_events,
+    )
+    history = None
+    if raw["history"] is not None:
+        history = History(blocks=raw["blocks"], **raw["history"])
+    return Result(summary=raw["summary"], history=history, events=raw["events"])
+
+
+__all__ = [
+    "Wall",
+    "Motion",
+    "run",
+    "Result",
+    "History",
+    "sweep",
+    "read_sweep",
+    "errors",
+    "PirqaError",
+    "WallError",
+    "MotionError",
+    "SweepError",
+    "OptionError",
+    "SimulationError",
+    "FileError",
+    "ResultsError",
+    "__version__",
+]

@@ -1,0 +1,136 @@
+//! `pirqa.run`: one run of a wall under a motion, the GIL released while it runs. It returns
+//! plain data (summary.json's values as a dict, the history as numpy arrays moved out of Rust,
+//! the event log as dicts) that the Python `Result` wraps, so a result pickles as it is.
+
+use crate::errors::{option, IntoPy};
+use crate::motion::Motion;
+use crate::to_python::to_python;
+use crate::wall::Wall;
+use numpy::ndarray::Array2;
+use numpy::IntoPyArray;
+use pirqa::{Method, ModelChoice, RunSettings};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Rows of per-block values as a (rows x blocks) array: one contiguous copy, then handed to
+/// numpy without another.
+fn matrix<'py>(py: Python<'py>, rows: Vec<Vec<f64>>) -> PyResult<Bound<'py, PyAny>> {
+    let (n, columns) = (rows.len(), rows.first().map_or(0, Vec::len));
+    let flat: Vec<f64> = rows.into_iter().flatten().collect();
+    let array = Array2::from_shape_vec((n, columns), flat).map_err(|_| {
+        crate::errors::to_py(pirqa::Error::Simulation(pirqa::SimulationError::Bug(
+            "history rows of unequal lengths".into(),
+        )))
+    })?;
+    Ok(array.into_pyarray(py).into_any())
+}
+
+fn method(name: &str, dt_s: Option<f64>) -> PyResult<Method> {
+    let step =
+        || dt_s.ok_or_else(|| option("dt_s", format!("method \"{name}\" needs a time step dt_s")));
+    match name {
+        "event" if dt_s.is_none() => Ok(Method::Event),
+        "event" => Err(option(
+            "dt_s",
+            "the exact method takes no time step: leave dt_s out",
+        )),
+        "moreau" => Ok(Method::Moreau { dt_s: step()? }),
+        "paper" => Ok(Method::Paper { dt_s: step()? }),
+        _ => Err(option(
+            "method",
+            format!("\"{name}\": give event (exact), moreau or paper"),
+        )),
+    }
+}
+
+fn model(name: &str) -> PyResult<ModelChoice> {
+    match name {
+        "auto" => Ok(ModelChoice::Auto),
+        "slide" => Ok(ModelChoice::Slide),
+        "slide-rock" => Ok(ModelChoice::SlideRock),
+        _ => Err(option(
+            "model",
+            format!("\"{name}\": give auto, slide or slide-rock"),
+        )),
+    }
+}
+
+/// Runs `wall` under `motion`; see `pirqa.run`.
+#[pyfunction]
+#[pyo3(signature = (wall, motion, *, duration_s = None, output_dt_s = None, method = "event",
+    dt_s = None, model = "auto", log_events = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn run<'py>(
+    py: Python<'py>,
+    wall: &Wall,
+    motion: &Motion,
+    duration_s: Option<f64>,
+    output_dt_s: Option<f64>,
+    method: &str,
+    dt_s: Option<f64>,
+    model: &str,
+    log_events: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let settings = RunSettings {
+        duration_s,
+        output_dt_s,
+        log_events,
+        method: self::method(method, dt_s)?,
+        model: self::model(model)?,
+        ..RunSettings::default()
+    };
+    let (m, g) = (wall.model.clone(), motion.motion.clone());
+    let response = py.detach(move || pirqa::run(&m, &g, &settings)).py()?;
+    let out = PyDict::new(py);
+    out.set_item("summary", to_python(py, &response.summary)?)?;
+    out.set_item("events", to_python(py, &response.events)?)?;
+    let names = wall
+        .model
+        .wall()
+        .blocks
+        .iter()
+        .map(|b| b.name.clone())
+        .collect::<Vec<_>>();
+    out.set_item("blocks", names)?;
+    match response.history {
+        Some(h) => {
+            let history = PyDict::new(py);
+            history.set_item("time_s", h.time_s.into_pyarray(py))?;
+            history.set_item("displacement_m", matrix(py, h.displacement_m)?)?;
+            history.set_item("velocity_m_s", matrix(py, h.velocity_m_s)?)?;
+            if !h.rotation_rad.is_empty() {
+                history.set_item("rotation_rad", matrix(py, h.rotation_rad)?)?;
+                history.set_item(
+                    "angular_velocity_rad_s",
+                    matrix(py, h.angular_velocity_rad_s)?,
+                )?;
+            }
+            out.set_item("history", history)?;
+        }
+        None => out.set_item("history", py.None())?,
+    }
+    Ok(out)
+}
+
+/// The Rust library's own time for `repeats` runs of `wall` under `motion` (summary only, as
+/// `run` with its defaults), each in seconds, with no Python in the loop: what
+/// benches/python_sweeps.py sets the Python call against.
+#[pyfunction]
+pub fn _time_runs(
+    py: Python<'_>,
+    wall: &Wall,
+    motion: &Motion,
+    repeats: usize,
+) -> PyResult<Vec<f64>> {
+    let (m, g) = (wall.model.clone(), motion.motion.clone());
+    py.detach(move || {
+        (0..repeats)
+            .map(|_| {
+                let start = std::time::Instant::now();
+                pirqa::run(&m, &g, &RunSettings::default())?;
+                Ok(start.elapsed().as_secs_f64())
+            })
+            .collect::<Result<Vec<f64>, pirqa::Error>>()
+    })
+    .py()
+}

@@ -1,0 +1,60 @@
+"""Shared fixtures: the repository's root (walls/, records/), the command-line binary the Rust
+test suite built (PIRQA_BIN), and small sweep files written for a test."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="session")
+def root() -> Path:
+    return ROOT
+
+
+@pytest.fixture(scope="session")
+def cli():
+    """Runs the command line (``pirqa ARGS``) and returns (exit code, stderr)."""
+    binary = os.environ.get("PIRQA_BIN")
+    if not binary:
+        pytest.fail("PIRQA_BIN is not set: run the Python tests through `cargo test` (README)")
+
+    def run(*args: str, env: dict[str, str] | None = None) -> tuple[int, str]:
+        p = subprocess.run(
+            [binary, *args], capture_output=True, text=True, env={**os.environ, **(env or {})}
+        )
+        return p.returncode, p.stderr
+
+    return run
+
+
+def write_sweep(folder: Path, *, samples: int = 15, seed: int = 7) -> Path:
+    """A friction Monte Carlo on the paper's wall under sines: 4 motions x ``samples`` cases."""
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"mc-{seed}.ron"
+    path.write_text(
+        f"""(
+    version: 1,
+    name: "python sweep",
+    walls: [File(path: "{ROOT / 'walls/five-block-variable.ron'}")],
+    motion: Sine(amplitudes: ["300gal", "500gal"], frequencies_hz: List([1.0, 2.0]), duration_s: 5.0),
+    friction: Random(distribution: Lognormal, cov: 0.2, samples: {samples}, seed: {seed}),
+)
+"""
+    )
+    return path
+
+
+def same_files(expected: Path, found: Path) -> int:
+    """Asserts that two sweep folders hold the same result files byte for byte (all but
+    timing.csv, a measurement, and parts/); returns how many were compared."""
+    names = lambda d: {p.name for p in d.iterdir()} - {"timing.csv", "parts"}
+    assert names(expected) == names(found)
+    for name in sorted(names(expected)):
+        assert (expected / name).read_bytes() == (found / name).read_bytes(), name
+    return len(names(expected))

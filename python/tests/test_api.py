@@ -1,0 +1,164 @@
+"""The Python API against the command line and against itself: the same numbers as `pirqa run`,
+walls from files, RON and arrays alike, results that pickle, errors whose messages are the
+command line's, histories handed over without a copy, the GIL released while a run goes."""
+
+from __future__ import annotations
+
+import json
+import pickle
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import pirqa
+
+PAPER = "walls/five-block-variable.ron"
+
+
+def test_the_papers_wall_from_a_numpy_record_equals_the_command_line(root, cli, tmp_path):
+    """A record given as a numpy array and the same samples given to `pirqa run --record` as a
+    file: the same summary.json, every number to the bit."""
+    dt = 0.01
+    t = np.arange(0, 10 + dt / 2, dt)
+    accel_gal = 400.0 * np.sin(2 * np.pi * t) * np.exp(-0.1 * t)
+    record = tmp_path / "record.txt"
+    record.write_text("# dt_s: 0.01\n# units: gal\n" + "".join(f"{float(a)!r}\n" for a in accel_gal))
+    out = tmp_path / "out"
+    code, err = cli("run", str(root / PAPER), "--record", str(record), "--out", str(out))
+    assert code == 0, err
+    expected = json.loads((out / "summary.json").read_text())
+    wall = pirqa.Wall.from_file(root / PAPER)
+    motion = pirqa.Motion.from_array(accel_gal, dt_s=dt, units="gal", name="record")
+    found = pirqa.run(wall, motion).summary
+    expected["motion"] = found["motion"]  # the name of the record: its file's, or ours
+    assert found == expected
+    energy = found["energy"]
+    assert abs(energy["residual_j"]) < 1e-9 * energy["input_j"]
+
+
+def test_a_sine_equals_the_command_line(root, cli, tmp_path):
+    out = tmp_path / "out"
+    code, err = cli(
+        "run", str(root / PAPER), "--sine", "400gal", "--freq", "1", "--duration", "20",
+        "--out", str(out),
+    )
+    assert code == 0, err
+    wall = pirqa.Wall.from_file(root / PAPER)
+    sine = pirqa.Motion.sine("400gal", frequency_hz=1.0, duration_s=20.0)
+    found = pirqa.run(wall, sine).summary
+    expected = json.loads((out / "summary.json").read_text())
+    # Equal, and in the same order, keys within keys (the dict is built from the same serde
+    # description as the file, not parsed from it).
+    assert found == expected and json.dumps(found) == json.dumps(expected)
+
+
+def test_a_wall_from_arrays_of_rectangles_is_the_wall_from_its_file(root):
+    """The paper's uniform wall as five rectangles runs to the same numbers as its file."""
+    from_file = pirqa.Wall.from_file(root / "walls/five-block-uniform.ron")
+    # walls/five-block-uniform.ron: courses of 0.6 m, blocks 1.2 + 1.2 below, 0.6 + 1.2 + 0.6
+    # above, 0.8 m thick, 2650 kg/m3, friction 0.30.
+    rectangles = pirqa.Wall.from_rectangles(
+        np.array([0.0, 1.2, 0.0, 0.6, 1.8]),
+        np.array([0.0, 0.0, 0.6, 0.6, 0.6]),
+        np.array([1.2, 1.2, 0.6, 1.2, 0.6]),
+        np.full(5, 0.6),
+        thickness_m=0.8,
+        friction=0.30,
+        density_kg_m3=2650.0,
+        name=from_file.name,
+    )
+    assert rectangles.blocks == from_file.blocks
+    sine = pirqa.Motion.sine("400gal", frequency_hz=1.0, duration_s=10.0)
+    a, b = pirqa.run(from_file, sine).summary, pirqa.run(rectangles, sine).summary
+    assert a["blocks"] == b["blocks"] and a["energy"] == b["energy"]
+
+
+def test_walls_motions_and_results_pickle_to_the_same_numbers(root):
+    wall = pirqa.Wall.from_file(root / PAPER)
+    t = np.arange(0, 5.0, 0.005)
+    motions = [
+        pirqa.Motion.from_array(0.41 * np.sin(3.0 * t), dt_s=0.005, units="g"),
+        pirqa.Motion.sine("0.4g", frequency_hz=1.3, duration_s=5.0, phase_deg=33.0),
+    ]
+    for motion in motions:
+        result = pirqa.run(wall, motion, output_dt_s=0.05)
+        wall2, motion2 = pickle.loads(pickle.dumps((wall, motion)))
+        assert wall2.ron == wall.ron and wall2.name == wall.name
+        again = pirqa.run(wall2, motion2, output_dt_s=0.05)
+        assert again.summary == result.summary
+        np.testing.assert_array_equal(again.history.displacement_m, result.history.displacement_m)
+        back = pickle.loads(pickle.dumps(result))
+        assert back.summary == result.summary
+        np.testing.assert_array_equal(back.history.time_s, result.history.time_s)
+
+
+def test_a_history_is_handed_over_without_a_copy(root):
+    """The arrays' memory is Rust's (a capsule owns it), not a copy numpy made; their shape is
+    (times, blocks) and their values what summary.json reports."""
+    wall = pirqa.Wall.from_file(root / PAPER)
+    r = pirqa.run(wall, pirqa.Motion.sine("400gal", frequency_hz=1.0, duration_s=20.0),
+                  output_dt_s=0.01, log_events=True)
+    h = r.history
+    for a in (h.time_s, h.displacement_m, h.velocity_m_s):
+        assert a.dtype == np.float64 and not a.flags["OWNDATA"]
+        assert a.base is not None and not isinstance(a.base, np.ndarray)
+    assert h.displacement_m.shape == (len(h.time_s), 5) and h.blocks == wall.blocks
+    peak = np.abs(h.displacement_m).max(axis=0)
+    for k, block in enumerate(r.summary["blocks"]):
+        assert peak[k] <= block["max_abs_displacement_m"] + 1e-15
+    assert r.events and {"time_s", "kind", "blocks"} <= set(r.events[0])
+
+
+def test_errors_are_classed_and_say_what_the_command_line_says(root, cli, tmp_path):
+    bad = tmp_path / "floating.ron"
+    bad.write_text(
+        "(version: 1, thickness_m: 1.0, density_kg_m3: 2600.0, friction: 0.3,\n"
+        " rectangles: [(x_m: 0.0, y_m: 0.5, width_m: 1.0, height_m: 0.5)])\n"
+    )
+    code, err = cli("check", str(bad))
+    assert code == 1
+    with pytest.raises(pirqa.WallError) as e:
+        pirqa.Wall.from_file(bad)
+    assert isinstance(e.value, ValueError) and isinstance(e.value, pirqa.PirqaError)
+    assert err.strip() == f"error: {e.value}"
+    assert "floating.ron" in str(e.value)
+    with pytest.raises(pirqa.FileError) as e:
+        pirqa.Wall.from_file(tmp_path / "missing.ron")
+    assert isinstance(e.value, OSError)
+    with pytest.raises(pirqa.MotionError, match="sample 3"):
+        pirqa.Motion.from_array(np.array([0.0, 1.0, np.nan]), dt_s=0.01)
+    with pytest.raises(pirqa.MotionError, match="gal, g, m/s2"):
+        pirqa.Motion.sine("400", frequency_hz=1.0, duration_s=1.0)
+    with pytest.raises(pirqa.OptionError, match="units"):
+        pirqa.Motion.from_array([0.0, 1.0], dt_s=0.01, units="furlongs")
+    with pytest.raises(pirqa.OptionError, match="dt_s"):
+        pirqa.run(pirqa.Wall.from_file(root / PAPER),
+                  pirqa.Motion.sine("1g", frequency_hz=1.0, duration_s=1.0), method="moreau")
+    with pytest.raises(pirqa.OptionError, match="y_m"):
+        pirqa.Wall.from_rectangles([0.0], [0.0, 1.0], [1.0], [1.0], thickness_m=1.0,
+                                   friction=0.3, density_kg_m3=2600.0)
+
+
+def test_a_run_releases_the_gil(root):
+    """While a long run goes on in a thread, this thread keeps running Python: its longest
+    pause is a small part of the run (holding the GIL, the run would pause it throughout)."""
+    wall = pirqa.Wall.from_file(root / PAPER)
+    motion = pirqa.Motion.sine("400gal", frequency_hz=1.0, duration_s=5000.0)
+    span = {}
+
+    def go():
+        span["start"] = time.perf_counter()
+        pirqa.run(wall, motion)
+        span["end"] = time.perf_counter()
+
+    worker = threading.Thread(target=go)
+    last, longest = time.perf_counter(), 0.0
+    worker.start()
+    while worker.is_alive():
+        now = time.perf_counter()
+        longest, last = max(longest, now - last), now
+    worker.join()
+    run_s = span["end"] - span["start"]
+    assert longest < 0.5 * run_s, f"paused {longest:.4f} s during a run of {run_s:.4f} s"
