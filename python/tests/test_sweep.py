@@ -6,6 +6,7 @@ a killed sweep resumes to the same files."""
 from __future__ import annotations
 
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -131,10 +132,35 @@ def test_an_existing_folder_is_refused_and_bad_options_named(spec, serial):
         pirqa.sweep(bad)
 
 
-def test_mpi_pool_gives_the_serial_results(spec, serial):
-    futures = pytest.importorskip("mpi4py.futures", reason="mpi4py is not installed")
-    with futures.MPIPoolExecutor(max_workers=2) as pool:
-        assert pirqa.sweep(spec, pool).equals(serial[1])
+MPI_SWEEP = """
+import sys
+from mpi4py.futures import MPIPoolExecutor
+import pirqa
+if __name__ == "__main__":
+    with MPIPoolExecutor() as pool:
+        pirqa.sweep(sys.argv[1], pool, out=sys.argv[2])
+"""
+
+
+def test_an_mpi_pool_gives_the_serial_results(spec, serial, tmp_path):
+    """Three MPI processes started by mpiexec (mpi4py.futures: one runs the sweep, two serve as
+    its workers), as on a cluster."""
+    pytest.importorskip("mpi4py.futures", reason="mpi4py is not installed")
+    mpiexec = shutil.which("mpiexec")
+    if mpiexec is None:
+        pytest.skip("mpiexec is not on the PATH")
+    script = tmp_path / "mpi_sweep.py"
+    script.write_text(MPI_SWEEP)
+    # Open MPI refuses root and more processes than cores unless told; others ignore these.
+    env = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMPI_MCA_rmaps_base_oversubscribe": "1"}
+    out = tmp_path / "mpi"
+    p = subprocess.run(
+        [mpiexec, "-n", "3", sys.executable, "-m", "mpi4py.futures", str(script), str(spec),
+         str(out)], env=env, capture_output=True, text=True, timeout=600,
+    )
+    assert p.returncode == 0, p.stderr
+    assert same_files(serial[0], out) >= 6
 
 
 def test_ray_gives_the_serial_results(spec, serial):
