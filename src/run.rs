@@ -3,7 +3,7 @@
 //! with a word on which model ran and why. `pirqa run` is this function behind its options.
 
 use crate::error::{Error, SimulationError};
-use crate::integrate::baselines::{Moreau, MoreauRocking, PaperNewmark, Regularized};
+use crate::integrate::baselines::{Moreau, MoreauRocking, MoreauWall, PaperNewmark, Regularized};
 use crate::integrate::event::EventDriven;
 use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
 use crate::integrate::stepping::positive;
@@ -157,6 +157,31 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
             equations,
             &settings.initial_rotation,
         )?);
+    }
+    if let (Method::Moreau { dt_s }, ModelChoice::SlideRock) = (&settings.method, settings.model) {
+        // A wall of several blocks (or one not standing free on the ground): every block with
+        // its rotation, time stepped.
+        if rocking::free_standing(sc.wall, sc.topology).is_err() {
+            if settings.rocking.is_some() {
+                return Err(incompatible(
+                    "Moreau-Jean steps the rigid bodies' own equations",
+                    "leave --rocking out",
+                ));
+            }
+            if !settings.initial_rotation.is_empty() {
+                return Err(incompatible(
+                    "--initial-rotation is given to a free-standing block only",
+                    "leave --initial-rotation out",
+                ));
+            }
+            let mut response = MoreauWall::new(*dt_s).run(&sc)?;
+            response.summary.model.why = format!(
+                "asked for (--model slide-rock --method moreau): each of the {} blocks with its \
+                 rotation, every contact at the corners of its joints",
+                sc.wall.blocks.len()
+            );
+            return Ok(response);
+        }
     }
     let (rocks, why) = rocking::rocks_in_plane(
         settings.model,

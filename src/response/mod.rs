@@ -402,6 +402,14 @@ pub enum Warning {
         /// Why.
         why: String,
     },
+    /// Blocks that rest on two or more blocks, run with rotations (Moreau-Jean): how their load
+    /// splits among their supports is statically indeterminate for rigid blocks.
+    IndeterminateSupport {
+        /// Their names (the first few).
+        blocks: Vec<String>,
+        /// How many there are.
+        count: usize,
+    },
     /// Gauss-Seidel stopped at its sweep limit in some steps (Moreau-Jean).
     Unconverged {
         /// Steps that ended unconverged.
@@ -441,6 +449,21 @@ impl std::fmt::Display for Warning {
             Warning::LevelSkipped { level_m, why } => {
                 write!(f, "level {level_m} m not checked across the plane: {why}")
             }
+            Warning::IndeterminateSupport { blocks, count } => write!(
+                f,
+                "{}{} {} on two or more blocks: for rigid blocks the split of the load among \
+                 the supports is statically indeterminate, and the solver's split (not the \
+                 tributary one of eq. 3) sets the friction capacities below; where those joints \
+                 differ in friction the answer depends on the step and the solver \
+                 (docs/rocking-walls.md)",
+                blocks.join(", "),
+                if *count > blocks.len() {
+                    format!(" and {} more", count - blocks.len())
+                } else {
+                    String::new()
+                },
+                if *count == 1 { "rests" } else { "rest" }
+            ),
             Warning::Unconverged { steps, sweeps } => write!(
                 f,
                 "Gauss-Seidel did not converge within {sweeps} sweeps in {steps} steps"

@@ -19,6 +19,7 @@ mod properties;
 mod python;
 mod records;
 mod rocking;
+mod rocking_walls;
 mod shards;
 mod survey;
 mod sweep;

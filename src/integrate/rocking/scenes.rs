@@ -59,9 +59,10 @@ pub fn free_standing(
 ) -> Result<RockingBody, SimulationError> {
     let [block] = wall.blocks.as_slice() else {
         return Err(SimulationError::NotApplicable(format!(
-            "the rocking model runs walls of one free-standing block (this one has {} blocks); \
-             blocks that rock inside walls are not modelled yet: run it with --model slide, or \
-             across its plane with --direction out-of-plane",
+            "the exact rocking model runs walls of one free-standing block (this one has {} \
+             blocks); blocks that rock inside walls run on time stepping (--method moreau --dt \
+             S), or run the wall sliding exactly (--model slide), or across its plane \
+             (--direction out-of-plane)",
             wall.blocks.len()
         )));
     };

@@ -1,0 +1,569 @@
+//! Moreau-Jean time stepping of a whole wall with rotations, the scheme of LMGC90 and Siconos:
+//! three degrees of freedom per free block (its centroid's x and y, its rotation), and
+//! unilateral point-on-face contacts at the corners of every joint the graph knows, measured on
+//! the moved and rotated blocks (a corner counts while it lies on the face it rests on or looks
+//! at). Horizontal joints carry Coulomb friction and land plastically (Newton's e = 0, which
+//! with friction holding is Housner's landing); vertical joints are frictionless and restitute
+//! with the wall's e, as in the sliding model. At each step the impulses of the contacts
+//! predicted closed solve the contact laws at velocity level by projected Gauss-Seidel, the
+//! velocities jump by them, and positions follow by the midpoint rule. Nothing is decided
+//! exactly and every block carries three degrees of freedom at all times: it is the reference
+//! and the fallback for walls whose blocks may rock, where the exact engine models only
+//! sliding (docs/rocking-walls.md).
+
+use crate::error::SimulationError;
+use crate::integrate::stepping::time_step;
+use crate::integrate::{AfterCollapse, Integrator, Scenario};
+use crate::response::{Collapse, CollapseCause, ModelUsed, Recorder, Response, Warning};
+use crate::topology::{Base, JointRef, VerticalId};
+use nalgebra::{Matrix2, Vector2, Vector3};
+
+/// A block lifts (for the summary's uplift time) when its rotation moves a corner by this much
+/// (m): Gauss-Seidel leaves rotations of round-off size on blocks that stay seated.
+const UPLIFT_M: f64 = 1e-6;
+
+/// Approach speed above which a vertical joint's closing counts as an impact (m/s), as in the
+/// sliding Moreau-Jean model.
+const IMPACT_SPEED_M_S: f64 = 1e-9;
+
+/// A corner counts as on a face up to this fraction of the face's length beyond its ends, so
+/// that corners of blocks whose edges line up are not lost to round-off.
+const ON_FACE: f64 = 1e-9;
+
+/// Moreau-Jean with rotations, on a wall of any number of blocks.
+#[derive(Debug, Clone)]
+pub struct MoreauWall {
+    /// Time step (s).
+    pub dt_s: f64,
+    /// Gauss-Seidel stops when no block's velocity (its corners' for the rotation) changes in a
+    /// sweep by more than this fraction of g times the step.
+    pub tolerance: f64,
+    /// Gauss-Seidel sweeps allowed per step; steps that need more are counted in a warning.
+    pub max_sweeps: usize,
+}
+
+impl MoreauWall {
+    /// Moreau-Jean with rotations, step dt, the usual settings.
+    pub fn new(dt_s: f64) -> MoreauWall {
+        MoreauWall {
+            dt_s,
+            tolerance: 1e-12,
+            max_sweeps: 10_000,
+        }
+    }
+}
+
+/// A face of a block, by its outward normal in the block's own frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Face {
+    Top,
+    Bottom,
+    Left,
+    Right,
+}
+
+impl Face {
+    fn normal(self) -> Vector2<f64> {
+        match self {
+            Face::Top => Vector2::new(0.0, 1.0),
+            Face::Bottom => Vector2::new(0.0, -1.0),
+            Face::Left => Vector2::new(-1.0, 0.0),
+            Face::Right => Vector2::new(1.0, 0.0),
+        }
+    }
+}
+
+/// A block as a rigid body: at rest its centroid is at `rest`.
+struct Body {
+    mass: f64,
+    inertia: f64,
+    half: Vector2<f64>,
+    rest: Vector2<f64>,
+    free: bool,
+}
+
+/// Rotation by phi (counter-clockwise) of v.
+fn rotate(phi: f64, v: Vector2<f64>) -> Vector2<f64> {
+    let (s, c) = phi.sin_cos();
+    Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+/// A possible contact: the corner `corner` (signs of its offset from the centroid) of block
+/// `point` against face `face` of block `on` (`None`: the ground, the line y = 0).
+struct Candidate {
+    point: usize,
+    corner: Vector2<f64>,
+    on: Option<usize>,
+    face: Face,
+    friction: f64,
+    restitution: f64,
+    joint: JointRef,
+    /// Counts only strictly inside the face: the corner at an end of it is the other block's
+    /// candidate already (edges that line up), and one contact twice would make the contact
+    /// problem degenerate.
+    strict: bool,
+}
+
+/// Where a candidate stands this step: its gap, and the rows of its (normal, tangential)
+/// relative velocity for the corner's block and the face's block.
+struct Geometry {
+    gap: f64,
+    point_row: [Vector3<f64>; 2],
+    on_row: Option<[Vector3<f64>; 2]>,
+}
+
+/// The rows of a point's velocity along n and t for a body whose centroid is r away.
+fn rows(n: Vector2<f64>, t: Vector2<f64>, r: Vector2<f64>) -> [Vector3<f64>; 2] {
+    let row = |d: Vector2<f64>| Vector3::new(d.x, d.y, r.x * d.y - r.y * d.x);
+    [row(n), row(t)]
+}
+
+/// A candidate on the moved blocks (`q`: each block's centroid displacement and rotation), or
+/// `None` when its corner is off the face.
+fn geometry(c: &Candidate, bodies: &[Body], q: &[Vector3<f64>]) -> Option<Geometry> {
+    let centre = |i: usize| bodies[i].rest + q[i].xy();
+    let p_body = &bodies[c.point];
+    let p = centre(c.point) + rotate(q[c.point].z, c.corner.component_mul(&p_body.half));
+    let (n, t, face_point, half_length, on_row) = match c.on {
+        None => (
+            Vector2::new(0.0, 1.0),
+            Vector2::new(1.0, 0.0),
+            p.x * Vector2::x(),
+            f64::INFINITY,
+            None,
+        ),
+        Some(f) => {
+            let (body, phi) = (&bodies[f], q[f].z);
+            let n = rotate(phi, c.face.normal());
+            let t = Vector2::new(n.y, -n.x);
+            let local = c.face.normal().component_mul(&body.half);
+            let face_point = centre(f) + rotate(phi, local);
+            let along = Vector2::new(c.face.normal().y, -c.face.normal().x);
+            let half_length = along.component_mul(&body.half).abs().sum();
+            let r = p - centre(f);
+            (
+                n,
+                t,
+                face_point,
+                half_length,
+                Some(rows(n, t, r).map(|row| -row)),
+            )
+        }
+    };
+    let s = (p - face_point).dot(&t);
+    let reach = if c.strict {
+        1.0 - ON_FACE
+    } else {
+        1.0 + ON_FACE
+    };
+    if s.abs() > half_length * reach {
+        return None;
+    }
+    Some(Geometry {
+        gap: (p - face_point).dot(&n),
+        point_row: rows(n, t, p - centre(c.point)),
+        on_row,
+    })
+}
+
+/// The candidates of a wall: the corners at the ends of every horizontal joint (the upper
+/// block's on the lower's top, the lower's on the upper's bottom) and of every vertical joint
+/// (each block's corners on the other's face).
+fn candidates(sc: &Scenario) -> Vec<Candidate> {
+    let (topo, e) = (sc.topology, sc.wall.restitution.to_f64());
+    let mut out = Vec::new();
+    for (k, j) in topo.horizontal.iter().enumerate() {
+        let (upper, mu) = (j.upper.0, j.friction.to_f64());
+        let joint = JointRef::Horizontal(crate::topology::HorizontalId(k));
+        let lower = match j.lower {
+            Base::Ground => None,
+            Base::Block(b) => Some(b.0),
+        };
+        for sx in [-1.0, 1.0] {
+            out.push(Candidate {
+                point: upper,
+                corner: Vector2::new(sx, -1.0),
+                on: lower,
+                face: Face::Top,
+                friction: mu,
+                restitution: 0.0,
+                joint,
+                strict: false,
+            });
+            if let Some(l) = lower {
+                out.push(Candidate {
+                    point: l,
+                    corner: Vector2::new(sx, 1.0),
+                    on: Some(upper),
+                    face: Face::Bottom,
+                    friction: mu,
+                    restitution: 0.0,
+                    joint,
+                    strict: true,
+                });
+            }
+        }
+    }
+    for (k, j) in topo.vertical.iter().enumerate() {
+        let joint = JointRef::Vertical(VerticalId(k));
+        for sy in [-1.0, 1.0] {
+            for (point, corner, on, face, strict) in [
+                (
+                    j.left.0,
+                    Vector2::new(1.0, sy),
+                    j.right.0,
+                    Face::Left,
+                    false,
+                ),
+                (
+                    j.right.0,
+                    Vector2::new(-1.0, sy),
+                    j.left.0,
+                    Face::Right,
+                    true,
+                ),
+            ] {
+                out.push(Candidate {
+                    point,
+                    corner,
+                    on: Some(on),
+                    face,
+                    friction: 0.0,
+                    restitution: e,
+                    joint,
+                    strict,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// An active contact of one step: its candidate, geometry, Delassus block and the velocity
+/// change one unit of impulse gives each of its two bodies.
+struct Active {
+    candidate: usize,
+    geometry: Geometry,
+    delassus: Matrix2<f64>,
+    approach_m_s: f64,
+}
+
+impl Integrator for MoreauWall {
+    fn method(&self) -> &'static str {
+        "moreau"
+    }
+
+    fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
+        let dt = self.dt_s;
+        time_step(sc, dt)?;
+        let (wall, topo, settings) = (sc.wall, sc.topology, sc.settings);
+        let g = wall.g_m_s2.to_f64();
+        let bodies: Vec<Body> = wall
+            .blocks
+            .iter()
+            .zip(&topo.blocks)
+            .map(|(b, data)| {
+                let (w, h) = (b.width.to_f64(), b.height.to_f64());
+                let mass = data.mass_kg.to_f64();
+                Body {
+                    mass,
+                    inertia: mass * (w * w + h * h) / 12.0,
+                    half: Vector2::new(0.5 * w, 0.5 * h),
+                    rest: Vector2::new(b.x.to_f64() + 0.5 * w, b.y.to_f64() + 0.5 * h),
+                    free: !b.fixed,
+                }
+            })
+            .collect();
+        let n = bodies.len();
+        let candidates = candidates(sc);
+        let mut rec = Recorder::new(wall, topo, settings.history_to(), settings.log_events);
+        let on_several: Vec<String> = (0..n)
+            .filter(|&i| {
+                topo.horizontal
+                    .iter()
+                    .filter(|j| j.upper.0 == i && matches!(j.lower, Base::Block(_)))
+                    .count()
+                    > 1
+            })
+            .map(|i| wall.blocks[i].name.clone())
+            .collect();
+        if !on_several.is_empty() {
+            rec.warnings.push(Warning::IndeterminateSupport {
+                count: on_several.len(),
+                blocks: on_several.into_iter().take(5).collect(),
+            });
+        }
+        let mut q = vec![Vector3::<f64>::zeros(); n];
+        let mut v = vec![Vector3::<f64>::zeros(); n];
+        let mut gone = vec![false; n];
+        let moves = |i: usize, gone: &[bool]| bodies[i].free && !gone[i];
+        let energy_of = |i: usize, q: &[Vector3<f64>], v: &[Vector3<f64>]| {
+            let b = &bodies[i];
+            0.5 * b.mass * (v[i].x * v[i].x + v[i].y * v[i].y)
+                + 0.5 * b.inertia * v[i].z * v[i].z
+                + b.mass * g * q[i].y
+        };
+        // The base centre's horizontal displacement and velocity (what the sliding model calls
+        // u), and the rotation clockwise positive as the exact rocking engine writes it.
+        let outputs = |q: &[Vector3<f64>], v: &[Vector3<f64>]| {
+            let mut u = Vec::with_capacity(n);
+            let mut uv = Vec::with_capacity(n);
+            for i in 0..n {
+                let h = bodies[i].half.y;
+                u.push(q[i].x + h * q[i].z.sin());
+                uv.push(v[i].x + h * q[i].z.cos() * v[i].z);
+            }
+            let theta: Vec<f64> = q.iter().map(|s| -s.z).collect();
+            let omega: Vec<f64> = v.iter().map(|s| -s.z).collect();
+            (u, uv, theta, omega)
+        };
+        let record =
+            |rec: &mut Recorder, t: f64, q: &[Vector3<f64>], v: &[Vector3<f64>], row: bool| {
+                let (u, uv, theta, omega) = outputs(q, v);
+                for i in 0..n {
+                    rec.block_extremes(i, u[i].abs(), uv[i].abs());
+                    rec.rotation_extreme(i, theta[i].abs());
+                }
+                rec.joint_extremes(&u);
+                if row {
+                    rec.sample_rotating(t, &u, &uv, &theta, &omega);
+                }
+            };
+        record(&mut rec, 0.0, &q, &v, true);
+        let steps = (settings.duration_s / dt).ceil() as u64;
+        let every = settings
+            .output_dt_s
+            .map_or(u64::MAX, |o| ((o / dt).round() as u64).max(1));
+        let scale = g * dt;
+        let inv = |i: usize| {
+            Vector3::new(
+                1.0 / bodies[i].mass,
+                1.0 / bodies[i].mass,
+                1.0 / bodies[i].inertia,
+            )
+        };
+        // Impulses of the last step, per candidate (warm start).
+        let mut impulses = vec![Vector2::<f64>::zeros(); candidates.len()];
+        let mut unconverged = 0u64;
+        let mut t = 0.0;
+        for k in 1..=steps {
+            let t_mid = (k as f64 - 0.5) * dt;
+            let seg = sc.motion.segment_at(t_mid);
+            let s = t_mid - seg.t0;
+            let (a, lambda) = (seg.accel(s), seg.lambda.0 + seg.lambda.1 * s);
+            let v_start = v.clone();
+            for (i, vi) in v.iter_mut().enumerate() {
+                if moves(i, &gone) {
+                    *vi += dt * Vector3::new(-a, -g * lambda, 0.0);
+                }
+            }
+            // The contacts predicted closed at mid-step, on the blocks where they were at its
+            // start; the others lose their impulse.
+            let mut active = Vec::new();
+            for (ci, c) in candidates.iter().enumerate() {
+                let live = |i: usize| !gone[i];
+                let involved_move = moves(c.point, &gone) || c.on.is_some_and(|f| moves(f, &gone));
+                let found = (live(c.point) && c.on.is_none_or(live) && involved_move)
+                    .then(|| geometry(c, &bodies, &q))
+                    .flatten();
+                let Some(geometry) = found else {
+                    impulses[ci] = Vector2::zeros();
+                    continue;
+                };
+                let relative = |w: &[Vector3<f64>]| {
+                    let mut u = Vector2::new(
+                        geometry.point_row[0].dot(&w[c.point]),
+                        geometry.point_row[1].dot(&w[c.point]),
+                    );
+                    if let (Some(f), Some(r)) = (c.on, geometry.on_row) {
+                        u += Vector2::new(r[0].dot(&w[f]), r[1].dot(&w[f]));
+                    }
+                    u
+                };
+                let before = relative(&v_start);
+                if geometry.gap + 0.5 * dt * before.x > 0.0 {
+                    impulses[ci] = Vector2::zeros();
+                    continue;
+                }
+                let mut delassus = Matrix2::zeros();
+                let mut add = |body: usize, r: &[Vector3<f64>; 2]| {
+                    if moves(body, &gone) {
+                        let m = inv(body);
+                        for a in 0..2 {
+                            for b in 0..2 {
+                                delassus[(a, b)] += r[a].component_mul(&m).dot(&r[b]);
+                            }
+                        }
+                    }
+                };
+                add(c.point, &geometry.point_row);
+                if let (Some(f), Some(r)) = (c.on, &geometry.on_row) {
+                    add(f, r);
+                }
+                active.push(Active {
+                    candidate: ci,
+                    geometry,
+                    delassus,
+                    approach_m_s: before.x,
+                });
+            }
+            // Warm start: the last step's impulses of the contacts still active.
+            let apply = |v: &mut [Vector3<f64>], act: &Active, p: Vector2<f64>| {
+                let c = &candidates[act.candidate];
+                if moves(c.point, &gone) {
+                    let r = &act.geometry.point_row;
+                    v[c.point] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(c.point));
+                }
+                if let (Some(f), Some(r)) = (c.on, &act.geometry.on_row) {
+                    if moves(f, &gone) {
+                        v[f] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(f));
+                    }
+                }
+            };
+            for act in &active {
+                apply(&mut v, act, impulses[act.candidate]);
+            }
+            let mut converged = active.is_empty();
+            let mut sweep_start = v.clone();
+            for _ in 0..self.max_sweeps {
+                if converged {
+                    break;
+                }
+                sweep_start.copy_from_slice(&v);
+                for act in &active {
+                    let c = &candidates[act.candidate];
+                    let geo = &act.geometry;
+                    let mut u = Vector2::new(
+                        geo.point_row[0].dot(&v[c.point]),
+                        geo.point_row[1].dot(&v[c.point]),
+                    );
+                    if let (Some(f), Some(r)) = (c.on, &geo.on_row) {
+                        u += Vector2::new(r[0].dot(&v[f]), r[1].dot(&v[f]));
+                    }
+                    let w = &act.delassus;
+                    let p = impulses[act.candidate];
+                    // Newton's law at velocity level (u_n after >= -e u_n before), then Coulomb
+                    // with the new normal impulse.
+                    let target = -c.restitution * act.approach_m_s.min(0.0);
+                    let pn = (p.x - (u.x - target) / w[(0, 0)]).max(0.0);
+                    let ut = u.y + w[(1, 0)] * (pn - p.x);
+                    let pt = if c.friction > 0.0 {
+                        (p.y - ut / w[(1, 1)]).clamp(-c.friction * pn, c.friction * pn)
+                    } else {
+                        0.0
+                    };
+                    let new = Vector2::new(pn, pt);
+                    apply(&mut v, act, new - p);
+                    impulses[act.candidate] = new;
+                }
+                // The blocks' velocities, not the impulses: those of redundant contacts (a
+                // block on two others, two corners at one point) may trade load among
+                // themselves without end once the velocities have converged.
+                let change = v
+                    .iter()
+                    .zip(&sweep_start)
+                    .zip(&bodies)
+                    .map(|((a, b), body)| {
+                        let d = a - b;
+                        d.x.abs().max(d.y.abs()).max(d.z.abs() * body.half.norm())
+                    })
+                    .fold(0.0, f64::max);
+                converged = change <= self.tolerance * scale;
+            }
+            if !converged {
+                unconverged += 1;
+            }
+            // A vertical joint whose faces met approaching (one impact, however many of its
+            // corners took part).
+            let mut struck: Vec<VerticalId> = Vec::new();
+            for act in &active {
+                let c = &candidates[act.candidate];
+                if let JointRef::Vertical(j) = c.joint {
+                    if act.approach_m_s < -IMPACT_SPEED_M_S
+                        && impulses[act.candidate].x > 0.0
+                        && !struck.contains(&j)
+                    {
+                        struck.push(j);
+                    }
+                }
+            }
+            for j in struck {
+                let (l, r) = (topo.vertical[j.0].left.0, topo.vertical[j.0].right.0);
+                rec.impact(t, j, [v_start[l].x, v_start[r].x], [v[l].x, v[r].x]);
+            }
+            for i in 0..n {
+                if !moves(i, &gone) {
+                    v[i] = Vector3::zeros();
+                    continue;
+                }
+                let dq = 0.5 * dt * (v_start[i] + v[i]);
+                let m = bodies[i].mass;
+                // Work of the ground's inertial force and of the vertical motion's extra weight.
+                rec.energy.input_j += -m * a * dq.x - m * g * (lambda - 1.0) * dq.y;
+                q[i] += dq;
+            }
+            t = k as f64 * dt;
+            rec.stats.steps += 1;
+            let mut fell_now = false;
+            for i in 0..n {
+                if !moves(i, &gone) {
+                    continue;
+                }
+                let b = &bodies[i];
+                if q[i].z.abs() * b.half.x.max(b.half.y) > UPLIFT_M {
+                    rec.uplift(i, t - dt);
+                }
+                // Overturned, or dropped by half its height: it left what carried it.
+                if q[i].z.abs() >= std::f64::consts::FRAC_PI_2 || q[i].y < -b.half.y {
+                    let tipped = q[i].z.abs() >= b.half.x.atan2(b.half.y);
+                    rec.fell(i);
+                    rec.energy.fallen_j += energy_of(i, &q, &v);
+                    gone[i] = true;
+                    fell_now = true;
+                    if rec.collapse.is_none() {
+                        rec.collapse = Some(Collapse {
+                            time_s: t,
+                            block: wall.blocks[i].name.clone(),
+                            cause: if tipped {
+                                CollapseCause::Overturning
+                            } else {
+                                CollapseCause::SlidingOff
+                            },
+                        });
+                    }
+                }
+            }
+            record(&mut rec, t, &q, &v, k % every == 0 || fell_now);
+            if fell_now && settings.after_collapse == AfterCollapse::Stop {
+                break;
+            }
+        }
+        for i in (0..n).filter(|&i| moves(i, &gone)) {
+            let b = &bodies[i];
+            rec.energy.kinetic_j += 0.5 * b.mass * (v[i].x * v[i].x + v[i].y * v[i].y)
+                + 0.5 * b.inertia * v[i].z * v[i].z;
+            rec.energy.potential_j += b.mass * g * q[i].y;
+        }
+        // What the contacts took: the rest of the balance (friction and landings together,
+        // which time stepping does not tell apart).
+        let e = &mut rec.energy;
+        e.friction_j = e.initial_j + e.input_j - e.kinetic_j - e.potential_j - e.fallen_j;
+        rec.stats.unconverged_steps = unconverged;
+        if unconverged > 0 {
+            rec.warnings.push(Warning::Unconverged {
+                steps: unconverged,
+                sweeps: self.max_sweeps,
+            });
+        }
+        let (u, uv, _, _) = outputs(&q, &v);
+        let motion = sc.motion.describe();
+        let mut r = rec.finish("moreau", &wall.name, motion, t, &u, &uv);
+        r.summary.model = ModelUsed {
+            name: "slide-rock".into(),
+            equations: Some("moreau-jean".into()),
+            direction: "in-plane".into(),
+            why: "asked for (--model slide-rock --method moreau)".into(),
+        };
+        Ok(r)
+    }
+}
