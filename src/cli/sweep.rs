@@ -5,6 +5,7 @@
 use super::write_file;
 use indicatif::{ProgressBar, ProgressStyle};
 use pirqa::study::sweep::analysis::{analyse, Report};
+use pirqa::study::sweep::merge;
 use pirqa::study::sweep::shard::{self, Shard};
 use pirqa::study::sweep::store::{Existing, Store};
 use pirqa::study::sweep::Sweep;
@@ -202,8 +203,8 @@ fn run_shard(sweep: &Sweep, shard: Shard, out: &Path, existing: Existing) -> Res
 }
 
 /// Merges the parts in `dir` and writes the sweep's report.
-fn merge(dir: &Path, sweep_file: Option<&Path>) -> Result<(), Error> {
-    let merged = shard::merge(dir, sweep_file)?;
+fn merge_parts(dir: &Path, sweep_file: Option<&Path>) -> Result<(), Error> {
+    let merged = merge::merge(dir, sweep_file)?;
     analyse(&merged.sweep, &merged.rows).write(dir)?;
     eprintln!(
         "{}: {} cases merged from {} into {}",
@@ -217,7 +218,7 @@ fn merge(dir: &Path, sweep_file: Option<&Path>) -> Result<(), Error> {
 
 pub fn run(args: &SweepArgs) -> Result<(), Error> {
     if let Some(SweepCommand::Merge { dir, sweep }) = &args.command {
-        return merge(dir, sweep.as_deref());
+        return merge_parts(dir, sweep.as_deref());
     }
     let file = args
         .file

@@ -3,7 +3,9 @@
 //! CSV lines the store writes, so that a float comes back to the bit and a batch pickles as
 //! three strings.
 
-use super::store::{BlockRow, CaseRow, TimingRow, BLOCKS_HEADER, CASES_HEADER, TIMING_HEADER};
+use super::store::{
+    BlockRow, CaseRow, Store, TimingRow, BLOCKS_HEADER, CASES_HEADER, TIMING_HEADER,
+};
 use super::Sweep;
 use crate::error::Error;
 use crate::table;
@@ -74,6 +76,21 @@ impl Batch {
                 Ok((row, blocks))
             })
             .collect()
+    }
+}
+
+impl Store {
+    /// Stores the finished cases of a batch run elsewhere.
+    pub fn append_batch(&mut self, batch: &Batch) -> Result<(), Error> {
+        let done = self.done();
+        for (row, blocks) in batch.rows(self.dir())? {
+            // A case stored already (an executor that ran a task twice) is kept as it was: its
+            // rows do not depend on where it ran.
+            if !done.contains(&row.case) {
+                self.append(row, blocks)?;
+            }
+        }
+        Ok(())
     }
 }
 

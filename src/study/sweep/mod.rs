@@ -5,6 +5,7 @@
 
 pub mod analysis;
 pub mod batch;
+pub mod merge;
 pub mod shard;
 pub mod store;
 

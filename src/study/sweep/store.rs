@@ -271,6 +271,11 @@ impl Store {
         check_complete(&paths.cases, rows, sweep, None, "--resume")
     }
 
+    /// The folder it writes.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
     /// Cases already finished.
     pub fn done(&self) -> HashSet<usize> {
         self.rows.iter().map(|r| r.case).collect()
@@ -298,19 +303,6 @@ impl Store {
         append(&mut self.cases, &paths.cases, &table::line(&row))?;
         self.rows.push(row);
         self.block_rows.extend(blocks);
-        Ok(())
-    }
-
-    /// Stores the finished cases of a batch run elsewhere.
-    pub fn append_batch(&mut self, batch: &super::batch::Batch) -> Result<(), Error> {
-        let done = self.done();
-        for (row, blocks) in batch.rows(&self.dir)? {
-            // A case stored already (an executor that ran a task twice) is kept as it was: its
-            // rows do not depend on where it ran.
-            if !done.contains(&row.case) {
-                self.append(row, blocks)?;
-            }
-        }
         Ok(())
     }
 
