@@ -257,3 +257,25 @@ pub fn draw(
     eprintln!("wrote {}", output.display());
     Ok(())
 }
+
+/// Writes the page that plays the run saved in `dir` back (`pirqa animate`).
+pub fn animate(dir: &Path, output: &Path, wall_file: Option<&Path>) -> Result<(), pirqa::Error> {
+    let wall_file = wall_file.map_or_else(|| dir.join("wall.ron"), Path::to_path_buf);
+    let (wall, _) = topology::load(&wall_file)?;
+    // The summary's wall must be this one (state_at checks it), the history must be there.
+    pirqa::response::saved::state_at(dir, &wall, None)?;
+    let names: Vec<String> = wall.blocks.iter().map(|b| b.name.clone()).collect();
+    let history = pirqa::response::saved::history(dir, &names)?;
+    let ground = pirqa::response::saved::ground_acceleration(dir)?;
+    let events = pirqa::response::saved::events(dir)?;
+    let title = format!("{}: {}", wall.name, dir.display());
+    let page = pirqa::plot::animation::html(&wall, &title, &history, &ground, &events);
+    write_file(output, &page)?;
+    eprintln!(
+        "wrote {} ({} samples, {} events)",
+        output.display(),
+        history.time_s.len(),
+        events.len()
+    );
+    Ok(())
+}

@@ -76,6 +76,19 @@ enum Command {
         #[arg(long, value_name = "T", requires = "run")]
         at: Option<f64>,
     },
+    /// Play a saved run back: one self-contained HTML page with the blocks moving (and
+    /// rotating), a time slider, play/pause, a magnification, and the ground acceleration with
+    /// the run's events.
+    Animate {
+        /// The output directory of `pirqa run` (it needs history.csv).
+        dir: PathBuf,
+        /// Output HTML file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// The wall file the run was made on (default: DIR/wall.ron, which `pirqa run` writes).
+        #[arg(long)]
+        wall: Option<PathBuf>,
+    },
     /// Simulate a wall under a ground motion with the exact event-driven integrator.
     Run(Box<run::RunArgs>),
     /// Ground motions: measures of a record, synthetic motions.
@@ -119,6 +132,7 @@ pub fn run() -> Result<(), pirqa::Error> {
             run,
             at,
         } => check::draw(&wall, &output, graph, run.as_deref().map(|d| (d, at))),
+        Command::Animate { dir, output, wall } => check::animate(&dir, &output, wall.as_deref()),
         Command::Run(args) => {
             if args.decisions && args.method != run::Method::Event {
                 Cli::command()

@@ -302,7 +302,7 @@ pub struct RunArgs {
     /// Simulated time (s); default: the sine's duration is required, a record's length.
     #[arg(long, value_name = "S")]
     pub duration: Option<f64>,
-    /// Directory for summary.json, history.csv and events.jsonl.
+    /// Directory for summary.json, history.csv, events.jsonl and wall.ron (the wall run).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Also write decisions.jsonl (event-driven only): every mode decision with what brought
@@ -459,6 +459,10 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     let mut response = response?;
     response.summary.motion_processing = notes;
     if let Some(dir) = &args.out {
+        // The wall beside its run, so that the folder alone draws and plays it again
+        // (`pirqa animate DIR`).
+        let text = pirqa::text::read(&args.wall, "wall")?;
+        write_file(&dir.join("wall.ron"), &text)?;
         write_outputs(dir, &response, &motion)?;
     }
     if let Some(path) = &args.summary {
@@ -642,6 +646,7 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
             history.then_some("response.csv"),
             Some("events.jsonl"),
             (!r.decisions.is_empty()).then_some("decisions.jsonl"),
+            Some("wall.ron"),
         ]
         .into_iter()
         .flatten()

@@ -1,6 +1,7 @@
-//! Pictures: wall elevations (initial, displaced, collapsed) written as plain SVG, charts, and
-//! the chart of a run.
+//! Pictures: wall elevations (initial, displaced, collapsed) written as plain SVG, charts, the
+//! chart of a run, and a run played back as an HTML page.
 
+pub mod animation;
 pub mod chart;
 mod response_chart;
 mod svg;

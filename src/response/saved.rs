@@ -110,6 +110,50 @@ pub fn state_at(dir: &Path, wall: &Wall, at_s: Option<f64>) -> Result<SavedState
 
 /// The last row of history.csv at or before `t`: its time and the named blocks' u.
 fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>), Error> {
+    let mut found = None;
+    each_row(path, names, |time, u, _| {
+        if time > t {
+            return false;
+        }
+        found = Some((time, u));
+        true
+    })?;
+    found.ok_or_else(|| table(path, 2, format!("no sample at or before t = {t} s")))
+}
+
+/// A saved run's history: every row's time, the named blocks' u and, when the run rotated
+/// blocks, their rotations.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SavedHistory {
+    /// Times (s).
+    pub time_s: Vec<f64>,
+    /// u per row, per block (m).
+    pub displacement_m: Vec<Vec<f64>>,
+    /// theta per row, per block (rad, clockwise positive); empty when nothing rotated.
+    pub rotation_rad: Vec<Vec<f64>>,
+}
+
+/// Reads the whole history.csv of the run in `dir`, for the blocks `names`.
+pub fn history(dir: &Path, names: &[String]) -> Result<SavedHistory, Error> {
+    let mut h = SavedHistory::default();
+    each_row(&dir.join("history.csv"), names, |time, u, theta| {
+        h.time_s.push(time);
+        h.displacement_m.push(u);
+        if let Some(theta) = theta {
+            h.rotation_rad.push(theta);
+        }
+        true
+    })?;
+    Ok(h)
+}
+
+/// Hands each row of a history.csv to `row` (time, the named blocks' u, their rotations when
+/// the file has them) until it returns false.
+fn each_row(
+    path: &Path,
+    names: &[String],
+    mut row: impl FnMut(f64, Vec<f64>, Option<Vec<f64>>) -> bool,
+) -> Result<(), Error> {
     if !path.exists() {
         return Err(table(
             path,
@@ -129,20 +173,23 @@ fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>), 
     if header.get(0) != Some("time_s") {
         return Err(table(path, 1, "the header must start with time_s".into()));
     }
+    let column = |name: String| header.iter().position(|h| h == name);
     let columns = names
         .iter()
         .map(|n| {
-            let col = format!("u_{n}_m");
-            header.iter().position(|h| h == col).ok_or_else(|| {
+            column(format!("u_{n}_m")).ok_or_else(|| {
                 table(
                     path,
                     1,
-                    format!("no column {col}: was the run made on this wall?"),
+                    format!("no column u_{n}_m: was the run made on this wall?"),
                 )
             })
         })
         .collect::<Result<Vec<usize>, Error>>()?;
-    let mut found = None;
+    let rotations: Option<Vec<usize>> = names
+        .iter()
+        .map(|n| column(format!("theta_{n}_rad")))
+        .collect();
     for record in reader.records() {
         let record = record.map_err(|e| {
             let line = e.position().map_or(0, |p| p.line() as usize);
@@ -159,15 +206,16 @@ fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>), 
             })
         };
         let time = num(0)?;
-        if time > t {
+        let u = columns.iter().map(|&c| num(c)).collect::<Result<_, _>>()?;
+        let theta = match &rotations {
+            Some(cols) => Some(cols.iter().map(|&c| num(c)).collect::<Result<_, _>>()?),
+            None => None,
+        };
+        if !row(time, u, theta) {
             break;
         }
-        found = Some((
-            time,
-            columns.iter().map(|&c| num(c)).collect::<Result<_, _>>()?,
-        ));
     }
-    found.ok_or_else(|| table(path, 2, format!("no sample at or before t = {t} s")))
+    Ok(())
 }
 
 /// Which blocks had fallen by `t`: from the collapse events of events.jsonl, or, for a run
@@ -201,4 +249,63 @@ fn fallen_by(
         .iter()
         .map(|n| fell.iter().any(|(time, b)| b == n && *time <= t))
         .collect())
+}
+
+/// The events of the run saved in `dir` (events.jsonl, empty when the run kept none): time,
+/// kind and what it concerns (its joint, else its blocks).
+pub fn events(dir: &Path) -> Result<Vec<(f64, String, String)>, Error> {
+    let log = dir.join("events.jsonl");
+    if !log.exists() {
+        return Ok(Vec::new());
+    }
+    read(&log)?
+        .lines()
+        .enumerate()
+        .map(|(k, line)| {
+            let e: serde_json::Value = serde_json::from_str(line)
+                .map_err(|e| table(&log, k + 1, format!("not an event: {e}")))?;
+            let what = e["joint"].as_str().map(String::from).unwrap_or_else(|| {
+                let blocks = e["blocks"].as_array().into_iter().flatten();
+                blocks
+                    .filter_map(|b| b.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            });
+            Ok((
+                e["time_s"].as_f64().unwrap_or(0.0),
+                e["kind"].as_str().unwrap_or("event").to_string(),
+                what,
+            ))
+        })
+        .collect()
+}
+
+/// The ground acceleration the run's chart drew (response.csv, series "ground acceleration"):
+/// (t in s, a in m/s2); empty when the run drew no chart.
+pub fn ground_acceleration(dir: &Path) -> Result<Vec<(f64, f64)>, Error> {
+    let path = dir.join("response.csv");
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let text = read(&path)?;
+    let mut reader = csv::ReaderBuilder::new().from_reader(text.as_bytes());
+    let mut out = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, |p| p.line() as usize);
+            table(&path, line, e.to_string())
+        })?;
+        if record.get(0) != Some("ground acceleration") {
+            continue;
+        }
+        let num = |i: usize| record.get(i).and_then(|f| f.parse::<f64>().ok());
+        match (num(2), num(3)) {
+            (Some(t), Some(a)) => out.push((t, a)),
+            _ => {
+                let line = record.position().map_or(0, |p| p.line() as usize);
+                return Err(table(&path, line, "x and y must be numbers".into()));
+            }
+        }
+    }
+    Ok(out)
 }
