@@ -15,11 +15,19 @@ const CHROMIUM: &str = "/usr/bin/chromium";
 /// need).
 fn chromium() -> &'static str {
     if !Path::new(CHROMIUM).exists() {
-        let out = Command::new("apt-get")
-            .args(["install", "-y", "-q", "chromium"])
-            .env("DEBIAN_FRONTEND", "noninteractive")
-            .output()
-            .expect("apt-get runs");
+        let install = || {
+            Command::new("apt-get")
+                .args(["install", "-y", "-q", "chromium"])
+                .env("DEBIAN_FRONTEND", "noninteractive")
+                .output()
+                .expect("apt-get runs")
+        };
+        let mut out = install();
+        if !out.status.success() {
+            // A machine whose package lists are old or absent: read them, then try again.
+            let _ = Command::new("apt-get").args(["update", "-q"]).output();
+            out = install();
+        }
         assert!(
             out.status.success() && Path::new(CHROMIUM).exists(),
             "installing Debian's chromium failed (the browser test needs it, as root): {}",
