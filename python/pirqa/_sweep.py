@@ -105,6 +105,11 @@ def sweep(
     """
     if resume and fresh:
         raise _option("resume", "give resume or fresh, not both")
+    if (resume or fresh) and out is None:
+        raise _option("resume" if resume else "fresh", "it concerns a folder: give out=")
+    if threads is not None and executor is not None:
+        raise _option("threads", "the executor's workers run the cases: leave threads out, or "
+                      "the executor (threads are for a sweep in this process)")
     if batch_size is not None and batch_size < 1:
         raise _option("batch_size", f"{batch_size}: give at least 1 case per task")
     path = str(Path(spec).resolve())

@@ -126,6 +126,11 @@ def test_an_existing_folder_is_refused_and_bad_options_named(spec, serial):
         pirqa.sweep(spec, out=serial[0])
     with pytest.raises(pirqa.OptionError, match="batch_size"):
         pirqa.sweep(spec, batch_size=0)
+    with pytest.raises(pirqa.OptionError, match="give out="):
+        pirqa.sweep(spec, resume=True)
+    with pytest.raises(pirqa.OptionError, match="threads"):
+        with ProcessPoolExecutor(max_workers=1) as pool:
+            pirqa.sweep(spec, pool, threads=2)
     with pytest.raises(pirqa.SweepError, match="line 1"):
         bad = serial[0].parent / "bad.ron"
         bad.write_text("(version: 1, name: 3)")
