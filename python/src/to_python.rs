@@ -243,49 +243,28 @@ impl<'py> ser::Serializer for Builder<'py> {
     }
 }
 
-impl<'py> ser::SerializeSeq for Seq<'py> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = Failure;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), Failure> {
-        self.push(v)
-    }
-    fn end(self) -> Out<'py> {
-        self.done()
-    }
+/// The sequence kinds serde tells apart, all lists here: each hands its items to [`Seq::push`].
+macro_rules! list {
+    ($($kind:ident :: $method:ident),*) => {$(
+        impl<'py> ser::$kind for Seq<'py> {
+            type Ok = Bound<'py, PyAny>;
+            type Error = Failure;
+            fn $method<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), Failure> {
+                self.push(v)
+            }
+            fn end(self) -> Out<'py> {
+                self.done()
+            }
+        }
+    )*};
 }
 
-impl<'py> ser::SerializeTuple for Seq<'py> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = Failure;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), Failure> {
-        self.push(v)
-    }
-    fn end(self) -> Out<'py> {
-        self.done()
-    }
-}
-
-impl<'py> ser::SerializeTupleStruct for Seq<'py> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = Failure;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), Failure> {
-        self.push(v)
-    }
-    fn end(self) -> Out<'py> {
-        self.done()
-    }
-}
-
-impl<'py> ser::SerializeTupleVariant for Seq<'py> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = Failure;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), Failure> {
-        self.push(v)
-    }
-    fn end(self) -> Out<'py> {
-        self.done()
-    }
-}
+list!(
+    SerializeSeq::serialize_element,
+    SerializeTuple::serialize_element,
+    SerializeTupleStruct::serialize_field,
+    SerializeTupleVariant::serialize_field
+);
 
 impl<'py> Map<'py> {
     fn field<T: Serialize + ?Sized>(&mut self, key: &str, v: &T) -> Result<(), Failure> {
@@ -317,32 +296,24 @@ impl<'py> ser::SerializeMap for Map<'py> {
     }
 }
 
-impl<'py> ser::SerializeStruct for Map<'py> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = Failure;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        v: &T,
-    ) -> Result<(), Failure> {
-        self.field(key, v)
-    }
-    fn end(self) -> Out<'py> {
-        self.done()
-    }
+/// Structs and struct variants, both dicts here: each hands its fields to [`Map::field`].
+macro_rules! dict {
+    ($($kind:ident),*) => {$(
+        impl<'py> ser::$kind for Map<'py> {
+            type Ok = Bound<'py, PyAny>;
+            type Error = Failure;
+            fn serialize_field<T: Serialize + ?Sized>(
+                &mut self,
+                key: &'static str,
+                v: &T,
+            ) -> Result<(), Failure> {
+                self.field(key, v)
+            }
+            fn end(self) -> Out<'py> {
+                self.done()
+            }
+        }
+    )*};
 }
 
-impl<'py> ser::SerializeStructVariant for Map<'py> {
-    type Ok = Bound<'py, PyAny>;
-    type Error = Failure;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        v: &T,
-    ) -> Result<(), Failure> {
-        self.field(key, v)
-    }
-    fn end(self) -> Out<'py> {
-        self.done()
-    }
-}
+dict!(SerializeStruct, SerializeStructVariant);

@@ -5,7 +5,7 @@
 //! the state drawn is also written, as JSON, into the page's `#state` element, which is how the
 //! tests read what a browser drew.
 
-use crate::response::saved::SavedHistory;
+use crate::response::saved::{SavedEvent, SavedHistory};
 use crate::wall::Wall;
 use serde::Serialize;
 
@@ -28,18 +28,17 @@ struct Data<'a> {
     u_m: &'a [Vec<f64>],
     theta_rad: &'a [Vec<f64>],
     ground: &'a [(f64, f64)],
-    events: &'a [(f64, String, String)],
+    events: Vec<(f64, &'a str, String)>,
     fell_s: Vec<Option<f64>>,
 }
 
-/// The page for `wall`'s run: its history, the ground acceleration (t, m/s2) and its events
-/// (t, kind, what).
+/// The page for `wall`'s run: its history, the ground acceleration (t, m/s2) and its events.
 pub fn html(
     wall: &Wall,
     title: &str,
     history: &SavedHistory,
     ground: &[(f64, f64)],
-    events: &[(f64, String, String)],
+    events: &[SavedEvent],
 ) -> String {
     let blocks = wall
         .blocks
@@ -57,8 +56,16 @@ pub fn html(
         .map(|b| {
             events
                 .iter()
-                .find(|(_, kind, what)| kind == "collapse" && what.split(", ").any(|n| n == b.name))
-                .map(|e| e.0)
+                .find(|e| e.kind == "collapse" && e.blocks.contains(&b.name))
+                .map(|e| e.time_s)
+        })
+        .collect();
+    // Each event as (t, kind, what it concerns: its joint, else its blocks).
+    let events = events
+        .iter()
+        .map(|e| {
+            let what = e.joint.clone().unwrap_or_else(|| e.blocks.join(", "));
+            (e.time_s, e.kind.as_str(), what)
         })
         .collect();
     let data = Data {

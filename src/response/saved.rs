@@ -227,17 +227,9 @@ fn fallen_by(
     t: f64,
 ) -> Result<Vec<bool>, Error> {
     let mut fell: Vec<(f64, String)> = Vec::new();
-    let log = dir.join("events.jsonl");
-    if log.exists() {
-        for (k, line) in read(&log)?.lines().enumerate() {
-            let e: serde_json::Value = serde_json::from_str(line)
-                .map_err(|e| table(&log, k + 1, format!("not an event: {e}")))?;
-            if e["kind"] == "collapse" {
-                let time = e["time_s"].as_f64().unwrap_or(f64::INFINITY);
-                for b in e["blocks"].as_array().into_iter().flatten() {
-                    fell.push((time, b.as_str().unwrap_or_default().to_string()));
-                }
-            }
+    if dir.join("events.jsonl").exists() {
+        for e in events(dir)?.into_iter().filter(|e| e.kind == "collapse") {
+            fell.extend(e.blocks.into_iter().map(|b| (e.time_s, b)));
         }
     } else if let (Some(time), Some(b)) = (
         summary["collapse"]["time_s"].as_f64(),
@@ -251,9 +243,21 @@ fn fallen_by(
         .collect())
 }
 
-/// The events of the run saved in `dir` (events.jsonl, empty when the run kept none): time,
-/// kind and what it concerns (its joint, else its blocks).
-pub fn events(dir: &Path) -> Result<Vec<(f64, String, String)>, Error> {
+/// An event of a saved run, as events.jsonl gives it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SavedEvent {
+    /// Time (s).
+    pub time_s: f64,
+    /// What happened (`slip`, `impact`, `collapse`, ...).
+    pub kind: String,
+    /// Blocks involved.
+    pub blocks: Vec<String>,
+    /// The joint, when one is involved.
+    pub joint: Option<String>,
+}
+
+/// The events of the run saved in `dir` (events.jsonl; none when the run kept no log).
+pub fn events(dir: &Path) -> Result<Vec<SavedEvent>, Error> {
     let log = dir.join("events.jsonl");
     if !log.exists() {
         return Ok(Vec::new());
@@ -264,18 +268,15 @@ pub fn events(dir: &Path) -> Result<Vec<(f64, String, String)>, Error> {
         .map(|(k, line)| {
             let e: serde_json::Value = serde_json::from_str(line)
                 .map_err(|e| table(&log, k + 1, format!("not an event: {e}")))?;
-            let what = e["joint"].as_str().map(String::from).unwrap_or_else(|| {
-                let blocks = e["blocks"].as_array().into_iter().flatten();
-                blocks
-                    .filter_map(|b| b.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            });
-            Ok((
-                e["time_s"].as_f64().unwrap_or(0.0),
-                e["kind"].as_str().unwrap_or("event").to_string(),
-                what,
-            ))
+            let blocks = e["blocks"].as_array().into_iter().flatten();
+            Ok(SavedEvent {
+                time_s: e["time_s"].as_f64().unwrap_or(f64::INFINITY),
+                kind: e["kind"].as_str().unwrap_or("event").to_string(),
+                blocks: blocks
+                    .filter_map(|b| b.as_str().map(String::from))
+                    .collect(),
+                joint: e["joint"].as_str().map(String::from),
+            })
         })
         .collect()
 }
@@ -283,29 +284,20 @@ pub fn events(dir: &Path) -> Result<Vec<(f64, String, String)>, Error> {
 /// The ground acceleration the run's chart drew (response.csv, series "ground acceleration"):
 /// (t in s, a in m/s2); empty when the run drew no chart.
 pub fn ground_acceleration(dir: &Path) -> Result<Vec<(f64, f64)>, Error> {
+    #[derive(serde::Deserialize)]
+    struct Point {
+        chart: String,
+        x: f64,
+        y: f64,
+    }
     let path = dir.join("response.csv");
     if !path.exists() {
         return Ok(Vec::new());
     }
-    let text = read(&path)?;
-    let mut reader = csv::ReaderBuilder::new().from_reader(text.as_bytes());
-    let mut out = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| {
-            let line = e.position().map_or(0, |p| p.line() as usize);
-            table(&path, line, e.to_string())
-        })?;
-        if record.get(0) != Some("ground acceleration") {
-            continue;
-        }
-        let num = |i: usize| record.get(i).and_then(|f| f.parse::<f64>().ok());
-        match (num(2), num(3)) {
-            (Some(t), Some(a)) => out.push((t, a)),
-            _ => {
-                let line = record.position().map_or(0, |p| p.line() as usize);
-                return Err(table(&path, line, "x and y must be numbers".into()));
-            }
-        }
-    }
-    Ok(out)
+    let points: Vec<Point> = crate::table::read_rows(&path, &read(&path)?, &["chart", "x", "y"])?;
+    Ok(points
+        .into_iter()
+        .filter(|p| p.chart == "ground acceleration")
+        .map(|p| (p.x, p.y))
+        .collect())
 }

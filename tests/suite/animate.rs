@@ -67,15 +67,8 @@ fn browse(profile: &Path, args: &[&str], url: &str) -> String {
 }
 
 fn pirqa(args: &[&str]) {
-    let out = Command::new(env!("CARGO_BIN_EXE_pirqa"))
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (code, _, err) = common::pirqa(args, &[]);
+    assert_eq!(code, 0, "{args:?}: {err}");
 }
 
 /// The state the page drew, read from its `#state` element after the page ran: the JSON, and
@@ -194,28 +187,17 @@ fn runs_it_cannot_play_are_refused() {
         d,
         "--no-history",
     ]);
-    let out = Command::new(env!("CARGO_BIN_EXE_pirqa"))
-        .args(["animate", d, "-o", base.join("x.html").to_str().unwrap()])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{err}");
+    let page = base.join("x.html");
+    let page = page.to_str().unwrap();
+    let (code, _, err) = common::pirqa(&["animate", d, "-o", page], &[]);
+    assert_eq!(code, 1, "{err}");
     assert!(
         err.contains("history.csv") && err.contains("--no-history"),
         "{err}"
     );
-    let out = Command::new(env!("CARGO_BIN_EXE_pirqa"))
-        .args([
-            "animate",
-            d,
-            "-o",
-            base.join("x.html").to_str().unwrap(),
-            "--wall",
-            "walls/five-block-uniform.ron",
-        ])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
+    let other = ["--wall", "walls/five-block-uniform.ron"];
+    let (code, _, err) = common::pirqa(&["animate", d, "-o", page, other[0], other[1]], &[]);
+    assert_eq!(code, 1, "{err}");
     assert!(
         err.contains("not of \"Five-block wall, uniform friction\""),
         "{err}"

@@ -8,15 +8,7 @@ const WALL: &str = "walls/five-block-variable.ron";
 
 /// Runs pirqa; returns (exit code, stdout, stderr).
 fn pirqa(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_pirqa"))
-        .args(args)
-        .output()
-        .expect("pirqa runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    common::pirqa(args, &[])
 }
 
 /// A refused input: exit code 1 (not a panic's 101) and a message holding `says`.

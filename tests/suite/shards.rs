@@ -6,16 +6,10 @@ use crate::common;
 use std::path::Path;
 use std::process::Command;
 
+/// (exit code, stderr).
 fn pirqa(args: &[&str], env: &[(&str, &str)]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_pirqa"))
-        .args(args)
-        .envs(env.iter().copied())
-        .output()
-        .expect("pirqa runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let (code, _, err) = common::pirqa(args, env);
+    (code, err)
 }
 
 fn ok(args: &[&str], env: &[(&str, &str)]) {

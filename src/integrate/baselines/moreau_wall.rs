@@ -112,6 +112,18 @@ struct Geometry {
     on_row: Option<[Vector3<f64>; 2]>,
 }
 
+impl Geometry {
+    /// The contact's (normal, tangential) relative velocity when the blocks move at `v`.
+    fn velocity(&self, c: &Candidate, v: &[Vector3<f64>]) -> Vector2<f64> {
+        let rows = |r: &[Vector3<f64>; 2], w: &Vector3<f64>| Vector2::new(r[0].dot(w), r[1].dot(w));
+        let mut u = rows(&self.point_row, &v[c.point]);
+        if let (Some(f), Some(r)) = (c.on, &self.on_row) {
+            u += rows(r, &v[f]);
+        }
+        u
+    }
+}
+
 /// The rows of a point's velocity along n and t for a body whose centroid is r away.
 fn rows(n: Vector2<f64>, t: Vector2<f64>, r: Vector2<f64>) -> [Vector3<f64>; 2] {
     let row = |d: Vector2<f64>| Vector3::new(d.x, d.y, r.x * d.y - r.y * d.x);
@@ -370,17 +382,7 @@ impl Integrator for MoreauWall {
                     impulses[ci] = Vector2::zeros();
                     continue;
                 };
-                let relative = |w: &[Vector3<f64>]| {
-                    let mut u = Vector2::new(
-                        geometry.point_row[0].dot(&w[c.point]),
-                        geometry.point_row[1].dot(&w[c.point]),
-                    );
-                    if let (Some(f), Some(r)) = (c.on, geometry.on_row) {
-                        u += Vector2::new(r[0].dot(&w[f]), r[1].dot(&w[f]));
-                    }
-                    u
-                };
-                let before = relative(&v_start);
+                let before = geometry.velocity(c, &v_start);
                 if geometry.gap + 0.5 * dt * before.x > 0.0 {
                     impulses[ci] = Vector2::zeros();
                     continue;
@@ -432,14 +434,7 @@ impl Integrator for MoreauWall {
                 sweep_start.copy_from_slice(&v);
                 for act in &active {
                     let c = &candidates[act.candidate];
-                    let geo = &act.geometry;
-                    let mut u = Vector2::new(
-                        geo.point_row[0].dot(&v[c.point]),
-                        geo.point_row[1].dot(&v[c.point]),
-                    );
-                    if let (Some(f), Some(r)) = (c.on, &geo.on_row) {
-                        u += Vector2::new(r[0].dot(&v[f]), r[1].dot(&v[f]));
-                    }
+                    let u = act.geometry.velocity(c, &v);
                     let w = &act.delassus;
                     let p = impulses[act.candidate];
                     // Newton's law at velocity level (u_n after >= -e u_n before), then Coulomb

@@ -5,6 +5,21 @@
 use std::ops::Deref;
 use std::path::{Path, PathBuf};
 
+/// Runs the command line with `args` and the extra environment `env`: (exit code, stdout,
+/// stderr).
+pub fn pirqa(args: &[&str], env: &[(&str, &str)]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_pirqa"))
+        .args(args)
+        .envs(env.iter().copied())
+        .output()
+        .expect("pirqa runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
 /// A path in a temporary directory that is removed when this is dropped.
 pub struct Scratch {
     _dir: tempfile::TempDir,
