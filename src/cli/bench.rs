@@ -45,6 +45,19 @@ pub enum BenchCommand {
         #[arg(long)]
         peer: Option<PathBuf>,
     },
+    /// Error against CPU time of rocking inside walls: the exact column model against
+    /// Moreau-Jean with every block's rotation on the columns of walls/rocking/ (CSV and SVG).
+    WorkPrecisionRockingWalls {
+        /// Output directory for work-precision-rocking-walls.csv, .svg and -reach.csv.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// A short ladder (a quick look, not the committed figure).
+        #[arg(long)]
+        quick: bool,
+        /// The El Centro record of the scenarios.
+        #[arg(long, default_value = pirqa::motion::EL_CENTRO)]
+        record: PathBuf,
+    },
     /// Where the time-stepping methods fail (drift, chatter, energy, stiffness, Zeno, grazing):
     /// failures.svg, the data behind it (failures.csv) and the measured numbers (failures.json).
     Failures {
@@ -78,6 +91,16 @@ fn write_panel(
         out.display()
     );
     Ok(())
+}
+
+/// A rocking panel's steps (s) and the least time each run is repeated for (s): a quick look
+/// runs each once.
+fn ladder<'a>(quick: bool, short: &'a [f64], full: &'a [f64]) -> (&'a [f64], f64) {
+    if quick {
+        (short, 0.0)
+    } else {
+        (full, 0.2)
+    }
 }
 
 pub fn run(cmd: &BenchCommand) -> Result<(), Error> {
@@ -118,12 +141,11 @@ pub fn run(cmd: &BenchCommand) -> Result<(), Error> {
             record,
             peer,
         } => {
-            let steps: &[f64] = if *quick {
-                &[1e-2, 1e-3]
-            } else {
-                &[1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5]
-            };
-            let min_time = if *quick { 0.0 } else { 0.2 };
+            let (steps, min_time) = ladder(
+                *quick,
+                &[1e-2, 1e-3],
+                &[1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5],
+            );
             let mut points = Vec::new();
             for case in &work_precision::rocking_cases(record)? {
                 points.extend(work_precision::run_rocking_case(
@@ -138,6 +160,24 @@ pub fn run(cmd: &BenchCommand) -> Result<(), Error> {
             }
             let charts = work_precision::rocking_charts(&points);
             write_panel(out, "work-precision-rocking", &points, &charts)
+        }
+        BenchCommand::WorkPrecisionRockingWalls { out, quick, record } => {
+            let (steps, min_time) =
+                ladder(*quick, &[1e-3, 2.5e-4], &[1e-3, 3e-4, 1e-4, 3e-5, 1e-5]);
+            let mut points = Vec::new();
+            for case in &work_precision::rocking_wall_cases(record)? {
+                points.extend(work_precision::run_rocking_wall_case(
+                    case,
+                    steps,
+                    min_time,
+                    |what| eprintln!("  {what}"),
+                )?);
+            }
+            let mut charts = work_precision::charts(&points);
+            for c in &mut charts {
+                c.y_label = "max error in a block top's u(t) (m)".into();
+            }
+            write_panel(out, "work-precision-rocking-walls", &points, &charts)
         }
         BenchCommand::Failures { out } => {
             let demos = failures::all(|what| eprintln!("  {what}"))?;

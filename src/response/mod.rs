@@ -46,6 +46,9 @@ pub enum EventKind {
     Overturning,
     /// A block leaves the ground on both corners (free flight): beyond the model, the run stops.
     Flight,
+    /// A joint a column's rocking model holds would slip or open: beyond the model, the run
+    /// stops.
+    HeldJointGives,
 }
 
 /// One logged event.
@@ -395,6 +398,18 @@ pub enum Warning {
         /// When (s).
         time_s: f64,
     },
+    /// A joint that the column model holds would slip or open under the moving body: the run
+    /// stopped there.
+    HeldJointGives {
+        /// The body that moves.
+        body: String,
+        /// The joint, `upper/lower`.
+        joint: String,
+        /// How it gives way.
+        how: String,
+        /// When (s).
+        time_s: f64,
+    },
     /// A level of the wall was not checked across its plane.
     LevelSkipped {
         /// Its height (m).
@@ -445,6 +460,18 @@ impl std::fmt::Display for Warning {
                 f,
                 "{body} leaves the ground on both corners at t = {time_s} s (free flight): the \
                  model stops there, and the run with it"
+            ),
+            Warning::HeldJointGives {
+                body,
+                joint,
+                how,
+                time_s,
+            } => write!(
+                f,
+                "at t = {time_s} s the joint {joint} {how} under {body}'s motion: the column \
+                 model holds every joint but the one its body moves on, so the model stops \
+                 there, and the run with it (run the wall with --model slide-rock --method \
+                 moreau --dt S to follow it further)"
             ),
             Warning::LevelSkipped { level_m, why } => {
                 write!(f, "level {level_m} m not checked across the plane: {why}")

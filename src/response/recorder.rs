@@ -190,22 +190,23 @@ impl Recorder {
         self.rocking_impacts[i] += 1;
     }
 
-    /// Logs an event of rocking block i: its angular velocity before and after, and the mode
-    /// it goes on in.
+    /// Logs an event of a rocking body made of `blocks` (the lowest first, whose joint it
+    /// moves on): its angular velocity before and after, and the mode it goes on in.
     pub fn rocking_event(
         &mut self,
         time_s: f64,
         kind: EventKind,
-        i: usize,
+        blocks: &[usize],
         omega: Option<(f64, f64)>,
         mode: String,
     ) {
+        let i = blocks[0];
         if self.log_events {
             self.events.push(EventRecord {
                 time_s,
                 kind,
-                blocks: vec![self.names[i].clone()],
-                block_ids: vec![BlockId(i)],
+                blocks: blocks.iter().map(|&b| self.names[b].clone()).collect(),
+                block_ids: blocks.iter().map(|&b| BlockId(b)).collect(),
                 joint: Some(self.label(JointRef::Horizontal(HorizontalId(i)))),
                 joint_id: Some(JointRef::Horizontal(HorizontalId(i))),
                 approach_speed_m_s: None,

@@ -118,6 +118,7 @@ fn overturns(body: &RockingBody, eq: Equations, ratio: f64, amplitude: f64) -> O
     let settings = Settings::summary_only(1.0 / f + 60.0 / p);
     let r = rocking::run(&Scene {
         bodies: std::slice::from_ref(body),
+        watches: &[],
         initial_rotation_rad: &[0.0],
         equations: eq,
         motion: &sine,

@@ -80,6 +80,18 @@ pub struct Case {
     pub duration_s: f64,
 }
 
+impl Case {
+    /// The scenario to run under `settings`.
+    fn scenario<'a>(&'a self, settings: &'a Settings) -> Scenario<'a> {
+        Scenario {
+            wall: &self.wall,
+            topology: &self.topology,
+            motion: &self.motion,
+            settings,
+        }
+    }
+}
+
 /// One point of the chart (a row of its CSV).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Point {
@@ -240,15 +252,7 @@ pub fn run_case(
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<Point>, crate::error::SimulationError> {
     let s = settings(case.duration_s);
-    let sc = Scenario {
-        wall: &case.wall,
-        topology: &case.topology,
-        motion: &case.motion,
-        settings: &s,
-    };
-    let (cpu, reference) = timed(&EventDriven::default(), &sc, min_time_s);
-    let reference = reference?;
-    let mut points = vec![Point::exact(&case.name, cpu)];
+    let sc = case.scenario(&s);
     let mut runs: Vec<(String, String, Box<dyn Integrator>)> = Vec::new();
     for &dt in &ladder.steps {
         runs.push((
@@ -272,13 +276,53 @@ pub fn run_case(
             }),
         ));
     }
+    ladder_points(
+        &case.name,
+        &sc,
+        &EventDriven::default(),
+        runs,
+        min_time_s,
+        &mut progress,
+        errors,
+    )
+}
+
+/// A scenario's points: the reference integrator's (timed), then each run's (method,
+/// parameter, integrator), timed, with `errors` of its response against the reference's.
+fn ladder_points(
+    name: &str,
+    sc: &Scenario,
+    reference: &dyn Integrator,
+    runs: Vec<(String, String, Box<dyn Integrator>)>,
+    min_time_s: f64,
+    progress: &mut dyn FnMut(&str),
+    errors: impl Fn(&Response, &Response) -> (f64, f64),
+) -> Result<Vec<Point>, crate::error::SimulationError> {
+    let (cpu, reference) = timed(reference, sc, min_time_s);
+    // The reference's own error names the body, the time and what failed.
+    let reference = reference?;
+    let mut points = vec![Point::exact(name, cpu)];
     for (method, parameter, integrator) in runs {
-        progress(&format!("{} {method} {parameter}", case.name));
-        let (cpu, r) = timed(integrator.as_ref(), &sc, min_time_s);
+        progress(&format!("{name} {method} {parameter}"));
+        let (cpu, r) = timed(integrator.as_ref(), sc, min_time_s);
         let errors = r.map(|r| errors(&r, &reference));
-        points.push(point(&case.name, &method, parameter, cpu, errors));
+        points.push(point(name, &method, parameter, cpu, errors));
     }
     Ok(points)
+}
+
+/// Moreau-Jean runs over a ladder of steps, built by `moreau` from each step.
+fn moreau_runs<I: Integrator + 'static>(
+    steps: &[f64],
+    moreau: impl Fn(f64) -> I,
+) -> Vec<(String, String, Box<dyn Integrator>)> {
+    steps
+        .iter()
+        .map(|&dt| {
+            let run: Box<dyn Integrator> = Box::new(moreau(dt));
+            ("moreau".to_string(), format!("dt={dt:e}"), run)
+        })
+        .collect()
 }
 
 /// Error shown for the exact method on a log axis (its own error is round-off).
@@ -542,38 +586,25 @@ pub fn run_rocking_case(
     use crate::integrate::rocking::Rocking;
     let case = &rc.case;
     let s = settings(case.duration_s);
-    let sc = Scenario {
-        wall: &case.wall,
-        topology: &case.topology,
-        motion: &case.motion,
-        settings: &s,
-    };
+    let sc = case.scenario(&s);
     let height = case.wall.blocks[0].height.to_f64();
     let exact = Rocking {
         initial_rotation_rad: rc.initial_rotation_rad,
         ..Rocking::default()
     };
-    let (cpu, reference) = timed(&exact, &sc, min_time_s);
-    // The reference's own error names the body, the time and what failed.
-    let reference = reference?;
-    let mut points = vec![Point::exact(&case.name, cpu)];
-    for &dt in steps {
-        progress(&format!("{} moreau dt={dt:e}", case.name));
-        let moreau = MoreauRocking {
-            initial_rotation_rad: rc.initial_rotation_rad,
-            ..MoreauRocking::new(dt)
-        };
-        let (cpu, r) = timed(&moreau, &sc, min_time_s);
-        let errors = r.map(|r| rocking_errors(&r, &reference, height));
-        points.push(point(
-            &case.name,
-            "moreau",
-            format!("dt={dt:e}"),
-            cpu,
-            errors,
-        ));
-    }
-    Ok(points)
+    let runs = moreau_runs(steps, |dt| MoreauRocking {
+        initial_rotation_rad: rc.initial_rotation_rad,
+        ..MoreauRocking::new(dt)
+    });
+    Ok(ladder_points(
+        &case.name,
+        &sc,
+        &exact,
+        runs,
+        min_time_s,
+        &mut progress,
+        |r, reference| rocking_errors(r, reference, height),
+    )?)
 }
 
 /// The rocking panel's charts: as [`charts`], the error being that of the top's displacement.
@@ -583,4 +614,97 @@ pub fn rocking_charts(points: &[Point]) -> Vec<Chart> {
         c.y_label = "max error in the top's u(t) (m)".into();
     }
     out
+}
+
+/// The rocking-walls panel: the three columns of walls/rocking/ (a slender block on a stack, a
+/// two-block column, a standing stone on its plinth) under the first 10 s of El Centro scaled
+/// to 0.3 g (from `record`): the exact column model against Moreau-Jean with every block's
+/// rotation (docs/rocking-walls.md).
+pub fn rocking_wall_cases(record: &std::path::Path) -> Result<Vec<Case>, crate::Error> {
+    use crate::motion::{read_record, ReadOptions};
+    let raw = read_record(record, None, &ReadOptions::default())?;
+    let el_centro =
+        raw.scaled(0.3 * 9.81 / raw.pga_m_s2())
+            .map_err(|source| crate::Error::Motion {
+                path: record.to_path_buf(),
+                source,
+            })?;
+    [
+        ("slender block on a stack", "slender-on-stack"),
+        ("two-block column", "two-block-column"),
+        ("standing stone on a plinth", "huanca-on-plinth"),
+    ]
+    .into_iter()
+    .map(|(name, file)| {
+        let path = format!("walls/rocking/{file}.ron");
+        let (wall, topology) = crate::topology::load(std::path::Path::new(&path))?;
+        Ok(Case {
+            name: format!("{name}, El Centro 0.3 g"),
+            wall,
+            topology,
+            motion: Motion::Record(el_centro.clone()),
+            duration_s: 10.0,
+        })
+    })
+    .collect()
+}
+
+/// Errors of a run of a wall whose blocks rotate against the reference, on the horizontal
+/// displacement of the middle of each block's top (its u plus its height times sin theta, m),
+/// blocks matched by name: (largest error in a block's largest |value|, largest error over
+/// the sampled history, at the times both have).
+pub fn wall_rocking_errors(r: &Response, reference: &Response, wall: &Wall) -> (f64, f64) {
+    let tops = |resp: &Response, name: &str| -> Vec<(f64, f64)> {
+        let h = resp.history.as_ref().expect("history");
+        let Some(i) = resp.summary.blocks.iter().position(|b| b.name == name) else {
+            return Vec::new();
+        };
+        let height = wall
+            .blocks
+            .iter()
+            .find(|b| b.name == name)
+            .map_or(0.0, |b| b.height.to_f64());
+        h.time_s
+            .iter()
+            .zip(&h.displacement_m)
+            .zip(&h.rotation_rad)
+            .map(|((&t, u), th)| (t, u[i] + height * th[i].sin()))
+            .collect()
+    };
+    let peak = |v: &[(f64, f64)]| v.iter().fold(0.0f64, |m, x| m.max(x.1.abs()));
+    let (mut max_err, mut hist) = (0.0f64, 0.0f64);
+    for b in &wall.blocks {
+        let (a, e) = (tops(r, &b.name), tops(reference, &b.name));
+        max_err = max_err.max((peak(&a) - peak(&e)).abs());
+        for &(t, x) in &a {
+            let k = e.partition_point(|&(s, _)| s < t - 1e-9);
+            if let Some(&(_, y)) = e.get(k).filter(|(s, _)| (s - t).abs() < 1e-9) {
+                hist = hist.max((x - y).abs());
+            }
+        }
+    }
+    (max_err, hist)
+}
+
+/// The rocking-walls panel for one scenario: the exact column model (the reference) and
+/// Moreau-Jean with every block's rotation over the ladder of steps.
+pub fn run_rocking_wall_case(
+    case: &Case,
+    steps: &[f64],
+    min_time_s: f64,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<Point>, crate::Error> {
+    use crate::integrate::baselines::MoreauWall;
+    use crate::integrate::rocking::Rocking;
+    let s = settings(case.duration_s);
+    let sc = case.scenario(&s);
+    Ok(ladder_points(
+        &case.name,
+        &sc,
+        &Rocking::default(),
+        moreau_runs(steps, MoreauWall::new),
+        min_time_s,
+        &mut progress,
+        |r, reference| wall_rocking_errors(r, reference, &case.wall),
+    )?)
 }

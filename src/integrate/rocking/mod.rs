@@ -18,14 +18,17 @@
 //! | end of a ground-motion segment | the step stops there | `decide` if a_g jumps |
 
 mod body;
+mod column;
 #[cfg(test)]
 mod enumeration;
 mod impact;
+mod layout;
 mod modes;
 mod scenes;
 mod series;
 
 pub use body::RockingBody;
+pub use column::{columns, Column, Watch};
 pub use modes::Equations;
 pub use scenes::{
     can_lift, equations_name, free_standing, out_of_plane, rocks_in_plane, ModelChoice, Rocking,
@@ -35,8 +38,8 @@ use crate::error::SimulationError;
 use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
+use layout::Layout;
 use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
-use series::Coeffs;
 
 /// Stops at one instant (events that do not move the time) before a run is declared stuck.
 const STALL_STOPS: usize = 10_000;
@@ -72,6 +75,9 @@ pub struct Scene<'a> {
     /// Initial rotation of each (rad; 0: seated at rest). A body released from a rotation
     /// starts at rest on the corner of its sign.
     pub initial_rotation_rad: &'a [f64],
+    /// The held joints of each body's column, one per body (empty: every body stands alone
+    /// on the ground).
+    pub watches: &'a [Watch],
     /// The equations between events.
     pub equations: Equations,
     /// The ground motion.
@@ -86,9 +92,11 @@ pub fn run(scene: &Scene) -> Result<Response, SimulationError> {
     for b in scene.bodies {
         b.validate()?;
     }
-    if scene.initial_rotation_rad.len() != scene.bodies.len() {
+    if scene.initial_rotation_rad.len() != scene.bodies.len()
+        || !(scene.watches.is_empty() || scene.watches.len() == scene.bodies.len())
+    {
         return Err(SimulationError::Bug(
-            "one initial rotation per body expected".into(),
+            "one initial rotation and none or one watch per body expected".into(),
         ));
     }
     if scene.equations == Equations::Linearised && scene.motion.has_vertical() {
@@ -102,6 +110,7 @@ pub fn run(scene: &Scene) -> Result<Response, SimulationError> {
 
 struct Engine<'a> {
     scene: &'a Scene<'a>,
+    layout: Layout,
     tracks: Vec<Track>,
     rec: Recorder,
     t: f64,
@@ -136,34 +145,16 @@ fn quiet(seg: &Segment) -> bool {
         && seg.lambda == (1.0, 0.0)
 }
 
-/// The horizontal displacement of the middle of the base, as a series: the pivot's u while
-/// seated, u + s b (1 - cos theta) while rocking on the corner of sign s (cos theta from the
-/// arms: h_c G_y + s b dx = R^2 cos theta).
-fn base_series(body: &RockingBody, t: &Trajectory) -> Coeffs {
-    let Some(c) = t.mode.pivot() else {
-        return t.u;
-    };
-    let s = c.sign();
-    let (b, h) = (body.half_base_m, body.centroid_height_m);
-    let r2 = b * b + h * h;
-    let mut out = t.u;
-    for (k, (x, (gy, dx))) in out.iter_mut().zip(t.gy.iter().zip(&t.dx)).enumerate() {
-        let cos = (h * gy + s * b * dx) / r2;
-        *x += s * b * (if k == 0 { 1.0 } else { 0.0 } - cos);
-    }
-    out
-}
-
 impl<'a> Engine<'a> {
     fn new(scene: &'a Scene<'a>) -> Engine<'a> {
-        let names: Vec<String> = scene.bodies.iter().map(|b| b.name.clone()).collect();
-        let horizontal = names
-            .iter()
-            .enumerate()
-            .map(|(i, n)| (i, None, n.clone(), "ground".to_string()))
-            .collect();
+        let layout = Layout::new(scene.bodies, scene.watches);
         let s = scene.settings;
-        let rec = Recorder::for_bodies(names, horizontal, s.history_to(), s.log_events);
+        let rec = Recorder::for_bodies(
+            layout.names.clone(),
+            layout.horizontal.clone(),
+            s.history_to(),
+            s.log_events,
+        );
         let tracks = scene
             .initial_rotation_rad
             .iter()
@@ -178,6 +169,7 @@ impl<'a> Engine<'a> {
             .collect();
         Engine {
             scene,
+            layout,
             tracks,
             rec,
             t: 0.0,
@@ -222,8 +214,13 @@ impl<'a> Engine<'a> {
         self.rec.stats.mode_decisions += 1;
         let new = next.mode;
         if new == Mode::Flight {
-            self.rec
-                .rocking_event(self.t, EventKind::Flight, i, None, new.name());
+            self.rec.rocking_event(
+                self.t,
+                EventKind::Flight,
+                &self.layout.outputs(i),
+                None,
+                new.name(),
+            );
             self.rec.warnings.push(Warning::Flight {
                 body: body.name.clone(),
                 time_s: self.t,
@@ -234,12 +231,17 @@ impl<'a> Engine<'a> {
         }
         let kind = transition(old, new, start);
         match kind {
-            Some(EventKind::Uplift) => self.rec.uplift(i, self.t),
+            Some(EventKind::Uplift) => {
+                for k in self.layout.outputs(i) {
+                    self.rec.uplift(k, self.t);
+                }
+            }
             Some(EventKind::Slip | EventKind::Stick) => self.rec.transitions += 1,
             _ => {}
         }
         if let Some(kind) = kind {
-            self.rec.rocking_event(self.t, kind, i, None, new.name());
+            self.rec
+                .rocking_event(self.t, kind, &self.layout.outputs(i), None, new.name());
         }
         let tr = &mut self.tracks[i];
         tr.mode = new;
@@ -279,7 +281,7 @@ impl<'a> Engine<'a> {
                     continue;
                 }
                 let traj = self.trajectory(i, &inputs);
-                let (h, event) = self.first_event(i, &traj, span, is_quiet);
+                let (h, event) = self.first_event(i, &traj, &inputs, span, is_quiet);
                 tau = tau.min(event.map_or(h, |(x, _)| x));
                 plans.push(Some((traj, event)));
             }
@@ -369,6 +371,7 @@ impl<'a> Engine<'a> {
         &self,
         i: usize,
         traj: &Trajectory,
+        inputs: &Inputs,
         span: f64,
         is_quiet: bool,
     ) -> (f64, Option<Stop>) {
@@ -392,6 +395,9 @@ impl<'a> Engine<'a> {
             }
         };
         let mut conditions = modes::constraints(body, self.scene.equations, traj);
+        if let Some(watch) = self.scene.watches.get(i) {
+            conditions.extend(watch.conditions(traj, inputs));
+        }
         if is_quiet {
             if let Some(c) = traj.mode.pivot() {
                 let s = c.sign();
@@ -420,20 +426,20 @@ impl<'a> Engine<'a> {
         for c in &conditions {
             consider(series::first_fall(&c.series, c.scale, ts, h), Some(c.guard));
         }
-        // Extremes: where the derivatives of theta, u and u' vanish.
-        let base = base_series(body, traj);
-        let base_v = series::derivative(&base);
-        let base_a = series::derivative(&base_v);
-        for (d, scale) in [
-            (&traj.omega, sc.angle * p),
-            (&base_v, sc.velocity),
-            (&base_a, sc.velocity * p),
-        ] {
-            let sign = series::sign_after(d, scale, ts);
+        // Extremes: where the derivatives of theta and of each block's u and u' vanish.
+        let mut rates = vec![(traj.omega, sc.angle * p)];
+        for (_, u) in self.layout.series(i, body, traj) {
+            let v = series::derivative(&u);
+            let a = series::derivative(&v);
+            rates.push((v, sc.velocity));
+            rates.push((a, sc.velocity * p));
+        }
+        for (d, scale) in &rates {
+            let sign = series::sign_after(d, *scale, ts);
             if sign != 0 {
                 let mut f = *d;
                 f.iter_mut().for_each(|x| *x *= f64::from(sign));
-                consider(series::first_fall(&f, scale, ts, h), None);
+                consider(series::first_fall(&f, *scale, ts, h), None);
             }
         }
         (h, best.filter(|(x, _)| *x <= h))
@@ -461,18 +467,47 @@ impl<'a> Engine<'a> {
             Guard::StickLimit | Guard::Uplift | Guard::PivotSlip | Guard::Flight => {
                 self.decide(i, now, false)
             }
+            Guard::Held(k) => {
+                self.gives(i, k);
+                Ok(())
+            }
         }
+    }
+
+    /// Condition k of body i's watch falls: a held joint of its column gives way, which the
+    /// exact model does not follow; the run ends here and says so.
+    fn gives(&mut self, i: usize, k: usize) {
+        let (joint, how, upper) = self.scene.watches[i].describe(k);
+        // The block on the joint first (the event names its joint), then the body's.
+        let on = self.layout.column_output(i, upper);
+        let mut blocks = vec![on];
+        blocks.extend(self.layout.outputs(i).into_iter().filter(|&b| b != on));
+        self.rec.rocking_event(
+            self.t,
+            EventKind::HeldJointGives,
+            &blocks,
+            None,
+            how.to_string(),
+        );
+        self.rec.warnings.push(Warning::HeldJointGives {
+            body: self.body(i).name.clone(),
+            joint,
+            how: how.into(),
+            time_s: self.t,
+        });
+        self.t_end = self.t;
     }
 
     fn overturn(&mut self, i: usize, traj: &Trajectory, tau: f64) -> Result<(), SimulationError> {
         let body = self.body(i);
         // Its last motion, at the instant it falls: after this it is drawn lying still.
-        let base = base_series(body, traj);
-        self.rec.block_extremes(
-            i,
-            series::eval(&base, tau).abs(),
-            series::eval(&series::derivative(&base), tau).abs(),
-        );
+        for (k, u) in self.layout.series(i, body, traj) {
+            self.rec.block_extremes(
+                k,
+                series::eval(&u, tau).abs(),
+                series::eval(&series::derivative(&u), tau).abs(),
+            );
+        }
         let (_, now) = self.inputs_at(self.t);
         let at_rest = State {
             omega: 0.0,
@@ -487,13 +522,15 @@ impl<'a> Engine<'a> {
             &at_rest,
             &now,
         ));
-        self.rec.fell(i);
+        for k in self.layout.outputs(i) {
+            self.rec.fell(k);
+        }
         self.rec.energy.fallen_j +=
             modes::kinetic_j(body, traj, tau) + modes::potential_j(body, traj, tau);
         self.rec.rocking_event(
             self.t,
             EventKind::Overturning,
-            i,
+            &self.layout.outputs(i),
             None,
             format!("overturned at theta = {} rad", tr.state.theta),
         );
@@ -522,7 +559,9 @@ impl<'a> Engine<'a> {
         let (omega, v, u) = (tr.state.omega, tr.state.v, tr.state.u);
         let landing = impact::land(body, eq, pivot, omega, v, self.t)?;
         self.rec.energy.impact_loss_j += landing.loss_j;
-        self.rec.rocking_impact(i);
+        for k in self.layout.outputs(i) {
+            self.rec.rocking_impact(k);
+        }
         self.rec.impacts += 1;
         let tr = &mut self.tracks[i];
         tr.state = State { u, ..landing.state };
@@ -534,12 +573,22 @@ impl<'a> Engine<'a> {
         self.rec.rocking_event(
             self.t,
             EventKind::RockingImpact,
-            i,
+            &self.layout.outputs(i),
             Some((omega, after)),
             landing
                 .pivot
                 .map_or("seated".into(), |c| format!("on the {} corner", c.name())),
         );
+        if let Some(k) = self.scene.watches.get(i).and_then(|w| {
+            w.landing(
+                u,
+                (Some(pivot), omega, v),
+                (landing.pivot, after, landing.state.v),
+            )
+        }) {
+            self.gives(i, k);
+            return Ok(());
+        }
         if let (Some(c), false) = (landing.pivot, landing.slipped) {
             if let Some(tail) = self.zeno_tail(i, c, omega, after, now) {
                 let kinetic = {
@@ -558,7 +607,7 @@ impl<'a> Engine<'a> {
                 self.rec.rocking_event(
                     self.t,
                     EventKind::Rest,
-                    i,
+                    &self.layout.outputs(i),
                     Some((after, 0.0)),
                     format!("its landings accumulate after {tail:e} s"),
                 );
@@ -606,25 +655,27 @@ impl<'a> Engine<'a> {
     /// trajectory `tau` after the step's start (a body that fell, where it fell); `a_g` is the
     /// ground acceleration then.
     fn note(&mut self, plans: &[Option<Plan>], tau: f64, t: f64, a_g: f64, row: bool) {
-        let n = self.tracks.len();
+        let n = self.layout.len();
         let (mut u, mut v, mut theta, mut omega) =
             (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let mut accel = vec![None; n];
-        for i in 0..n {
+        // Held blocks stay at rest relative to the ground; their peak acceleration is a_g's.
+        let mut accel = vec![Some(a_g); n];
+        for (i, plan) in plans.iter().enumerate() {
             let body = self.body(i);
-            let (traj, at) = match (&plans[i], &self.tracks[i].fallen) {
+            let (traj, at) = match (plan, &self.tracks[i].fallen) {
                 (Some((traj, _)), _) => (traj, tau),
                 (None, Some(fallen)) => (fallen, 0.0),
                 (None, None) => unreachable!("a body without a step has fallen"),
             };
-            let base = base_series(body, traj);
-            let base_v = series::derivative(&base);
-            u[i] = series::eval(&base, at);
-            v[i] = series::eval(&base_v, at);
-            theta[i] = series::eval(&traj.theta, at);
-            omega[i] = series::eval(&traj.omega, at);
-            if plans[i].is_some() {
-                accel[i] = Some(a_g + series::eval(&series::derivative(&base_v), at));
+            for (k, base) in self.layout.series(i, body, traj) {
+                let base_v = series::derivative(&base);
+                u[k] = series::eval(&base, at);
+                v[k] = series::eval(&base_v, at);
+                theta[k] = series::eval(&traj.theta, at);
+                omega[k] = series::eval(&traj.omega, at);
+                accel[k] = plan
+                    .is_some()
+                    .then(|| a_g + series::eval(&series::derivative(&base_v), at));
             }
         }
         for i in 0..n {
@@ -661,8 +712,8 @@ impl<'a> Engine<'a> {
             now.accel[0],
             row || last_row.is_some_and(|r| r < self.t),
         );
-        let mut u = vec![0.0; n];
-        let mut v = vec![0.0; n];
+        let mut u = vec![0.0; self.layout.len()];
+        let mut v = u.clone();
         for (i, plan) in plans.iter().enumerate() {
             let body = self.body(i);
             let traj = match (plan, &self.tracks[i].fallen) {
@@ -670,9 +721,10 @@ impl<'a> Engine<'a> {
                 (None, Some(fallen)) => fallen,
                 (None, None) => unreachable!("a body without a step has fallen"),
             };
-            let base = base_series(body, traj);
-            u[i] = base[0];
-            v[i] = base[1];
+            for (k, base) in self.layout.series(i, body, traj) {
+                u[k] = base[0];
+                v[k] = base[1];
+            }
             if plan.is_some() {
                 self.rec.energy.kinetic_j += modes::kinetic_j(body, traj, 0.0);
                 self.rec.energy.potential_j += modes::potential_j(body, traj, 0.0);

@@ -353,6 +353,8 @@ pub enum Guard {
     /// The body reaches pi/2 (lies on its face), or, with the ground at rest from now on,
     /// passes alpha with energy to spare (it can only fall).
     Overturn,
+    /// A held joint of a column gives way: condition k of its `column::Watch`.
+    Held(usize),
 }
 
 /// One condition of a mode: a series that must stay non-negative (positive just after the

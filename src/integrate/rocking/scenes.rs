@@ -1,15 +1,16 @@
-//! Which walls rock and how: the rocking integrator of a wall that is one free-standing block
-//! ([`Rocking`]), whether a run rocks ([`rocks_in_plane`], [`can_lift`]), and the sections of a
-//! wall across its plane run as rocking bodies ([`out_of_plane`]).
+//! Which walls rock and how: the rocking integrator of a wall that is one free-standing block or
+//! made of free columns ([`Rocking`]), whether a run rocks ([`rocks_in_plane`], [`can_lift`]),
+//! and the sections of a wall across its plane run as rocking bodies ([`out_of_plane`]).
 
-use super::{run, Equations, RockingBody, Scene};
+use super::{columns, run, Column, Equations, RockingBody, Scene};
 use crate::error::SimulationError;
 use crate::integrate::Settings;
 use crate::motion::Motion;
 use crate::response::{Response, Warning};
 
-/// The rocking model on a wall that is one free-standing block on the ground. (Blocks that rock
-/// inside walls are not modelled yet; the sliding engine runs those walls.)
+/// The rocking model on a wall that is one free-standing block on the ground, or made of free
+/// columns ([`columns`]: each moves on one of its joints, the others held and watched). (Blocks
+/// that rock inside other walls are not modelled exactly yet; time stepping runs them.)
 #[derive(Debug, Clone, Default)]
 pub struct Rocking {
     /// The equations between events.
@@ -24,10 +25,24 @@ impl crate::integrate::Integrator for Rocking {
     }
 
     fn run(&self, sc: &crate::integrate::Scenario) -> Result<Response, SimulationError> {
-        let body = free_standing(sc.wall, sc.topology)?;
+        let (bodies, watches) = if sc.wall.blocks.len() == 1 {
+            (vec![free_standing(sc.wall, sc.topology)?], Vec::new())
+        } else {
+            if self.initial_rotation_rad != 0.0 {
+                return Err(SimulationError::Incompatible {
+                    asked: "--initial-rotation is given to a free-standing block only",
+                    fix: "leave --initial-rotation out",
+                });
+            }
+            columns(sc.wall, sc.topology)?
+                .into_iter()
+                .map(|c| (c.body, c.watch))
+                .unzip()
+        };
         let mut response = run(&Scene {
-            bodies: std::slice::from_ref(&body),
-            initial_rotation_rad: &[self.initial_rotation_rad],
+            initial_rotation_rad: &vec![self.initial_rotation_rad; bodies.len()],
+            bodies: &bodies,
+            watches: &watches,
             equations: self.equations,
             motion: sc.motion,
             settings: sc.settings,
@@ -177,6 +192,7 @@ pub fn out_of_plane(
     }
     let mut response = run(&Scene {
         bodies: &bodies,
+        watches: &[],
         initial_rotation_rad: &rotations,
         equations,
         motion,
@@ -235,9 +251,10 @@ pub enum ModelChoice {
 }
 
 /// Whether a run of `wall` in its own plane rocks, and why. The rocking model runs walls of one
-/// free-standing block; `auto` gives it to them when the block can lift at all
-/// ([`can_lift`]) or starts from a rotation. Walls of several blocks slide (rocking inside
-/// walls is not modelled yet: their warnings name the blocks that could rock).
+/// free-standing block and walls made of free columns ([`columns`]); `auto` gives it to them
+/// when a block (a column's moving part) can lift at all ([`can_lift`]) or starts from a
+/// rotation. Other walls of several blocks slide (rocking inside them is modelled on time
+/// stepping only: their warnings name the blocks that could rock).
 pub fn rocks_in_plane(
     choice: ModelChoice,
     wall: &crate::wall::Wall,
@@ -261,20 +278,46 @@ pub fn rocks_in_plane(
             fix: "--model slide-rock or auto",
         }),
         ModelChoice::Slide => Ok((false, "asked for (--model slide)".into())),
+        ModelChoice::SlideRock if wall.blocks.len() > 1 && initial.is_empty() => {
+            let columns = columns(wall, topo)?;
+            Ok((
+                true,
+                format!("asked for (--model slide-rock): {}", moving_parts(&columns)),
+            ))
+        }
         ModelChoice::SlideRock => {
             free_standing(wall, topo)?;
             Ok((true, "asked for (--model slide-rock)".into()))
         }
+        ModelChoice::Auto if wall.blocks.len() > 1 && initial.is_empty() => {
+            let Ok(columns) = columns(wall, topo) else {
+                return Ok((
+                    false,
+                    format!(
+                        "auto: inside walls the exact model rocks blocks that stand in free \
+                         columns, and this wall of {} blocks is not made of them, so it slides; \
+                         the warnings name the blocks that could rock",
+                        wall.blocks.len()
+                    ),
+                ));
+            };
+            let checks: Vec<(bool, String)> = columns
+                .iter()
+                .map(|c| can_lift(&c.body, motion, duration_s))
+                .collect();
+            let lifts = checks.iter().any(|c| c.0);
+            let why: Vec<&str> = checks.iter().map(|c| c.1.as_str()).collect();
+            Ok((
+                lifts,
+                if lifts {
+                    format!("auto: {}; {}", why.join("; "), moving_parts(&columns))
+                } else {
+                    format!("auto: {}", why.join("; "))
+                },
+            ))
+        }
         ModelChoice::Auto => match free_standing(wall, topo) {
             Err(e) if !initial.is_empty() => Err(e),
-            Err(_) if wall.blocks.len() > 1 => Ok((
-                false,
-                format!(
-                    "auto: blocks that rock inside walls are not modelled yet, so this wall of {} \
-                     blocks slides; the warnings name the blocks that could rock",
-                    wall.blocks.len()
-                ),
-            )),
             Err(e) => Ok((false, format!("auto: {e}"))),
             Ok(_) if !initial.is_empty() => {
                 Ok((true, "auto: the block starts from a rotation".into()))
@@ -285,4 +328,23 @@ pub fn rocks_in_plane(
             }
         },
     }
+}
+
+/// What moves in each column and what is held, for the summary's word on the model.
+fn moving_parts(columns: &[Column]) -> String {
+    columns
+        .iter()
+        .map(|c| {
+            let held = if c.held.is_empty() {
+                String::new()
+            } else {
+                format!(" ({} held to the ground)", c.held.join(", "))
+            };
+            format!(
+                "{} moves as one body on {}{held}, the column's other joints held and watched",
+                c.body.name, c.watch.base
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
 }

@@ -482,8 +482,8 @@ impl Sweep {
             after_collapse: Default::default(),
             progress: Some(progress),
         };
-        // Sweeps slide (blocks that rock inside walls are not modelled yet): the summary says
-        // `--model slide`, which the rerun command gives.
+        // Sweeps slide, whatever their walls (sweeps of rocking walls are not built yet): the
+        // summary says `--model slide`, which the rerun command gives.
         Ok(EventDriven::default().run(&Scenario {
             wall: &self.walls[w].wall,
             topology: &topology,

@@ -1,0 +1,756 @@
+//! Columns: walls whose movable blocks stand in stacks, each block on one block (or the ground
+//! or an abutment) with nothing beside it. In a column the joint that gives way first under a
+//! ground acceleration that grows from zero (the smallest of its friction coefficient and its
+//! two tipping ratios, the part above taken as rigid) is the one the column moves on: the part
+//! above it is one rocking body ([`RockingBody`]) on a base held to the ground, and the exact
+//! engine runs it through rest, sliding, rocking, slide-rock, landings and overturning. Every
+//! other joint is *held*: the blocks below move with the ground, those above with the body.
+//! That holds while each held joint can carry what it must, so the [`Watch`] checks it as the
+//! run goes: friction within its cone and the resultant of its normal force within its contact
+//! (the block on it does not tip), both as series between events and as impulses through
+//! every landing. The first of these conditions to fall ends the exact model at that instant,
+//! the run with it, and says which joint gave way and how (docs/rocking-walls.md).
+
+use super::body::RockingBody;
+use super::modes::{Constraint, Corner, Guard, Inputs, Trajectory};
+use super::series::{derivative, product, sin_cos_at, Coeffs, ORDER, TIE, ZERO};
+use crate::error::SimulationError;
+use crate::exact::Q;
+use crate::topology::{Base, BlockId, Topology};
+use crate::wall::Wall;
+
+/// One column of a wall, as the exact engine runs it.
+#[derive(Debug, Clone)]
+pub struct Column {
+    /// The part above the joint the column moves on, named after its blocks (`B2+B3`).
+    pub body: RockingBody,
+    /// The held joints, checked as the body moves.
+    pub watch: Watch,
+    /// The blocks held to the ground below the body, bottom first.
+    pub held: Vec<String>,
+}
+
+/// A block of a column as the watch sees it: in the frame whose origin is the middle of the
+/// body's base at rest, on the level of its joint.
+#[derive(Debug, Clone)]
+struct Piece {
+    mass_kg: f64,
+    /// About its own centroid (kg m2).
+    inertia_kg_m2: f64,
+    /// Its centroid at rest (m).
+    x0: f64,
+    y0: f64,
+    /// Part of the body (moves with it) or held to the ground below it.
+    moving: bool,
+}
+
+/// A held joint: its name (`upper/lower`), friction, the ends of its contact at rest (in the
+/// watch's frame, on its level), whether it lies inside the body (and moves with it), and the
+/// pieces above it.
+#[derive(Debug, Clone)]
+struct Held {
+    name: String,
+    /// The block on it (index in the column, bottom first).
+    upper: usize,
+    friction: f64,
+    ends: [(f64, f64); 2],
+    inside: bool,
+    above: Vec<usize>,
+}
+
+/// A block of a column as a run reports it.
+#[derive(Debug, Clone)]
+pub struct Output {
+    /// Its name.
+    pub name: String,
+    /// The block under it (index in the column, bottom first); none on the ground.
+    pub lower: Option<usize>,
+    /// What it rests on, by name.
+    pub base: String,
+    /// The middle of its base at rest, in the watch's frame (m).
+    pub x0: f64,
+    /// The same, height.
+    pub y0: f64,
+    /// Moves with the body (or is held).
+    pub moving: bool,
+}
+
+/// The conditions of a column's held joints.
+#[derive(Debug, Clone)]
+pub struct Watch {
+    /// What the body stands on (`ground` or a block's name).
+    pub base: String,
+    /// The column's blocks, bottom first (empty: the body is the only output).
+    pub outputs: Vec<Output>,
+    pieces: Vec<Piece>,
+    joints: Vec<Held>,
+    half_base_m: f64,
+    g_m_s2: f64,
+    /// Forces (N) and moments (N m) are measured against the column's weight and its weight
+    /// times its height.
+    force_scale: f64,
+    moment_scale: f64,
+}
+
+/// How a held joint gives way; four conditions per joint, in this order.
+const HOW: [&str; 4] = [
+    "would slip, the block on it towards -x (it needs more friction towards +x than the \
+     joint holds)",
+    "would slip, the block on it towards +x (it needs more friction towards -x than the \
+     joint holds)",
+    "would open at its right end (the block on it would tip about its left end)",
+    "would open at its left end (the block on it would tip about its right end)",
+];
+
+impl Watch {
+    /// A watch with no held joint, for a body standing on the ground alone.
+    pub fn none() -> Watch {
+        Watch {
+            base: "ground".into(),
+            outputs: Vec::new(),
+            pieces: Vec::new(),
+            joints: Vec::new(),
+            half_base_m: 0.0,
+            g_m_s2: 0.0,
+            force_scale: 1.0,
+            moment_scale: 1.0,
+        }
+    }
+
+    /// The held joint, how it gives way and the block on it (index in the column, bottom
+    /// first), for the condition `k` of [`Watch::conditions`].
+    pub fn describe(&self, k: usize) -> (String, &'static str, usize) {
+        let joint = &self.joints[k / 4];
+        (joint.name.clone(), HOW[k % 4], joint.upper)
+    }
+
+    /// The held joints' conditions along a trajectory of the body: each series must stay
+    /// non-negative, with guard [`Guard::Held`] naming it.
+    pub fn conditions(&self, traj: &Trajectory, inputs: &Inputs) -> Vec<Constraint> {
+        if self.joints.is_empty() {
+            return Vec::new();
+        }
+        let s = traj.mode.pivot().map_or(0.0, Corner::sign);
+        let (mut sin, mut cos) = (ZERO, ZERO);
+        for k in 0..=ORDER {
+            sin_cos_at(&traj.theta, &mut sin, &mut cos, k);
+        }
+        let alpha = derivative(&traj.omega);
+        let w2 = product(&traj.omega, &traj.omega);
+        let mut base_acc = derivative(&traj.v);
+        add_to(&mut base_acc, &inputs.accel, 1.0);
+        let pivot_x = plus(&traj.u, s * self.half_base_m);
+        // Where a point of the body that lies at (x0, y0) at rest is now: the pivot (or the
+        // base's middle) plus the turned offset (theta > 0 turns clockwise).
+        let place = |x0: f64, y0: f64| -> (Coeffs, Coeffs) {
+            let (rx0, ry0) = (x0 - s * self.half_base_m, y0);
+            let mut rx = ZERO;
+            let mut ry = ZERO;
+            add_to(&mut rx, &cos, rx0);
+            add_to(&mut rx, &sin, ry0);
+            add_to(&mut ry, &sin, -rx0);
+            add_to(&mut ry, &cos, ry0);
+            (rx, ry)
+        };
+        // Each piece: position and absolute acceleration as series.
+        let motion: Vec<Kinematics> = self
+            .pieces
+            .iter()
+            .map(|p| {
+                if !p.moving {
+                    return Kinematics {
+                        x: constant(p.x0),
+                        y: constant(p.y0),
+                        ax: inputs.accel,
+                        ay: ZERO,
+                    };
+                }
+                let (rx, ry) = place(p.x0, p.y0);
+                let mut ax = base_acc;
+                add_to(&mut ax, &product(&alpha, &ry), 1.0);
+                add_to(&mut ax, &product(&w2, &rx), -1.0);
+                let mut ay = product(&alpha, &rx);
+                ay.iter_mut().for_each(|c| *c = -*c);
+                add_to(&mut ay, &product(&w2, &ry), -1.0);
+                let mut x = pivot_x;
+                add_to(&mut x, &rx, 1.0);
+                Kinematics { x, y: ry, ax, ay }
+            })
+            .collect();
+        let mut glam = inputs.lambda;
+        glam.iter_mut().for_each(|c| *c *= self.g_m_s2);
+        let mut out = Vec::with_capacity(4 * self.joints.len());
+        for (j, joint) in self.joints.iter().enumerate() {
+            let (mut h, mut v) = (ZERO, ZERO);
+            for &i in &joint.above {
+                let (p, k) = (&self.pieces[i], &motion[i]);
+                add_to(&mut h, &k.ax, p.mass_kg);
+                add_to(&mut v, &glam, p.mass_kg);
+                add_to(&mut v, &k.ay, p.mass_kg);
+            }
+            let ends = joint.ends.map(|(x0, y0)| {
+                if joint.inside {
+                    let (rx, ry) = place(x0, y0);
+                    let mut x = pivot_x;
+                    add_to(&mut x, &rx, 1.0);
+                    (x, ry)
+                } else {
+                    (constant(x0), constant(y0))
+                }
+            });
+            // Moments about each end of the forces the joint passes up: the d'Alembert
+            // balance of the pieces above, m g lambda (x - E_x) + m ((x - E_x) a_y - (y - E_y)
+            // a_x) - I theta'' for each (theta'' only for the body's pieces).
+            let moments = ends.map(|(ex, ey)| {
+                let mut m = ZERO;
+                for &i in &joint.above {
+                    let (p, k) = (&self.pieces[i], &motion[i]);
+                    let mut dx = k.x;
+                    add_to(&mut dx, &ex, -1.0);
+                    let mut dy = k.y;
+                    add_to(&mut dy, &ey, -1.0);
+                    let mut ay = k.ay;
+                    add_to(&mut ay, &glam, 1.0);
+                    add_to(&mut m, &product(&dx, &ay), p.mass_kg);
+                    add_to(&mut m, &product(&dy, &k.ax), -p.mass_kg);
+                    if p.moving {
+                        add_to(&mut m, &alpha, -p.inertia_kg_m2);
+                    }
+                }
+                m
+            });
+            // Normal and tangential components on the joint's own (turned) faces.
+            let (n, t) = if joint.inside {
+                let mut n = product(&h, &sin);
+                add_to(&mut n, &product(&v, &cos), 1.0);
+                let mut t = product(&h, &cos);
+                add_to(&mut t, &product(&v, &sin), -1.0);
+                (n, t)
+            } else {
+                (v, h)
+            };
+            let mu = joint.friction;
+            let mut forward = ZERO;
+            add_to(&mut forward, &n, mu);
+            let mut backward = forward;
+            add_to(&mut forward, &t, -1.0);
+            add_to(&mut backward, &t, 1.0);
+            let mut right = moments[1];
+            right.iter_mut().for_each(|c| *c = -*c);
+            let series = [forward, backward, moments[0], right];
+            for (c, series) in series.into_iter().enumerate() {
+                let scale = if c < 2 {
+                    self.force_scale
+                } else {
+                    self.moment_scale
+                };
+                out.push(Constraint {
+                    series,
+                    scale,
+                    guard: Guard::Held(4 * j + c),
+                    strict: false,
+                });
+            }
+        }
+        out
+    }
+
+    /// The first held joint's condition that the impulses of a landing break, if any: every
+    /// piece's velocity jumps from `before` (pivot, angular velocity, pivot slip velocity) to
+    /// `after` (the new pivot or none, and the same), at theta = 0, with the body displaced
+    /// by `u`. The impulses passed through a held joint must lie in its friction cone and
+    /// their resultant within its contact, as the forces must between events.
+    pub fn landing(&self, u: f64, before: Velocity, after: Velocity) -> Option<usize> {
+        // Ties are measured against the largest impulse the landing could pass (N s) and its
+        // moment over the column's height.
+        let height = self.moment_scale / self.force_scale;
+        let mass: f64 = self.pieces.iter().map(|p| p.mass_kg).sum();
+        let impulse =
+            mass * ((before.1.abs() + after.1.abs()) * height + before.2.abs() + after.2.abs());
+        let tol = [1.0, 1.0, height, height].map(|k| TIE * impulse * k);
+        self.joints.iter().enumerate().find_map(|(j, joint)| {
+            let margins = self.impulse_margins(joint, u, before, after);
+            (0..4).position(|c| margins[c] < -tol[c]).map(|c| 4 * j + c)
+        })
+    }
+
+    /// What a joint has to spare through a landing, as [`Watch::conditions`] orders them:
+    /// mu J_n -+ J_t and the moments of the impulses about its two ends.
+    fn impulse_margins(&self, joint: &Held, u: f64, before: Velocity, after: Velocity) -> [f64; 4] {
+        let velocity = |(pivot, omega, v): Velocity, p: &Piece| {
+            let s = pivot.map_or(0.0, Corner::sign);
+            (v + omega * p.y0, -omega * (p.x0 - s * self.half_base_m))
+        };
+        let spin = after.1 - before.1;
+        let (mut jx, mut jy) = (0.0, 0.0);
+        let mut moments = [0.0; 2];
+        for &i in &joint.above {
+            let p = &self.pieces[i];
+            if !p.moving {
+                continue;
+            }
+            let (a, b) = (velocity(after, p), velocity(before, p));
+            let (dvx, dvy) = (a.0 - b.0, a.1 - b.1);
+            jx += p.mass_kg * dvx;
+            jy += p.mass_kg * dvy;
+            for (m, &(ex, ey)) in moments.iter_mut().zip(&joint.ends) {
+                let ex = ex + if joint.inside { u } else { 0.0 };
+                *m += p.mass_kg * ((p.x0 + u - ex) * dvy - (p.y0 - ey) * dvx)
+                    - p.inertia_kg_m2 * spin;
+            }
+        }
+        let mu = joint.friction;
+        [mu * jy - jx, mu * jy + jx, moments[0], -moments[1]]
+    }
+}
+
+/// A body's velocity at theta = 0: the corner it turns on (none: seated), its angular velocity
+/// (rad/s) and the slip velocity of that corner (or of its base) relative to the ground (m/s).
+pub type Velocity = (Option<Corner>, f64, f64);
+
+/// A piece's position and absolute acceleration, as series.
+struct Kinematics {
+    x: Coeffs,
+    y: Coeffs,
+    ax: Coeffs,
+    ay: Coeffs,
+}
+
+fn constant(x: f64) -> Coeffs {
+    let mut c = ZERO;
+    c[0] = x;
+    c
+}
+
+fn plus(c: &Coeffs, x: f64) -> Coeffs {
+    let mut out = *c;
+    out[0] += x;
+    out
+}
+
+fn add_to(a: &mut Coeffs, b: &Coeffs, k: f64) {
+    a.iter_mut().zip(b).for_each(|(x, y)| *x += k * y);
+}
+
+/// A block of the wall: its extent and what it stands on.
+struct Stacked {
+    id: usize,
+    mass: Q,
+    x: Q,
+    right: Q,
+    bottom: Q,
+    top: Q,
+}
+
+/// The columns of a wall, or why it is not made of columns: every movable block rests on one
+/// block (or the ground) and carries at most one, with no vertical joint; the body of each
+/// column must have its centroid over the middle of the contact it moves on (the rocking
+/// body's equations take it there).
+pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationError> {
+    let not = |why: String| {
+        SimulationError::NotApplicable(format!(
+            "{why}: the exact rocking model runs walls whose movable blocks stand in free \
+             columns (each on one block, carrying at most one, nothing beside it); run this \
+             wall's blocks with rotations on time stepping (--model slide-rock --method moreau \
+             --dt S), sliding exactly (--model slide), or across its plane (--direction \
+             out-of-plane)"
+        ))
+    };
+    let movable = |b: usize| !wall.blocks[b].fixed;
+    let mut bottoms = Vec::new();
+    for b in (0..wall.blocks.len()).filter(|&b| movable(b)) {
+        let name = &wall.blocks[b].name;
+        if !topo.sides[b].is_empty() {
+            return Err(not(format!("{name} has a block beside it")));
+        }
+        let [below] = topo.below[b] else {
+            return Err(not(format!(
+                "{name} rests on {} blocks",
+                topo.below[b].len()
+            )));
+        };
+        let above: Vec<_> = topo.above[b].to_vec();
+        if above.len() > 1 {
+            return Err(not(format!("{name} carries {} blocks", above.len())));
+        }
+        if let Some(a) = above.first() {
+            if !movable(topo.horizontal[a.0].upper.0) {
+                return Err(not(format!("{name} carries an abutment")));
+            }
+        }
+        let lower = topo.horizontal[below.0].lower;
+        if matches!(lower, Base::Ground) || matches!(lower, Base::Block(BlockId(l)) if !movable(l))
+        {
+            bottoms.push(b);
+        }
+    }
+    if bottoms.is_empty() {
+        return Err(not(format!("{} has no movable block", wall.name)));
+    }
+    bottoms.into_iter().map(|b| column(wall, topo, b)).collect()
+}
+
+/// The column standing on block `bottom`'s joint.
+fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, SimulationError> {
+    let mut stack = vec![bottom];
+    while let Some(a) = topo.above[*stack.last().expect("a column has a block")].first() {
+        stack.push(topo.horizontal[a.0].upper.0);
+    }
+    let blocks: Vec<Stacked> = stack
+        .iter()
+        .map(|&id| {
+            let b = &wall.blocks[id];
+            Stacked {
+                id,
+                mass: wall.mass_kg(id),
+                x: b.x.clone(),
+                right: b.right(),
+                bottom: b.y.clone(),
+                top: b.top(),
+            }
+        })
+        .collect();
+    let name = |i: usize| wall.blocks[blocks[i].id].name.clone();
+    let base_name = |i: usize| -> String {
+        let joint = topo.below[blocks[i].id][0];
+        topo.base_name(wall, topo.horizontal[joint.0].lower)
+            .to_string()
+    };
+    // Each joint's contact, the part above it (mass, centroid) and the ratio at which it gives
+    // way: the smallest of its friction and its tipping ratios (x_G - x_l) / h, (x_r - x_G) / h.
+    let two = Q::int(2);
+    let mut best: Option<(usize, Q)> = None;
+    let mut contacts = Vec::new();
+    let mut centroids = Vec::new();
+    for i in 0..blocks.len() {
+        let joint = &topo.horizontal[topo.below[blocks[i].id][0].0];
+        let (lo, hi) = match joint.lower {
+            Base::Ground => (blocks[i].x.clone(), blocks[i].right.clone()),
+            Base::Block(BlockId(l)) => {
+                let under = &wall.blocks[l];
+                (
+                    blocks[i].x.clone().max(under.x.clone()),
+                    blocks[i].right.clone().min(under.right()),
+                )
+            }
+        };
+        let part = &blocks[i..];
+        let mass: Q = part.iter().map(|b| b.mass.clone()).sum();
+        let xg: Q = part
+            .iter()
+            .map(|b| &b.mass * &(&b.x + &b.right) / &two)
+            .sum::<Q>()
+            / &mass;
+        let yg: Q = part
+            .iter()
+            .map(|b| &b.mass * &(&b.bottom + &b.top) / &two)
+            .sum::<Q>()
+            / &mass;
+        let h = &yg - &blocks[i].bottom;
+        let ratio = joint
+            .friction
+            .clone()
+            .min((&xg - &lo) / &h)
+            .min((&hi - &xg) / &h);
+        if best.as_ref().is_none_or(|(_, r)| ratio < *r) {
+            best = Some((i, ratio));
+        }
+        contacts.push((lo, hi, joint.friction.to_f64()));
+        centroids.push((mass, xg, yg));
+    }
+    let (k, _) = best.expect("a column has a joint");
+    let (lo, hi, friction) = contacts[k].clone();
+    let (mass, xg, yg) = centroids[k].clone();
+    let middle = (&lo + &hi) / &two;
+    let names: Vec<String> = (k..blocks.len()).map(name).collect();
+    let body_name = names.join("+");
+    if xg != middle {
+        return Err(SimulationError::NotApplicable(format!(
+            "{body_name} moves on its joint with {} but its centroid (x = {} m) is not over the \
+             middle of that contact (x = {} m): the exact rocking model takes bodies centred on \
+             their base; run the wall on time stepping (--model slide-rock --method moreau --dt \
+             S)",
+            base_name(k),
+            xg.to_f64(),
+            middle.to_f64()
+        )));
+    }
+    let level = blocks[k].bottom.clone();
+    let (x_origin, y_origin) = (middle.to_f64(), level.to_f64());
+    let pieces: Vec<Piece> = blocks
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let (w, hgt) = ((&b.right - &b.x).to_f64(), (&b.top - &b.bottom).to_f64());
+            let m = b.mass.to_f64();
+            Piece {
+                mass_kg: m,
+                inertia_kg_m2: m * (w * w + hgt * hgt) / 12.0,
+                x0: ((&b.x + &b.right) / &two).to_f64() - x_origin,
+                y0: ((&b.bottom + &b.top) / &two).to_f64() - y_origin,
+                moving: i >= k,
+            }
+        })
+        .collect();
+    let (xg_f, yg_f) = (xg.to_f64() - x_origin, yg.to_f64() - y_origin);
+    let inertia: f64 = pieces[k..]
+        .iter()
+        .map(|p| {
+            let d2 = (p.x0 - xg_f).powi(2) + (p.y0 - yg_f).powi(2);
+            p.inertia_kg_m2 + p.mass_kg * d2
+        })
+        .sum();
+    let g = wall.g_m_s2.to_f64();
+    let body = RockingBody {
+        name: body_name,
+        mass_kg: mass.to_f64(),
+        inertia_kg_m2: inertia,
+        half_base_m: ((&hi - &lo) / &two).to_f64(),
+        centroid_height_m: yg_f,
+        friction,
+        restitution_factor: wall.rocking_restitution_factor,
+        g_m_s2: g,
+    };
+    let joints = (0..blocks.len())
+        .filter(|&i| i != k)
+        .map(|i| {
+            let (lo, hi, friction) = &contacts[i];
+            let y = blocks[i].bottom.to_f64() - y_origin;
+            Held {
+                name: format!("{}/{}", name(i), base_name(i)),
+                upper: i,
+                friction: *friction,
+                ends: [(lo.to_f64() - x_origin, y), (hi.to_f64() - x_origin, y)],
+                inside: i > k,
+                above: (i..blocks.len()).collect(),
+            }
+        })
+        .collect();
+    let total: f64 = pieces.iter().map(|p| p.mass_kg).sum();
+    let height = (&blocks[blocks.len() - 1].top - &blocks[0].bottom).to_f64();
+    let outputs = (0..blocks.len())
+        .map(|i| {
+            let b = &blocks[i];
+            Output {
+                name: name(i),
+                lower: i.checked_sub(1),
+                base: base_name(i),
+                x0: ((&b.x + &b.right) / &two).to_f64() - x_origin,
+                y0: b.bottom.to_f64() - y_origin,
+                moving: i >= k,
+            }
+        })
+        .collect();
+    Ok(Column {
+        watch: Watch {
+            base: base_name(k),
+            outputs,
+            pieces,
+            joints,
+            half_base_m: body.half_base_m,
+            g_m_s2: g,
+            force_scale: total * g,
+            moment_scale: total * g * height,
+        },
+        held: (0..k).map(name).collect(),
+        body,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::rocking::modes::{self, Equations, Mode, Slip, State};
+    use crate::motion::{Motion, Sine};
+
+    /// A column of three blocks of different sizes, one joint given its own friction: the top
+    /// block moves on the others (it tips first), or with a low friction between the lower two
+    /// the upper two move as one body.
+    fn column_of(joint: &str, friction: f64) -> Column {
+        let model = crate::model::Model::from_ron_str(&format!(
+            "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6,
+              joint_friction: {{\"{joint}\": {friction}}},
+              rows: [(height_m: 0.4, blocks: [(width_m: 1.2, name: \"A\")]),
+                     (height_m: 0.6, x_m: 0.2, blocks: [(width_m: 0.8, name: \"B\")]),
+                     (height_m: 1.5, x_m: 0.35, blocks: [(width_m: 0.5, name: \"C\")])])"
+        ))
+        .unwrap();
+        let mut c = columns(model.wall(), model.topology()).unwrap();
+        assert_eq!(c.len(), 1);
+        c.remove(0)
+    }
+
+    /// The watch with one joint more: the body's own base, so that what it computes there can
+    /// be checked against the contact forces of the body's equations.
+    fn with_own_base(c: &Column) -> Watch {
+        let mut w = c.watch.clone();
+        let b = c.body.half_base_m;
+        w.joints = vec![Held {
+            name: "own base".into(),
+            upper: 0,
+            friction: c.body.friction,
+            ends: [(-b, 0.0), (b, 0.0)],
+            inside: false,
+            above: (0..w.pieces.len())
+                .filter(|&i| w.pieces[i].moving)
+                .collect(),
+        }];
+        w
+    }
+
+    fn inputs_at(t: f64) -> modes::Inputs {
+        let motion = Motion::sine(Sine {
+            amplitude_m_s2: 3.0,
+            frequency_hz: 1.3,
+            duration_s: 10.0,
+            ..Sine::default()
+        })
+        .unwrap();
+        let seg = motion.segment_at(t);
+        modes::inputs(&seg, t - seg.t0)
+    }
+
+    /// The d'Alembert balance of the body's pieces gives back, at its own base, the contact
+    /// forces its equations of motion give (normal, tangential) and the resultant where the
+    /// mode puts it: through the pivot while it rocks (no moment about that end, 2 b N about
+    /// the other), at the corner forces while seated; along a step, to round-off.
+    #[test]
+    fn the_watch_balances_the_bodys_own_contact_forces() {
+        for (joint, friction, pieces) in [("C/B", 0.9, 1), ("B/A", 0.2, 2)] {
+            let c = column_of(joint, friction);
+            assert_eq!(
+                c.watch.pieces.iter().filter(|p| p.moving).count(),
+                pieces,
+                "{}",
+                c.body.name
+            );
+            let w = with_own_base(&c);
+            let b = c.body.half_base_m;
+            let inputs = inputs_at(0.37);
+            let rocking = State {
+                theta: 0.04,
+                omega: -0.3,
+                u: 0.0,
+                v: 0.0,
+            };
+            let sliding = State { v: 0.05, ..rocking };
+            let cases = [
+                (Mode::Rock(Corner::Right), rocking),
+                (
+                    Mode::Rock(Corner::Left),
+                    State {
+                        theta: -0.04,
+                        ..rocking
+                    },
+                ),
+                (Mode::SlideRock(Corner::Right, Slip::Forward), sliding),
+                (Mode::Rest, State::default()),
+                (
+                    Mode::Slide(Slip::Backward),
+                    State {
+                        v: -0.1,
+                        ..State::default()
+                    },
+                ),
+            ];
+            for (mode, state) in cases {
+                let t = modes::trajectory(&c.body, Equations::Exact, mode, &state, &inputs);
+                let cond = w.conditions(&t, &inputs);
+                let force = c.body.mass_kg * c.body.g_m_s2;
+                for tau in [0.0, 0.01, 0.03] {
+                    let at =
+                        |k: usize| crate::integrate::rocking::series::eval(&cond[k].series, tau);
+                    let e = |s: &Coeffs| crate::integrate::rocking::series::eval(s, tau);
+                    let mu = c.body.friction;
+                    let normal = (at(0) + at(1)) / (2.0 * mu);
+                    let tangential = (at(1) - at(0)) / 2.0;
+                    let close = |a: f64, b: f64, what: &str| {
+                        assert!(
+                            (a - b).abs() <= 1e-12 * force,
+                            "{}: {mode:?} tau {tau}: {what} {a} against {b}",
+                            c.body.name
+                        )
+                    };
+                    close(normal, e(&t.normal), "normal");
+                    close(tangential, e(&t.tangential), "tangential");
+                    // The pivot has moved by u (sliding): moments about the base's ends at rest.
+                    let u = e(&t.u);
+                    let (left, right) = (at(2), at(3));
+                    match mode.pivot() {
+                        Some(Corner::Right) => {
+                            close(
+                                left / (2.0 * b + u),
+                                e(&t.normal),
+                                "moment about the left end",
+                            );
+                            close(
+                                right,
+                                -u * e(&t.normal),
+                                "moment about the pivot's place at rest",
+                            );
+                        }
+                        Some(Corner::Left) => {
+                            close(
+                                left,
+                                u * e(&t.normal),
+                                "moment about the pivot's place at rest",
+                            );
+                            close(
+                                right / (2.0 * b - u),
+                                e(&t.normal),
+                                "moment about the right end",
+                            );
+                        }
+                        None => {
+                            let (nl, nr) = t.corners.as_ref().unwrap();
+                            close(
+                                left / (2.0 * b),
+                                e(nr) + u * e(&t.normal) / (2.0 * b),
+                                "left",
+                            );
+                            close(
+                                right / (2.0 * b),
+                                e(nl) - u * e(&t.normal) / (2.0 * b),
+                                "right",
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Through a landing on the other corner the impulse passes through the new pivot alone
+    /// (Housner): no moment about that end, and the normal impulse m (v_Gy after - before).
+    #[test]
+    fn a_landing_passes_its_impulse_through_the_new_pivot() {
+        for (joint, friction) in [("C/B", 0.9), ("B/A", 0.2)] {
+            let c = column_of(joint, friction);
+            let w = with_own_base(&c);
+            let landing = super::super::impact::land(
+                &c.body,
+                Equations::Exact,
+                Corner::Right,
+                -0.4,
+                0.0,
+                1.0,
+            )
+            .unwrap();
+            assert_eq!(landing.pivot, Some(Corner::Left));
+            let before = (Some(Corner::Right), -0.4, 0.0);
+            let after = (landing.pivot, landing.state.omega, landing.state.v);
+            let m = w.impulse_margins(&w.joints[0], 0.0, before, after);
+            let b = c.body.half_base_m;
+            let h = c.body.centroid_height_m;
+            // v_Gy = -omega x_G about the pivot: x_G = -b about the right corner, +b about the left.
+            let jn = c.body.mass_kg * (-after.1 * b - (-before.1 * -b));
+            let scale = c.body.mass_kg * 0.4 * (b + h);
+            assert!(m[2].abs() <= 1e-12 * scale, "{}: {m:?}", c.body.name);
+            assert!(
+                (-m[3] / (-2.0 * b) - jn).abs() <= 1e-12 * scale / b,
+                "{m:?} {jn}"
+            );
+            assert_eq!(w.landing(0.0, before, after), None);
+        }
+    }
+}
