@@ -144,8 +144,9 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
         }
     };
     let command = format!(
-        "pirqa run {}/wall.ron {motion_args} --model slide --duration {} --out {}{}\n",
+        "pirqa run {}/wall.ron {motion_args} --model {} --duration {} --out {}{}\n",
         dir.display(),
+        sweep.case_model(id)?,
         motion.duration_s,
         dir.display(),
         if history { "" } else { " --no-history" }

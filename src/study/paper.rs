@@ -88,6 +88,7 @@ fn grid(duration_s: f64, frequencies: Frequencies) -> SweepDescription {
             phase_deg: 0.0,
         },
         friction: FrictionModel::Nominal,
+        model: Default::default(),
     }
 }
 

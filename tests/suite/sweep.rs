@@ -415,6 +415,8 @@ fn a_sliding_body_split_by_an_impact_is_decided() {
 fn every_shipped_study_loads() {
     let expected = [
         ("block-count.ron", 5 * 8),
+        ("columns-fragility-sliding.ron", 3 * 6 * 20),
+        ("columns-fragility.ron", 3 * 6 * 20),
         ("elcentro-ida.ron", 3 * 11),
         ("fragility.ron", 6 * 200),
         ("friction-mc.ron", 1000),
@@ -469,4 +471,77 @@ fn a_sweep_moved_with_its_files_keeps_its_fingerprint() {
     assert_eq!(Sweep::load(&file).unwrap().fingerprint, here.fingerprint);
     std::fs::write(&copied, record.replacen(".6403182E-02", ".6403183E-02", 1)).unwrap();
     assert_ne!(Sweep::load(&file).unwrap().fingerprint, here.fingerprint);
+}
+
+/// A sweep runs the model `pirqa run` would (`model`, default Auto): a slender block on a stack
+/// (it lifts at 0.25 g) rocks where the motion can lift it and slides where it cannot, a
+/// two-block column (0.167 g) rocks at all three levels, the five-block wall slides, and each case's row says which model ran and how far its blocks turned; with
+/// `model: Slide` every case slides; the rerun command names the model a case ran; a case that
+/// the model stopped early (a held joint gave way) is reported as failed with the reason.
+/// Every number of a rocked case is `pirqa run`'s.
+#[test]
+fn a_sweep_rocks_the_cases_pirqa_run_would() {
+    let text = |model: &str| {
+        format!(
+            r#"(
+    version: 1,
+    name: "columns",
+    walls: [File(path: "walls/rocking/slender-on-stack.ron"), File(path: "walls/five-block-uniform.ron"),
+            File(path: "walls/rocking/two-block-column.ron")],
+    motion: Sine(amplitudes: ["0.2g", "0.3g", "0.5g"], frequencies_hz: List([1.5]), duration_s: 6.0),
+    {model}
+)"#
+        )
+    };
+    let auto = sweep(&text("")).unwrap();
+    let rows: Vec<CaseRow> = (0..auto.len()).map(|id| auto.run_case(id).0).collect();
+    let models: Vec<&str> = rows.iter().map(|r| r.model.as_str()).collect();
+    assert_eq!(
+        models,
+        [
+            "slide",
+            "slide-rock",
+            "slide-rock",
+            "slide",
+            "slide",
+            "slide",
+            "slide-rock",
+            "slide-rock",
+            "slide-rock"
+        ]
+    );
+    for (id, r) in rows.iter().enumerate() {
+        assert_eq!(auto.case_model(id).unwrap(), r.model, "case {id}");
+        assert_eq!(
+            r.max_abs_rotation_rad > 0.0,
+            r.model == "slide-rock",
+            "{r:?}"
+        );
+    }
+    // The stack's top overturns at 0.3 g, as `pirqa run` has it.
+    let model = pirqa::Model::from_file("walls/rocking/slender-on-stack.ron").unwrap();
+    let run = pirqa::run(
+        &model,
+        &auto.motions[1].motion,
+        &pirqa::RunSettings::default(),
+    )
+    .unwrap()
+    .summary;
+    assert_eq!(rows[1].collapse_time_s, run.collapse.map(|c| c.time_s));
+    assert_eq!(rows[1].collapse_block.as_deref(), Some("Top"));
+    // The two-block column's inner joint opens at 0.5 g: beyond the model, said so.
+    let beyond = rows[8].error.as_deref().unwrap_or_default();
+    assert!(
+        beyond.contains("the joint Drum2/Drum1 would open"),
+        "{beyond}"
+    );
+    assert!(rows[..8].iter().all(|r| r.error.is_none()));
+
+    let slide = sweep(&text("model: Slide,")).unwrap();
+    assert_ne!(slide.fingerprint, auto.fingerprint);
+    for id in 0..slide.len() {
+        let (r, _) = slide.run_case(id);
+        assert_eq!((r.model.as_str(), r.max_abs_rotation_rad), ("slide", 0.0));
+        assert!(!r.collapsed && r.error.is_none(), "{r:?}");
+    }
 }

@@ -237,8 +237,8 @@ pub fn out_of_plane(
     Ok(response)
 }
 
-/// The model a run asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// The model a run asks for (`model:` of a sweep file: `Slide`, `SlideRock`, `Auto`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum ModelChoice {
     /// Blocks slide only (one degree of freedom each).

@@ -13,10 +13,11 @@ use crate::clock::ThreadClock;
 use crate::error::{Error, MotionError, SimulationError, SweepError};
 use crate::exact::Q;
 use crate::integrate::event::EventDriven;
+use crate::integrate::rocking::{self, ModelChoice, Rocking};
 use crate::integrate::{Integrator, Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
-use crate::response::Summary;
+use crate::response::{Summary, Warning};
 use crate::rng::Rng;
 use crate::topology::Topology;
 use crate::units::parse_acceleration;
@@ -48,6 +49,14 @@ pub struct SweepDescription {
     /// Friction: the walls' own coefficients, or random samples around them.
     #[serde(default)]
     pub friction: FrictionModel,
+    /// The model of the blocks, as `pirqa run --model` (default `Auto`: a case rocks where its
+    /// wall is a column the motion can lift, and slides otherwise).
+    #[serde(default, skip_serializing_if = "is_auto")]
+    pub model: ModelChoice,
+}
+
+fn is_auto(m: &ModelChoice) -> bool {
+    *m == ModelChoice::Auto
 }
 
 /// Where a wall comes from.
@@ -232,6 +241,8 @@ pub struct Sweep {
     pub fingerprint: String,
     /// The sweep file it was read from (`<string>` for a description given as text).
     pub origin: PathBuf,
+    /// The model of the blocks.
+    pub model: ModelChoice,
 }
 
 /// An error of the sweep file `path`.
@@ -355,7 +366,13 @@ impl Sweep {
                 },
             ));
         }
-        let mut hash = fnv(FNV_OFFSET, format!("{:?}", d.by_file_name()).as_bytes());
+        // A sweep of the default model hashes the text it had before `model` came, so that
+        // folders written before keep their fingerprint and resume.
+        let text = format!("{:?}", d.by_file_name());
+        let text = text
+            .strip_suffix(", model: Auto }")
+            .map_or_else(|| text.clone(), |t| format!("{t} }}"));
+        let mut hash = fnv(FNV_OFFSET, text.as_bytes());
         let mut walls = Vec::new();
         for source in &d.walls {
             let w = resolve_wall(source, base, origin, &mut hash)?;
@@ -384,6 +401,7 @@ impl Sweep {
             friction: d.friction.clone(),
             fingerprint: format!("{hash:016x}"),
             origin: origin.to_path_buf(),
+            model: d.model,
         })
     }
 
@@ -466,12 +484,9 @@ impl Sweep {
         progress: Progress,
     ) -> Result<Response, Error> {
         let (w, m, s) = self.case(id);
-        let topology = match self.friction {
-            FrictionModel::Nominal => self.walls[w].topology.clone(),
-            FrictionModel::Random { .. } => {
-                self.walls[w].topology.with_frictions(self.frictions(w, s))
-            }
-        };
+        let topology = self
+            .sampled_topology(w, s)
+            .unwrap_or_else(|| self.walls[w].topology.clone());
         let motion = &self.motions[m];
         let settings = Settings {
             duration_s: motion.duration_s,
@@ -482,9 +497,7 @@ impl Sweep {
             after_collapse: Default::default(),
             progress: Some(progress),
         };
-        // Sweeps slide, whatever their walls (sweeps of rocking walls are not built yet): the
-        // summary says `--model slide`, which the rerun command gives.
-        Ok(EventDriven::default().run(&Scenario {
+        Ok(self.integrate(&Scenario {
             wall: &self.walls[w].wall,
             topology: &topology,
             motion: &motion.motion,
@@ -492,22 +505,64 @@ impl Sweep {
         })?)
     }
 
+    /// The model case `id` runs, as `pirqa run --model` names it (`slide` or `slide-rock`),
+    /// or why it cannot run.
+    pub fn case_model(&self, id: usize) -> Result<&'static str, SimulationError> {
+        let (w, m, s) = self.case(id);
+        let motion = &self.motions[m];
+        let sampled = self.sampled_topology(w, s);
+        let topology = sampled.as_ref().unwrap_or(&self.walls[w].topology);
+        let rocks = self.rocks(
+            &self.walls[w].wall,
+            topology,
+            &motion.motion,
+            motion.duration_s,
+        )?;
+        Ok(if rocks { "slide-rock" } else { "slide" })
+    }
+
+    /// Wall `w`'s graph with the friction of sample `s`, when friction is sampled.
+    fn sampled_topology(&self, w: usize, s: usize) -> Option<Topology> {
+        match self.friction {
+            FrictionModel::Nominal => None,
+            FrictionModel::Random { .. } => {
+                Some(self.walls[w].topology.with_frictions(self.frictions(w, s)))
+            }
+        }
+    }
+
+    /// Whether a case of this wall (with its sampled friction) and motion rocks under the
+    /// sweep's model: the choice `pirqa run` makes.
+    fn rocks(
+        &self,
+        wall: &Wall,
+        topology: &Topology,
+        motion: &Motion,
+        duration_s: f64,
+    ) -> Result<bool, SimulationError> {
+        Ok(rocking::rocks_in_plane(self.model, wall, topology, motion, duration_s, &[])?.0)
+    }
+
+    /// Runs a case's scenario on the model the sweep asks for.
+    fn integrate(&self, sc: &Scenario) -> Result<Response, SimulationError> {
+        if self.rocks(sc.wall, sc.topology, sc.motion, sc.settings.duration_s)? {
+            Rocking::default().run(sc)
+        } else {
+            EventDriven::default().run(sc)
+        }
+    }
+
     /// Runs one case.
     pub fn run_case(&self, id: usize) -> (CaseRow, Vec<BlockRow>) {
         let (w, m, s) = self.case(id);
         let (wall, motion) = (&self.walls[w], &self.motions[m]);
-        let topology = match self.friction {
-            FrictionModel::Nominal => None,
-            FrictionModel::Random { .. } => {
-                Some(wall.topology.with_frictions(self.frictions(w, s)))
-            }
-        };
+        let topology = self.sampled_topology(w, s);
         let topo = topology.as_ref().unwrap_or(&wall.topology);
         let settings = Settings::summary_only(motion.duration_s);
         let clock = ThreadClock::start();
         // A panic is a bug; caught, it fails this case instead of the whole sweep.
         let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            EventDriven::default().run(&Scenario {
+            self.integrate(&Scenario {
                 wall: &wall.wall,
                 topology: topo,
                 motion: &motion.motion,
@@ -900,4 +955,16 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         row.collapse_time_s = Some(c.time_s);
         row.collapse_block = Some(c.block.clone());
     }
+    row.model = s.model.name.clone();
+    row.max_abs_rotation_rad = s
+        .blocks
+        .iter()
+        .map(|b| b.max_abs_rotation_rad)
+        .fold(0.0, f64::max);
+    // A run the model stopped before its end (a held joint gave way, a body left the ground)
+    // has no answer past that instant: the case says so instead of passing for complete.
+    row.error = s.warnings.iter().find_map(|w| match w {
+        Warning::HeldJointGives { .. } | Warning::Flight { .. } => Some(w.to_string()),
+        _ => None,
+    });
 }

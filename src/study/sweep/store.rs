@@ -88,6 +88,12 @@ pub struct CaseRow {
     pub collapse_time_s: Option<f64>,
     /// Which block.
     pub collapse_block: Option<String>,
+    /// The model the case ran (`slide` or `slide-rock`: a sweep's `auto` rocks the cases
+    /// whose walls are columns the motion can lift, docs/rocking-walls.md).
+    pub model: String,
+    /// Largest |rotation| of any block (rad; 0 when it slid).
+    #[serde(serialize_with = "table::sci")]
+    pub max_abs_rotation_rad: f64,
     /// CPU time of the run (s): a measurement, kept in timing.csv, not in cases.csv.
     #[serde(skip)]
     pub cpu_s: f64,
@@ -123,7 +129,7 @@ pub struct TimingRow {
 }
 
 /// Columns of `cases.csv`.
-pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,error";
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,error";
 
 /// Columns of `timing.csv`.
 pub const TIMING_HEADER: &str = "case,cpu_s";
