@@ -170,8 +170,8 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
             }
             if !settings.initial_rotation.is_empty() {
                 return Err(incompatible(
-                    "--initial-rotation is given to a free-standing block only",
-                    "leave --initial-rotation out",
+                    "Moreau-Jean on a wall of several blocks starts from rest",
+                    "leave --initial-rotation out, or --method out for the exact model",
                 ));
             }
             let mut response = MoreauWall::new(*dt_s).run(&sc)?;

@@ -356,7 +356,8 @@ pub struct RunArgs {
     #[arg(long, value_enum, default_value_t = Direction::InPlane)]
     pub direction: Direction,
     /// Start a block (or a section across the plane) from rest at this rotation, NAME=RAD
-    /// (positive: on its right corner, or towards the back face); repeatable. Without a
+    /// (positive: on its right corner, or towards the back face); in a wall of one column, a
+    /// block of its moving body releases the body; repeatable across the plane. Without a
     /// ground motion the ground rests for --duration.
     #[arg(long, value_name = "NAME=RAD", value_parser = parse_rotation)]
     pub initial_rotation: Vec<(String, f64)>,

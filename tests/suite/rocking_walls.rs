@@ -309,3 +309,81 @@ fn time_stepping_converges_to_the_exact_column_model() {
         );
     }
 }
+
+/// The two-block column released from 0.1 rad on still ground (`--initial-rotation Drum2=0.1`:
+/// a block of the body names it) rocks as its body standing alone: every landing at the same
+/// instant and with the same angular velocities, to round-off, the joint between the drums
+/// held through them (its friction 0.7 carries the landing impulses). A held block cannot be
+/// released, nor can two blocks.
+#[test]
+fn a_column_released_from_a_rotation_rocks_as_its_body_alone() {
+    use pirqa::integrate::rocking::{self, columns, Scene};
+    use pirqa::response::EventKind;
+    let model = Model::from_file("walls/rocking/two-block-column.ron").unwrap();
+    let body = columns(model.wall(), model.topology()).unwrap()[0]
+        .body
+        .clone();
+    let motion = Motion::Pulse(pirqa::Pulse::rest());
+    let settings = RunSettings {
+        initial_rotation: vec![("Drum2".into(), 0.1)],
+        duration_s: Some(5.0),
+        log_events: true,
+        ..RunSettings::default()
+    };
+    let column = pirqa::run(&model, &motion, &settings).unwrap();
+    let alone = rocking::run(&Scene {
+        bodies: std::slice::from_ref(&body),
+        watches: &[],
+        initial_rotation_rad: &[0.1],
+        equations: pirqa::Equations::Exact,
+        motion: &motion,
+        settings: &pirqa::integrate::Settings {
+            log_events: true,
+            ..pirqa::integrate::Settings::summary_only(5.0)
+        },
+    })
+    .unwrap();
+    let landings = |r: &Response| -> Vec<(f64, f64)> {
+        r.events
+            .iter()
+            .filter(|e| e.kind == EventKind::RockingImpact)
+            .map(|e| (e.time_s, e.angular_velocity_after_rad_s.unwrap()))
+            .collect()
+    };
+    let (a, b) = (landings(&column), landings(&alone));
+    assert!(a.len() >= 4 && a.len() == b.len(), "{a:?} against {b:?}");
+    for ((t, w), (s, x)) in a.iter().zip(&b) {
+        assert!(
+            (t - s).abs() < 1e-12 && (w - x).abs() < 1e-12,
+            "{t} {w} against {s} {x}"
+        );
+    }
+    assert!(column.summary.warnings.is_empty());
+    for (released, expect) in [
+        (vec![("Drum1".to_string(), 0.1)], None),
+        (
+            vec![("Drum1".to_string(), 0.1), ("Drum2".to_string(), 0.1)],
+            Some("give one"),
+        ),
+    ] {
+        let settings = RunSettings {
+            initial_rotation: released,
+            ..settings.clone()
+        };
+        match (pirqa::run(&model, &motion, &settings), expect) {
+            (Ok(r), None) => assert_eq!(landings(&r), a),
+            (Err(e), Some(words)) => assert!(e.to_string().contains(words), "{e}"),
+            (r, _) => panic!("{:?}", r.map(|r| r.summary.model)),
+        }
+    }
+    let stack = Model::from_file("walls/rocking/slender-on-stack.ron").unwrap();
+    let held = RunSettings {
+        initial_rotation: vec![("Base".into(), 0.1)],
+        ..settings
+    };
+    let e = pirqa::run(&stack, &motion, &held).unwrap_err().to_string();
+    assert!(
+        e.contains("Base does not move with the column's body Top"),
+        "{e}"
+    );
+}

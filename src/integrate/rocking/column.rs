@@ -30,6 +30,17 @@ pub struct Column {
     pub held: Vec<String>,
 }
 
+impl Column {
+    /// Whether block `name` moves with the body (rather than being held below it).
+    pub fn moves(&self, name: &str) -> bool {
+        self.watch
+            .outputs
+            .iter()
+            .any(|o| o.moving && o.name == name)
+            || self.body.name == name
+    }
+}
+
 /// A block of a column as the watch sees it: in the frame whose origin is the middle of the
 /// body's base at rest, on the level of its joint.
 #[derive(Debug, Clone)]
@@ -103,30 +114,16 @@ const HOW: [&str; 4] = [
 ];
 
 impl Watch {
-    /// A watch with no held joint, for a body standing on the ground alone.
-    pub fn none() -> Watch {
-        Watch {
-            base: "ground".into(),
-            outputs: Vec::new(),
-            pieces: Vec::new(),
-            joints: Vec::new(),
-            half_base_m: 0.0,
-            g_m_s2: 0.0,
-            force_scale: 1.0,
-            moment_scale: 1.0,
-        }
-    }
-
     /// The held joint, how it gives way and the block on it (index in the column, bottom
     /// first), for the condition `k` of [`Watch::conditions`].
-    pub fn describe(&self, k: usize) -> (String, &'static str, usize) {
+    pub(crate) fn describe(&self, k: usize) -> (String, &'static str, usize) {
         let joint = &self.joints[k / 4];
         (joint.name.clone(), HOW[k % 4], joint.upper)
     }
 
     /// The held joints' conditions along a trajectory of the body: each series must stay
-    /// non-negative, with guard [`Guard::Held`] naming it.
-    pub fn conditions(&self, traj: &Trajectory, inputs: &Inputs) -> Vec<Constraint> {
+    /// non-negative, with guard `Guard::Held` naming it.
+    pub(crate) fn conditions(&self, traj: &Trajectory, inputs: &Inputs) -> Vec<Constraint> {
         if self.joints.is_empty() {
             return Vec::new();
         }
@@ -260,7 +257,7 @@ impl Watch {
     /// `after` (the new pivot or none, and the same), at theta = 0, with the body displaced
     /// by `u`. The impulses passed through a held joint must lie in its friction cone and
     /// their resultant within its contact, as the forces must between events.
-    pub fn landing(&self, u: f64, before: Velocity, after: Velocity) -> Option<usize> {
+    pub(crate) fn landing(&self, u: f64, before: Velocity, after: Velocity) -> Option<usize> {
         // Ties are measured against the largest impulse the landing could pass (N s) and its
         // moment over the column's height.
         let height = self.moment_scale / self.force_scale;
@@ -306,7 +303,7 @@ impl Watch {
 
 /// A body's velocity at theta = 0: the corner it turns on (none: seated), its angular velocity
 /// (rad/s) and the slip velocity of that corner (or of its base) relative to the ground (m/s).
-pub type Velocity = (Option<Corner>, f64, f64);
+pub(crate) type Velocity = (Option<Corner>, f64, f64);
 
 /// A piece's position and absolute acceleration, as series.
 struct Kinematics {

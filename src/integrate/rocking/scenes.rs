@@ -15,7 +15,8 @@ use crate::response::{Response, Warning};
 pub struct Rocking {
     /// The equations between events.
     pub equations: Equations,
-    /// Initial rotation of the block (rad; 0: seated at rest).
+    /// Initial rotation of the block, or of the body of a wall of one column (rad; 0: seated
+    /// at rest).
     pub initial_rotation_rad: f64,
 }
 
@@ -28,16 +29,14 @@ impl crate::integrate::Integrator for Rocking {
         let (bodies, watches) = if sc.wall.blocks.len() == 1 {
             (vec![free_standing(sc.wall, sc.topology)?], Vec::new())
         } else {
-            if self.initial_rotation_rad != 0.0 {
+            let columns = columns(sc.wall, sc.topology)?;
+            if self.initial_rotation_rad != 0.0 && columns.len() != 1 {
                 return Err(SimulationError::Incompatible {
-                    asked: "--initial-rotation is given to a free-standing block only",
+                    asked: "an initial rotation is given to a wall of one column",
                     fix: "leave --initial-rotation out",
                 });
             }
-            columns(sc.wall, sc.topology)?
-                .into_iter()
-                .map(|c| (c.body, c.watch))
-                .unzip()
+            columns.into_iter().map(|c| (c.body, c.watch)).unzip()
         };
         let mut response = run(&Scene {
             initial_rotation_rad: &vec![self.initial_rotation_rad; bodies.len()],
@@ -272,13 +271,37 @@ pub fn rocks_in_plane(
             });
         }
     }
+    if initial.len() > 1 {
+        return Err(SimulationError::NotApplicable(format!(
+            "{} initial rotations given: in the wall's plane one body is released, so give one \
+             --initial-rotation (across the plane, each section takes its own)",
+            initial.len()
+        )));
+    }
     match choice {
         ModelChoice::Slide if !initial.is_empty() => Err(SimulationError::Incompatible {
             asked: "--initial-rotation needs a model that rotates blocks",
             fix: "--model slide-rock or auto",
         }),
         ModelChoice::Slide => Ok((false, "asked for (--model slide)".into())),
-        ModelChoice::SlideRock if wall.blocks.len() > 1 && initial.is_empty() => {
+        ModelChoice::SlideRock | ModelChoice::Auto
+            if wall.blocks.len() > 1 && !initial.is_empty() =>
+        {
+            let columns = columns(wall, topo)?;
+            let body = released(&columns, initial)?;
+            let asked = match choice {
+                ModelChoice::Auto => "auto",
+                _ => "asked for (--model slide-rock)",
+            };
+            Ok((
+                true,
+                format!(
+                    "{asked}: {body} starts from a rotation; {}",
+                    moving_parts(&columns)
+                ),
+            ))
+        }
+        ModelChoice::SlideRock if wall.blocks.len() > 1 => {
             let columns = columns(wall, topo)?;
             Ok((
                 true,
@@ -289,7 +312,7 @@ pub fn rocks_in_plane(
             free_standing(wall, topo)?;
             Ok((true, "asked for (--model slide-rock)".into()))
         }
-        ModelChoice::Auto if wall.blocks.len() > 1 && initial.is_empty() => {
+        ModelChoice::Auto if wall.blocks.len() > 1 => {
             let Ok(columns) = columns(wall, topo) else {
                 return Ok((
                     false,
@@ -347,4 +370,33 @@ fn moving_parts(columns: &[Column]) -> String {
         })
         .collect::<Vec<_>>()
         .join("; ")
+}
+
+/// The body that an initial rotation of a wall of columns releases, or why it cannot: the wall
+/// is one column, one block is named, and it moves with the column's body (a held block stays
+/// seated by definition).
+fn released(columns: &[Column], initial: &[(String, f64)]) -> Result<String, SimulationError> {
+    let not = |why: String| {
+        SimulationError::NotApplicable(format!("--initial-rotation in a wall of columns: {why}"))
+    };
+    let [column] = columns else {
+        return Err(not(format!(
+            "the wall has {} columns; a release is given to a wall of one column",
+            columns.len()
+        )));
+    };
+    let [(name, _)] = initial else {
+        return Err(not(format!(
+            "{} rotations given; the column's body turns as one, so give one",
+            initial.len()
+        )));
+    };
+    if !column.moves(name) {
+        return Err(not(format!(
+            "{name} does not move with the column's body {} (the column moves on the joint \
+             that gives way first, and {name} is held below it)",
+            column.body.name
+        )));
+    }
+    Ok(column.body.name.clone())
 }
