@@ -140,8 +140,26 @@ fn top_name(top: Top) -> &'static str {
 pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
     let (wall, topo) = topology::load(path)?;
     let r = topo.report(&wall);
+    // A wall made of columns: where each joint gives way, and which the column moves on.
+    let columns = (wall.blocks.len() > 1)
+        .then(|| pirqa::integrate::rocking::columns(&wall, &topo).ok())
+        .flatten();
     if json {
-        print_out(&(serde_json::to_string_pretty(&r).expect("report serialises") + "\n"));
+        /// The graph's report, and a wall of columns' joint limits after it.
+        #[derive(serde::Serialize)]
+        struct Report<'a> {
+            #[serde(flatten)]
+            graph: &'a topology::TopologyReport,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            columns: Option<Vec<&'a [pirqa::integrate::rocking::JointLimit]>>,
+        }
+        let report = Report {
+            graph: &r,
+            columns: columns
+                .as_ref()
+                .map(|cs| cs.iter().map(|c| c.limits.as_slice()).collect()),
+        };
+        print_out(&(serde_json::to_string_pretty(&report).expect("report serialises") + "\n"));
         return Ok(());
     }
     let mut out = String::new();
@@ -206,6 +224,41 @@ pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
                 out,
                 "  {:<8} {:<8} {:>8.3} {:>9.3}",
                 j.left, j.right, j.gap_m, j.height_m
+            );
+        }
+    }
+    for c in columns.iter().flatten() {
+        let _ = writeln!(
+            out,
+            "\ncolumn {} (in the wall's plane: where each joint gives way, in g, the part above it \
+             rigid and the rest moving with the ground)",
+            c.body.name
+        );
+        let width = c
+            .limits
+            .iter()
+            .map(|l| l.joint.len())
+            .max()
+            .unwrap_or(0)
+            .max(5);
+        let _ = writeln!(
+            out,
+            "  {:<width$} {:>8} {:>12} {:>13}",
+            "joint", "slip_g", "tips_left_g", "tips_right_g"
+        );
+        for l in &c.limits {
+            let _ = writeln!(
+                out,
+                "  {:<width$} {:>8.4} {:>12.4} {:>13.4}{}",
+                l.joint,
+                l.slip_g,
+                l.tips_left_g,
+                l.tips_right_g,
+                if l.moves {
+                    format!("  <- gives way first: {} moves on it", c.body.name)
+                } else {
+                    String::new()
+                }
             );
         }
     }

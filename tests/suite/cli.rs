@@ -54,6 +54,36 @@ fn check_json_has_blocks_supports_and_joints() {
     assert_eq!(v["joints"][0]["gap_m"], 0.0);
 }
 
+/// A wall of columns: `check` says where each joint gives way (its friction and its tipping
+/// ratios, the part above rigid) and which the column moves on; the slender top of the stack
+/// (0.2 x 0.8 m: b/h = 0.25) tips before the stack under it (its two blocks and the top:
+/// centroid 0.6241 m above the ground, 0.5 / 0.6241 = 0.8011). Walls that are not columns get
+/// no such table (and their JSON no `columns`).
+#[test]
+fn check_gives_a_columns_joint_limits_and_the_joint_it_moves_on() {
+    let (ok, out, err) = pirqa(&["check", "walls/rocking/slender-on-stack.ron"]);
+    assert!(ok, "{err}");
+    for line in [
+        "Base/ground   0.8000       0.8011        0.8011",
+        "Top/Middle    0.8000       0.2500        0.2500  <- gives way first: Top moves on it",
+    ] {
+        assert!(out.contains(line), "missing `{line}` in\n{out}");
+    }
+    let (ok, out, err) = pirqa(&["check", "walls/rocking/slender-on-stack.ron", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let joints = v["columns"][0].as_array().unwrap();
+    assert_eq!(joints.len(), 3);
+    assert_eq!(joints[2]["joint"], "Top/Middle");
+    assert_eq!(joints[2]["tips_left_g"], 0.25);
+    assert_eq!(joints[2]["moves"], true);
+    assert_eq!(joints[0]["moves"], false);
+    assert_eq!(v["blocks"].as_array().unwrap().len(), 3);
+    let (_, out, _) = pirqa(&["check", "walls/five-block-variable.ron", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v.get("columns").is_none());
+}
+
 #[test]
 fn invalid_input_exits_non_zero_with_the_file_named() {
     let (ok, _, err) = pirqa(&["check", "walls/does-not-exist.ron"]);

@@ -24,6 +24,8 @@ use crate::wall::Wall;
 pub struct Column {
     /// The part above the joint the column moves on, named after its blocks (`B2+B3`).
     pub body: RockingBody,
+    /// Each joint of the column, bottom first, and where it gives way.
+    pub limits: Vec<JointLimit>,
     /// The held joints, checked as the body moves.
     pub watch: Watch,
     /// The blocks held to the ground below the body, bottom first.
@@ -67,6 +69,23 @@ struct Held {
     ends: [(f64, f64); 2],
     inside: bool,
     above: Vec<usize>,
+}
+
+/// A joint of a column and the ground accelerations, in g (at unit vertical load factor),
+/// at which it gives way with the part above it rigid and moving with the ground.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct JointLimit {
+    /// `upper/lower`.
+    pub joint: String,
+    /// |a_g| / g at which it slips: its friction coefficient.
+    pub slip_g: f64,
+    /// a_g / g at or above which the part above tips about the joint's left end, (x_G - x_l) / h.
+    pub tips_left_g: f64,
+    /// -a_g / g at or above which it tips about the right end, (x_r - x_G) / h.
+    pub tips_right_g: f64,
+    /// The joint gives way first (the smallest of the three, the lowest joint of equal ones):
+    /// the column moves on it.
+    pub moves: bool,
 }
 
 /// A block of a column as a run reports it.
@@ -419,6 +438,7 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
     let mut best: Option<(usize, Q)> = None;
     let mut contacts = Vec::new();
     let mut centroids = Vec::new();
+    let mut limits = Vec::new();
     for i in 0..blocks.len() {
         let joint = &topo.horizontal[topo.below[blocks[i].id][0].0];
         let (lo, hi) = match joint.lower {
@@ -444,11 +464,15 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
             .sum::<Q>()
             / &mass;
         let h = &yg - &blocks[i].bottom;
-        let ratio = joint
-            .friction
-            .clone()
-            .min((&xg - &lo) / &h)
-            .min((&hi - &xg) / &h);
+        let (left, right) = ((&xg - &lo) / &h, (&hi - &xg) / &h);
+        limits.push(JointLimit {
+            joint: format!("{}/{}", name(i), base_name(i)),
+            slip_g: joint.friction.to_f64(),
+            tips_left_g: left.to_f64(),
+            tips_right_g: right.to_f64(),
+            moves: false,
+        });
+        let ratio = joint.friction.clone().min(left).min(right);
         if best.as_ref().is_none_or(|(_, r)| ratio < *r) {
             best = Some((i, ratio));
         }
@@ -456,6 +480,7 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
         centroids.push((mass, xg, yg));
     }
     let (k, _) = best.expect("a column has a joint");
+    limits[k].moves = true;
     let (lo, hi, friction) = contacts[k].clone();
     let (mass, xg, yg) = centroids[k].clone();
     let middle = (&lo + &hi) / &two;
@@ -551,6 +576,7 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
         },
         held: (0..k).map(name).collect(),
         body,
+        limits,
     })
 }
 

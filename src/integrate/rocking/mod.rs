@@ -28,7 +28,7 @@ mod scenes;
 mod series;
 
 pub use body::RockingBody;
-pub use column::{columns, Column, Watch};
+pub use column::{columns, Column, JointLimit, Watch};
 pub use modes::Equations;
 pub use scenes::{
     can_lift, equations_name, free_standing, out_of_plane, rocks_in_plane, ModelChoice, Rocking,
