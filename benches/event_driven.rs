@@ -1,13 +1,41 @@
 //! Speed of the exact event-driven integrator on the paper's wall (figures in
-//! docs/performance.md): `cargo bench --features bench --bench event_driven`.
+//! docs/performance.md): `cargo bench --features bench --bench event_driven`. Before each
+//! scenario it prints the heap allocations of one run, counted by the allocator below.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicU64, Ordering};
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{Integrator, Scenario, Settings};
 use pirqa::motion::{Motion, Sine};
 use pirqa::{samples, topology};
 use std::hint::black_box;
 use std::path::Path;
+
+/// The system allocator, counting allocations (a reallocation counts as one).
+struct Counting;
+
+static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: the caller's contract is passed on to the system allocator unchanged.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: as above.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: as above.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
 
 fn run_case(c: &mut Criterion, name: &str, wall: &str, motion: Motion, duration: f64) {
     let (wall, topo) = topology::load(Path::new(wall)).unwrap();
@@ -24,6 +52,13 @@ fn run_case(c: &mut Criterion, name: &str, wall: &str, motion: Motion, duration:
         .summary
         .stats
         .events;
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    black_box(EventDriven::default().run(&sc).unwrap());
+    let allocations = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    eprintln!(
+        "{name}: {events} events, {allocations} allocations per run ({:.1} per event)",
+        allocations as f64 / events.max(1) as f64
+    );
     let mut group = c.benchmark_group(name);
     group.throughput(Throughput::Elements(events));
     group.bench_function("run", |b| {
