@@ -192,6 +192,8 @@ struct Caches {
 struct Scratch {
     /// Of the mode decisions.
     decisions: regroup::Buffers,
+    /// Of what they install.
+    after: regroup::After,
     /// Of the scheduling: pairs of sliding clusters.
     pairs: Vec<(ClusterId, ClusterId)>,
 }

@@ -9,7 +9,7 @@ mod solving;
 
 use super::cluster::ClusterId;
 use scratch::SetVel;
-pub(super) use scratch::{Buffers, Local};
+pub(super) use scratch::{After, Buffers, Local};
 
 use super::cluster::{Cluster, Mode, Slide};
 use super::flow;
@@ -127,17 +127,17 @@ impl Engine<'_> {
             self.solve_component(&p, &blocks, &old_clusters, &local, &set_vel, theta.as_ref());
 
         // 5. Install the new clusters, keeping what the intervals after it may need.
-        let mut before = Before::default();
+        let mut after = std::mem::take(&mut self.scratch.after);
         if blocks.len() >= self.given.params.kept_limits_from {
             for &b in &blocks {
-                before.of.insert(b, self.of[b]);
+                after.before.of.insert(b, self.of[b]);
             }
             for &k in &old_clusters {
                 let limits = match &self.clusters[k].mode {
                     Mode::Stuck { lo_q, hi_q, .. } => Some([lo_q.clone(), hi_q.clone()]),
                     Mode::Sliding(_) => None,
                 };
-                before.limits.insert(k, limits);
+                after.before.limits.insert(k, limits);
             }
         }
         for &k in &old_clusters {
@@ -148,8 +148,7 @@ impl Engine<'_> {
         }
         let group_of = &mut buf.group_of;
         group_of.resize(blocks.len(), usize::MAX);
-        let mut new_clusters = Vec::with_capacity(groups.len());
-        let mut needs_interval = Vec::new();
+
         for (g_idx, g) in groups.iter().enumerate() {
             // The member list is built in the emptied list of the slot `alloc` will give.
             let mut members = self
@@ -185,9 +184,9 @@ impl Engine<'_> {
                 self.of[i] = k;
             }
             if g.grounded && intervals[g_idx].is_none() {
-                needs_interval.push(k);
+                after.needs_interval.push(k);
             }
-            new_clusters.push(k);
+            after.new_clusters.push(k);
         }
 
         // 6. Joint directions, stick-slip transitions and separations.
@@ -199,13 +198,13 @@ impl Engine<'_> {
                 _ => theta_lex.clone(),
             }
         };
-        let (mut neighbours, mut pushed) = self.turn_joints(
+        self.turn_joints(
             &touched_horizontal,
             &touched_vertical,
             &local,
             &set_vel,
             &accel_of,
-            &mut before,
+            &mut after,
         );
         // The working memory goes back before anything below decides again.
         buf.local = local.release(&blocks);
@@ -227,7 +226,7 @@ impl Engine<'_> {
         buf.group_of.clear();
         self.scratch.decisions = buf;
         // Neighbours hold blocks outside the component only, so none is a new cluster.
-        for set in [&mut neighbours, &mut pushed] {
+        for set in [&mut after.neighbours, &mut after.pushed] {
             set.sort_unstable();
             set.dedup();
         }
@@ -237,27 +236,34 @@ impl Engine<'_> {
         // against has changed, so its events against the ground side are found again. A large
         // body beside a small decision then costs a pass over its own blocks, not one over every
         // sliding cluster along it.
-        let quiet: Vec<ClusterId> = neighbours
-            .into_iter()
-            .filter(|k| pushed.binary_search(k).is_err() && self.clusters[*k].slide().is_some())
-            .collect();
+        let After {
+            neighbours,
+            pushed,
+            quiet,
+            ..
+        } = &mut after;
+        quiet.extend(
+            neighbours.iter().copied().filter(|k| {
+                pushed.binary_search(k).is_err() && self.clusters[*k].slide().is_some()
+            }),
+        );
 
         // 7. Stuck clusters get their threshold interval; neighbours whose friction changed move
         //    on with their new forces.
-        for &k in &needs_interval {
-            self.set_thresholds(k, Some(&before));
+        for &k in &after.needs_interval {
+            self.set_thresholds(k, Some(&after.before));
         }
-        for &k in &new_clusters {
+        for &k in &after.new_clusters {
             self.clusters[k].version = self.new_version();
         }
-        for &k in &pushed {
-            self.refresh(k, &before);
+        for &k in &after.pushed {
+            self.refresh(k, &after.before);
         }
-        for &k in &quiet {
+        for &k in &after.quiet {
             self.clusters[k].ground_version = self.new_version();
             self.schedule_segment(k);
         }
-        self.schedule(new_clusters.iter().chain(&pushed).copied());
+        self.schedule(after.new_clusters.iter().chain(&after.pushed).copied());
         if let (Some((clock, nodes_from)), Some((blocks, stuck_taken_in))) = (log_from, taken_in) {
             let record = DecisionRecord {
                 time_s: t,
@@ -266,8 +272,8 @@ impl Engine<'_> {
                 load_factor: self.seg.lambda_at(self.s()),
                 blocks,
                 stuck_taken_in,
-                clusters: new_clusters.len(),
-                stuck_formed: self.largest_stuck(&new_clusters),
+                clusters: after.new_clusters.len(),
+                stuck_formed: self.largest_stuck(&after.new_clusters),
                 flow_nodes: flow::pass_nodes() - nodes_from,
                 cpu_s: clock.seconds(),
             };
@@ -278,13 +284,18 @@ impl Engine<'_> {
 
         // 8. A sliding cluster of several blocks whose friction forces changed may have to split:
         //    re-decide it (a stuck one has its new stick interval, which is checked at once).
-        for k in pushed {
+        let pushed = std::mem::take(&mut after.pushed);
+        self.scratch.after = after.cleared();
+        for &k in &pushed {
             let blocks = &self.clusters[k].blocks;
             if blocks.len() > 1 && self.clusters[k].slide().is_some() {
                 let seeds = blocks.clone();
                 self.regroup(&seeds, &[], None, Cause::Split)?;
             }
         }
+        let mut pushed = pushed;
+        pushed.clear();
+        self.scratch.after.pushed = pushed;
         Ok(())
     }
 
@@ -301,10 +312,14 @@ impl Engine<'_> {
         local: &Local,
         set_vel: &SetVel,
         accel_of: &dyn Fn(Option<usize>) -> Lex,
-        before: &mut Before,
-    ) -> (Vec<ClusterId>, Vec<ClusterId>) {
-        let mut neighbours: Vec<ClusterId> = Vec::new();
-        let mut pushed: Vec<ClusterId> = Vec::new();
+        after: &mut After,
+    ) {
+        let After {
+            before,
+            neighbours,
+            pushed,
+            ..
+        } = after;
         for &s in touched_horizontal {
             if !self.live_horizontal(s) {
                 continue;
@@ -386,7 +401,6 @@ impl Engine<'_> {
                 self.touching[j] = true;
             }
         }
-        (neighbours, pushed)
     }
 
     fn alloc(&mut self, c: Cluster) -> ClusterId {

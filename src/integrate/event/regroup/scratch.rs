@@ -2,6 +2,7 @@
 
 use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::solver::Problem;
+use crate::integrate::event::stuck::Before;
 
 /// No local index: a block outside the decision problem.
 pub(in crate::integrate::event) const NONE: usize = usize::MAX;
@@ -109,4 +110,38 @@ pub(in crate::integrate::event) struct Buffers {
     pub(super) u: Vec<f64>,
     pub(super) v: Vec<f64>,
     pub(super) group_of: Vec<usize>,
+}
+
+/// Working memory of what a decision installs and updates after its [`Buffers`] went back
+/// (those serve the decisions this part may start): the state it changed, its new clusters,
+/// those of them that need a stick interval, the clusters beside it, those of them whose
+/// friction changed, and the sliding ones left as they were. Empty between decisions; a
+/// decision started from inside another finds them taken and works in fresh memory.
+#[derive(Default)]
+pub(in crate::integrate::event) struct After {
+    pub(super) before: Before,
+    pub(super) new_clusters: Vec<ClusterId>,
+    pub(super) needs_interval: Vec<ClusterId>,
+    pub(super) neighbours: Vec<ClusterId>,
+    pub(super) pushed: Vec<ClusterId>,
+    pub(super) quiet: Vec<ClusterId>,
+}
+
+impl After {
+    /// Empties every part, keeping the memory.
+    pub(super) fn cleared(mut self) -> After {
+        self.before.of.clear();
+        self.before.limits.clear();
+        self.before.slip.clear();
+        for v in [
+            &mut self.new_clusters,
+            &mut self.needs_interval,
+            &mut self.neighbours,
+            &mut self.pushed,
+            &mut self.quiet,
+        ] {
+            v.clear();
+        }
+        self
+    }
 }
