@@ -3,14 +3,14 @@
 //! scenario it prints the heap allocations of one run, counted by the allocator below.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicU64, Ordering};
 use pirqa::integrate::event::EventDriven;
 use pirqa::integrate::{Integrator, Scenario, Settings};
 use pirqa::motion::{Motion, Sine};
 use pirqa::{samples, topology};
+use std::alloc::{GlobalAlloc, Layout, System};
 use std::hint::black_box;
 use std::path::Path;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The system allocator, counting allocations (a reallocation counts as one).
 struct Counting;
