@@ -387,3 +387,30 @@ fn a_column_released_from_a_rotation_rocks_as_its_body_alone() {
         "{e}"
     );
 }
+
+/// Two squat blocks of one friction (0.3) under 0.5 g: the column slides as one on the ground
+/// and the joint between the blocks sits exactly at its friction limit all the while (the
+/// upper block needs mu m g to follow the lower one's mu g): a tie, not a joint giving way. The
+/// column model then gives the exact sliding engine's answer, every block's largest and final
+/// displacement to 1e-12 m.
+#[test]
+fn a_column_sliding_as_one_is_the_sliding_engines_answer() {
+    let model = two_blocks(
+        "thickness_m: 1.0, density_kg_m3: 2500, friction: 0.3",
+        0.3,
+        [(2.0, 0.5, "A"), (2.0, 0.5, "B")],
+    );
+    let motion = sine(0.5 * 9.81, 1.0, 5.0);
+    let column = exact(&model, &motion, ModelChoice::SlideRock);
+    let sliding = exact(&model, &motion, ModelChoice::Slide);
+    assert_eq!(column.model.name, "slide-rock");
+    assert!(column.warnings.is_empty(), "{:?}", column.warnings);
+    for (c, s) in column.blocks.iter().zip(&sliding.blocks) {
+        assert!(
+            (c.max_abs_displacement_m - s.max_abs_displacement_m).abs() < 1e-12
+                && (c.final_displacement_m - s.final_displacement_m).abs() < 1e-12,
+            "{c:?} against {s:?}"
+        );
+        assert!(c.max_abs_displacement_m > 0.05);
+    }
+}
