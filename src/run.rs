@@ -168,13 +168,22 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
                     "leave --rocking out",
                 ));
             }
-            if !settings.initial_rotation.is_empty() {
-                return Err(incompatible(
-                    "Moreau-Jean on a wall of several blocks starts from rest",
-                    "leave --initial-rotation out, or --method out for the exact model",
-                ));
+            let initial_rotation = match settings.initial_rotation.as_slice() {
+                [] => None,
+                [one] => Some(one.clone()),
+                more => {
+                    return Err(Error::Simulation(SimulationError::NotApplicable(format!(
+                        "{} initial rotations given: in the wall's plane one body is released, \
+                         so give one --initial-rotation",
+                        more.len()
+                    ))))
+                }
+            };
+            let mut response = MoreauWall {
+                initial_rotation,
+                ..MoreauWall::new(*dt_s)
             }
-            let mut response = MoreauWall::new(*dt_s).run(&sc)?;
+            .run(&sc)?;
             response.summary.model.why = format!(
                 "asked for (--model slide-rock --method moreau): each of the {} blocks with its \
                  rotation, every contact at the corners of its joints",

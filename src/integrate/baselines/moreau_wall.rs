@@ -12,6 +12,7 @@
 //! sliding (docs/rocking-walls.md).
 
 use crate::error::SimulationError;
+use crate::integrate::rocking;
 use crate::integrate::stepping::time_step;
 use crate::integrate::{AfterCollapse, Integrator, Scenario};
 use crate::response::{Collapse, CollapseCause, ModelUsed, Recorder, Response, Warning};
@@ -40,15 +41,20 @@ pub struct MoreauWall {
     pub tolerance: f64,
     /// Gauss-Seidel sweeps allowed per step; steps that need more are counted in a warning.
     pub max_sweeps: usize,
+    /// A wall of one column released from a rotation: a block of its moving body and the
+    /// rotation (rad, clockwise positive), the body turned about the end of its base on that
+    /// side ([`crate::integrate::rocking::Column::released`]).
+    pub initial_rotation: Option<(String, f64)>,
 }
 
 impl MoreauWall {
-    /// Moreau-Jean with rotations, step dt, the usual settings.
+    /// Moreau-Jean with rotations, step dt, the usual settings, from rest.
     pub fn new(dt_s: f64) -> MoreauWall {
         MoreauWall {
             dt_s,
             tolerance: 1e-12,
             max_sweeps: 10_000,
+            initial_rotation: None,
         }
     }
 }
@@ -306,6 +312,16 @@ impl Integrator for MoreauWall {
             });
         }
         let mut q = vec![Vector3::<f64>::zeros(); n];
+        if let Some((name, theta)) = &self.initial_rotation {
+            let columns = rocking::columns(wall, topo)?;
+            rocking::released(&columns, std::slice::from_ref(&(name.clone(), *theta)))?;
+            for (block, dx, dy, phi) in columns[0].released(*theta) {
+                let i = wall
+                    .block_index(&block)
+                    .expect("a column's block is the wall's");
+                q[i] = Vector3::new(dx, dy, phi);
+            }
+        }
         let mut v = vec![Vector3::<f64>::zeros(); n];
         let mut gone = vec![false; n];
         let moves = |i: usize, gone: &[bool]| bodies[i].free && !gone[i];
@@ -315,6 +331,10 @@ impl Integrator for MoreauWall {
                 + 0.5 * b.inertia * v[i].z * v[i].z
                 + b.mass * g * q[i].y
         };
+        if self.initial_rotation.is_some() {
+            // A released body starts with the potential energy of its raised blocks.
+            rec.energy.initial_j = (0..n).map(|i| energy_of(i, &q, &v)).sum();
+        }
         // The base centre's horizontal displacement and velocity (what the sliding model calls
         // u), and the rotation clockwise positive as the exact rocking engine writes it.
         let outputs = |q: &[Vector3<f64>], v: &[Vector3<f64>]| {

@@ -33,6 +33,27 @@ pub struct Column {
 }
 
 impl Column {
+    /// Where the body's blocks are once it is turned by `theta_rad` (clockwise positive) about
+    /// the end of its base on that side: each moving block's name, the displacement of its
+    /// centroid (m, m) and its counter-clockwise rotation (rad), for a time-stepped model to
+    /// start from.
+    pub fn released(&self, theta_rad: f64) -> Vec<(String, f64, f64, f64)> {
+        let w = &self.watch;
+        let s = if theta_rad > 0.0 { 1.0 } else { -1.0 };
+        let (sin, cos) = theta_rad.sin_cos();
+        w.pieces
+            .iter()
+            .zip(&w.outputs)
+            .filter(|(p, _)| p.moving)
+            .map(|(p, o)| {
+                let (rx, ry) = (p.x0 - s * w.half_base_m, p.y0);
+                let x = s * w.half_base_m + rx * cos + ry * sin;
+                let y = -rx * sin + ry * cos;
+                (o.name.clone(), x - p.x0, y - p.y0, -theta_rad)
+            })
+            .collect()
+    }
+
     /// Whether block `name` moves with the body (rather than being held below it).
     pub fn moves(&self, name: &str) -> bool {
         self.watch

@@ -31,7 +31,8 @@ pub use body::RockingBody;
 pub use column::{columns, Column, JointLimit, Watch};
 pub use modes::Equations;
 pub use scenes::{
-    can_lift, equations_name, free_standing, out_of_plane, rocks_in_plane, ModelChoice, Rocking,
+    can_lift, equations_name, free_standing, out_of_plane, released, rocks_in_plane, ModelChoice,
+    Rocking,
 };
 
 use crate::error::SimulationError;

@@ -375,7 +375,7 @@ fn moving_parts(columns: &[Column]) -> String {
 /// The body that an initial rotation of a wall of columns releases, or why it cannot: the wall
 /// is one column, one block is named, and it moves with the column's body (a held block stays
 /// seated by definition).
-fn released(columns: &[Column], initial: &[(String, f64)]) -> Result<String, SimulationError> {
+pub fn released(columns: &[Column], initial: &[(String, f64)]) -> Result<String, SimulationError> {
     let not = |why: String| {
         SimulationError::NotApplicable(format!("--initial-rotation in a wall of columns: {why}"))
     };
