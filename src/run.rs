@@ -3,7 +3,7 @@
 //! with a word on which model ran and why. `pirqa run` is this function behind its options.
 
 use crate::error::{Error, SimulationError};
-use crate::integrate::baselines::{Moreau, MoreauRocking, MoreauWall, PaperNewmark, Regularized};
+use crate::integrate::baselines::{Moreau, MoreauWall, PaperNewmark, Regularized};
 use crate::integrate::event::EventDriven;
 use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
 use crate::integrate::stepping::positive;
@@ -208,9 +208,9 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
                 "leave --rocking out",
             ))
         }
-        (Method::Moreau { dt_s }, true) => MoreauRocking {
-            initial_rotation_rad: initial,
-            ..MoreauRocking::new(*dt_s)
+        (Method::Moreau { dt_s }, true) => MoreauWall {
+            initial_rotation: settings.initial_rotation.first().cloned(),
+            ..MoreauWall::new(*dt_s)
         }
         .run(&sc)?,
         (_, true) => {

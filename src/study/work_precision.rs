@@ -582,7 +582,7 @@ pub fn run_rocking_case(
     min_time_s: f64,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<Point>, crate::Error> {
-    use crate::integrate::baselines::MoreauRocking;
+    use crate::integrate::baselines::MoreauWall;
     use crate::integrate::rocking::Rocking;
     let case = &rc.case;
     let s = settings(case.duration_s);
@@ -592,9 +592,11 @@ pub fn run_rocking_case(
         initial_rotation_rad: rc.initial_rotation_rad,
         ..Rocking::default()
     };
-    let runs = moreau_runs(steps, |dt| MoreauRocking {
-        initial_rotation_rad: rc.initial_rotation_rad,
-        ..MoreauRocking::new(dt)
+    let release = (rc.initial_rotation_rad != 0.0)
+        .then(|| (case.wall.blocks[0].name.clone(), rc.initial_rotation_rad));
+    let runs = moreau_runs(steps, |dt| MoreauWall {
+        initial_rotation: release.clone(),
+        ..MoreauWall::new(dt)
     });
     Ok(ladder_points(
         &case.name,

@@ -276,7 +276,7 @@ fn rocking_under_el_centro_balances_its_energy_in_every_regime() {
 /// Moreau-Jean with rotations converges to the exact engine's first landing as its step falls.
 #[test]
 fn moreau_with_rotations_converges_to_the_exact_landing() {
-    use pirqa::integrate::baselines::MoreauRocking;
+    use pirqa::integrate::baselines::MoreauWall;
     use pirqa::integrate::rocking::Rocking;
     use pirqa::integrate::{Integrator, Scenario};
     let (wall, topo) = pirqa::topology::load(std::path::Path::new("walls/inca/stela.ron")).unwrap();
@@ -301,9 +301,9 @@ fn moreau_with_rotations_converges_to_the_exact_landing() {
     let errors: Vec<f64> = [1e-2, 1e-3, 1e-4]
         .iter()
         .map(|&dt| {
-            let r = MoreauRocking {
-                initial_rotation_rad: 0.1,
-                ..MoreauRocking::new(dt)
+            let r = MoreauWall {
+                initial_rotation: Some(("Huanca".into(), 0.1)),
+                ..MoreauWall::new(dt)
             }
             .run(&sc)
             .unwrap();

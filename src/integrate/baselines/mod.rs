@@ -1,17 +1,15 @@
 //! Time-stepping baselines, for comparison with the exact integrator: the paper's own scheme,
-//! Moreau-Jean nonsmooth time stepping (also with rotations, for a rocking block and for a whole
-//! wall whose blocks may rock), and
+//! Moreau-Jean nonsmooth time stepping (also with rotations, for every block of a wall: a
+//! free-standing block is a wall of one), and
 //! regularized friction with penalty contacts under an adaptive Runge-Kutta method. Same trait, same outputs; `docs/accuracy.md` says where each
 //! fails.
 
 mod moreau;
-mod moreau_rocking;
 mod moreau_wall;
 mod paper;
 mod regularized;
 
 pub use moreau::Moreau;
-pub use moreau_rocking::MoreauRocking;
 pub use moreau_wall::MoreauWall;
 pub use paper::PaperNewmark;
 pub use regularized::Regularized;

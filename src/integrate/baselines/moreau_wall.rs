@@ -8,8 +8,8 @@
 //! predicted closed solve the contact laws at velocity level by projected Gauss-Seidel, the
 //! velocities jump by them, and positions follow by the midpoint rule. Nothing is decided
 //! exactly and every block carries three degrees of freedom at all times: it is the reference
-//! and the fallback for walls whose blocks may rock, where the exact engine models only
-//! sliding (docs/rocking-walls.md).
+//! the exact rocking engine converges to (a free-standing block, a wall of columns) and the
+//! fallback for walls whose blocks may rock beyond it (docs/rocking-walls.md).
 
 use crate::error::SimulationError;
 use crate::integrate::rocking;
