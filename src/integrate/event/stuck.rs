@@ -4,13 +4,11 @@
 
 use super::cluster::ClusterId;
 use super::cluster::Mode;
-use super::regroup::scratch::Local;
-use super::slip::Slip;
+use super::regroup::scratch::{Before, Local};
 use super::solver::{weaker_limit, End, Group, Lex, Problem, Stick, BODY_FROM};
 use super::Engine;
 use crate::exact::Q;
 use crate::topology::Base;
-use rustc_hash::FxHashMap;
 
 /// Sets that broke away at earlier stick limits, kept as hints for the next intervals (a hint
 /// costs a pass over its blocks, a search over a large group a cut over all of it for every
@@ -504,17 +502,6 @@ enum Change<'a> {
     /// After a change: the engine's state is the one before it, except what the decision that
     /// made it has already installed (`Before`).
     After(Option<&'a Before>),
-}
-
-/// The state a decision changed, for the stick intervals worked out after it
-/// ([`Engine::kept_limits`]): the cluster each block of the component was in, the limits of
-/// those clusters (`None`: it slid), and the joints whose direction it turned. Everything else
-/// is as it was.
-#[derive(Debug, Default)]
-pub(super) struct Before {
-    pub(super) of: FxHashMap<usize, ClusterId>,
-    pub(super) limits: FxHashMap<ClusterId, Option<[Option<Q>; 2]>>,
-    pub(super) slip: FxHashMap<usize, Slip>,
 }
 
 pub(super) fn stuck(limits: Limits) -> Mode {

@@ -9,13 +9,13 @@ mod solving;
 
 use super::cluster::ClusterId;
 use scratch::SetVel;
-pub(super) use scratch::{After, Buffers, Local};
+pub(super) use scratch::{After, Before, Buffers, Local};
 
 use super::cluster::{Cluster, Mode, Slide};
 use super::flow;
 use super::slip::Slip;
 use super::solver::Lex;
-use super::stuck::{stuck, Before};
+use super::stuck::stuck;
 use super::Engine;
 use crate::clock::ThreadClock;
 use crate::error::SimulationError;

@@ -1,8 +1,13 @@
-//! SCRATCH
+//! The decisions' working memory, kept from one event to the next: the tables that give each
+//! block its place in a decision problem and its set velocity ([`Local`], [`SetVel`]), the
+//! buffers of a decision ([`Buffers`]), and what it changed and installs ([`Before`],
+//! [`After`]).
 
+use crate::exact::Q;
 use crate::integrate::event::cluster::ClusterId;
+use crate::integrate::event::slip::Slip;
 use crate::integrate::event::solver::Problem;
-use crate::integrate::event::stuck::Before;
+use rustc_hash::FxHashMap;
 
 /// No local index: a block outside the decision problem.
 pub(in crate::integrate::event) const NONE: usize = usize::MAX;
@@ -110,6 +115,17 @@ pub(in crate::integrate::event) struct Buffers {
     pub(super) u: Vec<f64>,
     pub(super) v: Vec<f64>,
     pub(super) group_of: Vec<usize>,
+}
+
+/// The state a decision changed, for the stick intervals worked out after it
+/// (`Engine::kept_limits`): the cluster each block of the component was in, the limits of
+/// those clusters (`None`: it slid), and the joints whose direction it turned. Everything else
+/// is as it was.
+#[derive(Debug, Default)]
+pub(in crate::integrate::event) struct Before {
+    pub(in crate::integrate::event) of: FxHashMap<usize, ClusterId>,
+    pub(in crate::integrate::event) limits: FxHashMap<ClusterId, Option<[Option<Q>; 2]>>,
+    pub(in crate::integrate::event) slip: FxHashMap<usize, Slip>,
 }
 
 /// Working memory of what a decision installs and updates after its [`Buffers`] went back
