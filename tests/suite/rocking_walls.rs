@@ -452,3 +452,45 @@ fn time_stepping_releases_a_column_as_the_exact_model_does() {
         "{coarse:?} -> {fine:?}"
     );
 }
+
+/// A rocking run tells its progress the time reached and stops when asked (Ctrl-C, a
+/// notebook's interrupt): the exact column model and the time-stepped wall end where the stop
+/// found them, their summaries saying when; unasked, both run to the end and report it.
+#[test]
+fn rocking_runs_report_progress_and_stop_when_asked() {
+    use pirqa::integrate::Progress;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::{Arc, Mutex};
+    let model = Model::from_file("walls/rocking/slender-on-stack.ron").unwrap();
+    let motion = sine(0.28 * 9.81, 1.5, 3.0);
+    for method in [Method::Event, Method::Moreau { dt_s: 1e-3 }] {
+        let seen = Arc::new(Mutex::new(0.0f64));
+        let stop = Arc::new(AtomicBool::new(false));
+        let run = |stop: Arc<AtomicBool>| {
+            let seen = seen.clone();
+            let progress = Progress::new(move |t| {
+                let mut s = seen.lock().unwrap();
+                *s = s.max(t);
+            })
+            .with_stop(stop);
+            let settings = RunSettings {
+                model: ModelChoice::SlideRock,
+                method: method.clone(),
+                progress: Some(progress),
+                ..RunSettings::default()
+            };
+            pirqa::run(&model, &motion, &settings).unwrap().summary
+        };
+        let full = run(stop.clone());
+        assert_eq!(full.interrupted_at_s, None, "{method:?}");
+        assert!(*seen.lock().unwrap() > 2.9, "{method:?}");
+        stop.store(true, Ordering::Relaxed);
+        let cut = run(stop);
+        let at = cut.interrupted_at_s.expect("the run stops when asked");
+        assert!(
+            at < 1.1 && cut.duration_s <= at + 1e-9,
+            "{method:?}: {at} {}",
+            cut.duration_s
+        );
+    }
+}

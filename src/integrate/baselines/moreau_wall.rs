@@ -31,6 +31,9 @@ const IMPACT_SPEED_M_S: f64 = 1e-9;
 /// that corners of blocks whose edges line up are not lost to round-off.
 const ON_FACE: f64 = 1e-9;
 
+/// Steps between two reports of the time reached (and looks at a request to stop).
+const PROGRESS_STEPS: u64 = 1024;
+
 /// Moreau-Jean with rotations, on a wall of any number of blocks.
 #[derive(Debug, Clone)]
 pub struct MoreauWall {
@@ -379,6 +382,14 @@ impl Integrator for MoreauWall {
         let mut unconverged = 0u64;
         let mut t = 0.0;
         for k in 1..=steps {
+            if k % PROGRESS_STEPS == 0 {
+                if let Some(p) = &settings.progress {
+                    if !p.at(t) {
+                        rec.interrupted_at_s = Some(t);
+                        break;
+                    }
+                }
+            }
             let t_mid = (k as f64 - 0.5) * dt;
             let seg = sc.motion.segment_at(t_mid);
             let s = t_mid - seg.t0;
@@ -552,6 +563,10 @@ impl Integrator for MoreauWall {
             if fell_now && settings.after_collapse == AfterCollapse::Stop {
                 break;
             }
+        }
+        if let (Some(p), None) = (&settings.progress, rec.interrupted_at_s) {
+            // The end reached: a bar shows it full (nothing is left to stop).
+            p.at(t);
         }
         for i in (0..n).filter(|&i| moves(i, &gone)) {
             let b = &bodies[i];

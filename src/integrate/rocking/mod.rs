@@ -288,6 +288,9 @@ impl<'a> Engine<'a> {
             }
             self.note(&plans, 0.0, self.t, inputs.accel[0], row);
             self.rec.stats.steps += 1;
+            if !self.keep_going() {
+                break;
+            }
             let t_new = if tau >= span { limit } else { self.t + tau };
             if t_new > self.t {
                 stalled = 0;
@@ -364,6 +367,20 @@ impl<'a> Engine<'a> {
             }
         }
         self.finish(row)
+    }
+
+    /// Tells the progress the time reached; false (the run ends here, the summary saying
+    /// when) once the caller asked it to stop.
+    fn keep_going(&mut self) -> bool {
+        let Some(p) = &self.scene.settings.progress else {
+            return true;
+        };
+        if p.at(self.t.min(self.t_end)) {
+            return true;
+        }
+        self.rec.interrupted_at_s = Some(self.t);
+        self.t_end = self.t;
+        false
     }
 
     /// Body i's step within `span` and its first event: the first condition of its mode to
