@@ -369,7 +369,7 @@ fn add_to(a: &mut Coeffs, b: &Coeffs, k: f64) {
     a.iter_mut().zip(b).for_each(|(x, y)| *x += k * y);
 }
 
-/// A block of the wall: its extent and what it stands on.
+/// A block of a column: its mass and extent, exact.
 struct Stacked {
     id: usize,
     mass: Q,
@@ -406,7 +406,7 @@ pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationEr
                 topo.below[b].len()
             )));
         };
-        let above: Vec<_> = topo.above[b].to_vec();
+        let above = &topo.above[b];
         if above.len() > 1 {
             return Err(not(format!("{name} carries {} blocks", above.len())));
         }
