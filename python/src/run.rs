@@ -84,9 +84,10 @@ pub fn run<'py>(
     let out = PyDict::new(py);
     out.set_item("summary", to_python(py, &response.summary)?)?;
     out.set_item("events", to_python(py, &response.events)?)?;
-    let names = wall
-        .model
-        .wall()
+    // The history's columns are the summary's blocks (a column's run leaves out abutments,
+    // which move with the ground, and lists each column's blocks bottom first).
+    let names = response
+        .summary
         .blocks
         .iter()
         .map(|b| b.name.clone())

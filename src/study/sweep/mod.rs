@@ -928,15 +928,26 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         .filter(|j| j.lower != "ground")
         .map(|j| j.max_abs_relative_displacement_m)
         .fold(0.0, f64::max);
-    // Final opening of each vertical joint: how far its faces moved apart.
+    // Final opening of each vertical joint: how far its faces moved apart. The sliding engine
+    // lists every block in the wall's order; a rocking run of columns lists the columns' blocks
+    // (no abutment), so a block is found by name where its place does not hold it.
+    let block = |i: usize| {
+        let name = &wall.blocks[i].name;
+        s.blocks
+            .get(i)
+            .filter(|b| &b.name == name)
+            .or_else(|| s.blocks.iter().find(|b| &b.name == name))
+    };
     let mut widest = 0.0f64;
     let mut opened = 0;
     for j in &topo.vertical {
-        let (l, r) = (j.left.0, j.right.0);
-        if s.blocks[l].fell || s.blocks[r].fell {
+        let (Some(l), Some(r)) = (block(j.left.0), block(j.right.0)) else {
+            continue;
+        };
+        if l.fell || r.fell {
             continue;
         }
-        let opening = s.blocks[r].final_displacement_m - s.blocks[l].final_displacement_m;
+        let opening = r.final_displacement_m - l.final_displacement_m;
         widest = widest.max(opening);
         opened += usize::from(opening > store::OPEN_JOINT_M);
     }
