@@ -114,6 +114,13 @@ impl RunSettings {
                 "use --model slide-rock or auto",
             ));
         }
+        if self.direction == Direction::InPlane && self.initial_rotation.len() > 1 {
+            return Err(Error::Simulation(SimulationError::NotApplicable(format!(
+                "{} initial rotations given: in the wall's plane one body is released, so give \
+                 one --initial-rotation (across the plane, each section takes its own)",
+                self.initial_rotation.len()
+            ))));
+        }
         Ok(())
     }
 }
@@ -168,19 +175,8 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
                     "leave --rocking out",
                 ));
             }
-            let initial_rotation = match settings.initial_rotation.as_slice() {
-                [] => None,
-                [one] => Some(one.clone()),
-                more => {
-                    return Err(Error::Simulation(SimulationError::NotApplicable(format!(
-                        "{} initial rotations given: in the wall's plane one body is released, \
-                         so give one --initial-rotation",
-                        more.len()
-                    ))))
-                }
-            };
             let mut response = MoreauWall {
-                initial_rotation,
+                initial_rotation: settings.initial_rotation.first().cloned(),
                 ..MoreauWall::new(*dt_s)
             }
             .run(&sc)?;

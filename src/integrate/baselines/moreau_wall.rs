@@ -317,7 +317,7 @@ impl Integrator for MoreauWall {
         let mut q = vec![Vector3::<f64>::zeros(); n];
         if let Some((name, theta)) = &self.initial_rotation {
             let columns = rocking::columns(wall, topo)?;
-            rocking::released(&columns, std::slice::from_ref(&(name.clone(), *theta)))?;
+            rocking::released_body(&columns, std::slice::from_ref(&(name.clone(), *theta)))?;
             for (block, dx, dy, phi) in columns[0].released(*theta) {
                 let i = wall
                     .block_index(&block)

@@ -31,8 +31,8 @@ pub use body::RockingBody;
 pub use column::{columns, Column, JointLimit, Watch};
 pub use modes::Equations;
 pub use scenes::{
-    can_lift, equations_name, free_standing, out_of_plane, released, rocks_in_plane, ModelChoice,
-    Rocking,
+    can_lift, equations_name, free_standing, out_of_plane, released_body, rocks_in_plane,
+    ModelChoice, Rocking,
 };
 
 use crate::error::SimulationError;
@@ -41,6 +41,7 @@ use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
 use layout::Layout;
 use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
+use series::Coeffs;
 
 /// Stops at one instant (events that do not move the time) before a run is declared stuck.
 const STALL_STOPS: usize = 10_000;
@@ -445,20 +446,19 @@ impl<'a> Engine<'a> {
             consider(series::first_fall(&c.series, c.scale, ts, h), Some(c.guard));
         }
         // Extremes: where the derivatives of theta and of each block's u and u' vanish.
-        let mut rates = vec![(traj.omega, sc.angle * p)];
-        for (_, u) in self.layout.series(i, body, traj) {
-            let v = series::derivative(&u);
-            let a = series::derivative(&v);
-            rates.push((v, sc.velocity));
-            rates.push((a, sc.velocity * p));
-        }
-        for (d, scale) in &rates {
-            let sign = series::sign_after(d, *scale, ts);
+        let mut extreme = |d: &Coeffs, scale: f64| {
+            let sign = series::sign_after(d, scale, ts);
             if sign != 0 {
                 let mut f = *d;
                 f.iter_mut().for_each(|x| *x *= f64::from(sign));
-                consider(series::first_fall(&f, *scale, ts, h), None);
+                consider(series::first_fall(&f, scale, ts, h), None);
             }
+        };
+        extreme(&traj.omega, sc.angle * p);
+        for (_, u) in self.layout.series(i, body, traj) {
+            let v = series::derivative(&u);
+            extreme(&v, sc.velocity);
+            extreme(&series::derivative(&v), sc.velocity * p);
         }
         (h, best.filter(|(x, _)| *x <= h))
     }

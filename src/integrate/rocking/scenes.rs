@@ -271,13 +271,6 @@ pub fn rocks_in_plane(
             });
         }
     }
-    if initial.len() > 1 {
-        return Err(SimulationError::NotApplicable(format!(
-            "{} initial rotations given: in the wall's plane one body is released, so give one \
-             --initial-rotation (across the plane, each section takes its own)",
-            initial.len()
-        )));
-    }
     match choice {
         ModelChoice::Slide if !initial.is_empty() => Err(SimulationError::Incompatible {
             asked: "--initial-rotation needs a model that rotates blocks",
@@ -288,7 +281,7 @@ pub fn rocks_in_plane(
             if wall.blocks.len() > 1 && !initial.is_empty() =>
         {
             let columns = columns(wall, topo)?;
-            let body = released(&columns, initial)?;
+            let body = released_body(&columns, initial)?;
             let asked = match choice {
                 ModelChoice::Auto => "auto",
                 _ => "asked for (--model slide-rock)",
@@ -375,7 +368,10 @@ fn moving_parts(columns: &[Column]) -> String {
 /// The body that an initial rotation of a wall of columns releases, or why it cannot: the wall
 /// is one column, one block is named, and it moves with the column's body (a held block stays
 /// seated by definition).
-pub fn released(columns: &[Column], initial: &[(String, f64)]) -> Result<String, SimulationError> {
+pub fn released_body(
+    columns: &[Column],
+    initial: &[(String, f64)],
+) -> Result<String, SimulationError> {
     let not = |why: String| {
         SimulationError::NotApplicable(format!("--initial-rotation in a wall of columns: {why}"))
     };
