@@ -84,8 +84,8 @@ pub fn run<'py>(
     let out = PyDict::new(py);
     out.set_item("summary", to_python(py, &response.summary)?)?;
     out.set_item("events", to_python(py, &response.events)?)?;
-    // The history's columns are the summary's blocks (a column's run leaves out abutments,
-    // which move with the ground, and lists each column's blocks bottom first).
+    // The history's columns are the summary's blocks: the wall's blocks in a run in the wall's
+    // plane, its sections in a run across it.
     let names = response
         .summary
         .blocks

@@ -165,8 +165,8 @@ def test_a_run_releases_the_gil(root):
 
 
 def test_the_history_names_its_blocks_as_the_run_lists_them():
-    """A wall of one column on an abutment rocks: the run lists the column's block only (the
-    abutment moves with the ground), and ``history.blocks`` names the history's columns so."""
+    """A wall of one column on an abutment rocks: the run lists every block of the wall in its
+    order, as a sliding run does, the abutment at rest with the ground."""
     wall = pirqa.Wall.from_ron(
         '(version: 1, name: "on an abutment", thickness_m: 1.0, density_kg_m3: 2500, '
         'friction: 0.8, rows: [(height_m: 0.5, blocks: [(width_m: 1.0, name: "A", fixed: true)]), '
@@ -175,7 +175,9 @@ def test_the_history_names_its_blocks_as_the_run_lists_them():
     result = pirqa.run(wall, pirqa.Motion.sine("0.3g", frequency_hz=1.5, duration_s=2.0),
                        output_dt_s=0.01)
     assert result.summary["model"]["name"] == "slide-rock"
-    assert [b["name"] for b in result.summary["blocks"]] == ["B"]
-    assert result.history.blocks == ["B"]
-    assert result.history.rotation_rad.shape[1] == 1
-    assert result.history.rotation_rad.max() > 0.01
+    assert [b["name"] for b in result.summary["blocks"]] == ["A", "B"]
+    assert result.history.blocks == ["A", "B"]
+    assert result.history.rotation_rad.shape[1] == 2
+    assert result.history.rotation_rad[:, 0].max() == 0.0
+    assert result.history.displacement_m[:, 0].max() == 0.0
+    assert result.history.rotation_rad[:, 1].max() > 0.01

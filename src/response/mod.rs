@@ -9,7 +9,7 @@ mod recorder;
 pub mod saved;
 
 #[doc(hidden)]
-pub use recorder::Recorder;
+pub use recorder::{horizontal_joints, Recorder};
 
 use crate::topology::{BlockId, HorizontalId, JointRef};
 use serde::Serialize;

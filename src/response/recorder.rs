@@ -54,26 +54,34 @@ pub struct Recorder {
     pub model: ModelUsed,
 }
 
+/// A wall's horizontal joints as a recorder lists them: (upper block, lower block or `None`
+/// for the ground, the upper block's name, its base's name), blocks by their place in the wall.
+pub fn horizontal_joints(
+    wall: &Wall,
+    topo: &Topology,
+) -> Vec<(usize, Option<usize>, String, String)> {
+    topo.horizontal
+        .iter()
+        .map(|s| {
+            let lower = match s.lower {
+                Base::Ground => None,
+                Base::Block(b) => Some(b.0),
+            };
+            (
+                s.upper.0,
+                lower,
+                wall.blocks[s.upper.0].name.clone(),
+                topo.base_name(wall, s.lower).to_string(),
+            )
+        })
+        .collect()
+}
+
 impl Recorder {
     /// A recorder for this wall; `history` says where sampled rows go, `log_events` keeps the
     /// event log.
     pub fn new(wall: &Wall, topo: &Topology, history: HistoryTo, log_events: bool) -> Recorder {
-        let horizontal = topo
-            .horizontal
-            .iter()
-            .map(|s| {
-                let lower = match s.lower {
-                    Base::Ground => None,
-                    Base::Block(b) => Some(b.0),
-                };
-                (
-                    s.upper.0,
-                    lower,
-                    wall.blocks[s.upper.0].name.clone(),
-                    topo.base_name(wall, s.lower).to_string(),
-                )
-            })
-            .collect();
+        let horizontal = horizontal_joints(wall, topo);
         let names = wall.blocks.iter().map(|b| b.name.clone()).collect();
         Recorder {
             vertical: topo
@@ -200,15 +208,20 @@ impl Recorder {
         omega: Option<(f64, f64)>,
         mode: String,
     ) {
-        let i = blocks[0];
         if self.log_events {
+            // The joint under the lowest block: one, as a rocking body's block rests on one.
+            let joint = self
+                .horizontal
+                .iter()
+                .position(|h| h.0 == blocks[0])
+                .map(|k| JointRef::Horizontal(HorizontalId(k)));
             self.events.push(EventRecord {
                 time_s,
                 kind,
                 blocks: blocks.iter().map(|&b| self.names[b].clone()).collect(),
                 block_ids: blocks.iter().map(|&b| BlockId(b)).collect(),
-                joint: Some(self.label(JointRef::Horizontal(HorizontalId(i)))),
-                joint_id: Some(JointRef::Horizontal(HorizontalId(i))),
+                joint: joint.map(|j| self.label(j)),
+                joint_id: joint,
                 approach_speed_m_s: None,
                 before_m_s: None,
                 after_m_s: None,

@@ -119,6 +119,7 @@ fn overturns(body: &RockingBody, eq: Equations, ratio: f64, amplitude: f64) -> O
     let r = rocking::run(&Scene {
         bodies: std::slice::from_ref(body),
         watches: &[],
+        wall: None,
         initial_rotation_rad: &[0.0],
         equations: eq,
         motion: &sine,

@@ -26,6 +26,7 @@ fn run(body: &RockingBody, theta0: f64, eq: Equations, motion: &Motion, t: f64) 
     rocking::run(&Scene {
         bodies: std::slice::from_ref(body),
         watches: &[],
+        wall: None,
         initial_rotation_rad: &[theta0],
         equations: eq,
         motion,

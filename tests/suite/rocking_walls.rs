@@ -334,6 +334,7 @@ fn a_column_released_from_a_rotation_rocks_as_its_body_alone() {
     let alone = rocking::run(&Scene {
         bodies: std::slice::from_ref(&body),
         watches: &[],
+        wall: None,
         initial_rotation_rad: &[0.1],
         equations: pirqa::Equations::Exact,
         motion: &motion,
@@ -493,4 +494,81 @@ fn rocking_runs_report_progress_and_stop_when_asked() {
             cut.duration_s
         );
     }
+}
+
+/// A column on a fixed plinth is the same column on the ground: under `auto` its run lists
+/// every block of the wall in the wall's order, the plinth at rest with the ground's peak
+/// acceleration, the column's blocks moving as they do on the ground (to the last bit: the
+/// same equations), and its events (the uplift on the plinth, the held joint that gives way
+/// inside the column) name the joints they happen on.
+#[test]
+fn a_column_on_an_abutment_is_the_column_on_the_ground_listed_with_the_wall() {
+    let column = |plinth: &str| {
+        Model::from_ron_str(&format!(
+            "(version: 1, thickness_m: 1.0, density_kg_m3: 2500, friction: 0.8,
+              rows: [{plinth}
+                     (height_m: 0.8, x_m: 0.4, blocks: [(width_m: 0.3, name: \"B\")]),
+                     (height_m: 0.6, x_m: 0.45, blocks: [(width_m: 0.2, name: \"D\")])])"
+        ))
+        .unwrap()
+    };
+    let on_plinth = column("(height_m: 0.5, blocks: [(width_m: 3.0, name: \"P\", fixed: true)]),");
+    let on_ground = column("");
+    let motion = sine(0.4 * 9.81, 1.5, 4.0);
+    let run = |model: &Model| {
+        let settings = RunSettings {
+            model: ModelChoice::Auto,
+            output_dt_s: Some(0.05),
+            log_events: true,
+            ..RunSettings::default()
+        };
+        pirqa::run(model, &motion, &settings).unwrap()
+    };
+    let (p, g) = (run(&on_plinth), run(&on_ground));
+    assert_eq!(p.summary.model.name, "slide-rock");
+    let names: Vec<&str> = p.summary.blocks.iter().map(|b| b.name.as_str()).collect();
+    assert_eq!(names, ["P", "B", "D"]);
+    let plinth = &p.summary.blocks[0];
+    assert_eq!(
+        (plinth.max_abs_displacement_m, plinth.max_abs_rotation_rad),
+        (0.0, 0.0)
+    );
+    assert_eq!(plinth.max_abs_accel_m_s2, 0.4 * 9.81);
+    for (a, b) in p.summary.blocks[1..].iter().zip(&g.summary.blocks) {
+        assert_eq!(a.name, b.name);
+        assert_eq!(a.max_abs_displacement_m, b.max_abs_displacement_m);
+        assert_eq!(a.max_abs_rotation_rad, b.max_abs_rotation_rad);
+        assert_eq!(a.uplift_time_s, b.uplift_time_s);
+    }
+    assert!(p.summary.blocks[2].max_abs_rotation_rad > 0.01);
+    let joints = |r: &Response| -> Vec<(f64, Option<String>)> {
+        r.events
+            .iter()
+            .map(|e| (e.time_s, e.joint.clone()))
+            .collect()
+    };
+    let (jp, jg) = (joints(&p), joints(&g));
+    assert_eq!(
+        jp.iter().map(|j| j.1.as_deref()).collect::<Vec<_>>(),
+        [Some("B/P"), Some("D/B")]
+    );
+    assert_eq!(
+        jg.iter().map(|j| j.1.as_deref()).collect::<Vec<_>>(),
+        [Some("B/ground"), Some("D/B")]
+    );
+    assert_eq!(
+        jp.iter().map(|j| j.0).collect::<Vec<_>>(),
+        jg.iter().map(|j| j.0).collect::<Vec<_>>()
+    );
+    let (hp, hg) = (p.history.as_ref().unwrap(), g.history.as_ref().unwrap());
+    assert_eq!(hp.time_s, hg.time_s);
+    for (rp, rg) in [
+        (&hp.displacement_m, &hg.displacement_m),
+        (&hp.rotation_rad, &hg.rotation_rad),
+    ] {
+        for (a, b) in rp.iter().zip(rg) {
+            assert_eq!((a[0], &a[1..]), (0.0, &b[..]));
+        }
+    }
+    assert!(hp.rotation_rad.iter().any(|row| row[2].abs() > 1e-3));
 }

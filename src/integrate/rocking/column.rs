@@ -114,10 +114,8 @@ pub struct JointLimit {
 pub struct Output {
     /// Its name.
     pub name: String,
-    /// The block under it (index in the column, bottom first); none on the ground.
-    pub lower: Option<usize>,
-    /// What it rests on, by name.
-    pub base: String,
+    /// Its place in the wall.
+    pub block: usize,
     /// The middle of its base at rest, in the watch's frame (m).
     pub x0: f64,
     /// The same, height.
@@ -131,7 +129,7 @@ pub struct Output {
 pub struct Watch {
     /// What the body stands on (`ground` or a block's name).
     pub base: String,
-    /// The column's blocks, bottom first (empty: the body is the only output).
+    /// The column's blocks, bottom first.
     pub outputs: Vec<Output>,
     pieces: Vec<Piece>,
     joints: Vec<Held>,
@@ -576,8 +574,7 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
             let b = &blocks[i];
             Output {
                 name: name(i),
-                lower: i.checked_sub(1),
-                base: base_name(i),
+                block: b.id,
                 x0: ((&b.x + &b.right) / &two).to_f64() - x_origin,
                 y0: b.bottom.to_f64() - y_origin,
                 moving: i >= k,

@@ -1,11 +1,15 @@
-//! What a rocking run reports, block by block: a body standing alone is one output; a column's
-//! body stands for each of its blocks, which move with it, and its held blocks stay put. This
-//! module owns the map from bodies to outputs and each output block's motion as a series.
+//! What a rocking run reports, block by block: a body standing alone is one output; a run of a
+//! wall's columns lists every block of the wall in the wall's order, as a sliding run does (a
+//! column's body moves its blocks, its held blocks and the abutments stay put). This module owns
+//! the map from bodies to outputs and each output block's motion as a series.
 
 use super::body::RockingBody;
 use super::modes::Trajectory;
 use super::series::Coeffs;
 use super::Watch;
+use crate::response::horizontal_joints;
+use crate::topology::Topology;
+use crate::wall::Wall;
 
 /// The outputs of a scene and the bodies that move them.
 pub struct Layout {
@@ -16,51 +20,44 @@ pub struct Layout {
     /// Per body, its outputs with the middle of their base at rest in the body's frame (the
     /// middle of the body's base at its level, m); the first is the body's lowest block.
     moving: Vec<Vec<(usize, f64, f64)>>,
-    /// Per body, its first output (its column's lowest block).
-    first: Vec<usize>,
+    /// Per body, the output of each block of its column, bottom first.
+    column: Vec<Vec<usize>>,
 }
 
 impl Layout {
-    /// The outputs of `bodies`, each with its watch when there are watches.
-    pub fn new(bodies: &[RockingBody], watches: &[Watch]) -> Layout {
-        let mut names = Vec::new();
-        let mut horizontal = Vec::new();
-        let mut moving = Vec::new();
-        let mut firsts = Vec::new();
-        for (i, body) in bodies.iter().enumerate() {
-            let first = names.len();
-            firsts.push(first);
-            match watches.get(i).filter(|w| !w.outputs.is_empty()) {
-                None => {
-                    let base = watches.get(i).map_or("ground", |w| w.base.as_str());
-                    names.push(body.name.clone());
-                    horizontal.push((first, None, body.name.clone(), base.to_string()));
-                    moving.push(vec![(first, 0.0, 0.0)]);
-                }
-                Some(w) => {
-                    let mut mine = Vec::new();
-                    for o in &w.outputs {
-                        let k = names.len();
-                        names.push(o.name.clone());
-                        horizontal.push((
-                            k,
-                            o.lower.map(|l| first + l),
-                            o.name.clone(),
-                            o.base.clone(),
-                        ));
-                        if o.moving {
-                            mine.push((k, o.x0, o.y0));
-                        }
-                    }
-                    moving.push(mine);
-                }
-            }
-        }
-        Layout {
-            names,
-            horizontal,
-            moving,
-            first: firsts,
+    /// The outputs of `bodies`: the blocks of `wall` when the bodies are its columns (one
+    /// watch each), else one per body.
+    pub fn new(
+        bodies: &[RockingBody],
+        watches: &[Watch],
+        wall: Option<(&Wall, &Topology)>,
+    ) -> Layout {
+        match wall.filter(|_| !watches.is_empty()) {
+            Some((wall, topo)) => Layout {
+                names: wall.blocks.iter().map(|b| b.name.clone()).collect(),
+                horizontal: horizontal_joints(wall, topo),
+                moving: watches
+                    .iter()
+                    .map(|w| {
+                        let moving = w.outputs.iter().filter(|o| o.moving);
+                        moving.map(|o| (o.block, o.x0, o.y0)).collect()
+                    })
+                    .collect(),
+                column: watches
+                    .iter()
+                    .map(|w| w.outputs.iter().map(|o| o.block).collect())
+                    .collect(),
+            },
+            None => Layout {
+                names: bodies.iter().map(|b| b.name.clone()).collect(),
+                horizontal: bodies
+                    .iter()
+                    .enumerate()
+                    .map(|(i, b)| (i, None, b.name.clone(), "ground".to_string()))
+                    .collect(),
+                moving: (0..bodies.len()).map(|i| vec![(i, 0.0, 0.0)]).collect(),
+                column: (0..bodies.len()).map(|i| vec![i]).collect(),
+            },
         }
     }
 
@@ -76,7 +73,7 @@ impl Layout {
 
     /// The output of block k (bottom first) of body i's column.
     pub fn column_output(&self, i: usize, k: usize) -> usize {
-        self.first[i] + k
+        self.column[i][k]
     }
 
     /// The horizontal displacement of the middle of the base of each of body i's blocks, with

@@ -80,6 +80,9 @@ pub struct Scene<'a> {
     /// The held joints of each body's column, one per body (empty: every body stands alone
     /// on the ground).
     pub watches: &'a [Watch],
+    /// The wall whose columns the watches watch, and its graph: a run then lists its every
+    /// block in its order (none: each body is one output).
+    pub wall: Option<(&'a crate::wall::Wall, &'a crate::topology::Topology)>,
     /// The equations between events.
     pub equations: Equations,
     /// The ground motion.
@@ -96,9 +99,12 @@ pub fn run(scene: &Scene) -> Result<Response, SimulationError> {
     }
     if scene.initial_rotation_rad.len() != scene.bodies.len()
         || !(scene.watches.is_empty() || scene.watches.len() == scene.bodies.len())
+        || scene.watches.is_empty() != scene.wall.is_none()
     {
         return Err(SimulationError::Bug(
-            "one initial rotation and none or one watch per body expected".into(),
+            "one initial rotation per body and none or one watch per body (with the wall they \
+             belong to) expected"
+                .into(),
         ));
     }
     if scene.equations == Equations::Linearised && scene.motion.has_vertical() {
@@ -149,7 +155,7 @@ fn quiet(seg: &Segment) -> bool {
 
 impl<'a> Engine<'a> {
     fn new(scene: &'a Scene<'a>) -> Engine<'a> {
-        let layout = Layout::new(scene.bodies, scene.watches);
+        let layout = Layout::new(scene.bodies, scene.watches, scene.wall);
         let s = scene.settings;
         let rec = Recorder::for_bodies(
             layout.names.clone(),

@@ -42,6 +42,7 @@ impl crate::integrate::Integrator for Rocking {
             initial_rotation_rad: &vec![self.initial_rotation_rad; bodies.len()],
             bodies: &bodies,
             watches: &watches,
+            wall: (!watches.is_empty()).then_some((sc.wall, sc.topology)),
             equations: self.equations,
             motion: sc.motion,
             settings: sc.settings,
@@ -192,6 +193,7 @@ pub fn out_of_plane(
     let mut response = run(&Scene {
         bodies: &bodies,
         watches: &[],
+        wall: None,
         initial_rotation_rad: &rotations,
         equations,
         motion,

@@ -928,22 +928,11 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         .filter(|j| j.lower != "ground")
         .map(|j| j.max_abs_relative_displacement_m)
         .fold(0.0, f64::max);
-    // Final opening of each vertical joint: how far its faces moved apart. The sliding engine
-    // lists every block in the wall's order; a rocking run of columns lists the columns' blocks
-    // (no abutment), so a block is found by name where its place does not hold it.
-    let block = |i: usize| {
-        let name = &wall.blocks[i].name;
-        s.blocks
-            .get(i)
-            .filter(|b| &b.name == name)
-            .or_else(|| s.blocks.iter().find(|b| &b.name == name))
-    };
+    // Final opening of each vertical joint: how far its faces moved apart.
     let mut widest = 0.0f64;
     let mut opened = 0;
     for j in &topo.vertical {
-        let (Some(l), Some(r)) = (block(j.left.0), block(j.right.0)) else {
-            continue;
-        };
+        let (l, r) = (&s.blocks[j.left.0], &s.blocks[j.right.0]);
         if l.fell || r.fell {
             continue;
         }
