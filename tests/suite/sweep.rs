@@ -545,3 +545,32 @@ fn a_sweep_rocks_the_cases_pirqa_run_would() {
         assert!(!r.collapsed && r.error.is_none(), "{r:?}");
     }
 }
+
+/// `max_accel_over_tipping` is the largest peak absolute acceleration of a block over the one
+/// at which it would tip standing free, g b/h: the stack of walls/rocking/ held to the ground
+/// moves with it, so the slender top (b/h = 0.25) reaches a_g, and the ratio is the sine's
+/// amplitude over 0.25 g to round-off (0.4 and 0.8); at 0.3 g the top lifts and rocks, at or
+/// above the ratio 1 the free block's check names.
+#[test]
+fn the_tipping_ratio_of_a_case_is_its_peak_acceleration_over_g_b_over_h() {
+    let s = sweep(
+        r#"(
+    version: 1,
+    name: "tipping",
+    walls: [File(path: "walls/rocking/slender-on-stack.ron")],
+    motion: Sine(amplitudes: ["0.1g", "0.2g", "0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0),
+)"#,
+    )
+    .unwrap();
+    let rows: Vec<CaseRow> = (0..s.len()).map(|id| s.run_case(id).0).collect();
+    for (r, ratio) in rows.iter().zip([0.4, 0.8]) {
+        assert_eq!(r.model, "slide");
+        assert!(
+            (r.max_accel_over_tipping - ratio).abs() < 1e-15,
+            "{} against {ratio}",
+            r.max_accel_over_tipping
+        );
+    }
+    assert_eq!(rows[2].model, "slide-rock");
+    assert!(rows[2].max_accel_over_tipping >= 1.0, "{rows:?}");
+}

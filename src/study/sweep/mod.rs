@@ -961,6 +961,8 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         .iter()
         .map(|b| b.max_abs_rotation_rad)
         .fold(0.0, f64::max);
+    let peaks: Vec<f64> = s.blocks.iter().map(|b| b.max_abs_accel_m_s2).collect();
+    row.max_accel_over_tipping = crate::validity::max_accel_over_tipping(wall, &peaks);
     // A run the model stopped before its end (a held joint gave way, a body left the ground)
     // has no answer past that instant: the case says so instead of passing for complete.
     row.error = s.warnings.iter().find_map(|w| match w {

@@ -94,6 +94,13 @@ pub struct CaseRow {
     /// Largest |rotation| of any block (rad; 0 when it slid).
     #[serde(serialize_with = "table::sci")]
     pub max_abs_rotation_rad: f64,
+    /// Largest ratio of a movable block's peak absolute acceleration to the one at which it
+    /// would start to tip standing free, g b/h ([`max_accel_over_tipping`]): below 1 no block
+    /// could have rocked, so the sliding-only answer needs no rocking model.
+    ///
+    /// [`max_accel_over_tipping`]: crate::validity::max_accel_over_tipping
+    #[serde(serialize_with = "table::sci")]
+    pub max_accel_over_tipping: f64,
     /// CPU time of the run (s): a measurement, kept in timing.csv, not in cases.csv.
     #[serde(skip)]
     pub cpu_s: f64,
@@ -129,7 +136,7 @@ pub struct TimingRow {
 }
 
 /// Columns of `cases.csv`.
-pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,error";
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,max_accel_over_tipping,error";
 
 /// Columns of `timing.csv`.
 pub const TIMING_HEADER: &str = "case,cpu_s";
