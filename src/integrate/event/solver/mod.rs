@@ -288,6 +288,10 @@ impl Problem {
                 _ => {}
             }
         }
+        // One piece, the usual case, needs no bookkeeping (a decision runs this each time).
+        if (1..n).all(|i| sets.find(i) == 0) {
+            return vec![((0..n).collect(), on_ground.contains(&true))];
+        }
         // Pieces in the order of their first block, each block in order.
         let mut piece_of = vec![usize::MAX; n];
         let mut out: Vec<(Vec<usize>, bool)> = Vec::new();
