@@ -187,6 +187,37 @@ impl Model {
     }
 }
 
+/// Hands `row` each output time k `output_dt` (k from `next`, which it advances) that a step
+/// from t0 to t reaches, with its place in the step (0 at t0, 1 at t): the history of a time
+/// stepper is written at the output times, the event-driven integrator's times, by linear
+/// interpolation between steps (second order in the step, below a first-order scheme's error).
+pub fn outputs_in_step(
+    next: &mut u64,
+    output_dt: f64,
+    t0: f64,
+    t: f64,
+    mut row: impl FnMut(f64, f64),
+) {
+    loop {
+        let tk = *next as f64 * output_dt;
+        if tk > t + 1e-12 * output_dt {
+            break;
+        }
+        let f = if t > t0 {
+            ((tk - t0) / (t - t0)).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        row(tk, f);
+        *next += 1;
+    }
+}
+
+/// a + f (b - a), entry by entry.
+pub fn lerp(a: &[f64], b: &[f64], f: f64) -> Vec<f64> {
+    a.iter().zip(b).map(|(x, y)| x + f * (y - x)).collect()
+}
+
 /// Turns step states into a [`Response`].
 pub struct Observer<'a> {
     /// The recorder.
@@ -244,21 +275,10 @@ impl<'a> Observer<'a> {
     pub fn step(&mut self, t: f64, u: &[f64], v: &[f64]) {
         let (t0, u0, v0) = (self.last.0, self.last.1.clone(), self.last.2.clone());
         if let Some(dt) = self.output_dt {
-            loop {
-                let tk = self.next_output as f64 * dt;
-                if tk > t + 1e-12 * dt {
-                    break;
-                }
-                let f = if t > t0 {
-                    ((tk - t0) / (t - t0)).clamp(0.0, 1.0)
-                } else {
-                    1.0
-                };
-                let ui: Vec<f64> = u0.iter().zip(u).map(|(a, b)| a + f * (b - a)).collect();
-                let vi: Vec<f64> = v0.iter().zip(v).map(|(a, b)| a + f * (b - a)).collect();
-                self.rec.sample(tk, &ui, &vi);
-                self.next_output += 1;
-            }
+            let rec = &mut self.rec;
+            outputs_in_step(&mut self.next_output, dt, t0, t, |tk, f| {
+                rec.sample(tk, &lerp(&u0, u, f), &lerp(&v0, v, f));
+            });
         }
         let (a0, a1) = (self.motion.accel(t0), self.motion.accel(t));
         let m = self.model;

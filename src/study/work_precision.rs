@@ -549,29 +549,36 @@ pub fn rocking_cases(record: &std::path::Path) -> Result<Vec<RockingCase>, crate
     ])
 }
 
-/// Errors of a rocking run against the reference, on the horizontal displacement of the top of
-/// the block (u of the base plus its height times sin theta, m): (error in its largest |value|,
-/// largest error over the sampled history).
-pub fn rocking_errors(r: &Response, reference: &Response, height_m: f64) -> (f64, f64) {
-    let top = |resp: &Response| -> Vec<(f64, f64)> {
+/// Errors of a run whose blocks rotate against the reference, on the horizontal displacement
+/// of the middle of each block's top (its u plus its height times sin theta, m), the blocks of
+/// `wall` in its order: (largest error in a block's largest |value|, largest error over the
+/// sampled history). Each sample is compared with the reference's first at or after it: the
+/// same time for pirqa's steppers, which write rows at the output times; a peer's rows need
+/// not fall on them.
+pub fn rocking_errors(r: &Response, reference: &Response, wall: &Wall) -> (f64, f64) {
+    let top = |resp: &Response, i: usize| -> Vec<(f64, f64)> {
         let h = resp.history.as_ref().expect("history");
+        let height = wall.blocks[i].height.to_f64();
         h.time_s
             .iter()
             .zip(&h.displacement_m)
             .zip(&h.rotation_rad)
-            .map(|((&t, u), th)| (t, u[0] + height_m * th[0].sin()))
+            .map(|((&t, u), th)| (t, u[i] + height * th[i].sin()))
             .collect()
     };
-    let (a, b) = (top(r), top(reference));
     let peak = |v: &[(f64, f64)]| v.iter().fold(0.0f64, |m, x| m.max(x.1.abs()));
-    let mut hist: f64 = 0.0;
-    for &(t, x) in &a {
-        let k = b.partition_point(|&(s, _)| s < t - 1e-9);
-        if let Some(&(_, y)) = b.get(k) {
-            hist = hist.max((x - y).abs());
+    let (mut max_err, mut hist) = (0.0f64, 0.0f64);
+    for i in 0..wall.blocks.len() {
+        let (a, b) = (top(r, i), top(reference, i));
+        max_err = max_err.max((peak(&a) - peak(&b)).abs());
+        for &(t, x) in &a {
+            let k = b.partition_point(|&(s, _)| s < t - 1e-9);
+            if let Some(&(_, y)) = b.get(k) {
+                hist = hist.max((x - y).abs());
+            }
         }
     }
-    ((peak(&a) - peak(&b)).abs(), hist)
+    (max_err, hist)
 }
 
 /// The rocking panel for one scenario: the exact engine (the reference) and Moreau-Jean with
@@ -587,7 +594,6 @@ pub fn run_rocking_case(
     let case = &rc.case;
     let s = settings(case.duration_s);
     let sc = case.scenario(&s);
-    let height = case.wall.blocks[0].height.to_f64();
     let exact = Rocking {
         initial_rotation_rad: rc.initial_rotation_rad,
         ..Rocking::default()
@@ -605,7 +611,7 @@ pub fn run_rocking_case(
         runs,
         min_time_s,
         &mut progress,
-        |r, reference| rocking_errors(r, reference, height),
+        |r, reference| rocking_errors(r, reference, &case.wall),
     )?)
 }
 
@@ -651,43 +657,6 @@ pub fn rocking_wall_cases(record: &std::path::Path) -> Result<Vec<Case>, crate::
     .collect()
 }
 
-/// Errors of a run of a wall whose blocks rotate against the reference, on the horizontal
-/// displacement of the middle of each block's top (its u plus its height times sin theta, m),
-/// blocks matched by name: (largest error in a block's largest |value|, largest error over
-/// the sampled history, at the times both have).
-pub fn wall_rocking_errors(r: &Response, reference: &Response, wall: &Wall) -> (f64, f64) {
-    let tops = |resp: &Response, name: &str| -> Vec<(f64, f64)> {
-        let h = resp.history.as_ref().expect("history");
-        let Some(i) = resp.summary.blocks.iter().position(|b| b.name == name) else {
-            return Vec::new();
-        };
-        let height = wall
-            .blocks
-            .iter()
-            .find(|b| b.name == name)
-            .map_or(0.0, |b| b.height.to_f64());
-        h.time_s
-            .iter()
-            .zip(&h.displacement_m)
-            .zip(&h.rotation_rad)
-            .map(|((&t, u), th)| (t, u[i] + height * th[i].sin()))
-            .collect()
-    };
-    let peak = |v: &[(f64, f64)]| v.iter().fold(0.0f64, |m, x| m.max(x.1.abs()));
-    let (mut max_err, mut hist) = (0.0f64, 0.0f64);
-    for b in &wall.blocks {
-        let (a, e) = (tops(r, &b.name), tops(reference, &b.name));
-        max_err = max_err.max((peak(&a) - peak(&e)).abs());
-        for &(t, x) in &a {
-            let k = e.partition_point(|&(s, _)| s < t - 1e-9);
-            if let Some(&(_, y)) = e.get(k).filter(|(s, _)| (s - t).abs() < 1e-9) {
-                hist = hist.max((x - y).abs());
-            }
-        }
-    }
-    (max_err, hist)
-}
-
 /// The rocking-walls panel for one scenario: the exact column model (the reference) and
 /// Moreau-Jean with every block's rotation over the ladder of steps.
 pub fn run_rocking_wall_case(
@@ -707,6 +676,6 @@ pub fn run_rocking_wall_case(
         moreau_runs(steps, MoreauWall::new),
         min_time_s,
         &mut progress,
-        |r, reference| wall_rocking_errors(r, reference, &case.wall),
+        |r, reference| rocking_errors(r, reference, &case.wall),
     )?)
 }

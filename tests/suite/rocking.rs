@@ -298,7 +298,6 @@ fn moreau_with_rotations_converges_to_the_exact_landing() {
     }
     .run(&sc)
     .unwrap();
-    let height = wall.blocks[0].height.to_f64();
     let errors: Vec<f64> = [1e-2, 1e-3, 1e-4]
         .iter()
         .map(|&dt| {
@@ -308,7 +307,7 @@ fn moreau_with_rotations_converges_to_the_exact_landing() {
             }
             .run(&sc)
             .unwrap();
-            pirqa::study::work_precision::rocking_errors(&r, &exact, height).1
+            pirqa::study::work_precision::rocking_errors(&r, &exact, &wall).1
         })
         .collect();
     assert!(

@@ -7,7 +7,7 @@
 //! the closed form says, and one inside the moving body where time stepping sees it slip; on
 //! three columns the time-stepped answer converges to the exact one as the step falls.
 
-use pirqa::study::work_precision::wall_rocking_errors;
+use pirqa::study::work_precision::rocking_errors;
 use pirqa::{Method, Model, ModelChoice, Motion, Response, RunSettings, Sine, Summary, Warning};
 
 fn sine(amplitude_m_s2: f64, frequency_hz: f64, duration_s: f64) -> Motion {
@@ -300,7 +300,7 @@ fn time_stepping_converges_to_the_exact_column_model() {
         assert!(s.blocks.iter().any(|b| b.uplift_time_s.is_some()), "{file}");
         let err = |dt_s: f64| {
             let r = with_history(&model, &motion, Method::Moreau { dt_s }, 0.01);
-            wall_rocking_errors(&r, &reference, model.wall()).1
+            rocking_errors(&r, &reference, model.wall()).1
         };
         let e = [err(1e-3), err(2.5e-4), err(6.25e-5)];
         assert!(
@@ -571,4 +571,40 @@ fn a_column_on_an_abutment_is_the_column_on_the_ground_listed_with_the_wall() {
         }
     }
     assert!(hp.rotation_rad.iter().any(|row| row[2].abs() > 1e-3));
+}
+
+/// Time stepping with rotations writes its history at the output times whatever its step (a
+/// step of 3e-4 s does not divide 0.01 s), interpolated between steps: the rows fall on the
+/// exact model's sample times, so the two are compared at the same instants, and a row between
+/// two steps lies on the chord between them.
+#[test]
+fn time_stepping_with_rotations_writes_its_history_at_the_output_times() {
+    let model = Model::from_file("walls/rocking/two-block-column.ron").unwrap();
+    let motion = sine(0.3 * 9.81, 1.5, 1.0);
+    let stepped = with_history(&model, &motion, Method::Moreau { dt_s: 3e-4 }, 0.01);
+    let h = stepped.history.as_ref().unwrap();
+    let expected: Vec<f64> = (0..=100).map(|k| k as f64 * 0.01).collect();
+    assert_eq!(h.time_s, expected);
+    let exact = with_history(&model, &motion, Method::Event, 0.01);
+    let times = &exact.history.as_ref().unwrap().time_s;
+    assert!(h.time_s.iter().all(|t| times.contains(t)));
+    // The row at 0.5 s lies between the steps at 1666 dt and 1667 dt, on their chord.
+    let fine = with_history(&model, &motion, Method::Moreau { dt_s: 3e-4 }, 3e-4);
+    let f = fine.history.as_ref().unwrap();
+    let (t0, t1) = (1666.0 * 3e-4, 1667.0 * 3e-4);
+    assert_eq!((f.time_s[1666], f.time_s[1667]), (t0, t1));
+    let w = (0.5 - t0) / (t1 - t0);
+    for (rows, row) in [
+        (&f.rotation_rad, &h.rotation_rad[50]),
+        (&f.displacement_m, &h.displacement_m[50]),
+    ] {
+        for (i, &x) in row.iter().enumerate() {
+            let (a, b) = (rows[1666][i], rows[1667][i]);
+            assert!(a != 0.0 && b != a, "{a} {b}");
+            assert!(
+                (x - (a + w * (b - a))).abs() <= 1e-15 * x.abs(),
+                "{x} against {a}, {b}"
+            );
+        }
+    }
 }

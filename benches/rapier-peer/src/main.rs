@@ -12,7 +12,7 @@
 //! does the same for the rocking panel (`pirqa bench work-precision-rocking --peer OUT.csv`),
 //! with the block's rotation unlocked.
 
-use pirqa::integrate::stepping::{Model, Observer};
+use pirqa::integrate::stepping::{lerp, outputs_in_step, Model, Observer};
 use pirqa::integrate::{Integrator, Scenario};
 use pirqa::response::Response;
 use pirqa::study::work_precision::{self, Point};
@@ -242,9 +242,6 @@ impl Integrator for RockingPeer {
             false,
         );
         let mut sim = Sim::with_rotation(sc, self.dt_s, Some(self.theta0));
-        let every = settings
-            .output_dt_s
-            .map_or(u64::MAX, |o| ((o / self.dt_s).round() as u64).max(1));
         let steps = (settings.duration_s / self.dt_s).ceil() as u64;
         let ground_x0 = sim.world.bodies[sim.ground].translation().x;
         // The base centre relative to where it stood at rest; theta clockwise.
@@ -256,18 +253,32 @@ impl Integrator for RockingPeer {
             let v = body.linvel().x + half * phi.cos() * body.angvel() - sc.motion.velocity(t);
             (u, v, -phi, -body.angvel())
         };
-        let (u, v, th, om) = state(&sim, 0.0);
+        let mut previous = state(&sim, 0.0);
+        let (u, v, th, om) = previous;
         rec.sample_rotating(0.0, &[u], &[v], &[th], &[om]);
-        let mut t = 0.0;
+        let (mut t, mut next_output) = (0.0, 1);
         for k in 1..=steps {
             sim.step(k, sc.motion);
+            let t_prev = t;
             t = k as f64 * self.dt_s;
-            let (u, v, th, om) = state(&sim, t);
-            rec.block_extremes(0, u.abs(), v.abs());
-            rec.rotation_extreme(0, th.abs());
-            if k % every == 0 {
-                rec.sample_rotating(t, &[u], &[v], &[th], &[om]);
+            let now = state(&sim, t);
+            rec.block_extremes(0, now.0.abs(), now.1.abs());
+            rec.rotation_extreme(0, now.2.abs());
+            // Rows at the output times, between steps by linear interpolation, as pirqa's own
+            // steppers write them.
+            if let Some(o) = settings.output_dt_s {
+                outputs_in_step(&mut next_output, o, t_prev, t, |tk, f| {
+                    let at = |a: f64, b: f64| lerp(&[a], &[b], f);
+                    rec.sample_rotating(
+                        tk,
+                        &at(previous.0, now.0),
+                        &at(previous.1, now.1),
+                        &at(previous.2, now.2),
+                        &at(previous.3, now.3),
+                    );
+                });
             }
+            previous = now;
         }
         let (u, v, _, _) = state(&sim, t);
         Ok(rec.finish(
@@ -310,7 +321,6 @@ fn rocking_points(out: &str) {
         }
         .run(&sc)
         .expect("reference");
-        let height = case.wall.blocks[0].height.to_f64();
         for dt in [1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5] {
             eprintln!("  {} rapier2d dt={dt:e}", case.name);
             let peer = RockingPeer {
@@ -318,7 +328,7 @@ fn rocking_points(out: &str) {
                 theta0: rc.initial_rotation_rad,
             };
             let (cpu, r) = work_precision::timed(&peer, &sc, 0.2);
-            let errors = r.map(|r| work_precision::rocking_errors(&r, &reference, height));
+            let errors = r.map(|r| work_precision::rocking_errors(&r, &reference, &case.wall));
             let parameter = format!("dt={dt:e}");
             points.push(work_precision::point(
                 &case.name, "rapier2d", parameter, cpu, errors,

@@ -13,11 +13,15 @@
 
 use crate::error::SimulationError;
 use crate::integrate::rocking;
-use crate::integrate::stepping::time_step;
+use crate::integrate::stepping::{lerp, outputs_in_step, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Scenario};
 use crate::response::{Collapse, CollapseCause, ModelUsed, Recorder, Response, Warning};
 use crate::topology::{Base, JointRef, VerticalId};
 use nalgebra::{Matrix2, Vector2, Vector3};
+
+/// Per block: u of the base's middle (m), its velocity (m/s), theta (rad, clockwise positive),
+/// omega (rad/s): what a history row holds.
+type Outputs = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// A block lifts (for the summary's uplift time) when its rotation moves a corner by this much
 /// (m): Gauss-Seidel leaves rotations of round-off size on blocks that stay seated.
@@ -352,23 +356,22 @@ impl Integrator for MoreauWall {
             let omega: Vec<f64> = v.iter().map(|s| -s.z).collect();
             (u, uv, theta, omega)
         };
-        let record =
-            |rec: &mut Recorder, t: f64, q: &[Vector3<f64>], v: &[Vector3<f64>], row: bool| {
-                let (u, uv, theta, omega) = outputs(q, v);
-                for i in 0..n {
-                    rec.block_extremes(i, u[i].abs(), uv[i].abs());
-                    rec.rotation_extreme(i, theta[i].abs());
-                }
-                rec.joint_extremes(&u);
-                if row {
-                    rec.sample_rotating(t, &u, &uv, &theta, &omega);
-                }
-            };
-        record(&mut rec, 0.0, &q, &v, true);
+        // Extremes at every step; history rows at the output times, between steps by linear
+        // interpolation (as every time stepper writes them), and at a fall.
+        let extremes = |rec: &mut Recorder, out: &Outputs| {
+            let (u, uv, theta, _) = out;
+            for i in 0..n {
+                rec.block_extremes(i, u[i].abs(), uv[i].abs());
+                rec.rotation_extreme(i, theta[i].abs());
+            }
+            rec.joint_extremes(u);
+        };
+        let mut previous = outputs(&q, &v);
+        extremes(&mut rec, &previous);
+        let (u0, uv0, theta0, omega0) = &previous;
+        rec.sample_rotating(0.0, u0, uv0, theta0, omega0);
+        let mut next_output = 1;
         let steps = (settings.duration_s / dt).ceil() as u64;
-        let every = settings
-            .output_dt_s
-            .map_or(u64::MAX, |o| ((o / dt).round() as u64).max(1));
         let scale = g * dt;
         let inv = |i: usize| {
             Vector3::new(
@@ -382,6 +385,7 @@ impl Integrator for MoreauWall {
         let mut unconverged = 0u64;
         let mut t = 0.0;
         for k in 1..=steps {
+            let t_prev = t;
             if k % PROGRESS_STEPS == 0 {
                 if let Some(p) = &settings.progress {
                     if !p.at(t) {
@@ -559,7 +563,26 @@ impl Integrator for MoreauWall {
                     }
                 }
             }
-            record(&mut rec, t, &q, &v, k % every == 0 || fell_now);
+            let now = outputs(&q, &v);
+            extremes(&mut rec, &now);
+            let mut last_row = None;
+            if let Some(o) = settings.output_dt_s {
+                outputs_in_step(&mut next_output, o, t_prev, t, |tk, f| {
+                    let (a, b) = (&previous, &now);
+                    rec.sample_rotating(
+                        tk,
+                        &lerp(&a.0, &b.0, f),
+                        &lerp(&a.1, &b.1, f),
+                        &lerp(&a.2, &b.2, f),
+                        &lerp(&a.3, &b.3, f),
+                    );
+                    last_row = Some(tk);
+                });
+            }
+            if fell_now && last_row != Some(t) {
+                rec.sample_rotating(t, &now.0, &now.1, &now.2, &now.3);
+            }
+            previous = now;
             if fell_now && settings.after_collapse == AfterCollapse::Stop {
                 break;
             }
