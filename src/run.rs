@@ -75,8 +75,8 @@ pub struct RunSettings {
     pub progress: Option<Progress>,
 }
 
-fn incompatible(asked: &'static str, fix: &'static str) -> Error {
-    Error::Simulation(SimulationError::Incompatible { asked, fix })
+fn incompatible(asked: &'static str, fix: &'static str) -> SimulationError {
+    SimulationError::Incompatible { asked, fix }
 }
 
 impl RunSettings {
@@ -103,16 +103,16 @@ impl RunSettings {
             }
         }
         if self.rocking.is_some() && self.model == ModelChoice::Slide {
-            return Err(incompatible(
+            return Err(Error::Simulation(incompatible(
                 "--model slide rotates no block",
                 "leave --rocking out, or use --model slide-rock",
-            ));
+            )));
         }
         if self.direction == Direction::OutOfPlane && self.model == ModelChoice::Slide {
-            return Err(incompatible(
+            return Err(Error::Simulation(incompatible(
                 "across the wall's plane the wall rocks",
                 "use --model slide-rock or auto",
-            ));
+            )));
         }
         if self.direction == Direction::InPlane && self.initial_rotation.len() > 1 {
             return Err(Error::Simulation(SimulationError::NotApplicable(format!(
@@ -144,26 +144,34 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
         motion,
         settings: &s,
     };
+    Ok(run_scenario(&sc, settings)?)
+}
+
+/// Runs a scenario on the model and integrator `settings` choose (`method`, `model`,
+/// `rocking`, `direction`, `initial_rotation`; duration, history and logs are the scenario's
+/// own): what `pirqa run` and every case of a sweep run.
+pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, SimulationError> {
+    let (motion, duration_s) = (sc.motion, sc.settings.duration_s);
     let equations = settings.rocking.unwrap_or_default();
-    let exact_only = |what: &str| -> Result<(), Error> {
+    let exact_only = |what: &str| -> Result<(), SimulationError> {
         match settings.method {
             Method::Event => Ok(()),
-            _ => Err(Error::Simulation(SimulationError::NotApplicable(format!(
+            _ => Err(SimulationError::NotApplicable(format!(
                 "{what} runs on the exact event-driven integrator only: leave --method out (or \
                  run with --model slide)"
-            )))),
+            ))),
         }
     };
     if settings.direction == Direction::OutOfPlane {
         exact_only("rocking across the plane")?;
-        return Ok(rocking::out_of_plane(
+        return rocking::out_of_plane(
             sc.wall,
             sc.topology,
             motion,
-            &s,
+            sc.settings,
             equations,
             &settings.initial_rotation,
-        )?);
+        );
     }
     if let (Method::Moreau { dt_s }, ModelChoice::SlideRock) = (&settings.method, settings.model) {
         // A wall of several blocks (or one not standing free on the ground): every block with
@@ -179,7 +187,7 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
                 initial_rotation: settings.initial_rotation.first().cloned(),
                 ..MoreauWall::new(*dt_s)
             }
-            .run(&sc)?;
+            .run(sc)?;
             response.summary.model.why = format!(
                 "asked for (--model slide-rock --method moreau): each of the {} blocks with its \
                  rotation, every contact at the corners of its joints",
@@ -208,19 +216,19 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
             initial_rotation: settings.initial_rotation.first().cloned(),
             ..MoreauWall::new(*dt_s)
         }
-        .run(&sc)?,
+        .run(sc)?,
         (_, true) => {
             exact_only("the rocking model (or --method moreau)")?;
             Rocking {
                 equations,
                 initial_rotation_rad: initial,
             }
-            .run(&sc)?
+            .run(sc)?
         }
-        (Method::Event, false) => EventDriven::default().run(&sc)?,
-        (Method::Paper { dt_s }, false) => PaperNewmark { dt_s: *dt_s }.run(&sc)?,
-        (Method::Moreau { dt_s }, false) => Moreau::new(*dt_s).run(&sc)?,
-        (Method::Regularized(r), false) => r.run(&sc)?,
+        (Method::Event, false) => EventDriven::default().run(sc)?,
+        (Method::Paper { dt_s }, false) => PaperNewmark { dt_s: *dt_s }.run(sc)?,
+        (Method::Moreau { dt_s }, false) => Moreau::new(*dt_s).run(sc)?,
+        (Method::Regularized(r), false) => r.run(sc)?,
     };
     response.summary.model.why = why;
     Ok(response)

@@ -19,6 +19,14 @@ pub(crate) fn sci<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
     s.collect_str(&format_args!("{x:e}"))
 }
 
+/// An optional float as [`sci`], or an empty field.
+pub(crate) fn sci_opt<S: Serializer>(x: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+    match x {
+        Some(x) => sci(x, s),
+        None => s.serialize_str(""),
+    }
+}
+
 /// An optional float as [`plain`], or an empty field.
 pub(crate) fn plain_opt<S: Serializer>(x: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
     match x {

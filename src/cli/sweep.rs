@@ -130,11 +130,10 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
             format!("--record {}/motion.txt", dir.display())
         }
         pirqa::motion::Motion::Sine(s) => format!(
-            "--sine {}m/s2 --freq {} --phase {} --duration {}",
+            "--sine {}m/s2 --freq {} --phase {}",
             s.amplitude_m_s2,
             s.frequency_hz,
             s.phase_rad.to_degrees(),
-            s.duration_s
         ),
         pirqa::motion::Motion::Pulse(p) => {
             format!(
@@ -144,9 +143,10 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
         }
     };
     let command = format!(
-        "pirqa run {}/wall.ron {motion_args} --model {} --duration {} --out {}{}\n",
+        "pirqa run {}/wall.ron {motion_args} --model {}{} --duration {} --out {}{}\n",
         dir.display(),
         sweep.case_model(id)?,
+        sweep.method.run_options(),
         motion.duration_s,
         dir.display(),
         if history { "" } else { " --no-history" }

@@ -549,8 +549,8 @@ fn a_sweep_rocks_the_cases_pirqa_run_would() {
 /// `max_accel_over_tipping` is the largest peak absolute acceleration of a block over the one
 /// at which it would tip standing free, g b/h: the stack of walls/rocking/ held to the ground
 /// moves with it, so the slender top (b/h = 0.25) reaches a_g, and the ratio is the sine's
-/// amplitude over 0.25 g to round-off (0.4 and 0.8); at 0.3 g the top lifts and rocks, at or
-/// above the ratio 1 the free block's check names.
+/// amplitude over 0.25 g to round-off (0.4 and 0.8); at 0.3 g the top lifts and rocks, and the
+/// column is left empty (the check is asked of sliding answers only).
 #[test]
 fn the_tipping_ratio_of_a_case_is_its_peak_acceleration_over_g_b_over_h() {
     let s = sweep(
@@ -566,11 +566,14 @@ fn the_tipping_ratio_of_a_case_is_its_peak_acceleration_over_g_b_over_h() {
     for (r, ratio) in rows.iter().zip([0.4, 0.8]) {
         assert_eq!(r.model, "slide");
         assert!(
-            (r.max_accel_over_tipping - ratio).abs() < 1e-15,
-            "{} against {ratio}",
+            (r.max_accel_over_tipping.unwrap() - ratio).abs() < 1e-15,
+            "{:?} against {ratio}",
             r.max_accel_over_tipping
         );
     }
     assert_eq!(rows[2].model, "slide-rock");
-    assert!(rows[2].max_accel_over_tipping >= 1.0, "{rows:?}");
+    assert_eq!(
+        rows[2].max_accel_over_tipping, None,
+        "a rocking answer needs no check"
+    );
 }

@@ -12,13 +12,13 @@ pub mod store;
 use crate::clock::ThreadClock;
 use crate::error::{Error, MotionError, SimulationError, SweepError};
 use crate::exact::Q;
-use crate::integrate::event::EventDriven;
-use crate::integrate::rocking::{self, ModelChoice, Rocking};
-use crate::integrate::{Integrator, Progress, Scenario, Settings};
+use crate::integrate::rocking::{self, ModelChoice};
+use crate::integrate::{Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
 use crate::response::{Summary, Warning};
 use crate::rng::Rng;
+use crate::run::{run_scenario, Method, RunSettings};
 use crate::topology::Topology;
 use crate::units::parse_acceleration;
 use crate::wall::{RunningBond, Wall, WallDescription};
@@ -53,10 +53,58 @@ pub struct SweepDescription {
     /// wall is a column the motion can lift, and slides otherwise).
     #[serde(default, skip_serializing_if = "is_auto")]
     pub model: ModelChoice,
+    /// The integrator, as `pirqa run --method` (default `Event`, the exact one).
+    #[serde(default, skip_serializing_if = "is_event")]
+    pub method: SweepMethod,
 }
 
 fn is_auto(m: &ModelChoice) -> bool {
     *m == ModelChoice::Auto
+}
+
+fn is_event(m: &SweepMethod) -> bool {
+    *m == SweepMethod::Event
+}
+
+/// The integrator of a sweep's cases.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum SweepMethod {
+    /// The exact event-driven integrator (the sliding engine, or the exact rocking model where
+    /// the case rocks).
+    #[default]
+    Event,
+    /// Moreau-Jean time stepping, step `dt_s`: with `model: SlideRock`, every block with its
+    /// rotation on any wall (the fallback for walls beyond the exact rocking model).
+    Moreau {
+        /// Time step (s).
+        dt_s: f64,
+    },
+    /// The paper's Newmark scheme with sgn(v) friction, step `dt_s` (sliding only).
+    Paper {
+        /// Time step (s).
+        dt_s: f64,
+    },
+}
+
+impl SweepMethod {
+    /// The integrator `pirqa run` takes for it.
+    fn method(self) -> Method {
+        match self {
+            SweepMethod::Event => Method::Event,
+            SweepMethod::Moreau { dt_s } => Method::Moreau { dt_s },
+            SweepMethod::Paper { dt_s } => Method::Paper { dt_s },
+        }
+    }
+
+    /// Its options of `pirqa run` (none for the default).
+    pub fn run_options(self) -> String {
+        match self {
+            SweepMethod::Event => String::new(),
+            SweepMethod::Moreau { dt_s } => format!(" --method moreau --dt {dt_s}"),
+            SweepMethod::Paper { dt_s } => format!(" --method paper --dt {dt_s}"),
+        }
+    }
 }
 
 /// Where a wall comes from.
@@ -243,6 +291,8 @@ pub struct Sweep {
     pub origin: PathBuf,
     /// The model of the blocks.
     pub model: ModelChoice,
+    /// The integrator.
+    pub method: SweepMethod,
 }
 
 /// An error of the sweep file `path`.
@@ -366,12 +416,27 @@ impl Sweep {
                 },
             ));
         }
-        // A sweep of the default model hashes the text it had before `model` came, so that
-        // folders written before keep their fingerprint and resume.
+        // A sweep of the default model and method hashes the text it had before `model` and
+        // `method` came, so that folders written before keep their fingerprint and resume.
         let text = format!("{:?}", d.by_file_name());
+        let text = text
+            .strip_suffix(", method: Event }")
+            .map_or_else(|| text.clone(), |t| format!("{t} }}"));
         let text = text
             .strip_suffix(", model: Auto }")
             .map_or_else(|| text.clone(), |t| format!("{t} }}"));
+        match d.method {
+            SweepMethod::Moreau { dt_s } | SweepMethod::Paper { dt_s }
+                if !(dt_s.is_finite() && dt_s > 0.0) =>
+            {
+                return Err(field(
+                    origin,
+                    "method",
+                    format!("time step dt_s = {dt_s} s: give a positive step, e.g. 0.001"),
+                ));
+            }
+            _ => {}
+        }
         let mut hash = fnv(FNV_OFFSET, text.as_bytes());
         let mut walls = Vec::new();
         for source in &d.walls {
@@ -402,6 +467,7 @@ impl Sweep {
             fingerprint: format!("{hash:016x}"),
             origin: origin.to_path_buf(),
             model: d.model,
+            method: d.method,
         })
     }
 
@@ -508,6 +574,11 @@ impl Sweep {
     /// The model case `id` runs, as `pirqa run --model` names it (`slide` or `slide-rock`),
     /// or why it cannot run.
     pub fn case_model(&self, id: usize) -> Result<&'static str, SimulationError> {
+        if matches!(self.method, SweepMethod::Moreau { .. }) && self.model == ModelChoice::SlideRock
+        {
+            // Time stepping turns every block of any wall ([`run_scenario`]).
+            return Ok("slide-rock");
+        }
         let (w, m, s) = self.case(id);
         let motion = &self.motions[m];
         let sampled = self.sampled_topology(w, s);
@@ -545,11 +616,12 @@ impl Sweep {
 
     /// Runs a case's scenario on the model the sweep asks for.
     fn integrate(&self, sc: &Scenario) -> Result<Response, SimulationError> {
-        if self.rocks(sc.wall, sc.topology, sc.motion, sc.settings.duration_s)? {
-            Rocking::default().run(sc)
-        } else {
-            EventDriven::default().run(sc)
-        }
+        let settings = RunSettings {
+            model: self.model,
+            method: self.method.method(),
+            ..RunSettings::default()
+        };
+        run_scenario(sc, &settings)
     }
 
     /// Runs one case.
@@ -961,8 +1033,11 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         .iter()
         .map(|b| b.max_abs_rotation_rad)
         .fold(0.0, f64::max);
-    let peaks: Vec<f64> = s.blocks.iter().map(|b| b.max_abs_accel_m_s2).collect();
-    row.max_accel_over_tipping = crate::validity::max_accel_over_tipping(wall, &peaks);
+    // Could a block have rocked? Asked of a sliding answer only.
+    row.max_accel_over_tipping = (row.model == "slide").then(|| {
+        let peaks: Vec<f64> = s.blocks.iter().map(|b| b.max_abs_accel_m_s2).collect();
+        crate::validity::max_accel_over_tipping(wall, &peaks)
+    });
     // A run the model stopped before its end (a held joint gave way, a body left the ground)
     // has no answer past that instant: the case says so instead of passing for complete.
     row.error = s.warnings.iter().find_map(|w| match w {

@@ -96,11 +96,12 @@ pub struct CaseRow {
     pub max_abs_rotation_rad: f64,
     /// Largest ratio of a movable block's peak absolute acceleration to the one at which it
     /// would start to tip standing free, g b/h ([`max_accel_over_tipping`]): below 1 no block
-    /// could have rocked, so the sliding-only answer needs no rocking model.
+    /// could have rocked, so the sliding-only answer needs no rocking model. Empty where the
+    /// case ran a model that rocks blocks.
     ///
     /// [`max_accel_over_tipping`]: crate::validity::max_accel_over_tipping
-    #[serde(serialize_with = "table::sci")]
-    pub max_accel_over_tipping: f64,
+    #[serde(serialize_with = "table::sci_opt")]
+    pub max_accel_over_tipping: Option<f64>,
     /// CPU time of the run (s): a measurement, kept in timing.csv, not in cases.csv.
     #[serde(skip)]
     pub cpu_s: f64,
