@@ -157,8 +157,8 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
         match settings.method {
             Method::Event => Ok(()),
             _ => Err(SimulationError::NotApplicable(format!(
-                "{what} runs on the exact event-driven integrator only: leave --method out (or \
-                 run with --model slide)"
+                "{what} runs on the exact event-driven integrator only: leave --method out (a \
+                 sweep: its `method`), or run with --model slide (`model: Slide`)"
             ))),
         }
     };

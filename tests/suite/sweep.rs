@@ -577,3 +577,25 @@ fn the_tipping_ratio_of_a_case_is_its_peak_acceleration_over_g_b_over_h() {
         "a rocking answer needs no check"
     );
 }
+
+/// A case that rocks under `auto` needs the exact rocking model or Moreau-Jean: asked for the
+/// paper's Newmark scheme, it fails, and its error says what to change in the sweep's own terms.
+#[test]
+fn a_rocking_case_on_a_sliding_stepper_fails_with_the_sweeps_own_words() {
+    let s = sweep(
+        r#"(
+    version: 1,
+    name: "paper's scheme",
+    walls: [File(path: "walls/rocking/slender-on-stack.ron")],
+    motion: Sine(amplitudes: ["0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0),
+    method: Paper(dt_s: 0.001),
+)"#,
+    )
+    .unwrap();
+    let row = s.run_case(0).0;
+    let error = row.error.unwrap_or_default();
+    assert!(
+        error.contains("`method`") && error.contains("`model: Slide`"),
+        "{error}"
+    );
+}
