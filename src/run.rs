@@ -151,7 +151,6 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
 /// `rocking`, `direction`, `initial_rotation`; duration, history and logs are the scenario's
 /// own): what `pirqa run` and every case of a sweep run.
 pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, SimulationError> {
-    let (motion, duration_s) = (sc.motion, sc.settings.duration_s);
     let equations = settings.rocking.unwrap_or_default();
     let exact_only = |what: &str| -> Result<(), SimulationError> {
         match settings.method {
@@ -167,48 +166,18 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
         return rocking::out_of_plane(
             sc.wall,
             sc.topology,
-            motion,
+            sc.motion,
             sc.settings,
             equations,
             &settings.initial_rotation,
         );
     }
-    if let (Method::Moreau { dt_s }, ModelChoice::SlideRock) = (&settings.method, settings.model) {
-        // A wall of several blocks (or one not standing free on the ground): every block with
-        // its rotation, time stepped.
-        if rocking::free_standing(sc.wall, sc.topology).is_err() {
-            if settings.rocking.is_some() {
-                return Err(incompatible(
-                    "Moreau-Jean steps the rigid bodies' own equations",
-                    "leave --rocking out",
-                ));
-            }
-            let mut response = MoreauWall {
-                initial_rotation: settings.initial_rotation.first().cloned(),
-                ..MoreauWall::new(*dt_s)
-            }
-            .run(sc)?;
-            response.summary.model.why = format!(
-                "asked for (--model slide-rock --method moreau): each of the {} blocks with its \
-                 rotation, every contact at the corners of its joints",
-                sc.wall.blocks.len()
-            );
-            return Ok(response);
-        }
-    }
-    let (rocks, why) = rocking::rocks_in_plane(
-        settings.model,
-        sc.wall,
-        sc.topology,
-        motion,
-        duration_s,
-        &settings.initial_rotation,
-    )?;
+    let (rocks, why) = in_plane_model(sc, settings)?;
     let initial = settings.initial_rotation.first().map_or(0.0, |r| r.1);
     let mut response = match (&settings.method, rocks) {
         (Method::Moreau { .. }, true) if settings.rocking.is_some() => {
             return Err(incompatible(
-                "Moreau-Jean steps the rigid body's own equations",
+                "Moreau-Jean steps the rigid bodies' own equations",
                 "leave --rocking out",
             ))
         }
@@ -232,4 +201,35 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
     };
     response.summary.model.why = why;
     Ok(response)
+}
+
+/// Whether a run in the wall's plane turns blocks under `settings`, and why (the sentence of
+/// summary.json's `model.why`), decided before running it: Moreau-Jean asked to rock a wall
+/// that is not one free-standing block turns every block, any wall; otherwise the model is
+/// [`rocking::rocks_in_plane`]'s choice.
+pub fn in_plane_model(
+    sc: &Scenario,
+    settings: &RunSettings,
+) -> Result<(bool, String), SimulationError> {
+    if matches!(settings.method, Method::Moreau { .. })
+        && settings.model == ModelChoice::SlideRock
+        && rocking::free_standing(sc.wall, sc.topology).is_err()
+    {
+        return Ok((
+            true,
+            format!(
+                "asked for (--model slide-rock --method moreau): each of the {} blocks with its \
+                 rotation, every contact at the corners of its joints",
+                sc.wall.blocks.len()
+            ),
+        ));
+    }
+    rocking::rocks_in_plane(
+        settings.model,
+        sc.wall,
+        sc.topology,
+        sc.motion,
+        sc.settings.duration_s,
+        &settings.initial_rotation,
+    )
 }

@@ -12,13 +12,13 @@ pub mod store;
 use crate::clock::ThreadClock;
 use crate::error::{Error, MotionError, SimulationError, SweepError};
 use crate::exact::Q;
-use crate::integrate::rocking::{self, ModelChoice};
+use crate::integrate::rocking::ModelChoice;
 use crate::integrate::{Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
 use crate::response::{Summary, Warning};
 use crate::rng::Rng;
-use crate::run::{run_scenario, Method, RunSettings};
+use crate::run::{in_plane_model, run_scenario, Method, RunSettings};
 use crate::topology::Topology;
 use crate::units::parse_acceleration;
 use crate::wall::{RunningBond, Wall, WallDescription};
@@ -574,21 +574,17 @@ impl Sweep {
     /// The model case `id` runs, as `pirqa run --model` names it (`slide` or `slide-rock`),
     /// or why it cannot run.
     pub fn case_model(&self, id: usize) -> Result<&'static str, SimulationError> {
-        if matches!(self.method, SweepMethod::Moreau { .. }) && self.model == ModelChoice::SlideRock
-        {
-            // Time stepping turns every block of any wall ([`run_scenario`]).
-            return Ok("slide-rock");
-        }
         let (w, m, s) = self.case(id);
         let motion = &self.motions[m];
         let sampled = self.sampled_topology(w, s);
-        let topology = sampled.as_ref().unwrap_or(&self.walls[w].topology);
-        let rocks = self.rocks(
-            &self.walls[w].wall,
-            topology,
-            &motion.motion,
-            motion.duration_s,
-        )?;
+        let settings = Settings::summary_only(motion.duration_s);
+        let sc = Scenario {
+            wall: &self.walls[w].wall,
+            topology: sampled.as_ref().unwrap_or(&self.walls[w].topology),
+            motion: &motion.motion,
+            settings: &settings,
+        };
+        let (rocks, _) = in_plane_model(&sc, &self.run_settings())?;
         Ok(if rocks { "slide-rock" } else { "slide" })
     }
 
@@ -602,26 +598,18 @@ impl Sweep {
         }
     }
 
-    /// Whether a case of this wall (with its sampled friction) and motion rocks under the
-    /// sweep's model: the choice `pirqa run` makes.
-    fn rocks(
-        &self,
-        wall: &Wall,
-        topology: &Topology,
-        motion: &Motion,
-        duration_s: f64,
-    ) -> Result<bool, SimulationError> {
-        Ok(rocking::rocks_in_plane(self.model, wall, topology, motion, duration_s, &[])?.0)
+    /// The choices of `pirqa run` a case takes: the sweep's model and integrator.
+    fn run_settings(&self) -> RunSettings {
+        RunSettings {
+            model: self.model,
+            method: self.method.method(),
+            ..RunSettings::default()
+        }
     }
 
     /// Runs a case's scenario on the model the sweep asks for.
     fn integrate(&self, sc: &Scenario) -> Result<Response, SimulationError> {
-        let settings = RunSettings {
-            model: self.model,
-            method: self.method.method(),
-            ..RunSettings::default()
-        };
-        run_scenario(sc, &settings)
+        run_scenario(sc, &self.run_settings())
     }
 
     /// Runs one case.
