@@ -292,7 +292,12 @@ fn a_joint_inside_the_moving_body_slips_when_time_stepping_sees_it() {
 #[test]
 fn time_stepping_converges_to_the_exact_column_model() {
     let motion = sine(0.28 * 9.81, 1.5, 3.0);
-    for file in ["slender-on-stack", "two-block-column", "huanca-on-plinth"] {
+    for file in [
+        "slender-on-stack",
+        "two-block-column",
+        "huanca-on-plinth",
+        "trilith",
+    ] {
         let model = Model::from_file(format!("walls/rocking/{file}.ron")).unwrap();
         let reference = with_history(&model, &motion, Method::Event, 0.01);
         let s = &reference.summary;
@@ -606,5 +611,176 @@ fn time_stepping_with_rotations_writes_its_history_at_the_output_times() {
                 "{x} against {a}, {b}"
             );
         }
+    }
+}
+
+/// walls/rocking/trilith.ron (a lintel of a column's mass: gamma = M / 2m = 1/2) released
+/// from 0.1 rad on still ground rocks with Makris and Vassiliou's (2013) numbers for a frame:
+/// with the linearised equations its first landing comes at arccosh(alpha / (alpha - theta0))
+/// / p_frame (p_frame^2 = 3 g / 4R (1 + 2 gamma) / (1 + 3 gamma), R and alpha of a column);
+/// with the exact ones it lands at the angular velocity that energy gives, 2 p_frame^2
+/// (cos(alpha - theta0) - cos alpha), and leaves at r_frame = (1 - 1.5 sin^2 alpha + 3 gamma
+/// cos 2 alpha) / (1 + 3 gamma) times it; every landing, to round-off. The columns turn, the
+/// lintel does not, and no joint gives way.
+#[test]
+fn a_released_trilith_rocks_with_the_frames_closed_forms() {
+    use pirqa::response::EventKind;
+    let model = Model::from_file("walls/rocking/trilith.ron").unwrap();
+    let (b, h, gamma, theta0) = (0.25f64, 1.25f64, 0.5, 0.1);
+    let (r, alpha) = (b.hypot(h), b.atan2(h));
+    let p = (3.0 * 9.81 / (4.0 * r) * (1.0 + 2.0 * gamma) / (1.0 + 3.0 * gamma)).sqrt();
+    let restitution =
+        (1.0 - 1.5 * alpha.sin().powi(2) + 3.0 * gamma * (2.0 * alpha).cos()) / (1.0 + 3.0 * gamma);
+    let motion = Motion::Pulse(pirqa::Pulse::rest());
+    let run = |equations| {
+        let settings = RunSettings {
+            initial_rotation: vec![("Lintel".into(), theta0)],
+            duration_s: Some(4.0),
+            log_events: true,
+            rocking: Some(equations),
+            output_dt_s: Some(0.01),
+            ..RunSettings::default()
+        };
+        pirqa::run(&model, &motion, &settings).unwrap()
+    };
+    let landings = |r: &Response| -> Vec<(f64, f64, f64)> {
+        r.events
+            .iter()
+            .filter(|e| e.kind == EventKind::RockingImpact)
+            .map(|e| {
+                let w = |x: Option<f64>| x.unwrap();
+                (
+                    e.time_s,
+                    w(e.angular_velocity_before_rad_s),
+                    w(e.angular_velocity_after_rad_s),
+                )
+            })
+            .collect()
+    };
+    let linear = run(pirqa::Equations::Linearised);
+    let first = (alpha / (alpha - theta0)).acosh() / p;
+    let t1 = landings(&linear)[0].0;
+    assert!((t1 - first).abs() < 1e-12, "{t1} against {first}");
+    let exact = run(pirqa::Equations::Exact);
+    let l = landings(&exact);
+    assert!(l.len() >= 3, "{l:?}");
+    let w1 = -p * (2.0 * ((alpha - theta0).cos() - alpha.cos())).sqrt();
+    assert!((l[0].1 - w1).abs() < 1e-12 * p, "{} against {w1}", l[0].1);
+    for (_, before, after) in &l {
+        assert!(
+            (after - restitution * before).abs() < 1e-12 * p,
+            "{after} against {restitution} x {before}"
+        );
+    }
+    let s = &exact.summary;
+    assert!(
+        s.warnings.is_empty() && s.collapse.is_none(),
+        "{:?}",
+        s.warnings
+    );
+    let hist = exact.history.unwrap();
+    for row in &hist.rotation_rad {
+        assert_eq!(row[0], row[1]);
+        assert_eq!(row[2], 0.0);
+    }
+}
+
+/// The trilith under 0.3 g, 1 Hz leans far over; at 3.99 s its lintel's contacts can no longer
+/// carry what the one-degree-of-freedom mechanism asks of them (both within a few percent of
+/// their friction, the right one first) and the exact model stops, naming the joint. Time
+/// stepping with every block's three degrees of freedom (dt = 2.5e-5 s) sees the lintel start
+/// to slide on the columns' tops (faster than 0.1 mm/s against the top corner it rests on) within
+/// 15 ms after that instant and not before; until then it agrees with the exact frame.
+#[test]
+fn a_trilith_s_lintel_slides_when_time_stepping_sees_it() {
+    let model = Model::from_file("walls/rocking/trilith.ron").unwrap();
+    let motion = sine(0.3 * 9.81, 1.0, 4.3);
+    let s = exact(&model, &motion, ModelChoice::Auto);
+    let (t, joint, how) = gave_way(&s);
+    assert!(joint.starts_with("Lintel/"), "{joint}");
+    assert!(how.contains("slip"), "{how}");
+    let r = with_history(&model, &motion, Method::Moreau { dt_s: 2.5e-5 }, 1e-3);
+    let h = r.history.unwrap();
+    let (b, hh) = (0.25, 1.25);
+    // The lintel's u less that of the top corner of each column it rests on.
+    let off = |k: usize| -> [f64; 2] {
+        let (u, th) = (&h.displacement_m[k], &h.rotation_rad[k]);
+        [0, 1].map(|c| {
+            let s = th[c].signum();
+            u[2] - (u[c] - s * b * (th[c].cos() - 1.0) + 2.0 * hh * th[c].sin())
+        })
+    };
+    let slip_start = (1..h.time_s.len())
+        .find(|&k| {
+            let (a, z) = (off(k - 1), off(k));
+            (0..2).any(|c| (z[c] - a[c]).abs() > 1e-4 * (h.time_s[k] - h.time_s[k - 1]))
+        })
+        .map(|k| h.time_s[k])
+        .expect("the lintel slides in the time-stepped run");
+    assert!(
+        slip_start > t && slip_start < t + 0.015,
+        "slides from {slip_start} s, exact {t} s"
+    );
+}
+
+/// A trilith whose lintel holds on its columns with friction 0.1 only (they lift at 0.2 g):
+/// seated, the lintel moves with the ground and needs M a_g of friction from its two joints
+/// together, so under a 0.15 g sine the exact model stops where a_g first reaches 0.1 g,
+/// arcsin(0.1 / 0.15) / (2 pi f), naming both joints; nothing has moved.
+#[test]
+fn a_seated_trilith_s_lintel_slips_where_the_closed_form_says() {
+    let text = std::fs::read_to_string("walls/rocking/trilith.ron").unwrap();
+    let model = Model::from_ron_str(&text.replace(
+        "friction: 0.7,",
+        "friction: 0.7, joint_friction: {\"Lintel/Left\": 0.1, \"Lintel/Right\": 0.1},",
+    ))
+    .unwrap();
+    let motion = sine(0.15 * 9.81, 2.0, 1.0);
+    let s = exact(&model, &motion, ModelChoice::SlideRock);
+    let (t, joint, how) = gave_way(&s);
+    let closed = (0.1f64 / 0.15).asin() / (2.0 * std::f64::consts::PI * 2.0);
+    assert!((t - closed).abs() < 1e-12, "{t} against {closed}");
+    assert_eq!(joint, "Lintel/Left and Lintel/Right");
+    // The ground pushes towards +x: the lintel would stay behind, slipping towards -x.
+    assert!(
+        how.starts_with("would slip, the block on it towards -x"),
+        "{how}"
+    );
+    assert!(s.blocks.iter().all(|b| b.max_abs_displacement_m == 0.0));
+}
+
+/// A trilith the exact model cannot take says why and what to run instead: columns of two
+/// heights, a lintel short of a column's outer edge, friction that differs under the columns.
+#[test]
+fn a_trilith_beyond_the_frame_model_is_refused_by_name() {
+    let text = std::fs::read_to_string("walls/rocking/trilith.ron").unwrap();
+    let motion = sine(0.3 * 9.81, 1.0, 1.0);
+    for (from, to, words) in [
+        (
+            "(width_m: 2.5, name: \"Lintel\")",
+            "(width_m: 2.4, name: \"Lintel\")",
+            "the lintel Lintel does not cover the whole top of Right",
+        ),
+        (
+            "friction: 0.7,",
+            "friction: 0.7, joint_friction: {\"Right/ground\": 0.6},",
+            "the friction under its columns differs (0.7 and 0.6)",
+        ),
+        (
+            "(width_m: 0.5, gap_m: 1.5, name: \"Right\")",
+            "(width_m: 0.6, gap_m: 1.4, name: \"Right\")",
+            "its columns Left (0.5 x 2.5 m, 1656.25 kg) and Right (0.6 x 2.5 m, 1987.5 kg) differ",
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let model = Model::from_ron_str(&text.replace(from, to)).unwrap();
+        let settings = RunSettings {
+            model: ModelChoice::SlideRock,
+            ..RunSettings::default()
+        };
+        let e = pirqa::run(&model, &motion, &settings)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(words) && e.contains("--method moreau"), "{e}");
     }
 }

@@ -12,8 +12,11 @@
 //! the run with it, and says which joint gave way and how (docs/rocking-walls.md).
 
 use super::body::RockingBody;
-use super::modes::{Constraint, Corner, Guard, Inputs, Trajectory};
-use super::series::{derivative, product, sin_cos_at, Coeffs, ORDER, TIE, ZERO};
+use super::frame::{trilith, Frame};
+use super::modes::{Constraint, Corner, Guard, Inputs, Mode, Trajectory};
+use super::series::{
+    add_to, constant, derivative, plus, product, sin_cos_at, Coeffs, ORDER, TIE, ZERO,
+};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::topology::{Base, BlockId, Topology};
@@ -39,6 +42,14 @@ impl Column {
     /// start from.
     pub fn released(&self, theta_rad: f64) -> Vec<(String, f64, f64, f64)> {
         let w = &self.watch;
+        if let Some(frame) = &w.frame {
+            let name = |k: usize| w.outputs[k].name.clone();
+            return frame
+                .released(theta_rad)
+                .into_iter()
+                .map(|(k, dx, dy, phi)| (name(k), dx, dy, phi))
+                .collect();
+        }
         let s = if theta_rad > 0.0 { 1.0 } else { -1.0 };
         let (sin, cos) = theta_rad.sin_cos();
         w.pieces
@@ -122,6 +133,9 @@ pub struct Output {
     pub y0: f64,
     /// Moves with the body (or is held).
     pub moving: bool,
+    /// Turns with the body; a trilith's lintel translates, following the corner of the
+    /// columns' tops opposite their feet, at height `y0`.
+    pub turns: bool,
 }
 
 /// The conditions of a column's held joints.
@@ -139,6 +153,8 @@ pub struct Watch {
     /// times its height.
     force_scale: f64,
     moment_scale: f64,
+    /// A trilith's joints, watched instead of a column's.
+    pub(super) frame: Option<Frame>,
 }
 
 /// How a held joint gives way; four conditions per joint, in this order.
@@ -152,9 +168,42 @@ const HOW: [&str; 4] = [
 ];
 
 impl Watch {
+    /// The watch of a trilith: its blocks, and the half width of a column's foot.
+    pub(super) fn of_frame(frame: Frame, outputs: Vec<Output>, half_base_m: f64) -> Watch {
+        Watch {
+            base: "ground".into(),
+            outputs,
+            pieces: Vec::new(),
+            joints: Vec::new(),
+            half_base_m,
+            g_m_s2: frame.g_m_s2,
+            force_scale: frame.force_scale,
+            moment_scale: frame.moment_scale,
+            frame: Some(frame),
+        }
+    }
+
+    /// Half the width of the base each moving block turns on (a column's foot in a trilith).
+    pub(super) fn pivot_half_base_m(&self) -> f64 {
+        self.half_base_m
+    }
+
+    /// Whether it watches a trilith.
+    pub fn is_frame(&self) -> bool {
+        self.frame.is_some()
+    }
+
+    /// The condition a new mode of the body breaks, if the watched blocks cannot follow it.
+    pub(crate) fn forbids(&self, mode: Mode) -> Option<usize> {
+        self.frame.as_ref().and_then(|f| f.forbids(mode))
+    }
+
     /// The held joint, how it gives way and the block on it (index in the column, bottom
     /// first), for the condition `k` of [`Watch::conditions`].
     pub(crate) fn describe(&self, k: usize) -> (String, &'static str, usize) {
+        if let Some(frame) = &self.frame {
+            return frame.describe(k);
+        }
         let joint = &self.joints[k / 4];
         (joint.name.clone(), HOW[k % 4], joint.upper)
     }
@@ -162,6 +211,9 @@ impl Watch {
     /// The held joints' conditions along a trajectory of the body: each series must stay
     /// non-negative, with guard `Guard::Held` naming it.
     pub(crate) fn conditions(&self, traj: &Trajectory, inputs: &Inputs) -> Vec<Constraint> {
+        if let Some(frame) = &self.frame {
+            return frame.conditions(traj, inputs);
+        }
         if self.joints.is_empty() {
             return Vec::new();
         }
@@ -296,6 +348,9 @@ impl Watch {
     /// by `u`. The impulses passed through a held joint must lie in its friction cone and
     /// their resultant within its contact, as the forces must between events.
     pub(crate) fn landing(&self, u: f64, before: Velocity, after: Velocity) -> Option<usize> {
+        if let Some(frame) = &self.frame {
+            return frame.landing(before, after);
+        }
         // Ties are measured against the largest impulse the landing could pass (N s) and its
         // moment over the column's height.
         let height = self.moment_scale / self.force_scale;
@@ -351,22 +406,6 @@ struct Kinematics {
     ay: Coeffs,
 }
 
-fn constant(x: f64) -> Coeffs {
-    let mut c = ZERO;
-    c[0] = x;
-    c
-}
-
-fn plus(c: &Coeffs, x: f64) -> Coeffs {
-    let mut out = *c;
-    out[0] += x;
-    out
-}
-
-fn add_to(a: &mut Coeffs, b: &Coeffs, k: f64) {
-    a.iter_mut().zip(b).for_each(|(x, y)| *x += k * y);
-}
-
 /// A block of a column: its mass and extent, exact.
 struct Stacked {
     id: usize,
@@ -380,7 +419,8 @@ struct Stacked {
 /// The columns of a wall, or why it is not made of columns: every movable block rests on one
 /// block (or the ground) and carries at most one, with no vertical joint; the body of each
 /// column must have its centroid over the middle of the contact it moves on (the rocking
-/// body's equations take it there).
+/// body's equations take it there). A trilith is one column whose body is its frame
+/// ([`super::frame`]).
 pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationError> {
     let not = |why: String| {
         SimulationError::NotApplicable(format!(
@@ -391,6 +431,9 @@ pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationEr
              out-of-plane)"
         ))
     };
+    if let Some(frame) = trilith(wall, topo)? {
+        return Ok(vec![frame]);
+    }
     let movable = |b: usize| !wall.blocks[b].fixed;
     let mut bottoms = Vec::new();
     for b in (0..wall.blocks.len()).filter(|&b| movable(b)) {
@@ -578,6 +621,7 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
                 x0: ((&b.x + &b.right) / &two).to_f64() - x_origin,
                 y0: b.bottom.to_f64() - y_origin,
                 moving: i >= k,
+                turns: true,
             }
         })
         .collect();
@@ -591,6 +635,7 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
             g_m_s2: g,
             force_scale: total * g,
             moment_scale: total * g * height,
+            frame: None,
         },
         held: (0..k).map(name).collect(),
         body,
@@ -599,199 +644,5 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::integrate::rocking::modes::{self, Equations, Mode, Slip, State};
-    use crate::motion::{Motion, Sine};
-
-    /// A column of three blocks of different sizes, one joint given its own friction: the top
-    /// block moves on the others (it tips first), or with a low friction between the lower two
-    /// the upper two move as one body.
-    fn column_of(joint: &str, friction: f64) -> Column {
-        let model = crate::model::Model::from_ron_str(&format!(
-            "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6,
-              joint_friction: {{\"{joint}\": {friction}}},
-              rows: [(height_m: 0.4, blocks: [(width_m: 1.2, name: \"A\")]),
-                     (height_m: 0.6, x_m: 0.2, blocks: [(width_m: 0.8, name: \"B\")]),
-                     (height_m: 1.5, x_m: 0.35, blocks: [(width_m: 0.5, name: \"C\")])])"
-        ))
-        .unwrap();
-        let mut c = columns(model.wall(), model.topology()).unwrap();
-        assert_eq!(c.len(), 1);
-        c.remove(0)
-    }
-
-    /// The watch with one joint more: the body's own base, so that what it computes there can
-    /// be checked against the contact forces of the body's equations.
-    fn with_own_base(c: &Column) -> Watch {
-        let mut w = c.watch.clone();
-        let b = c.body.half_base_m;
-        w.joints = vec![Held {
-            name: "own base".into(),
-            upper: 0,
-            friction: c.body.friction,
-            ends: [(-b, 0.0), (b, 0.0)],
-            inside: false,
-            above: (0..w.pieces.len())
-                .filter(|&i| w.pieces[i].moving)
-                .collect(),
-        }];
-        w
-    }
-
-    fn inputs_at(t: f64) -> modes::Inputs {
-        let motion = Motion::sine(Sine {
-            amplitude_m_s2: 3.0,
-            frequency_hz: 1.3,
-            duration_s: 10.0,
-            ..Sine::default()
-        })
-        .unwrap();
-        let seg = motion.segment_at(t);
-        modes::inputs(&seg, t - seg.t0)
-    }
-
-    /// The d'Alembert balance of the body's pieces gives back, at its own base, the contact
-    /// forces its equations of motion give (normal, tangential) and the resultant where the
-    /// mode puts it: through the pivot while it rocks (no moment about that end, 2 b N about
-    /// the other), at the corner forces while seated; along a step, to round-off.
-    #[test]
-    fn the_watch_balances_the_bodys_own_contact_forces() {
-        for (joint, friction, pieces) in [("C/B", 0.9, 1), ("B/A", 0.2, 2)] {
-            let c = column_of(joint, friction);
-            assert_eq!(
-                c.watch.pieces.iter().filter(|p| p.moving).count(),
-                pieces,
-                "{}",
-                c.body.name
-            );
-            let w = with_own_base(&c);
-            let b = c.body.half_base_m;
-            let inputs = inputs_at(0.37);
-            let rocking = State {
-                theta: 0.04,
-                omega: -0.3,
-                u: 0.0,
-                v: 0.0,
-            };
-            let sliding = State { v: 0.05, ..rocking };
-            let cases = [
-                (Mode::Rock(Corner::Right), rocking),
-                (
-                    Mode::Rock(Corner::Left),
-                    State {
-                        theta: -0.04,
-                        ..rocking
-                    },
-                ),
-                (Mode::SlideRock(Corner::Right, Slip::Forward), sliding),
-                (Mode::Rest, State::default()),
-                (
-                    Mode::Slide(Slip::Backward),
-                    State {
-                        v: -0.1,
-                        ..State::default()
-                    },
-                ),
-            ];
-            for (mode, state) in cases {
-                let t = modes::trajectory(&c.body, Equations::Exact, mode, &state, &inputs);
-                let cond = w.conditions(&t, &inputs);
-                let force = c.body.mass_kg * c.body.g_m_s2;
-                for tau in [0.0, 0.01, 0.03] {
-                    let at =
-                        |k: usize| crate::integrate::rocking::series::eval(&cond[k].series, tau);
-                    let e = |s: &Coeffs| crate::integrate::rocking::series::eval(s, tau);
-                    let mu = c.body.friction;
-                    let normal = (at(0) + at(1)) / (2.0 * mu);
-                    let tangential = (at(1) - at(0)) / 2.0;
-                    let close = |a: f64, b: f64, what: &str| {
-                        assert!(
-                            (a - b).abs() <= 1e-12 * force,
-                            "{}: {mode:?} tau {tau}: {what} {a} against {b}",
-                            c.body.name
-                        )
-                    };
-                    close(normal, e(&t.normal), "normal");
-                    close(tangential, e(&t.tangential), "tangential");
-                    // The pivot has moved by u (sliding): moments about the base's ends at rest.
-                    let u = e(&t.u);
-                    let (left, right) = (at(2), at(3));
-                    match mode.pivot() {
-                        Some(Corner::Right) => {
-                            close(
-                                left / (2.0 * b + u),
-                                e(&t.normal),
-                                "moment about the left end",
-                            );
-                            close(
-                                right,
-                                -u * e(&t.normal),
-                                "moment about the pivot's place at rest",
-                            );
-                        }
-                        Some(Corner::Left) => {
-                            close(
-                                left,
-                                u * e(&t.normal),
-                                "moment about the pivot's place at rest",
-                            );
-                            close(
-                                right / (2.0 * b - u),
-                                e(&t.normal),
-                                "moment about the right end",
-                            );
-                        }
-                        None => {
-                            let (nl, nr) = t.corners.as_ref().unwrap();
-                            close(
-                                left / (2.0 * b),
-                                e(nr) + u * e(&t.normal) / (2.0 * b),
-                                "left",
-                            );
-                            close(
-                                right / (2.0 * b),
-                                e(nl) - u * e(&t.normal) / (2.0 * b),
-                                "right",
-                            );
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-    /// Through a landing on the other corner the impulse passes through the new pivot alone
-    /// (Housner): no moment about that end, and the normal impulse m (v_Gy after - before).
-    #[test]
-    fn a_landing_passes_its_impulse_through_the_new_pivot() {
-        for (joint, friction) in [("C/B", 0.9), ("B/A", 0.2)] {
-            let c = column_of(joint, friction);
-            let w = with_own_base(&c);
-            let landing = super::super::impact::land(
-                &c.body,
-                Equations::Exact,
-                Corner::Right,
-                -0.4,
-                0.0,
-                1.0,
-            )
-            .unwrap();
-            assert_eq!(landing.pivot, Some(Corner::Left));
-            let before = (Some(Corner::Right), -0.4, 0.0);
-            let after = (landing.pivot, landing.state.omega, landing.state.v);
-            let m = w.impulse_margins(&w.joints[0], 0.0, before, after);
-            let b = c.body.half_base_m;
-            let h = c.body.centroid_height_m;
-            // v_Gy = -omega x_G about the pivot: x_G = -b about the right corner, +b about the left.
-            let jn = c.body.mass_kg * (-after.1 * b - (-before.1 * -b));
-            let scale = c.body.mass_kg * 0.4 * (b + h);
-            assert!(m[2].abs() <= 1e-12 * scale, "{}: {m:?}", c.body.name);
-            assert!(
-                (-m[3] / (-2.0 * b) - jn).abs() <= 1e-12 * scale / b,
-                "{m:?} {jn}"
-            );
-            assert_eq!(w.landing(0.0, before, after), None);
-        }
-    }
-}
+#[path = "column_tests.rs"]
+mod tests;

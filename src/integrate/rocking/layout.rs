@@ -18,8 +18,13 @@ pub struct Layout {
     /// Per output, its horizontal joint: (output, output below it, its name, its base's name).
     pub horizontal: Vec<(usize, Option<usize>, String, String)>,
     /// Per body, its outputs with the middle of their base at rest in the body's frame (the
-    /// middle of the body's base at its level, m); the first is the body's lowest block.
-    moving: Vec<Vec<(usize, f64, f64)>>,
+    /// middle of the body's base at its level, m) and whether they turn; the first is the
+    /// body's lowest block.
+    moving: Vec<Vec<(usize, f64, f64, bool)>>,
+    /// Per body, half the width of the base its blocks turn on (m).
+    pivot_half_base: Vec<f64>,
+    /// Per output, whether it turns with its body (a trilith's lintel translates).
+    turns: Vec<bool>,
     /// Per body, the output of each block of its column, bottom first.
     column: Vec<Vec<usize>>,
 }
@@ -40,9 +45,17 @@ impl Layout {
                     .iter()
                     .map(|w| {
                         let moving = w.outputs.iter().filter(|o| o.moving);
-                        moving.map(|o| (o.block, o.x0, o.y0)).collect()
+                        moving.map(|o| (o.block, o.x0, o.y0, o.turns)).collect()
                     })
                     .collect(),
+                pivot_half_base: watches.iter().map(Watch::pivot_half_base_m).collect(),
+                turns: {
+                    let mut turns = vec![true; wall.blocks.len()];
+                    for o in watches.iter().flat_map(|w| &w.outputs) {
+                        turns[o.block] = o.turns;
+                    }
+                    turns
+                },
                 column: watches
                     .iter()
                     .map(|w| w.outputs.iter().map(|o| o.block).collect())
@@ -55,7 +68,11 @@ impl Layout {
                     .enumerate()
                     .map(|(i, b)| (i, None, b.name.clone(), "ground".to_string()))
                     .collect(),
-                moving: (0..bodies.len()).map(|i| vec![(i, 0.0, 0.0)]).collect(),
+                moving: (0..bodies.len())
+                    .map(|i| vec![(i, 0.0, 0.0, true)])
+                    .collect(),
+                pivot_half_base: bodies.iter().map(|b| b.half_base_m).collect(),
+                turns: vec![true; bodies.len()],
                 column: (0..bodies.len()).map(|i| vec![i]).collect(),
             },
         }
@@ -71,6 +88,11 @@ impl Layout {
         self.moving[i].iter().map(|m| m.0).collect()
     }
 
+    /// Whether output k turns with its body.
+    pub fn turns(&self, k: usize) -> bool {
+        self.turns[k]
+    }
+
     /// The output of block k (bottom first) of body i's column.
     pub fn column_output(&self, i: usize, k: usize) -> usize {
         self.column[i][k]
@@ -79,17 +101,19 @@ impl Layout {
     /// The horizontal displacement of the middle of the base of each of body i's blocks, with
     /// its output, as series along `traj`.
     pub fn series(&self, i: usize, body: &RockingBody, traj: &Trajectory) -> Vec<(usize, Coeffs)> {
+        let bp = self.pivot_half_base[i];
         self.moving[i]
             .iter()
-            .map(|&(k, x0, y0)| (k, block_series(body, traj, x0, y0)))
+            .map(|&(k, x0, y0, turns)| (k, block_series(body, traj, bp, x0, y0, turns)))
             .collect()
     }
 }
 
-/// The horizontal displacement of the middle of the body's base, as a series: the pivot's u
-/// while seated, u + s b (1 - cos theta) while rocking on the corner of sign s (cos theta from
-/// the arms: h_c G_y + s b dx = R^2 cos theta).
-fn base_series(body: &RockingBody, t: &Trajectory) -> Coeffs {
+/// The horizontal displacement of the middle of a base of half width `bp` that turns with the
+/// body, as a series: the pivot's u while seated, u + s bp (1 - cos theta) while rocking on the
+/// corner of sign s (cos theta from the body's arms: h_c G_y + s b dx = R^2 cos theta). A
+/// column's body turns on its own base (bp = b); a trilith's on its columns' feet.
+fn base_series(body: &RockingBody, t: &Trajectory, bp: f64) -> Coeffs {
     let Some(c) = t.mode.pivot() else {
         return t.u;
     };
@@ -99,20 +123,29 @@ fn base_series(body: &RockingBody, t: &Trajectory) -> Coeffs {
     let mut out = t.u;
     for (k, (x, (gy, dx))) in out.iter_mut().zip(t.gy.iter().zip(&t.dx)).enumerate() {
         let cos = (h * gy + s * b * dx) / r2;
-        *x += s * b * (if k == 0 { 1.0 } else { 0.0 } - cos);
+        *x += s * bp * (if k == 0 { 1.0 } else { 0.0 } - cos);
     }
     out
 }
 
-/// The same for a point that lies at (x0, y0) of the body's base middle at rest: the base's
+/// The same for a point that lies at (x0, y0) of the base middle at rest: the base's
 /// displacement plus x0 (cos theta - 1) + y0 sin theta (sin theta from the arms too:
-/// s b G_y - h_c dx = R^2 sin theta).
-fn block_series(body: &RockingBody, t: &Trajectory, x0: f64, y0: f64) -> Coeffs {
-    let mut out = base_series(body, t);
+/// s b G_y - h_c dx = R^2 sin theta). A block that does not turn (a trilith's lintel) moves
+/// with the point it rests on, the top corner opposite the pivot: x0 = -s bp.
+fn block_series(
+    body: &RockingBody,
+    t: &Trajectory,
+    bp: f64,
+    x0: f64,
+    y0: f64,
+    turns: bool,
+) -> Coeffs {
+    let mut out = base_series(body, t, bp);
     let Some(c) = t.mode.pivot().filter(|_| x0 != 0.0 || y0 != 0.0) else {
         return out;
     };
     let s = c.sign();
+    let x0 = if turns { x0 } else { -s * bp };
     let (b, h) = (body.half_base_m, body.centroid_height_m);
     let r2 = b * b + h * h;
     for (k, (x, (gy, dx))) in out.iter_mut().zip(t.gy.iter().zip(&t.dx)).enumerate() {

@@ -21,6 +21,7 @@ mod body;
 mod column;
 #[cfg(test)]
 mod enumeration;
+mod frame;
 mod impact;
 mod layout;
 mod modes;
@@ -29,6 +30,7 @@ mod series;
 
 pub use body::RockingBody;
 pub use column::{columns, Column, JointLimit, Watch};
+pub use frame::Trilith;
 pub use modes::Equations;
 pub use scenes::{
     can_lift, equations_name, free_standing, out_of_plane, released_body, rocks_in_plane,
@@ -235,6 +237,10 @@ impl<'a> Engine<'a> {
             });
             self.t_end = self.t;
             self.tracks[i].mode = new;
+            return Ok(());
+        }
+        if let Some(k) = self.scene.watches.get(i).and_then(|w| w.forbids(new)) {
+            self.gives(i, k);
             return Ok(());
         }
         let kind = transition(old, new, start);
@@ -695,8 +701,10 @@ impl<'a> Engine<'a> {
                 let base_v = series::derivative(&base);
                 u[k] = series::eval(&base, at);
                 v[k] = series::eval(&base_v, at);
-                theta[k] = series::eval(&traj.theta, at);
-                omega[k] = series::eval(&traj.omega, at);
+                if self.layout.turns(k) {
+                    theta[k] = series::eval(&traj.theta, at);
+                    omega[k] = series::eval(&traj.omega, at);
+                }
                 accel[k] = plan
                     .is_some()
                     .then(|| a_g + series::eval(&series::derivative(&base_v), at));

@@ -12,7 +12,9 @@
 //! body to the left, so it drives theta negative.
 
 use super::body::RockingBody;
-use super::series::{self, div_at, mul_at, sign_after, sin_cos_at, Coeffs, ORDER, ZERO};
+use super::series::{
+    self, add, div_at, mul_at, plus, scaled, sign_after, sin_cos_at, Coeffs, ORDER, ZERO,
+};
 use crate::error::SimulationError;
 
 /// A base corner in the plane of motion.
@@ -371,24 +373,6 @@ pub struct Constraint {
     pub strict: bool,
 }
 
-fn scaled(c: &Coeffs, k: f64) -> Coeffs {
-    let mut out = *c;
-    out.iter_mut().for_each(|x| *x *= k);
-    out
-}
-
-fn plus_const(c: &Coeffs, k: f64) -> Coeffs {
-    let mut out = *c;
-    out[0] += k;
-    out
-}
-
-fn add(a: &Coeffs, b: &Coeffs, kb: f64) -> Coeffs {
-    let mut out = *a;
-    out.iter_mut().zip(b).for_each(|(x, y)| *x += kb * y);
-    out
-}
-
 /// Scales for ties: forces (N), velocities (m/s), angles (rad).
 pub struct Scales {
     /// m g.
@@ -457,7 +441,7 @@ pub fn constraints(body: &RockingBody, equations: Equations, t: &Trajectory) -> 
         Mode::Rock(c) | Mode::SlideRock(c, _) => {
             let s = c.sign();
             push(scaled(&t.theta, s), sc.angle, Guard::Impact, true);
-            let fall = plus_const(&scaled(&t.theta, -s), std::f64::consts::FRAC_PI_2);
+            let fall = plus(&scaled(&t.theta, -s), std::f64::consts::FRAC_PI_2);
             push(fall, 1.0, Guard::Overturn, false);
             if equations == Equations::Exact {
                 push(t.normal, sc.force, Guard::Flight, false);
@@ -719,15 +703,15 @@ pub fn power_series(body: &RockingBody, t: &Trajectory, inputs: &Inputs) -> (Coe
         // Input of the linearised equation: -m R (a_g + g (lambda - 1) (alpha s - theta))
         // theta', with s the side it rocks on.
         let s = t.mode.pivot().map_or(0.0, Corner::sign);
-        let lin = plus_const(&scaled(&t.theta, -1.0), s * body.slenderness_rad());
-        let extra = plus_const(&inputs.lambda, -1.0);
+        let lin = plus(&scaled(&t.theta, -1.0), s * body.slenderness_rad());
+        let extra = plus(&inputs.lambda, -1.0);
         let load = add(&inputs.accel, &series::product(&extra, &lin), body.g_m_s2);
         let input = scaled(&series::product(&load, &t.omega), -m * body.size_m());
         return (input, ZERO);
     }
     let xg = add(&t.v, &series::product(&t.gy, &t.omega), 1.0);
     let yg = series::product(&t.dx, &t.omega);
-    let extra = plus_const(&inputs.lambda, -1.0);
+    let extra = plus(&inputs.lambda, -1.0);
     let input = add(
         &scaled(&series::product(&inputs.accel, &xg), -m),
         &series::product(&extra, &yg),

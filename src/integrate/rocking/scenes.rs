@@ -1,5 +1,5 @@
-//! Which walls rock and how: the rocking integrator of a wall that is one free-standing block or
-//! made of free columns ([`Rocking`]), whether a run rocks ([`rocks_in_plane`], [`can_lift`]),
+//! Which walls rock and how: the rocking integrator of a wall that is one free-standing block,
+//! made of free columns or a trilith ([`Rocking`]), whether a run rocks ([`rocks_in_plane`], [`can_lift`]),
 //! and the sections of a wall across its plane run as rocking bodies ([`out_of_plane`]).
 
 use super::{columns, run, Column, Equations, RockingBody, Scene};
@@ -8,9 +8,10 @@ use crate::integrate::Settings;
 use crate::motion::Motion;
 use crate::response::{Response, Warning};
 
-/// The rocking model on a wall that is one free-standing block on the ground, or made of free
-/// columns ([`columns`]: each moves on one of its joints, the others held and watched). (Blocks
-/// that rock inside other walls are not modelled exactly yet; time stepping runs them.)
+/// The rocking model on a wall that is one free-standing block on the ground, made of free
+/// columns ([`columns`]: each moves on one of its joints, the others held and watched), or a
+/// trilith (its three blocks rocking as a parallelogram, every joint watched). (Blocks that
+/// rock inside other walls are not modelled exactly yet; time stepping runs them.)
 #[derive(Debug, Clone, Default)]
 pub struct Rocking {
     /// The equations between events.
@@ -252,7 +253,7 @@ pub enum ModelChoice {
 }
 
 /// Whether a run of `wall` in its own plane rocks, and why. The rocking model runs walls of one
-/// free-standing block and walls made of free columns ([`columns`]); `auto` gives it to them
+/// free-standing block and walls made of free columns or a trilith ([`columns`]); `auto` gives it to them
 /// when a block (a column's moving part) can lift at all ([`can_lift`]) or starts from a
 /// rotation. Other walls of several blocks slide (rocking inside them is modelled on time
 /// stepping only: their warnings name the blocks that could rock).
@@ -353,6 +354,13 @@ fn moving_parts(columns: &[Column]) -> String {
     columns
         .iter()
         .map(|c| {
+            if c.watch.is_frame() {
+                return format!(
+                    "{} rocks as a frame on the ground (its columns turn equally, its lintel \
+                     translates on their tops), every joint watched",
+                    c.body.name
+                );
+            }
             let held = if c.held.is_empty() {
                 String::new()
             } else {

@@ -81,6 +81,39 @@ pub fn product(a: &Coeffs, b: &Coeffs) -> Coeffs {
     p
 }
 
+/// The constant series x.
+pub fn constant(x: f64) -> Coeffs {
+    let mut c = ZERO;
+    c[0] = x;
+    c
+}
+
+/// c + x.
+pub fn plus(c: &Coeffs, x: f64) -> Coeffs {
+    let mut out = *c;
+    out[0] += x;
+    out
+}
+
+/// k c.
+pub fn scaled(c: &Coeffs, k: f64) -> Coeffs {
+    let mut out = *c;
+    out.iter_mut().for_each(|x| *x *= k);
+    out
+}
+
+/// a + k b.
+pub fn add(a: &Coeffs, b: &Coeffs, k: f64) -> Coeffs {
+    let mut out = *a;
+    add_to(&mut out, b, k);
+    out
+}
+
+/// a += k b.
+pub fn add_to(a: &mut Coeffs, b: &Coeffs, k: f64) {
+    a.iter_mut().zip(b).for_each(|(x, y)| *x += k * y);
+}
+
 /// Ties: a coefficient c_k counts as zero when |c_k| T^k is below `TIE` times the quantity's
 /// scale (T the body's time scale). What is left of a function at its own event is round-off
 /// of its scale (some 1e-16: events are located to the last bit of a step, and values that must
