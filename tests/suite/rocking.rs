@@ -274,6 +274,28 @@ fn rocking_under_el_centro_balances_its_energy_in_every_regime() {
     assert!(fell >= 2 && slid >= 2, "fell {fell}, slid {slid}");
 }
 
+/// A block whose uplift threshold the ground reaches at one instant and no more (El Centro
+/// scaled so that its peak, a sample at 2.15 s, is g b/h for a 0.5 x 2.5 m block: a fragility
+/// sweep's round numbers meet such ties): it touches the threshold there (the scaled peak lies
+/// an ulp beyond it) and is seated again at once, its excursion a round-off, instead of the
+/// mode decision finding no mode for a body back at theta = 0 turning at 1e-28 rad/s.
+#[test]
+fn a_ground_peak_exactly_at_the_uplift_threshold_is_touched_and_left() {
+    let rec = pirqa::motion::read_record(
+        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        None,
+        &Default::default(),
+    )
+    .unwrap();
+    let body = RockingBody::rectangle("B", 0.5, 2.5, 2600.0 * 1.25, 0.7, G);
+    let m = Motion::Record(rec.scaled(0.2 * G / rec.pga_m_s2()).unwrap());
+    let r = run(&body, 0.0, Equations::Exact, &m, 40.0);
+    let b = &r.summary.blocks[0];
+    assert!(b.max_abs_rotation_rad < 1e-20, "{}", b.max_abs_rotation_rad);
+    assert!(!b.fell && r.summary.warnings.is_empty());
+    balanced(&r);
+}
+
 /// Moreau-Jean with rotations converges to the exact engine's first landing as its step falls.
 #[test]
 fn moreau_with_rotations_converges_to_the_exact_landing() {

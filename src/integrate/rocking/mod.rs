@@ -212,6 +212,17 @@ impl<'a> Engine<'a> {
     /// change (`start`: the first decision of the run).
     fn decide(&mut self, i: usize, inputs: &Inputs, start: bool) -> Result<(), SimulationError> {
         let body = self.body(i);
+        let st = self.tracks[i].state;
+        let tie = series::TIE * body.slenderness_rad() * body.frequency_parameter_rad_s();
+        if st.theta == 0.0 && st.omega != 0.0 && st.omega.abs() <= tie {
+            // Back at theta = 0 turning at a rate that is round-off: the body touched its
+            // uplift threshold (a ground acceleration that peaks on it to the last bit) and
+            // came back. It is seated; what it had of kinetic energy counts as lost.
+            let before = modes::kinetic_j(body, &self.trajectory(i, inputs), 0.0);
+            self.tracks[i].state.omega = 0.0;
+            let after = modes::kinetic_j(body, &self.trajectory(i, inputs), 0.0);
+            self.rec.energy.impact_loss_j += before - after;
+        }
         let tr = &self.tracks[i];
         let old = tr.mode;
         let seated = tr.state.theta == 0.0 && tr.state.omega == 0.0;
