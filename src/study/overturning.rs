@@ -6,8 +6,12 @@
 //! uplift threshold and bisecting the first step that overturns (the boundary is not monotone
 //! above it: there are amplitudes above the first that do not overturn, Zhang and Makris's
 //! "safe region"; the minimum is the first).
+//!
+//! The same spectra for triliths whose columns are that block ([`trilith_spectra`]): a lintel
+//! of mass M = 2 gamma m on two of them, the joints holding, rocking as Makris and Vassiliou's
+//! (2013) frame.
 
-use crate::integrate::rocking::{self, Equations, RockingBody, Scene};
+use crate::integrate::rocking::{self, Equations, RockingBody, Scene, Trilith};
 use crate::integrate::Settings;
 use crate::motion::{Motion, Sine};
 use crate::plot::chart::{Chart, Corner, Series};
@@ -99,6 +103,70 @@ pub fn spectra(opts: &Options) -> (Vec<SpectrumPoint>, f64, f64) {
         })
         .collect();
     (points, alpha, p)
+}
+
+/// The minimum overturning amplitude of triliths at one pulse frequency, one per lintel ratio,
+/// in units of g tan(alpha) (`None`: none up to [`HIGHEST`], or the search met free flight,
+/// named in `flight` by its ratio).
+#[derive(Debug, Clone, Serialize)]
+pub struct TrilithPoint {
+    /// omega_p / p, p a column's (standing alone).
+    pub frequency_ratio: f64,
+    /// Per lintel ratio gamma = M / 2m, in the order asked.
+    pub minima: Vec<Option<f64>>,
+    /// The lintel ratios whose search stopped at free flight, with the amplitude.
+    pub flight: Vec<(f64, f64)>,
+}
+
+/// The spectra of triliths whose columns are the block of `opts`, under lintels of mass M = 2
+/// gamma m for each gamma of `lintel_ratios` (0: the column alone), exact equations on joints
+/// that hold. The pulse frequencies are taken relative to one column's p, so that the curves
+/// compare one set of columns under ever heavier lintels.
+pub fn trilith_spectra(opts: &Options, lintel_ratios: &[f64]) -> Vec<TrilithPoint> {
+    let (b, h) = (opts.half_width_m, opts.half_height_m);
+    let column = RockingBody::rectangle("column", 2.0 * b, 2.0 * h, 1000.0, HOLDING_FRICTION, 9.81);
+    let p = column.frequency_parameter_rad_s();
+    let frames: Vec<RockingBody> = lintel_ratios
+        .iter()
+        .map(|gamma| {
+            let shape = Trilith {
+                half_width_m: b,
+                half_height_m: h,
+                column_kg: column.mass_kg,
+                lintel_kg: 2.0 * gamma * column.mass_kg,
+            };
+            shape
+                .body(
+                    &format!("trilith, gamma {gamma}"),
+                    HOLDING_FRICTION,
+                    9.81,
+                    1.0,
+                )
+                .expect("a frame of a block that rocks rocks")
+        })
+        .collect();
+    opts.frequency_ratios
+        .par_iter()
+        .map(|&ratio| {
+            let mut flight = Vec::new();
+            let minima = frames
+                .iter()
+                .zip(lintel_ratios)
+                .map(|(frame, &gamma)| {
+                    let own = ratio * p / frame.frequency_parameter_rad_s();
+                    minimum(frame, Equations::Exact, own, opts.tolerance).unwrap_or_else(|at| {
+                        flight.push((gamma, at));
+                        None
+                    })
+                })
+                .collect();
+            TrilithPoint {
+                frequency_ratio: ratio,
+                minima,
+                flight,
+            }
+        })
+        .collect()
 }
 
 /// Does one cycle of a_p sin(omega_p t) overturn the block? The run goes on after the pulse
@@ -206,5 +274,65 @@ pub fn chart(points: &[SpectrumPoint], alpha: f64, friction: f64) -> Chart {
         log_x: true,
         legend: Corner::UpperLeft,
         ..Chart::default()
+    }
+}
+
+/// The triliths' spectra as a chart, one curve per lintel ratio.
+pub fn trilith_chart(points: &[TrilithPoint], lintel_ratios: &[f64], alpha: f64) -> Chart {
+    Chart {
+        title: format!(
+            "one-sine pulse that overturns a trilith (columns: alpha = {alpha:.4} rad; lintel 2 gamma m)"
+        ),
+        x_label: "omega_p / p (p of one column)".into(),
+        y_label: "a_p / (g tan alpha)".into(),
+        series: lintel_ratios
+            .iter()
+            .enumerate()
+            .map(|(k, gamma)| Series {
+                label: if *gamma == 0.0 {
+                    "gamma 0 (the column alone)".into()
+                } else {
+                    format!("gamma {gamma}")
+                },
+                points: points
+                    .iter()
+                    .filter_map(|s| s.minima[k].map(|y| (s.frequency_ratio, y)))
+                    .collect(),
+                color: k,
+                ..Series::default()
+            })
+            .collect(),
+        log_x: true,
+        legend: Corner::UpperLeft,
+        ..Chart::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A trilith without a lintel is its column: its spectrum is the block's exact one to the
+    /// bit. Under a lintel as heavy as both columns (gamma = 1) every pulse must be stronger,
+    /// by more than 1 %, to overturn it: Makris and Vassiliou's (2013) heavier cap, more
+    /// stable frame (its p falls by (1 + 2 gamma) / (1 + 3 gamma) under the root, and each
+    /// landing loses more).
+    #[test]
+    fn a_heavier_lintel_makes_a_trilith_harder_to_overturn() {
+        let opts = Options {
+            frequency_ratios: vec![1.5, 3.0, 5.0],
+            ..Options::default()
+        };
+        let (block, _, _) = spectra(&opts);
+        let triliths = trilith_spectra(&opts, &[0.0, 1.0]);
+        for (b, t) in block.iter().zip(&triliths) {
+            assert_eq!(t.minima[0], b.exact, "omega_p / p = {}", b.frequency_ratio);
+            let (alone, capped) = (t.minima[0].unwrap(), t.minima[1].unwrap());
+            assert!(
+                capped > 1.01 * alone,
+                "omega_p / p = {}: {capped} against {alone}",
+                b.frequency_ratio
+            );
+        }
     }
 }

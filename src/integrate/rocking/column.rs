@@ -420,7 +420,7 @@ struct Stacked {
 /// block (or the ground) and carries at most one, with no vertical joint; the body of each
 /// column must have its centroid over the middle of the contact it moves on (the rocking
 /// body's equations take it there). A trilith is one column whose body is its frame
-/// ([`super::frame`]).
+/// ([`Trilith`](super::Trilith)).
 pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationError> {
     let not = |why: String| {
         SimulationError::NotApplicable(format!(
