@@ -40,7 +40,9 @@ from .errors import (
 
 @dataclass(frozen=True)
 class History:
-    """The state of every block at each output time: arrays of shape (times, blocks)."""
+    """The state of every block at each output time: arrays of shape (times, blocks).
+    For blocks that rotate, ``rotation_rad`` (clockwise positive), ``angular_velocity_rad_s``
+    and ``lift_m``, the vertical displacement of the middle of each block's base."""
 
     time_s: np.ndarray
     displacement_m: np.ndarray
@@ -48,6 +50,7 @@ class History:
     blocks: list[str]
     rotation_rad: np.ndarray | None = None
     angular_velocity_rad_s: np.ndarray | None = None
+    lift_m: np.ndarray | None = None
 
 
 @dataclass(frozen=True)

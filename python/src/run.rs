@@ -105,6 +105,7 @@ pub fn run<'py>(
                     "angular_velocity_rad_s",
                     matrix(py, h.angular_velocity_rad_s)?,
                 )?;
+                history.set_item("lift_m", matrix(py, h.lift_m)?)?;
             }
             out.set_item("history", history)?;
         }

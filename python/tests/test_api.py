@@ -181,3 +181,7 @@ def test_the_history_names_its_blocks_as_the_run_lists_them():
     assert result.history.rotation_rad[:, 0].max() == 0.0
     assert result.history.displacement_m[:, 0].max() == 0.0
     assert result.history.rotation_rad[:, 1].max() > 0.01
+    # The stone rocks on a corner of its base: the middle of its base rises by b |sin theta|.
+    lift = 0.1 * abs(np.sin(result.history.rotation_rad[:, 1]))
+    assert abs(result.history.lift_m[:, 1] - lift).max() < 1e-15
+    assert result.history.lift_m[:, 0].max() == 0.0

@@ -304,6 +304,7 @@ pub fn draw(
             dir.display()
         ));
         drawing.displacement_m = Some(state.displacement_m);
+        drawing.pose = state.pose;
         drawing.fallen = state.fallen;
     }
     write_file(output, &draw_wall(&wall, &topo, &drawing))?;

@@ -62,6 +62,20 @@ impl Svg {
         );
     }
 
+    /// A closed polygon through `points`.
+    pub fn polygon(&mut self, points: &[(f64, f64)], style: &Style) {
+        let points: Vec<String> = points
+            .iter()
+            .map(|(x, y)| format!("{x:.2},{y:.2}"))
+            .collect();
+        let _ = writeln!(
+            self.body,
+            r#"<polygon points="{}" {}/>"#,
+            points.join(" "),
+            style.attributes()
+        );
+    }
+
     /// A straight line.
     pub fn line(&mut self, (x0, y0): (f64, f64), (x1, y1): (f64, f64), style: &Style) {
         let _ = writeln!(

@@ -13,6 +13,10 @@ pub struct WallDrawing {
     /// Horizontal displacement of each block relative to the ground (m); `None` draws the wall
     /// as built.
     pub displacement_m: Option<Vec<f64>>,
+    /// Each block's rotation (rad, clockwise positive) and the vertical displacement of the
+    /// middle of its base (m), for a run that rotated blocks: the blocks are drawn turned about
+    /// the middle of their base, moved by (u, w).
+    pub pose: Option<(Vec<f64>, Vec<f64>)>,
     /// Blocks that fell (drawn hatched red at their last position).
     pub fallen: Vec<bool>,
     /// Label each horizontal joint with its friction coefficient.
@@ -31,6 +35,27 @@ const MAX_H_PX: f64 = 560.0;
 pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
     let du = |i: usize| d.displacement_m.as_ref().map_or(0.0, |u| u[i]);
     let fallen = |i: usize| d.fallen.get(i).copied().unwrap_or(false);
+    // Each block's corners where the run put it (a rectangle moved by u when nothing turned).
+    let corners = |i: usize| -> Option<[(f64, f64); 4]> {
+        let (theta, w) = d.pose.as_ref().map(|(t, w)| (t[i], w[i]))?;
+        let b = &wall.blocks[i];
+        let (x, y, bw, bh) = (
+            b.x.to_f64(),
+            b.y.to_f64(),
+            b.width.to_f64(),
+            b.height.to_f64(),
+        );
+        let mx = x + bw / 2.0;
+        let (sin, cos) = theta.sin_cos();
+        let at = |px: f64, py: f64| {
+            let (rx, ry) = (px - mx, py - y);
+            (
+                mx + du(i) + cos * rx + sin * ry,
+                y + w - sin * rx + cos * ry,
+            )
+        };
+        Some([at(x, y), at(x + bw, y), at(x + bw, y + bh), at(x, y + bh)])
+    };
     let (mut x0, mut x1, mut top) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
     for (i, b) in wall.blocks.iter().enumerate() {
         for x in [b.x.to_f64(), b.right().to_f64()] {
@@ -38,6 +63,9 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
             x1 = x1.max(x).max(x + du(i));
         }
         top = top.max(b.top().to_f64());
+        for (x, y) in corners(i).into_iter().flatten() {
+            (x0, x1, top) = (x0.min(x), x1.max(x), top.max(y));
+        }
     }
     let span = (x1 - x0).max(1e-9);
     let scale = (MAX_W_PX / span).min(MAX_H_PX / top.max(1e-9));
@@ -93,7 +121,20 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
                 dash: "",
             }
         };
-        svg.rect(px(bx), py(by + bh), bw * scale, bh * scale, &style);
+        let (cx, cy) = match corners(i) {
+            Some(c) => {
+                let points = c.map(|(x, y)| (px(x), py(y)));
+                svg.polygon(&points, &style);
+                (
+                    c.iter().map(|p| p.0).sum::<f64>() / 4.0,
+                    c.iter().map(|p| p.1).sum::<f64>() / 4.0,
+                )
+            }
+            None => {
+                svg.rect(px(bx), py(by + bh), bw * scale, bh * scale, &style);
+                (bx + bw / 2.0, by + bh / 2.0)
+            }
+        };
         let mut label = b.name.clone();
         if fallen(i) {
             label.push_str(" (fell)");
@@ -101,8 +142,8 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
             label.push_str(" (fixed)");
         }
         svg.text(
-            px(bx + bw / 2.0),
-            py(by + bh / 2.0) + name_size * 0.35,
+            px(cx),
+            py(cy) + name_size * 0.35,
             name_size,
             "middle",
             "#222",

@@ -7,8 +7,9 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-/// The header: time, then u and v of every block (and theta, omega when blocks rotate), with
-/// units in the names; through the CSV writer, since a block name may hold a comma or a quote.
+/// The header: time, then u and v of every block (and theta, omega and w, the vertical
+/// displacement of the middle of its base, when blocks rotate), with units in the names;
+/// through the CSV writer, since a block name may hold a comma or a quote.
 pub(crate) fn header(names: &[&str], rotating: bool) -> String {
     let quantities: &[(&str, &str)] = if rotating {
         &[
@@ -16,6 +17,7 @@ pub(crate) fn header(names: &[&str], rotating: bool) -> String {
             ("v", "m_s"),
             ("theta", "rad"),
             ("omega", "rad_s"),
+            ("w", "m"),
         ]
     } else {
         &[("u", "m"), ("v", "m_s")]
@@ -30,7 +32,7 @@ pub(crate) fn header(names: &[&str], rotating: bool) -> String {
 
 /// One row, numbers only: the time as the shortest decimal that reads back, the rest in
 /// scientific notation.
-pub(crate) fn push_row(out: &mut String, t: f64, parts: [&[f64]; 4]) {
+pub(crate) fn push_row(out: &mut String, t: f64, parts: [&[f64]; 5]) {
     let _ = write!(out, "{t}");
     for x in parts.into_iter().flatten() {
         let _ = write!(out, ",{x:e}");
@@ -70,7 +72,7 @@ impl Stream {
     }
 
     /// Writes one row (the header before the first, rotating or not as the first row is).
-    pub fn row(&mut self, t: f64, parts: [&[f64]; 4]) {
+    pub fn row(&mut self, t: f64, parts: [&[f64]; 5]) {
         if self.failed.is_some() {
             return;
         }
@@ -143,7 +145,7 @@ pub fn each_row(path: &Path, blocks: usize, f: &mut RowVisitor) -> Result<(), cr
     let mut lines = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?).lines();
     let header = lines.next().transpose().map_err(io)?.unwrap_or_default();
     let rotating = header.contains(",theta_");
-    let per_row = 1 + blocks * if rotating { 4 } else { 2 };
+    let per_row = 1 + blocks * if rotating { 5 } else { 2 };
     let mut row = Vec::with_capacity(per_row);
     for (k, line) in lines.enumerate() {
         let line = line.map_err(io)?;

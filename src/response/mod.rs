@@ -518,6 +518,10 @@ pub struct History {
     pub rotation_rad: Vec<Vec<f64>>,
     /// theta' per row, per block (rad/s); empty likewise.
     pub angular_velocity_rad_s: Vec<Vec<f64>>,
+    /// w per row, per block: the vertical displacement of the middle of its base (m), which
+    /// rotations bring (a block rocking on a corner lifts it, a lintel on turning columns rises
+    /// and falls with them); empty likewise.
+    pub lift_m: Vec<Vec<f64>>,
 }
 
 /// Where a run keeps its history.
@@ -601,15 +605,19 @@ impl Response {
         let mut s = history_file::header(&names, rotating);
         let none: &[f64] = &[];
         for (k, &t) in h.time_s.iter().enumerate() {
-            let (theta, omega) = if rotating {
-                (&h.rotation_rad[k][..], &h.angular_velocity_rad_s[k][..])
+            let (theta, omega, w) = if rotating {
+                (
+                    &h.rotation_rad[k][..],
+                    &h.angular_velocity_rad_s[k][..],
+                    &h.lift_m[k][..],
+                )
             } else {
-                (none, none)
+                (none, none, none)
             };
             history_file::push_row(
                 &mut s,
                 t,
-                [&h.displacement_m[k], &h.velocity_m_s[k], theta, omega],
+                [&h.displacement_m[k], &h.velocity_m_s[k], theta, omega, w],
             );
         }
         Some(s)

@@ -233,9 +233,9 @@ impl Recorder {
     }
 
     /// Adds a history row with rotations.
-    pub fn sample_rotating(&mut self, t: f64, u: &[f64], v: &[f64], theta: &[f64], omega: &[f64]) {
+    pub fn sample_rotating(&mut self, t: f64, [u, v, theta, omega, w]: [&[f64]; 5]) {
         if let Some((stream, last)) = &mut self.stream {
-            stream.row(t, [u, v, theta, omega]);
+            stream.row(t, [u, v, theta, omega, w]);
             *last = t;
         }
         if let Some(h) = &mut self.history {
@@ -244,6 +244,7 @@ impl Recorder {
             h.velocity_m_s.push(v.to_vec());
             h.rotation_rad.push(theta.to_vec());
             h.angular_velocity_rad_s.push(omega.to_vec());
+            h.lift_m.push(w.to_vec());
         }
     }
 
@@ -255,7 +256,7 @@ impl Recorder {
     /// Adds a history row.
     pub fn sample(&mut self, t: f64, u: &[f64], v: &[f64]) {
         if let Some((stream, last)) = &mut self.stream {
-            stream.row(t, [u, v, &[], &[]]);
+            stream.row(t, [u, v, &[], &[], &[]]);
             *last = t;
         }
         if let Some(h) = &mut self.history {

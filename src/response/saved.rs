@@ -14,6 +14,9 @@ pub struct SavedState {
     pub displacement_m: Vec<f64>,
     /// Blocks that had fallen by then.
     pub fallen: Vec<bool>,
+    /// Each block's rotation (rad, clockwise positive) and the vertical displacement of the
+    /// middle of its base (m), when the run rotated blocks and its history says.
+    pub pose: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 fn table(path: &Path, line: usize, message: String) -> Error {
@@ -72,10 +75,18 @@ pub fn state_at(dir: &Path, wall: &Wall, at_s: Option<f64>) -> Result<SavedState
         })
     };
     let Some(t) = at_s else {
+        // The last history row is the end's: it gives the rotations the summary does not.
+        let history = dir.join("history.csv");
+        let pose = if history.exists() {
+            history_at(&history, names, duration_s)?.2
+        } else {
+            None
+        };
         let mut state = SavedState {
             time_s: duration_s,
             displacement_m: Vec::new(),
             fallen: Vec::new(),
+            pose,
         };
         for name in names {
             let b = summary_block(name)?;
@@ -99,30 +110,34 @@ pub fn state_at(dir: &Path, wall: &Wall, at_s: Option<f64>) -> Result<SavedState
             format!("--at {t} s is outside the run, which lasts from 0 to {duration_s} s"),
         ));
     }
-    let (time_s, displacement_m) = history_at(&dir.join("history.csv"), names, t)?;
+    let (time_s, displacement_m, pose) = history_at(&dir.join("history.csv"), names, t)?;
     let fallen = fallen_by(dir, &summary, names, t)?;
     Ok(SavedState {
         time_s,
         displacement_m,
         fallen,
+        pose,
     })
 }
 
-/// The last row of history.csv at or before `t`: its time and the named blocks' u.
-fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>), Error> {
+/// What a history row says of a pose: rotations and lifts, when it has both.
+type Pose = Option<(Vec<f64>, Vec<f64>)>;
+
+/// The last row of history.csv at or before `t`: its time, the named blocks' u and their pose.
+fn history_at(path: &Path, names: &[String], t: f64) -> Result<(f64, Vec<f64>, Pose), Error> {
     let mut found = None;
-    each_row(path, names, |time, u, _| {
+    each_row(path, names, |time, u, theta, w| {
         if time > t {
             return false;
         }
-        found = Some((time, u));
+        found = Some((time, u, theta.zip(w)));
         true
     })?;
     found.ok_or_else(|| table(path, 2, format!("no sample at or before t = {t} s")))
 }
 
 /// A saved run's history: every row's time, the named blocks' u and, when the run rotated
-/// blocks, their rotations.
+/// blocks, their rotations and lifts.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SavedHistory {
     /// Times (s).
@@ -131,28 +146,34 @@ pub struct SavedHistory {
     pub displacement_m: Vec<Vec<f64>>,
     /// theta per row, per block (rad, clockwise positive); empty when nothing rotated.
     pub rotation_rad: Vec<Vec<f64>>,
+    /// w per row, per block: the vertical displacement of the middle of its base (m); empty
+    /// when nothing rotated or the history predates it.
+    pub lift_m: Vec<Vec<f64>>,
 }
 
 /// Reads the whole history.csv of the run in `dir`, for the blocks `names`.
 pub fn history(dir: &Path, names: &[String]) -> Result<SavedHistory, Error> {
     let mut h = SavedHistory::default();
-    each_row(&dir.join("history.csv"), names, |time, u, theta| {
+    each_row(&dir.join("history.csv"), names, |time, u, theta, w| {
         h.time_s.push(time);
         h.displacement_m.push(u);
         if let Some(theta) = theta {
             h.rotation_rad.push(theta);
+        }
+        if let Some(w) = w {
+            h.lift_m.push(w);
         }
         true
     })?;
     Ok(h)
 }
 
-/// Hands each row of a history.csv to `row` (time, the named blocks' u, their rotations when
-/// the file has them) until it returns false.
+/// Hands each row of a history.csv to `row` (time, the named blocks' u, their rotations and
+/// lifts when the file has them) until it returns false.
 fn each_row(
     path: &Path,
     names: &[String],
-    mut row: impl FnMut(f64, Vec<f64>, Option<Vec<f64>>) -> bool,
+    mut row: impl FnMut(f64, Vec<f64>, Option<Vec<f64>>, Option<Vec<f64>>) -> bool,
 ) -> Result<(), Error> {
     if !path.exists() {
         return Err(table(
@@ -190,6 +211,7 @@ fn each_row(
         .iter()
         .map(|n| column(format!("theta_{n}_rad")))
         .collect();
+    let lifts: Option<Vec<usize>> = names.iter().map(|n| column(format!("w_{n}_m"))).collect();
     for record in reader.records() {
         let record = record.map_err(|e| {
             let line = e.position().map_or(0, |p| p.line() as usize);
@@ -207,11 +229,14 @@ fn each_row(
         };
         let time = num(0)?;
         let u = columns.iter().map(|&c| num(c)).collect::<Result<_, _>>()?;
-        let theta = match &rotations {
-            Some(cols) => Some(cols.iter().map(|&c| num(c)).collect::<Result<_, _>>()?),
-            None => None,
+        let optional = |columns: &Option<Vec<usize>>| -> Result<Option<Vec<f64>>, Error> {
+            columns
+                .as_ref()
+                .map(|cols| cols.iter().map(|&c| num(c)).collect())
+                .transpose()
         };
-        if !row(time, u, theta) {
+        let (theta, w) = (optional(&rotations)?, optional(&lifts)?);
+        if !row(time, u, theta, w) {
             break;
         }
     }

@@ -760,6 +760,28 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
     let (ok, before, err) = draw(&["--at", "2.7"]);
     assert!(ok, "{err}");
     assert!(before.contains("t = 2.7 s") && !before.contains("(fell)"));
+    // Nothing turned: blocks are rectangles moved by u.
+    assert!(!end.contains("<polygon") && !before.contains("<polygon"));
+    // A rocking trilith: its three blocks drawn turned and lifted (polygons), at the end too.
+    let trilith = dir.join("trilith");
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/rocking/trilith.ron",
+        "--sine",
+        "0.3g",
+        "--freq",
+        "1",
+        "--duration",
+        "2",
+        "--out",
+        trilith.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    for extra in [&["--at", "1.5"][..], &[]] {
+        let (ok, svg, err) = draw_on("walls/rocking/trilith.ron", &trilith, extra);
+        assert!(ok, "{err}");
+        assert_eq!(svg.matches("<polygon").count(), 3, "{svg}");
+    }
     let (ok, _, err) = draw(&["--at", "12"]);
     assert!(
         !ok && err.contains("outside the run") && err.contains("10 s"),
@@ -1258,9 +1280,9 @@ fn rocking_runs_pulses_releases_and_refusals() {
         assert!(events.contains(kind), "no {kind} in\n{events}");
     }
     let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
-    assert!(
-        history.starts_with("time_s,u_Huanca_m,v_Huanca_m_s,theta_Huanca_rad,omega_Huanca_rad_s\n")
-    );
+    assert!(history.starts_with(
+        "time_s,u_Huanca_m,v_Huanca_m_s,theta_Huanca_rad,omega_Huanca_rad_s,w_Huanca_m\n"
+    ));
     assert!(std::fs::read_to_string(out.join("response.csv"))
         .unwrap()
         .contains("rotation"));

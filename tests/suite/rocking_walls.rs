@@ -621,7 +621,7 @@ fn time_stepping_with_rotations_writes_its_history_at_the_output_times() {
 /// with the exact ones it lands at the angular velocity that energy gives, 2 p_frame^2
 /// (cos(alpha - theta0) - cos alpha), and leaves at r_frame = (1 - 1.5 sin^2 alpha + 3 gamma
 /// cos 2 alpha) / (1 + 3 gamma) times it; every landing, to round-off. The columns turn, the
-/// lintel does not, and no joint gives way.
+/// lintel does not (the history's w carries it on the columns' corners), and no joint gives way.
 #[test]
 fn a_released_trilith_rocks_with_the_frames_closed_forms() {
     use pirqa::response::EventKind;
@@ -679,10 +679,18 @@ fn a_released_trilith_rocks_with_the_frames_closed_forms() {
         s.warnings
     );
     let hist = exact.history.unwrap();
-    for row in &hist.rotation_rad {
+    // The columns turn alike on their feet, the middle of each base rising by b |sin theta|;
+    // the lintel does not turn and is carried on the top corners opposite the feet, w =
+    // 2 b |sin theta| + 2 h (cos theta - 1).
+    for (row, w) in hist.rotation_rad.iter().zip(&hist.lift_m) {
         assert_eq!(row[0], row[1]);
         assert_eq!(row[2], 0.0);
+        let th = row[0];
+        assert!((w[0] - b * th.sin().abs()).abs() < 1e-15 && w[0] == w[1]);
+        let lintel = 2.0 * b * th.sin().abs() + 2.0 * h * (th.cos() - 1.0);
+        assert!((w[2] - lintel).abs() < 1e-15, "{} against {lintel}", w[2]);
     }
+    assert_eq!(hist.lift_m.len(), hist.time_s.len());
 }
 
 /// The trilith under 0.3 g, 1 Hz leans far over; at 3.99 s its lintel's contacts can no longer

@@ -244,6 +244,12 @@ impl Integrator for RockingPeer {
         let mut sim = Sim::with_rotation(sc, self.dt_s, Some(self.theta0));
         let steps = (settings.duration_s / self.dt_s).ceil() as u64;
         let ground_x0 = sim.world.bodies[sim.ground].translation().x;
+        let base_y = |sim: &Sim| {
+            let body = &sim.world.bodies[sim.blocks[0].0];
+            body.translation().y - half * body.rotation().angle().cos()
+        };
+        // Released on its corner, the base centre stands b |sin theta0| above the ground.
+        let lift0 = base_y(&sim) - 0.5 * sc.wall.blocks[0].width.to_f64() * self.theta0.sin().abs();
         // The base centre relative to where it stood at rest; theta clockwise.
         let state = |sim: &Sim, t: f64| {
             let body = &sim.world.bodies[sim.blocks[0].0];
@@ -251,11 +257,11 @@ impl Integrator for RockingPeer {
             let gx = sim.world.bodies[sim.ground].translation().x - ground_x0;
             let u = body.translation().x + half * phi.sin() - sim.blocks[0].2 - gx;
             let v = body.linvel().x + half * phi.cos() * body.angvel() - sc.motion.velocity(t);
-            (u, v, -phi, -body.angvel())
+            (u, v, -phi, -body.angvel(), base_y(sim) - lift0)
         };
         let mut previous = state(&sim, 0.0);
-        let (u, v, th, om) = previous;
-        rec.sample_rotating(0.0, &[u], &[v], &[th], &[om]);
+        let (u, v, th, om, w) = previous;
+        rec.sample_rotating(0.0, [&[u], &[v], &[th], &[om], &[w]]);
         let (mut t, mut next_output) = (0.0, 1);
         for k in 1..=steps {
             sim.step(k, sc.motion);
@@ -271,16 +277,19 @@ impl Integrator for RockingPeer {
                     let at = |a: f64, b: f64| lerp(&[a], &[b], f);
                     rec.sample_rotating(
                         tk,
-                        &at(previous.0, now.0),
-                        &at(previous.1, now.1),
-                        &at(previous.2, now.2),
-                        &at(previous.3, now.3),
+                        [
+                            &at(previous.0, now.0),
+                            &at(previous.1, now.1),
+                            &at(previous.2, now.2),
+                            &at(previous.3, now.3),
+                            &at(previous.4, now.4),
+                        ],
                     );
                 });
             }
             previous = now;
         }
-        let (u, v, _, _) = state(&sim, t);
+        let (u, v, _, _, _) = state(&sim, t);
         Ok(rec.finish(
             "rapier2d",
             &sc.wall.name,

@@ -20,8 +20,8 @@ use crate::topology::{Base, JointRef, VerticalId};
 use nalgebra::{Matrix2, Vector2, Vector3};
 
 /// Per block: u of the base's middle (m), its velocity (m/s), theta (rad, clockwise positive),
-/// omega (rad/s): what a history row holds.
-type Outputs = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+/// omega (rad/s), w of the base's middle (m): what a history row holds.
+type Outputs = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// A block lifts (for the summary's uplift time) when its rotation moves a corner by this much
 /// (m): Gauss-Seidel leaves rotations of round-off size on blocks that stay seated.
@@ -343,23 +343,26 @@ impl Integrator for MoreauWall {
             rec.energy.initial_j = (0..n).map(|i| energy_of(i, &q, &v)).sum();
         }
         // The base centre's horizontal displacement and velocity (what the sliding model calls
-        // u), and the rotation clockwise positive as the exact rocking engine writes it.
+        // u), the rotation clockwise positive as the exact rocking engine writes it, and the
+        // base centre's vertical displacement.
         let outputs = |q: &[Vector3<f64>], v: &[Vector3<f64>]| {
             let mut u = Vec::with_capacity(n);
             let mut uv = Vec::with_capacity(n);
+            let mut w = Vec::with_capacity(n);
             for i in 0..n {
                 let h = bodies[i].half.y;
                 u.push(q[i].x + h * q[i].z.sin());
                 uv.push(v[i].x + h * q[i].z.cos() * v[i].z);
+                w.push(q[i].y + h * (1.0 - q[i].z.cos()));
             }
             let theta: Vec<f64> = q.iter().map(|s| -s.z).collect();
             let omega: Vec<f64> = v.iter().map(|s| -s.z).collect();
-            (u, uv, theta, omega)
+            (u, uv, theta, omega, w)
         };
         // Extremes at every step; history rows at the output times, between steps by linear
         // interpolation (as every time stepper writes them), and at a fall.
         let extremes = |rec: &mut Recorder, out: &Outputs| {
-            let (u, uv, theta, _) = out;
+            let (u, uv, theta, _, _) = out;
             for i in 0..n {
                 rec.block_extremes(i, u[i].abs(), uv[i].abs());
                 rec.rotation_extreme(i, theta[i].abs());
@@ -368,8 +371,8 @@ impl Integrator for MoreauWall {
         };
         let mut previous = outputs(&q, &v);
         extremes(&mut rec, &previous);
-        let (u0, uv0, theta0, omega0) = &previous;
-        rec.sample_rotating(0.0, u0, uv0, theta0, omega0);
+        let (u0, uv0, theta0, omega0, w0) = &previous;
+        rec.sample_rotating(0.0, [u0, uv0, theta0, omega0, w0]);
         let mut next_output = 1;
         let steps = (settings.duration_s / dt).ceil() as u64;
         let scale = g * dt;
@@ -571,16 +574,19 @@ impl Integrator for MoreauWall {
                     let (a, b) = (&previous, &now);
                     rec.sample_rotating(
                         tk,
-                        &lerp(&a.0, &b.0, f),
-                        &lerp(&a.1, &b.1, f),
-                        &lerp(&a.2, &b.2, f),
-                        &lerp(&a.3, &b.3, f),
+                        [
+                            &lerp(&a.0, &b.0, f),
+                            &lerp(&a.1, &b.1, f),
+                            &lerp(&a.2, &b.2, f),
+                            &lerp(&a.3, &b.3, f),
+                            &lerp(&a.4, &b.4, f),
+                        ],
                     );
                     last_row = Some(tk);
                 });
             }
             if fell_now && last_row != Some(t) {
-                rec.sample_rotating(t, &now.0, &now.1, &now.2, &now.3);
+                rec.sample_rotating(t, [&now.0, &now.1, &now.2, &now.3, &now.4]);
             }
             previous = now;
             if fell_now && settings.after_collapse == AfterCollapse::Stop {
@@ -608,7 +614,7 @@ impl Integrator for MoreauWall {
                 sweeps: self.max_sweeps,
             });
         }
-        let (u, uv, _, _) = outputs(&q, &v);
+        let (u, uv, _, _, _) = outputs(&q, &v);
         let motion = sc.motion.describe();
         let mut r = rec.finish("moreau", &wall.name, motion, t, &u, &uv);
         r.summary.model = ModelUsed {

@@ -4,7 +4,7 @@
 //! the map from bodies to outputs and each output block's motion as a series.
 
 use super::body::RockingBody;
-use super::modes::Trajectory;
+use super::modes::{Corner, Trajectory};
 use super::series::Coeffs;
 use super::Watch;
 use crate::response::horizontal_joints;
@@ -96,6 +96,26 @@ impl Layout {
     /// The output of block k (bottom first) of body i's column.
     pub fn column_output(&self, i: usize, k: usize) -> usize {
         self.column[i][k]
+    }
+
+    /// The vertical displacement of the middle of the base of each of body i's blocks, with
+    /// its output, when the body is turned by `theta` about its pivot (`None`: seated): the
+    /// point at (x0, y0) from the base's middle rises by -(x0 - s bp) sin theta + y0 (cos
+    /// theta - 1); a block that does not turn follows the top corner it rests on, x0 = -s bp.
+    pub fn lifts(&self, i: usize, pivot: Option<Corner>, theta: f64) -> Vec<(usize, f64)> {
+        let bp = self.pivot_half_base[i];
+        let Some(c) = pivot else {
+            return self.moving[i].iter().map(|m| (m.0, 0.0)).collect();
+        };
+        let s = c.sign();
+        let (sin, cos) = theta.sin_cos();
+        self.moving[i]
+            .iter()
+            .map(|&(k, x0, y0, turns)| {
+                let x0 = if turns { x0 } else { -s * bp };
+                (k, -(x0 - s * bp) * sin + y0 * (cos - 1.0))
+            })
+            .collect()
     }
 
     /// The horizontal displacement of the middle of the base of each of body i's blocks, with

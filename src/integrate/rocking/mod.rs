@@ -697,8 +697,13 @@ impl<'a> Engine<'a> {
     /// ground acceleration then.
     fn note(&mut self, plans: &[Option<Plan>], tau: f64, t: f64, a_g: f64, row: bool) {
         let n = self.layout.len();
-        let (mut u, mut v, mut theta, mut omega) =
-            (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let (mut u, mut v, mut theta, mut omega, mut w) = (
+            vec![0.0; n],
+            vec![0.0; n],
+            vec![0.0; n],
+            vec![0.0; n],
+            vec![0.0; n],
+        );
         // Held blocks stay at rest relative to the ground; their peak acceleration is a_g's.
         let mut accel = vec![Some(a_g); n];
         for (i, plan) in plans.iter().enumerate() {
@@ -720,6 +725,12 @@ impl<'a> Engine<'a> {
                     .is_some()
                     .then(|| a_g + series::eval(&series::derivative(&base_v), at));
             }
+            if row {
+                let pivot = traj.mode.pivot();
+                for (k, lift) in self.layout.lifts(i, pivot, series::eval(&traj.theta, at)) {
+                    w[k] = lift;
+                }
+            }
         }
         for i in 0..n {
             self.rec.block_extremes(i, u[i].abs(), v[i].abs());
@@ -730,7 +741,7 @@ impl<'a> Engine<'a> {
         }
         self.rec.joint_extremes(&u);
         if row {
-            self.rec.sample_rotating(t, &u, &v, &theta, &omega);
+            self.rec.sample_rotating(t, [&u, &v, &theta, &omega, &w]);
         }
     }
 
