@@ -422,6 +422,7 @@ fn every_shipped_study_loads() {
         ("friction-mc.ron", 1000),
         ("long-walls.ron", 5 * 8),
         ("paper-fig3-4.ron", 3 * 4 * 100),
+        ("trilith-fragility.ron", 11 * 20),
         ("trilith-moreau.ron", 11),
         ("trilith.ron", 11),
     ];

@@ -14,7 +14,8 @@
 //! carry ends the exact model at that instant, as a column's held joint does: a foot or the
 //! lintel slipping, the lintel leaving a column, the feet slipping while the frame rocks (the
 //! columns would then turn unequally: slide-rock of a trilith has three degrees of freedom) or
-//! through a landing.
+//! through a landing, and, seated, a slip that how the load divides between two faces could
+//! allow (the lintel's two joints, or feet of different friction, from the smaller friction).
 
 use super::body::RockingBody;
 use super::column::{Column, JointLimit, Output, Velocity, Watch};
@@ -43,8 +44,9 @@ pub(crate) struct Frame {
     feet_x: [f64; 2],
     /// The outer ends of the lintel's contacts on the columns' tops at rest (m).
     ends: [f64; 2],
-    ground_friction: f64,
-    top_friction: f64,
+    /// Friction under each column's foot and of the lintel on each column, left first.
+    ground_friction: [f64; 2],
+    top_friction: [f64; 2],
     /// `column/ground` for each column, then `lintel/column`.
     feet: [String; 2],
     tops: [String; 2],
@@ -75,10 +77,16 @@ const SLIDE_ROCK: &str = "would slip while the trilith rocks: the columns would 
                           unequally (slide-rock of a trilith), beyond the exact model";
 const SLIPPED_LANDING: &str = "would slip through a landing of the rocking trilith, beyond the \
                                exact model";
+const SEATED_FEET: &str = "could slip: the seated trilith's feet hold with different friction and \
+                           how its weight divides between them is not determined, so from the \
+                           smaller friction on a slip cannot be ruled out (beyond the exact \
+                           model)";
 
-/// Condition indices past the joints' own: the feet slipping while rocking, or in a landing.
+/// Condition indices past the joints' own: the feet slipping while rocking, or in a landing;
+/// then a seated trilith's feet of different friction (towards +x, -x).
 const K_SLIDE_ROCK: usize = 12;
 const K_SLIPPED_LANDING: usize = 13;
+const K_SEATED_FEET: usize = 14;
 
 impl Frame {
     /// The joint, how it gives way and the block on it (place in the column's outputs) for
@@ -97,14 +105,23 @@ impl Frame {
             8 | 9 => (both(&self.tops), SLIPS[k - 8], self.lintel_output),
             10 | 11 => (both(&self.tops), TIPS[k - 10], self.lintel_output),
             K_SLIDE_ROCK => (both(&self.feet), SLIDE_ROCK, self.columns[0]),
-            _ => (both(&self.feet), SLIPPED_LANDING, self.columns[0]),
+            K_SLIPPED_LANDING => (both(&self.feet), SLIPPED_LANDING, self.columns[0]),
+            _ => (both(&self.feet), SEATED_FEET, self.columns[0]),
         }
     }
 
     /// The condition that a mode of the one-body picture breaks, if it is one the trilith cannot
-    /// follow (slide-rock).
+    /// follow: slide-rock, and sliding seated on feet of different friction.
     pub(crate) fn forbids(&self, mode: Mode) -> Option<usize> {
-        matches!(mode, Mode::SlideRock(..)).then_some(K_SLIDE_ROCK)
+        match mode {
+            Mode::SlideRock(..) => Some(K_SLIDE_ROCK),
+            Mode::Slide(_) if self.unequal_feet() => Some(K_SEATED_FEET),
+            _ => None,
+        }
+    }
+
+    fn unequal_feet(&self) -> bool {
+        self.ground_friction[0] != self.ground_friction[1]
     }
 
     /// The joints' conditions along a trajectory of the frame's body, each to stay
@@ -112,23 +129,31 @@ impl Frame {
     /// each within its friction cone (which keeps their normal forces non-negative). Seated
     /// (the trilith rigid, its faces in contact): the lintel's friction on both columns
     /// together and its tipping about the outer ends of its supports; how the load of a seated
-    /// lintel divides between two faces is not determined, so only the sums are watched.
+    /// lintel divides between two faces is not determined, so only the sums are watched, with
+    /// the smaller friction of the two joints (the only one that holds whatever the split);
+    /// likewise the feet together when their friction differs.
     pub(crate) fn conditions(&self, traj: &Trajectory, inputs: &Inputs) -> Vec<Constraint> {
         let mut base_acc = derivative(&traj.v);
         add_to(&mut base_acc, &inputs.accel, 1.0);
         let glam = scaled(&inputs.lambda, self.g_m_s2);
-        let margins: Vec<(Coeffs, f64)> = match traj.mode.pivot() {
-            Some(c) => self.rocking_margins(traj, &base_acc, &glam, c.sign()),
-            None => self.seated_margins(&base_acc, &glam),
+        // Rocking: conditions 0-7; seated: 8-11, then 14 and 15 (feet of different friction).
+        let (margins, index): (Vec<(Coeffs, f64)>, &[usize]) = match traj.mode.pivot() {
+            Some(c) => (
+                self.rocking_margins(traj, &base_acc, &glam, c.sign()),
+                &[0, 1, 2, 3, 4, 5, 6, 7],
+            ),
+            None => (
+                self.seated_margins(traj, &base_acc, &glam),
+                &[8, 9, 10, 11, K_SEATED_FEET, K_SEATED_FEET + 1],
+            ),
         };
-        let first = if traj.mode.pivot().is_some() { 0 } else { 8 };
         margins
             .into_iter()
-            .enumerate()
-            .map(|(j, (series, scale))| Constraint {
+            .zip(index)
+            .map(|((series, scale), &k)| Constraint {
                 series,
                 scale,
-                guard: Guard::Held(first + j),
+                guard: Guard::Held(k),
                 strict: false,
             })
             .collect()
@@ -179,17 +204,17 @@ impl Frame {
         add_to(&mut common, &product(&rx, glam), m);
         let twice_ry = scaled(&ry, 2.0);
         let mut out = Vec::with_capacity(8);
-        for v in loads {
-            let numerator = add(&common, &product(&rx, &v), 2.0);
+        for (i, v) in loads.iter().enumerate() {
+            let numerator = add(&common, &product(&rx, v), 2.0);
             let mut hz = ZERO;
             for k in 0..=ORDER {
                 hz[k] = div_at(&numerator, &twice_ry, &hz, k);
             }
             let foot_t = add(&hz, &ax, m);
-            let mut foot_n = add(&v, glam, m);
+            let mut foot_n = add(v, glam, m);
             add_to(&mut foot_n, &ay, m);
-            let (mu, mu_top) = (self.ground_friction, self.top_friction);
-            for (n, t, mu) in [(&v, &hz, mu_top), (&foot_n, &foot_t, mu)] {
+            let (mu, mu_top) = (self.ground_friction[i], self.top_friction[i]);
+            for (n, t, mu) in [(v, &hz, mu_top), (&foot_n, &foot_t, mu)] {
                 out.push((add(&scaled(n, mu), t, -1.0), self.force_scale));
                 out.push((add(&scaled(n, mu), t, 1.0), self.force_scale));
             }
@@ -198,23 +223,35 @@ impl Frame {
     }
 
     /// Seated: the lintel moves with the trilith, at base_acc.
-    fn seated_margins(&self, base_acc: &Coeffs, glam: &Coeffs) -> Vec<(Coeffs, f64)> {
+    fn seated_margins(
+        &self,
+        traj: &Trajectory,
+        base_acc: &Coeffs,
+        glam: &Coeffs,
+    ) -> Vec<(Coeffs, f64)> {
         let mk = self.lintel_kg;
         let (xl, yl) = self.lintel;
         let hy = yl - 2.0 * self.h;
-        let weight = scaled(glam, mk * self.top_friction);
+        let least = |mu: [f64; 2]| mu[0].min(mu[1]);
+        let weight = scaled(glam, mk * least(self.top_friction));
         let pull = scaled(base_acc, mk);
         let moment = |end: f64| {
             let mut m = scaled(glam, mk * (xl - end));
             add_to(&mut m, base_acc, -mk * hy);
             m
         };
-        vec![
+        let mut out = vec![
             (add(&weight, &pull, -1.0), self.force_scale),
             (add(&weight, &pull, 1.0), self.force_scale),
             (moment(self.ends[0]), self.moment_scale),
             (scaled(&moment(self.ends[1]), -1.0), self.moment_scale),
-        ]
+        ];
+        if self.unequal_feet() {
+            let cap = scaled(&traj.normal, least(self.ground_friction));
+            out.push((add(&cap, &traj.tangential, -1.0), self.force_scale));
+            out.push((add(&cap, &traj.tangential, 1.0), self.force_scale));
+        }
+        out
     }
 
     /// The first condition a landing breaks, if any: from `before` (rocking) to `after` at
@@ -242,7 +279,7 @@ impl Frame {
         let (xl, yl) = self.lintel;
         let Some(new) = after.0 else {
             let moment = |end: f64| (xl - end) * dl.1 - (yl - 2.0 * h) * dl.0;
-            let mu = self.top_friction;
+            let mu = self.top_friction[0].min(self.top_friction[1]);
             let margins = [
                 (mu * dl.1 - dl.0, tol),
                 (mu * dl.1 + dl.0, tol),
@@ -262,7 +299,7 @@ impl Frame {
             let jy = loads[i];
             let jx = (turn - 2.0 * s * b * jy) / (2.0 * h);
             let (fx, fy) = (m * dg.0 + jx, m * dg.1 + jy);
-            let (mu, mu_top) = (self.ground_friction, self.top_friction);
+            let (mu, mu_top) = (self.ground_friction[i], self.top_friction[i]);
             let margins = [
                 mu_top * jy - jx,
                 mu_top * jy + jx,
@@ -372,7 +409,7 @@ impl Trilith {
 /// carrying only the third, which rests on them and nothing else, with nothing beside the
 /// lintel (the columns face only each other). `None` when the wall has another shape; an
 /// error when it is a trilith the exact model cannot take (unequal columns, a lintel that does
-/// not cover a column's top, unequal friction under the two columns or under the lintel).
+/// not cover a column's top).
 pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, SimulationError> {
     if wall.blocks.len() != 3 || wall.blocks.iter().any(|b| b.fixed) {
         return Ok(None);
@@ -405,9 +442,8 @@ pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, Si
     let name = |i: usize| blk(i).name.clone();
     let not = |why: String| {
         SimulationError::NotApplicable(format!(
-            "{}: {why}; the exact model rocks a trilith whose two columns are equal and stand on \
-             ground of one friction, with the lintel covering both tops on joints of one \
-             friction. Run it with rotations on time stepping (--model slide-rock --method \
+            "{}: {why}; the exact model rocks a trilith whose two columns are equal, with the \
+             lintel covering both tops. Run it with rotations on time stepping (--model slide-rock --method \
              moreau --dt S) or sliding exactly (--model slide)",
             wall.name
         ))
@@ -438,18 +474,6 @@ pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, Si
     let foot = |c: usize| &topo.horizontal[topo.below[c][0].0];
     let (f1, f2) = (foot(c1), foot(c2));
     let (top1, top2) = (&topo.horizontal[t1], &topo.horizontal[t2]);
-    for (what, x, y) in [
-        ("under its columns", &f1.friction, &f2.friction),
-        ("under its lintel", &top1.friction, &top2.friction),
-    ] {
-        if x != y {
-            return Err(not(format!(
-                "the friction {what} differs ({} and {})",
-                x.to_f64(),
-                y.to_f64()
-            )));
-        }
-    }
     let two = Q::int(2);
     let half = |x: &Q| (x / &two).to_f64();
     let (b, h) = (half(&a.width), half(&a.height));
@@ -465,7 +489,9 @@ pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, Si
     order.sort_unstable();
     let Some(body) = shape.body(
         &order.map(name).join("+"),
-        f1.friction.to_f64(),
+        // The larger: while it rocks each foot's own friction is watched, and a seated trilith
+        // on feet of different friction is watched from the smaller.
+        f1.friction.clone().max(f2.friction.clone()).to_f64(),
         g,
         wall.rocking_restitution_factor,
     ) else {
@@ -534,8 +560,8 @@ pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, Si
         lintel: (lintel_x, lintel_y),
         feet_x,
         ends,
-        ground_friction: f1.friction.to_f64(),
-        top_friction: top1.friction.to_f64(),
+        ground_friction: [f1.friction.to_f64(), f2.friction.to_f64()],
+        top_friction: [top1.friction.to_f64(), top2.friction.to_f64()],
         feet,
         tops,
         columns: [place(c1), place(c2)],
@@ -637,10 +663,10 @@ mod tests {
             assert_eq!(cond.len(), 8);
             for tau in [0.0, 0.01, 0.03] {
                 let at = |k: usize| eval(&cond[k].series, tau);
-                let (mu, mu_top) = (frame.ground_friction, frame.top_friction);
                 // Per column: the lintel's (H, V) and the foot's (F, N), from the margins.
                 let forces: Vec<[f64; 4]> = (0..2)
                     .map(|i| {
+                        let (mu, mu_top) = (frame.ground_friction[i], frame.top_friction[i]);
                         let (a, b, c, d) = (at(4 * i), at(4 * i + 1), at(4 * i + 2), at(4 * i + 3));
                         [
                             (b - a) / 2.0,
