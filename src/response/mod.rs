@@ -398,12 +398,12 @@ pub enum Warning {
         /// When (s).
         time_s: f64,
     },
-    /// A joint that the column model holds would slip or open under the moving body: the run
-    /// stopped there.
+    /// A joint that the column model holds (or a trilith's mechanism) would slip or open under
+    /// the moving body: the run stopped there.
     HeldJointGives {
         /// The body that moves.
         body: String,
-        /// The joint, `upper/lower`.
+        /// The joint, `upper/lower` (`A/B and C/D` where a pair is watched together).
         joint: String,
         /// How it gives way.
         how: String,
@@ -468,10 +468,11 @@ impl std::fmt::Display for Warning {
                 time_s,
             } => write!(
                 f,
-                "at t = {time_s} s the joint {joint} {how} under {body}'s motion: the column \
-                 model holds every joint but the one its body moves on, so the model stops \
-                 there, and the run with it (run the wall with --model slide-rock --method \
-                 moreau --dt S to follow it further)"
+                "at t = {time_s} s the joint {joint} {how} under {body}'s motion: the exact \
+                 model follows {body} only while its joints hold as the model has them (a \
+                 column's held joints, a trilith's mechanism), so it stops there, and the run \
+                 with it (run the wall with --model slide-rock --method moreau --dt S to follow \
+                 it further)"
             ),
             Warning::LevelSkipped { level_m, why } => {
                 write!(f, "level {level_m} m not checked across the plane: {why}")

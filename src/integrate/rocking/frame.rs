@@ -62,7 +62,7 @@ pub(crate) struct Frame {
 
 /// How a trilith's joint gives way, for the conditions of [`Frame::conditions`] by their index
 /// mod 4 (0-7: rocking, per column the lintel's contact and the foot; 8-11: seated, the
-/// lintel on both), then the two things the one-body picture cannot follow.
+/// lintel on both), then what the one-body picture cannot follow.
 const SLIPS: [&str; 2] = [
     "would slip, the block on it towards -x (it needs more friction towards +x than the joint \
      holds)",
