@@ -12,8 +12,8 @@
 //! the run with it, and says which joint gave way and how (docs/rocking-walls.md).
 
 use super::body::RockingBody;
-use super::frame::{trilith, Frame};
-use super::modes::{Constraint, Corner, Guard, Inputs, Mode, Trajectory};
+use super::frame::{trilith, Frame, Recognised};
+use super::modes::{Constraint, Corner, Guard, Inputs, Mode, Trajectory, Velocity};
 use super::series::{
     add_to, constant, derivative, plus, product, sin_cos_at, Coeffs, ORDER, TIE, ZERO,
 };
@@ -154,7 +154,7 @@ pub struct Watch {
     force_scale: f64,
     moment_scale: f64,
     /// A trilith's joints, watched instead of a column's.
-    pub(super) frame: Option<Frame>,
+    frame: Option<Frame>,
 }
 
 /// How a held joint gives way; four conditions per joint, in this order.
@@ -394,10 +394,6 @@ impl Watch {
     }
 }
 
-/// A body's velocity at theta = 0: the corner it turns on (none: seated), its angular velocity
-/// (rad/s) and the slip velocity of that corner (or of its base) relative to the ground (m/s).
-pub(crate) type Velocity = (Option<Corner>, f64, f64);
-
 /// A piece's position and absolute acceleration, as series.
 struct Kinematics {
     x: Coeffs,
@@ -431,8 +427,8 @@ pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationEr
              out-of-plane)"
         ))
     };
-    if let Some(frame) = trilith(wall, topo)? {
-        return Ok(vec![frame]);
+    if let Some(t) = trilith(wall, topo)? {
+        return Ok(vec![of_trilith(wall, t)]);
     }
     let movable = |b: usize| !wall.blocks[b].fixed;
     let mut bottoms = Vec::new();
@@ -466,6 +462,40 @@ pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationEr
         return Err(not(format!("{} has no movable block", wall.name)));
     }
     bottoms.into_iter().map(|b| column(wall, topo, b)).collect()
+}
+
+/// A trilith as the column model runs it: one column whose body is its frame, every joint
+/// watched by the frame.
+fn of_trilith(wall: &Wall, t: Recognised) -> Column {
+    let limits = t
+        .limits
+        .into_iter()
+        .map(|(joint, slip_g, [left, right], moves)| JointLimit {
+            joint,
+            slip_g,
+            tips_left_g: left,
+            tips_right_g: right,
+            moves,
+        })
+        .collect();
+    let outputs = t
+        .blocks
+        .into_iter()
+        .map(|(block, y0, turns)| Output {
+            name: wall.blocks[block].name.clone(),
+            block,
+            x0: 0.0,
+            y0,
+            moving: true,
+            turns,
+        })
+        .collect();
+    Column {
+        watch: Watch::of_frame(t.frame, outputs, t.half_base_m),
+        body: t.body,
+        limits,
+        held: Vec::new(),
+    }
 }
 
 /// The column standing on block `bottom`'s joint.

@@ -18,8 +18,7 @@
 //! allow (the lintel's two joints, or feet of different friction, from the smaller friction).
 
 use super::body::RockingBody;
-use super::column::{Column, JointLimit, Output, Velocity, Watch};
-use super::modes::{Constraint, Corner, Guard, Inputs, Mode, Trajectory};
+use super::modes::{Constraint, Corner, Guard, Inputs, Mode, Trajectory, Velocity};
 use super::series::{
     add, add_to, derivative, div_at, product, scaled, sin_cos_at, Coeffs, ORDER, TIE, ZERO,
 };
@@ -405,12 +404,28 @@ impl Trilith {
     }
 }
 
+/// A trilith found in a wall: what the column model needs to run it.
+pub(crate) struct Recognised {
+    /// Its joints' watch.
+    pub frame: Frame,
+    /// The rigid body its mechanism moves as.
+    pub body: RockingBody,
+    /// Each joint: its name, friction, tipping ratios (left, right) and whether the body moves
+    /// on it, as `pirqa check` lists them.
+    pub limits: Vec<(String, f64, [f64; 2], bool)>,
+    /// Its blocks in the wall's order: index in the wall, height of the point each follows
+    /// above its base's middle (the lintel: the columns' tops), and whether it turns.
+    pub blocks: Vec<(usize, f64, bool)>,
+    /// Half the width of a column's foot (m).
+    pub half_base_m: f64,
+}
+
 /// The trilith a wall is, if it is one: three movable blocks, two standing on the ground and
 /// carrying only the third, which rests on them and nothing else, with nothing beside the
 /// lintel (the columns face only each other). `None` when the wall has another shape; an
 /// error when it is a trilith the exact model cannot take (unequal columns, a lintel that does
 /// not cover a column's top).
-pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, SimulationError> {
+pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Recognised>, SimulationError> {
     if wall.blocks.len() != 3 || wall.blocks.iter().any(|b| b.fixed) {
         return Ok(None);
     }
@@ -516,12 +531,8 @@ pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, Si
         (lintel_x - ends[0]) / (lintel_y - 2.0 * h),
         (ends[1] - lintel_x) / (lintel_y - 2.0 * h),
     ];
-    let limit = |joint: String, friction: &Q, tips: [f64; 2], moves: bool| JointLimit {
-        joint,
-        slip_g: friction.to_f64(),
-        tips_left_g: tips[0],
-        tips_right_g: tips[1],
-        moves,
+    let limit = |joint: String, friction: &Q, tips: [f64; 2], moves: bool| {
+        (joint, friction.to_f64(), tips, moves)
     };
     let feet = [
         format!("{}/ground", names[0]),
@@ -537,16 +548,9 @@ pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, Si
         limit(tops[0].clone(), &top1.friction, lintel_tips, false),
         limit(tops[1].clone(), &top2.friction, lintel_tips, false),
     ];
-    let outputs = order
+    let blocks = order
         .iter()
-        .map(|&i| Output {
-            name: name(i),
-            block: i,
-            x0: 0.0,
-            y0: if i == l { 2.0 * h } else { 0.0 },
-            moving: true,
-            turns: i != l,
-        })
+        .map(|&i| (i, if i == l { 2.0 * h } else { 0.0 }, i != l))
         .collect();
     let feet_x = [half(&(&a.x + &a.right())), half(&(&c.x + &c.right()))];
     let height = lin.top().to_f64();
@@ -570,11 +574,12 @@ pub(crate) fn trilith(wall: &Wall, topo: &Topology) -> Result<Option<Column>, Si
         force_scale: total * g,
         moment_scale: total * g * height,
     };
-    Ok(Some(Column {
-        watch: Watch::of_frame(frame, outputs, b),
+    Ok(Some(Recognised {
+        frame,
         body,
         limits,
-        held: Vec::new(),
+        blocks,
+        half_base_m: b,
     }))
 }
 
@@ -588,7 +593,7 @@ mod tests {
     /// Columns of 0.5 x 2.5 m, 1.5 m apart, under a lintel of 3.5 x 0.8 m that reaches 0.3 m
     /// past the left column and 0.7 m past the right one: heavier than a column (gamma =
     /// M / 2m = 1.12) and off the columns' middle.
-    fn trilith_of(friction: f64) -> Column {
+    fn trilith_of(friction: f64) -> Recognised {
         let model = crate::model::Model::from_ron_str(&format!(
             "(version: 1, thickness_m: 0.5, density_kg_m3: 2650, friction: {friction},
               rows: [(height_m: 2.5, x_m: 0.3, blocks: [(width_m: 0.5, name: \"L\"),
@@ -596,9 +601,7 @@ mod tests {
                      (height_m: 0.8, blocks: [(width_m: 3.5, name: \"T\")])])"
         ))
         .unwrap();
-        let mut c = crate::integrate::rocking::columns(model.wall(), model.topology()).unwrap();
-        assert_eq!(c.len(), 1);
-        c.remove(0)
+        trilith(model.wall(), model.topology()).unwrap().unwrap()
     }
 
     /// The body of the mechanism has Makris and Vassiliou's (2013) frequency parameter
@@ -635,7 +638,7 @@ mod tests {
     #[test]
     fn the_watch_divides_the_bodys_own_contact_forces() {
         let c = trilith_of(0.7);
-        let frame = c.watch.frame.as_ref().unwrap();
+        let frame = &c.frame;
         let motion = Motion::sine(Sine {
             amplitude_m_s2: 3.0,
             frequency_hz: 1.3,

@@ -89,6 +89,10 @@ impl Slip {
     }
 }
 
+/// A body's velocity at theta = 0: the corner it turns on (none: seated), its angular velocity
+/// (rad/s) and the slip velocity of that corner (or of its base) relative to the ground (m/s).
+pub(crate) type Velocity = (Option<Corner>, f64, f64);
+
 /// What a body does between two events.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
