@@ -620,8 +620,9 @@ fn time_stepping_with_rotations_writes_its_history_at_the_output_times() {
 /// / p_frame (p_frame^2 = 3 g / 4R (1 + 2 gamma) / (1 + 3 gamma), R and alpha of a column);
 /// with the exact ones it lands at the angular velocity that energy gives, 2 p_frame^2
 /// (cos(alpha - theta0) - cos alpha), and leaves at r_frame = (1 - 1.5 sin^2 alpha + 3 gamma
-/// cos 2 alpha) / (1 + 3 gamma) times it; every landing, to round-off. The columns turn, the
-/// lintel does not (the history's w carries it on the columns' corners), and no joint gives way.
+/// cos 2 alpha) / (1 + 3 gamma) times it; every landing, to round-off, logged with the four
+/// contacts it strikes. The columns turn, the lintel does not (the history's w carries it on the
+/// columns' corners), and no joint gives way.
 #[test]
 fn a_released_trilith_rocks_with_the_frames_closed_forms() {
     use pirqa::response::EventKind;
@@ -671,6 +672,16 @@ fn a_released_trilith_rocks_with_the_frames_closed_forms() {
             (after - restitution * before).abs() < 1e-12 * p,
             "{after} against {restitution} x {before}"
         );
+    }
+    // Every landing strikes four contacts at once, and says so.
+    for e in exact
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::RockingImpact)
+    {
+        let m = e.mode.as_deref().unwrap();
+        let all = "Left/ground, Right/ground, Lintel/Left and Lintel/Right at once";
+        assert!(m.ends_with(all), "{m}");
     }
     let s = &exact.summary;
     assert!(

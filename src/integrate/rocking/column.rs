@@ -198,6 +198,12 @@ impl Watch {
         self.frame.as_ref().and_then(|f| f.forbids(mode))
     }
 
+    /// The contacts a landing strikes at once, when more than the body's own corner (a
+    /// trilith's feet and lintel).
+    pub(crate) fn landing_contacts(&self) -> Option<String> {
+        self.frame.as_ref().map(Frame::landing_contacts)
+    }
+
     /// The held joint, how it gives way and the block on it (index in the column, bottom
     /// first), for the condition `k` of [`Watch::conditions`].
     pub(crate) fn describe(&self, k: usize) -> (String, &'static str, usize) {

@@ -119,6 +119,14 @@ impl Frame {
         }
     }
 
+    /// The contacts a landing strikes at once: both feet and both of the lintel's contacts.
+    pub(crate) fn landing_contacts(&self) -> String {
+        format!(
+            "{}, {}, {} and {} at once",
+            self.feet[0], self.feet[1], self.tops[0], self.tops[1]
+        )
+    }
+
     fn unequal_feet(&self) -> bool {
         self.ground_friction[0] != self.ground_friction[1]
     }

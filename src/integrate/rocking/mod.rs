@@ -611,14 +611,18 @@ impl<'a> Engine<'a> {
             None => Mode::Rest,
         };
         let after = tr.state.omega;
+        let mut what = landing
+            .pivot
+            .map_or("seated".into(), |c| format!("on the {} corner", c.name()));
+        if let Some(contacts) = self.scene.watches.get(i).and_then(Watch::landing_contacts) {
+            what = format!("{what}: {contacts}");
+        }
         self.rec.rocking_event(
             self.t,
             EventKind::RockingImpact,
             &self.layout.outputs(i),
             Some((omega, after)),
-            landing
-                .pivot
-                .map_or("seated".into(), |c| format!("on the {} corner", c.name())),
+            what,
         );
         if let Some(k) = self.scene.watches.get(i).and_then(|w| {
             w.landing(
