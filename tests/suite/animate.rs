@@ -1,8 +1,8 @@
 //! `pirqa animate`: the page that plays a run back, loaded in a real browser (headless
 //! Chromium, Debian's package, installed here when missing): the state it draws at a time asked
 //! in its address is the one `pirqa draw --run --at` draws (the same history sample, every u to
-//! the bit; the rotations of a rocking block too), its pictures change as the time does, and it
-//! reaches for nothing outside itself.
+//! the bit; the rotations of a rocking block too, and a trilith's pose, turned and lifted), its
+//! pictures change as the time does, and it reaches for nothing outside itself.
 
 use crate::common;
 use pirqa::response::saved;
@@ -113,6 +113,11 @@ fn the_page_draws_in_a_browser_what_pirqa_draw_draws_at_that_time() {
             ["--sine", "0.5g", "--freq", "2", "--duration", "3"],
             1.2,
         ),
+        (
+            "walls/rocking/trilith.ron",
+            ["--sine", "0.3g", "--freq", "1", "--duration", "3"],
+            1.5,
+        ),
     ] {
         let dir = base.join(Path::new(wall).file_stem().unwrap());
         let d = dir.to_str().unwrap();
@@ -144,8 +149,12 @@ fn the_page_draws_in_a_browser_what_pirqa_draw_draws_at_that_time() {
             let saved = history.rotation_rad.get(row).map_or(0.0, |r| r[k]);
             assert_eq!(theta[k], saved, "{wall} {}", names[k]);
         }
-        if wall.contains("stela") {
+        if wall.contains("stela") || wall.contains("trilith") {
             assert!(theta[0].abs() > 1e-4, "it rocks");
+            // The pose drawn (turned, and lifted by w) is the one pirqa draw draws.
+            let (turned, lifted) = expected.pose.as_ref().expect("a rotating run's pose");
+            assert_eq!(&theta, turned, "{wall}");
+            assert_eq!(&numbers(&text, "w_m"), lifted, "{wall}");
         }
         // A screenshot at that time, and one at the start: pictures, and not the same one.
         let shot = |at: f64, name: &str| {
