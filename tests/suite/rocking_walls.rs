@@ -810,7 +810,8 @@ fn a_trilith_on_feet_of_different_friction_stops_where_the_smaller_could_slip() 
 }
 
 /// A trilith the exact model cannot take says why and what to run instead: columns of two
-/// widths, a lintel short of a column's outer edge.
+/// widths, a lintel short of a column's outer edge; under auto it slides and its summary says
+/// why.
 #[test]
 fn a_trilith_beyond_the_frame_model_is_refused_by_name() {
     let text = std::fs::read_to_string("walls/rocking/trilith.ron").unwrap();
@@ -837,5 +838,11 @@ fn a_trilith_beyond_the_frame_model_is_refused_by_name() {
             .unwrap_err()
             .to_string();
         assert!(e.contains(words) && e.contains("--method moreau"), "{e}");
+        // Under auto it slides, and says why.
+        let why = exact(&model, &motion, ModelChoice::Auto).model.why;
+        assert!(
+            why.starts_with("auto: Trilith: ") && why.contains(words),
+            "{why}"
+        );
     }
 }

@@ -309,16 +309,23 @@ pub fn rocks_in_plane(
             Ok((true, "asked for (--model slide-rock)".into()))
         }
         ModelChoice::Auto if wall.blocks.len() > 1 => {
-            let Ok(columns) = columns(wall, topo) else {
-                return Ok((
-                    false,
-                    format!(
-                        "auto: inside walls the exact model rocks blocks that stand in free \
-                         columns, and this wall of {} blocks is not made of them, so it slides; \
-                         the warnings name the blocks that could rock",
-                        wall.blocks.len()
-                    ),
-                ));
+            let columns = match columns(wall, topo) {
+                Ok(columns) => columns,
+                // A trilith the exact frame cannot take says why it slides.
+                Err(e) if super::frame::trilith(wall, topo).is_err() => {
+                    return Ok((false, format!("auto: {e}")));
+                }
+                Err(_) => {
+                    return Ok((
+                        false,
+                        format!(
+                            "auto: inside walls the exact model rocks blocks that stand in free \
+                             columns, and this wall of {} blocks is not made of them, so it \
+                             slides; the warnings name the blocks that could rock",
+                            wall.blocks.len()
+                        ),
+                    ))
+                }
             };
             let checks: Vec<(bool, String)> = columns
                 .iter()
