@@ -127,7 +127,8 @@ pub struct Output {
     pub name: String,
     /// Its place in the wall.
     pub block: usize,
-    /// The middle of its base at rest, in the watch's frame (m).
+    /// The middle of its base at rest, in the watch's frame (m); a trilith's blocks each from
+    /// the middle of their own base (0, and the lintel's `y0` as `turns` says).
     pub x0: f64,
     /// The same, height.
     pub y0: f64,
