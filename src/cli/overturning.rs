@@ -73,12 +73,6 @@ pub fn run(args: &OverturningArgs) -> Result<(), Error> {
     let (points, alpha, p) = spectra(&opts);
     bar.finish_and_clear();
     let c = spectrum_chart(&points, alpha, friction);
-    let out = &args.out;
-    write_file(
-        &out.join("overturning-spectrum.svg"),
-        &chart::render(std::slice::from_ref(&c), 1, (800, 500)),
-    )?;
-    write_file(&out.join("overturning-spectrum.csv"), &chart::to_csv(&[c]))?;
     let json = serde_json::json!({
         "block": {"width_m": args.width_m, "height_m": args.height_m,
                   "alpha_rad": alpha, "p_rad_s": p, "friction": friction},
@@ -86,12 +80,34 @@ pub fn run(args: &OverturningArgs) -> Result<(), Error> {
         "amplitude_unit": "g tan(alpha)",
         "points": points,
     });
+    write_spectrum(
+        &args.out,
+        "overturning-spectrum",
+        c,
+        &json,
+        &format!("alpha = {alpha:.4} rad, p = {p:.4} rad/s"),
+    )
+}
+
+/// A spectrum's chart (`STEM.svg`), its points (`.csv`) and its data (`.json`).
+fn write_spectrum(
+    out: &std::path::Path,
+    stem: &str,
+    c: chart::Chart,
+    json: &serde_json::Value,
+    what: &str,
+) -> Result<(), Error> {
     write_file(
-        &out.join("overturning-spectrum.json"),
-        &(serde_json::to_string_pretty(&json).expect("json") + "\n"),
+        &out.join(format!("{stem}.svg")),
+        &chart::render(std::slice::from_ref(&c), 1, (800, 500)),
+    )?;
+    write_file(&out.join(format!("{stem}.csv")), &chart::to_csv(&[c]))?;
+    write_file(
+        &out.join(format!("{stem}.json")),
+        &(serde_json::to_string_pretty(json).expect("json") + "\n"),
     )?;
     eprintln!(
-        "wrote overturning-spectrum.svg, .csv and .json to {} (alpha = {alpha:.4} rad, p = {p:.4} rad/s)",
+        "wrote {stem}.svg, .csv and .json to {} ({what})",
         out.display()
     );
     Ok(())
@@ -119,12 +135,6 @@ fn triliths(args: &OverturningArgs, opts: &Options) -> Result<(), Error> {
     let points = trilith_spectra(opts, ratios);
     bar.finish_and_clear();
     let c = trilith_chart(&points, ratios, alpha);
-    let out = &args.out;
-    write_file(
-        &out.join("overturning-trilith.svg"),
-        &chart::render(std::slice::from_ref(&c), 1, (800, 500)),
-    )?;
-    write_file(&out.join("overturning-trilith.csv"), &chart::to_csv(&[c]))?;
     let json = serde_json::json!({
         "column": {"width_m": args.width_m, "height_m": args.height_m,
                    "alpha_rad": alpha, "p_rad_s": p},
@@ -134,13 +144,11 @@ fn triliths(args: &OverturningArgs, opts: &Options) -> Result<(), Error> {
         "amplitude_unit": "g tan(alpha)",
         "points": points,
     });
-    write_file(
-        &out.join("overturning-trilith.json"),
-        &(serde_json::to_string_pretty(&json).expect("json") + "\n"),
-    )?;
-    eprintln!(
-        "wrote overturning-trilith.svg, .csv and .json to {} (columns of alpha = {alpha:.4} rad, p = {p:.4} rad/s)",
-        out.display()
-    );
-    Ok(())
+    write_spectrum(
+        &args.out,
+        "overturning-trilith",
+        c,
+        &json,
+        &format!("columns of alpha = {alpha:.4} rad, p = {p:.4} rad/s"),
+    )
 }

@@ -2,7 +2,6 @@
 //! impulses of landings through held joints.
 use super::*;
 use crate::integrate::rocking::modes::{self, Equations, Mode, Slip, State};
-use crate::motion::{Motion, Sine};
 
 /// A column of three blocks of different sizes, one joint given its own friction: the top
 /// block moves on the others (it tips first), or with a low friction between the lower two
@@ -39,17 +38,7 @@ fn with_own_base(c: &Column) -> Watch {
     w
 }
 
-fn inputs_at(t: f64) -> modes::Inputs {
-    let motion = Motion::sine(Sine {
-        amplitude_m_s2: 3.0,
-        frequency_hz: 1.3,
-        duration_s: 10.0,
-        ..Sine::default()
-    })
-    .unwrap();
-    let seg = motion.segment_at(t);
-    modes::inputs(&seg, t - seg.t0)
-}
+use modes::test_inputs_at as inputs_at;
 
 /// The d'Alembert balance of the body's pieces gives back, at its own base, the contact
 /// forces its equations of motion give (normal, tangential) and the resultant where the

@@ -596,7 +596,6 @@ mod tests {
     use super::*;
     use crate::integrate::rocking::modes::{self, Equations, State};
     use crate::integrate::rocking::series::eval;
-    use crate::motion::{Motion, Sine};
 
     /// Columns of 0.5 x 2.5 m, 1.5 m apart, under a lintel of 3.5 x 0.8 m that reaches 0.3 m
     /// past the left column and 0.7 m past the right one: heavier than a column (gamma =
@@ -647,15 +646,7 @@ mod tests {
     fn the_watch_divides_the_bodys_own_contact_forces() {
         let c = trilith_of(0.7);
         let frame = &c.frame;
-        let motion = Motion::sine(Sine {
-            amplitude_m_s2: 3.0,
-            frequency_hz: 1.3,
-            duration_s: 10.0,
-            ..Sine::default()
-        })
-        .unwrap();
-        let seg = motion.segment_at(0.37);
-        let inputs = modes::inputs(&seg, 0.37 - seg.t0);
+        let inputs = modes::test_inputs_at(0.37);
         let weight = c.body.mass_kg * c.body.g_m_s2;
         for (corner, theta) in [(Corner::Right, 0.06), (Corner::Left, -0.06)] {
             let state = State {

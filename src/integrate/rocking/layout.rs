@@ -18,9 +18,8 @@ pub struct Layout {
     /// Per output, its horizontal joint: (output, output below it, its name, its base's name).
     pub horizontal: Vec<(usize, Option<usize>, String, String)>,
     /// Per body, its outputs with the middle of their base at rest in the body's frame (the
-    /// middle of the body's base at its level, m) and whether they turn; the first is the
-    /// body's lowest block.
-    moving: Vec<Vec<(usize, f64, f64, bool)>>,
+    /// middle of the body's base at its level, m); the first is the body's lowest block.
+    moving: Vec<Vec<(usize, f64, f64)>>,
     /// Per body, half the width of the base its blocks turn on (m).
     pivot_half_base: Vec<f64>,
     /// Per output, whether it turns with its body (a trilith's lintel translates).
@@ -45,7 +44,7 @@ impl Layout {
                     .iter()
                     .map(|w| {
                         let moving = w.outputs.iter().filter(|o| o.moving);
-                        moving.map(|o| (o.block, o.x0, o.y0, o.turns)).collect()
+                        moving.map(|o| (o.block, o.x0, o.y0)).collect()
                     })
                     .collect(),
                 pivot_half_base: watches.iter().map(Watch::pivot_half_base_m).collect(),
@@ -68,9 +67,7 @@ impl Layout {
                     .enumerate()
                     .map(|(i, b)| (i, None, b.name.clone(), "ground".to_string()))
                     .collect(),
-                moving: (0..bodies.len())
-                    .map(|i| vec![(i, 0.0, 0.0, true)])
-                    .collect(),
+                moving: (0..bodies.len()).map(|i| vec![(i, 0.0, 0.0)]).collect(),
                 pivot_half_base: bodies.iter().map(|b| b.half_base_m).collect(),
                 turns: vec![true; bodies.len()],
                 column: (0..bodies.len()).map(|i| vec![i]).collect(),
@@ -111,8 +108,8 @@ impl Layout {
         let (sin, cos) = theta.sin_cos();
         self.moving[i]
             .iter()
-            .map(|&(k, x0, y0, turns)| {
-                let x0 = if turns { x0 } else { -s * bp };
+            .map(|&(k, x0, y0)| {
+                let x0 = if self.turns[k] { x0 } else { -s * bp };
                 (k, -(x0 - s * bp) * sin + y0 * (cos - 1.0))
             })
             .collect()
@@ -124,7 +121,7 @@ impl Layout {
         let bp = self.pivot_half_base[i];
         self.moving[i]
             .iter()
-            .map(|&(k, x0, y0, turns)| (k, block_series(body, traj, bp, x0, y0, turns)))
+            .map(|&(k, x0, y0)| (k, block_series(body, traj, bp, x0, y0, self.turns[k])))
             .collect()
     }
 }

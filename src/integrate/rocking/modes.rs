@@ -89,6 +89,20 @@ impl Slip {
     }
 }
 
+/// The inputs at time t of the sine (3 m/s2, 1.3 Hz) that the watches' tests step along.
+#[cfg(test)]
+pub(super) fn test_inputs_at(t: f64) -> Inputs {
+    let motion = crate::motion::Motion::sine(crate::motion::Sine {
+        amplitude_m_s2: 3.0,
+        frequency_hz: 1.3,
+        duration_s: 10.0,
+        ..crate::motion::Sine::default()
+    })
+    .unwrap();
+    let seg = motion.segment_at(t);
+    inputs(&seg, t - seg.t0)
+}
+
 /// A body's velocity at theta = 0: the corner it turns on (none: seated), its angular velocity
 /// (rad/s) and the slip velocity of that corner (or of its base) relative to the ground (m/s).
 pub(crate) type Velocity = (Option<Corner>, f64, f64);
