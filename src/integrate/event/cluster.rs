@@ -113,6 +113,14 @@ impl Slide {
         self.rel + self.grow * s - self.anchor.da(s)
     }
 
+    /// Rate of the relative acceleration (m/s3) where the ground's acceleration changes at
+    /// `ground_rate`: the friction term changes with the vertical load factor too (`grow`),
+    /// so a block balanced at its friction limit under vertical shaking leaves zero the way
+    /// the stick decision says it does, not the way a_g alone would.
+    pub fn acc_rate(&self, ground_rate: f64) -> f64 {
+        self.grow - ground_rate
+    }
+
     /// Displacement, velocity and acceleration at time t, from one evaluation of the ground
     /// motion (bit for bit what `disp`, `vel` and `acc` give).
     pub fn state(&self, t: f64) -> (f64, f64, f64) {

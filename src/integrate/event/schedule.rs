@@ -187,7 +187,11 @@ impl Engine<'_> {
             // The stop is the first zero of the velocity: the same function, found on the same
             // pieces, so a touch at the velocity's zero and the stop agree to the bit.
             let s = f64::from(sigma);
-            let start = valid_after(s * vel(t0), 0.0, &[s * acc(t0), -s * r1, -s * r2]);
+            let start = valid_after(
+                s * vel(t0),
+                0.0,
+                &[s * acc(t0), s * sl.acc_rate(r1), -s * r2],
+            );
             hits[0] = if start {
                 v_roots.iter().copied().find(|&t| t > t0)
             } else {
@@ -201,7 +205,7 @@ impl Engine<'_> {
                 let (u, v, _) = sl.state(x);
                 (u - lo, v)
             };
-            let start = valid_after(f(t0), tol, &[vel(t0), acc(t0), -r1]);
+            let start = valid_after(f(t0), tol, &[vel(t0), acc(t0), sl.acc_rate(r1)]);
             hits[1] = first_violation(
                 Fun::with(&f, &df),
                 t0,
@@ -219,7 +223,7 @@ impl Engine<'_> {
                 let (u, v, _) = sl.state(x);
                 (hi - u, -v)
             };
-            let start = valid_after(f(t0), tol, &[-vel(t0), -acc(t0), r1]);
+            let start = valid_after(f(t0), tol, &[-vel(t0), -acc(t0), -sl.acc_rate(r1)]);
             hits[2] = first_violation(
                 Fun::with(&f, &df),
                 t0,
