@@ -73,6 +73,18 @@ pub enum Error {
     /// The simulation could not continue.
     #[error(transparent)]
     Simulation(#[from] SimulationError),
+    /// The simulation could not continue after it had written part of its results as it went
+    /// (the history and the event log, under their partial names): they are kept.
+    #[error(
+        "{source}\n  what the run had met up to then is kept in {}",
+        kept_list(kept)
+    )]
+    Stopped {
+        /// Why it stopped.
+        source: SimulationError,
+        /// The partial files it leaves.
+        kept: Vec<PathBuf>,
+    },
     /// A table of study results read back (a CSV pirqa wrote) is malformed.
     #[error("{}: line {line}: {message}", path.display())]
     Table {
@@ -624,6 +636,12 @@ pub(crate) fn name_list<'a>(names: impl ExactSizeIterator<Item = &'a str>, most:
     } else {
         shown.join(", ")
     }
+}
+
+/// Files, by path, joined with "and".
+fn kept_list(files: &[PathBuf]) -> String {
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    names.join(" and ")
 }
 
 #[cfg(test)]

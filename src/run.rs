@@ -57,6 +57,9 @@ pub struct RunSettings {
     pub history_file: Option<std::path::PathBuf>,
     /// Keep the event log.
     pub log_events: bool,
+    /// With `log_events`, also write the log to this JSON-lines file as the run goes, under a
+    /// partial name until the run ends ([`Settings::events_file`]).
+    pub events_file: Option<std::path::PathBuf>,
     /// Keep the log of mode decisions (event-driven sliding only).
     pub log_decisions: bool,
     /// What to do once a block falls.
@@ -134,6 +137,7 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
         output_dt_s: settings.output_dt_s,
         history_file: settings.history_file.clone(),
         log_events: settings.log_events,
+        events_file: settings.events_file.clone(),
         log_decisions: settings.log_decisions,
         after_collapse: settings.after_collapse,
         progress: settings.progress.clone(),

@@ -12,7 +12,7 @@ fn class_name(e: &Error) -> &'static str {
         Error::Motion { .. } | Error::InvalidMotion(_) | Error::Unit(_) => "MotionError",
         Error::Sweep { .. } => "SweepError",
         Error::Option { .. } => "OptionError",
-        Error::Simulation(_) => "SimulationError",
+        Error::Simulation(_) | Error::Stopped { .. } => "SimulationError",
         Error::Io { .. } => "FileError",
         Error::Table { .. } => "ResultsError",
     }

@@ -10,7 +10,7 @@ use pirqa::motion::{
     ReadOptions, Sine,
 };
 use pirqa::plot::{chart, response_charts};
-use pirqa::response::{DecisionCause, DecisionRecord, Response};
+use pirqa::response::{partial_name, DecisionCause, DecisionRecord, Response};
 use pirqa::units::{parse_acceleration, AccelUnit};
 use pirqa::Error;
 use pirqa::{Direction, Equations, Model, ModelChoice, RunSettings};
@@ -431,6 +431,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         // Straight to disk as the run goes: memory stays bounded however long the history.
         history_file: history.map(|dir| dir.join("history.csv")),
         log_events: args.out.is_some(),
+        events_file: args.out.as_ref().map(|dir| dir.join("events.jsonl")),
         log_decisions: args.decisions,
         after_collapse: args.after_collapse,
         method: args.method(),
@@ -450,14 +451,36 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             "note: a large run: {why}; it shows its progress and stops at Ctrl-C with what it has"
         );
     }
+    let partials: Vec<PathBuf> = args.out.as_ref().map_or_else(Vec::new, |dir| {
+        ["history.csv", "events.jsonl"]
+            .map(|name| partial_name(&dir.join(name)))
+            .to_vec()
+    });
     if let Some(dir) = &args.out {
-        // An older run's summary would stand beside this run's files while it runs.
-        write_or_remove(&dir.join("summary.json"), None)?;
+        // The folder holds one run's files: an older run's would pass for this one's while it
+        // runs, and after it if it fails.
+        for name in RUN_FILES {
+            write_or_remove(&dir.join(name), None)?;
+        }
+        for partial in &partials {
+            write_or_remove(partial, None)?;
+        }
     }
     settings.progress = Some(progress);
     let response = pirqa::run(&model, &motion, &settings);
     bar.finish_and_clear();
-    let mut response = response?;
+    let mut response = response.map_err(|e| match e {
+        // A run that failed part-way keeps what it wrote as it went.
+        Error::Simulation(source) => {
+            let kept: Vec<PathBuf> = partials.into_iter().filter(|p| p.exists()).collect();
+            if kept.is_empty() {
+                Error::Simulation(source)
+            } else {
+                Error::Stopped { source, kept }
+            }
+        }
+        other => other,
+    })?;
     response.summary.motion_processing = notes;
     if let Some(dir) = &args.out {
         // The wall beside its run, so that the folder alone draws and plays it again
@@ -475,6 +498,17 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
     }
     Ok(())
 }
+
+/// The files `pirqa run --out DIR` writes, the summary first (it goes last, and an older one
+/// first), but for `wall.ron`: a case's folder is rerun from the copy it holds.
+const RUN_FILES: [&str; 6] = [
+    "summary.json",
+    "events.jsonl",
+    "decisions.jsonl",
+    "history.csv",
+    "response.svg",
+    "response.csv",
+];
 
 /// Writes a run's files into `dir`; with a history, also its chart (`response.svg`) and the
 /// data it draws (`response.csv`); the summary last.

@@ -12,7 +12,7 @@ pub mod stepping;
 
 use crate::error::SimulationError;
 use crate::motion::Motion;
-use crate::response::{HistoryTo, Response};
+use crate::response::{EventsTo, HistoryTo, Response};
 use crate::topology::Topology;
 use crate::wall::Wall;
 use std::path::PathBuf;
@@ -44,6 +44,10 @@ pub struct Settings {
     pub history_file: Option<PathBuf>,
     /// Keep the event log.
     pub log_events: bool,
+    /// With `log_events`, also write the log to this JSON-lines file as the run goes, under a
+    /// partial name (`.events.jsonl.partial` for `events.jsonl`) that the run takes away when
+    /// it ends: a run that fails or is killed keeps the events it met up to then.
+    pub events_file: Option<PathBuf>,
     /// Keep the log of mode decisions (event-driven only: what each took in and cost).
     pub log_decisions: bool,
     /// What to do after a collapse.
@@ -161,6 +165,15 @@ impl Settings {
         }
     }
 
+    /// Where the event log goes.
+    pub fn events_to(&self) -> EventsTo {
+        match (self.log_events, &self.events_file) {
+            (false, _) => EventsTo::Nowhere,
+            (true, None) => EventsTo::Memory,
+            (true, Some(path)) => EventsTo::File(path.clone()),
+        }
+    }
+
     /// Summary only, for `duration_s`.
     pub fn summary_only(duration_s: f64) -> Settings {
         Settings {
@@ -168,6 +181,7 @@ impl Settings {
             output_dt_s: None,
             history_file: None,
             log_events: false,
+            events_file: None,
             log_decisions: false,
             after_collapse: AfterCollapse::Stop,
             progress: None,

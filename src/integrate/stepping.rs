@@ -245,7 +245,7 @@ impl<'a> Observer<'a> {
             sc.wall,
             sc.topology,
             sc.settings.history_to(),
-            sc.settings.log_events,
+            sc.settings.events_to(),
         );
         let n = model.n;
         Observer {

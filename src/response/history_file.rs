@@ -3,8 +3,8 @@
 //! streamed file is named `.history.csv.partial` beside its final name until the run ends, so a
 //! killed run leaves a file that says it is partial, never a history.csv cut short.
 
+use super::partial::PartialFile;
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The header: time, then u and v of every block (and theta, omega and w, the vertical
@@ -43,63 +43,36 @@ pub(crate) fn push_row(out: &mut String, t: f64, parts: [&[f64]; 5]) {
 /// A history written to disk as it comes.
 #[derive(Debug)]
 pub struct Stream {
-    path: PathBuf,
-    partial: PathBuf,
+    file: PartialFile,
     names: Vec<String>,
-    file: Option<std::io::BufWriter<std::fs::File>>,
     line: String,
     rows: u64,
-    /// The first failure, kept until the run ends (a run does not stop for its history).
-    failed: Option<std::io::Error>,
 }
 
 impl Stream {
     /// A history for blocks `names`, to be written at `path`.
     pub fn new(path: &Path, names: &[String]) -> Stream {
-        let name = path.file_name().map_or_else(
-            || "history.csv".into(),
-            |n| n.to_string_lossy().into_owned(),
-        );
         Stream {
-            partial: path.with_file_name(format!(".{name}.partial")),
-            path: path.to_path_buf(),
+            file: PartialFile::new(path),
             names: names.to_vec(),
-            file: None,
             line: String::new(),
             rows: 0,
-            failed: None,
         }
     }
 
     /// Writes one row (the header before the first, rotating or not as the first row is).
     pub fn row(&mut self, t: f64, parts: [&[f64]; 5]) {
-        if self.failed.is_some() {
+        if self.file.failed() {
             return;
         }
         self.line.clear();
-        if self.file.is_none() {
-            let opened = self
-                .partial
-                .parent()
-                .filter(|d| !d.as_os_str().is_empty())
-                .map_or(Ok(()), std::fs::create_dir_all)
-                .and_then(|()| std::fs::File::create(&self.partial));
-            match opened {
-                Ok(f) => self.file = Some(std::io::BufWriter::with_capacity(1 << 20, f)),
-                Err(e) => {
-                    self.failed = Some(e);
-                    return;
-                }
-            }
+        if !self.file.opened() {
             let names: Vec<&str> = self.names.iter().map(String::as_str).collect();
             self.line = header(&names, !parts[2].is_empty());
         }
         push_row(&mut self.line, t, parts);
         self.rows += 1;
-        let file = self.file.as_mut().expect("opened above");
-        if let Err(e) = file.write_all(self.line.as_bytes()) {
-            self.failed = Some(e);
-        }
+        self.file.write(&self.line);
     }
 
     /// Rows written.
@@ -109,19 +82,8 @@ impl Stream {
 
     /// Ends the file: flushed and given its name; on a failure the partial file is taken away
     /// and the error returned with the final name.
-    pub fn finish(mut self) -> Result<PathBuf, (PathBuf, std::io::Error)> {
-        let done = match (self.failed.take(), self.file.take()) {
-            (Some(e), _) => Err(e),
-            (None, Some(mut f)) => f
-                .flush()
-                .and_then(|()| f.get_ref().sync_all())
-                .and_then(|()| std::fs::rename(&self.partial, &self.path)),
-            (None, None) => Ok(()),
-        };
-        done.map(|()| self.path.clone()).map_err(|e| {
-            let _ = std::fs::remove_file(&self.partial);
-            (self.path.clone(), e)
-        })
+    pub fn finish(self) -> Result<PathBuf, (PathBuf, std::io::Error)> {
+        self.file.finish()
     }
 }
 

@@ -5,6 +5,8 @@
 
 mod history_file;
 pub use history_file::{each_row, RowVisitor, Stream};
+mod partial;
+pub use partial::partial_name;
 mod recorder;
 pub mod saved;
 
@@ -534,6 +536,20 @@ pub enum HistoryTo {
     /// In the response ([`Response::history`]).
     Memory,
     /// Written to this CSV file as the run goes ([`Response::history_file`]).
+    File(std::path::PathBuf),
+}
+
+/// Where a run keeps its event log.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum EventsTo {
+    /// No event log.
+    #[default]
+    Nowhere,
+    /// In the response ([`Response::events`]).
+    Memory,
+    /// In the response, and written to this JSON-lines file as the run goes, under its partial
+    /// name until the run ends, which takes it away (the caller writes the final file from
+    /// the response, in time order): a run that fails or is killed keeps the events it met.
     File(std::path::PathBuf),
 }
 

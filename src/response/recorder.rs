@@ -1,9 +1,11 @@
 //! The recorder integrators feed as they run: extremes, counts, energy terms, history rows and
 //! the event log, turned into a [`Response`] when the run ends.
 
+use super::partial::PartialFile;
 use super::{
-    BlockSummary, Collapse, DecisionRecord, Energy, EventKind, EventRecord, History, HistoryFile,
-    HistoryTo, HorizontalJointSummary, ModelUsed, Response, Stats, Stream, Summary, Warning,
+    BlockSummary, Collapse, DecisionRecord, Energy, EventKind, EventRecord, EventsTo, History,
+    HistoryFile, HistoryTo, HorizontalJointSummary, ModelUsed, Response, Stats, Stream, Summary,
+    Warning,
 };
 use crate::topology::{Base, BlockId, HorizontalId, JointRef, Topology, VerticalId};
 use crate::wall::Wall;
@@ -30,6 +32,8 @@ pub struct Recorder {
     /// Logged events.
     pub events: Vec<EventRecord>,
     log_events: bool,
+    /// The event log going to a file as well, as the run goes.
+    event_file: Option<PartialFile>,
     /// Logged mode decisions, when the integrator keeps them.
     pub decisions: Option<Vec<DecisionRecord>>,
     /// Impacts counted.
@@ -78,9 +82,9 @@ pub fn horizontal_joints(
 }
 
 impl Recorder {
-    /// A recorder for this wall; `history` says where sampled rows go, `log_events` keeps the
-    /// event log.
-    pub fn new(wall: &Wall, topo: &Topology, history: HistoryTo, log_events: bool) -> Recorder {
+    /// A recorder for this wall; `history` says where sampled rows go, `events` where the
+    /// event log goes.
+    pub fn new(wall: &Wall, topo: &Topology, history: HistoryTo, events: EventsTo) -> Recorder {
         let horizontal = horizontal_joints(wall, topo);
         let names = wall.blocks.iter().map(|b| b.name.clone()).collect();
         Recorder {
@@ -89,7 +93,7 @@ impl Recorder {
                 .iter()
                 .map(|j| (j.left.0, j.right.0))
                 .collect(),
-            ..Recorder::for_bodies(names, horizontal, history, log_events)
+            ..Recorder::for_bodies(names, horizontal, history, events)
         }
     }
 
@@ -99,7 +103,7 @@ impl Recorder {
         names: Vec<String>,
         horizontal: Vec<(usize, Option<usize>, String, String)>,
         history: HistoryTo,
-        log_events: bool,
+        events: EventsTo,
     ) -> Recorder {
         let n = names.len();
         let stream = match &history {
@@ -121,7 +125,11 @@ impl Recorder {
             history: (history == HistoryTo::Memory).then(History::default),
             stream,
             events: Vec::new(),
-            log_events,
+            log_events: events != EventsTo::Nowhere,
+            event_file: match &events {
+                EventsTo::File(path) => Some(PartialFile::new(path)),
+                EventsTo::Nowhere | EventsTo::Memory => None,
+            },
             decisions: None,
             impacts: 0,
             touches: 0,
@@ -215,7 +223,7 @@ impl Recorder {
                 .iter()
                 .position(|h| h.0 == blocks[0])
                 .map(|k| JointRef::Horizontal(HorizontalId(k)));
-            self.events.push(EventRecord {
+            self.log(EventRecord {
                 time_s,
                 kind,
                 blocks: blocks.iter().map(|&b| self.names[b].clone()).collect(),
@@ -266,6 +274,14 @@ impl Recorder {
         }
     }
 
+    /// Keeps a logged event, and writes it to the event file if there is one.
+    fn log(&mut self, event: EventRecord) {
+        if let Some(file) = &mut self.event_file {
+            file.write(&(serde_json::to_string(&event).expect("record serialises") + "\n"));
+        }
+        self.events.push(event);
+    }
+
     /// Logs an event (when logging) — counting is the caller's business.
     pub fn event(
         &mut self,
@@ -276,7 +292,7 @@ impl Recorder {
         speed: Option<f64>,
     ) {
         if self.log_events {
-            self.events.push(EventRecord {
+            self.log(EventRecord {
                 time_s,
                 kind,
                 blocks: blocks.iter().map(|&b| self.names[b].clone()).collect(),
@@ -300,7 +316,7 @@ impl Recorder {
         if self.log_events {
             let (l, r) = self.vertical[j.0];
             let joint = JointRef::Vertical(j);
-            self.events.push(EventRecord {
+            self.log(EventRecord {
                 time_s,
                 kind: EventKind::Impact,
                 blocks: vec![self.names[l].clone(), self.names[r].clone()],
@@ -345,6 +361,9 @@ impl Recorder {
             self.block_extremes(i, ui.abs(), vi.abs());
         }
         self.events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+        if let Some(file) = self.event_file.take() {
+            file.discard();
+        }
         let e = &mut self.energy;
         e.residual_j = e.initial_j + e.input_j
             - e.friction_j

@@ -112,6 +112,7 @@ pub fn run(
         output_dt_s,
         history_file: None,
         log_events: true,
+        events_file: None,
         log_decisions: false,
         after_collapse: Default::default(),
         progress: None,

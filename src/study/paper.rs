@@ -443,6 +443,7 @@ fn record_figures(
             output_dt_s: Some(0.02),
             history_file: None,
             log_events: false,
+            events_file: None,
             log_decisions: false,
             after_collapse: AfterCollapse::Continue,
             progress: None,

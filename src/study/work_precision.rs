@@ -162,6 +162,7 @@ fn settings(duration: f64) -> Settings {
         output_dt_s: Some(OUTPUT_DT_S),
         history_file: None,
         log_events: false,
+        events_file: None,
         log_decisions: false,
         after_collapse: Default::default(),
         progress: None,

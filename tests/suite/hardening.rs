@@ -497,3 +497,112 @@ fn a_streamed_history_and_its_chart_equal_the_ones_kept_in_memory() {
         assert_eq!(streamed.summary, kept.summary);
     }
 }
+
+/// A run that fails part-way keeps what it wrote as it went: its history and its event log,
+/// under their partial names, which the error names; no older run's files stay beside them to
+/// pass for its own. A run that ends leaves no partial file.
+#[test]
+fn a_run_that_fails_part_way_keeps_its_history_and_events() {
+    let dir = common::scratch("out");
+    let out = dir.to_str().unwrap();
+    let names = || {
+        let mut n: Vec<String> = std::fs::read_dir(&*dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        n.sort();
+        n
+    };
+    let args = [
+        "run",
+        WALL,
+        "--sine",
+        "400gal",
+        "--freq",
+        "1",
+        "--duration",
+        "3",
+    ];
+    let (code, _, err) = common::pirqa(&[&args[..], &["--out", out]].concat(), &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        names().iter().all(|n| !n.ends_with(".partial")),
+        "{:?}",
+        names()
+    );
+    // The regularized method with a step floor of 1e-12 s stops at the first impact.
+    let failing = [
+        "--method",
+        "regularized",
+        "--rtol",
+        "1e-10",
+        "--eps",
+        "1e-12",
+    ];
+    let (code, _, err) = common::pirqa(&[&args[..], &failing, &["--out", out]].concat(), &[]);
+    assert_eq!(code, 1, "{err}");
+    let kept = [".events.jsonl.partial", ".history.csv.partial"];
+    assert!(err.contains("the step fell below"), "{err}");
+    for name in kept {
+        assert!(err.contains(&format!("{out}/{name}")), "{err}");
+    }
+    // The wall stays: a case's folder is rerun from its copy.
+    assert_eq!(names(), [kept[0], kept[1], "wall.ron"]);
+    let events = std::fs::read_to_string(dir.join(kept[0])).unwrap();
+    let last: serde_json::Value = serde_json::from_str(events.lines().last().unwrap()).unwrap();
+    assert_eq!(last["kind"], "impact");
+    let history = std::fs::read_to_string(dir.join(kept[1])).unwrap();
+    assert!(history.starts_with("time_s,u_B1_m,") && history.lines().count() >= 2);
+}
+
+/// The event log written as the run goes is the run's log: a run stopped by an error at its
+/// first impact leaves, line for line, the events the whole run logs before it.
+#[test]
+fn the_event_log_written_as_a_run_goes_is_the_logs_beginning() {
+    use pirqa::integrate::event::{EventDriven, Params};
+    use pirqa::integrate::{Integrator, Scenario, Settings};
+    let wall = pirqa::Wall::load(std::path::Path::new(WALL)).unwrap();
+    let topology = pirqa::Topology::new(&wall).unwrap();
+    let motion = crate::engine::sine(4.0, 1.0, 0.0, 20.0);
+    let dir = common::scratch("out");
+    let settings = Settings {
+        log_events: true,
+        events_file: Some(dir.join("events.jsonl")),
+        ..Settings::summary_only(20.0)
+    };
+    let run = |params: Params| {
+        EventDriven { params }.run(&Scenario {
+            wall: &wall,
+            topology: &topology,
+            motion: &motion,
+            settings: &settings,
+        })
+    };
+    let whole = run(Params::default()).unwrap();
+    assert!(whole.summary.impacts > 0);
+    let partial = dir.join(".events.jsonl.partial");
+    assert!(
+        !partial.exists(),
+        "a run that ends takes its partial file away"
+    );
+    let strict = Params {
+        max_collisions_per_chain: Some(0),
+        ..Params::default()
+    };
+    assert!(run(strict).is_err());
+    let kept = std::fs::read_to_string(&partial).unwrap();
+    let lines: Vec<&str> = kept.lines().collect();
+    let first_impact = whole
+        .events
+        .iter()
+        .position(|e| e.kind == pirqa::response::EventKind::Impact)
+        .unwrap();
+    assert!(
+        lines.len() >= 10 && lines.len() <= first_impact,
+        "{}",
+        lines.len()
+    );
+    for (line, event) in lines.iter().zip(&whole.events) {
+        assert_eq!(*line, serde_json::to_string(event).unwrap());
+    }
+}

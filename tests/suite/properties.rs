@@ -92,7 +92,7 @@ proptest! {
         let topo = topo.unwrap();
         if std::env::var("PIRQA_PROBE").is_ok() { eprintln!("CASE {}\n{amp} {freq} {phase}", pirqa::wall::to_ron_string(&d)); }
         let motion = Motion::sine(Sine { amplitude_m_s2: amp, frequency_hz: freq, phase_rad: phase.to_radians(), duration_s: 4.0 }).unwrap();
-        let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), history_file: None, log_events: true, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), history_file: None, log_events: true, events_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings }).unwrap();
 
         let e = r.summary.energy;
@@ -165,7 +165,7 @@ proptest! {
     ) {
         let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2500, 1000);
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
-        let settings = Settings { duration_s: 10.0, output_dt_s: None, history_file: None, log_events: false, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { duration_s: 10.0, output_dt_s: None, history_file: None, log_events: false, events_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings });
         prop_assert!(r.is_ok(), "{:?}", r.err());
         let e = r.unwrap().summary.energy;
@@ -192,7 +192,7 @@ proptest! {
         use pirqa::integrate::event::Params;
         let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2000, 2000);
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
-        let settings = Settings { duration_s: 10.0, output_dt_s: None, history_file: None, log_events: true, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { duration_s: 10.0, output_dt_s: None, history_file: None, log_events: true, events_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let scenario = Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings };
         let run = |kept_limits_from: usize, beside_stuck_from: usize| {
             let params = Params { kept_limits_from, beside_stuck_from, ..Params::default() };

@@ -239,7 +239,7 @@ impl Integrator for RockingPeer {
             vec![name.clone()],
             vec![(0, None, name, "ground".into())],
             settings.history_to(),
-            false,
+            pirqa::response::EventsTo::Nowhere,
         );
         let mut sim = Sim::with_rotation(sc, self.dt_s, Some(self.theta0));
         let steps = (settings.duration_s / self.dt_s).ceil() as u64;
@@ -314,6 +314,7 @@ fn rocking_points(out: &str) {
             output_dt_s: Some(work_precision::OUTPUT_DT_S),
             history_file: None,
             log_events: false,
+            events_file: None,
             log_decisions: false,
             after_collapse: Default::default(),
             progress: None,
@@ -380,6 +381,7 @@ fn chart_points(cases: &[work_precision::Case], out: &str) {
             output_dt_s: Some(work_precision::OUTPUT_DT_S),
             history_file: None,
             log_events: false,
+            events_file: None,
             log_decisions: false,
             after_collapse: Default::default(),
             progress: None,

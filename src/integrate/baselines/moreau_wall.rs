@@ -301,7 +301,7 @@ impl Integrator for MoreauWall {
             .collect();
         let n = bodies.len();
         let candidates = candidates(sc);
-        let mut rec = Recorder::new(wall, topo, settings.history_to(), settings.log_events);
+        let mut rec = Recorder::new(wall, topo, settings.history_to(), settings.events_to());
         let on_several: Vec<String> = (0..n)
             .filter(|&i| {
                 topo.horizontal

@@ -258,7 +258,12 @@ impl<'a> Engine<'a> {
             .map(|b| b.right().to_f64().abs().max(b.top().to_f64()))
             .fold(1.0, f64::max);
         let seg = sc.motion.segment_at(0.0);
-        let mut rec = Recorder::new(wall, topo, sc.settings.history_to(), sc.settings.log_events);
+        let mut rec = Recorder::new(
+            wall,
+            topo,
+            sc.settings.history_to(),
+            sc.settings.events_to(),
+        );
         rec.decisions = sc.settings.log_decisions.then(Vec::new);
         Ok(Engine {
             given: Given {

@@ -163,7 +163,7 @@ impl<'a> Engine<'a> {
             layout.names.clone(),
             layout.horizontal.clone(),
             s.history_to(),
-            s.log_events,
+            s.events_to(),
         );
         let tracks = scene
             .initial_rotation_rad

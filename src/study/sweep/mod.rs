@@ -559,6 +559,7 @@ impl Sweep {
             output_dt_s,
             history_file: None,
             log_events: true,
+            events_file: None,
             log_decisions: false,
             after_collapse: Default::default(),
             progress: Some(progress),
