@@ -35,9 +35,24 @@ const MAX_H_PX: f64 = 560.0;
 pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
     let du = |i: usize| d.displacement_m.as_ref().map_or(0.0, |u| u[i]);
     let fallen = |i: usize| d.fallen.get(i).copied().unwrap_or(false);
-    // Each block's corners where the run put it (a rectangle moved by u when nothing turned).
+    // Where the run put the point (px, py) of block i as built: turned about the middle of its
+    // base and moved by (u, w); moved by u alone when nothing turned.
+    let moved = |i: usize, px: f64, py: f64| -> (f64, f64) {
+        let Some((theta, w)) = d.pose.as_ref().map(|(t, w)| (t[i], w[i])) else {
+            return (px + du(i), py);
+        };
+        let b = &wall.blocks[i];
+        let (mx, y) = (b.x.to_f64() + b.width.to_f64() / 2.0, b.y.to_f64());
+        let (sin, cos) = theta.sin_cos();
+        let (rx, ry) = (px - mx, py - y);
+        (
+            mx + du(i) + cos * rx + sin * ry,
+            y + w - sin * rx + cos * ry,
+        )
+    };
+    // Each block's corners where the run put it, when blocks turned.
     let corners = |i: usize| -> Option<[(f64, f64); 4]> {
-        let (theta, w) = d.pose.as_ref().map(|(t, w)| (t[i], w[i]))?;
+        d.pose.as_ref()?;
         let b = &wall.blocks[i];
         let (x, y, bw, bh) = (
             b.x.to_f64(),
@@ -45,15 +60,7 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
             b.width.to_f64(),
             b.height.to_f64(),
         );
-        let mx = x + bw / 2.0;
-        let (sin, cos) = theta.sin_cos();
-        let at = |px: f64, py: f64| {
-            let (rx, ry) = (px - mx, py - y);
-            (
-                mx + du(i) + cos * rx + sin * ry,
-                y + w - sin * rx + cos * ry,
-            )
-        };
+        let at = |px: f64, py: f64| moved(i, px, py);
         Some([at(x, y), at(x + bw, y), at(x + bw, y + bh), at(x, y + bh)])
     };
     let (mut x0, mut x1, mut top) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
@@ -208,10 +215,11 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
                     )
                 }
             };
-            let x = (lo + hi) / 2.0 + du(u);
+            // On the upper block's base, where the run put it.
+            let (x, y) = moved(u, (lo + hi) / 2.0, b.y.to_f64());
             svg.text(
                 px(x),
-                py(b.y.to_f64()) - 4.0,
+                py(y) - 4.0,
                 size,
                 "middle",
                 "#1f5fa8",
@@ -221,9 +229,13 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
         for j in &topo.vertical {
             if j.gap_m.is_positive() {
                 let l = &wall.blocks[j.left.0];
-                let y = l.y.to_f64() + l.height.to_f64() * 0.8;
+                let (x, y) = moved(
+                    j.left.0,
+                    l.right().to_f64(),
+                    l.y.to_f64() + l.height.to_f64() * 0.8,
+                );
                 svg.text(
-                    px(l.right().to_f64() + du(j.left.0)) + 2.0,
+                    px(x) + 2.0,
                     py(y),
                     size,
                     "start",

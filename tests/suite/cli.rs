@@ -781,6 +781,39 @@ fn draw_shows_a_run_at_its_end_and_at_a_chosen_time() {
         let (ok, svg, err) = draw_on("walls/rocking/trilith.ron", &trilith, extra);
         assert!(ok, "{err}");
         assert_eq!(svg.matches("<polygon").count(), 3, "{svg}");
+        // The labels go with their blocks: the gap's beside the left column's right face at
+        // 0.8 of its height, where the run turned it (2 px to the right of the face).
+        let numbers = |text: &str| -> Vec<f64> {
+            text.split([' ', ','])
+                .filter_map(|x| x.parse().ok())
+                .collect()
+        };
+        let left = svg.split("<polygon points=\"").nth(1).unwrap();
+        let p = numbers(left.split('"').next().unwrap());
+        let (bottom_right, top_right) = ((p[2], p[3]), (p[4], p[5]));
+        let label = svg
+            .split("<text x=\"")
+            .find(|t| t.contains(">gap "))
+            .unwrap();
+        let x: f64 = label.split('"').next().unwrap().parse().unwrap();
+        let y: f64 = label
+            .split("y=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        let on_face = |a: f64, b: f64| a + 0.8 * (b - a);
+        assert!(
+            (x - 2.0 - on_face(bottom_right.0, top_right.0)).abs() < 0.02,
+            "{label}"
+        );
+        assert!(
+            (y - on_face(bottom_right.1, top_right.1)).abs() < 0.02,
+            "{label}"
+        );
     }
     let (ok, _, err) = draw(&["--at", "12"]);
     assert!(
