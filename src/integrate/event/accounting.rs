@@ -119,6 +119,18 @@ impl Engine<'_> {
         }
     }
 
+    /// Friction work of every joint above or below cluster k's blocks, booked up to now.
+    pub(super) fn account_joints_of(&mut self, k: ClusterId) {
+        let topo = self.given.topo;
+        let blocks = std::mem::take(&mut self.clusters[k].blocks);
+        for &i in &blocks {
+            for s in topo.below[i].iter().chain(&topo.above[i]) {
+                self.account_horizontal(s.0);
+            }
+        }
+        self.clusters[k].blocks = blocks;
+    }
+
     /// Friction work on horizontal joint s since it was last accounted, and its displacement extreme.
     /// With vertical shaking the capacity is F lambda(t): the work is F sigma (lambda d |_a^b -
     /// lambda' integral d dt) over the stretch (within one segment).

@@ -424,6 +424,12 @@ impl Engine<'_> {
                 let c_q = force / &self.clusters[k].mass_q;
                 if c_q != sl.c_q {
                     self.account(k, t);
+                    if self.seg.has_vertical() {
+                        // A joint's friction work under a varying capacity follows the path of
+                        // its blocks, which changes here: what it did so far is booked first
+                        // (without vertical shaking it depends only on where they are).
+                        self.account_joints_of(k);
+                    }
                     self.record_extremes(k);
                     let v = self.cluster_vel(k);
                     let members = self.clusters[k].blocks.clone();
