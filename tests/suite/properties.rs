@@ -265,7 +265,7 @@ proptest! {
         e in prop::sample::select(vec![1.0, 0.8, 0.5, 0.0]),
         seed in 0u64..1_000_000,
         pga in 2.0f64..8.0,
-        (amp, freq, phase) in (0.5f64..4.0, 0.5f64..8.0, 0.0f64..6.28),
+        (amp, freq, phase) in (0.5f64..4.0, 0.5f64..8.0, 0.0f64..std::f64::consts::TAU),
     ) {
         let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2500, 1000);
         let h = pirqa::samples::broadband_record(6.0, 0.01, pga);
