@@ -599,7 +599,11 @@ impl<'a> Engine<'a> {
         let pivot = tr.mode.pivot().expect("only a rocking body lands");
         let (omega, v, u) = (tr.state.omega, tr.state.v, tr.state.u);
         let landing = impact::land(body, eq, pivot, omega, v, self.t)?;
-        self.rec.energy.impact_loss_j += landing.loss_j;
+        // A landing is found where theta is zero to a tie (series::TIE of alpha), and the body
+        // is then seated at theta = 0: what potential energy it had there (m g b theta, up to
+        // 5e-9 J for a 0.4 m block) goes with the landing's loss, or the balance would lose it.
+        let dropped = modes::potential_j(body, &self.trajectory(i, now), 0.0);
+        self.rec.energy.impact_loss_j += landing.loss_j + dropped;
         for k in self.layout.outputs(i) {
             self.rec.rocking_impact(k);
         }
