@@ -246,8 +246,9 @@ impl<'a> Engine<'a> {
                 body: body.name.clone(),
                 time_s: self.t,
             });
+            // The run ends here; the body keeps the mode it had, whose trajectory gives the
+            // energies and the pose of its state now (a flight's would seat it).
             self.t_end = self.t;
-            self.tracks[i].mode = new;
             return Ok(());
         }
         if let Some(k) = self.scene.watches.get(i).and_then(|w| w.forbids(new)) {
