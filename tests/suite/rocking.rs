@@ -477,3 +477,28 @@ fn a_run_ending_in_free_flight_balances_its_energy_there() {
     );
     balanced(&r);
 }
+
+/// A body that lands flat with friction to spare stops its base: its slip velocity is zero,
+/// not the round-off of v - (m v) / m. It was 1.4e-17 m/s here (a block of mu 0.3 < b/h
+/// released from 0.1 rad slides and rocks, then lands flat), and no mode could be decided:
+/// sliding that way could not go on, and rest needs a base at rest.
+#[test]
+fn a_flat_landing_that_sticks_stops_the_base_exactly() {
+    let mut body = RockingBody::rectangle("B", 1.0, 1.2, 2650.0 * 0.5 * 1.2, 0.3, G);
+    body.restitution_factor = 0.7;
+    let motion = Motion::sine(Sine {
+        amplitude_m_s2: 0.534 * G,
+        frequency_hz: 0.6,
+        phase_rad: 9f64.to_radians(),
+        duration_s: 6.6,
+    })
+    .unwrap();
+    let r = run(&body, -0.1, Equations::Exact, &motion, 6.6);
+    let flat = r
+        .events
+        .iter()
+        .find(|e| e.kind == EventKind::RockingImpact)
+        .unwrap();
+    assert_eq!(flat.angular_velocity_after_rad_s, Some(0.0));
+    balanced(&r);
+}

@@ -135,10 +135,14 @@ fn land_flat(
     );
     let pn = -m * yg0;
     let mut pt = -m * xg0;
+    // The base sticks where friction can stop it: its velocity is then zero, not the round-off
+    // of xg0 - (m xg0) / m (a slip of 1e-17 m/s left no mode to decide: it would slide, and
+    // could not).
+    let mut xg = 0.0;
     if pt.abs() > mu * pn {
         pt = pt.signum() * mu * pn;
+        xg = xg0 + pt / m;
     }
-    let xg = xg0 + pt / m;
     // Moment about the centroid: I_G (0 - omega) = -h P_t + b (P_R - P_L).
     let diff = (-body.inertia_kg_m2 * omega + h * pt) / b;
     let (right, left) = (0.5 * (pn + diff), 0.5 * (pn - diff));
