@@ -11,6 +11,7 @@ use proptest::prelude::*;
 use std::collections::BTreeMap;
 
 use crate::answers;
+use crate::engine::sampled_sine;
 
 /// Two courses over the same length, cut at random; random friction per block and gaps.
 fn wall_strategy() -> impl Strategy<Value = WallDescription> {
@@ -165,12 +166,43 @@ proptest! {
     ) {
         let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2500, 1000);
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
-        let settings = Settings { duration_s: 10.0, output_dt_s: None, history_file: None, log_events: false, events_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
-        let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings });
-        prop_assert!(r.is_ok(), "{:?}", r.err());
-        let e = r.unwrap().summary.energy;
-        prop_assert!(e.residual_j.abs() <= 1e-9 * e.input_j.max(1.0), "energy residual {:e} of {:e}", e.residual_j, e.input_j);
+        coursed_energy_closes(&wall, &topo, &motion, 10.0)?;
     }
+}
+
+/// Runs a random coursed wall under `motion` for `duration` s: the run ends and its energy
+/// closes to 1e-9 of the input.
+fn coursed_energy_closes(
+    wall: &Wall,
+    topo: &Topology,
+    motion: &Motion,
+    duration: f64,
+) -> Result<(), TestCaseError> {
+    let settings = Settings {
+        duration_s: duration,
+        output_dt_s: None,
+        history_file: None,
+        log_events: false,
+        events_file: None,
+        log_decisions: false,
+        after_collapse: AfterCollapse::Continue,
+        progress: None,
+    };
+    let r = EventDriven::default().run(&Scenario {
+        wall,
+        topology: topo,
+        motion,
+        settings: &settings,
+    });
+    prop_assert!(r.is_ok(), "{:?}", r.err());
+    let e = r.unwrap().summary.energy;
+    prop_assert!(
+        e.residual_j.abs() <= 1e-9 * e.input_j.max(1.0),
+        "energy residual {:e} of {:e}",
+        e.residual_j,
+        e.input_j
+    );
+    Ok(())
 }
 
 proptest! {
@@ -269,14 +301,9 @@ proptest! {
     ) {
         let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2500, 1000);
         let h = pirqa::samples::broadband_record(6.0, 0.01, pga);
-        let v: Vec<f64> = (0..601).map(|k| amp * (std::f64::consts::TAU * freq * k as f64 * 0.01 + phase).sin()).collect();
-        let v = pirqa::motion::Record::new("v", 0.01, v).unwrap();
+        let v = sampled_sine("v", amp, freq, phase, 0.01, 601);
         let motion = Motion::Record(h.with_vertical(&v, 9.81).unwrap());
-        let settings = Settings { duration_s: 6.0, output_dt_s: None, history_file: None, log_events: false, events_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
-        let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings });
-        prop_assert!(r.is_ok(), "{:?}", r.err());
-        let e = r.unwrap().summary.energy;
-        prop_assert!(e.residual_j.abs() <= 1e-9 * e.input_j.max(1.0), "energy residual {:e} of {:e}", e.residual_j, e.input_j);
+        coursed_energy_closes(&wall, &topo, &motion, 6.0)?;
     }
 }
 
@@ -352,8 +379,7 @@ proptest! {
         let h = pirqa::motion::Record::new("h", dt, horizontal).unwrap();
         let motion = match vertical {
             Some((a, f)) => {
-                let v: Vec<f64> = (0..n).map(|k| a * (std::f64::consts::TAU * f * k as f64 * dt).sin()).collect();
-                Motion::Record(h.with_vertical(&pirqa::motion::Record::new("v", dt, v).unwrap(), 9.81).unwrap())
+                Motion::Record(h.with_vertical(&sampled_sine("v", a, f, 0.0, dt, n), 9.81).unwrap())
             }
             None => Motion::Record(h),
         };
@@ -389,9 +415,8 @@ proptest! {
         prop_assume!(model.is_ok());
         let model = model.unwrap();
         let (dt, n) = (0.005, 1201);
-        let wave = |a: f64, f: f64| -> Vec<f64> { (0..n).map(|k| a * (std::f64::consts::TAU * f * k as f64 * dt).sin()).collect() };
-        let h = pirqa::motion::Record::new("h", dt, wave(amp_g * 9.81, freq)).unwrap();
-        let v = pirqa::motion::Record::new("v", dt, wave(v_amp, v_freq)).unwrap();
+        let h = sampled_sine("h", amp_g * 9.81, freq, 0.0, dt, n);
+        let v = sampled_sine("v", v_amp, v_freq, 0.0, dt, n);
         let motion = Motion::Record(h.with_vertical(&v, 9.81).unwrap());
         let settings = pirqa::RunSettings { duration_s: Some(6.0), direction: pirqa::Direction::OutOfPlane, ..pirqa::RunSettings::default() };
         let r = pirqa::run(&model, &motion, &settings);

@@ -5,6 +5,7 @@
 //! independent enumeration of both corners' contacts test the internal mode decision:
 //! `src/integrate/rocking/enumeration.rs`.)
 
+use crate::engine::sampled_sine;
 use pirqa::integrate::rocking::{self, Equations, RockingBody, Scene};
 use pirqa::integrate::Settings;
 use pirqa::motion::{Motion, Pulse, Sine};
@@ -433,15 +434,8 @@ fn out_of_plane_thresholds_and_curves_are_the_closed_forms() {
 #[test]
 fn a_landing_at_a_tie_books_the_potential_energy_it_seats() {
     let (dt, n) = (0.005, 601);
-    let wave = |amp: f64, f: f64| -> Vec<f64> {
-        (0..n)
-            .map(|k| amp * (std::f64::consts::TAU * f * k as f64 * dt).sin())
-            .collect()
-    };
-    let h = pirqa::motion::Record::new("h", dt, wave(0.4107882285382524 * G, 1.271084062342738))
-        .unwrap();
-    let v =
-        pirqa::motion::Record::new("v", dt, wave(2.4483012596434843, 3.1416801395598988)).unwrap();
+    let h = sampled_sine("h", 0.4107882285382524 * G, 1.271084062342738, 0.0, dt, n);
+    let v = sampled_sine("v", 2.4483012596434843, 3.1416801395598988, 0.0, dt, n);
     let motion = Motion::Record(h.with_vertical(&v, G).unwrap());
     let body = RockingBody::rectangle("B", 0.433, 0.795, 2650.0 * 0.5 * 0.433 * 0.795, 0.7, G);
     let r = run(&body, 0.0, Equations::Exact, &motion, 2.2);
@@ -457,13 +451,8 @@ fn a_landing_at_a_tie_books_the_potential_energy_it_seats() {
 #[test]
 fn a_run_ending_in_free_flight_balances_its_energy_there() {
     let (dt, n) = (0.005, 1201);
-    let wave = |amp: f64, f: f64| -> Vec<f64> {
-        (0..n)
-            .map(|k| amp * (std::f64::consts::TAU * f * k as f64 * dt).sin())
-            .collect()
-    };
-    let h = pirqa::motion::Record::new("h", dt, wave(0.5 * G, 1.5)).unwrap();
-    let v = pirqa::motion::Record::new("v", dt, wave(8.5, 2.0)).unwrap();
+    let h = sampled_sine("h", 0.5 * G, 1.5, 0.0, dt, n);
+    let v = sampled_sine("v", 8.5, 2.0, 0.0, dt, n);
     let motion = Motion::Record(h.with_vertical(&v, G).unwrap());
     let body = RockingBody::rectangle("B", 0.4, 1.2, 2650.0 * 0.5 * 0.4 * 1.2, 0.8, G);
     let r = run(&body, 0.0, Equations::Exact, &motion, 6.0);

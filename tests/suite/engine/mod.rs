@@ -49,6 +49,22 @@ pub fn sine(amp: f64, freq: f64, phase_deg: f64, duration: f64) -> Motion {
     .unwrap()
 }
 
+/// `n` samples every `dt` s of `amp` sin(2 pi `freq` t + `phase_rad`), as a record named `name`
+/// (a sine a record's piecewise-linear segments follow, with or beside a vertical component).
+pub fn sampled_sine(
+    name: &str,
+    amp: f64,
+    freq: f64,
+    phase_rad: f64,
+    dt: f64,
+    n: usize,
+) -> pirqa::motion::Record {
+    let samples = (0..n)
+        .map(|k| amp * (std::f64::consts::TAU * freq * k as f64 * dt + phase_rad).sin())
+        .collect();
+    pirqa::motion::Record::new(name, dt, samples).unwrap()
+}
+
 /// A constant ground acceleration `a` (m/s2) for `duration` s, as a record sampled at 100 Hz.
 pub fn constant(a: f64, duration: f64) -> Motion {
     let dt = 0.01;
