@@ -78,29 +78,33 @@ impl Column {
 /// A block of a column as the watch sees it: in the frame whose origin is the middle of the
 /// body's base at rest, on the level of its joint.
 #[derive(Debug, Clone)]
-struct Piece {
-    mass_kg: f64,
+pub(super) struct Piece {
+    pub(super) mass_kg: f64,
     /// About its own centroid (kg m2).
-    inertia_kg_m2: f64,
+    pub(super) inertia_kg_m2: f64,
     /// Its centroid at rest (m).
-    x0: f64,
-    y0: f64,
+    pub(super) x0: f64,
+    pub(super) y0: f64,
     /// Part of the body (moves with it) or held to the ground below it.
     moving: bool,
 }
 
-/// A held joint: its name (`upper/lower`), friction, the ends of its contact at rest (in the
-/// watch's frame, on its level), whether it lies inside the body (and moves with it), and the
-/// pieces above it.
+/// A joint of a column: its name (`upper/lower`), friction, the ends of its contact at rest (in
+/// the watch's frame, on its level), whether it lies inside the body (and moves with it), and
+/// the pieces above it.
 #[derive(Debug, Clone)]
-struct Held {
-    name: String,
+pub(super) struct Held {
+    pub(super) name: String,
     /// The block on it (index in the column, bottom first).
-    upper: usize,
-    friction: f64,
-    ends: [(f64, f64); 2],
+    pub(super) upper: usize,
+    pub(super) friction: f64,
+    pub(super) ends: [(f64, f64); 2],
     inside: bool,
     above: Vec<usize>,
+    /// Whether each end is a corner of the block on it (else of the block or ground below):
+    /// a block that turns on that end presses its corner on the face below, or the face
+    /// below's corner on its own face, and the contact's normal is that face's.
+    pub(super) upper_corner: [bool; 2],
 }
 
 /// A joint of a column and the ground accelerations, in g (at unit vertical load factor),
@@ -146,14 +150,16 @@ pub struct Watch {
     pub base: String,
     /// The column's blocks, bottom first.
     pub outputs: Vec<Output>,
-    pieces: Vec<Piece>,
+    pub(super) pieces: Vec<Piece>,
     joints: Vec<Held>,
-    half_base_m: f64,
-    g_m_s2: f64,
+    /// The joint the body moves on (none for a trilith).
+    pub(super) moving: Option<Held>,
+    pub(super) half_base_m: f64,
+    pub(super) g_m_s2: f64,
     /// Forces (N) and moments (N m) are measured against the column's weight and its weight
     /// times its height.
-    force_scale: f64,
-    moment_scale: f64,
+    pub(super) force_scale: f64,
+    pub(super) moment_scale: f64,
     /// A trilith's joints, watched instead of a column's.
     frame: Option<Frame>,
 }
@@ -176,6 +182,7 @@ impl Watch {
             outputs,
             pieces: Vec::new(),
             joints: Vec::new(),
+            moving: None,
             half_base_m,
             g_m_s2: frame.g_m_s2,
             force_scale: frame.force_scale,
@@ -187,6 +194,14 @@ impl Watch {
     /// Half the width of the base each moving block turns on (a column's foot in a trilith).
     pub(super) fn pivot_half_base_m(&self) -> f64 {
         self.half_base_m
+    }
+
+    /// Every joint of the column, the one the body moves on too, bottom first (none for a
+    /// trilith).
+    pub(super) fn all_joints(&self) -> Vec<&Held> {
+        let mut all: Vec<&Held> = self.joints.iter().chain(&self.moving).collect();
+        all.sort_by_key(|j| j.upper);
+        all
     }
 
     /// Whether it watches a trilith.
@@ -575,12 +590,13 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
         if best.as_ref().is_none_or(|(_, r)| ratio < *r) {
             best = Some((i, ratio));
         }
-        contacts.push((lo, hi, joint.friction.to_f64()));
+        let corners = [lo == blocks[i].x, hi == blocks[i].right];
+        contacts.push((lo, hi, joint.friction.to_f64(), corners));
         centroids.push((mass, xg, yg));
     }
     let (k, _) = best.expect("a column has a joint");
     limits[k].moves = true;
-    let (lo, hi, friction) = contacts[k].clone();
+    let (lo, hi, friction, _) = contacts[k].clone();
     let (mass, xg, yg) = centroids[k].clone();
     let middle = (&lo + &hi) / &two;
     let names: Vec<String> = (k..blocks.len()).map(name).collect();
@@ -632,21 +648,20 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
         restitution_factor: wall.rocking_restitution_factor,
         g_m_s2: g,
     };
-    let joints = (0..blocks.len())
-        .filter(|&i| i != k)
-        .map(|i| {
-            let (lo, hi, friction) = &contacts[i];
-            let y = blocks[i].bottom.to_f64() - y_origin;
-            Held {
-                name: format!("{}/{}", name(i), base_name(i)),
-                upper: i,
-                friction: *friction,
-                ends: [(lo.to_f64() - x_origin, y), (hi.to_f64() - x_origin, y)],
-                inside: i > k,
-                above: (i..blocks.len()).collect(),
-            }
-        })
-        .collect();
+    let joint = |i: usize| {
+        let (lo, hi, friction, upper_corner) = &contacts[i];
+        let y = blocks[i].bottom.to_f64() - y_origin;
+        Held {
+            name: format!("{}/{}", name(i), base_name(i)),
+            upper: i,
+            friction: *friction,
+            ends: [(lo.to_f64() - x_origin, y), (hi.to_f64() - x_origin, y)],
+            inside: i > k,
+            above: (i..blocks.len()).collect(),
+            upper_corner: *upper_corner,
+        }
+    };
+    let joints = (0..blocks.len()).filter(|&i| i != k).map(&joint).collect();
     let total: f64 = pieces.iter().map(|p| p.mass_kg).sum();
     let height = (&blocks[blocks.len() - 1].top - &blocks[0].bottom).to_f64();
     let outputs = (0..blocks.len())
@@ -668,6 +683,7 @@ fn column(wall: &Wall, topo: &Topology, bottom: usize) -> Result<Column, Simulat
             outputs,
             pieces,
             joints,
+            moving: Some(joint(k)),
             half_base_m: body.half_base_m,
             g_m_s2: g,
             force_scale: total * g,

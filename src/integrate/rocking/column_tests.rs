@@ -34,6 +34,7 @@ fn with_own_base(c: &Column) -> Watch {
         above: (0..w.pieces.len())
             .filter(|&i| w.pieces[i].moving)
             .collect(),
+        upper_corner: [true; 2],
     }];
     w
 }

@@ -14,10 +14,12 @@
 //! | stick limit, uplift, stop, pivot slip or stick, flight | a `modes::Constraint` falls | `modes::decide` |
 //! | landing (theta = 0) | the `Impact` constraint | `impact::land`, then `decide` |
 //! | overturning | theta reaches pi/2, or alpha with the ground at rest from then on | `Engine::overturn` |
+//! | a column's held joint opens under the rocking body | its watch's condition falls | `chain`: the column's blocks rock on each other until it is one body again |
 //! | extremes of theta, u, u' | roots of their derivatives | recorded, nothing decided |
 //! | end of a ground-motion segment | the step stops there | `decide` if a_g jumps |
 
 mod body;
+mod chain;
 mod column;
 #[cfg(test)]
 mod enumeration;
@@ -125,6 +127,20 @@ struct Engine<'a> {
     rec: Recorder,
     t: f64,
     t_end: f64,
+    /// Output times passed, and the next one.
+    outputs: u64,
+    next_out: f64,
+    /// Where a run that ended in a chain of open joints left its blocks.
+    chain_end: Option<ChainEnd>,
+}
+
+/// The end of a run in a column's chain of open joints: each output's u (m) and u' (m/s), and
+/// the energy left in the blocks that still stand (J).
+struct ChainEnd {
+    u: Vec<f64>,
+    v: Vec<f64>,
+    kinetic_j: f64,
+    potential_j: f64,
 }
 
 /// The event a change of mode is logged as (`start`: the first mode of the run, logged only
@@ -184,6 +200,9 @@ impl<'a> Engine<'a> {
             rec,
             t: 0.0,
             t_end: s.duration_s,
+            outputs: 0,
+            next_out: s.output_dt_s.unwrap_or(f64::INFINITY),
+            chain_end: None,
         }
     }
 
@@ -288,8 +307,6 @@ impl<'a> Engine<'a> {
                 modes::kinetic_j(body, &traj, 0.0) + modes::potential_j(body, &traj, 0.0);
         }
         let dt = self.scene.settings.output_dt_s;
-        let mut outputs = 0u64;
-        let mut next_out = dt.unwrap_or(f64::INFINITY);
         // A history row at each stop that is an event or an output time (and at the start).
         let mut row = true;
         let mut stalled = 0usize;
@@ -332,12 +349,12 @@ impl<'a> Engine<'a> {
                 }
             }
             // History rows inside the step, from the series (dense output).
-            while next_out < t_new {
-                let tau_out = next_out - self.t;
+            while self.next_out < t_new {
+                let tau_out = self.next_out - self.t;
                 let a_g = series::eval(&inputs.accel, tau_out);
-                self.note(&plans, tau_out, next_out, a_g, true);
-                outputs += 1;
-                next_out = (outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
+                self.note(&plans, tau_out, self.next_out, a_g, true);
+                self.outputs += 1;
+                self.next_out = (self.outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
             }
             // Advance every body to the stop.
             for (i, plan) in plans.iter().enumerate() {
@@ -369,10 +386,10 @@ impl<'a> Engine<'a> {
                 }
                 self.handle(i, guard, &traj, tau, &now)?;
             }
-            if self.t >= next_out {
+            if self.t >= self.next_out {
                 row = true;
-                outputs += 1;
-                next_out = (outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
+                self.outputs += 1;
+                self.next_out = (self.outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
             }
             if self.t == seg.t1 && self.t < self.t_end {
                 self.rec.stats.segments += 1;
@@ -509,6 +526,7 @@ impl<'a> Engine<'a> {
             Guard::StickLimit | Guard::Uplift | Guard::PivotSlip | Guard::Flight => {
                 self.decide(i, now, false)
             }
+            Guard::Held(k) if self.chain_can_follow(i, k) => self.open_chain(k),
             Guard::Held(k) => {
                 self.gives(i, k);
                 Ok(())
@@ -757,6 +775,11 @@ impl<'a> Engine<'a> {
     /// The end of the run: the last extremes and history row (`row`: the last stop was an
     /// event or an output time; the end is a row in any case), the energy left, the summary.
     fn finish(mut self, row: bool) -> Result<Response, SimulationError> {
+        if let Some(end) = self.chain_end.take() {
+            self.rec.energy.kinetic_j += end.kinetic_j;
+            self.rec.energy.potential_j += end.potential_j;
+            return Ok(self.summary(&end.u, &end.v));
+        }
         let (_, now) = self.inputs_at(self.t);
         let n = self.tracks.len();
         let plans: Vec<Option<Plan>> = (0..n)
@@ -793,6 +816,11 @@ impl<'a> Engine<'a> {
                 self.rec.energy.potential_j += modes::potential_j(body, traj, 0.0);
             }
         }
+        Ok(self.summary(&u, &v))
+    }
+
+    /// The run's response, every output's final u (m) and u' (m/s) given.
+    fn summary(self, u: &[f64], v: &[f64]) -> Response {
         let motion = self.scene.motion.describe();
         let t = self.t;
         let name = self
@@ -802,6 +830,6 @@ impl<'a> Engine<'a> {
             .map(|b| b.name.as_str())
             .collect::<Vec<_>>()
             .join(", ");
-        Ok(self.rec.finish("event", &name, motion, t, &u, &v))
+        self.rec.finish("event", &name, motion, t, u, v)
     }
 }

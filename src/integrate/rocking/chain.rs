@@ -1,0 +1,1277 @@
+//! Columns whose joints open one above another (Psycharis 1990's third pattern: the blocks of a
+//! column rocking on different joints at once). While a column's body rocks on its joint, a
+//! held joint above or below it can open too; the column is then a chain of rigid bodies, each
+//! turning on a corner of the one below it (the lowest on a corner of the blocks held to the
+//! ground), with one degree of freedom per open joint and a mass matrix that depends on the
+//! configuration. Between events the chain follows Taylor series of its equations, the moment
+//! balance of the part above each open joint about its pivot (no moment of the pivot's force),
+//! built order by order like a single body's: each order's angular accelerations solve one small
+//! linear system whose matrix is the mass matrix of the instant. Landings keep the angular
+//! momentum of the part above each open joint about its pivot after the landing (the new
+//! corner for the joint that lands: Housner's law for a single body, Psycharis's for two). The
+//! pivots stick: where one would slip or lift off, or a closed joint slip, the exact model
+//! ends the run there and says so, as a column's held joints do (docs/rocking-walls.md).
+//!
+//! The engine hands the column to the chain when a held joint opens under a rocking body and
+//! takes it back when the chain is down to the body's own joint again, or seated.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::column::{Held, Watch};
+use super::modes::{Corner, Inputs, Mode, Scales, State};
+use super::series::{
+    self, derivative, eval, integral, mul_at, sign_after, sin_cos_at, Coeffs, ORDER, TIE, ZERO,
+};
+use super::{Engine, ZENO_ROTATION};
+use crate::error::SimulationError;
+use crate::response::{Collapse, CollapseCause, EventKind, Warning};
+
+/// An open joint: the block on it (index in the column, bottom first) and the sign of the end
+/// the part above turns on (+1: its right end, the part turning clockwise).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Open {
+    pub(super) joint: usize,
+    pub(super) s: f64,
+}
+
+/// The chain's state: its open joints, bottom first, and each body's rotation from rest
+/// (clockwise, rad) and its rate; body c is the blocks from open joint c up to the next one.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Pose {
+    pub(super) open: Vec<Open>,
+    pub(super) phi: Vec<f64>,
+    pub(super) omega: Vec<f64>,
+}
+
+/// A column as the chain moves it: the watch's blocks and joints at rest, those on and above the
+/// body's own joint displaced by the slip `shift` the body had when the chain began (no joint
+/// slips while the chain runs).
+pub(super) struct Links<'w> {
+    watch: &'w Watch,
+    joints: Vec<&'w Held>,
+    /// The joint the column's body moves on.
+    body_joint: usize,
+    shift: f64,
+}
+
+/// A chain's motion over a step, as series: per body its rotation, rate, angular acceleration,
+/// sine and cosine and its pivot's position; per block its centroid's position and absolute
+/// acceleration (horizontal with the ground's, vertical with gravity's: a_y + g lambda) and the
+/// middle of its base. Positions are relative to the ground, in the watch's frame.
+pub(super) struct Path {
+    body: Vec<Option<usize>>,
+    phi: Vec<Coeffs>,
+    omega: Vec<Coeffs>,
+    alpha: Vec<Coeffs>,
+    sin: Vec<Coeffs>,
+    cos: Vec<Coeffs>,
+    pivot: Vec<[Coeffs; 2]>,
+    centroid: Vec<[Coeffs; 2]>,
+    accel: Vec<[Coeffs; 2]>,
+    base: Vec<[Coeffs; 2]>,
+}
+
+/// What ends a chain's step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Cut {
+    /// Open joint c comes back to its seat.
+    Land(usize),
+    /// Open joint c's pivot: condition 0 (mu N - T), 1 (mu N + T).
+    Pivot(usize, usize),
+    /// Closed joint j (block index): its conditions in the order of the watch's (slip each way,
+    /// open at its right end, at its left end).
+    Closed(usize, usize),
+    /// Open joint c turns to a right angle: the part above it has fallen.
+    Overturn(usize),
+}
+
+/// A condition of the chain: a series that must stay non-negative, its scale, what it guards.
+struct Condition {
+    series: Coeffs,
+    scale: f64,
+    cut: Cut,
+}
+
+/// Rotates (x, y) clockwise by the angle whose sine and cosine are given, coefficient k.
+fn turned(x: f64, y: f64, sin: &Coeffs, cos: &Coeffs, k: usize) -> [f64; 2] {
+    [x * cos[k] + y * sin[k], -x * sin[k] + y * cos[k]]
+}
+
+impl<'w> Links<'w> {
+    /// The chain of a column's watch, its body displaced by `shift` (none for a trilith).
+    pub(super) fn of(watch: &'w Watch, shift: f64) -> Option<Links<'w>> {
+        let body_joint = watch.moving.as_ref()?.upper;
+        Some(Links {
+            joints: watch.all_joints(),
+            watch,
+            body_joint,
+            shift,
+        })
+    }
+
+    fn blocks(&self) -> usize {
+        self.watch.pieces.len()
+    }
+
+    fn dx(&self, index: usize) -> f64 {
+        if index >= self.body_joint {
+            self.shift
+        } else {
+            0.0
+        }
+    }
+
+    /// Block p's centroid at rest (displaced with the body).
+    fn centroid(&self, p: usize) -> [f64; 2] {
+        let q = &self.watch.pieces[p];
+        [q.x0 + self.dx(p), q.y0]
+    }
+
+    /// The middle of block p's base at rest (displaced with the body).
+    fn base(&self, p: usize) -> [f64; 2] {
+        let o = &self.watch.outputs[p];
+        [o.x0 + self.dx(p), o.y0]
+    }
+
+    /// The end of joint j on side s at rest (displaced with the body).
+    fn end(&self, j: usize, s: f64) -> [f64; 2] {
+        let (x, y) = self.joints[j].ends[usize::from(s > 0.0)];
+        [x + self.dx(j), y]
+    }
+
+    /// The body each block belongs to (none: held to the ground below every open joint).
+    fn bodies(&self, open: &[Open]) -> Vec<Option<usize>> {
+        (0..self.blocks())
+            .map(|p| open.iter().rposition(|o| o.joint <= p))
+            .collect()
+    }
+
+    /// The chain's motion from `pose` under `inputs`.
+    pub(super) fn path(&self, pose: &Pose, inputs: &Inputs) -> Result<Path, SimulationError> {
+        let w = self.watch;
+        let n = pose.open.len();
+        let nb = self.blocks();
+        let body = self.bodies(&pose.open);
+        let rest: Vec<[f64; 2]> = pose.open.iter().map(|o| self.end(o.joint, o.s)).collect();
+        // Each body's arm to the next pivot, and each block's arms to its centroid and the
+        // middle of its base, from the body's pivot at rest.
+        let link: Vec<[f64; 2]> = (1..n)
+            .map(|c| [rest[c][0] - rest[c - 1][0], rest[c][1] - rest[c - 1][1]])
+            .collect();
+        let arms: Vec<[[f64; 2]; 2]> = (0..nb)
+            .map(|p| {
+                let r = body[p].map_or([0.0; 2], |c| rest[c]);
+                let (g, b) = (self.centroid(p), self.base(p));
+                [[g[0] - r[0], g[1] - r[1]], [b[0] - r[0], b[1] - r[1]]]
+            })
+            .collect();
+        let mut phi = vec![ZERO; n];
+        let mut omega = vec![ZERO; n];
+        let mut alpha = vec![ZERO; n];
+        let (mut sin, mut cos) = (vec![ZERO; n], vec![ZERO; n]);
+        let mut w2 = vec![ZERO; n];
+        let mut links = vec![[ZERO; 2]; n.saturating_sub(1)];
+        let mut pivot = vec![[ZERO; 2]; n];
+        let mut rho = vec![[ZERO; 2]; nb];
+        let mut centroid = vec![[ZERO; 2]; nb];
+        let mut base = vec![[ZERO; 2]; nb];
+        let mut accel = vec![[ZERO; 2]; nb];
+        for c in 0..n {
+            phi[c][0] = pose.phi[c];
+            phi[c][1] = pose.omega[c];
+            omega[c][0] = pose.omega[c];
+        }
+        let glam: Coeffs = inputs.lambda.map(|x| x * w.g_m_s2);
+        let mut solver = None;
+        for k in 0..=ORDER {
+            for c in 0..n {
+                sin_cos_at(&phi[c], &mut sin[c], &mut cos[c], k);
+                w2[c][k] = mul_at(&omega[c], &omega[c], k);
+            }
+            for (c, l) in links.iter_mut().enumerate() {
+                let [x, y] = turned(link[c][0], link[c][1], &sin[c], &cos[c], k);
+                l[0][k] = x;
+                l[1][k] = y;
+            }
+            for c in 0..n {
+                let start = if k == 0 { rest[0] } else { [0.0; 2] };
+                for a in 0..2 {
+                    pivot[c][a][k] = if c == 0 {
+                        start[a]
+                    } else {
+                        pivot[c - 1][a][k] + links[c - 1][a][k]
+                    };
+                }
+            }
+            // Positions, and accelerations without this order's angular accelerations.
+            for p in 0..nb {
+                let Some(cp) = body[p] else {
+                    let (g, b) = (self.centroid(p), self.base(p));
+                    for a in 0..2 {
+                        centroid[p][a][k] = if k == 0 { g[a] } else { 0.0 };
+                        base[p][a][k] = if k == 0 { b[a] } else { 0.0 };
+                    }
+                    accel[p][0][k] = inputs.accel[k];
+                    accel[p][1][k] = glam[k];
+                    continue;
+                };
+                let [rx, ry] = turned(arms[p][0][0], arms[p][0][1], &sin[cp], &cos[cp], k);
+                let [bx, by] = turned(arms[p][1][0], arms[p][1][1], &sin[cp], &cos[cp], k);
+                rho[p][0][k] = rx;
+                rho[p][1][k] = ry;
+                centroid[p][0][k] = pivot[cp][0][k] + rx;
+                centroid[p][1][k] = pivot[cp][1][k] + ry;
+                base[p][0][k] = pivot[cp][0][k] + bx;
+                base[p][1][k] = pivot[cp][1][k] + by;
+                // a = a_pivot + alpha x r - omega^2 r along the chain (clockwise: alpha x r =
+                // alpha (r_y, -r_x)).
+                let (mut ax, mut ay) = (inputs.accel[k], glam[k]);
+                for c in 0..=cp {
+                    let r = if c < cp { &links[c] } else { &rho[p] };
+                    ax += mul_at(&alpha[c], &r[1], k) - mul_at(&w2[c], &r[0], k);
+                    ay += -mul_at(&alpha[c], &r[0], k) - mul_at(&w2[c], &r[1], k);
+                }
+                accel[p][0][k] = ax;
+                accel[p][1][k] = ay;
+            }
+            // How this order's angular accelerations enter block p's acceleration: body c's
+            // turns the arm from its pivot (the link to the next pivot below p's body).
+            let arm0 = |p: usize, c: usize| -> [f64; 2] {
+                let r = if Some(c) == body[p] {
+                    &rho[p]
+                } else {
+                    &links[c]
+                };
+                [r[0][0], r[1][0]]
+            };
+            if solver.is_none() {
+                let mass = DMatrix::from_fn(n, n, |b, c| {
+                    let mut x = 0.0;
+                    for p in (0..nb).filter(|&p| body[p].is_some_and(|cp| cp >= b && cp >= c)) {
+                        let q = &w.pieces[p];
+                        let d = [
+                            centroid[p][0][0] - pivot[b][0][0],
+                            centroid[p][1][0] - pivot[b][1][0],
+                        ];
+                        let r = arm0(p, c);
+                        x -= q.mass_kg * (d[0] * r[0] + d[1] * r[1]);
+                        if body[p] == Some(c) {
+                            x -= q.inertia_kg_m2;
+                        }
+                    }
+                    x
+                });
+                solver = Some(mass.lu());
+            }
+            // The moment about each pivot of what the part above it needs, without this
+            // order's angular accelerations: sum m ((x - P_x) (a_y + g lambda) - (y - P_y) a_x).
+            let rhs = DVector::from_fn(n, |b, _| {
+                let mut m = 0.0;
+                for p in (0..nb).filter(|&p| body[p].is_some_and(|cp| cp >= b)) {
+                    let (g, a) = (&centroid[p], &accel[p]);
+                    let moment = mul_at(&g[0], &a[1], k)
+                        - mul_at(&pivot[b][0], &a[1], k)
+                        - mul_at(&g[1], &a[0], k)
+                        + mul_at(&pivot[b][1], &a[0], k);
+                    m += w.pieces[p].mass_kg * moment;
+                }
+                -m
+            });
+            let lu = solver.as_ref().expect("factorised at order 0");
+            let a = lu.solve(&rhs).ok_or_else(|| {
+                SimulationError::Bug(format!(
+                    "the mass matrix of the chain of open joints {:?} is singular",
+                    pose.open
+                ))
+            })?;
+            for c in 0..n {
+                alpha[c][k] = a[c];
+                if k < ORDER {
+                    omega[c][k + 1] = a[c] / (k + 1) as f64;
+                }
+                if k + 2 <= ORDER {
+                    phi[c][k + 2] = a[c] / ((k + 1) * (k + 2)) as f64;
+                }
+            }
+            for p in 0..nb {
+                let Some(cp) = body[p] else { continue };
+                for c in 0..=cp {
+                    let r = arm0(p, c);
+                    accel[p][0][k] += a[c] * r[1];
+                    accel[p][1][k] -= a[c] * r[0];
+                }
+            }
+        }
+        Ok(Path {
+            body,
+            phi,
+            omega,
+            alpha,
+            sin,
+            cos,
+            pivot,
+            centroid,
+            accel,
+            base,
+        })
+    }
+
+    /// Every condition of the chain along `path`: each open joint's landing, overturning and
+    /// pivot, each closed joint's friction and contact (as the watch's held joints').
+    fn conditions(&self, pose: &Pose, path: &Path, angle: f64) -> Vec<Condition> {
+        let w = self.watch;
+        let nb = self.blocks();
+        let mut out = Vec::new();
+        for (c, o) in pose.open.iter().enumerate() {
+            let mut theta = path.phi[c];
+            if c > 0 {
+                theta
+                    .iter_mut()
+                    .zip(&path.phi[c - 1])
+                    .for_each(|(x, y)| *x -= y);
+            }
+            let seated = theta.map(|x| o.s * x);
+            let mut upright = seated.map(|x| -x);
+            upright[0] += std::f64::consts::FRAC_PI_2;
+            out.push(Condition {
+                series: seated,
+                scale: angle,
+                cut: Cut::Land(c),
+            });
+            out.push(Condition {
+                series: upright,
+                scale: angle,
+                cut: Cut::Overturn(c),
+            });
+        }
+        for j in 0..nb {
+            let joint = self.joints[j];
+            let (h, v) = self.passed(path, j);
+            let open = pose.open.iter().position(|o| o.joint == j);
+            // The face the joint's force is normal to: an open joint's, the face its pivot
+            // corner presses on; a closed joint's, its blocks' (turned with their body).
+            let face = match open {
+                Some(c) => {
+                    let end = usize::from(pose.open[c].s > 0.0);
+                    if joint.upper_corner[end] {
+                        c.checked_sub(1)
+                    } else {
+                        Some(c)
+                    }
+                }
+                None => path.body[j],
+            };
+            let (n, t) = match face {
+                Some(c) => {
+                    let (sin, cos) = (&path.sin[c], &path.cos[c]);
+                    let mut n = series::product(&h, sin);
+                    series::add_to(&mut n, &series::product(&v, cos), 1.0);
+                    let mut t = series::product(&h, cos);
+                    series::add_to(&mut t, &series::product(&v, sin), -1.0);
+                    (n, t)
+                }
+                None => (v, h),
+            };
+            let mu = joint.friction;
+            let cone = [
+                series::add(&series::scaled(&n, mu), &t, -1.0),
+                series::add(&series::scaled(&n, mu), &t, 1.0),
+            ];
+            if let Some(c) = open {
+                for (i, series) in cone.into_iter().enumerate() {
+                    out.push(Condition {
+                        series,
+                        scale: w.force_scale,
+                        cut: Cut::Pivot(c, i),
+                    });
+                }
+                continue;
+            }
+            let ends = [-1.0, 1.0].map(|s| {
+                let e = self.end(j, s);
+                match path.body[j] {
+                    Some(c) => {
+                        let r = self.end(pose.open[c].joint, pose.open[c].s);
+                        let (dx, dy) = (e[0] - r[0], e[1] - r[1]);
+                        [0, 1].map(|a| {
+                            let mut x = path.pivot[c][a];
+                            for (k, x) in x.iter_mut().enumerate() {
+                                *x += turned(dx, dy, &path.sin[c], &path.cos[c], k)[a];
+                            }
+                            x
+                        })
+                    }
+                    None => e.map(series::constant),
+                }
+            });
+            let [left, right] = ends.map(|e| self.moment(path, j, &e));
+            for (i, series) in cone
+                .into_iter()
+                .chain([left, right.map(|x| -x)])
+                .enumerate()
+            {
+                out.push(Condition {
+                    series,
+                    scale: if i < 2 { w.force_scale } else { w.moment_scale },
+                    cut: Cut::Closed(j, i),
+                });
+            }
+        }
+        out
+    }
+
+    /// The force joint j passes up (H, V): what the blocks above it need, sum m (a_x, a_y + g
+    /// lambda).
+    fn passed(&self, path: &Path, j: usize) -> (Coeffs, Coeffs) {
+        let (mut h, mut v) = (ZERO, ZERO);
+        for p in j..self.blocks() {
+            let m = self.watch.pieces[p].mass_kg;
+            series::add_to(&mut h, &path.accel[p][0], m);
+            series::add_to(&mut v, &path.accel[p][1], m);
+        }
+        (h, v)
+    }
+
+    /// The counter-clockwise moment about the point `e` of the forces joint j passes up: the
+    /// d'Alembert balance of the blocks above it.
+    fn moment(&self, path: &Path, j: usize, e: &[Coeffs; 2]) -> Coeffs {
+        let mut m = ZERO;
+        for p in j..self.blocks() {
+            let q = &self.watch.pieces[p];
+            let dx = series::add(&path.centroid[p][0], &e[0], -1.0);
+            let dy = series::add(&path.centroid[p][1], &e[1], -1.0);
+            series::add_to(&mut m, &series::product(&dx, &path.accel[p][1]), q.mass_kg);
+            series::add_to(&mut m, &series::product(&dy, &path.accel[p][0]), -q.mass_kg);
+            if let Some(c) = path.body[p] {
+                series::add_to(&mut m, &path.alpha[c], -q.inertia_kg_m2);
+            }
+        }
+        m
+    }
+
+    /// The kinetic and potential energy (J) of every block at tau: relative to the ground, the
+    /// potential above rest.
+    fn energies(&self, path: &Path, tau: f64) -> Vec<(f64, f64)> {
+        let g = self.watch.g_m_s2;
+        (0..self.blocks())
+            .map(|p| {
+                let q = &self.watch.pieces[p];
+                let Some(c) = path.body[p] else {
+                    return (0.0, 0.0);
+                };
+                let vx = eval(&derivative(&path.centroid[p][0]), tau);
+                let vy = eval(&derivative(&path.centroid[p][1]), tau);
+                let w = eval(&path.omega[c], tau);
+                let y = eval(&path.centroid[p][1], tau);
+                (
+                    0.5 * q.mass_kg * (vx * vx + vy * vy) + 0.5 * q.inertia_kg_m2 * w * w,
+                    q.mass_kg * g * (y - q.y0),
+                )
+            })
+            .collect()
+    }
+
+    /// The power of the ground's inertial forces on the blocks, -m a_g v_x - m g (lambda - 1)
+    /// v_y, as a series.
+    fn input_power(&self, path: &Path, inputs: &Inputs) -> Coeffs {
+        let g = self.watch.g_m_s2;
+        let mut power = ZERO;
+        let extra = series::plus(&inputs.lambda, -1.0);
+        for p in (0..self.blocks()).filter(|&p| path.body[p].is_some()) {
+            let m = self.watch.pieces[p].mass_kg;
+            let vx = derivative(&path.centroid[p][0]);
+            let vy = derivative(&path.centroid[p][1]);
+            series::add_to(&mut power, &series::product(&inputs.accel, &vx), -m);
+            series::add_to(&mut power, &series::product(&extra, &vy), -m * g);
+        }
+        power
+    }
+
+    /// The post-landing rates of the bodies of `open` (positions those of the instant, the
+    /// blocks' velocities `before`, each body's rate `before_omega` by block): the angular
+    /// momentum of the part above each open joint about its pivot is kept. Also each block's
+    /// velocity after, from the rates.
+    fn momentum_balance(
+        &self,
+        open: &[Open],
+        at: &Instant,
+        before: &[[f64; 2]],
+        spin_before: &[f64],
+    ) -> Option<(Vec<f64>, Vec<[f64; 2]>)> {
+        let nb = self.blocks();
+        let n = open.len();
+        let body = self.bodies(open);
+        let pivots: Vec<[f64; 2]> = open.iter().map(|o| at.point(self, o.joint, o.s)).collect();
+        // Block p's velocity per unit rate of body c: c turns p about c's pivot, carrying it
+        // with the next pivot when p lies above c.
+        let jacobian = |p: usize, c: usize| -> [f64; 2] {
+            let cp = body[p].expect("a moving block");
+            let r = if c < cp {
+                [
+                    pivots[c + 1][0] - pivots[c][0],
+                    pivots[c + 1][1] - pivots[c][1],
+                ]
+            } else {
+                [
+                    at.centroid[p][0] - pivots[c][0],
+                    at.centroid[p][1] - pivots[c][1],
+                ]
+            };
+            [r[1], -r[0]]
+        };
+        let cross = |r: [f64; 2], v: [f64; 2]| r[1] * v[0] - r[0] * v[1];
+        let body = &body;
+        let above = |b: usize| (0..nb).filter(move |&p| body[p].is_some_and(|cp| cp >= b));
+        let matrix = DMatrix::from_fn(n, n, |b, c| {
+            let mut x = 0.0;
+            for p in above(b).filter(|&p| body[p].is_some_and(|cp| cp >= c)) {
+                let q = &self.watch.pieces[p];
+                let d = [
+                    at.centroid[p][0] - pivots[b][0],
+                    at.centroid[p][1] - pivots[b][1],
+                ];
+                x += q.mass_kg * cross(d, jacobian(p, c));
+                if body[p] == Some(c) {
+                    x += q.inertia_kg_m2;
+                }
+            }
+            x
+        });
+        let rhs = DVector::from_fn(n, |b, _| {
+            above(b)
+                .map(|p| {
+                    let q = &self.watch.pieces[p];
+                    let d = [
+                        at.centroid[p][0] - pivots[b][0],
+                        at.centroid[p][1] - pivots[b][1],
+                    ];
+                    q.mass_kg * cross(d, before[p]) + q.inertia_kg_m2 * spin_before[p]
+                })
+                .sum()
+        });
+        let rates = matrix.lu().solve(&rhs)?;
+        let after = (0..nb)
+            .map(|p| match body[p] {
+                None => [0.0; 2],
+                Some(cp) => (0..=cp).fold([0.0; 2], |v, c| {
+                    let j = jacobian(p, c);
+                    [v[0] + rates[c] * j[0], v[1] + rates[c] * j[1]]
+                }),
+            })
+            .collect();
+        Some((rates.iter().copied().collect(), after))
+    }
+}
+
+/// The chain's geometry at one instant: each body's rotation and pivot, each block's centroid.
+struct Instant {
+    open: Vec<Open>,
+    phi: Vec<f64>,
+    pivot: Vec<[f64; 2]>,
+    centroid: Vec<[f64; 2]>,
+}
+
+impl Instant {
+    fn of(pose: &Pose, path: &Path, tau: f64) -> Instant {
+        Instant {
+            open: pose.open.clone(),
+            phi: path.phi.iter().map(|c| eval(c, tau)).collect(),
+            pivot: path
+                .pivot
+                .iter()
+                .map(|p| p.map(|c| eval(&c, tau)))
+                .collect(),
+            centroid: path
+                .centroid
+                .iter()
+                .map(|p| p.map(|c| eval(&c, tau)))
+                .collect(),
+        }
+    }
+
+    /// Where the end of joint j on side s is now: a point of the body below the joint (or of
+    /// the blocks held to the ground).
+    fn point(&self, links: &Links, j: usize, s: f64) -> [f64; 2] {
+        let e = links.end(j, s);
+        let Some(c) = self.open.iter().rposition(|o| o.joint < j) else {
+            return e;
+        };
+        let o = self.open[c];
+        let r = links.end(o.joint, o.s);
+        let (sin, cos) = self.phi[c].sin_cos();
+        let (dx, dy) = (e[0] - r[0], e[1] - r[1]);
+        [
+            self.pivot[c][0] + dx * cos + dy * sin,
+            self.pivot[c][1] - dx * sin + dy * cos,
+        ]
+    }
+}
+
+/// How a chain's run goes on after an event.
+enum Next {
+    /// In the chain, from this pose.
+    Chain(Pose),
+    /// Back to the column's body (its state and mode).
+    Body(State, Mode),
+    /// The run ends here.
+    End,
+}
+
+/// How a chain's condition reads in the event log and warning.
+fn how(cut: Cut, n_positive: bool) -> &'static str {
+    match cut {
+        Cut::Pivot(..) if !n_positive => {
+            "would lift off the corner it turns on (the exact model follows the chain while its \
+             pivots stay pressed)"
+        }
+        Cut::Pivot(_, 0) => "would slip at the corner it turns on, the block on it towards -x",
+        Cut::Pivot(..) => "would slip at the corner it turns on, the block on it towards +x",
+        Cut::Closed(_, 0) => {
+            "would slip, the block on it towards -x (it needs more friction towards +x than the \
+             joint holds)"
+        }
+        Cut::Closed(_, 1) => {
+            "would slip, the block on it towards +x (it needs more friction towards -x than the \
+             joint holds)"
+        }
+        Cut::Land(_) => {
+            "would open and close at once (its opening and its landing conditions contradict \
+             each other: the rigid model cannot decide it)"
+        }
+        Cut::Overturn(_) => "has turned to a right angle on its joint",
+        Cut::Closed(..) => "gives way",
+    }
+}
+
+impl Engine<'_> {
+    /// Whether condition k of the watch, falling under body i, opens a joint the chain can
+    /// follow: the body rocks on a sticking pivot, alone in the scene, on exact equations.
+    pub(super) fn chain_can_follow(&self, i: usize, k: usize) -> bool {
+        self.tracks.len() == 1
+            && k % 4 >= 2
+            && matches!(self.tracks[i].mode, Mode::Rock(_))
+            && self.scene.equations == super::Equations::Exact
+            && self
+                .scene
+                .watches
+                .get(i)
+                .is_some_and(|w| w.moving.is_some())
+    }
+
+    /// Held joint of condition k opens under the body rocking now: the column runs as a chain
+    /// from here until it is back to the body alone, seated, or the run ends.
+    pub(super) fn open_chain(&mut self, k: usize) -> Result<(), SimulationError> {
+        let watch: &Watch = &self.scene.watches[0];
+        let (_, _, upper) = watch.describe(k);
+        let st = self.tracks[0].state;
+        let links = Links::of(watch, st.u).expect("a column's watch");
+        let pivot = self.tracks[0].mode.pivot().expect("a rocking body");
+        let body = Open {
+            joint: links.body_joint,
+            s: pivot.sign(),
+        };
+        let new = Open {
+            joint: upper,
+            s: if k % 4 == 2 { -1.0 } else { 1.0 },
+        };
+        let pose = if upper > body.joint {
+            Pose {
+                open: vec![body, new],
+                phi: vec![st.theta; 2],
+                omega: vec![st.omega; 2],
+            }
+        } else {
+            Pose {
+                open: vec![new, body],
+                phi: vec![0.0, st.theta],
+                omega: vec![0.0, st.omega],
+            }
+        };
+        self.opened(&links, upper);
+        let (_, now) = self.inputs_at(self.t);
+        match self.settle(&links, pose, &now)? {
+            Next::Chain(pose) => self.run_chain(&links, pose),
+            Next::Body(state, mode) => self.resume(state, mode),
+            Next::End => Ok(()),
+        }
+    }
+
+    /// Logs the opening of joint j: the part above it lifts.
+    fn opened(&mut self, links: &Links, j: usize) {
+        let blocks = self.chain_outputs(j, links.blocks());
+        for &b in &blocks {
+            self.rec.uplift(b, self.t);
+        }
+        self.rec.rocking_event(
+            self.t,
+            EventKind::Uplift,
+            &blocks,
+            None,
+            format!("opens: {}", links.joints[j].name),
+        );
+    }
+
+    /// The outputs of blocks j and above of the column.
+    fn chain_outputs(&self, j: usize, blocks: usize) -> Vec<usize> {
+        (j..blocks)
+            .map(|p| self.layout.column_output(0, p))
+            .collect()
+    }
+
+    /// The chain's configuration now: every closed joint that must open opens; a condition
+    /// that falls at once otherwise ends the run (the event and warning say which and how).
+    fn settle(
+        &mut self,
+        links: &Links,
+        mut pose: Pose,
+        now: &Inputs,
+    ) -> Result<Next, SimulationError> {
+        let body = &self.scene.bodies[0];
+        let (angle, ts) = (Scales::of(body).angle, body.time_scale_s());
+        for _ in 0..=links.blocks() {
+            if let Some(next) = self.handed_back(links, &pose) {
+                return Ok(next);
+            }
+            let path = links.path(&pose, now)?;
+            let falls = links
+                .conditions(&pose, &path, angle)
+                .into_iter()
+                .find(|c| sign_after(&c.series, c.scale, ts) < 0);
+            let Some(cond) = falls else {
+                return Ok(Next::Chain(pose));
+            };
+            self.rec.stats.mode_decisions += 1;
+            match cond.cut {
+                Cut::Closed(j, i @ (2 | 3)) => {
+                    let c = pose
+                        .open
+                        .iter()
+                        .rposition(|o| o.joint < j)
+                        .map_or(0, |c| c + 1);
+                    let (phi, omega) = match c {
+                        0 => (0.0, 0.0),
+                        _ => (pose.phi[c - 1], pose.omega[c - 1]),
+                    };
+                    let s = if i == 2 { -1.0 } else { 1.0 };
+                    pose.open.insert(c, Open { joint: j, s });
+                    pose.phi.insert(c, phi);
+                    pose.omega.insert(c, omega);
+                    self.opened(links, j);
+                }
+                cut => {
+                    self.chain_stops(links, &pose, &path, cut, 0.0);
+                    return Ok(Next::End);
+                }
+            }
+        }
+        Err(SimulationError::Bug(
+            "the chain opened more joints than its column has".into(),
+        ))
+    }
+
+    /// The engine takes the column back when the chain is down to the body's own joint, or
+    /// seated: its body's state is then the chain's.
+    fn handed_back(&self, links: &Links, pose: &Pose) -> Option<Next> {
+        let seated = State {
+            u: links.shift,
+            ..State::default()
+        };
+        match pose.open.as_slice() {
+            [] => Some(Next::Body(seated, Mode::Rest)),
+            [o] if o.joint == links.body_joint => Some(Next::Body(
+                State {
+                    theta: pose.phi[0],
+                    omega: pose.omega[0],
+                    ..seated
+                },
+                Mode::Rock(Corner::of_sign(o.s)),
+            )),
+            _ => None,
+        }
+    }
+
+    /// The body takes over again from `state` in `mode`, its mode decided now.
+    fn resume(&mut self, state: State, mode: Mode) -> Result<(), SimulationError> {
+        let tr = &mut self.tracks[0];
+        tr.state = state;
+        tr.mode = mode;
+        let (_, now) = self.inputs_at(self.t);
+        self.decide(0, &now, false)
+    }
+
+    /// The chain's condition `cut` falls at tau on `path`: the exact model ends there. The
+    /// event and warning name the joint and how it gives way.
+    fn chain_stops(&mut self, links: &Links, pose: &Pose, path: &Path, cut: Cut, tau: f64) {
+        let j = match cut {
+            Cut::Land(c) | Cut::Pivot(c, _) | Cut::Overturn(c) => pose.open[c].joint,
+            Cut::Closed(j, _) => j,
+        };
+        let pressed = match cut {
+            Cut::Pivot(..) => eval(&links.passed(path, j).1, tau) > 0.0,
+            _ => true,
+        };
+        let how = match cut {
+            Cut::Closed(_, 2) => {
+                "would open at its right end while the column turns on another corner below \
+                 it (beyond the chain)"
+            }
+            Cut::Closed(_, 3) => {
+                "would open at its left end while the column turns on another corner below it \
+                 (beyond the chain)"
+            }
+            _ => how(cut, pressed),
+        };
+        let blocks = self.chain_outputs(j, links.blocks());
+        self.rec
+            .rocking_event(self.t, EventKind::HeldJointGives, &blocks, None, how.into());
+        self.rec.warnings.push(Warning::HeldJointGives {
+            body: self.scene.bodies[0].name.clone(),
+            joint: links.joints[j].name.clone(),
+            how: how.into(),
+            time_s: self.t,
+        });
+        self.end_chain(links, path, tau, &[]);
+    }
+
+    /// The run ends in the chain at tau on `path`: its last row, and the energies left, minus
+    /// those of the blocks of `fallen`.
+    fn end_chain(&mut self, links: &Links, path: &Path, tau: f64, fallen: &[usize]) {
+        self.t_end = self.t;
+        let (_, now) = self.inputs_at(self.t);
+        self.chain_row(links, path, tau, self.t, now.accel[0], true);
+        let mut kinetic = 0.0;
+        let mut potential = 0.0;
+        for (p, (ke, pe)) in links.energies(path, tau).into_iter().enumerate() {
+            if fallen.contains(&p) {
+                self.rec.energy.fallen_j += ke + pe;
+            } else {
+                kinetic += ke;
+                potential += pe;
+            }
+        }
+        let n = self.layout.len();
+        let (mut u, mut v) = (vec![0.0; n], vec![0.0; n]);
+        for p in 0..links.blocks() {
+            let o = self.layout.column_output(0, p);
+            let x = &path.base[p][0];
+            u[o] = eval(x, tau) - links.watch.outputs[p].x0;
+            v[o] = eval(&derivative(x), tau);
+        }
+        self.chain_end = Some(super::ChainEnd {
+            u,
+            v,
+            kinetic_j: kinetic,
+            potential_j: potential,
+        });
+    }
+
+    /// Extremes and, when `row`, a history row at t, tau into the step of `path`.
+    fn chain_row(&mut self, links: &Links, path: &Path, tau: f64, t: f64, a_g: f64, row: bool) {
+        let n = self.layout.len();
+        let (mut u, mut v, mut theta, mut omega, mut w) = (
+            vec![0.0; n],
+            vec![0.0; n],
+            vec![0.0; n],
+            vec![0.0; n],
+            vec![0.0; n],
+        );
+        let mut accel = vec![a_g; n];
+        for p in 0..links.blocks() {
+            let o = self.layout.column_output(0, p);
+            let rest = &links.watch.outputs[p];
+            let [x, y] = &path.base[p];
+            let vx = derivative(x);
+            u[o] = eval(x, tau) - rest.x0;
+            v[o] = eval(&vx, tau);
+            w[o] = eval(y, tau) - rest.y0;
+            accel[o] = a_g + eval(&derivative(&vx), tau);
+            if let Some(c) = path.body[p] {
+                theta[o] = eval(&path.phi[c], tau);
+                omega[o] = eval(&path.omega[c], tau);
+            }
+        }
+        for i in 0..n {
+            self.rec.block_extremes(i, u[i].abs(), v[i].abs());
+            self.rec.rotation_extreme(i, theta[i].abs());
+            self.rec.block_accel(i, accel[i].abs());
+        }
+        self.rec.joint_extremes(&u);
+        if row {
+            self.rec.sample_rotating(t, [&u, &v, &theta, &omega, &w]);
+        }
+    }
+
+    /// Runs the chain from `pose` until the engine takes it back or the run ends.
+    fn run_chain(&mut self, links: &Links, mut pose: Pose) -> Result<(), SimulationError> {
+        let body = &self.scene.bodies[0];
+        let sc = Scales::of(body);
+        let (p, ts) = (body.frequency_parameter_rad_s(), body.time_scale_s());
+        let size = body.size_m();
+        let dt = self.scene.settings.output_dt_s;
+        let mut row = true;
+        let mut stalled = 0usize;
+        loop {
+            let (seg, inputs) = self.inputs_at(self.t);
+            let path = links.path(&pose, &inputs)?;
+            if self.t >= self.t_end {
+                self.end_chain(links, &path, 0.0, &[]);
+                return Ok(());
+            }
+            let limit = seg.t1.min(self.t_end);
+            let span = limit - self.t;
+            let mut steps: Vec<(&Coeffs, f64)> = Vec::new();
+            for c in 0..pose.open.len() {
+                steps.push((&path.phi[c], 1.0));
+                steps.push((&path.omega[c], p));
+            }
+            for b in &path.base {
+                steps.push((&b[0], size));
+            }
+            let h = series::step_size(&steps).min(span);
+            let mut best: Option<(f64, Option<Cut>)> = None;
+            let mut consider = |x: Option<f64>, what: Option<Cut>| {
+                if let Some(x) = x.filter(|&x| x <= h) {
+                    if best.is_none_or(|(b, _)| x < b) {
+                        best = Some((x, what));
+                    }
+                }
+            };
+            for c in links.conditions(&pose, &path, sc.angle) {
+                consider(series::first_fall(&c.series, c.scale, ts, h), Some(c.cut));
+            }
+            // Extremes of each body's rotation and of each block's u and u'.
+            let mut extreme = |d: &Coeffs, scale: f64| {
+                let sign = sign_after(d, scale, ts);
+                if sign != 0 {
+                    let f = d.map(|x| x * f64::from(sign));
+                    consider(series::first_fall(&f, scale, ts, h), None);
+                }
+            };
+            for c in 0..pose.open.len() {
+                extreme(&path.omega[c], sc.angle * p);
+            }
+            for (b, body) in path.base.iter().zip(&path.body) {
+                if body.is_some() {
+                    let v = derivative(&b[0]);
+                    extreme(&v, sc.velocity);
+                    extreme(&derivative(&v), sc.velocity * p);
+                }
+            }
+            self.chain_row(links, &path, 0.0, self.t, inputs.accel[0], row);
+            self.rec.stats.steps += 1;
+            if !self.keep_going() {
+                self.end_chain(links, &path, 0.0, &[]);
+                return Ok(());
+            }
+            let tau = best.map_or(h, |(x, _)| x);
+            let t_new = if tau >= span { limit } else { self.t + tau };
+            if t_new > self.t {
+                stalled = 0;
+            } else {
+                stalled += 1;
+                if stalled > super::STALL_STOPS {
+                    return Err(SimulationError::TooManyEvents {
+                        time_s: self.t,
+                        count: stalled,
+                        detail: "a rocking column's events".into(),
+                        limit: "a chain of rocking blocks that changes its configuration this \
+                                often without time passing is beyond the rocking model; please \
+                                report the wall and the motion",
+                    });
+                }
+            }
+            while self.next_out < t_new {
+                let tau_out = self.next_out - self.t;
+                let a_g = eval(&inputs.accel, tau_out);
+                self.chain_row(links, &path, tau_out, self.next_out, a_g, true);
+                self.outputs += 1;
+                self.next_out = (self.outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
+            }
+            self.rec.energy.input_j += integral(&links.input_power(&path, &inputs), tau);
+            pose.phi = path.phi.iter().map(|c| eval(c, tau)).collect();
+            pose.omega = path.omega.iter().map(|c| eval(c, tau)).collect();
+            self.t = t_new;
+            if self.t >= self.next_out {
+                self.outputs += 1;
+                self.next_out = (self.outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
+                row = true;
+            } else {
+                row = false;
+            }
+            let (_, now) = self.inputs_at(self.t);
+            let event = best.filter(|(x, _)| *x == tau).and_then(|(_, cut)| cut);
+            let next = match event {
+                Some(cut) => {
+                    self.rec.stats.events += 1;
+                    row = true;
+                    self.chain_event(links, pose, &path, tau, cut, &now)?
+                }
+                None if self.t == seg.t1 && self.t < self.t_end => {
+                    self.rec.stats.segments += 1;
+                    self.settle(links, pose, &now)?
+                }
+                None => Next::Chain(pose),
+            };
+            match next {
+                Next::Chain(next) => pose = next,
+                Next::Body(state, mode) => return self.resume(state, mode),
+                Next::End => return Ok(()),
+            }
+        }
+    }
+
+    /// Handles the chain's event `cut`, reached tau into the step of `path`.
+    fn chain_event(
+        &mut self,
+        links: &Links,
+        pose: Pose,
+        path: &Path,
+        tau: f64,
+        cut: Cut,
+        now: &Inputs,
+    ) -> Result<Next, SimulationError> {
+        match cut {
+            Cut::Land(c) => self.chain_lands(links, pose, path, tau, c, now),
+            Cut::Closed(_, 2 | 3) => self.settle(links, pose, now),
+            Cut::Overturn(c) => {
+                let j = pose.open[c].joint;
+                let blocks = self.chain_outputs(j, links.blocks());
+                for &b in &blocks {
+                    self.rec.fell(b);
+                }
+                self.rec.rocking_event(
+                    self.t,
+                    EventKind::Overturning,
+                    &blocks,
+                    None,
+                    format!(
+                        "overturned on {} (the run ends here: the exact model does not follow \
+                         the blocks that stay)",
+                        links.joints[j].name
+                    ),
+                );
+                if self.rec.collapse.is_none() {
+                    self.rec.collapse = Some(Collapse {
+                        time_s: self.t,
+                        block: links.watch.outputs[j].name.clone(),
+                        cause: CollapseCause::Overturning,
+                    });
+                }
+                let fallen: Vec<usize> = (j..links.blocks()).collect();
+                self.end_chain(links, path, tau, &fallen);
+                Ok(Next::End)
+            }
+            cut => {
+                self.chain_stops(links, &pose, path, cut, tau);
+                Ok(Next::End)
+            }
+        }
+    }
+
+    /// Open joint c lands: on its other corner if the part above it turns on onto it after the
+    /// impulse, else seated; the momentum balance decides the rates after, and the impulses
+    /// every joint passes are checked against its friction and contact.
+    fn chain_lands(
+        &mut self,
+        links: &Links,
+        pose: Pose,
+        path: &Path,
+        tau: f64,
+        c: usize,
+        now: &Inputs,
+    ) -> Result<Next, SimulationError> {
+        let body = &self.scene.bodies[0];
+        let nb = links.blocks();
+        let energy_before: f64 = links.energies(path, tau).iter().map(|(k, p)| k + p).sum();
+        let at = Instant::of(&pose, path, tau);
+        let velocity: Vec<[f64; 2]> = path
+            .centroid
+            .iter()
+            .map(|g| g.map(|x| eval(&derivative(&x), tau)))
+            .collect();
+        let spin: Vec<f64> = path
+            .body
+            .iter()
+            .map(|b| b.map_or(0.0, |b| eval(&path.omega[b], tau)))
+            .collect();
+        let rel = |omega: &[f64], c: usize| omega[c] - if c > 0 { omega[c - 1] } else { 0.0 };
+        let before = rel(&pose.omega, c);
+        let o = pose.open[c];
+        // The other corner, seated at theta = 0 exactly.
+        let mut flipped = pose.clone();
+        flipped.open[c].s = -o.s;
+        flipped.phi[c] = if c > 0 { pose.phi[c - 1] } else { 0.0 };
+        // A rise after the landing below ZENO_ROTATION alpha ends the series of landings there
+        // (seated), as a single body's does.
+        let zeno = ZENO_ROTATION.sqrt()
+            * 2f64.sqrt()
+            * Scales::of(body).angle
+            * body.frequency_parameter_rad_s();
+        let on_corner = links
+            .momentum_balance(&flipped.open, &at, &velocity, &spin)
+            .filter(|(rates, _)| -o.s * rel(rates, c) > 0.0);
+        // The landings of a joint accumulate: what the sum leaves out, the rest of the series
+        // (its duration, which is of the order of the rate over the joint's angular
+        // acceleration, under a microsecond at this size, is not added), is counted as lost.
+        let accumulates = on_corner
+            .as_ref()
+            .is_some_and(|(rates, _)| -o.s * rel(rates, c) <= zeno);
+        let on_corner = on_corner.filter(|_| !accumulates);
+        let (next, rates, after) = match on_corner {
+            Some((rates, after)) => {
+                let f = body.restitution_factor;
+                let rates: Vec<f64> = rates.iter().map(|w| w * f).collect();
+                let after = after.iter().map(|v| v.map(|x| x * f)).collect();
+                (flipped, rates, after)
+            }
+            None => {
+                let mut seated = pose.clone();
+                seated.open.remove(c);
+                seated.phi.remove(c);
+                seated.omega.remove(c);
+                let (rates, after) = links
+                    .momentum_balance(&seated.open, &at, &velocity, &spin)
+                    .ok_or_else(|| {
+                        SimulationError::Bug("a chain's landing has no momentum balance".into())
+                    })?;
+                (seated, rates, after)
+            }
+        };
+        let mut next = next;
+        next.omega = rates;
+        // The impulses: each joint passes up what the blocks above it gain.
+        let gain: Vec<[f64; 2]> = (0..nb)
+            .map(|p| {
+                let m = links.watch.pieces[p].mass_kg;
+                [
+                    m * (after[p][0] - velocity[p][0]),
+                    m * (after[p][1] - velocity[p][1]),
+                ]
+            })
+            .collect();
+        let new_body = links.bodies(&next.open);
+        let spin_gain: Vec<f64> = (0..nb)
+            .map(|p| {
+                let w = new_body[p].map_or(0.0, |b| next.omega[b]);
+                links.watch.pieces[p].inertia_kg_m2 * (w - spin[p])
+            })
+            .collect();
+        let scale: f64 = gain.iter().map(|g| g[0].abs() + g[1].abs()).sum::<f64>()
+            + spin_gain.iter().map(|x| x.abs()).sum::<f64>() / links.height();
+        let j = o.joint;
+        let blocks = self.chain_outputs(j, nb);
+        for &b in &blocks {
+            self.rec.rocking_impact(b);
+        }
+        self.rec.impacts += 1;
+        let landed = next.open.iter().any(|x| x.joint == j);
+        let after_rel = if landed { rel(&next.omega, c) } else { 0.0 };
+        self.rec.rocking_event(
+            self.t,
+            EventKind::RockingImpact,
+            &blocks,
+            Some((before, after_rel)),
+            if landed {
+                format!(
+                    "{} lands on its {} corner",
+                    links.joints[j].name,
+                    Corner::of_sign(-o.s).name()
+                )
+            } else if accumulates {
+                format!(
+                    "{} lands seated: its landings accumulate",
+                    links.joints[j].name
+                )
+            } else {
+                format!("{} lands seated", links.joints[j].name)
+            },
+        );
+        let new_path = links.path(&next, now)?;
+        let energy_after: f64 = links
+            .energies(&new_path, 0.0)
+            .iter()
+            .map(|(k, p)| k + p)
+            .sum();
+        self.rec.energy.impact_loss_j += energy_before - energy_after;
+        if accumulates {
+            // Every landing of the series kept its impulses in the joint's cone and contact;
+            // the seat they end in is their limit, not one impulse.
+            self.rec.zeno += 1;
+            return self.settle(links, next, now);
+        }
+        if let Some(cut) = links.impulse_breaks(&next, &at, &gain, &spin_gain, scale) {
+            self.chain_stops(links, &next, &new_path, cut, 0.0);
+            return Ok(Next::End);
+        }
+        self.settle(links, next, now)
+    }
+}
+
+impl Links<'_> {
+    /// The column's height (m): the moment scale over the force scale.
+    fn height(&self) -> f64 {
+        self.watch.moment_scale / self.watch.force_scale
+    }
+
+    /// The first joint condition a landing's impulses break: the linear impulse each joint
+    /// passes up (what the blocks above it gain, `gain`, with their angular impulses
+    /// `spin_gain`) must lie in its friction cone, pressing; a closed joint's resultant within
+    /// its contact.
+    fn impulse_breaks(
+        &self,
+        pose: &Pose,
+        at: &Instant,
+        gain: &[[f64; 2]],
+        spin_gain: &[f64],
+        scale: f64,
+    ) -> Option<Cut> {
+        let tol = TIE * scale;
+        let nb = self.blocks();
+        let body = self.bodies(&pose.open);
+        for (j, joint) in self.joints.iter().enumerate() {
+            let (jx, jy) = (j..nb).fold((0.0, 0.0), |(x, y), p| (x + gain[p][0], y + gain[p][1]));
+            let open = pose.open.iter().position(|o| o.joint == j);
+            let face = match open {
+                Some(c) if joint.upper_corner[usize::from(pose.open[c].s > 0.0)] => {
+                    c.checked_sub(1)
+                }
+                Some(c) => Some(c),
+                None => body[j],
+            };
+            let (sin, cos) = face.map_or((0.0, 1.0), |c| at.phi[c].sin_cos());
+            let (n, t) = (jx * sin + jy * cos, jx * cos - jy * sin);
+            let mu = joint.friction;
+            let cone = [mu * n - t, mu * n + t];
+            if let Some(i) = cone.iter().position(|&x| x < -tol) {
+                return Some(match open {
+                    Some(c) => Cut::Pivot(c, i),
+                    None => Cut::Closed(j, i),
+                });
+            }
+            if open.is_some() {
+                continue;
+            }
+            let height = self.height();
+            let moments = [-1.0, 1.0].map(|s| {
+                let e = at.point(self, j, s);
+                (j..nb)
+                    .map(|p| {
+                        let (dx, dy) = (at.centroid[p][0] - e[0], at.centroid[p][1] - e[1]);
+                        dx * gain[p][1] - dy * gain[p][0] - spin_gain[p]
+                    })
+                    .sum::<f64>()
+            });
+            if moments[0] < -tol * height {
+                return Some(Cut::Closed(j, 2));
+            }
+            if -moments[1] < -tol * height {
+                return Some(Cut::Closed(j, 3));
+            }
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+#[path = "chain_tests.rs"]
+mod tests;

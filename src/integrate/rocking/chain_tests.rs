@@ -1,0 +1,259 @@
+//! Tests of the chain of open joints: its equations against the single body's where one joint
+//! is open, its energy and pivot moments where several are, and its landings against an
+//! independent Newton-Euler impulse balance written here with nalgebra.
+use super::*;
+use crate::integrate::rocking::column::{columns, Column};
+use crate::integrate::rocking::modes::{self, test_inputs_at, Equations};
+use nalgebra::{SMatrix, SVector};
+
+/// Three blocks of different sizes: the top one tips first (friction 0.9 between it and the
+/// middle one), or with a low friction between the lower two the upper two slide as one.
+fn three_blocks() -> Column {
+    let model = crate::model::Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6,
+          joint_friction: {\"C/B\": 0.9},
+          rows: [(height_m: 0.4, blocks: [(width_m: 1.2, name: \"A\")]),
+                 (height_m: 0.6, x_m: 0.2, blocks: [(width_m: 0.8, name: \"B\")]),
+                 (height_m: 1.5, x_m: 0.35, blocks: [(width_m: 0.5, name: \"C\")])])",
+    )
+    .unwrap();
+    columns(model.wall(), model.topology()).unwrap().remove(0)
+}
+
+/// Two drums of different sizes, the upper narrower: the whole column tips first.
+fn two_drums() -> Column {
+    let model = crate::model::Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2600, friction: 0.8,
+          rows: [(height_m: 1.2, blocks: [(width_m: 0.6, name: \"Low\")]),
+                 (height_m: 1.0, x_m: 0.05, blocks: [(width_m: 0.5, name: \"High\")])])",
+    )
+    .unwrap();
+    let c = columns(model.wall(), model.topology()).unwrap().remove(0);
+    assert_eq!(c.body.name, "Low+High");
+    c
+}
+
+fn still() -> Inputs {
+    let mut lambda = ZERO;
+    lambda[0] = 1.0;
+    Inputs {
+        accel: ZERO,
+        lambda,
+    }
+}
+
+/// Relative difference, against a floor.
+fn close(a: f64, b: f64, floor: f64) -> bool {
+    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(floor)
+}
+
+/// With only the body's own joint open, the chain is the body: its rotation and rate along a
+/// step are the single body's series (Housner's equation with the ground's acceleration), on
+/// either corner, for a one-block and a two-block body.
+#[test]
+fn one_open_joint_moves_as_the_body_alone() {
+    let c = three_blocks();
+    for column in [c, two_drums()] {
+        let links = Links::of(&column.watch, 0.013).unwrap();
+        let inputs = test_inputs_at(0.37);
+        for (s, theta, omega) in [(1.0, 0.04, -0.3), (-1.0, -0.02, 0.5)] {
+            let pose = Pose {
+                open: vec![Open {
+                    joint: links.body_joint,
+                    s,
+                }],
+                phi: vec![theta],
+                omega: vec![omega],
+            };
+            let path = links.path(&pose, &inputs).unwrap();
+            let body = modes::trajectory(
+                &column.body,
+                Equations::Exact,
+                Mode::Rock(Corner::of_sign(s)),
+                &State {
+                    theta,
+                    omega,
+                    u: 0.013,
+                    v: 0.0,
+                },
+                &inputs,
+            );
+            for tau in [0.0, 0.01, 0.03, 0.06] {
+                let (a, b) = (eval(&path.phi[0], tau), eval(&body.theta, tau));
+                assert!(
+                    close(a, b, 1e-3),
+                    "{} {s}: {a} {b} at {tau}",
+                    column.body.name
+                );
+                let (a, b) = (eval(&path.omega[0], tau), eval(&body.omega, tau));
+                assert!(
+                    close(a, b, 1e-2),
+                    "{} {s}: {a} {b} at {tau}",
+                    column.body.name
+                );
+            }
+        }
+    }
+}
+
+/// Every pose of three open joints on the three-block column, and two on the two drums: on
+/// still ground the chain's energy stays what it was along a step, and the moment of what
+/// each open joint passes up about its pivot vanishes (its equation of motion); under a
+/// shaking ground the energy grows by the work of the ground's inertial forces.
+#[test]
+fn a_chain_keeps_its_energy_and_no_moment_at_its_pivots() {
+    let three = three_blocks();
+    let two = two_drums();
+    let open = |joint, s| Open { joint, s };
+    let cases = [
+        (
+            &three,
+            Pose {
+                open: vec![open(0, 1.0), open(1, -1.0), open(2, 1.0)],
+                phi: vec![0.02, -0.01, 0.05],
+                omega: vec![0.1, -0.4, 0.6],
+            },
+        ),
+        (
+            &two,
+            Pose {
+                open: vec![open(0, -1.0), open(1, 1.0)],
+                phi: vec![-0.03, 0.02],
+                omega: vec![-0.2, 0.7],
+            },
+        ),
+    ];
+    for (column, pose) in cases {
+        let links = Links::of(&column.watch, 0.0).unwrap();
+        let w = &column.watch;
+        for (inputs, shaking) in [(still(), false), (test_inputs_at(0.37), true)] {
+            let path = links.path(&pose, &inputs).unwrap();
+            let energy =
+                |tau: f64| -> f64 { links.energies(&path, tau).iter().map(|(k, p)| k + p).sum() };
+            let scale = w.moment_scale * 0.1;
+            let power = links.input_power(&path, &inputs);
+            for tau in [0.01, 0.02, 0.04] {
+                let gained = if shaking { integral(&power, tau) } else { 0.0 };
+                let change = energy(tau) - energy(0.0);
+                assert!(
+                    (change - gained).abs() < 1e-12 * scale,
+                    "{}: {change} J against {gained} J at {tau} s",
+                    column.body.name
+                );
+                for (c, o) in pose.open.iter().enumerate() {
+                    let e = [0, 1].map(|a| path.pivot[c][a]);
+                    let m = eval(&links.moment(&path, o.joint, &e), tau);
+                    assert!(m.abs() < 1e-12 * w.moment_scale, "{c}: {m} N m");
+                }
+            }
+            // The work compared is far above the tolerance: the check can fail.
+            assert!(
+                !shaking || integral(&power, 0.04).abs() > 1e-6 * scale,
+                "{}",
+                integral(&power, 0.04) / scale
+            );
+        }
+    }
+}
+
+/// A landing of the upper drum on the lower one's other corner while the lower rocks on the
+/// ground: the rates after keep each part's angular momentum about its pivot. Checked against
+/// Newton-Euler for each drum with an impulse at the ground pivot and one at the new corner,
+/// both pivots held after (ten equations in ten unknowns); and a one-body landing gives
+/// Housner's r.
+#[test]
+fn landings_keep_the_momentum_newton_euler_impulses_give() {
+    let column = two_drums();
+    let links = Links::of(&column.watch, 0.0).unwrap();
+    let pose = Pose {
+        open: vec![Open { joint: 0, s: 1.0 }, Open { joint: 1, s: 1.0 }],
+        phi: vec![0.03, 0.03],
+        omega: vec![0.2, -0.5],
+    };
+    let path = links.path(&pose, &still()).unwrap();
+    let at = Instant::of(&pose, &path, 0.0);
+    let velocity: Vec<[f64; 2]> = path
+        .centroid
+        .iter()
+        .map(|g| g.map(|x| derivative(&x)[0]))
+        .collect();
+    let spin = [0.2, -0.5];
+    let mut flipped = pose.open.clone();
+    flipped[1].s = -1.0;
+    let (rates, _) = links
+        .momentum_balance(&flipped, &at, &velocity, &spin)
+        .unwrap();
+    // Unknowns: v1 (2), w1, v2 (2), w2, P (2, ground on the lower), Q (2, lower on upper).
+    let p = &column.watch.pieces;
+    let ground = at.point(&links, 0, 1.0);
+    let corner = at.point(&links, 1, -1.0);
+    let g = &at.centroid;
+    let mut a = SMatrix::<f64, 10, 10>::zeros();
+    let mut b = SVector::<f64, 10>::zeros();
+    let r = |pt: [f64; 2], i: usize| [pt[0] - g[i][0], pt[1] - g[i][1]];
+    // Momentum of each drum: m (v' - v) = impulses on it.
+    for (i, sign_q) in [(0usize, -1.0), (1, 1.0)] {
+        for k in 0..2 {
+            a[(3 * i + k, 3 * i + k)] = p[i].mass_kg;
+            if i == 0 {
+                a[(k, 6 + k)] = -1.0;
+            }
+            a[(3 * i + k, 8 + k)] = -sign_q;
+            b[3 * i + k] = p[i].mass_kg * velocity[i][k];
+        }
+        // Clockwise angular momentum about its centroid: I (w' - w) = r_y J_x - r_x J_y.
+        a[(3 * i + 2, 3 * i + 2)] = p[i].inertia_kg_m2;
+        if i == 0 {
+            let rp = r(ground, 0);
+            a[(2, 6)] = -rp[1];
+            a[(2, 7)] = rp[0];
+        }
+        let rq = r(corner, i);
+        a[(3 * i + 2, 8)] = -sign_q * rq[1];
+        a[(3 * i + 2, 9)] = sign_q * rq[0];
+        b[3 * i + 2] = p[i].inertia_kg_m2 * spin[i];
+    }
+    // The ground pivot at rest after; the new corner moving with both drums.
+    let point = |i: usize, pt: [f64; 2]| {
+        let rr = r(pt, i);
+        // v + w (r_y, -r_x)
+        [[1.0, 0.0, rr[1]], [0.0, 1.0, -rr[0]]]
+    };
+    let pg = point(0, ground);
+    for k in 0..2 {
+        for c in 0..3 {
+            a[(6 + k, c)] = pg[k][c];
+        }
+    }
+    let (q0, q1) = (point(0, corner), point(1, corner));
+    for k in 0..2 {
+        for c in 0..3 {
+            a[(8 + k, c)] = q0[k][c];
+            a[(8 + k, 3 + c)] = -q1[k][c];
+        }
+    }
+    let x = a.lu().solve(&b).unwrap();
+    assert!(close(rates[0], x[2], 1e-2), "{} {}", rates[0], x[2]);
+    assert!(close(rates[1], x[5], 1e-2), "{} {}", rates[1], x[5]);
+    // The upper drum turns onto its new corner, the normal impulse there presses.
+    assert!(rates[1] - rates[0] < 0.0 && x[9] > 0.0, "{rates:?} {x}");
+
+    // One body landing: Housner.
+    let one = Pose {
+        open: vec![Open { joint: 0, s: 1.0 }],
+        phi: vec![0.0],
+        omega: vec![-0.4],
+    };
+    let path = links.path(&one, &still()).unwrap();
+    let at = Instant::of(&one, &path, 0.0);
+    let velocity: Vec<[f64; 2]> = path
+        .centroid
+        .iter()
+        .map(|g| g.map(|x| derivative(&x)[0]))
+        .collect();
+    let (rates, _) = links
+        .momentum_balance(&[Open { joint: 0, s: -1.0 }], &at, &velocity, &[-0.4, -0.4])
+        .unwrap();
+    let r = column.body.housner_restitution();
+    assert!(close(rates[0], -0.4 * r, 1e-2), "{} {}", rates[0], -0.4 * r);
+}
