@@ -62,6 +62,9 @@ pub struct RunSettings {
     pub events_file: Option<std::path::PathBuf>,
     /// Keep the log of mode decisions (event-driven sliding only).
     pub log_decisions: bool,
+    /// With `log_decisions`, also write that log to this JSON-lines file as the run goes
+    /// ([`Settings::decisions_file`]).
+    pub decisions_file: Option<std::path::PathBuf>,
     /// What to do once a block falls.
     pub after_collapse: AfterCollapse,
     /// The integrator.
@@ -138,6 +141,7 @@ pub fn run(model: &Model, motion: &Motion, settings: &RunSettings) -> Result<Res
         history_file: settings.history_file.clone(),
         log_events: settings.log_events,
         events_file: settings.events_file.clone(),
+        decisions_file: settings.decisions_file.clone(),
         log_decisions: settings.log_decisions,
         after_collapse: settings.after_collapse,
         progress: settings.progress.clone(),

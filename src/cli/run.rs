@@ -432,6 +432,11 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         history_file: history.map(|dir| dir.join("history.csv")),
         log_events: args.out.is_some(),
         events_file: args.out.as_ref().map(|dir| dir.join("events.jsonl")),
+        decisions_file: args
+            .out
+            .as_ref()
+            .filter(|_| args.decisions)
+            .map(|dir| dir.join("decisions.jsonl")),
         log_decisions: args.decisions,
         after_collapse: args.after_collapse,
         method: args.method(),
@@ -452,7 +457,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         );
     }
     let partials: Vec<PathBuf> = args.out.as_ref().map_or_else(Vec::new, |dir| {
-        ["history.csv", "events.jsonl"]
+        ["history.csv", "events.jsonl", "decisions.jsonl"]
             .map(|name| partial_name(&dir.join(name)))
             .to_vec()
     });

@@ -50,6 +50,9 @@ pub struct Settings {
     pub events_file: Option<PathBuf>,
     /// Keep the log of mode decisions (event-driven only: what each took in and cost).
     pub log_decisions: bool,
+    /// With `log_decisions`, also write that log to this JSON-lines file as the run goes, as
+    /// `events_file` is written (a partial name until the run ends).
+    pub decisions_file: Option<PathBuf>,
     /// What to do after a collapse.
     pub after_collapse: AfterCollapse,
     /// Told the simulated time as the run goes on (a progress bar for long runs).
@@ -182,6 +185,7 @@ impl Settings {
             history_file: None,
             log_events: false,
             events_file: None,
+            decisions_file: None,
             log_decisions: false,
             after_collapse: AfterCollapse::Stop,
             progress: None,

@@ -35,7 +35,9 @@ pub struct Recorder {
     /// The event log going to a file as well, as the run goes.
     event_file: Option<PartialFile>,
     /// Logged mode decisions, when the integrator keeps them.
-    pub decisions: Option<Vec<DecisionRecord>>,
+    decisions: Option<Vec<DecisionRecord>>,
+    /// The decision log going to a file as well, as the run goes.
+    decision_file: Option<PartialFile>,
     /// Impacts counted.
     pub impacts: u64,
     /// Touches counted.
@@ -131,6 +133,7 @@ impl Recorder {
                 EventsTo::Nowhere | EventsTo::Memory => None,
             },
             decisions: None,
+            decision_file: None,
             impacts: 0,
             touches: 0,
             zeno: 0,
@@ -274,6 +277,29 @@ impl Recorder {
         }
     }
 
+    /// Keeps the log of mode decisions from now on, and writes it to `file` as the run goes
+    /// if one is given (under its partial name until the run ends).
+    pub fn log_decisions(&mut self, file: Option<&std::path::Path>) {
+        self.decisions = Some(Vec::new());
+        self.decision_file = file.map(PartialFile::new);
+    }
+
+    /// Whether mode decisions are logged.
+    pub fn logs_decisions(&self) -> bool {
+        self.decisions.is_some()
+    }
+
+    /// Keeps a mode decision, and writes it to the decision file if there is one.
+    pub fn decision(&mut self, record: DecisionRecord) {
+        let Some(log) = &mut self.decisions else {
+            return;
+        };
+        if let Some(file) = &mut self.decision_file {
+            file.write(&(serde_json::to_string(&record).expect("record serialises") + "\n"));
+        }
+        log.push(record);
+    }
+
     /// Keeps a logged event, and writes it to the event file if there is one.
     fn log(&mut self, event: EventRecord) {
         if let Some(file) = &mut self.event_file {
@@ -361,7 +387,10 @@ impl Recorder {
             self.block_extremes(i, ui.abs(), vi.abs());
         }
         self.events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
-        if let Some(file) = self.event_file.take() {
+        for file in [self.event_file.take(), self.decision_file.take()]
+            .into_iter()
+            .flatten()
+        {
             file.discard();
         }
         let e = &mut self.energy;

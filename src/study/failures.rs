@@ -113,6 +113,7 @@ pub fn run(
         history_file: None,
         log_events: true,
         events_file: None,
+        decisions_file: None,
         log_decisions: false,
         after_collapse: Default::default(),
         progress: None,

@@ -444,6 +444,7 @@ fn record_figures(
             history_file: None,
             log_events: false,
             events_file: None,
+            decisions_file: None,
             log_decisions: false,
             after_collapse: AfterCollapse::Continue,
             progress: None,

@@ -163,6 +163,7 @@ fn settings(duration: f64) -> Settings {
         history_file: None,
         log_events: false,
         events_file: None,
+        decisions_file: None,
         log_decisions: false,
         after_collapse: Default::default(),
         progress: None,

@@ -555,8 +555,9 @@ fn a_run_that_fails_part_way_keeps_its_history_and_events() {
     assert!(history.starts_with("time_s,u_B1_m,") && history.lines().count() >= 2);
 }
 
-/// The event log written as the run goes is the run's log: a run stopped by an error at its
-/// first impact leaves, line for line, the events the whole run logs before it.
+/// The event and decision logs written as the run goes are the run's logs: a run stopped by an
+/// error at its first impact leaves, line for line, the events and the mode decisions the whole
+/// run logs before it (a decision's CPU time aside).
 #[test]
 fn the_event_log_written_as_a_run_goes_is_the_logs_beginning() {
     use pirqa::integrate::event::{EventDriven, Params};
@@ -568,6 +569,8 @@ fn the_event_log_written_as_a_run_goes_is_the_logs_beginning() {
     let settings = Settings {
         log_events: true,
         events_file: Some(dir.join("events.jsonl")),
+        log_decisions: true,
+        decisions_file: Some(dir.join("decisions.jsonl")),
         ..Settings::summary_only(20.0)
     };
     let run = |params: Params| {
@@ -604,5 +607,26 @@ fn the_event_log_written_as_a_run_goes_is_the_logs_beginning() {
     );
     for (line, event) in lines.iter().zip(&whole.events) {
         assert_eq!(*line, serde_json::to_string(event).unwrap());
+    }
+    assert!(!dir.join("decisions.jsonl").exists());
+    let kept = std::fs::read_to_string(dir.join(".decisions.jsonl.partial")).unwrap();
+    let lines: Vec<&str> = kept.lines().collect();
+    assert!(
+        lines.len() >= 5 && lines.len() <= whole.decisions.len(),
+        "{} of {}",
+        lines.len(),
+        whole.decisions.len()
+    );
+    // The text without its `"cpu_s":...` field.
+    let timeless = |line: &str| -> String {
+        let at = line.find("\"cpu_s\":").unwrap();
+        let end = line[at..].find([',', '}']).unwrap();
+        format!("{}{}", &line[..at], &line[at + end..])
+    };
+    for (line, decision) in lines.iter().zip(&whole.decisions) {
+        assert_eq!(
+            timeless(line),
+            timeless(&serde_json::to_string(decision).unwrap())
+        );
     }
 }

@@ -93,7 +93,7 @@ proptest! {
         let topo = topo.unwrap();
         if std::env::var("PIRQA_PROBE").is_ok() { eprintln!("CASE {}\n{amp} {freq} {phase}", pirqa::wall::to_ron_string(&d)); }
         let motion = Motion::sine(Sine { amplitude_m_s2: amp, frequency_hz: freq, phase_rad: phase.to_radians(), duration_s: 4.0 }).unwrap();
-        let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), history_file: None, log_events: true, events_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), history_file: None, log_events: true, events_file: None, decisions_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings }).unwrap();
 
         let e = r.summary.energy;
@@ -184,6 +184,7 @@ fn coursed_energy_closes(
         history_file: None,
         log_events: false,
         events_file: None,
+        decisions_file: None,
         log_decisions: false,
         after_collapse: AfterCollapse::Continue,
         progress: None,
@@ -224,7 +225,7 @@ proptest! {
         use pirqa::integrate::event::Params;
         let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2000, 2000);
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
-        let settings = Settings { duration_s: 10.0, output_dt_s: None, history_file: None, log_events: true, events_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { duration_s: 10.0, output_dt_s: None, history_file: None, log_events: true, events_file: None, decisions_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let scenario = Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings };
         let run = |kept_limits_from: usize, beside_stuck_from: usize| {
             let params = Params { kept_limits_from, beside_stuck_from, ..Params::default() };
@@ -263,7 +264,7 @@ proptest! {
         let h = pirqa::motion::Record::new("h", dt, ramp(a0, s_h)).unwrap();
         let v = pirqa::motion::Record::new("v", dt, ramp(0.0, s_v)).unwrap();
         let motion = Motion::Record(h.with_vertical(&v, 9.81).unwrap());
-        let settings = Settings { duration_s: 3.0, output_dt_s: Some(0.01), history_file: None, log_events: true, events_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { duration_s: 3.0, output_dt_s: Some(0.01), history_file: None, log_events: true, events_file: None, decisions_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings });
         prop_assert!(r.is_ok(), "{:?}", r.err());
         let r = r.unwrap();

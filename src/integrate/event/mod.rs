@@ -264,7 +264,9 @@ impl<'a> Engine<'a> {
             sc.settings.history_to(),
             sc.settings.events_to(),
         );
-        rec.decisions = sc.settings.log_decisions.then(Vec::new);
+        if sc.settings.log_decisions {
+            rec.log_decisions(sc.settings.decisions_file.as_deref());
+        }
         Ok(Engine {
             given: Given {
                 wall,

@@ -560,6 +560,7 @@ impl Sweep {
             history_file: None,
             log_events: true,
             events_file: None,
+            decisions_file: None,
             log_decisions: false,
             after_collapse: Default::default(),
             progress: Some(progress),

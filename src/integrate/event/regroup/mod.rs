@@ -40,8 +40,7 @@ impl Engine<'_> {
         self.rec.stats.mode_decisions += 1;
         let log_from = self
             .rec
-            .decisions
-            .is_some()
+            .logs_decisions()
             .then(|| (ThreadClock::start(), flow::pass_nodes()));
         let t = self.t;
 
@@ -277,9 +276,7 @@ impl Engine<'_> {
                 flow_nodes: flow::pass_nodes() - nodes_from,
                 cpu_s: clock.seconds(),
             };
-            if let Some(log) = &mut self.rec.decisions {
-                log.push(record);
-            }
+            self.rec.decision(record);
         }
 
         // 8. A sliding cluster of several blocks whose friction forces changed may have to split:
