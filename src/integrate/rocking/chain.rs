@@ -60,6 +60,10 @@ pub(super) struct Links<'w> {
 /// middle of its base. Positions are relative to the ground, in the watch's frame.
 pub(super) struct Path {
     body: Vec<Option<usize>>,
+    /// Each body's arm to the next pivot at rest, and each block's to its centroid from its
+    /// body's pivot (m).
+    link: Vec<[f64; 2]>,
+    arm: Vec<[f64; 2]>,
     phi: Vec<Coeffs>,
     omega: Vec<Coeffs>,
     alpha: Vec<Coeffs>,
@@ -304,6 +308,8 @@ impl<'w> Links<'w> {
         }
         Ok(Path {
             body,
+            link,
+            arm: arms.iter().map(|a| a[0]).collect(),
             phi,
             omega,
             alpha,
@@ -450,9 +456,16 @@ impl<'w> Links<'w> {
     }
 
     /// The kinetic and potential energy (J) of every block at tau: relative to the ground, the
-    /// potential above rest.
+    /// potential above rest. A centroid's rise is summed over the arms that carry it, each
+    /// (x, y) turned by phi rising by -x sin phi - 2 y sin^2(phi / 2): taken from its height
+    /// now less its height at rest it would keep only what the height's last bit holds.
     fn energies(&self, path: &Path, tau: f64) -> Vec<(f64, f64)> {
         let g = self.watch.g_m_s2;
+        let phi: Vec<f64> = path.phi.iter().map(|c| eval(c, tau)).collect();
+        let rise = |[x, y]: [f64; 2], phi: f64| {
+            let half = (0.5 * phi).sin();
+            -x * phi.sin() - 2.0 * y * half * half
+        };
         (0..self.blocks())
             .map(|p| {
                 let q = &self.watch.pieces[p];
@@ -462,10 +475,11 @@ impl<'w> Links<'w> {
                 let vx = eval(&derivative(&path.centroid[p][0]), tau);
                 let vy = eval(&derivative(&path.centroid[p][1]), tau);
                 let w = eval(&path.omega[c], tau);
-                let y = eval(&path.centroid[p][1], tau);
+                let dy = (0..c).map(|b| rise(path.link[b], phi[b])).sum::<f64>()
+                    + rise(path.arm[p], phi[c]);
                 (
                     0.5 * q.mass_kg * (vx * vx + vy * vy) + 0.5 * q.inertia_kg_m2 * w * w,
-                    q.mass_kg * g * (y - q.y0),
+                    q.mass_kg * g * dy,
                 )
             })
             .collect()

@@ -700,16 +700,25 @@ pub fn kinetic_j(body: &RockingBody, t: &Trajectory, tau: f64) -> f64 {
     0.5 * body.mass_kg * (xg * xg + yg * yg) + 0.5 * body.inertia_kg_m2 * omega * omega
 }
 
-/// The potential energy (J) above the seated position at tau.
+/// The potential energy (J) above the seated position at tau: m g (G_y - h_c), with G_y - h_c
+/// = s b sin theta - 2 h_c sin^2(theta / 2) computed from theta itself. (G_y - h_c from G_y
+/// would cancel: near theta = 0 it keeps only what h_c's last bit can hold, some 1e-12 J for
+/// a block of a few tonnes, and a landing found at a tie of 1e-17 rad would lose the energy of
+/// that tilt.)
 pub fn potential_j(body: &RockingBody, t: &Trajectory, tau: f64) -> f64 {
+    let theta = series::eval(&t.theta, tau);
     if t.equations == Equations::Linearised {
-        let theta = series::eval(&t.theta, tau);
         return body.mass_kg
             * body.g_m_s2
             * body.size_m()
             * (body.slenderness_rad() * theta.abs() - 0.5 * theta * theta);
     }
-    body.mass_kg * body.g_m_s2 * (series::eval(&t.gy, tau) - body.centroid_height_m)
+    let Some(pivot) = t.mode.pivot() else {
+        return body.mass_kg * body.g_m_s2 * (series::eval(&t.gy, tau) - body.centroid_height_m);
+    };
+    let (b, h) = (body.half_base_m, body.centroid_height_m);
+    let half = (0.5 * theta).sin();
+    body.mass_kg * body.g_m_s2 * (pivot.sign() * b * theta.sin() - 2.0 * h * half * half)
 }
 
 /// Power series of the work rates: input (the inertial forces -m a_g on the centroid's
