@@ -282,7 +282,9 @@ impl<'w> Links<'w> {
                 -m
             });
             let lu = solver.as_ref().expect("factorised at order 0");
-            let a = lu.solve(&rhs).ok_or_else(|| {
+            // Nothing open (a chain seated by its last landing): every block rests.
+            let a = if n == 0 { Some(rhs) } else { lu.solve(&rhs) };
+            let a = a.ok_or_else(|| {
                 SimulationError::Bug(format!(
                     "the mass matrix of the chain of open joints {:?} is singular",
                     pose.open
@@ -563,7 +565,11 @@ impl<'w> Links<'w> {
                 })
                 .sum()
         });
-        let rates = matrix.lu().solve(&rhs)?;
+        let rates = if n == 0 {
+            rhs
+        } else {
+            matrix.lu().solve(&rhs)?
+        };
         let after = (0..nb)
             .map(|p| match body[p] {
                 None => [0.0; 2],

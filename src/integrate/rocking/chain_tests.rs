@@ -256,4 +256,16 @@ fn landings_keep_the_momentum_newton_euler_impulses_give() {
         .unwrap();
     let r = column.body.housner_restitution();
     assert!(close(rates[0], -0.4 * r, 1e-2), "{} {}", rates[0], -0.4 * r);
+    // Seated by the landing: no body left, every block at rest.
+    let (rates, after) = links
+        .momentum_balance(&[], &at, &velocity, &[-0.4, -0.4])
+        .unwrap();
+    assert!(rates.is_empty() && after.iter().all(|v| *v == [0.0; 2]));
+    let seated = Pose {
+        open: Vec::new(),
+        phi: Vec::new(),
+        omega: Vec::new(),
+    };
+    let path = links.path(&seated, &test_inputs_at(0.37)).unwrap();
+    assert!(links.energies(&path, 0.0).iter().all(|e| *e == (0.0, 0.0)));
 }
