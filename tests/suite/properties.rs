@@ -14,6 +14,23 @@ use crate::answers;
 use crate::engine::sampled_sine;
 
 /// Two courses over the same length, cut at random; random friction per block and gaps.
+/// A property test's configuration: `cases` cases, or PIRQA_PROPTEST_CASES (a test whose cases
+/// cost more takes that number over `share`, plus one), from the seed PIRQA_PROPTEST_SEED or
+/// `seed`.
+fn config(cases: u32, share: u32, seed: u64) -> ProptestConfig {
+    let var = |name: &str| std::env::var(name).ok();
+    let asked = var("PIRQA_PROPTEST_CASES").and_then(|c| c.parse::<u32>().ok());
+    ProptestConfig {
+        cases: asked.map_or(cases, |c| if share == 1 { c } else { c / share + 1 }),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(
+            var("PIRQA_PROPTEST_SEED")
+                .and_then(|c| c.parse().ok())
+                .unwrap_or(seed),
+        ),
+        ..ProptestConfig::default()
+    }
+}
+
 fn wall_strategy() -> impl Strategy<Value = WallDescription> {
     (
         prop::collection::vec(0.5f64..1.5, 1..4),
@@ -81,7 +98,7 @@ fn wall_strategy() -> impl Strategy<Value = WallDescription> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(64), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261122)), ..ProptestConfig::default() })]
+    #![proptest_config(config(64, 1, 20261122))]
 
     #[test]
     fn invariants_hold_on_random_walls(d in wall_strategy(), amp in 1.0f64..9.0, freq in 0.3f64..5.0, phase in 0.0f64..360.0) {
@@ -93,7 +110,7 @@ proptest! {
         let topo = topo.unwrap();
         if std::env::var("PIRQA_PROBE").is_ok() { eprintln!("CASE {}\n{amp} {freq} {phase}", pirqa::wall::to_ron_string(&d)); }
         let motion = Motion::sine(Sine { amplitude_m_s2: amp, frequency_hz: freq, phase_rad: phase.to_radians(), duration_s: 4.0 }).unwrap();
-        let settings = Settings { duration_s: 4.0, output_dt_s: Some(0.005), history_file: None, log_events: true, events_file: None, decisions_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { output_dt_s: Some(0.005), log_events: true, after_collapse: AfterCollapse::Continue, ..Settings::summary_only(4.0) };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings }).unwrap();
 
         let e = r.summary.energy;
@@ -151,7 +168,7 @@ fn coursed_wall(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse::<u32>().ok()).map_or(24, |c| c / 2 + 1), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261122)), ..ProptestConfig::default() })]
+    #![proptest_config(config(24, 2, 20261122))]
 
     /// Many-course running-bond walls with every joint's friction different, under a strong
     /// broadband record: the situations (impact chains between sliding groups, groups meeting
@@ -179,15 +196,8 @@ fn coursed_energy_closes(
     duration: f64,
 ) -> Result<(), TestCaseError> {
     let settings = Settings {
-        duration_s: duration,
-        output_dt_s: None,
-        history_file: None,
-        log_events: false,
-        events_file: None,
-        decisions_file: None,
-        log_decisions: false,
         after_collapse: AfterCollapse::Continue,
-        progress: None,
+        ..Settings::summary_only(duration)
     };
     let r = EventDriven::default().run(&Scenario {
         wall,
@@ -207,7 +217,7 @@ fn coursed_energy_closes(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse::<u32>().ok()).map_or(24, |c| c / 2 + 1), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261122)), ..ProptestConfig::default() })]
+    #![proptest_config(config(24, 2, 20261122))]
 
     /// The settings that change the work never change the answer: on random running-bond walls
     /// (any restitution) under a strong broadband record, limits kept as bounds
@@ -225,7 +235,7 @@ proptest! {
         use pirqa::integrate::event::Params;
         let (wall, topo) = coursed_wall(courses, blocks, e, seed, 2000, 2000);
         let motion = Motion::Record(pirqa::samples::broadband_record(10.0, 0.01, pga));
-        let settings = Settings { duration_s: 10.0, output_dt_s: None, history_file: None, log_events: true, events_file: None, decisions_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { log_events: true, after_collapse: AfterCollapse::Continue, ..Settings::summary_only(10.0) };
         let scenario = Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings };
         let run = |kept_limits_from: usize, beside_stuck_from: usize| {
             let params = Params { kept_limits_from, beside_stuck_from, ..Params::default() };
@@ -240,7 +250,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(256), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261126)), ..ProptestConfig::default() })]
+    #![proptest_config(config(256, 1, 20261126))]
 
     /// Vertical shaking: random walls under a horizontal ramp a_g = a0 + s_h t and a vertical
     /// one a_v = s_v t (every friction capacity scales by 1 + a_v / g, which stays above 0.2),
@@ -264,7 +274,7 @@ proptest! {
         let h = pirqa::motion::Record::new("h", dt, ramp(a0, s_h)).unwrap();
         let v = pirqa::motion::Record::new("v", dt, ramp(0.0, s_v)).unwrap();
         let motion = Motion::Record(h.with_vertical(&v, 9.81).unwrap());
-        let settings = Settings { duration_s: 3.0, output_dt_s: Some(0.01), history_file: None, log_events: true, events_file: None, decisions_file: None, log_decisions: false, after_collapse: AfterCollapse::Continue, progress: None };
+        let settings = Settings { output_dt_s: Some(0.01), log_events: true, after_collapse: AfterCollapse::Continue, ..Settings::summary_only(3.0) };
         let r = EventDriven::default().run(&Scenario { wall: &wall, topology: &topo, motion: &motion, settings: &settings });
         prop_assert!(r.is_ok(), "{:?}", r.err());
         let r = r.unwrap();
@@ -283,7 +293,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse::<u32>().ok()).map_or(24, |c| c / 2 + 1), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261126)), ..ProptestConfig::default() })]
+    #![proptest_config(config(24, 2, 20261126))]
 
     /// Running-bond walls with every joint's friction different, restitution from elastic to
     /// plastic, under a strong broadband record and a vertical sine (impacts, groups meeting and
@@ -355,7 +365,7 @@ fn rocking_scene() -> impl Strategy<Value = String> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(64), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261126)), ..ProptestConfig::default() })]
+    #![proptest_config(config(64, 1, 20261126))]
 
     /// Columns and triliths that rock (`--model auto`), under a one-cycle sine pulse or a sine
     /// of several cycles, with or without a vertical sine: every run ends, within the model or
@@ -397,7 +407,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: std::env::var("PIRQA_PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(64), rng_seed: proptest::test_runner::RngSeed::Fixed(std::env::var("PIRQA_PROPTEST_SEED").ok().and_then(|c| c.parse().ok()).unwrap_or(20261126)), ..ProptestConfig::default() })]
+    #![proptest_config(config(64, 1, 20261126))]
 
     /// Random walls shaken across their plane (the part above each bed joint rocks on it as one
     /// body), under a strong sine and a vertical sine that can throw a section off its joint:

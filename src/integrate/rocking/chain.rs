@@ -887,38 +887,22 @@ impl Engine<'_> {
 
     /// Extremes and, when `row`, a history row at t, tau into the step of `path`.
     fn chain_row(&mut self, links: &Links, path: &Path, tau: f64, t: f64, a_g: f64, row: bool) {
-        let n = self.layout.len();
-        let (mut u, mut v, mut theta, mut omega, mut w) = (
-            vec![0.0; n],
-            vec![0.0; n],
-            vec![0.0; n],
-            vec![0.0; n],
-            vec![0.0; n],
-        );
-        let mut accel = vec![a_g; n];
+        let mut r = super::Row::at_rest(self.layout.len(), a_g);
         for p in 0..links.blocks() {
             let o = self.layout.column_output(0, p);
             let rest = &links.watch.outputs[p];
             let [x, y] = &path.base[p];
             let vx = derivative(x);
-            u[o] = eval(x, tau) - rest.x0;
-            v[o] = eval(&vx, tau);
-            w[o] = eval(y, tau) - rest.y0;
-            accel[o] = a_g + eval(&derivative(&vx), tau);
+            r.u[o] = eval(x, tau) - rest.x0;
+            r.v[o] = eval(&vx, tau);
+            r.w[o] = eval(y, tau) - rest.y0;
+            r.accel[o] = Some(a_g + eval(&derivative(&vx), tau));
             if let Some(c) = path.body[p] {
-                theta[o] = eval(&path.phi[c], tau);
-                omega[o] = eval(&path.omega[c], tau);
+                r.theta[o] = eval(&path.phi[c], tau);
+                r.omega[o] = eval(&path.omega[c], tau);
             }
         }
-        for i in 0..n {
-            self.rec.block_extremes(i, u[i].abs(), v[i].abs());
-            self.rec.rotation_extreme(i, theta[i].abs());
-            self.rec.block_accel(i, accel[i].abs());
-        }
-        self.rec.joint_extremes(&u);
-        if row {
-            self.rec.sample_rotating(t, [&u, &v, &theta, &omega, &w]);
-        }
+        self.record(&r, t, row);
     }
 
     /// Runs the chain from `pose` until the engine takes it back or the run ends.

@@ -134,6 +134,32 @@ struct Engine<'a> {
     chain_end: Option<ChainEnd>,
 }
 
+/// Every output's state at one instant: u (m), u' (m/s), theta (rad), theta' (rad/s), the
+/// rise w (m) and the absolute acceleration (m/s2; none for a body that lies fallen).
+struct Row {
+    u: Vec<f64>,
+    v: Vec<f64>,
+    theta: Vec<f64>,
+    omega: Vec<f64>,
+    w: Vec<f64>,
+    accel: Vec<Option<f64>>,
+}
+
+impl Row {
+    /// n outputs at rest relative to the ground, accelerating with it at a_g: what held blocks
+    /// and abutments report.
+    fn at_rest(n: usize, a_g: f64) -> Row {
+        Row {
+            u: vec![0.0; n],
+            v: vec![0.0; n],
+            theta: vec![0.0; n],
+            omega: vec![0.0; n],
+            w: vec![0.0; n],
+            accel: vec![Some(a_g); n],
+        }
+    }
+}
+
 /// The end of a run in a column's chain of open joints: each output's u (m) and u' (m/s), and
 /// the energy left in the blocks that still stand (J).
 struct ChainEnd {
@@ -723,16 +749,15 @@ impl<'a> Engine<'a> {
     /// trajectory `tau` after the step's start (a body that fell, where it fell); `a_g` is the
     /// ground acceleration then.
     fn note(&mut self, plans: &[Option<Plan>], tau: f64, t: f64, a_g: f64, row: bool) {
-        let n = self.layout.len();
-        let (mut u, mut v, mut theta, mut omega, mut w) = (
-            vec![0.0; n],
-            vec![0.0; n],
-            vec![0.0; n],
-            vec![0.0; n],
-            vec![0.0; n],
-        );
-        // Held blocks stay at rest relative to the ground; their peak acceleration is a_g's.
-        let mut accel = vec![Some(a_g); n];
+        let mut r = Row::at_rest(self.layout.len(), a_g);
+        let Row {
+            u,
+            v,
+            theta,
+            omega,
+            w,
+            accel,
+        } = &mut r;
         for (i, plan) in plans.iter().enumerate() {
             let body = self.body(i);
             let (traj, at) = match (plan, &self.tracks[i].fallen) {
@@ -759,16 +784,23 @@ impl<'a> Engine<'a> {
                 }
             }
         }
-        for i in 0..n {
-            self.rec.block_extremes(i, u[i].abs(), v[i].abs());
-            self.rec.rotation_extreme(i, theta[i].abs());
-            if let Some(a) = accel[i] {
+        self.record(&r, t, row);
+    }
+
+    /// Notes every output's extremes from `r` and, when `row`, writes it as the history row
+    /// at t.
+    fn record(&mut self, r: &Row, t: f64, row: bool) {
+        for i in 0..r.u.len() {
+            self.rec.block_extremes(i, r.u[i].abs(), r.v[i].abs());
+            self.rec.rotation_extreme(i, r.theta[i].abs());
+            if let Some(a) = r.accel[i] {
                 self.rec.block_accel(i, a.abs());
             }
         }
-        self.rec.joint_extremes(&u);
+        self.rec.joint_extremes(&r.u);
         if row {
-            self.rec.sample_rotating(t, [&u, &v, &theta, &omega, &w]);
+            self.rec
+                .sample_rotating(t, [&r.u, &r.v, &r.theta, &r.omega, &r.w]);
         }
     }
 
