@@ -1,6 +1,7 @@
 //! pirqa's integration tests, one module per subject, in one test binary: a binary per file
 //! would link the whole library (with the release profile's fat LTO) once per file.
 
+mod allocations;
 mod animate;
 mod answers;
 mod common;

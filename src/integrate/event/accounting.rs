@@ -88,7 +88,7 @@ impl Engine<'_> {
         // The relative acceleration c - a_g vanishes where a_g = c: closed form on the
         // monotone arc, then the exact float.
         let (fa, fb) = (acc(t_a), acc(t_b));
-        let mut a_zero = Vec::new();
+        let mut a_zero = None;
         if (fa > 0.0 && fb <= 0.0) || (fa < 0.0 && fb >= 0.0) {
             let seg = &sl.anchor;
             let guess = seg
@@ -100,14 +100,14 @@ impl Engine<'_> {
                 roots::polish(&|x| -acc(x), guess, t_a, t_b, &mut self.count)
             };
             if t < t_b {
-                a_zero.push(t);
+                a_zero = Some(t);
             }
         }
         let v_zero = roots::sign_changes(
             Fun::with(&vel, &vel_acc),
             t_a,
             t_b,
-            &a_zero,
+            a_zero.as_slice(),
             0.0,
             &mut self.count,
         );

@@ -7,8 +7,10 @@
 //! with dv, dd the ground's velocity and displacement gained since the segment start (eq. 1 with
 //! constant friction forces).
 
+use super::roots::Zeros;
 use crate::exact::Q;
 use crate::motion::Segment;
+use smallvec::SmallVec;
 use std::cell::{Cell, OnceCell};
 
 /// A cluster's mode: stuck to the ground within its stick interval, or sliding in closed
@@ -189,10 +191,10 @@ pub struct Roots {
     pub from: f64,
     /// End of the interval searched (s).
     pub to: f64,
-    /// Zeros of the relative acceleration (s).
-    pub a_zero: Vec<f64>,
-    /// Zeros of the relative velocity (s).
-    pub v_zero: Vec<f64>,
+    /// The zero of the relative acceleration (s): c - a_g is monotone on a segment's arc.
+    pub a_zero: Option<f64>,
+    /// Zeros of the relative velocity (s): one on each side of `a_zero` at most.
+    pub v_zero: Zeros,
 }
 
 /// A bound on a relative displacement as bits: value and what it stands for.
@@ -289,8 +291,9 @@ pub struct Cluster {
     pub extremes: Extremes,
     /// Its blocks with a support or a face to the ground or to a block outside it: the only
     /// ones where it can meet anything else. Worked out at the first need (`Engine::boundary`)
-    /// and kept, since a cluster's blocks never change.
-    pub boundary: OnceCell<Vec<usize>>,
+    /// and kept, since a cluster's blocks never change; a few are held inline (a cluster is
+    /// made at most events).
+    pub boundary: OnceCell<SmallVec<[usize; 4]>>,
 }
 
 /// Peaks a cluster's blocks reached, kept for the cluster as a whole and handed to the recorder

@@ -66,6 +66,7 @@ use queue::{Ev, Queue};
 use roots::Counter;
 use slip::Slip;
 use std::collections::VecDeque;
+use std::rc::Rc;
 
 /// Settings of the event-driven integrator. None is a tolerance: the first two are backstops
 /// that stop a run which neither repeats a state nor ends (a run whose state repeats is
@@ -184,8 +185,12 @@ struct Caches {
     breaking: VecDeque<Vec<usize>>,
     /// Decisions already worked out, by problem, and under it by ground acceleration (a
     /// problem meets few: it is looked up without building a key).
-    free_memo: Memo<solver::Problem, Vec<(solver::Lex, Vec<solver::Group>)>>,
+    free_memo: Memo<solver::Problem, Decisions>,
 }
+
+/// A problem's decisions at the ground accelerations it was met at, shared with the decisions
+/// that look them up.
+type Decisions = Vec<(solver::Lex, Rc<[solver::Group]>)>;
 
 /// Working memory kept from one event to the next, empty between uses.
 #[derive(Default)]
@@ -196,6 +201,8 @@ struct Scratch {
     after: regroup::After,
     /// Of the scheduling: pairs of sliding clusters.
     pairs: Vec<(ClusterId, ClusterId)>,
+    /// Of an event's decision: the blocks it starts from and their set velocities (m/s).
+    seeds: (Vec<usize>, Vec<(usize, f64)>),
 }
 
 /// The event-driven engine of one run: what it was given, the state of the wall (clusters,
@@ -585,25 +592,21 @@ impl<'a> Engine<'a> {
                     let at = q.to_f64() * lambda;
                     (ag - at).abs() <= ROUNDOFF_ULPS * f64::EPSILON * (ag.abs() + at.abs())
                 });
-                let seeds = self.clusters[k].blocks.clone();
-                self.regroup(&seeds, &[], snap, Cause::StickLimit)?;
+                self.regroup_with(snap, Cause::StickLimit, |e, seeds, _| {
+                    seeds.extend_from_slice(&e.clusters[k].blocks);
+                })?;
             }
-            Ev::Stop { k, .. } => {
-                let seeds = self.clusters[k].blocks.clone();
-                let set_vel: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, 0.0)).collect();
-                self.regroup(&seeds, &set_vel, None, Cause::Stop)?;
-            }
+            Ev::Stop { k, .. } => self.regroup_with(None, Cause::Stop, |e, seeds, set_vel| {
+                seeds.extend_from_slice(&e.clusters[k].blocks);
+                set_vel.extend(seeds.iter().map(|&i| (i, 0.0)));
+            })?,
             Ev::Meet { a, b, .. } => {
                 let (ma, mb) = (self.clusters[a].mass, self.clusters[b].mass);
                 let v = (ma * self.cluster_vel(a) + mb * self.cluster_vel(b)) / (ma + mb);
-                let seeds: Vec<usize> = self.clusters[a]
-                    .blocks
-                    .iter()
-                    .chain(&self.clusters[b].blocks)
-                    .copied()
-                    .collect();
-                let set_vel: Vec<(usize, f64)> = seeds.iter().map(|&i| (i, v)).collect();
-                self.regroup(&seeds, &set_vel, None, Cause::Meet)?;
+                self.regroup_with(None, Cause::Meet, |e, seeds, set_vel| {
+                    seeds.extend(e.clusters[a].blocks.iter().chain(&e.clusters[b].blocks));
+                    set_vel.extend(seeds.iter().map(|&i| (i, v)));
+                })?;
             }
             Ev::GroundBound { k, c, .. } => self.constraint_reached(k, None, c)?,
             Ev::PairBound { a, b, c, .. } => self.constraint_reached(a, Some(b), c)?,
@@ -612,6 +615,23 @@ impl<'a> Engine<'a> {
             self.sample();
         }
         Ok(())
+    }
+
+    /// [`Engine::regroup`] of the seeds and set velocities that `fill` writes, in memory kept
+    /// from one event to the next.
+    fn regroup_with(
+        &mut self,
+        theta: Option<Q>,
+        cause: Cause,
+        fill: impl FnOnce(&Self, &mut Vec<usize>, &mut Vec<(usize, f64)>),
+    ) -> Result<(), SimulationError> {
+        let (mut seeds, mut set_vel) = std::mem::take(&mut self.scratch.seeds);
+        fill(self, &mut seeds, &mut set_vel);
+        let done = self.regroup(&seeds, &set_vel, theta, cause);
+        seeds.clear();
+        set_vel.clear();
+        self.scratch.seeds = (seeds, set_vel);
+        done
     }
 
     fn finish(mut self) -> Response {

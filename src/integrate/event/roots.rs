@@ -7,6 +7,12 @@
 //! the event's condition, and the decision cannot undo it at the same instant. A local minimum
 //! within the round-off of zero is a grazing contact and is reported as such.
 
+use smallvec::SmallVec;
+
+/// The crossings of a function found on an interval, one per monotone piece: the engine cuts an
+/// interval into at most two pieces, so they are held inline.
+pub type Zeros = SmallVec<[f64; 2]>;
+
 /// Where a function first stops being valid.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit {
@@ -300,9 +306,9 @@ pub fn sign_changes(
     splits: &[f64],
     tol: f64,
     count: &mut Counter,
-) -> Vec<f64> {
+) -> Zeros {
     let f = fun.f;
-    let mut out = Vec::new();
+    let mut out = Zeros::new();
     let mut p = t_a;
     let mut fp = f(p);
     count.0 += 1;

@@ -4,7 +4,7 @@
 
 use super::cluster::ClusterId;
 use super::cluster::Mode;
-use super::regroup::scratch::{Before, Local};
+use super::regroup::scratch::{Before, Decided, Local};
 use super::solver::{weaker_limit, End, Group, Lex, Problem, Stick, BODY_FROM};
 use super::Engine;
 use crate::exact::Q;
@@ -26,7 +26,9 @@ impl Engine<'_> {
     /// (no limit is a bound, [`Stick::bound_only`]).
     pub(super) fn set_thresholds(&mut self, k: ClusterId, before: Option<&Before>) {
         self.clusters[k].blocks.sort_unstable();
-        let members = self.clusters[k].blocks.clone();
+        // In the memory of the decisions, unless one is under way.
+        let mut members = std::mem::take(&mut self.scratch.decisions.blocks);
+        members.extend_from_slice(&self.clusters[k].blocks);
         let mut local = Local::reuse(
             std::mem::take(&mut self.scratch.decisions.local),
             self.given.n,
@@ -34,14 +36,11 @@ impl Engine<'_> {
         for (n, &b) in members.iter().enumerate() {
             local.insert(b, n);
         }
-        let mut p = Problem {
-            mass: members
-                .iter()
-                .map(|&i| self.given.mass_q[i].clone())
-                .collect(),
-            external: self.external_forces(k),
-            ..Problem::default()
-        };
+        let mut p = std::mem::take(&mut self.scratch.decisions.problem);
+        p.mass
+            .extend(members.iter().map(|&i| self.given.mass_q[i].clone()));
+        p.external
+            .extend(members.iter().map(|&i| self.external_force(i)));
         for &i in &members {
             for &s in &self.given.topo.below[i] {
                 if !self.live_horizontal(s.0) || !self.slip[s.0].is_stuck() {
@@ -91,6 +90,9 @@ impl Engine<'_> {
         let change = before.map_or(Change::Exact, |b| Change::After(Some(b)));
         let limits = self.stick_interval(&p, &members, change);
         self.clusters[k].mode = stuck(limits);
+        members.clear();
+        self.scratch.decisions.blocks = members;
+        self.scratch.decisions.problem = p.cleared();
     }
 
     /// The stick interval of a problem whose blocks (`members`: global indices, sorted, in the
@@ -191,32 +193,33 @@ impl Engine<'_> {
     }
 
     /// The pieces of p (its joint graph without the ground) that are joined to the ground with
-    /// the ground acceleration strictly inside their stick intervals: they stay stuck, and come
-    /// back as groups with their intervals. The other blocks (local indices, sorted) need the
-    /// general decision: pieces not joined to the ground or at or beyond a limit, and every
-    /// block at a threshold (theta `snapped` to the exact limit) or when nothing touches the
-    /// ground.
+    /// the ground acceleration strictly inside their stick intervals: they stay stuck, and go
+    /// into `out` as groups with their intervals. The other blocks (local indices, sorted) are
+    /// left in `out.rest` for the general decision: pieces not joined to the ground or at or
+    /// beyond a limit, and every block at a threshold (theta `snapped` to the exact limit) or
+    /// when nothing touches the ground.
     pub(super) fn stuck_pieces(
         &mut self,
         p: &Problem,
         blocks: &[usize],
         theta: &Lex,
         snapped: bool,
-    ) -> (Vec<Group>, Vec<Option<Limits>>, Vec<usize>) {
+        out: &mut Decided,
+    ) {
         if snapped || !p.touches_ground() {
-            return (Vec::new(), Vec::new(), (0..blocks.len()).collect());
+            out.rest.extend(0..blocks.len());
+            return;
         }
         let a0 = &theta.0[0];
-        let mut groups = Vec::new();
-        let mut intervals = Vec::new();
-        let mut rest = Vec::new();
-        for (piece, on_ground) in p.ground_pieces() {
+        let mut pieces = std::mem::take(&mut out.pieces);
+        p.ground_pieces_in(&mut pieces);
+        for (piece, on_ground) in pieces.iter() {
             if on_ground {
-                if let Some((stuck, limits, moving)) = self.beside_stuck(p, blocks, &piece, theta) {
-                    groups.push(stuck);
-                    intervals.push(Some(limits));
-                    intervals.extend(moving.iter().map(|_| None));
-                    groups.extend(moving);
+                if let Some((stuck, limits, moving)) = self.beside_stuck(p, blocks, piece, theta) {
+                    out.push(stuck.nodes, stuck.accel, true, Some(limits));
+                    for g in moving {
+                        out.push(g.nodes, g.accel, g.grounded, None);
+                    }
                     continue;
                 }
                 // p is canonical: a piece that is all of it needs no copy.
@@ -224,7 +227,7 @@ impl Engine<'_> {
                     self.stick_interval_inside(p, blocks, Change::After(None), Some(a0))
                 } else {
                     let members: Vec<usize> = piece.iter().map(|&k| blocks[k]).collect();
-                    let q = p.restrict(&piece);
+                    let q = p.restrict(piece);
                     self.stick_interval_inside(&q, &members, Change::After(None), Some(a0))
                 };
                 let inside = |limits: &Limits| {
@@ -232,19 +235,14 @@ impl Engine<'_> {
                         && limits.hi.as_ref().is_none_or(|hi| a0 < hi)
                 };
                 if let Some(limits) = limits.filter(inside) {
-                    groups.push(Group {
-                        nodes: piece,
-                        accel: a0.clone(),
-                        grounded: true,
-                    });
-                    intervals.push(Some(limits));
+                    out.push(piece.iter().copied(), a0.clone(), true, Some(limits));
                     continue;
                 }
             }
-            rest.extend(piece);
+            out.rest.extend_from_slice(piece);
         }
-        rest.sort_unstable();
-        (groups, intervals, rest)
+        out.pieces = pieces;
+        out.rest.sort_unstable();
     }
 
     /// A piece of p (local indices, sorted) made of a large cluster K that was stuck and a few
@@ -300,7 +298,7 @@ impl Engine<'_> {
         }
         let mut ahead = vec![0_i8; p.mass.len()];
         let mut moving = Vec::new();
-        for g in found {
+        for g in found.iter() {
             let nodes: Vec<usize> = g.nodes.iter().map(|&k| beside[k]).collect();
             if !g.grounded {
                 let dir = match Lex::constant(g.accel.clone()).cmp(theta) {
@@ -311,7 +309,11 @@ impl Engine<'_> {
                 for &k in &nodes {
                     ahead[k] = dir;
                 }
-                moving.push(Group { nodes, ..g });
+                moving.push(Group {
+                    nodes,
+                    accel: g.accel.clone(),
+                    grounded: false,
+                });
             }
         }
         if moving.is_empty() {

@@ -1,6 +1,6 @@
 //! COMPONENT
 
-use super::scratch::{Local, SetVel};
+use super::scratch::{Equal, Local, SetVel};
 use crate::exact::Q;
 use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::cluster::Mode;
@@ -9,8 +9,6 @@ use crate::integrate::event::solver::BODY_FROM;
 use crate::integrate::event::solver::{End, Problem};
 use crate::integrate::event::Engine;
 use crate::response::StuckGroup;
-use crate::sets::DisjointSets;
-use rustc_hash::FxHashMap;
 
 impl Engine<'_> {
     /// Velocity of block i with the given overrides.
@@ -57,15 +55,13 @@ impl Engine<'_> {
                 add(b, self, local, blocks, old_clusters, queue);
             }
         }
-        let mut next = Vec::new();
         while let Some(i) = queue.pop() {
             let vi = self.vel_with(i, set_vel);
-            next.clear();
             for other in self.live_neighbours(i) {
                 if let Some(o) = other.filter(|&o| !self.given.fixed[o]) {
                     if !local.contains_key(&o) && self.same_velocity(vi, self.vel_with(o, set_vel))
                     {
-                        next.push(o);
+                        add(o, self, local, blocks, old_clusters, queue);
                     }
                 }
             }
@@ -78,11 +74,6 @@ impl Engine<'_> {
                     && !local.contains_key(&o)
                     && self.same_velocity(vi, self.vel_with(o, set_vel))
                 {
-                    next.push(o);
-                }
-            }
-            for &o in &next {
-                if !local.contains_key(&o) {
                     add(o, self, local, blocks, old_clusters, queue);
                 }
             }
@@ -275,6 +266,7 @@ impl Engine<'_> {
         local: &Local,
         set_vel: &mut SetVel,
         v: &mut Vec<f64>,
+        equal: &mut Equal,
     ) {
         let n = blocks.len();
         v.clear();
@@ -291,8 +283,14 @@ impl Engine<'_> {
         if !inexact {
             return;
         }
-        let mut sets = DisjointSets::new(n);
-        let mut grounded = vec![false; n];
+        let Equal {
+            sets,
+            grounded,
+            by_set,
+        } = equal;
+        sets.reset(n);
+        grounded.clear();
+        grounded.resize(n, false);
         self.for_each_pair(blocks, local, |k, other| {
             if near(v[k], other_velocity(other)).0 {
                 match other {
@@ -301,22 +299,23 @@ impl Engine<'_> {
                 }
             }
         });
-        let mut groups: FxHashMap<usize, Vec<usize>> = FxHashMap::default();
-        for k in 0..n {
-            let r = sets.find(k);
-            groups.entry(r).or_default().push(k);
-        }
-        for members in groups.values() {
-            let distinct = members.iter().any(|&k| v[k] != v[members[0]]);
-            let on_ground = members.iter().any(|&k| grounded[k]);
-            let needs = distinct || (on_ground && v[members[0]] != 0.0);
+        // The blocks of each set together, each set's in order.
+        by_set.clear();
+        by_set.extend((0..n).map(|k| (sets.find(k), k)));
+        by_set.sort_unstable();
+        for set in by_set.chunk_by(|a, b| a.0 == b.0) {
+            let members = || set.iter().map(|&(_, k)| k);
+            let first = v[set[0].1];
+            let distinct = members().any(|k| v[k] != first);
+            let on_ground = members().any(|k| grounded[k]);
+            let needs = distinct || (on_ground && first != 0.0);
             if !needs {
                 continue;
             }
             let common = if on_ground {
                 0.0
             } else {
-                let (p, m) = members.iter().fold((0.0, 0.0), |(p, m), &k| {
+                let (p, m) = members().fold((0.0, 0.0), |(p, m), k| {
                     (
                         p + self.given.mass[blocks[k]] * v[k],
                         m + self.given.mass[blocks[k]],
@@ -324,7 +323,7 @@ impl Engine<'_> {
                 });
                 p / m
             };
-            for &k in members {
+            for k in members() {
                 set_vel.insert(blocks[k], common);
             }
         }

@@ -80,7 +80,7 @@ impl Engine<'_> {
         for (k, &b) in blocks.iter().enumerate() {
             local.insert(b, k);
         }
-        self.equalize_velocities(&blocks, &local, &mut set_vel, &mut buf.v);
+        self.equalize_velocities(&blocks, &local, &mut set_vel, &mut buf.v, &mut buf.equal);
 
         // 2. Account what the old clusters did up to now, and the joints around them.
         for &k in &old_clusters {
@@ -122,8 +122,10 @@ impl Engine<'_> {
         let p = p.canonical();
 
         // 4. Solve: stuck pieces by their stick intervals, the rest by the general decision.
-        let (groups, intervals, theta_lex) =
-            self.solve_component(&p, &blocks, &old_clusters, &local, &set_vel, theta.as_ref());
+        let mut decided = std::mem::take(&mut buf.decided);
+        let bodies = |e: &Self| e.sliding_bodies(&old_clusters, &local, &set_vel);
+        let theta_lex = self.solve_component(&p, &blocks, bodies, theta.as_ref(), &mut decided);
+        let (groups, intervals) = (&decided.groups, &decided.intervals);
 
         // 5. Install the new clusters, keeping what the intervals after it may need.
         let mut after = std::mem::take(&mut self.scratch.after);
@@ -223,6 +225,8 @@ impl Engine<'_> {
         buf.u.clear();
         buf.v.clear();
         buf.group_of.clear();
+        decided.clear();
+        buf.decided = decided;
         self.scratch.decisions = buf;
         // Neighbours hold blocks outside the component only, so none is a new cluster.
         for set in [&mut after.neighbours, &mut after.pushed] {
@@ -417,7 +421,8 @@ impl Engine<'_> {
         match &self.clusters[k].mode {
             Mode::Stuck { .. } => self.set_thresholds(k, Some(before)),
             Mode::Sliding(sl) => {
-                let force: Q = self.external_forces(k).into_iter().sum();
+                let blocks = &self.clusters[k].blocks;
+                let force: Q = blocks.iter().map(|&i| self.external_force(i)).sum();
                 let c_q = force / &self.clusters[k].mass_q;
                 if c_q != sl.c_q {
                     self.account(k, t);

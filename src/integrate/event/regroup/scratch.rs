@@ -1,12 +1,14 @@
 //! The decisions' working memory, kept from one event to the next: the tables that give each
 //! block its place in a decision problem and its set velocity ([`Local`], [`SetVel`]), the
-//! buffers of a decision ([`Buffers`]), and what it changed and installs ([`Before`],
-//! [`After`]).
+//! buffers of a decision ([`Buffers`]), the groups it found ([`Decided`]), and what it changed
+//! and installs ([`Before`], [`After`]).
 
 use crate::exact::Q;
 use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::slip::Slip;
-use crate::integrate::event::solver::Problem;
+use crate::integrate::event::solver::{Group, Pieces, Problem};
+use crate::integrate::event::stuck::Limits;
+use crate::sets::DisjointSets;
 use rustc_hash::FxHashMap;
 
 /// No local index: a block outside the decision problem.
@@ -102,7 +104,7 @@ pub(in crate::integrate::event) struct Buffers {
     pub(super) set_vel: Vec<f64>,
     pub(super) set_vel_blocks: Vec<usize>,
     /// The component's blocks, and the queue that gathers them.
-    pub(super) blocks: Vec<usize>,
+    pub(in crate::integrate::event) blocks: Vec<usize>,
     pub(super) queue: Vec<usize>,
     /// The clusters the component's blocks belonged to.
     pub(super) old: Vec<ClusterId>,
@@ -110,11 +112,69 @@ pub(in crate::integrate::event) struct Buffers {
     pub(super) horizontal: Vec<usize>,
     pub(super) vertical: Vec<usize>,
     /// The decision problem.
-    pub(super) problem: Problem,
+    pub(in crate::integrate::event) problem: Problem,
     /// The blocks' displacements and velocities (m, m/s), and the new group of each.
     pub(super) u: Vec<f64>,
     pub(super) v: Vec<f64>,
     pub(super) group_of: Vec<usize>,
+    /// What the decision found.
+    pub(super) decided: Decided,
+    /// Of the velocities made equal.
+    pub(super) equal: Equal,
+}
+
+/// Working memory of `Engine::equalize_velocities`: the sets of blocks whose velocities are
+/// equal within round-off, which of them touch the ground, and each block by its set.
+#[derive(Default)]
+pub(in crate::integrate::event) struct Equal {
+    pub(super) sets: DisjointSets,
+    pub(super) grounded: Vec<bool>,
+    pub(super) by_set: Vec<(usize, usize)>,
+}
+
+/// What a component's decision found (step 4 of `Engine::regroup`): its groups (local block
+/// indices), the stick interval of each group shown stuck by its piece (`None` for the
+/// others), and while it is being found, the pieces of the problem and the blocks left to the
+/// general decision. The node lists of earlier groups are kept for the next, so a decision met
+/// again allocates nothing.
+#[derive(Default)]
+pub(in crate::integrate::event) struct Decided {
+    pub(in crate::integrate::event) groups: Vec<Group>,
+    pub(in crate::integrate::event) intervals: Vec<Option<Limits>>,
+    pub(in crate::integrate::event) pieces: Pieces,
+    pub(in crate::integrate::event) rest: Vec<usize>,
+    spare: Vec<Vec<usize>>,
+}
+
+impl Decided {
+    /// Empties every part, keeping the memory.
+    pub(in crate::integrate::event) fn clear(&mut self) {
+        for g in self.groups.drain(..) {
+            let mut nodes = g.nodes;
+            nodes.clear();
+            self.spare.push(nodes);
+        }
+        self.intervals.clear();
+        self.rest.clear();
+    }
+
+    /// One more group, with its stick interval if its piece showed it stuck.
+    pub(in crate::integrate::event) fn push(
+        &mut self,
+        nodes: impl IntoIterator<Item = usize>,
+        accel: Q,
+        grounded: bool,
+        interval: Option<Limits>,
+    ) {
+        let mut list = self.spare.pop().unwrap_or_default();
+        list.extend(nodes);
+        self.groups.push(Group {
+            nodes: list,
+            accel,
+            grounded,
+        });
+        self.intervals.push(interval);
+    }
 }
 
 /// The state a decision changed, for the stick intervals worked out after it

@@ -1,13 +1,12 @@
 //! SOLVING
 
+use super::scratch::Decided;
 use super::scratch::NONE;
-use super::scratch::{Local, SetVel};
 use crate::exact::Q;
-use crate::integrate::event::cluster::ClusterId;
 use crate::integrate::event::slip::Slip;
 use crate::integrate::event::solver::{End, Group, Lex, Problem};
-use crate::integrate::event::stuck::Limits;
 use crate::integrate::event::Engine;
+use std::rc::Rc;
 
 /// A ground acceleration within rounding of a breakpoint of the decision is snapped to it; the
 /// set_vel can move the breakpoint that matters at most this many times.
@@ -37,78 +36,76 @@ impl Engine<'_> {
         Lex([a0, q(num / (l * l)), q(-2.0 * dl * num / (l * l * l))])
     }
 
-    /// Step 4 of [`Engine::regroup`]: the groups of the component's problem `p`, the stick
-    /// intervals of those found stuck by their pieces (`None` for the others), and the ground
-    /// acceleration they were decided at. Pieces joined to the ground with the ground
-    /// acceleration strictly inside their stick intervals stay stuck (the common case); the
-    /// other pieces get the general decision. Pieces meet only through the ground, whose motion
-    /// is given, so each is decided on its own: a block knocked out of a large stuck cluster
-    /// costs that cluster a stick interval, not a general decision over all of it.
+    /// Step 4 of [`Engine::regroup`]: the groups of the component's problem `p` and the stick
+    /// intervals of those found stuck by their pieces (`None` for the others), into `out` (empty
+    /// when called); returns the ground acceleration they were decided at. Pieces joined to the
+    /// ground with the ground acceleration strictly inside their stick intervals stay stuck
+    /// (the common case); the other pieces get the general decision, with the sliding `bodies`
+    /// of the component (worked out only then). Pieces meet only through the ground, whose
+    /// motion is given, so each is decided on its own: a block knocked out of a large stuck
+    /// cluster costs that cluster a stick interval, not a general decision over all of it.
     pub(super) fn solve_component(
         &mut self,
         p: &Problem,
         blocks: &[usize],
-        old_clusters: &[ClusterId],
-        local: &Local,
-        set_vel: &SetVel,
+        bodies: impl FnOnce(&Self) -> Vec<Vec<usize>>,
         theta: Option<&Q>,
-    ) -> (Vec<Group>, Vec<Option<Limits>>, Lex) {
+        out: &mut Decided,
+    ) -> Lex {
         let mut theta_lex = self.ground_lex(theta.cloned());
-        let (mut groups, mut intervals, rest) =
-            self.stuck_pieces(p, blocks, &theta_lex, theta.is_some());
-        if !rest.is_empty() {
-            let bodies = self.sliding_bodies(old_clusters, local, set_vel);
-            if rest.len() == blocks.len() {
-                groups = self.decide_general(p, &mut theta_lex, theta.is_some(), &bodies);
-            } else {
-                let mut index = vec![NONE; blocks.len()];
-                for (k, &i) in rest.iter().enumerate() {
-                    index[i] = k;
-                }
-                // What is left of each body in the rest (an impact can have knocked some of
-                // its blocks into other pieces).
-                let rest_bodies: Vec<Vec<usize>> = bodies
-                    .iter()
-                    .map(|b| {
-                        b.iter()
-                            .filter(|&&i| index[i] != NONE)
-                            .map(|&i| index[i])
-                            .collect::<Vec<usize>>()
-                    })
-                    .filter(|b| !b.is_empty())
-                    .collect();
-                let q = p.restrict(&rest);
-                let before = theta_lex.clone();
-                let found = self.decide_general(&q, &mut theta_lex, theta.is_some(), &rest_bodies);
-                if theta_lex == before {
-                    groups.extend(found.into_iter().map(|g| Group {
-                        nodes: g.nodes.iter().map(|&k| rest[k]).collect(),
-                        ..g
-                    }));
-                } else {
-                    // A hidden breakpoint moved the ground acceleration, at which the stuck
-                    // pieces were not decided: decide everything there (rare).
-                    theta_lex = before;
-                    groups = self.decide_general(p, &mut theta_lex, theta.is_some(), &bodies);
-                    intervals.clear();
-                }
-            }
-            intervals.resize(groups.len(), None);
+        self.stuck_pieces(p, blocks, &theta_lex, theta.is_some(), out);
+        if out.rest.is_empty() {
+            return theta_lex;
         }
-        (groups, intervals, theta_lex)
-    }
-
-    /// Constant external friction on each block of cluster k from joints that slide.
-    pub(in crate::integrate::event) fn external_forces(&self, k: ClusterId) -> Vec<Q> {
-        self.clusters[k]
-            .blocks
+        let bodies = bodies(self);
+        if out.rest.len() == blocks.len() {
+            let groups = self.decide_general(p, &mut theta_lex, theta.is_some(), &bodies);
+            for g in groups.iter() {
+                out.push(g.nodes.iter().copied(), g.accel.clone(), g.grounded, None);
+            }
+            return theta_lex;
+        }
+        let rest = std::mem::take(&mut out.rest);
+        let mut index = vec![NONE; blocks.len()];
+        for (k, &i) in rest.iter().enumerate() {
+            index[i] = k;
+        }
+        // What is left of each body in the rest (an impact can have knocked some of its blocks
+        // into other pieces).
+        let rest_bodies: Vec<Vec<usize>> = bodies
             .iter()
-            .map(|&i| self.external_force(i))
-            .collect()
+            .map(|b| {
+                b.iter()
+                    .filter(|&&i| index[i] != NONE)
+                    .map(|&i| index[i])
+                    .collect::<Vec<usize>>()
+            })
+            .filter(|b| !b.is_empty())
+            .collect();
+        let q = p.restrict(&rest);
+        let before = theta_lex.clone();
+        let found = self.decide_general(&q, &mut theta_lex, theta.is_some(), &rest_bodies);
+        if theta_lex == before {
+            for g in found.iter() {
+                let nodes = g.nodes.iter().map(|&k| rest[k]);
+                out.push(nodes, g.accel.clone(), g.grounded, None);
+            }
+            out.rest = rest;
+        } else {
+            // A hidden breakpoint moved the ground acceleration, at which the stuck pieces were
+            // not decided: decide everything there (rare).
+            theta_lex = before;
+            let groups = self.decide_general(p, &mut theta_lex, theta.is_some(), &bodies);
+            out.clear();
+            for g in groups.iter() {
+                out.push(g.nodes.iter().copied(), g.accel.clone(), g.grounded, None);
+            }
+        }
+        theta_lex
     }
 
     /// Constant friction on block i from its joints that slide, by their recorded directions.
-    pub(super) fn external_force(&self, i: usize) -> Q {
+    pub(in crate::integrate::event) fn external_force(&self, i: usize) -> Q {
         self.external_force_by(i, |s| self.slip[s])
     }
 
@@ -144,7 +141,7 @@ impl Engine<'_> {
         theta: &Lex,
         remember: bool,
         bodies: &[Vec<usize>],
-    ) -> Vec<Group> {
+    ) -> Rc<[Group]> {
         let sign = |q: &Q| Q::int(i64::from(q.signum()));
         let theta = if p.touches_ground() {
             let second = if theta.0[1].is_zero() {
@@ -157,25 +154,25 @@ impl Engine<'_> {
             Lex::zero()
         };
         if !remember && p.touches_ground() {
-            return self.solve_anew(p, &theta, bodies);
+            return self.solve_anew(p, &theta, bodies).into();
         }
         let known = self.caches.free_memo.get(p);
         if let Some((_, found)) = known.and_then(|k| k.iter().find(|(at, _)| *at == theta)) {
-            return found.clone();
+            return Rc::clone(found);
         }
-        let found = self.solve_anew(p, &theta, bodies);
+        let found: Rc<[Group]> = self.solve_anew(p, &theta, bodies).into();
         match self.caches.free_memo.get_mut(p) {
             Some(known) => {
                 if known.len() == THETAS_KEPT {
                     known.remove(0);
                 }
-                known.push((theta, found.clone()));
+                known.push((theta, Rc::clone(&found)));
             }
-            None => {
-                self.caches
-                    .free_memo
-                    .insert(p.clone(), vec![(theta, found.clone())], p.mass.len())
-            }
+            None => self.caches.free_memo.insert(
+                p.clone(),
+                vec![(theta, Rc::clone(&found))],
+                p.mass.len(),
+            ),
         }
         found
     }
@@ -200,7 +197,7 @@ impl Engine<'_> {
         theta: &mut Lex,
         remember: bool,
         bodies: &[Vec<usize>],
-    ) -> Vec<Group> {
+    ) -> Rc<[Group]> {
         let mut groups = self.solve(p, theta, remember, bodies);
         for _ in 0..MAX_SNAPS {
             let (lambda, ag) = (self.seg.lambda_at(self.s()), self.seg.accel(self.s()));

@@ -135,6 +135,29 @@ pub struct Group {
     pub grounded: bool,
 }
 
+/// The connected pieces of a problem's joint graph without the ground
+/// ([`Problem::ground_pieces_in`]), with the working memory that finds them.
+#[derive(Default)]
+pub struct Pieces {
+    /// The blocks of every piece, piece after piece, each piece sorted.
+    nodes: Vec<usize>,
+    /// Where each piece ends in `nodes`, and whether it touches the ground.
+    ends: Vec<(usize, bool)>,
+    sets: DisjointSets,
+    on_ground: Vec<bool>,
+    piece_of: Vec<usize>,
+}
+
+impl Pieces {
+    /// Each piece's blocks, and whether it touches the ground.
+    pub fn iter(&self) -> impl Iterator<Item = (&[usize], bool)> + '_ {
+        let starts = std::iter::once(0).chain(self.ends.iter().map(|e| e.0));
+        starts
+            .zip(&self.ends)
+            .map(|(from, &(to, grounded))| (&self.nodes[from..to], grounded))
+    }
+}
+
 /// Adjacency lists of a problem's nodes, stored flat: the neighbours of node i are
 /// `next[start[i]..start[i + 1]]`.
 struct Adjacency {
@@ -272,9 +295,27 @@ impl Problem {
     /// Connected pieces of the joint graph without passing through the ground, each sorted, and
     /// whether each touches the ground.
     pub fn ground_pieces(&self) -> Vec<(Vec<usize>, bool)> {
+        let mut pieces = Pieces::default();
+        self.ground_pieces_in(&mut pieces);
+        pieces.iter().map(|(p, g)| (p.to_vec(), g)).collect()
+    }
+
+    /// [`Problem::ground_pieces`] in memory kept from one call to the next (a decision runs
+    /// this each time).
+    pub fn ground_pieces_in(&self, out: &mut Pieces) {
         let n = self.n();
-        let mut sets = DisjointSets::new(n);
-        let mut on_ground = vec![false; n];
+        let Pieces {
+            nodes,
+            ends,
+            sets,
+            on_ground,
+            piece_of,
+        } = out;
+        nodes.clear();
+        ends.clear();
+        sets.reset(n);
+        on_ground.clear();
+        on_ground.resize(n, false);
         for &(i, j, _) in &self.friction {
             match j {
                 End::Node(j) => sets.join(i, j),
@@ -288,24 +329,41 @@ impl Problem {
                 _ => {}
             }
         }
-        // One piece, the usual case, needs no bookkeeping (a decision runs this each time).
+        // One piece, the usual case, needs no bookkeeping.
         if (1..n).all(|i| sets.find(i) == 0) {
-            return vec![((0..n).collect(), on_ground.contains(&true))];
+            nodes.extend(0..n);
+            ends.push((n, on_ground.contains(&true)));
+            return;
         }
-        // Pieces in the order of their first block, each block in order.
-        let mut piece_of = vec![usize::MAX; n];
-        let mut out: Vec<(Vec<usize>, bool)> = Vec::new();
-        for (i, grounded) in on_ground.into_iter().enumerate() {
+        // Pieces in the order of their first block, each block in order: count each piece's
+        // blocks, then place them (piece_of: a root's piece, then each piece's next place).
+        piece_of.clear();
+        piece_of.resize(n, usize::MAX);
+        for (i, &grounded) in on_ground.iter().enumerate() {
             let root = sets.find(i);
             if piece_of[root] == usize::MAX {
-                piece_of[root] = out.len();
-                out.push((Vec::new(), false));
+                piece_of[root] = ends.len();
+                ends.push((0, false));
             }
-            let piece = &mut out[piece_of[root]];
-            piece.0.push(i);
+            let piece = &mut ends[piece_of[root]];
+            piece.0 += 1;
             piece.1 |= grounded;
         }
-        out
+        let mut end = 0;
+        for piece in ends.iter_mut() {
+            end += piece.0;
+            piece.0 = end;
+        }
+        nodes.resize(n, 0);
+        for i in (0..n).rev() {
+            let place = &mut ends[piece_of[sets.find(i)]].0;
+            *place -= 1;
+            nodes[*place] = i;
+        }
+        // Each piece's count has come down to its start, which is where the one before ends.
+        for p in 0..ends.len() {
+            ends[p].0 = ends.get(p + 1).map_or(n, |next| next.0);
+        }
     }
 
     /// The blocks joined by each undecided friction link or contact between blocks.
@@ -510,5 +568,65 @@ mod tests {
         assert_eq!(memo.get(&other), None);
         memo.insert(other.clone(), 2, n);
         assert_eq!((memo.get(&p), memo.get(&other)), (Some(&1), Some(&2)));
+    }
+
+    /// The pieces of p by their definition: breadth-first from each block not yet reached, in
+    /// order, over the joints and faces between blocks.
+    fn pieces_by_definition(p: &Problem) -> Vec<(Vec<usize>, bool)> {
+        let n = p.n();
+        let mut next = vec![Vec::new(); n];
+        let mut grounded = vec![false; n];
+        let links = p.friction.iter().map(|&(i, j, _)| (End::Node(i), j));
+        for (a, b) in links.chain(p.contacts.iter().copied()) {
+            match (a, b) {
+                (End::Node(a), End::Node(b)) => {
+                    next[a].push(b);
+                    next[b].push(a);
+                }
+                (End::Node(i), End::Ground) | (End::Ground, End::Node(i)) => grounded[i] = true,
+                (End::Ground, End::Ground) => {}
+            }
+        }
+        let mut seen = vec![false; n];
+        let mut pieces = Vec::new();
+        for start in 0..n {
+            if seen[start] {
+                continue;
+            }
+            seen[start] = true;
+            let mut piece = vec![start];
+            let mut k = 0;
+            while k < piece.len() {
+                for &o in &next[piece[k]] {
+                    if !seen[o] {
+                        seen[o] = true;
+                        piece.push(o);
+                    }
+                }
+                k += 1;
+            }
+            piece.sort_unstable();
+            let on_ground = piece.iter().any(|&i| grounded[i]);
+            pieces.push((piece, on_ground));
+        }
+        pieces
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn pieces_found_in_kept_memory_are_those_of_the_definition(
+            problems in proptest::collection::vec(
+                proptest::prop_oneof![free_problem(), abutted_problem()],
+                1..5,
+            )
+        ) {
+            let mut pieces = Pieces::default();
+            for p in &problems {
+                p.ground_pieces_in(&mut pieces);
+                let found: Vec<(Vec<usize>, bool)> =
+                    pieces.iter().map(|(s, g)| (s.to_vec(), g)).collect();
+                proptest::prop_assert_eq!(found, pieces_by_definition(p));
+            }
+        }
     }
 }
