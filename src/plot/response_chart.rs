@@ -1,6 +1,7 @@
 //! The chart a run writes beside its history (`response.svg`, its data in `response.csv`): the
 //! ground acceleration, the displacement of the blocks that moved most and, when blocks rock,
-//! their rotation, each line thinned to what a chart shows with every extreme kept.
+//! their rotation and the opening angle of the joints between them, each line thinned to what a
+//! chart shows with every extreme kept.
 
 use super::chart::{envelope, Chart, Envelope, Series};
 use crate::motion::Motion;
@@ -16,7 +17,8 @@ const BINS: usize = 1500;
 /// Ground samples at most (a sine is sampled 40 times a period, a record at its own samples).
 const GROUND_SAMPLES: f64 = 1e6;
 
-/// The panels of a run's chart (two, three with rotations), `None` without a history; from
+/// The panels of a run's chart (two; with rotations, three, or four where a drawn block rests on
+/// another drawn block), `None` without a history; from
 /// the history in memory, or read back from its file (twice, holding only the lines drawn).
 pub fn response_charts(r: &Response, motion: &Motion) -> Result<Option<Vec<Chart>>, Error> {
     let blocks = &r.summary.blocks;
@@ -66,15 +68,33 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Result<Option<Vec<Chart
     });
     drawn.truncate(MOST_MOVED);
     drawn.sort_unstable();
+    // The joints between two drawn blocks: a rotation of the upper block relative to the lower
+    // opens the joint (a column whose drums rock one on another, a lintel on its columns),
+    // which the blocks' own rotations, nearly equal, do not show.
+    let index = |name: &str| drawn.iter().copied().find(|&i| blocks[i].name == name);
+    let joints: Vec<(usize, usize)> = if rotating {
+        r.summary
+            .horizontal_joints
+            .iter()
+            .filter_map(|j| Some((index(&j.upper)?, index(&j.lower)?)))
+            .take(MOST_MOVED)
+            .collect()
+    } else {
+        Vec::new()
+    };
     // The second pass: the drawn lines, thinned as they come.
-    let fresh = || vec![Envelope::new(first, end, count, BINS); drawn.len()];
-    let (mut u_lines, mut theta_lines) = (fresh(), fresh());
+    let fresh = |n: usize| vec![Envelope::new(first, end, count, BINS); n];
+    let (mut u_lines, mut theta_lines) = (fresh(drawn.len()), fresh(drawn.len()));
+    let mut opening_lines = fresh(joints.len());
     each(&mut |t, u, theta| {
         for (k, &i) in drawn.iter().enumerate() {
             u_lines[k].push((t, u[i]));
             if rotating {
                 theta_lines[k].push((t, theta[i]));
             }
+        }
+        for (line, &(upper, lower)) in opening_lines.iter_mut().zip(&joints) {
+            line.push((t, theta[upper] - theta[lower]));
         }
     })?;
     let series = |lines: Vec<Envelope>| -> Vec<Series> {
@@ -124,6 +144,27 @@ pub fn response_charts(r: &Response, motion: &Motion) -> Result<Option<Vec<Chart
             x_label: "t (s)".into(),
             y_label: "theta (rad)".into(),
             series: series(theta_lines),
+            ..Chart::default()
+        });
+    }
+    if !joints.is_empty() {
+        charts.push(Chart {
+            title: "opening of the joints between blocks: rotation of the upper block less the \
+                    lower one's"
+                .into(),
+            x_label: "t (s)".into(),
+            y_label: "theta_upper - theta_lower (rad)".into(),
+            series: opening_lines
+                .into_iter()
+                .zip(&joints)
+                .enumerate()
+                .map(|(colour, (line, &(upper, lower)))| Series {
+                    label: format!("{}/{}", blocks[upper].name, blocks[lower].name),
+                    points: line.finish(),
+                    color: colour,
+                    ..Series::default()
+                })
+                .collect(),
             ..Chart::default()
         });
     }

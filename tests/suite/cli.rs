@@ -1206,6 +1206,69 @@ fn a_run_draws_its_response_with_every_peak_kept() {
     assert!(!run.join("response.svg").exists() && !run.join("response.csv").exists());
 }
 
+/// A column whose drums rock one on another draws the opening of the joint between them (the
+/// upper drum's rotation less the lower one's, a few milliradians the two rotations' panel
+/// cannot show), its extreme the history's exactly; a single block has no such panel.
+#[test]
+fn a_column_draws_the_opening_of_the_joint_between_its_drums() {
+    let dir = temp_dir("opening-chart");
+    let column = dir.join("column");
+    // Under 0.5 g at 1.5 Hz the joint between the drums opens 11 times in 6 s.
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/rocking/two-block-column.ron",
+        "--sine",
+        "0.5g",
+        "--freq",
+        "1.5",
+        "--duration",
+        "3",
+        "--out",
+        column.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let chart = std::fs::read_to_string(column.join("response.csv")).unwrap();
+    let opening: Vec<f64> = chart
+        .lines()
+        .filter(|l| l.starts_with("\"opening of the joints"))
+        .map(|l| {
+            assert!(l.contains("\"Drum2/Drum1\""), "{l}");
+            l.rsplit(',').next().unwrap().parse::<f64>().unwrap()
+        })
+        .collect();
+    let history = std::fs::read_to_string(column.join("history.csv")).unwrap();
+    let mut lines = history.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let at = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (lower, upper) = (at("theta_Drum1_rad"), at("theta_Drum2_rad"));
+    let widest = lines
+        .map(|l| {
+            let f: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            (f[upper] - f[lower]).abs()
+        })
+        .fold(0.0, f64::max);
+    let drawn = opening.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    assert!(widest > 1e-3, "the joint opens: {widest} rad");
+    assert_eq!(drawn, widest);
+
+    let stela = dir.join("stela");
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/inca/stela.ron",
+        "--sine",
+        "0.5g",
+        "--freq",
+        "1.5",
+        "--duration",
+        "3",
+        "--out",
+        stela.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let chart = std::fs::read_to_string(stela.join("response.csv")).unwrap();
+    assert!(chart.contains("\"rotation") && !chart.contains("\"opening"));
+}
+
 /// Options given for the horizontal record that the vertical one's format gives itself are
 /// left aside for the vertical (an AT2 file says its units), not refused; the vertical record's
 /// component is its own option.
