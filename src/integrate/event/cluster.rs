@@ -8,6 +8,7 @@
 //! constant friction forces).
 
 use super::roots::Zeros;
+use super::solver::Stick;
 use crate::exact::Q;
 use crate::motion::Segment;
 use smallvec::SmallVec;
@@ -195,6 +196,26 @@ pub struct Roots {
     pub a_zero: Option<f64>,
     /// Zeros of the relative velocity (s): one on each side of `a_zero` at most.
     pub v_zero: Zeros,
+}
+
+/// A stuck cluster's limits of a_g, exact or bounds from inside ([`Stick::bound_only`]): what
+/// its [`Mode::Stuck`] is made from.
+#[derive(Debug, Clone, Default)]
+pub struct Limits {
+    pub lo: Option<Q>,
+    pub hi: Option<Q>,
+    pub bound_only: [bool; 2],
+}
+
+impl Limits {
+    /// The limits of a stick interval worked out or remembered.
+    pub fn of(s: &Stick) -> Limits {
+        Limits {
+            lo: s.lo.clone(),
+            hi: s.hi.clone(),
+            bound_only: s.bound_only,
+        }
+    }
 }
 
 /// A bound on a relative displacement as bits: value and what it stands for.

@@ -3,7 +3,7 @@
 //! clusters it shows stuck without the general decision.
 
 use super::cluster::ClusterId;
-use super::cluster::Mode;
+use super::cluster::{Limits, Mode};
 use super::regroup::scratch::{Before, Decided, Local};
 use super::solver::{weaker_limit, End, Group, Lex, Problem, Stick, BODY_FROM};
 use super::Engine;
@@ -475,24 +475,6 @@ impl Engine<'_> {
             hi = weaker_limit(hi, own.hi, true);
         }
         [holds[0].then_some(lo), holds[1].then_some(hi)]
-    }
-}
-
-/// A stuck cluster's limits of a_g, exact or bounds from inside ([`Stick::bound_only`]).
-#[derive(Debug, Clone, Default)]
-pub(super) struct Limits {
-    lo: Option<Q>,
-    hi: Option<Q>,
-    bound_only: [bool; 2],
-}
-
-impl Limits {
-    fn of(s: &Stick) -> Limits {
-        Limits {
-            lo: s.lo.clone(),
-            hi: s.hi.clone(),
-            bound_only: s.bound_only,
-        }
     }
 }
 

@@ -4,10 +4,9 @@
 //! and installs ([`Before`], [`After`]).
 
 use crate::exact::Q;
-use crate::integrate::event::cluster::ClusterId;
+use crate::integrate::event::cluster::{ClusterId, Limits};
 use crate::integrate::event::slip::Slip;
 use crate::integrate::event::solver::{Group, Pieces, Problem};
-use crate::integrate::event::stuck::Limits;
 use crate::sets::DisjointSets;
 use rustc_hash::FxHashMap;
 
