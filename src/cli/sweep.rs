@@ -142,20 +142,30 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
             )
         }
     };
-    let command = format!(
-        "pirqa run {}/wall.ron {motion_args} --model {}{} --duration {} --out {}{}\n",
-        dir.display(),
+    let command = |options: &str| {
+        format!(
+            "pirqa run {}/wall.ron {motion_args} {options} --duration {} --out {}{}\n",
+            dir.display(),
+            motion.duration_s,
+            dir.display(),
+            if history { "" } else { " --no-history" }
+        )
+    };
+    let asked = format!(
+        "--model {}{}",
         sweep.case_model(id)?,
-        sweep.method.run_options(),
-        motion.duration_s,
-        dir.display(),
-        if history { "" } else { " --no-history" }
+        sweep.method.run_options()
     );
-    write_file(&dir.join("rerun.txt"), &command)?;
+    write_file(&dir.join("rerun.txt"), &command(&asked))?;
     let (bar, progress) = super::run::simulated_time_bar(motion.duration_s, &format!("case {id}"));
     let r = sweep.run_case_in_full(id, history.then_some(0.01), progress);
     bar.finish_and_clear();
     let r = r?;
+    // A case the fallback answered reruns with the fallback's options.
+    let answered = sweep.answered_by(id, &r)?;
+    if answered != asked {
+        write_file(&dir.join("rerun.txt"), &command(&answered))?;
+    }
     super::run::write_outputs(&dir, &r, &motion.motion)?;
     eprintln!(
         "case {id} ({}, {}) in {}",

@@ -90,6 +90,7 @@ fn grid(duration_s: f64, frequencies: Frequencies) -> SweepDescription {
         friction: FrictionModel::Nominal,
         model: Default::default(),
         method: Default::default(),
+        fallback: Default::default(),
     }
 }
 

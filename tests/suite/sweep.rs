@@ -557,6 +557,76 @@ fn a_sweep_rocks_the_cases_pirqa_run_would() {
     }
 }
 
+/// A case the exact model stops before its end fails with the reason, unless the sweep names a
+/// fallback: then Moreau-Jean time stepping answers it, whole, and its row says so (its model,
+/// no error) with the numbers `pirqa run --model slide-rock --method moreau --dt` gives; a
+/// case the exact model finishes keeps the exact answer. A fallback's step must be positive,
+/// and it goes with the exact integrator only.
+#[test]
+fn a_case_beyond_the_exact_model_is_answered_by_the_fallback_the_sweep_names() {
+    let text = |extra: &str| {
+        format!(
+            r#"(
+    version: 1,
+    name: "fallback",
+    walls: [File(path: "walls/rocking/two-block-column.ron")],
+    motion: Records(files: ["records/elcentro1940_IELC180_peer_dt0p01_g.AT2"], pga: ["0.2g", "0.5g"]),
+    {extra}
+)"#
+        )
+    };
+    let plain = sweep(&text("")).unwrap();
+    let with = sweep(&text("fallback: Moreau(dt_s: 0.0005),")).unwrap();
+    assert_ne!(plain.fingerprint, with.fingerprint);
+    let (low, high) = (plain.run_case(0).0, plain.run_case(1).0);
+    assert!(low.error.is_none() && low.model == "slide-rock", "{low:?}");
+    // At 0.5 g the column leans past 0.9 rad, its joint opens and the upper drum would lift
+    // off the lower one's corner: beyond the exact model.
+    assert!(
+        high.error
+            .as_deref()
+            .is_some_and(|e| e.contains("stops there")),
+        "{high:?}"
+    );
+    let (low_again, answered) = (with.run_case(0).0, with.run_case(1).0);
+    assert_eq!(
+        (
+            low_again.model.as_str(),
+            low_again.max_abs_u_m,
+            low_again.max_abs_rotation_rad
+        ),
+        ("slide-rock", low.max_abs_u_m, low.max_abs_rotation_rad)
+    );
+    assert_eq!(answered.model, pirqa::study::sweep::FALLBACK_MODEL);
+    assert!(
+        answered.error.is_none() && answered.collapsed,
+        "{answered:?}"
+    );
+    let model = pirqa::Model::from_file("walls/rocking/two-block-column.ron").unwrap();
+    let settings = pirqa::RunSettings {
+        model: pirqa::ModelChoice::SlideRock,
+        method: pirqa::Method::Moreau { dt_s: 0.0005 },
+        ..pirqa::RunSettings::default()
+    };
+    let run = pirqa::run(&model, &with.motions[1].motion, &settings)
+        .unwrap()
+        .summary;
+    assert_eq!(answered.collapse_time_s, run.collapse.map(|c| c.time_s));
+    let turned = run.blocks.iter().map(|b| b.max_abs_rotation_rad);
+    assert_eq!(answered.max_abs_rotation_rad, turned.fold(0.0, f64::max));
+
+    for (extra, says) in [
+        ("fallback: Moreau(dt_s: 0.0),", "positive step"),
+        (
+            "method: Moreau(dt_s: 0.001), fallback: Moreau(dt_s: 0.001),",
+            "leave fallback out",
+        ),
+    ] {
+        let e = sweep(&text(extra)).unwrap_err().to_string();
+        assert!(e.contains("fallback") && e.contains(says), "{extra}: {e}");
+    }
+}
+
 /// `max_accel_over_tipping` is the largest peak absolute acceleration of a block over the one
 /// at which it would tip standing free, g b/h: the stack of walls/rocking/ held to the ground
 /// moves with it, so the slender top (b/h = 0.25) reaches a_g, and the ratio is the sine's

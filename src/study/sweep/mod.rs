@@ -56,6 +56,43 @@ pub struct SweepDescription {
     /// The integrator, as `pirqa run --method` (default `Event`, the exact one).
     #[serde(default, skip_serializing_if = "is_event")]
     pub method: SweepMethod,
+    /// What answers a case the exact model stops before its end (default `Fail`: the case
+    /// fails with the reason).
+    #[serde(default, skip_serializing_if = "is_fail")]
+    pub fallback: Fallback,
+}
+
+fn is_fail(f: &Fallback) -> bool {
+    *f == Fallback::Fail
+}
+
+/// What a sweep does with a case the exact model stops before its end (a held joint of a
+/// column gives way, a body takes flight: [`beyond_model`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Fallback {
+    /// The case fails, its `error` saying where and why the model stopped.
+    #[default]
+    Fail,
+    /// The case is run again, whole, with Moreau-Jean time stepping of every block with its
+    /// rotation (`pirqa run --model slide-rock --method moreau --dt DT_S`), and that run answers
+    /// it: its `model` column reads [`FALLBACK_MODEL`].
+    Moreau {
+        /// Time step (s).
+        dt_s: f64,
+    },
+}
+
+/// The `model` of a case the fallback answered.
+pub const FALLBACK_MODEL: &str = "slide-rock (moreau fallback)";
+
+/// Why a run ended before its end where the model stops being valid (its warning), if it did:
+/// a held joint gave way, a body left the ground.
+pub fn beyond_model(s: &Summary) -> Option<String> {
+    s.warnings.iter().find_map(|w| match w {
+        Warning::HeldJointGives { .. } | Warning::Flight { .. } => Some(w.to_string()),
+        _ => None,
+    })
 }
 
 fn is_auto(m: &ModelChoice) -> bool {
@@ -293,6 +330,8 @@ pub struct Sweep {
     pub model: ModelChoice,
     /// The integrator.
     pub method: SweepMethod,
+    /// What answers a case beyond the exact model.
+    pub fallback: Fallback,
 }
 
 /// An error of the sweep file `path`.
@@ -420,6 +459,9 @@ impl Sweep {
         // `method` came, so that folders written before keep their fingerprint and resume.
         let text = format!("{:?}", d.by_file_name());
         let text = text
+            .strip_suffix(", fallback: Fail }")
+            .map_or_else(|| text.clone(), |t| format!("{t} }}"));
+        let text = text
             .strip_suffix(", method: Event }")
             .map_or_else(|| text.clone(), |t| format!("{t} }}"));
         let text = text
@@ -433,6 +475,25 @@ impl Sweep {
                     origin,
                     "method",
                     format!("time step dt_s = {dt_s} s: give a positive step, e.g. 0.001"),
+                ));
+            }
+            _ => {}
+        }
+        match (d.fallback, d.method) {
+            (Fallback::Moreau { dt_s }, _) if !(dt_s.is_finite() && dt_s > 0.0) => {
+                return Err(field(
+                    origin,
+                    "fallback",
+                    format!("time step dt_s = {dt_s} s: give a positive step, e.g. 0.0005"),
+                ));
+            }
+            (Fallback::Moreau { .. }, SweepMethod::Moreau { .. } | SweepMethod::Paper { .. }) => {
+                return Err(field(
+                    origin,
+                    "fallback",
+                    "answers cases the exact integrator stops, and the method is a time \
+                     stepper: leave fallback out, or method at Event"
+                        .into(),
                 ));
             }
             _ => {}
@@ -468,6 +529,7 @@ impl Sweep {
             origin: origin.to_path_buf(),
             model: d.model,
             method: d.method,
+            fallback: d.fallback,
         })
     }
 
@@ -609,9 +671,42 @@ impl Sweep {
         }
     }
 
-    /// Runs a case's scenario on the model the sweep asks for.
+    /// Runs a case's scenario on the model the sweep asks for, and again with the fallback
+    /// where the exact model stops before the end; the fallback's run says so (its model is
+    /// [`FALLBACK_MODEL`], and why names where the exact run stopped).
     fn integrate(&self, sc: &Scenario) -> Result<Response, SimulationError> {
-        run_scenario(sc, &self.run_settings())
+        let r = run_scenario(sc, &self.run_settings())?;
+        let (Fallback::Moreau { dt_s }, Some(why)) = (self.fallback, beyond_model(&r.summary))
+        else {
+            return Ok(r);
+        };
+        let settings = RunSettings {
+            model: ModelChoice::SlideRock,
+            method: Method::Moreau { dt_s },
+            ..self.run_settings()
+        };
+        let mut fallen_back = run_scenario(sc, &settings)?;
+        let model = &mut fallen_back.summary.model;
+        model.name = FALLBACK_MODEL.into();
+        model.why = format!(
+            "the sweep's fallback: the exact model stopped ({why}); Moreau-Jean time stepping \
+             at dt = {dt_s} s answers the case"
+        );
+        Ok(fallen_back)
+    }
+
+    /// `pirqa run`'s options of the model and method that answered case `id` in `r`.
+    pub fn answered_by(&self, id: usize, r: &Response) -> Result<String, SimulationError> {
+        Ok(match self.fallback {
+            Fallback::Moreau { dt_s } if r.summary.model.name == FALLBACK_MODEL => {
+                format!("--model slide-rock --method moreau --dt {dt_s}")
+            }
+            _ => format!(
+                "--model {}{}",
+                self.case_model(id)?,
+                self.method.run_options()
+            ),
+        })
     }
 
     /// Runs one case.
@@ -1030,8 +1125,5 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
     });
     // A run the model stopped before its end (a held joint gave way, a body left the ground)
     // has no answer past that instant: the case says so instead of passing for complete.
-    row.error = s.warnings.iter().find_map(|w| match w {
-        Warning::HeldJointGives { .. } | Warning::Flight { .. } => Some(w.to_string()),
-        _ => None,
-    });
+    row.error = beyond_model(s);
 }
