@@ -151,11 +151,7 @@ fn rerun_case(sweep: &Sweep, id: usize, out: &Path, history: bool) -> Result<(),
             if history { "" } else { " --no-history" }
         )
     };
-    let asked = format!(
-        "--model {}{}",
-        sweep.case_model(id)?,
-        sweep.method.run_options()
-    );
+    let asked = sweep.case_options(id)?;
     write_file(&dir.join("rerun.txt"), &command(&asked))?;
     let (bar, progress) = super::run::simulated_time_bar(motion.duration_s, &format!("case {id}"));
     let r = sweep.run_case_in_full(id, history.then_some(0.01), progress);

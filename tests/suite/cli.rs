@@ -1269,6 +1269,51 @@ fn a_column_draws_the_opening_of_the_joint_between_its_drums() {
     assert!(chart.contains("\"rotation") && !chart.contains("\"opening"));
 }
 
+/// A case of a sweep with a fallback, rerun alone, names what answered it: its rerun command
+/// carries the time stepper's options and its summary the fallback's model.
+#[test]
+fn a_case_the_fallback_answered_reruns_with_the_fallbacks_options() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let sweep = common::file(
+        "fallback.ron",
+        &format!(
+            r#"(
+    version: 1,
+    name: "fallback",
+    walls: [File(path: "{root}/walls/rocking/two-block-column.ron")],
+    motion: Records(
+        files: ["{root}/records/elcentro1940_IELC180_peer_dt0p01_g.AT2"],
+        pga: ["0.5g"],
+    ),
+    fallback: Moreau(dt_s: 0.0005),
+)"#
+        ),
+    );
+    let dir = temp_dir("fallback-case");
+    let (ok, _, err) = pirqa(&[
+        "sweep",
+        sweep.to_str().unwrap(),
+        "--case",
+        "0",
+        "--no-history",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let case = dir.join("case-0");
+    let rerun = std::fs::read_to_string(case.join("rerun.txt")).unwrap();
+    assert!(
+        rerun.contains(" --model slide-rock --method moreau --dt 0.0005 "),
+        "{rerun}"
+    );
+    let summary = std::fs::read_to_string(case.join("summary.json")).unwrap();
+    assert!(
+        summary.contains("\"slide-rock (moreau fallback)\"")
+            && summary.contains("the sweep's fallback: the exact model stopped"),
+        "{summary}"
+    );
+}
+
 /// Options given for the horizontal record that the vertical one's format gives itself are
 /// left aside for the vertical (an AT2 file says its units), not refused; the vertical record's
 /// component is its own option.

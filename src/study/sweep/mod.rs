@@ -695,18 +695,25 @@ impl Sweep {
         Ok(fallen_back)
     }
 
-    /// `pirqa run`'s options of the model and method that answered case `id` in `r`.
+    /// `pirqa run`'s options of the model and method case `id` runs on.
+    pub fn case_options(&self, id: usize) -> Result<String, SimulationError> {
+        Ok(format!(
+            "--model {}{}",
+            self.case_model(id)?,
+            self.method.run_options()
+        ))
+    }
+
+    /// `pirqa run`'s options of the model and method that answered case `id` in `r`: the
+    /// case's own, or the fallback's.
     pub fn answered_by(&self, id: usize, r: &Response) -> Result<String, SimulationError> {
-        Ok(match self.fallback {
-            Fallback::Moreau { dt_s } if r.summary.model.name == FALLBACK_MODEL => {
-                format!("--model slide-rock --method moreau --dt {dt_s}")
-            }
-            _ => format!(
-                "--model {}{}",
-                self.case_model(id)?,
-                self.method.run_options()
-            ),
-        })
+        match self.fallback {
+            Fallback::Moreau { dt_s } if r.summary.model.name == FALLBACK_MODEL => Ok(format!(
+                "--model slide-rock{}",
+                SweepMethod::Moreau { dt_s }.run_options()
+            )),
+            _ => self.case_options(id),
+        }
     }
 
     /// Runs one case.
