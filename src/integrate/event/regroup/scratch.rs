@@ -157,6 +157,13 @@ impl Decided {
         self.rest.clear();
     }
 
+    /// The groups of a general decision (no interval: they were not shown stuck by a piece).
+    pub(in crate::integrate::event) fn push_decided(&mut self, groups: &[Group]) {
+        for g in groups {
+            self.push(g.nodes.iter().copied(), g.accel.clone(), g.grounded, None);
+        }
+    }
+
     /// One more group, with its stick interval if its piece showed it stuck.
     pub(in crate::integrate::event) fn push(
         &mut self,

@@ -60,9 +60,7 @@ impl Engine<'_> {
         let bodies = bodies(self);
         if out.rest.len() == blocks.len() {
             let groups = self.decide_general(p, &mut theta_lex, theta.is_some(), &bodies);
-            for g in groups.iter() {
-                out.push(g.nodes.iter().copied(), g.accel.clone(), g.grounded, None);
-            }
+            out.push_decided(&groups);
             return theta_lex;
         }
         let rest = std::mem::take(&mut out.rest);
@@ -97,9 +95,7 @@ impl Engine<'_> {
             theta_lex = before;
             let groups = self.decide_general(p, &mut theta_lex, theta.is_some(), &bodies);
             out.clear();
-            for g in groups.iter() {
-                out.push(g.nodes.iter().copied(), g.accel.clone(), g.grounded, None);
-            }
+            out.push_decided(&groups);
         }
         theta_lex
     }
