@@ -561,7 +561,7 @@ fn a_sweep_rocks_the_cases_pirqa_run_would() {
 /// fallback: then Moreau-Jean time stepping answers it, whole, and its row says so (its model,
 /// no error) with the numbers `pirqa run --model slide-rock --method moreau --dt` gives; a
 /// case the exact model finishes keeps the exact answer. A fallback's step must be positive,
-/// and it goes with the exact integrator only.
+/// and it goes with the exact integrator and a model that can rock only.
 #[test]
 fn a_case_beyond_the_exact_model_is_answered_by_the_fallback_the_sweep_names() {
     let text = |extra: &str| {
@@ -620,6 +620,10 @@ fn a_case_beyond_the_exact_model_is_answered_by_the_fallback_the_sweep_names() {
         (
             "method: Moreau(dt_s: 0.001), fallback: Moreau(dt_s: 0.001),",
             "leave fallback out",
+        ),
+        (
+            "model: Slide, fallback: Moreau(dt_s: 0.001),",
+            "model Slide rocks none",
         ),
     ] {
         let e = sweep(&text(extra)).unwrap_err().to_string();

@@ -496,6 +496,15 @@ impl Sweep {
                         .into(),
                 ));
             }
+            (Fallback::Moreau { .. }, _) if d.model == ModelChoice::Slide => {
+                return Err(field(
+                    origin,
+                    "fallback",
+                    "answers cases the exact rocking model stops, and model Slide rocks none: \
+                     leave fallback out, or model at Auto or SlideRock"
+                        .into(),
+                ));
+            }
             _ => {}
         }
         let mut hash = fnv(FNV_OFFSET, text.as_bytes());
