@@ -1212,60 +1212,46 @@ fn a_run_draws_its_response_with_every_peak_kept() {
 #[test]
 fn a_column_draws_the_opening_of_the_joint_between_its_drums() {
     let dir = temp_dir("opening-chart");
-    let column = dir.join("column");
-    // Under 0.5 g at 1.5 Hz the joint between the drums opens 11 times in 6 s.
-    let (ok, _, err) = pirqa(&[
-        "run",
-        "walls/rocking/two-block-column.ron",
-        "--sine",
-        "0.5g",
-        "--freq",
-        "1.5",
-        "--duration",
-        "3",
-        "--out",
-        column.to_str().unwrap(),
-    ]);
-    assert!(ok, "{err}");
-    let chart = std::fs::read_to_string(column.join("response.csv")).unwrap();
-    let opening: Vec<f64> = chart
+    // `wall` under 0.5 g at 1.5 Hz for 3 s: its folder and the chart's data.
+    let run = |wall: &str, name: &str| {
+        let out = dir.join(name);
+        let (ok, _, err) = pirqa(&[
+            "run",
+            wall,
+            "--sine",
+            "0.5g",
+            "--freq",
+            "1.5",
+            "--duration",
+            "3",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(ok, "{err}");
+        let chart = std::fs::read_to_string(out.join("response.csv")).unwrap();
+        (out, chart)
+    };
+    // The joint between the drums opens 11 times in 6 s under this sine.
+    let (column, chart) = run("walls/rocking/two-block-column.ron", "column");
+    let drawn = chart
         .lines()
         .filter(|l| l.starts_with("\"opening of the joints"))
         .map(|l| {
             assert!(l.contains("\"Drum2/Drum1\""), "{l}");
-            l.rsplit(',').next().unwrap().parse::<f64>().unwrap()
-        })
-        .collect();
-    let history = std::fs::read_to_string(column.join("history.csv")).unwrap();
-    let mut lines = history.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let at = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    let (lower, upper) = (at("theta_Drum1_rad"), at("theta_Drum2_rad"));
-    let widest = lines
-        .map(|l| {
-            let f: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-            (f[upper] - f[lower]).abs()
+            l.rsplit(',').next().unwrap().parse::<f64>().unwrap().abs()
         })
         .fold(0.0, f64::max);
-    let drawn = opening.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let names = ["Drum1".to_string(), "Drum2".to_string()];
+    let history = pirqa::response::saved::history(&column, &names).unwrap();
+    let widest = history
+        .rotation_rad
+        .iter()
+        .map(|theta| (theta[1] - theta[0]).abs())
+        .fold(0.0, f64::max);
     assert!(widest > 1e-3, "the joint opens: {widest} rad");
     assert_eq!(drawn, widest);
 
-    let stela = dir.join("stela");
-    let (ok, _, err) = pirqa(&[
-        "run",
-        "walls/inca/stela.ron",
-        "--sine",
-        "0.5g",
-        "--freq",
-        "1.5",
-        "--duration",
-        "3",
-        "--out",
-        stela.to_str().unwrap(),
-    ]);
-    assert!(ok, "{err}");
-    let chart = std::fs::read_to_string(stela.join("response.csv")).unwrap();
+    let (_, chart) = run("walls/inca/stela.ron", "stela");
     assert!(chart.contains("\"rotation") && !chart.contains("\"opening"));
 }
 
