@@ -222,6 +222,24 @@ fn an_interrupted_sweep_resumes_to_the_same_table() {
         e.contains("cases.csv: line 1") && e.contains("--fresh"),
         "{e}"
     );
+    std::fs::write(&cases, text).unwrap();
+    // So does a blocks.csv written before it had each block's rotation.
+    let kept = std::fs::read_to_string(&blocks).unwrap();
+    let old: String = kept
+        .lines()
+        .map(|l| l.rsplit_once(',').unwrap().0.to_string() + "\n")
+        .collect();
+    std::fs::write(&blocks, old).unwrap();
+    let e = Store::open(&dir, &s, Existing::Resume)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("blocks.csv: line 1")
+            && e.contains("max_abs_rotation_rad")
+            && e.contains("--fresh"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -312,6 +330,41 @@ fn the_analysis_reports_collapse_probabilities_and_a_fragility_fit() {
     assert_eq!(report.results["failed_runs"], 0);
     let fit = &report.results["fragility"][0];
     assert!(fit["median_pga_gal"].as_f64().is_some(), "{fit}");
+}
+
+/// A record sweep whose cases turn blocks draws, beside a wall's displacement against PGA, its
+/// largest rotation against PGA, point for point the cases' own; a wall that only slid gets
+/// the displacement alone.
+#[test]
+fn an_incremental_analysis_draws_the_rotation_of_walls_that_rock() {
+    let text = format!(
+        r#"(version: 1, name: "ida",
+            walls: [File(path: "walls/rocking/slender-on-stack.ron"), File(path: "walls/five-block-uniform.ron")],
+            motion: Records(files: ["{EL_CENTRO}"], pga: ["0.1g", "0.3g", "0.4g"]))"#
+    );
+    let s = sweep(&text).unwrap();
+    let rows: Vec<CaseRow> = (0..s.len()).map(|id| s.run_case(id).0).collect();
+    let report = pirqa::study::sweep::analysis::analyse(&s, &rows);
+    let (_, charts, _) = &report.figures[0];
+    let titles: Vec<&str> = charts.iter().map(|c| c.title.as_str()).collect();
+    assert_eq!(
+        titles,
+        [
+            "slender-on-stack: incremental dynamic analysis",
+            "slender-on-stack: rotation",
+            "five-block-uniform: incremental dynamic analysis"
+        ]
+    );
+    let stack: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.wall == rows[0].wall)
+        .map(|r| (r.pga_gal, r.max_abs_rotation_rad))
+        .collect();
+    assert_eq!(charts[1].series[0].points, stack);
+    assert!(
+        stack[0].1 == 0.0 && stack[2].1 > stack[1].1 && stack[1].1 > 0.0,
+        "{stack:?}"
+    );
 }
 
 /// The block-count study's sweep (`walls/studies/block-count.ron`) over the paper's wall cut
@@ -497,7 +550,8 @@ fn a_sweep_rocks_the_cases_pirqa_run_would() {
         )
     };
     let auto = sweep(&text("")).unwrap();
-    let rows: Vec<CaseRow> = (0..auto.len()).map(|id| auto.run_case(id).0).collect();
+    let (rows, blocks): (Vec<CaseRow>, Vec<_>) =
+        (0..auto.len()).map(|id| auto.run_case(id)).unzip();
     let models: Vec<&str> = rows.iter().map(|r| r.model.as_str()).collect();
     assert_eq!(
         models,
@@ -546,6 +600,26 @@ fn a_sweep_rocks_the_cases_pirqa_run_would() {
     assert_eq!(run.duration_s, 6.0);
     let turned = run.blocks.iter().map(|b| b.max_abs_rotation_rad);
     assert_eq!(rows[8].max_abs_rotation_rad, turned.fold(0.0, f64::max));
+    // blocks.csv's rows carry each block's own rotation.
+    let each = |rows: &[pirqa::study::sweep::store::BlockRow]| -> Vec<(String, f64)> {
+        rows.iter()
+            .map(|b| (b.block.clone(), b.max_abs_rotation_rad))
+            .collect()
+    };
+    let ran: Vec<(String, f64)> = run
+        .blocks
+        .iter()
+        .map(|b| (b.name.clone(), b.max_abs_rotation_rad))
+        .collect();
+    assert_eq!(each(&blocks[8]), ran);
+    assert!(ran.iter().all(|b| b.1 > 0.0), "{ran:?}");
+    // On the stack only the top block turns.
+    let stack = each(&blocks[1]);
+    assert!(
+        stack[0].1 == 0.0 && stack[1].1 == 0.0 && stack[2].1 > 0.0,
+        "{stack:?}"
+    );
+    assert!(each(&blocks[3]).iter().all(|b| b.1 == 0.0));
     assert!(run.blocks[1].max_abs_displacement_m > 10.0 * run.blocks[0].max_abs_displacement_m);
 
     let slide = sweep(&text("model: Slide,")).unwrap();

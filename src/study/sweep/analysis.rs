@@ -251,8 +251,9 @@ fn collapse_map(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> Vec<Ch
         .collect()
 }
 
-/// Per wall: maximum displacement against PGA, one line per record; the collapse intensity of
-/// each record (the lowest PGA at which the wall collapses, or at which most samples do).
+/// Per wall: maximum displacement against PGA, one line per record, and, where any block
+/// turned, its largest rotation against PGA likewise; the collapse intensity of each record
+/// (the lowest PGA at which the wall collapses, or at which most samples do).
 fn ida(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Value) {
     let random = sweep.samples() > 1;
     let mut charts = Vec::new();
@@ -266,14 +267,22 @@ fn ida(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Va
                 .push(c);
         }
         let mut series = Vec::new();
+        let mut turned = Vec::new();
         let mut fell = Vec::new();
         for (k, (record, cs)) in by_record.iter().enumerate() {
             let mut cs = cs.clone();
             cs.sort_by(|a, b| a.first().pga_gal.total_cmp(&b.first().pga_gal));
-            let pts: Vec<(f64, f64)> = cs
-                .iter()
-                .filter_map(|c| Some((c.first().pga_gal, c.median(|r| r.max_abs_u_m)?)))
-                .collect();
+            let against_pga = |f: fn(&CaseRow) -> f64| -> Vec<(f64, f64)> {
+                cs.iter()
+                    .filter_map(|c| Some((c.first().pga_gal, c.median(f)?)))
+                    .collect()
+            };
+            let pts = against_pga(|r| r.max_abs_u_m);
+            turned.push(line(
+                record.clone(),
+                k,
+                against_pga(|r| r.max_abs_rotation_rad),
+            ));
             // The lowest level at which the wall collapses (nominal) or most samples do.
             let collapsing = cs.iter().find(|c| {
                 let (k, n) = c.collapses();
@@ -307,6 +316,20 @@ fn ida(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Va
             legend: Corner::LowerRight,
             ..Default::default()
         });
+        // Where blocks turned, how far: what the displacement alone does not tell.
+        if turned.iter().flat_map(|s| &s.points).any(|p| p.1 > 0.0) {
+            charts.push(Chart {
+                title: format!("{}: rotation", wall.label),
+                x_label: "PGA (gal)".into(),
+                y_label: format!(
+                    "{}max |theta| of any block (rad)",
+                    if random { "median " } else { "" }
+                ),
+                series: turned,
+                legend: Corner::UpperLeft,
+                ..Default::default()
+            });
+        }
     }
     (charts, Value::Array(out))
 }

@@ -128,6 +128,7 @@ mod tests {
             max_abs_u_m: f64::MIN_POSITIVE,
             final_u_m: -2.0 / 7.0,
             fell: true,
+            max_abs_rotation_rad: 0.1 + 0.2,
         }];
         let results = vec![
             (row, blocks),

@@ -777,6 +777,7 @@ impl Sweep {
                         max_abs_u_m: b.max_abs_displacement_m,
                         final_u_m: b.final_displacement_m,
                         fell: b.fell,
+                        max_abs_rotation_rad: b.max_abs_rotation_rad,
                     })
                     .collect();
                 (row, blocks)

@@ -124,6 +124,9 @@ pub struct BlockRow {
     pub final_u_m: f64,
     /// It fell.
     pub fell: bool,
+    /// Largest |rotation| (rad; 0 when the case slid).
+    #[serde(serialize_with = "table::sci")]
+    pub max_abs_rotation_rad: f64,
 }
 
 /// The CPU time of one case (a row of `timing.csv`).
@@ -143,7 +146,7 @@ pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,reco
 pub const TIMING_HEADER: &str = "case,cpu_s";
 
 /// Columns of `blocks.csv`.
-pub const BLOCKS_HEADER: &str = "case,block,max_abs_u_m,final_u_m,fell";
+pub const BLOCKS_HEADER: &str = "case,block,max_abs_u_m,final_u_m,fell,max_abs_rotation_rad";
 
 /// What to do with results already in the output directory.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
