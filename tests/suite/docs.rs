@@ -104,6 +104,14 @@ fn committed_studies_are_what_their_cases_draw() {
     for (file, dir) in [
         ("walls/studies/block-count.ron", "docs/block-count"),
         ("walls/studies/long-walls.ron", "docs/long-walls"),
+        (
+            "walls/studies/ollantaytambo-rocking.ron",
+            "docs/rocking/ollantaytambo",
+        ),
+        (
+            "walls/studies/ollantaytambo-sliding.ron",
+            "docs/rocking/ollantaytambo-sliding",
+        ),
     ] {
         let sweep = Sweep::load(std::path::Path::new(file)).unwrap();
         let rows = Store::finished(std::path::Path::new(dir), &sweep).unwrap();

@@ -474,6 +474,8 @@ fn every_shipped_study_loads() {
         ("fragility.ron", 6 * 200),
         ("friction-mc.ron", 1000),
         ("long-walls.ron", 5 * 8),
+        ("ollantaytambo-rocking.ron", 6),
+        ("ollantaytambo-sliding.ron", 6),
         ("paper-fig3-4.ron", 3 * 4 * 100),
         ("trilith-fragility.ron", 11 * 20),
         ("trilith-moreau.ron", 11),
