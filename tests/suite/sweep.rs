@@ -471,6 +471,7 @@ fn every_shipped_study_loads() {
         ("columns-fragility-sliding.ron", 3 * 6 * 20),
         ("columns-fragility.ron", 3 * 6 * 20),
         ("elcentro-ida.ron", 3 * 11),
+        ("fragility-moreau.ron", 6 * 200),
         ("fragility.ron", 6 * 200),
         ("friction-mc.ron", 1000),
         ("long-walls.ron", 5 * 8),
