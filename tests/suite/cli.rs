@@ -17,6 +17,22 @@ fn pirqa(args: &[&str]) -> (bool, String, String) {
     )
 }
 
+/// `pirqa sweep FILE --case N --no-history --out DIR`, which must succeed: the case's folder.
+fn sweep_case(file: &std::path::Path, case: usize, out: &std::path::Path) -> std::path::PathBuf {
+    let n = case.to_string();
+    let (ok, _, err) = pirqa(&[
+        "sweep",
+        file.to_str().unwrap(),
+        "--case",
+        &n,
+        "--no-history",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    out.join(format!("case-{case}"))
+}
+
 #[test]
 fn check_prints_the_six_joints_with_their_capacities() {
     let (ok, out, err) = pirqa(&["check", "walls/five-block-variable.ron"]);
@@ -978,17 +994,7 @@ fn sweep_then_one_case_rerun_without_history_reproduces_itself() {
     let (ok, _, err) = pirqa(&[&redraw[..], &["--fresh"]].concat());
     assert!(!ok && err.contains("--fresh"), "{err}");
 
-    let (ok, _, err) = pirqa(&[
-        "sweep",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--case",
-        "1",
-        "--no-history",
-    ]);
-    assert!(ok, "{err}");
-    let case = out.join("case-1");
+    let case = sweep_case(&file, 1, &out);
     assert!(!case.join("history.csv").exists());
     let read = |name: &str| std::fs::read_to_string(case.join(name)).unwrap();
     let (summary, events) = (read("summary.json"), read("events.jsonl"));
@@ -1131,17 +1137,7 @@ fn a_run_draws_its_response_with_every_peak_kept() {
 )"#
         ),
     );
-    let (ok, _, err) = pirqa(&[
-        "sweep",
-        sweep.to_str().unwrap(),
-        "--case",
-        "0",
-        "--no-history",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(ok, "{err}");
-    let wall = dir.join("case-0").join("wall.ron");
+    let wall = sweep_case(&sweep, 0, &dir).join("wall.ron");
     let run = dir.join("run");
     let (ok, out, err) = pirqa(&[
         "run",
@@ -1276,17 +1272,7 @@ fn a_case_the_fallback_answered_reruns_with_the_fallbacks_options() {
         ),
     );
     let dir = temp_dir("fallback-case");
-    let (ok, _, err) = pirqa(&[
-        "sweep",
-        sweep.to_str().unwrap(),
-        "--case",
-        "0",
-        "--no-history",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(ok, "{err}");
-    let case = dir.join("case-0");
+    let case = sweep_case(&sweep, 0, &dir);
     let rerun = std::fs::read_to_string(case.join("rerun.txt")).unwrap();
     assert!(
         rerun.contains(" --model slide-rock --method moreau --dt 0.0005 "),

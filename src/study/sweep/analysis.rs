@@ -255,7 +255,7 @@ fn collapse_map(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> Vec<Ch
 /// turned, its largest rotation against PGA likewise; the collapse intensity of each record
 /// (the lowest PGA at which the wall collapses, or at which most samples do).
 fn ida(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Value) {
-    let random = sweep.samples() > 1;
+    let median = if sweep.samples() > 1 { "median " } else { "" };
     let mut charts = Vec::new();
     let mut out = Vec::new();
     for (w, wall) in sweep.walls.iter().enumerate() {
@@ -307,10 +307,7 @@ fn ida(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Va
         charts.push(Chart {
             title: format!("{}: incremental dynamic analysis", wall.label),
             x_label: "PGA (gal)".into(),
-            y_label: format!(
-                "{}max |u| of any block (m)",
-                if random { "median " } else { "" }
-            ),
+            y_label: format!("{median}max |u| of any block (m)"),
             series,
             log_y: true,
             legend: Corner::LowerRight,
@@ -321,10 +318,7 @@ fn ida(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Va
             charts.push(Chart {
                 title: format!("{}: rotation", wall.label),
                 x_label: "PGA (gal)".into(),
-                y_label: format!(
-                    "{}max |theta| of any block (rad)",
-                    if random { "median " } else { "" }
-                ),
+                y_label: format!("{median}max |theta| of any block (rad)"),
                 series: turned,
                 legend: Corner::UpperLeft,
                 ..Default::default()
