@@ -55,6 +55,7 @@ pub mod wall;
 pub use error::{Error, MotionError, Result, SimulationError, SweepError, WallError};
 pub use estimate::{estimate, Estimate};
 pub use exact::Q;
+pub use integrate::baselines::ContactSolver;
 pub use integrate::rocking::{Equations, ModelChoice};
 pub use integrate::AfterCollapse;
 pub use model::Model;

@@ -3,7 +3,7 @@
 //! with a word on which model ran and why. `pirqa run` is this function behind its options.
 
 use crate::error::{Error, SimulationError};
-use crate::integrate::baselines::{Moreau, MoreauWall, PaperNewmark, Regularized};
+use crate::integrate::baselines::{ContactSolver, Moreau, MoreauWall, PaperNewmark, Regularized};
 use crate::integrate::event::EventDriven;
 use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
 use crate::integrate::stepping::positive;
@@ -77,6 +77,8 @@ pub struct RunSettings {
     pub direction: Direction,
     /// Blocks (or sections across the plane) released from a rotation, by name (rad).
     pub initial_rotation: Vec<(String, f64)>,
+    /// How Moreau-Jean with rotations solves each step's contacts.
+    pub contact_solver: ContactSolver,
     /// Told the simulated time as the run goes on.
     pub progress: Option<Progress>,
 }
@@ -107,6 +109,14 @@ impl RunSettings {
                     rule: "a rotation must be finite and below pi/2 in size",
                 }));
             }
+        }
+        if self.contact_solver != ContactSolver::GaussSeidel
+            && !matches!(self.method, Method::Moreau { .. })
+        {
+            return Err(Error::Simulation(incompatible(
+                "--contact-solver chooses how Moreau-Jean solves a step's contacts",
+                "add --method moreau --dt S, or leave --contact-solver out",
+            )));
         }
         if self.rocking.is_some() && self.model == ModelChoice::Slide {
             return Err(Error::Simulation(incompatible(
@@ -191,6 +201,7 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
         }
         (Method::Moreau { dt_s }, true) => MoreauWall {
             initial_rotation: settings.initial_rotation.first().cloned(),
+            solver: settings.contact_solver,
             ..MoreauWall::new(*dt_s)
         }
         .run(sc)?,
@@ -204,6 +215,12 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
         }
         (Method::Event, false) => EventDriven::default().run(sc)?,
         (Method::Paper { dt_s }, false) => PaperNewmark { dt_s: *dt_s }.run(sc)?,
+        (Method::Moreau { .. }, false) if settings.contact_solver != ContactSolver::GaussSeidel => {
+            return Err(incompatible(
+                "the whole-wall Newton solver belongs to the model with rotations",
+                "add --model slide-rock, or leave --contact-solver out",
+            ))
+        }
         (Method::Moreau { dt_s }, false) => Moreau::new(*dt_s).run(sc)?,
         (Method::Regularized(r), false) => r.run(sc)?,
     };

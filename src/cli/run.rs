@@ -13,7 +13,7 @@ use pirqa::plot::{chart, response_charts};
 use pirqa::response::{partial_name, DecisionCause, DecisionRecord, Response};
 use pirqa::units::{parse_acceleration, AccelUnit};
 use pirqa::Error;
-use pirqa::{Direction, Equations, Model, ModelChoice, RunSettings};
+use pirqa::{ContactSolver, Direction, Equations, Model, ModelChoice, RunSettings};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -361,6 +361,11 @@ pub struct RunArgs {
     /// ground motion the ground rests for --duration.
     #[arg(long, value_name = "NAME=RAD", value_parser = parse_rotation)]
     pub initial_rotation: Vec<(String, f64)>,
+    /// How Moreau-Jean with rotations (--model slide-rock --method moreau) solves each step's
+    /// contacts: gauss-seidel (rigid contacts, sweeps) or newton (the whole wall at once, stiff
+    /// contacts; many times faster on tall walls; docs/rocking-walls.md).
+    #[arg(long, value_enum, default_value_t = ContactSolver::GaussSeidel)]
+    pub contact_solver: ContactSolver,
 }
 
 fn parse_rotation(text: &str) -> Result<(String, f64), String> {
@@ -444,6 +449,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         rocking: args.rocking,
         direction: args.direction,
         initial_rotation: args.initial_rotation.clone(),
+        contact_solver: args.contact_solver,
         progress: None,
     };
     let cost = pirqa::estimate(&model, &motion, &settings);

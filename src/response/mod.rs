@@ -426,6 +426,9 @@ pub enum Warning {
         blocks: Vec<String>,
         /// How many there are.
         count: usize,
+        /// The whole-wall Newton solver decided the split (that of contact springs of one
+        /// stiffness per metre of joint) rather than Gauss-Seidel's sweeps.
+        elastic: bool,
     },
     /// Gauss-Seidel stopped at its sweep limit in some steps (Moreau-Jean).
     Unconverged {
@@ -433,6 +436,12 @@ pub enum Warning {
         steps: u64,
         /// The sweep limit.
         sweeps: usize,
+    },
+    /// Newton's method on the whole wall (Moreau-Jean with rotations, `--contact-solver
+    /// newton`) stopped at its iteration limit in some steps.
+    NewtonUnconverged {
+        /// Steps that ended unconverged.
+        steps: u64,
     },
 }
 
@@ -479,24 +488,42 @@ impl std::fmt::Display for Warning {
             Warning::LevelSkipped { level_m, why } => {
                 write!(f, "level {level_m} m not checked across the plane: {why}")
             }
-            Warning::IndeterminateSupport { blocks, count } => write!(
+            Warning::IndeterminateSupport {
+                blocks,
+                count,
+                elastic,
+            } => write!(
                 f,
                 "{}{} {} on two or more blocks: for rigid blocks the split of the load among \
-                 the supports is statically indeterminate, and the solver's split (not the \
-                 tributary one of eq. 3) sets the friction capacities below; where those joints \
-                 differ in friction the answer depends on the step and the solver \
-                 (docs/rocking-walls.md)",
+                 the supports is statically indeterminate, and {} (not the tributary one of \
+                 eq. 3) sets the friction capacities below; where those joints differ in \
+                 friction the answer depends on {} (docs/rocking-walls.md)",
                 blocks.join(", "),
                 if *count > blocks.len() {
                     format!(" and {} more", count - blocks.len())
                 } else {
                     String::new()
                 },
-                if *count == 1 { "rests" } else { "rest" }
+                if *count == 1 { "rests" } else { "rest" },
+                if *elastic {
+                    "the split of contact springs of one stiffness per metre of joint"
+                } else {
+                    "the solver's split"
+                },
+                if *elastic {
+                    "that rule"
+                } else {
+                    "the step and the solver"
+                }
             ),
             Warning::Unconverged { steps, sweeps } => write!(
                 f,
                 "Gauss-Seidel did not converge within {sweeps} sweeps in {steps} steps"
+            ),
+            Warning::NewtonUnconverged { steps } => write!(
+                f,
+                "Newton's method did not converge within its iterations in {steps} steps \
+                 (their velocities are those of its last iterate)"
             ),
         }
     }

@@ -8,9 +8,10 @@ mod moreau;
 mod moreau_wall;
 mod paper;
 mod regularized;
+mod wall_newton;
 
 pub use moreau::Moreau;
-pub use moreau_wall::MoreauWall;
+pub use moreau_wall::{ContactSolver, MoreauWall};
 pub use paper::PaperNewmark;
 pub use regularized::Regularized;
 

@@ -5,12 +5,14 @@
 //! at). Horizontal joints carry Coulomb friction and land plastically (Newton's e = 0, which
 //! with friction holding is Housner's landing); vertical joints are frictionless and restitute
 //! with the wall's e, as in the sliding model. At each step the impulses of the contacts
-//! predicted closed solve the contact laws at velocity level by projected Gauss-Seidel, the
+//! predicted closed solve the contact laws at velocity level, by projected Gauss-Seidel (rigid
+//! contacts) or by Newton's method on the whole wall (stiff contacts, `wall_newton.rs`), the
 //! velocities jump by them, and positions follow by the midpoint rule. Nothing is decided
 //! exactly and every block carries three degrees of freedom at all times: it is the reference
 //! the exact rocking engine converges to (a free-standing block, a wall of columns) and the
 //! fallback for walls whose blocks may rock beyond it (docs/rocking-walls.md).
 
+use super::wall_newton::{Contact, Part, WallNewton, COMPLIANCE};
 use crate::error::SimulationError;
 use crate::integrate::rocking;
 use crate::integrate::stepping::{lerp, outputs_in_step, time_step};
@@ -42,6 +44,11 @@ const ON_FACE: f64 = 1e-9;
 /// sweeps on.
 const TOUCH_M: f64 = 1e-12;
 
+/// Newton's method on the whole wall stops when no block's velocity changes by more than this
+/// fraction of g times the step: above the round-off of its stiff systems (about 1e-12), below
+/// the error its compliance itself makes ([`COMPLIANCE`]).
+const NEWTON_TOLERANCE: f64 = 1e-10;
+
 /// Steps between two reports of the time reached (and looks at a request to stop).
 const PROGRESS_STEPS: u64 = 1024;
 
@@ -50,6 +57,8 @@ const PROGRESS_STEPS: u64 = 1024;
 pub struct MoreauWall {
     /// Time step (s).
     pub dt_s: f64,
+    /// How each step's contact problem is solved.
+    pub solver: ContactSolver,
     /// Gauss-Seidel stops when no block's velocity (its corners' for the rotation) changes in a
     /// sweep by more than this fraction of g times the step.
     pub tolerance: f64,
@@ -66,11 +75,26 @@ impl MoreauWall {
     pub fn new(dt_s: f64) -> MoreauWall {
         MoreauWall {
             dt_s,
+            solver: ContactSolver::GaussSeidel,
             tolerance: 1e-12,
             max_sweeps: 10_000,
             initial_rotation: None,
         }
     }
+}
+
+/// How the contact problem of a step is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum ContactSolver {
+    /// Projected Gauss-Seidel over the contacts, rigid: where a block rests on two others the
+    /// split of its load is whichever the sweeps reach (docs/rocking-walls.md).
+    #[default]
+    GaussSeidel,
+    /// Newton's method on every block's velocity at once, each contact stiff (the split of a
+    /// block on two others that of springs of one stiffness per metre of joint): many times
+    /// faster on tall walls.
+    Newton,
 }
 
 /// A face of a block, by its outward normal in the block's own frame.
@@ -118,6 +142,8 @@ struct Candidate {
     friction: f64,
     restitution: f64,
     joint: JointRef,
+    /// The length of the joint's contact (m): each corner stands for half of it.
+    length_m: f64,
     /// Counts only strictly inside the face: the corner at an end of it is the other block's
     /// candidate already (edges that line up), and one contact twice would make the contact
     /// problem degenerate.
@@ -205,7 +231,7 @@ fn candidates(sc: &Scenario) -> Vec<Candidate> {
     let (topo, e) = (sc.topology, sc.wall.restitution.to_f64());
     let mut out = Vec::new();
     for (k, j) in topo.horizontal.iter().enumerate() {
-        let (upper, mu) = (j.upper.0, j.friction.to_f64());
+        let (upper, mu, length_m) = (j.upper.0, j.friction.to_f64(), j.overlap_m.to_f64());
         let joint = JointRef::Horizontal(crate::topology::HorizontalId(k));
         let lower = match j.lower {
             Base::Ground => None,
@@ -220,6 +246,7 @@ fn candidates(sc: &Scenario) -> Vec<Candidate> {
                 friction: mu,
                 restitution: 0.0,
                 joint,
+                length_m,
                 strict: false,
             });
             if let Some(l) = lower {
@@ -231,6 +258,7 @@ fn candidates(sc: &Scenario) -> Vec<Candidate> {
                     friction: mu,
                     restitution: 0.0,
                     joint,
+                    length_m,
                     strict: true,
                 });
             }
@@ -238,6 +266,7 @@ fn candidates(sc: &Scenario) -> Vec<Candidate> {
     }
     for (k, j) in topo.vertical.iter().enumerate() {
         let joint = JointRef::Vertical(VerticalId(k));
+        let length_m = j.height_m.to_f64();
         for sy in [-1.0, 1.0] {
             for (point, corner, on, face, strict) in [
                 (
@@ -263,6 +292,7 @@ fn candidates(sc: &Scenario) -> Vec<Candidate> {
                     friction: 0.0,
                     restitution: e,
                     joint,
+                    length_m,
                     strict,
                 });
             }
@@ -323,6 +353,7 @@ impl Integrator for MoreauWall {
             rec.warnings.push(Warning::IndeterminateSupport {
                 count: on_several.len(),
                 blocks: on_several.into_iter().take(5).collect(),
+                elastic: self.solver == ContactSolver::Newton,
             });
         }
         let mut q = vec![Vector3::<f64>::zeros(); n];
@@ -393,6 +424,8 @@ impl Integrator for MoreauWall {
         // Impulses of the last step, per candidate (warm start).
         let mut impulses = vec![Vector2::<f64>::zeros(); candidates.len()];
         let mut unconverged = 0u64;
+        let mut newton =
+            (self.solver == ContactSolver::Newton).then(|| NewtonStep::new(&bodies, &candidates));
         let mut t = 0.0;
         for k in 1..=steps {
             let t_prev = t;
@@ -454,62 +487,76 @@ impl Integrator for MoreauWall {
                     approach_m_s: before.x,
                 });
             }
-            // Warm start: the last step's impulses of the contacts still active.
-            let apply = |v: &mut [Vector3<f64>], act: &Active, p: Vector2<f64>| {
-                let c = &candidates[act.candidate];
-                if moves(c.point, &gone) {
-                    let r = &act.geometry.point_row;
-                    v[c.point] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(c.point));
-                }
-                if let (Some(f), Some(r)) = (c.on, &act.geometry.on_row) {
-                    if moves(f, &gone) {
-                        v[f] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(f));
+            let converged = match &mut newton {
+                Some(newton) => newton.solve(
+                    &candidates,
+                    &active,
+                    |i| moves(i, &gone),
+                    &v_start,
+                    &mut v,
+                    &mut impulses,
+                    NEWTON_TOLERANCE * scale,
+                ),
+                None => {
+                    // Warm start: the last step's impulses of the contacts still active.
+                    let apply = |v: &mut [Vector3<f64>], act: &Active, p: Vector2<f64>| {
+                        let c = &candidates[act.candidate];
+                        if moves(c.point, &gone) {
+                            let r = &act.geometry.point_row;
+                            v[c.point] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(c.point));
+                        }
+                        if let (Some(f), Some(r)) = (c.on, &act.geometry.on_row) {
+                            if moves(f, &gone) {
+                                v[f] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(f));
+                            }
+                        }
+                    };
+                    for act in &active {
+                        apply(&mut v, act, impulses[act.candidate]);
                     }
+                    let mut converged = active.is_empty();
+                    let mut sweep_start = v.clone();
+                    for _ in 0..self.max_sweeps {
+                        if converged {
+                            break;
+                        }
+                        sweep_start.copy_from_slice(&v);
+                        for act in &active {
+                            let c = &candidates[act.candidate];
+                            let u = act.geometry.velocity(c, &v);
+                            let w = &act.delassus;
+                            let p = impulses[act.candidate];
+                            // Newton's law at velocity level (u_n after >= -e u_n before), then Coulomb
+                            // with the new normal impulse.
+                            let target = -c.restitution * act.approach_m_s.min(0.0);
+                            let pn = (p.x - (u.x - target) / w[(0, 0)]).max(0.0);
+                            let ut = u.y + w[(1, 0)] * (pn - p.x);
+                            let pt = if c.friction > 0.0 {
+                                (p.y - ut / w[(1, 1)]).clamp(-c.friction * pn, c.friction * pn)
+                            } else {
+                                0.0
+                            };
+                            let new = Vector2::new(pn, pt);
+                            apply(&mut v, act, new - p);
+                            impulses[act.candidate] = new;
+                        }
+                        // The blocks' velocities, not the impulses: those of redundant contacts (a
+                        // block on two others, two corners at one point) may trade load among
+                        // themselves without end once the velocities have converged.
+                        let change = v
+                            .iter()
+                            .zip(&sweep_start)
+                            .zip(&bodies)
+                            .map(|((a, b), body)| {
+                                let d = a - b;
+                                d.x.abs().max(d.y.abs()).max(d.z.abs() * body.half.norm())
+                            })
+                            .fold(0.0, f64::max);
+                        converged = change <= self.tolerance * scale;
+                    }
+                    converged
                 }
             };
-            for act in &active {
-                apply(&mut v, act, impulses[act.candidate]);
-            }
-            let mut converged = active.is_empty();
-            let mut sweep_start = v.clone();
-            for _ in 0..self.max_sweeps {
-                if converged {
-                    break;
-                }
-                sweep_start.copy_from_slice(&v);
-                for act in &active {
-                    let c = &candidates[act.candidate];
-                    let u = act.geometry.velocity(c, &v);
-                    let w = &act.delassus;
-                    let p = impulses[act.candidate];
-                    // Newton's law at velocity level (u_n after >= -e u_n before), then Coulomb
-                    // with the new normal impulse.
-                    let target = -c.restitution * act.approach_m_s.min(0.0);
-                    let pn = (p.x - (u.x - target) / w[(0, 0)]).max(0.0);
-                    let ut = u.y + w[(1, 0)] * (pn - p.x);
-                    let pt = if c.friction > 0.0 {
-                        (p.y - ut / w[(1, 1)]).clamp(-c.friction * pn, c.friction * pn)
-                    } else {
-                        0.0
-                    };
-                    let new = Vector2::new(pn, pt);
-                    apply(&mut v, act, new - p);
-                    impulses[act.candidate] = new;
-                }
-                // The blocks' velocities, not the impulses: those of redundant contacts (a
-                // block on two others, two corners at one point) may trade load among
-                // themselves without end once the velocities have converged.
-                let change = v
-                    .iter()
-                    .zip(&sweep_start)
-                    .zip(&bodies)
-                    .map(|((a, b), body)| {
-                        let d = a - b;
-                        d.x.abs().max(d.y.abs()).max(d.z.abs() * body.half.norm())
-                    })
-                    .fold(0.0, f64::max);
-                converged = change <= self.tolerance * scale;
-            }
             if !converged {
                 unconverged += 1;
             }
@@ -616,9 +663,12 @@ impl Integrator for MoreauWall {
         e.friction_j = e.initial_j + e.input_j - e.kinetic_j - e.potential_j - e.fallen_j;
         rec.stats.unconverged_steps = unconverged;
         if unconverged > 0 {
-            rec.warnings.push(Warning::Unconverged {
-                steps: unconverged,
-                sweeps: self.max_sweeps,
+            rec.warnings.push(match self.solver {
+                ContactSolver::GaussSeidel => Warning::Unconverged {
+                    steps: unconverged,
+                    sweeps: self.max_sweeps,
+                },
+                ContactSolver::Newton => Warning::NewtonUnconverged { steps: unconverged },
             });
         }
         let (u, uv, _, _, _) = outputs(&q, &v);
@@ -626,10 +676,116 @@ impl Integrator for MoreauWall {
         let mut r = rec.finish("moreau", &wall.name, motion, t, &u, &uv);
         r.summary.model = ModelUsed {
             name: "slide-rock".into(),
-            equations: Some("moreau-jean".into()),
+            equations: Some(
+                match self.solver {
+                    ContactSolver::GaussSeidel => "moreau-jean",
+                    ContactSolver::Newton => "moreau-jean-newton",
+                }
+                .into(),
+            ),
             direction: "in-plane".into(),
             why: "asked for (--model slide-rock --method moreau)".into(),
         };
         Ok(r)
+    }
+}
+
+/// Newton's method on the whole wall, with what a run prepares once: the sparsity of the
+/// wall's contacts, each candidate's compliance, the blocks' masses and reaches.
+struct NewtonStep {
+    solver: WallNewton,
+    compliance: Vec<f64>,
+    mass: Vec<Vector3<f64>>,
+    reach: Vec<Vector3<f64>>,
+    contacts: Vec<Contact>,
+    impulses: Vec<Vector2<f64>>,
+    v_free: Vec<Vector3<f64>>,
+}
+
+impl NewtonStep {
+    fn new(bodies: &[Body], candidates: &[Candidate]) -> NewtonStep {
+        // One stiffness per metre of joint for the whole wall, scaled so that a contact of the
+        // mean length has COMPLIANCE times the mean inverse mass.
+        let free: Vec<&Body> = bodies.iter().filter(|b| b.free).collect();
+        let mean_inverse_mass =
+            free.iter().map(|b| 1.0 / b.mass).sum::<f64>() / free.len().max(1) as f64;
+        let mean_length =
+            candidates.iter().map(|c| c.length_m).sum::<f64>() / candidates.len().max(1) as f64;
+        NewtonStep {
+            solver: WallNewton::new(
+                bodies.len(),
+                candidates.iter().filter_map(|c| c.on.map(|f| (c.point, f))),
+            ),
+            compliance: candidates
+                .iter()
+                .map(|c| COMPLIANCE * mean_inverse_mass * mean_length / c.length_m)
+                .collect(),
+            mass: bodies
+                .iter()
+                .map(|b| Vector3::new(b.mass, b.mass, b.inertia))
+                .collect(),
+            reach: bodies
+                .iter()
+                .map(|b| Vector3::new(1.0, 1.0, b.half.norm()))
+                .collect(),
+            contacts: Vec::new(),
+            impulses: Vec::new(),
+            v_free: Vec::new(),
+        }
+    }
+
+    /// Solves a step's contacts from the free velocities `v` (left with the solution, and
+    /// each active candidate's impulse in `impulses`), starting from the velocities at the
+    /// step's start; false if Newton did not converge.
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &mut self,
+        candidates: &[Candidate],
+        active: &[Active],
+        moves: impl Fn(usize) -> bool,
+        v_start: &[Vector3<f64>],
+        v: &mut [Vector3<f64>],
+        impulses: &mut [Vector2<f64>],
+        tolerance_m_s: f64,
+    ) -> bool {
+        self.contacts.clear();
+        for act in active {
+            let c = &candidates[act.candidate];
+            let point = moves(c.point).then_some(Part {
+                body: c.point,
+                rows: act.geometry.point_row,
+            });
+            let on = match (c.on, act.geometry.on_row) {
+                (Some(f), Some(rows)) if moves(f) => Some(Part { body: f, rows }),
+                _ => None,
+            };
+            self.contacts.push(Contact {
+                parts: [point, on],
+                target_m_s: -c.restitution * act.approach_m_s.min(0.0),
+                friction: c.friction,
+                compliance: self.compliance[act.candidate],
+            });
+        }
+        self.impulses.resize(active.len(), Vector2::zeros());
+        self.v_free.clear();
+        self.v_free.extend_from_slice(v);
+        for (i, vi) in v.iter_mut().enumerate() {
+            if moves(i) {
+                *vi = v_start[i];
+            }
+        }
+        let outcome = self.solver.solve(
+            &self.mass,
+            &self.reach,
+            &self.v_free,
+            &self.contacts,
+            v,
+            &mut self.impulses,
+            tolerance_m_s,
+        );
+        for (act, p) in active.iter().zip(&self.impulses) {
+            impulses[act.candidate] = *p;
+        }
+        outcome.is_ok()
     }
 }

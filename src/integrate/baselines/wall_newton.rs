@@ -1,0 +1,513 @@
+//! The contact problem of one Moreau-Jean step solved on the whole wall at once: every block's
+//! velocity is found together by Newton's method, the contacts being stiff but not rigid.
+//!
+//! Projected Gauss-Seidel passes load from contact to contact; in a tall stack a change of load
+//! needs many sweeps to reach the ground, and blocks resting on two others leave the rigid
+//! problem's impulses undetermined, so that it converges slowly or not at all. Here each contact
+//! point has a compliance eps (m/s per N s): its normal impulse is p_n = max(0, -(u_n -
+//! target) / eps) and its tangential one -u_t / eps within +- b. With the friction bounds b
+//! fixed (Tresca's law) the step's velocities minimise a convex, piecewise quadratic potential,
+//! 1/2 (v - v_free)' M (v - v_free) plus each contact's; Newton's method with an exact line
+//! search finds that minimum whatever the start, each step a sparse symmetric positive definite
+//! system M + sum H' D H / eps (a block couples to the blocks it touches) solved by faer's sparse
+//! Cholesky factorisation, whose symbolic part is made once per run over every pair of blocks
+//! that can touch. Coulomb's law is the fixed point b = mu p_n: once Tresca's problem is solved
+//! the bounds move to mu p_n and Newton goes on, until a step with fresh bounds changes nothing.
+//!
+//! With eps small the answer is the rigid one to a relative O(eps): a resting contact closes at
+//! a speed of eps p_n (about [`COMPLIANCE`] times g dt). Where rigid blocks leave the split
+//! undetermined (a block on two others) the compliance decides it: the impulses are those of
+//! springs of one stiffness per metre of joint, each corner standing for half its joint's
+//! length, in the limit of infinite stiffness, the split of least complementary energy (the
+//! elastic answer). docs/rocking-walls.md compares it with eq. 3's tributary split.
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{ColMut, Side};
+use nalgebra::{Matrix3, Vector2, Vector3};
+
+/// A contact's compliance relative to the wall's mean inverse mass (for a contact of the mean
+/// length): small enough that a resting contact's closing speed (this times g dt) is far below
+/// what the outputs show, large enough that the Jacobian's condition number (about its
+/// inverse) leaves Newton's steps eight good digits.
+pub const COMPLIANCE: f64 = 1e-8;
+
+/// Newton steps allowed per time step, the bounds' updates included; a time step that needs
+/// more is counted as unconverged.
+const MAX_ITERATIONS: usize = 200;
+
+/// Updates of the friction bounds that have not halved the best step since, after which the
+/// bounds are taken as at their fixed point if that step is within [`ROUND_OFF_FLOOR`] times
+/// the tolerance: on heavy blocks moving fast the round-off of the normal impulses (an ulp of
+/// the contact's velocity over its compliance) stops the fixed point a few times above the
+/// tolerance (the Ollantaytambo wall's fillers: 2e-12 to 5e-11 m/s against 5e-13 at dt =
+/// 5e-4 s).
+const STALLED_UPDATES: usize = 4;
+
+/// How far above the tolerance a stalled fixed point is still accepted: with the time-stepped
+/// model's 1e-10 g dt, 1e-8 g dt, no more than the error the compliance itself makes.
+const ROUND_OFF_FLOOR: f64 = 100.0;
+
+/// One moving block's share of a contact: the rows of the contact's (normal, tangential)
+/// relative velocity for that block's (x, y, rotation) velocity.
+#[derive(Debug, Clone, Copy)]
+pub struct Part {
+    /// The block.
+    pub body: usize,
+    /// Normal and tangential rows.
+    pub rows: [Vector3<f64>; 2],
+}
+
+/// A contact of the step: the moving blocks it involves, the normal velocity its restitution
+/// law asks for, its friction coefficient and its compliance.
+#[derive(Debug, Clone)]
+pub struct Contact {
+    /// One or two moving blocks.
+    pub parts: [Option<Part>; 2],
+    /// Normal relative velocity wanted after the step, -e times the approach (m/s).
+    pub target_m_s: f64,
+    /// Coulomb coefficient (0: frictionless).
+    pub friction: f64,
+    /// eps (m/s per N s).
+    pub compliance: f64,
+}
+
+impl Contact {
+    /// The contact's (normal, tangential) relative velocity when the blocks move at `v`.
+    fn velocity(&self, v: &[Vector3<f64>]) -> Vector2<f64> {
+        let mut u = Vector2::zeros();
+        for p in self.parts.iter().flatten() {
+            u += Vector2::new(p.rows[0].dot(&v[p.body]), p.rows[1].dot(&v[p.body]));
+        }
+        u
+    }
+
+    /// The normal impulse (N s) at velocities `v`.
+    fn normal_impulse(&self, v: &[Vector3<f64>]) -> f64 {
+        (-(self.velocity(v).x - self.target_m_s) / self.compliance).max(0.0)
+    }
+
+    /// The impulse (normal, tangential; N s) where the contact's relative velocity is `u`,
+    /// the tangential one within +- `bound`, and whether it sticks (within the bound).
+    fn impulse_at(&self, u: Vector2<f64>, bound: f64) -> (Vector2<f64>, bool) {
+        let pn = (-(u.x - self.target_m_s) / self.compliance).max(0.0);
+        let trial = -u.y / self.compliance;
+        if trial.abs() <= bound {
+            (Vector2::new(pn, trial), true)
+        } else {
+            (Vector2::new(pn, trial.signum() * bound), false)
+        }
+    }
+}
+
+/// Why a step's Newton iteration stopped without converging.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stall {
+    /// It used its iterations.
+    Iterations,
+    /// The Jacobian could not be factorised.
+    Singular,
+}
+
+/// The solver of a run: the wall's sparsity pattern and its symbolic factorisation, and the
+/// working memory kept from one step to the next.
+pub struct WallNewton {
+    /// For each block, the blocks it can touch and itself, sorted: block b's columns hold the
+    /// rows of these blocks in this order.
+    neighbours: Vec<Vec<usize>>,
+    symbolic: SymbolicSparseColMat<usize>,
+    llt: SymbolicLlt<usize>,
+    values: Vec<f64>,
+    step: Vec<Vector3<f64>>,
+    rhs: Vec<f64>,
+    gradient: Vec<Vector3<f64>>,
+    bounds: Vec<f64>,
+    lines: Vec<(Vector2<f64>, Vector2<f64>)>,
+}
+
+impl WallNewton {
+    /// A solver for `n` blocks of which the pairs in `touching` can share a contact.
+    pub fn new(n: usize, touching: impl IntoIterator<Item = (usize, usize)>) -> WallNewton {
+        let mut neighbours: Vec<Vec<usize>> = (0..n).map(|b| vec![b]).collect();
+        for (a, b) in touching {
+            if a != b {
+                neighbours[a].push(b);
+                neighbours[b].push(a);
+            }
+        }
+        for list in &mut neighbours {
+            list.sort_unstable();
+            list.dedup();
+        }
+        let mut col_ptr = Vec::with_capacity(3 * n + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for list in &neighbours {
+            for _ in 0..3 {
+                for &a in list {
+                    row_idx.extend(3 * a..3 * a + 3);
+                }
+                col_ptr.push(row_idx.len());
+            }
+        }
+        let nnz = row_idx.len();
+        let symbolic = SymbolicSparseColMat::new_checked(3 * n, 3 * n, col_ptr, None, row_idx);
+        let llt = SymbolicLlt::try_new(symbolic.as_ref(), Side::Lower)
+            .expect("a symbolic Cholesky factorisation of a pattern that holds its diagonal");
+        WallNewton {
+            neighbours,
+            symbolic,
+            llt,
+            values: vec![0.0; nnz],
+            step: vec![Vector3::zeros(); n],
+            rhs: vec![0.0; 3 * n],
+            gradient: vec![Vector3::zeros(); n],
+            bounds: Vec::new(),
+            lines: Vec::new(),
+        }
+    }
+
+    /// Adds a 3 x 3 block at (row block a, column block b).
+    fn add(&mut self, a: usize, b: usize, m: &Matrix3<f64>) {
+        let col = &self.neighbours[b];
+        let ia = col
+            .binary_search(&a)
+            .expect("a pair of blocks that can touch");
+        let stride = 3 * col.len();
+        let start = self.symbolic.col_ptr()[3 * b] + 3 * ia;
+        for c in 0..3 {
+            for r in 0..3 {
+                self.values[start + c * stride + r] += m[(r, c)];
+            }
+        }
+    }
+
+    /// The potential's gradient M (v - v_free) - sum H' p(v) under the current bounds.
+    fn gradient_at(
+        &mut self,
+        mass: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &[Vector3<f64>],
+    ) {
+        for (i, g) in self.gradient.iter_mut().enumerate() {
+            *g = mass[i].component_mul(&(v[i] - v_free[i]));
+        }
+        for (c, &bound) in contacts.iter().zip(&self.bounds) {
+            let (p, _) = c.impulse_at(c.velocity(v), bound);
+            for part in c.parts.iter().flatten() {
+                self.gradient[part.body] -= part.rows[0] * p.x + part.rows[1] * p.y;
+            }
+        }
+    }
+
+    /// The Jacobian of the gradient at `v` (the contacts closing or at rest add their normal
+    /// stiffness, those sticking their tangential one), factorised.
+    fn jacobian(
+        &mut self,
+        mass: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &[Vector3<f64>],
+    ) -> Option<Llt<usize, f64>> {
+        self.values.iter_mut().for_each(|x| *x = 0.0);
+        for (i, m) in mass.iter().enumerate() {
+            self.add(i, i, &Matrix3::from_diagonal(m));
+        }
+        // The bounds lent out while the blocks are added to the matrix beside them.
+        let bounds = std::mem::take(&mut self.bounds);
+        for (c, &bound) in contacts.iter().zip(&bounds) {
+            let u = c.velocity(v);
+            // At rest (u_n exactly on its target) the contact counts as closed: a resting
+            // wall's first step starts there, and an open Jacobian would send it into free fall.
+            let closed = u.x <= c.target_m_s;
+            let (_, sticks) = c.impulse_at(u, bound);
+            if !closed && !sticks {
+                continue;
+            }
+            let stiffness = 1.0 / c.compliance;
+            for a in c.parts.iter().flatten() {
+                for b in c.parts.iter().flatten() {
+                    let mut block = Matrix3::zeros();
+                    if closed {
+                        block += a.rows[0] * b.rows[0].transpose() * stiffness;
+                    }
+                    if sticks {
+                        block += a.rows[1] * b.rows[1].transpose() * stiffness;
+                    }
+                    self.add(a.body, b.body, &block);
+                }
+            }
+        }
+        self.bounds = bounds;
+        let matrix = SparseColMatRef::new(self.symbolic.as_ref(), &self.values);
+        Llt::try_new_with_symbolic(self.llt.clone(), matrix, Side::Lower).ok()
+    }
+
+    /// The step length along `self.step` from `v` that minimises the potential: the root of
+    /// its derivative, piecewise linear and increasing in the length, by Newton's method on
+    /// that derivative safeguarded by bisection (exact in a few steps: a full step where the
+    /// contacts' states it assumed hold).
+    fn line_minimum(
+        &mut self,
+        mass: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &[Vector3<f64>],
+    ) -> f64 {
+        let (mut a, mut b) = (0.0, 0.0);
+        for (i, d) in self.step.iter().enumerate() {
+            let md = mass[i].component_mul(d);
+            a += md.dot(&(v[i] - v_free[i]));
+            b += md.dot(d);
+        }
+        let step = &self.step;
+        self.lines.clear();
+        self.lines.extend(contacts.iter().map(|c| {
+            let mut w = Vector2::zeros();
+            for p in c.parts.iter().flatten() {
+                let d = step[p.body];
+                w += Vector2::new(p.rows[0].dot(&d), p.rows[1].dot(&d));
+            }
+            (c.velocity(v), w)
+        }));
+        let derivative = |alpha: f64| {
+            let (mut g, mut h) = (a + b * alpha, b);
+            for ((c, &bound), (u, w)) in contacts.iter().zip(&self.bounds).zip(&self.lines) {
+                let (p, sticks) = c.impulse_at(u + alpha * w, bound);
+                g -= p.dot(w);
+                if p.x > 0.0 {
+                    h += w.x * w.x / c.compliance;
+                }
+                if sticks {
+                    h += w.y * w.y / c.compliance;
+                }
+            }
+            (g, h)
+        };
+        let (mut lo, mut hi) = (0.0, f64::INFINITY);
+        let mut alpha = 1.0;
+        for _ in 0..100 {
+            let (g, h) = derivative(alpha);
+            if g == 0.0 {
+                break;
+            }
+            if g < 0.0 {
+                lo = alpha;
+            } else {
+                hi = alpha;
+            }
+            let mut next = alpha - g / h;
+            if !(next > lo && next < hi) {
+                next = if hi.is_finite() {
+                    0.5 * (lo + hi)
+                } else {
+                    2.0 * alpha
+                };
+            }
+            if next == alpha || hi - lo <= 4.0 * f64::EPSILON * hi {
+                break;
+            }
+            alpha = next;
+        }
+        alpha
+    }
+
+    /// Solves the step: `v` comes in as the first guess (the velocities before the step) and
+    /// leaves as the solution; `impulses[k]` is contact k's impulse there. `mass` is each
+    /// block's (m, m, I) (a block that does not move has no part in any contact and keeps its
+    /// free velocity); `reach` turns a change of a block's velocity into one of its points'
+    /// ((1, 1, its half diagonal)), and the iteration stops once no block's velocity changes by
+    /// more than `tolerance_m_s` under the friction bounds those velocities give. Returns the
+    /// Newton steps used, or why it stalled.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(
+        &mut self,
+        mass: &[Vector3<f64>],
+        reach: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &mut [Vector3<f64>],
+        impulses: &mut [Vector2<f64>],
+        tolerance_m_s: f64,
+    ) -> Result<usize, Stall> {
+        let mut outcome = Err(Stall::Iterations);
+        let mut keep_bounds = false;
+        // The smallest step seen right after the bounds moved, and how many such steps since
+        // have not halved it.
+        let (mut best, mut stalled) = (f64::INFINITY, 0);
+        for iteration in 1..=MAX_ITERATIONS {
+            if !keep_bounds {
+                self.bounds.clear();
+                self.bounds
+                    .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
+            }
+            self.gradient_at(mass, v_free, contacts, v);
+            let Some(llt) = self.jacobian(mass, contacts, v) else {
+                outcome = Err(Stall::Singular);
+                break;
+            };
+            for (i, g) in self.gradient.iter().enumerate() {
+                for k in 0..3 {
+                    self.rhs[3 * i + k] = -g[k];
+                }
+            }
+            llt.solve_in_place(ColMut::from_slice_mut(&mut self.rhs));
+            if self.rhs.iter().any(|x| !x.is_finite()) {
+                outcome = Err(Stall::Singular);
+                break;
+            }
+            for (i, d) in self.step.iter_mut().enumerate() {
+                *d = Vector3::new(self.rhs[3 * i], self.rhs[3 * i + 1], self.rhs[3 * i + 2]);
+            }
+            let alpha = self.line_minimum(mass, v_free, contacts, v);
+            let mut change: f64 = 0.0;
+            for ((vi, d), r) in v.iter_mut().zip(&self.step).zip(reach) {
+                *vi += alpha * d;
+                change = change.max((alpha * d).component_mul(r).abs().max());
+            }
+            // A small step under bounds just taken from the velocities: Coulomb's fixed point.
+            // A small step under older bounds: Tresca's problem solved, the bounds move.
+            let settled = change <= tolerance_m_s;
+            if !keep_bounds {
+                if settled {
+                    outcome = Ok(iteration);
+                    break;
+                }
+                // The bounds' fixed point converges linearly until the round-off of p_n =
+                // -u_n / eps (an ulp of u_n over eps) moves the bounds by as much as it gains;
+                // near the tolerance that floor is where the iteration stops.
+                if change < 0.5 * best {
+                    (best, stalled) = (change, 0);
+                } else {
+                    stalled += 1;
+                }
+                if stalled >= STALLED_UPDATES && best <= ROUND_OFF_FLOOR * tolerance_m_s {
+                    outcome = Ok(iteration);
+                    break;
+                }
+            }
+            keep_bounds = !settled;
+        }
+        for (c, p) in contacts.iter().zip(impulses.iter_mut()) {
+            let bound = c.friction * c.normal_impulse(v);
+            *p = c.impulse_at(c.velocity(v), bound).0;
+        }
+        outcome
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const G_DT: f64 = 9.81e-3;
+
+    /// A 1 x 0.5 m block of 1,300 kg (its centroid at the origin) on points of its base at
+    /// `xs`, each with its compliance: the contacts, the block's (m, m, I) and reach.
+    fn block_on(xs: &[f64], eps: &[f64], friction: f64) -> (Vec<Contact>, Vector3<f64>) {
+        let (m, h) = (1300.0, 0.25);
+        let contacts = xs
+            .iter()
+            .zip(eps)
+            .map(|(&x, &compliance)| Contact {
+                parts: [
+                    Some(Part {
+                        body: 0,
+                        // Normal (0, 1) and tangent (1, 0) at r = (x, -h): (d, r x d).
+                        rows: [Vector3::new(0.0, 1.0, x), Vector3::new(1.0, 0.0, h)],
+                    }),
+                    None,
+                ],
+                target_m_s: 0.0,
+                friction,
+                compliance,
+            })
+            .collect();
+        (contacts, Vector3::new(m, m, m * (1.0 + 0.25) / 12.0))
+    }
+
+    fn solve(
+        contacts: &[Contact],
+        mass: Vector3<f64>,
+        v_free: Vector3<f64>,
+        start: Vector3<f64>,
+    ) -> (Vector3<f64>, Vec<Vector2<f64>>) {
+        let mut solver = WallNewton::new(1, []);
+        let mut v = [start];
+        let mut p = vec![Vector2::zeros(); contacts.len()];
+        let used = solver.solve(
+            &[mass],
+            &[Vector3::new(1.0, 1.0, 0.56)],
+            &[v_free],
+            contacts,
+            &mut v,
+            &mut p,
+            1e-10 * G_DT,
+        );
+        assert!(used.is_ok(), "{used:?}");
+        (v[0], p)
+    }
+
+    /// A block at rest on four points of unequal compliance: every contact closed and
+    /// sticking, so the step's velocity solves one linear system, M + sum (n n' + t t') / eps,
+    /// which nalgebra's dense LU solves independently; the two agree to round-off.
+    #[test]
+    fn a_resting_block_solves_the_linear_system_of_its_springs() {
+        let eps = [2e-11, 1e-11, 3e-11, 1.5e-11];
+        let (contacts, mass) = block_on(&[-0.5, -0.2, 0.1, 0.5], &eps, 0.6);
+        let v_free = Vector3::new(0.0, -G_DT, 0.0);
+        let (v, p) = solve(&contacts, mass, v_free, Vector3::zeros());
+        let mut k = Matrix3::from_diagonal(&mass);
+        for c in &contacts {
+            let [n, t] = c.parts[0].unwrap().rows;
+            k += (n * n.transpose() + t * t.transpose()) / c.compliance;
+        }
+        let expected = k.lu().solve(&mass.component_mul(&v_free)).unwrap();
+        for (c, p) in contacts.iter().zip(&p) {
+            assert!(p.x > 0.0 && p.y.abs() < c.friction * p.x, "{p:?}");
+        }
+        // The velocities are of the size of eps p_n; they agree to a few ulps of themselves.
+        assert!(
+            (v - expected).abs().max() < 1e-13 * expected.abs().max(),
+            "{v:?} {expected:?}"
+        );
+        // The weight's impulse is carried but for what the block sinks by: the stiff contacts
+        // close at eps p_n, here a few billionths of g dt.
+        let carried: f64 = p.iter().map(|p| p.x).sum();
+        let weight = mass.x * G_DT;
+        assert!((carried - mass.x * (v.y + G_DT)).abs() < 1e-12 * weight);
+        assert!(v.y < 0.0 && -v.y < 1e-8 * G_DT, "{}", v.y);
+    }
+
+    /// A block sliding at 2 m/s on two points: every contact slips, and the answer satisfies
+    /// the balance of the step and Coulomb's law at every contact to round-off, whether Newton
+    /// starts from rest or from the free velocity.
+    #[test]
+    fn a_sliding_block_meets_coulomb_and_the_balance_from_any_start() {
+        let (contacts, mass) = block_on(&[-0.5, 0.5], &[1e-11, 1e-11], 0.3);
+        let v_free = Vector3::new(2.0, -G_DT, 0.0);
+        let (from_rest, _) = solve(&contacts, mass, v_free, Vector3::zeros());
+        let (v, p) = solve(&contacts, mass, v_free, v_free);
+        assert!(
+            (v - from_rest).abs().max() < 1e-9 * G_DT,
+            "{v:?} {from_rest:?}"
+        );
+        let mut balance = mass.component_mul(&(v - v_free));
+        for (c, p) in contacts.iter().zip(&p) {
+            let [n, t] = c.parts[0].unwrap().rows;
+            balance -= n * p.x + t * p.y;
+            let u = c.velocity(&[v]);
+            assert!(p.x > 0.0 && u.y > 0.0, "{p:?} {u:?}");
+            assert!((p.y + c.friction * p.x).abs() <= 1e-15 * p.x, "{p:?}");
+        }
+        let force = mass.x * G_DT;
+        assert!(balance.abs().max() < 1e-9 * force, "{balance:?}");
+        // It slows by mu g dt, as a sliding block does, less the share its slight turn takes.
+        assert!(
+            (v.x - (2.0 - 0.3 * G_DT)).abs() < 1e-3 * 0.3 * G_DT,
+            "{}",
+            v.x
+        );
+    }
+}
