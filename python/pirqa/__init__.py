@@ -72,6 +72,7 @@ def run(
     method: str = "event",
     dt_s: float | None = None,
     model: str = "auto",
+    contact_solver: str = "gauss-seidel",
     log_events: bool = False,
 ) -> Result:
     """Runs ``wall`` under ``motion`` (the GIL is released while it runs).
@@ -79,6 +80,9 @@ def run(
     ``duration_s``: simulated time (default: the motion's length). ``output_dt_s``: sample the
     history this often (default: no history). ``method``: "event" (exact), "moreau" or
     "paper" (time stepping, with ``dt_s``). ``model``: "auto", "slide" or "slide-rock".
+    ``contact_solver``: how "moreau" with model "slide-rock" solves each step's contacts,
+    "gauss-seidel" (rigid contacts) or "newton" (the whole wall at once, stiff contacts: many
+    times faster on tall walls; docs/rocking-walls.md).
     """
     raw = _run(
         wall,
@@ -88,6 +92,7 @@ def run(
         method=method,
         dt_s=dt_s,
         model=model,
+        contact_solver=contact_solver,
         log_events=log_events,
     )
     history = None

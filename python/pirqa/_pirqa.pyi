@@ -84,6 +84,7 @@ def run(
     method: str = "event",
     dt_s: float | None = None,
     model: str = "auto",
+    contact_solver: str = "gauss-seidel",
     log_events: bool = False,
 ) -> dict[str, Any]: ...
 def sweep_info(path: str | PathLike[str]) -> dict[str, Any]: ...

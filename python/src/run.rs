@@ -8,7 +8,7 @@ use crate::to_python::to_python;
 use crate::wall::Wall;
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
-use pirqa::{Method, ModelChoice, RunSettings};
+use pirqa::{ContactSolver, Method, ModelChoice, RunSettings};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -55,10 +55,21 @@ fn model(name: &str) -> PyResult<ModelChoice> {
     }
 }
 
+fn contact_solver(name: &str) -> PyResult<ContactSolver> {
+    match name {
+        "gauss-seidel" => Ok(ContactSolver::GaussSeidel),
+        "newton" => Ok(ContactSolver::Newton),
+        _ => Err(option(
+            "contact_solver",
+            format!("\"{name}\": give gauss-seidel or newton"),
+        )),
+    }
+}
+
 /// Runs `wall` under `motion`; see `pirqa.run`.
 #[pyfunction]
 #[pyo3(signature = (wall, motion, *, duration_s = None, output_dt_s = None, method = "event",
-    dt_s = None, model = "auto", log_events = false))]
+    dt_s = None, model = "auto", contact_solver = "gauss-seidel", log_events = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -69,6 +80,7 @@ pub fn run<'py>(
     method: &str,
     dt_s: Option<f64>,
     model: &str,
+    contact_solver: &str,
     log_events: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let settings = RunSettings {
@@ -77,6 +89,7 @@ pub fn run<'py>(
         log_events,
         method: self::method(method, dt_s)?,
         model: self::model(model)?,
+        contact_solver: self::contact_solver(contact_solver)?,
         ..RunSettings::default()
     };
     let (m, g) = (wall.model.clone(), motion.motion.clone());

@@ -91,6 +91,7 @@ fn grid(duration_s: f64, frequencies: Frequencies) -> SweepDescription {
         model: Default::default(),
         method: Default::default(),
         fallback: Default::default(),
+        contact_solver: Default::default(),
     }
 }
 

@@ -1694,7 +1694,9 @@ fn block_names_with_commas_and_quotes_round_trip_through_history_csv() {
 /// A sweep may run its cases on time stepping (`method: Moreau(dt_s: S)`): with `model:
 /// SlideRock`, every block of the paper's wall (blocks beside others, beyond the exact rocking
 /// model) turns; each case says so, and its rerun.txt (a sine's: the motion's length given once)
-/// reproduces its numbers. A step that is not positive is refused with the file and the field.
+/// reproduces its numbers, with either contact solver (`contact_solver: Newton` puts
+/// `--contact-solver newton` in it). A step that is not positive is refused with the file and
+/// the field.
 #[test]
 fn a_sweep_runs_its_cases_on_time_stepping_with_rotations_when_asked() {
     let root = env!("CARGO_MANIFEST_DIR");
@@ -1710,47 +1712,58 @@ fn a_sweep_runs_its_cases_on_time_stepping_with_rotations_when_asked() {
 )"#
         )
     };
-    let file = common::file("stepped.ron", &spec("Moreau(dt_s: 0.001)"));
     let out = temp_dir("stepped");
-    let sweep = |extra: &[&str]| {
-        let args = [
-            &[
-                "sweep",
-                file.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-            ],
-            extra,
-        ];
-        pirqa(&args.concat())
-    };
-    let (ok, _, err) = sweep(&[]);
-    assert!(ok, "{err}");
-    let cases = std::fs::read_to_string(out.join("cases.csv")).unwrap();
-    let row = cases.lines().nth(1).unwrap();
-    assert!(row.contains(",slide-rock,"), "{cases}");
-    let (ok, _, err) = sweep(&["--case", "0"]);
-    assert!(ok, "{err}");
-    let case = out.join("case-0");
-    let read = |name: &str| std::fs::read_to_string(case.join(name)).unwrap();
-    let summary = read("summary.json");
-    assert!(summary.contains("moreau-jean"), "{summary}");
-    let rerun = read("rerun.txt");
-    assert!(rerun.contains("--method moreau --dt 0.001"), "{rerun}");
-    assert_eq!(rerun.matches("--duration").count(), 1, "{rerun}");
-    let words: Vec<&str> = rerun.split_whitespace().collect();
-    let (ok, _, err) = pirqa(&words[1..]);
-    assert!(ok, "{err}");
-    let without_label = |text: &str| {
-        let mut v: serde_json::Value = serde_json::from_str(text).unwrap();
-        v["motion"] = serde_json::Value::Null;
-        v["stats"] = serde_json::Value::Null;
-        v
-    };
-    assert_eq!(
-        without_label(&read("summary.json")),
-        without_label(&summary)
-    );
+    for (method, equations, option) in [
+        ("Moreau(dt_s: 0.001)", "\"moreau-jean\"", ""),
+        (
+            "Moreau(dt_s: 0.001), contact_solver: Newton",
+            "\"moreau-jean-newton\"",
+            " --contact-solver newton",
+        ),
+    ] {
+        let file = common::file("stepped.ron", &spec(method));
+        let out = out.join(equations.trim_matches('"'));
+        let sweep = |extra: &[&str]| {
+            let args = [
+                &[
+                    "sweep",
+                    file.to_str().unwrap(),
+                    "--out",
+                    out.to_str().unwrap(),
+                ],
+                extra,
+            ];
+            pirqa(&args.concat())
+        };
+        let (ok, _, err) = sweep(&[]);
+        assert!(ok, "{err}");
+        let cases = std::fs::read_to_string(out.join("cases.csv")).unwrap();
+        let row = cases.lines().nth(1).unwrap();
+        assert!(row.contains(",slide-rock,"), "{cases}");
+        let (ok, _, err) = sweep(&["--case", "0"]);
+        assert!(ok, "{err}");
+        let case = out.join("case-0");
+        let read = |name: &str| std::fs::read_to_string(case.join(name)).unwrap();
+        let summary = read("summary.json");
+        assert!(summary.contains(equations), "{summary}");
+        let rerun = read("rerun.txt");
+        let options = format!("--method moreau --dt 0.001{option} ");
+        assert!(rerun.contains(&options), "{rerun}");
+        assert_eq!(rerun.matches("--duration").count(), 1, "{rerun}");
+        let words: Vec<&str> = rerun.split_whitespace().collect();
+        let (ok, _, err) = pirqa(&words[1..]);
+        assert!(ok, "{err}");
+        let without_label = |text: &str| {
+            let mut v: serde_json::Value = serde_json::from_str(text).unwrap();
+            v["motion"] = serde_json::Value::Null;
+            v["stats"] = serde_json::Value::Null;
+            v
+        };
+        assert_eq!(
+            without_label(&read("summary.json")),
+            without_label(&summary)
+        );
+    }
 
     let bad = common::file("bad-step.ron", &spec("Moreau(dt_s: -0.001)"));
     let (ok, _, err) = pirqa(&[

@@ -467,6 +467,7 @@ fn a_sliding_body_split_by_an_impact_is_decided() {
 #[test]
 fn every_shipped_study_loads() {
     let expected = [
+        ("block-count-rocking.ron", 3 * 8),
         ("block-count.ron", 5 * 8),
         ("columns-fragility-sliding.ron", 3 * 6 * 20),
         ("columns-fragility.ron", 3 * 6 * 20),
@@ -705,6 +706,37 @@ fn a_case_beyond_the_exact_model_is_answered_by_the_fallback_the_sweep_names() {
     ] {
         let e = sweep(&text(extra)).unwrap_err().to_string();
         assert!(e.contains("fallback") && e.contains(says), "{extra}: {e}");
+    }
+    // The whole-wall Newton solver goes with runs that step rotations: the fallback's, or the
+    // method's with model SlideRock.
+    let newton = sweep(&text(
+        "fallback: Moreau(dt_s: 0.0005), contact_solver: Newton,",
+    ))
+    .unwrap();
+    assert_ne!(newton.fingerprint, with.fingerprint);
+    let answered_newton = newton.run_case(1).0;
+    assert_eq!(answered_newton.model, pirqa::study::sweep::FALLBACK_MODEL);
+    let settings = pirqa::RunSettings {
+        contact_solver: pirqa::ContactSolver::Newton,
+        ..settings
+    };
+    let run = pirqa::run(&model, &with.motions[1].motion, &settings)
+        .unwrap()
+        .summary;
+    assert_eq!(run.model.equations.as_deref(), Some("moreau-jean-newton"));
+    assert_eq!(
+        answered_newton.collapse_time_s,
+        run.collapse.map(|c| c.time_s)
+    );
+    for extra in [
+        "contact_solver: Newton,",
+        "method: Moreau(dt_s: 0.001), contact_solver: Newton,",
+    ] {
+        let e = sweep(&text(extra)).unwrap_err().to_string();
+        assert!(
+            e.contains("contact_solver") && e.contains("leave contact_solver out"),
+            "{extra}: {e}"
+        );
     }
 }
 

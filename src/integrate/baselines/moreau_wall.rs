@@ -84,7 +84,7 @@ impl MoreauWall {
 }
 
 /// How the contact problem of a step is solved.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum ContactSolver {
     /// Projected Gauss-Seidel over the contacts, rigid: where a block rests on two others the

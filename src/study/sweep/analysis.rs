@@ -5,7 +5,7 @@
 //! and cost change with the block count.
 
 use super::store::CaseRow;
-use super::{FrictionModel, Sweep};
+use super::{FrictionModel, Sweep, SweepMethod};
 use crate::plot::chart::{self, Chart, Corner, Series};
 use crate::study::stats::{fit_fragility, power_law_exponent, quantile, wilson};
 use serde_json::{json, Value};
@@ -489,7 +489,8 @@ fn sorted(c: &Cell, f: impl Fn(&CaseRow) -> f64) -> Vec<f64> {
 /// the response (median and 5-95 % band over friction samples), the probability of collapse with
 /// its 95 % interval, and the cost (CPU time and events per case, CPU time per event, the work
 /// of the exact decisions per event) against the number of blocks, with the power-law exponents
-/// of the cost.
+/// of the cost. A time-stepped sweep handles no events and makes no exact decisions: its cost is
+/// the CPU time per case alone.
 fn block_count(
     sweep: &Sweep,
     cells: &BTreeMap<(usize, usize), Cell>,
@@ -499,6 +500,7 @@ fn block_count(
     if counts.len() < 3 {
         return None;
     }
+    let exact = sweep.method == SweepMethod::Event;
     let panel = |title: &str, y: &str, log_y: bool| Chart {
         title: title.into(),
         x_label: "blocks in the wall".into(),
@@ -672,7 +674,7 @@ fn block_count(
                 }
             }
         }
-        numbers.push(json!({
+        let mut motion_numbers = json!({
             "motion": motion.label,
             "cpu_exponent": power_law_exponent(&cpu),
             "cpu_exponent_in_events_x_courses": power_law_exponent(
@@ -704,7 +706,46 @@ fn block_count(
                     "cpu_s_per_event_p50": c.median(|r| r.cpu_s / r.events.max(1) as f64),
                 })
             }).collect::<Vec<_>>(),
-        }));
+        });
+        if !exact {
+            strip_event_numbers(&mut motion_numbers);
+        }
+        numbers.push(motion_numbers);
+    }
+    if !exact {
+        // Events per case, CPU time per event, the exact decisions' work.
+        for panel in [6, 5, 3] {
+            charts.remove(panel);
+        }
     }
     Some((charts, Value::Array(numbers)))
+}
+
+/// Removes from a motion's block-count numbers those of the exact engine's events and
+/// decisions (a time-stepped sweep has neither).
+fn strip_event_numbers(numbers: &mut Value) {
+    if let Some(o) = numbers.as_object_mut() {
+        for key in [
+            "cpu_exponent_in_events_x_courses",
+            "events_exponent",
+            "transitions_exponent",
+            "decision_blocks_exponent",
+            "flow_nodes_exponent",
+        ] {
+            o.remove(key);
+        }
+    }
+    if let Some(walls) = numbers.get_mut("walls").and_then(Value::as_array_mut) {
+        for wall in walls.iter_mut().filter_map(Value::as_object_mut) {
+            for key in [
+                "events_p50",
+                "transitions_p50",
+                "decision_blocks_p50",
+                "flow_nodes_p50",
+                "cpu_s_per_event_p50",
+            ] {
+                wall.remove(key);
+            }
+        }
+    }
 }

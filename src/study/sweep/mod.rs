@@ -12,6 +12,7 @@ pub mod store;
 use crate::clock::ThreadClock;
 use crate::error::{Error, MotionError, SimulationError, SweepError};
 use crate::exact::Q;
+use crate::integrate::baselines::ContactSolver;
 use crate::integrate::rocking::ModelChoice;
 use crate::integrate::{Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
@@ -60,6 +61,15 @@ pub struct SweepDescription {
     /// fails with the reason).
     #[serde(default, skip_serializing_if = "is_fail")]
     pub fallback: Fallback,
+    /// How Moreau-Jean with rotations (the method, or the fallback) solves each step's
+    /// contacts, as `pirqa run --contact-solver` (default `GaussSeidel`; `Newton`: the whole
+    /// wall at once, docs/rocking-walls.md).
+    #[serde(default, skip_serializing_if = "is_gauss_seidel")]
+    pub contact_solver: ContactSolver,
+}
+
+fn is_gauss_seidel(s: &ContactSolver) -> bool {
+    *s == ContactSolver::GaussSeidel
 }
 
 fn is_fail(f: &Fallback) -> bool {
@@ -332,6 +342,8 @@ pub struct Sweep {
     pub method: SweepMethod,
     /// What answers a case beyond the exact model.
     pub fallback: Fallback,
+    /// How Moreau-Jean with rotations solves a step's contacts.
+    pub contact_solver: ContactSolver,
 }
 
 /// An error of the sweep file `path`.
@@ -457,7 +469,12 @@ impl Sweep {
         }
         // A sweep of the default model and method hashes the text it had before `model` and
         // `method` came, so that folders written before keep their fingerprint and resume.
+        // Fields at their defaults leave the text as it was before they existed, so that
+        // sweeps begun then resume.
         let text = format!("{:?}", d.by_file_name());
+        let text = text
+            .strip_suffix(", contact_solver: GaussSeidel }")
+            .map_or_else(|| text.clone(), |t| format!("{t} }}"));
         let text = text
             .strip_suffix(", fallback: Fail }")
             .map_or_else(|| text.clone(), |t| format!("{t} }}"));
@@ -507,6 +524,19 @@ impl Sweep {
             }
             _ => {}
         }
+        let rotations_stepped = matches!(d.method, SweepMethod::Moreau { .. })
+            && d.model == ModelChoice::SlideRock
+            || matches!(d.fallback, Fallback::Moreau { .. });
+        if d.contact_solver != ContactSolver::GaussSeidel && !rotations_stepped {
+            return Err(field(
+                origin,
+                "contact_solver",
+                "chooses how Moreau-Jean with rotations solves a step's contacts, and no case \
+                 runs it: set method to Moreau(dt_s: ...) with model SlideRock (or a Moreau \
+                 fallback), or leave contact_solver out"
+                    .into(),
+            ));
+        }
         let mut hash = fnv(FNV_OFFSET, text.as_bytes());
         let mut walls = Vec::new();
         for source in &d.walls {
@@ -539,6 +569,7 @@ impl Sweep {
             model: d.model,
             method: d.method,
             fallback: d.fallback,
+            contact_solver: d.contact_solver,
         })
     }
 
@@ -676,6 +707,7 @@ impl Sweep {
         RunSettings {
             model: self.model,
             method: self.method.method(),
+            contact_solver: self.stepped_solver(self.method),
             ..RunSettings::default()
         }
     }
@@ -692,6 +724,7 @@ impl Sweep {
         let settings = RunSettings {
             model: ModelChoice::SlideRock,
             method: Method::Moreau { dt_s },
+            contact_solver: self.contact_solver,
             ..self.run_settings()
         };
         let mut fallen_back = run_scenario(sc, &settings)?;
@@ -704,12 +737,29 @@ impl Sweep {
         Ok(fallen_back)
     }
 
+    /// The contact solver of runs on `method`: the sweep's for Moreau-Jean (validation
+    /// keeps it at Gauss-Seidel unless those runs rotate blocks), none for the others.
+    fn stepped_solver(&self, method: SweepMethod) -> ContactSolver {
+        match method {
+            SweepMethod::Moreau { .. } => self.contact_solver,
+            SweepMethod::Event | SweepMethod::Paper { .. } => ContactSolver::GaussSeidel,
+        }
+    }
+
+    /// `pirqa run`'s options of `method`, with the contact solver where it is not the default.
+    fn method_options(&self, method: SweepMethod) -> String {
+        match self.stepped_solver(method) {
+            ContactSolver::GaussSeidel => method.run_options(),
+            ContactSolver::Newton => format!("{} --contact-solver newton", method.run_options()),
+        }
+    }
+
     /// `pirqa run`'s options of the model and method case `id` runs on.
     pub fn case_options(&self, id: usize) -> Result<String, SimulationError> {
         Ok(format!(
             "--model {}{}",
             self.case_model(id)?,
-            self.method.run_options()
+            self.method_options(self.method)
         ))
     }
 
@@ -719,7 +769,7 @@ impl Sweep {
         match self.fallback {
             Fallback::Moreau { dt_s } if r.summary.model.name == FALLBACK_MODEL => Ok(format!(
                 "--model slide-rock{}",
-                SweepMethod::Moreau { dt_s }.run_options()
+                self.method_options(SweepMethod::Moreau { dt_s })
             )),
             _ => self.case_options(id),
         }
