@@ -105,6 +105,10 @@ fn committed_studies_are_what_their_cases_draw() {
         ("walls/studies/block-count.ron", "docs/block-count"),
         ("walls/studies/long-walls.ron", "docs/long-walls"),
         (
+            "walls/studies/block-count-rocking.ron",
+            "docs/block-count-rocking",
+        ),
+        (
             "walls/studies/ollantaytambo-rocking.ron",
             "docs/rocking/ollantaytambo",
         ),
