@@ -438,9 +438,9 @@ pub enum Warning {
         sweeps: usize,
     },
     /// Newton's method on the whole wall (Moreau-Jean with rotations, `--contact-solver
-    /// newton`) stopped at its iteration limit in some steps.
-    NewtonUnconverged {
-        /// Steps that ended unconverged.
+    /// newton`) stopped at its iteration limit in some steps, which Gauss-Seidel solved instead.
+    NewtonFellBack {
+        /// Those steps.
         steps: u64,
     },
 }
@@ -520,10 +520,10 @@ impl std::fmt::Display for Warning {
                 f,
                 "Gauss-Seidel did not converge within {sweeps} sweeps in {steps} steps"
             ),
-            Warning::NewtonUnconverged { steps } => write!(
+            Warning::NewtonFellBack { steps } => write!(
                 f,
-                "Newton's method did not converge within its iterations in {steps} steps \
-                 (their velocities are those of its last iterate)"
+                "Newton's method did not converge within its iterations in {steps} steps; \
+                 Gauss-Seidel solved them instead"
             ),
         }
     }

@@ -424,6 +424,7 @@ impl Integrator for MoreauWall {
         // Impulses of the last step, per candidate (warm start).
         let mut impulses = vec![Vector2::<f64>::zeros(); candidates.len()];
         let mut unconverged = 0u64;
+        let mut fell_back = 0u64;
         let mut newton =
             (self.solver == ContactSolver::Newton).then(|| NewtonStep::new(&bodies, &candidates));
         let mut t = 0.0;
@@ -487,8 +488,11 @@ impl Integrator for MoreauWall {
                     approach_m_s: before.x,
                 });
             }
-            let converged = match &mut newton {
-                Some(newton) => newton.solve(
+            // Newton where asked; where it does not converge, its last iterate can be far off
+            // (on the 976-block running bond such steps followed one another until blocks flew
+            // off at km/s), so Gauss-Seidel solves that step instead, from the free velocities.
+            let by_newton = newton.as_mut().is_some_and(|newton| {
+                let solved = newton.solve(
                     &candidates,
                     &active,
                     |i| moves(i, &gone),
@@ -496,66 +500,68 @@ impl Integrator for MoreauWall {
                     &mut v,
                     &mut impulses,
                     NEWTON_TOLERANCE * scale,
-                ),
-                None => {
-                    // Warm start: the last step's impulses of the contacts still active.
-                    let apply = |v: &mut [Vector3<f64>], act: &Active, p: Vector2<f64>| {
-                        let c = &candidates[act.candidate];
-                        if moves(c.point, &gone) {
-                            let r = &act.geometry.point_row;
-                            v[c.point] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(c.point));
-                        }
-                        if let (Some(f), Some(r)) = (c.on, &act.geometry.on_row) {
-                            if moves(f, &gone) {
-                                v[f] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(f));
-                            }
-                        }
-                    };
-                    for act in &active {
-                        apply(&mut v, act, impulses[act.candidate]);
+                );
+                fell_back += u64::from(!solved);
+                solved
+            });
+            let converged = by_newton || {
+                // Warm start: the last step's impulses of the contacts still active.
+                let apply = |v: &mut [Vector3<f64>], act: &Active, p: Vector2<f64>| {
+                    let c = &candidates[act.candidate];
+                    if moves(c.point, &gone) {
+                        let r = &act.geometry.point_row;
+                        v[c.point] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(c.point));
                     }
-                    let mut converged = active.is_empty();
-                    let mut sweep_start = v.clone();
-                    for _ in 0..self.max_sweeps {
-                        if converged {
-                            break;
+                    if let (Some(f), Some(r)) = (c.on, &act.geometry.on_row) {
+                        if moves(f, &gone) {
+                            v[f] += (r[0] * p.x + r[1] * p.y).component_mul(&inv(f));
                         }
-                        sweep_start.copy_from_slice(&v);
-                        for act in &active {
-                            let c = &candidates[act.candidate];
-                            let u = act.geometry.velocity(c, &v);
-                            let w = &act.delassus;
-                            let p = impulses[act.candidate];
-                            // Newton's law at velocity level (u_n after >= -e u_n before), then Coulomb
-                            // with the new normal impulse.
-                            let target = -c.restitution * act.approach_m_s.min(0.0);
-                            let pn = (p.x - (u.x - target) / w[(0, 0)]).max(0.0);
-                            let ut = u.y + w[(1, 0)] * (pn - p.x);
-                            let pt = if c.friction > 0.0 {
-                                (p.y - ut / w[(1, 1)]).clamp(-c.friction * pn, c.friction * pn)
-                            } else {
-                                0.0
-                            };
-                            let new = Vector2::new(pn, pt);
-                            apply(&mut v, act, new - p);
-                            impulses[act.candidate] = new;
-                        }
-                        // The blocks' velocities, not the impulses: those of redundant contacts (a
-                        // block on two others, two corners at one point) may trade load among
-                        // themselves without end once the velocities have converged.
-                        let change = v
-                            .iter()
-                            .zip(&sweep_start)
-                            .zip(&bodies)
-                            .map(|((a, b), body)| {
-                                let d = a - b;
-                                d.x.abs().max(d.y.abs()).max(d.z.abs() * body.half.norm())
-                            })
-                            .fold(0.0, f64::max);
-                        converged = change <= self.tolerance * scale;
                     }
-                    converged
+                };
+                for act in &active {
+                    apply(&mut v, act, impulses[act.candidate]);
                 }
+                let mut converged = active.is_empty();
+                let mut sweep_start = v.clone();
+                for _ in 0..self.max_sweeps {
+                    if converged {
+                        break;
+                    }
+                    sweep_start.copy_from_slice(&v);
+                    for act in &active {
+                        let c = &candidates[act.candidate];
+                        let u = act.geometry.velocity(c, &v);
+                        let w = &act.delassus;
+                        let p = impulses[act.candidate];
+                        // Newton's law at velocity level (u_n after >= -e u_n before), then Coulomb
+                        // with the new normal impulse.
+                        let target = -c.restitution * act.approach_m_s.min(0.0);
+                        let pn = (p.x - (u.x - target) / w[(0, 0)]).max(0.0);
+                        let ut = u.y + w[(1, 0)] * (pn - p.x);
+                        let pt = if c.friction > 0.0 {
+                            (p.y - ut / w[(1, 1)]).clamp(-c.friction * pn, c.friction * pn)
+                        } else {
+                            0.0
+                        };
+                        let new = Vector2::new(pn, pt);
+                        apply(&mut v, act, new - p);
+                        impulses[act.candidate] = new;
+                    }
+                    // The blocks' velocities, not the impulses: those of redundant contacts (a
+                    // block on two others, two corners at one point) may trade load among
+                    // themselves without end once the velocities have converged.
+                    let change = v
+                        .iter()
+                        .zip(&sweep_start)
+                        .zip(&bodies)
+                        .map(|((a, b), body)| {
+                            let d = a - b;
+                            d.x.abs().max(d.y.abs()).max(d.z.abs() * body.half.norm())
+                        })
+                        .fold(0.0, f64::max);
+                    converged = change <= self.tolerance * scale;
+                }
+                converged
             };
             if !converged {
                 unconverged += 1;
@@ -663,13 +669,14 @@ impl Integrator for MoreauWall {
         e.friction_j = e.initial_j + e.input_j - e.kinetic_j - e.potential_j - e.fallen_j;
         rec.stats.unconverged_steps = unconverged;
         if unconverged > 0 {
-            rec.warnings.push(match self.solver {
-                ContactSolver::GaussSeidel => Warning::Unconverged {
-                    steps: unconverged,
-                    sweeps: self.max_sweeps,
-                },
-                ContactSolver::Newton => Warning::NewtonUnconverged { steps: unconverged },
+            rec.warnings.push(Warning::Unconverged {
+                steps: unconverged,
+                sweeps: self.max_sweeps,
             });
+        }
+        if fell_back > 0 {
+            rec.warnings
+                .push(Warning::NewtonFellBack { steps: fell_back });
         }
         let (u, uv, _, _, _) = outputs(&q, &v);
         let motion = sc.motion.describe();
@@ -736,7 +743,7 @@ impl NewtonStep {
 
     /// Solves a step's contacts from the free velocities `v` (left with the solution, and
     /// each active candidate's impulse in `impulses`), starting from the velocities at the
-    /// step's start; false if Newton did not converge.
+    /// step's start; false, `v` and `impulses` as they came, if Newton did not converge.
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &mut self,
@@ -783,9 +790,15 @@ impl NewtonStep {
             &mut self.impulses,
             tolerance_m_s,
         );
+        if outcome.is_err() {
+            // Back to the free velocities, the last step's impulses left for Gauss-Seidel's
+            // warm start.
+            v.copy_from_slice(&self.v_free);
+            return false;
+        }
         for (act, p) in active.iter().zip(&self.impulses) {
             impulses[act.candidate] = *p;
         }
-        outcome.is_ok()
+        true
     }
 }
