@@ -973,3 +973,45 @@ fn time_stepping_converges_to_a_column_whose_joints_open_one_above_another() {
         "{e:?} m"
     );
 }
+
+/// Where Newton's method on the whole wall does not converge (here made so by a tolerance no
+/// step can meet), Gauss-Seidel solves the step instead, from the free velocities and the last
+/// step's impulses: the run is then Gauss-Seidel's own to the bit, and a warning counts every
+/// step that fell back (all 300: the wall rests on its contacts throughout).
+#[test]
+fn a_step_newton_cannot_solve_is_left_to_gauss_seidel() {
+    use pirqa::integrate::baselines::MoreauWall;
+    use pirqa::integrate::{Integrator, Scenario, Settings};
+    let model = Model::from_file("walls/five-block-uniform.ron").unwrap();
+    let motion = sine(4.0, 1.0, 0.3);
+    let settings = Settings::summary_only(0.3);
+    let sc = Scenario {
+        wall: model.wall(),
+        topology: model.topology(),
+        motion: &motion,
+        settings: &settings,
+    };
+    let gauss_seidel = MoreauWall::new(1e-3).run(&sc).unwrap().summary;
+    let never = MoreauWall {
+        solver: ContactSolver::Newton,
+        newton_tolerance: -1.0,
+        ..MoreauWall::new(1e-3)
+    }
+    .run(&sc)
+    .unwrap()
+    .summary;
+    let json = |s: &Summary| serde_json::to_value((&s.blocks, &s.energy)).unwrap();
+    assert_eq!(json(&never), json(&gauss_seidel));
+    assert!(gauss_seidel
+        .blocks
+        .iter()
+        .any(|b| b.max_abs_displacement_m > 1e-3));
+    assert!(
+        never
+            .warnings
+            .iter()
+            .any(|w| matches!(w, Warning::NewtonFellBack { steps: 300 })),
+        "{:?}",
+        never.warnings
+    );
+}

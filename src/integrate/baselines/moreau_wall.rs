@@ -44,11 +44,6 @@ const ON_FACE: f64 = 1e-9;
 /// sweeps on.
 const TOUCH_M: f64 = 1e-12;
 
-/// Newton's method on the whole wall stops when no block's velocity changes by more than this
-/// fraction of g times the step: above the round-off of its stiff systems (about 1e-12), below
-/// the error its compliance itself makes ([`COMPLIANCE`]).
-const NEWTON_TOLERANCE: f64 = 1e-10;
-
 /// Steps between two reports of the time reached (and looks at a request to stop).
 const PROGRESS_STEPS: u64 = 1024;
 
@@ -64,6 +59,10 @@ pub struct MoreauWall {
     pub tolerance: f64,
     /// Gauss-Seidel sweeps allowed per step; steps that need more are counted in a warning.
     pub max_sweeps: usize,
+    /// Newton's method on the whole wall stops when no block's velocity changes by more than
+    /// this fraction of g times the step: 1e-10 by default, above the round-off of its stiff
+    /// systems (about 1e-12), below the error its compliance itself makes ([`COMPLIANCE`]).
+    pub newton_tolerance: f64,
     /// A wall of one column released from a rotation: a block of its moving body and the
     /// rotation (rad, clockwise positive), the body turned about the end of its base on that
     /// side ([`crate::integrate::rocking::Column::released`]).
@@ -78,6 +77,7 @@ impl MoreauWall {
             solver: ContactSolver::GaussSeidel,
             tolerance: 1e-12,
             max_sweeps: 10_000,
+            newton_tolerance: 1e-10,
             initial_rotation: None,
         }
     }
@@ -499,7 +499,7 @@ impl Integrator for MoreauWall {
                     &v_start,
                     &mut v,
                     &mut impulses,
-                    NEWTON_TOLERANCE * scale,
+                    self.newton_tolerance * scale,
                 );
                 fell_back += u64::from(!solved);
                 solved

@@ -261,16 +261,14 @@ impl WallNewton {
             a += md.dot(&(v[i] - v_free[i]));
             b += md.dot(d);
         }
-        let step = &self.step;
+        // A contact's velocity is linear in the blocks': along the step it is u + alpha w,
+        // w the contact's velocity for the step itself.
         self.lines.clear();
-        self.lines.extend(contacts.iter().map(|c| {
-            let mut w = Vector2::zeros();
-            for p in c.parts.iter().flatten() {
-                let d = step[p.body];
-                w += Vector2::new(p.rows[0].dot(&d), p.rows[1].dot(&d));
-            }
-            (c.velocity(v), w)
-        }));
+        self.lines.extend(
+            contacts
+                .iter()
+                .map(|c| (c.velocity(v), c.velocity(&self.step))),
+        );
         let derivative = |alpha: f64| {
             let (mut g, mut h) = (a + b * alpha, b);
             for ((c, &bound), (u, w)) in contacts.iter().zip(&self.bounds).zip(&self.lines) {
