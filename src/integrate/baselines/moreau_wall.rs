@@ -61,7 +61,7 @@ pub struct MoreauWall {
     pub max_sweeps: usize,
     /// Newton's method on the whole wall stops when no block's velocity changes by more than
     /// this fraction of g times the step: 1e-10 by default, above the round-off of its stiff
-    /// systems (about 1e-12), below the error its compliance itself makes ([`COMPLIANCE`]).
+    /// systems (about 1e-12), below the error its compliance itself makes (1e-8, `wall_newton.rs`).
     pub newton_tolerance: f64,
     /// A wall of one column released from a rotation: a block of its moving body and the
     /// rotation (rad, clockwise positive), the body turned about the end of its base on that
