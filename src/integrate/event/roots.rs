@@ -75,11 +75,23 @@ impl<'a> Fun<'a> {
 /// (or Illinois regula falsi without a derivative), bisection when a step does not shrink the
 /// bracket enough, down to adjacent floats — or to a bracket of width `tol` when only the place
 /// matters to first order (extremes).
-pub fn refine(fun: Fun, mut lo: f64, mut hi: f64, tol: f64, count: &mut Counter) -> f64 {
-    let f = fun.f;
-    let mut flo = f(lo);
-    let mut fhi = f(hi);
+pub fn refine(fun: Fun, lo: f64, hi: f64, tol: f64, count: &mut Counter) -> f64 {
+    let (flo, fhi) = ((fun.f)(lo), (fun.f)(hi));
     count.0 += 2;
+    refine_from(fun, (lo, flo), (hi, fhi), tol, count)
+}
+
+/// [`refine`] on a bracket whose ends' values the caller has already: f is evaluated the same
+/// way wherever it is, so the search and its answer are those of [`refine`], two evaluations
+/// fewer.
+fn refine_from(
+    fun: Fun,
+    (mut lo, mut flo): (f64, f64),
+    (mut hi, mut fhi): (f64, f64),
+    tol: f64,
+    count: &mut Counter,
+) -> f64 {
+    let f = fun.f;
     if let Some(fd) = fun.fd {
         // Newton from the end nearer the root, bisecting whenever a step would leave the
         // bracket; then the last few floats one by one.
@@ -246,18 +258,18 @@ pub fn first_violation(
                 count.0 += 1;
                 if start > 0.0 {
                     return Some(Hit {
-                        t: refine(fun, p, q, 0.0, count),
+                        t: refine_from(fun, (p, start), (q, fq), 0.0, count),
                         graze: false,
                     });
                 }
-                return Some(match scan_past_zero(fun, p, q, count) {
+                return Some(match scan_past_zero(fun, p, (q, fq), count) {
                     Some(t) => Hit { t, graze: false },
                     // Valid for less than one float step of time: it touches zero here.
                     None => Hit { t: p, graze: true },
                 });
             }
             return Some(Hit {
-                t: refine(fun, p, q, 0.0, count),
+                t: refine_from(fun, (p, fp), (q, fq), 0.0, count),
                 graze: false,
             });
         }
@@ -272,7 +284,7 @@ pub fn first_violation(
 /// after p that was sampled, down to the next float: the stretch where it is valid is shorter
 /// than one float step of time (two faces that part at 1e-13 m/s and are pushed back together
 /// at once), so it touches zero at p.
-fn scan_past_zero(fun: Fun, p: f64, q: f64, count: &mut Counter) -> Option<f64> {
+fn scan_past_zero(fun: Fun, p: f64, (q, fq): (f64, f64), count: &mut Counter) -> Option<f64> {
     let f = fun.f;
     let mut step = (q - p) * 0.5;
     let mut best = None;
@@ -284,17 +296,21 @@ fn scan_past_zero(fun: Fun, p: f64, q: f64, count: &mut Counter) -> Option<f64> 
         let fx = f(x);
         count.0 += 1;
         if fx > 0.0 {
-            best = Some(x);
+            best = Some((x, fx));
             break;
         }
         step *= 0.5;
     }
-    let x = best.or_else(|| {
+    let start = best.or_else(|| {
         let next = p.next_up();
         count.0 += 1;
-        (next < q && f(next) > 0.0).then_some(next)
+        if next >= q {
+            return None;
+        }
+        let f_next = f(next);
+        (f_next > 0.0).then_some((next, f_next))
     })?;
-    Some(refine(fun, x, q, 0.0, count))
+    Some(refine_from(fun, start, (q, fq), 0.0, count))
 }
 
 /// All points in (t_a, t_b) where f changes sign, given the same monotone pieces, each located
@@ -318,7 +334,7 @@ pub fn sign_changes(
         count.0 += 1;
         if (fp > 0.0 && fq <= 0.0) || (fp < 0.0 && fq >= 0.0) {
             let t = if fp > 0.0 {
-                refine(fun, p, q, tol, count)
+                refine_from(fun, (p, fp), (q, fq), tol, count)
             } else {
                 let neg = |x: f64| -f(x);
                 let neg_fd = fun.fd.map(|fd| {
@@ -327,9 +343,10 @@ pub fn sign_changes(
                         (-v, -d)
                     }
                 });
+                let ends = ((p, -fp), (q, -fq));
                 match &neg_fd {
-                    Some(nfd) => refine(Fun::with(&neg, nfd), p, q, tol, count),
-                    None => refine(Fun::plain(&neg), p, q, tol, count),
+                    Some(nfd) => refine_from(Fun::with(&neg, nfd), ends.0, ends.1, tol, count),
+                    None => refine_from(Fun::plain(&neg), ends.0, ends.1, tol, count),
                 }
             };
             if t < t_b {
@@ -421,6 +438,28 @@ mod tests {
         let hit = first_violation(Fun::plain(&g), t0, 39.99, &[], true, 0.0, &mut c).unwrap();
         assert!(!hit.graze && g(hit.t) <= 0.0 && g(hit.t.next_down()) > 0.0);
         assert!((hit.t - t0 - 1.8e-9 / 214.5).abs() < 1e-14);
+    }
+
+    #[test]
+    fn the_ends_of_a_bracket_are_evaluated_once() {
+        // What the scan evaluated at a piece's ends is handed to the refinement, which used to
+        // evaluate both again (a tenth of the README run's evaluations).
+        let seen = std::cell::RefCell::new(Vec::new());
+        let f = |x: f64| {
+            seen.borrow_mut().push(x);
+            0.3 - x
+        };
+        // Newton's steps evaluate the function with its derivative: not counted here.
+        let fd = |x: f64| (0.3 - x, -1.0);
+        let times = |x: f64| seen.borrow().iter().filter(|&&y| y == x).count();
+        let mut c = Counter::default();
+        let zeros = sign_changes(Fun::with(&f, &fd), 0.0, 1.0, &[], 0.0, &mut c);
+        assert_eq!(zeros.as_slice(), &[0.3]);
+        assert_eq!((times(0.0), times(1.0)), (1, 1));
+        seen.borrow_mut().clear();
+        let hit = first_violation(Fun::plain(&f), 0.0, 1.0, &[0.2], true, 0.0, &mut c).unwrap();
+        assert!(f(hit.t) <= 0.0 && f(hit.t.next_down()) > 0.0);
+        assert_eq!((times(0.2), times(1.0)), (1, 1));
     }
 
     #[test]
