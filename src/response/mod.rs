@@ -436,12 +436,19 @@ pub enum Warning {
         steps: u64,
         /// The sweep limit.
         sweeps: usize,
+        /// With rotations: the end of the first such step (s).
+        first_s: Option<f64>,
+        /// With rotations: the blocks whose velocity changed most in such a step's last sweep,
+        /// with how many steps each (the first few, most often first).
+        blocks: Vec<(String, u64)>,
     },
     /// Newton's method on the whole wall (Moreau-Jean with rotations, `--contact-solver
     /// newton`) stopped at its iteration limit in some steps, which Gauss-Seidel solved instead.
     NewtonFellBack {
         /// Those steps.
         steps: u64,
+        /// The end of the first of them (s).
+        first_s: f64,
     },
 }
 
@@ -516,14 +523,41 @@ impl std::fmt::Display for Warning {
                     "the step and the solver"
                 }
             ),
-            Warning::Unconverged { steps, sweeps } => write!(
+            Warning::Unconverged {
+                steps,
+                sweeps,
+                first_s,
+                blocks,
+            } => {
+                write!(
+                    f,
+                    "Gauss-Seidel did not converge within {sweeps} sweeps in {steps} steps"
+                )?;
+                if let Some(t) = first_s {
+                    write!(f, " (the first ending at {t} s")?;
+                    if !blocks.is_empty() {
+                        let most: Vec<String> = blocks
+                            .iter()
+                            .enumerate()
+                            .map(|(k, (name, n))| {
+                                let unit = if k == 0 { " steps" } else { "" };
+                                format!("{name} in {n}{unit}")
+                            })
+                            .collect();
+                        write!(
+                            f,
+                            "; changing fastest at the last sweep: {}",
+                            most.join(", ")
+                        )?;
+                    }
+                    write!(f, ")")?;
+                }
+                Ok(())
+            }
+            Warning::NewtonFellBack { steps, first_s } => write!(
                 f,
-                "Gauss-Seidel did not converge within {sweeps} sweeps in {steps} steps"
-            ),
-            Warning::NewtonFellBack { steps } => write!(
-                f,
-                "Newton's method did not converge within its iterations in {steps} steps; \
-                 Gauss-Seidel solved them instead"
+                "Newton's method did not converge within its iterations in {steps} steps (the \
+                 first ending at {first_s} s); Gauss-Seidel solved them instead"
             ),
         }
     }

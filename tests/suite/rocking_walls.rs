@@ -1007,11 +1007,41 @@ fn a_step_newton_cannot_solve_is_left_to_gauss_seidel() {
         .iter()
         .any(|b| b.max_abs_displacement_m > 1e-3));
     assert!(
-        never
-            .warnings
-            .iter()
-            .any(|w| matches!(w, Warning::NewtonFellBack { steps: 300 })),
+        never.warnings.iter().any(|w| matches!(
+            w,
+            Warning::NewtonFellBack { steps: 300, first_s } if *first_s == 1e-3
+        )),
         "{:?}",
         never.warnings
     );
+    // One sweep per step is too few for Gauss-Seidel as well: its warning says when the
+    // first such step ended and which blocks it left changing fastest, most often first.
+    let one_sweep = MoreauWall {
+        max_sweeps: 1,
+        ..MoreauWall::new(1e-3)
+    }
+    .run(&sc)
+    .unwrap()
+    .summary;
+    let Some(Warning::Unconverged {
+        steps,
+        sweeps: 1,
+        first_s: Some(first_s),
+        blocks,
+    }) = one_sweep
+        .warnings
+        .iter()
+        .find(|w| matches!(w, Warning::Unconverged { .. }))
+    else {
+        panic!("{:?}", one_sweep.warnings);
+    };
+    assert_eq!((*steps, *first_s), (300, 1e-3));
+    // The three named (of five), most often first, each a block of the wall, their steps
+    // among the 300.
+    assert_eq!(blocks.len(), 3, "{blocks:?}");
+    assert!(blocks.windows(2).all(|w| w[0].1 >= w[1].1), "{blocks:?}");
+    assert!(blocks
+        .iter()
+        .all(|(name, _)| model.wall().block_index(name).is_some()));
+    assert!(blocks.iter().map(|b| b.1).sum::<u64>() <= 300, "{blocks:?}");
 }

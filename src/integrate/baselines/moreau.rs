@@ -161,6 +161,8 @@ impl Integrator for Moreau {
             r.summary.warnings.push(Warning::Unconverged {
                 steps: unconverged,
                 sweeps: self.max_sweeps,
+                first_s: None,
+                blocks: Vec::new(),
             });
         }
         Ok(r)

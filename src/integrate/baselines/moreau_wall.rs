@@ -25,6 +25,9 @@ use nalgebra::{Matrix2, Vector2, Vector3};
 /// omega (rad/s), w of the base's middle (m): what a history row holds.
 type Outputs = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
 
+/// Blocks named in the warning on unconverged steps: the few where Gauss-Seidel struggles.
+const FASTEST_LISTED: usize = 3;
+
 /// A block lifts (for the summary's uplift time) when its rotation moves a corner by this much
 /// (m): Gauss-Seidel leaves rotations of round-off size on blocks that stay seated.
 const UPLIFT_M: f64 = 1e-6;
@@ -425,6 +428,10 @@ impl Integrator for MoreauWall {
         let mut impulses = vec![Vector2::<f64>::zeros(); candidates.len()];
         let mut unconverged = 0u64;
         let mut fell_back = 0u64;
+        // When the solvers first failed, and which block each unconverged step left changing
+        // fastest (counted per block): what the warnings say of where.
+        let (mut first_unconverged, mut first_fell_back) = (None, None);
+        let mut fastest = vec![0u64; n];
         let mut newton =
             (self.solver == ContactSolver::Newton).then(|| NewtonStep::new(&bodies, &candidates));
         let mut t = 0.0;
@@ -501,7 +508,10 @@ impl Integrator for MoreauWall {
                     &mut impulses,
                     self.newton_tolerance * scale,
                 );
-                fell_back += u64::from(!solved);
+                if !solved {
+                    fell_back += 1;
+                    first_fell_back.get_or_insert(k as f64 * dt);
+                }
                 solved
             });
             let converged = by_newton || {
@@ -523,6 +533,7 @@ impl Integrator for MoreauWall {
                 }
                 let mut converged = active.is_empty();
                 let mut sweep_start = v.clone();
+                let mut changing = 0;
                 for _ in 0..self.max_sweeps {
                     if converged {
                         break;
@@ -550,7 +561,7 @@ impl Integrator for MoreauWall {
                     // The blocks' velocities, not the impulses: those of redundant contacts (a
                     // block on two others, two corners at one point) may trade load among
                     // themselves without end once the velocities have converged.
-                    let change = v
+                    let (block, change) = v
                         .iter()
                         .zip(&sweep_start)
                         .zip(&bodies)
@@ -558,13 +569,22 @@ impl Integrator for MoreauWall {
                             let d = a - b;
                             d.x.abs().max(d.y.abs()).max(d.z.abs() * body.half.norm())
                         })
-                        .fold(0.0, f64::max);
+                        .enumerate()
+                        .fold(
+                            (0, 0.0),
+                            |best, (i, c)| if c > best.1 { (i, c) } else { best },
+                        );
+                    changing = block;
                     converged = change <= self.tolerance * scale;
+                }
+                if !converged {
+                    fastest[changing] += 1;
                 }
                 converged
             };
             if !converged {
                 unconverged += 1;
+                first_unconverged.get_or_insert(k as f64 * dt);
             }
             // A vertical joint whose faces met approaching (one impact, however many of its
             // corners took part).
@@ -669,14 +689,25 @@ impl Integrator for MoreauWall {
         e.friction_j = e.initial_j + e.input_j - e.kinetic_j - e.potential_j - e.fallen_j;
         rec.stats.unconverged_steps = unconverged;
         if unconverged > 0 {
+            let mut blocks: Vec<(String, u64)> = (0..n)
+                .filter(|&i| fastest[i] > 0)
+                .map(|i| (wall.blocks[i].name.clone(), fastest[i]))
+                .collect();
+            // Most often first; a stable sort keeps the wall's order among equals.
+            blocks.sort_by_key(|b| std::cmp::Reverse(b.1));
+            blocks.truncate(FASTEST_LISTED);
             rec.warnings.push(Warning::Unconverged {
                 steps: unconverged,
                 sweeps: self.max_sweeps,
+                first_s: first_unconverged,
+                blocks,
             });
         }
-        if fell_back > 0 {
-            rec.warnings
-                .push(Warning::NewtonFellBack { steps: fell_back });
+        if let Some(first_s) = first_fell_back {
+            rec.warnings.push(Warning::NewtonFellBack {
+                steps: fell_back,
+                first_s,
+            });
         }
         let (u, uv, _, _, _) = outputs(&q, &v);
         let motion = sc.motion.describe();
