@@ -533,7 +533,7 @@ impl Integrator for MoreauWall {
                 }
                 let mut converged = active.is_empty();
                 let mut sweep_start = v.clone();
-                let mut changing = 0;
+                let mut changing = None;
                 for _ in 0..self.max_sweeps {
                     if converged {
                         break;
@@ -574,11 +574,11 @@ impl Integrator for MoreauWall {
                             (0, 0.0),
                             |best, (i, c)| if c > best.1 { (i, c) } else { best },
                         );
-                    changing = block;
+                    changing = Some(block);
                     converged = change <= self.tolerance * scale;
                 }
-                if !converged {
-                    fastest[changing] += 1;
+                if let (false, Some(block)) = (converged, changing) {
+                    fastest[block] += 1;
                 }
                 converged
             };
