@@ -534,7 +534,7 @@ impl std::fmt::Display for Warning {
                     "Gauss-Seidel did not converge within {sweeps} sweeps in {steps} steps"
                 )?;
                 if let Some(t) = first_s {
-                    write!(f, " (the first ending at {t} s")?;
+                    write!(f, " (the first ending at {} s", to_the_nanosecond(*t))?;
                     if !blocks.is_empty() {
                         let most: Vec<String> = blocks
                             .iter()
@@ -557,10 +557,16 @@ impl std::fmt::Display for Warning {
             Warning::NewtonFellBack { steps, first_s } => write!(
                 f,
                 "Newton's method did not converge within its iterations in {steps} steps (the \
-                 first ending at {first_s} s); Gauss-Seidel solved them instead"
+                 first ending at {} s); Gauss-Seidel solved them instead",
+                to_the_nanosecond(*first_s)
             ),
         }
     }
+}
+
+/// A step's end k dt, rounded to the nanosecond for reading: 0.564, not 0.5640000000000001.
+fn to_the_nanosecond(t_s: f64) -> f64 {
+    (t_s * 1e9).round() / 1e9
 }
 
 impl Serialize for Warning {

@@ -13,6 +13,11 @@
 //! Cholesky factorisation, whose symbolic part is made once per run over every pair of blocks
 //! that can touch. Coulomb's law is the fixed point b = mu p_n: once Tresca's problem is solved
 //! the bounds move to mu p_n and Newton goes on, until a step with fresh bounds changes nothing.
+//! That fixed point can cycle (in a running bond whose blocks turn, the bounds move by millions
+//! of their round-off from one update to the next); where it has not settled in its iterations,
+//! semismooth Newton on Coulomb's law itself takes over from its last iterate: the Jacobian is
+//! then unsymmetric (a sliding contact's friction follows its normal impulse), solved by faer's
+//! sparse LU on the same pattern, with a backtracking line search on the residual's size.
 //!
 //! With eps small the answer is the rigid one to a relative O(eps): a resting contact closes at
 //! a speed of eps p_n (about [`COMPLIANCE`] times g dt). Where rigid blocks leave the split
@@ -22,7 +27,7 @@
 //! elastic answer). docs/rocking-walls.md compares it with eq. 3's tributary split.
 
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{ColMut, Side};
 use nalgebra::{Matrix3, Vector2, Vector3};
@@ -118,6 +123,8 @@ pub struct WallNewton {
     neighbours: Vec<Vec<usize>>,
     symbolic: SymbolicSparseColMat<usize>,
     llt: SymbolicLlt<usize>,
+    lu: SymbolicLu<usize>,
+    start: Vec<Vector3<f64>>,
     values: Vec<f64>,
     step: Vec<Vector3<f64>>,
     rhs: Vec<f64>,
@@ -155,10 +162,14 @@ impl WallNewton {
         let symbolic = SymbolicSparseColMat::new_checked(3 * n, 3 * n, col_ptr, None, row_idx);
         let llt = SymbolicLlt::try_new(symbolic.as_ref(), Side::Lower)
             .expect("a symbolic Cholesky factorisation of a pattern that holds its diagonal");
+        let lu = SymbolicLu::try_new(symbolic.as_ref())
+            .expect("a symbolic LU factorisation of a pattern that holds its diagonal");
         WallNewton {
             neighbours,
             symbolic,
             llt,
+            lu,
+            start: Vec::new(),
             values: vec![0.0; nnz],
             step: vec![Vector3::zeros(); n],
             rhs: vec![0.0; 3 * n],
@@ -311,25 +322,102 @@ impl WallNewton {
         alpha
     }
 
-    /// Solves the step: `v` comes in as the first guess (the velocities before the step) and
-    /// leaves as the solution; `impulses[k]` is contact k's impulse there. `mass` is each
-    /// block's (m, m, I) (a block that does not move has no part in any contact and keeps its
-    /// free velocity); `reach` turns a change of a block's velocity into one of its points'
-    /// ((1, 1, its half diagonal)), and the iteration stops once no block's velocity changes by
-    /// more than `tolerance_m_s` under the friction bounds those velocities give. Returns the
-    /// Newton steps used, or why it stalled.
+    /// Coulomb's residual at `v`, the gradient with the bounds taken from `v` itself (left in
+    /// `self.gradient`), and its size 1/2 F' M^-1 F.
+    fn residual(
+        &mut self,
+        mass: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &[Vector3<f64>],
+    ) -> f64 {
+        self.bounds.clear();
+        self.bounds
+            .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
+        self.gradient_at(mass, v_free, contacts, v);
+        0.5 * self
+            .gradient
+            .iter()
+            .zip(mass)
+            .map(|(g, m)| g.component_div(m).dot(g))
+            .sum::<f64>()
+    }
+
+    /// The Jacobian of Coulomb's residual at `v`, factorised: Tresca's, plus at each contact
+    /// that slides the dependence of its friction, s mu p_n, on its normal velocity (which
+    /// makes it unsymmetric).
+    fn coulomb_jacobian(
+        &mut self,
+        mass: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &[Vector3<f64>],
+    ) -> Option<Lu<usize, f64>> {
+        self.values.iter_mut().for_each(|x| *x = 0.0);
+        for (i, m) in mass.iter().enumerate() {
+            self.add(i, i, &Matrix3::from_diagonal(m));
+        }
+        for c in contacts {
+            let u = c.velocity(v);
+            let closed = u.x <= c.target_m_s;
+            let (_, sticks) = c.impulse_at(u, c.friction * c.normal_impulse(v));
+            if !closed && !sticks {
+                continue;
+            }
+            let stiffness = 1.0 / c.compliance;
+            // Sliding in direction s = sign(u_t): p_t = s mu (u_n - target) / eps.
+            let slip = if closed && !sticks {
+                u.y.signum() * c.friction * stiffness
+            } else {
+                0.0
+            };
+            for a in c.parts.iter().flatten() {
+                for b in c.parts.iter().flatten() {
+                    let mut block = Matrix3::zeros();
+                    if closed {
+                        block += a.rows[0] * b.rows[0].transpose() * stiffness;
+                    }
+                    if sticks {
+                        block += a.rows[1] * b.rows[1].transpose() * stiffness;
+                    }
+                    block -= a.rows[1] * b.rows[0].transpose() * slip;
+                    self.add(a.body, b.body, &block);
+                }
+            }
+        }
+        let matrix = SparseColMatRef::new(self.symbolic.as_ref(), &self.values);
+        Lu::try_new_with_symbolic(self.lu.clone(), matrix).ok()
+    }
+
+    /// Solves `self.step` from the factorised Jacobian and the gradient; false if the step is
+    /// not finite.
+    fn newton_step(&mut self, jacobian: &impl Solve<f64>) -> bool {
+        for (i, g) in self.gradient.iter().enumerate() {
+            for k in 0..3 {
+                self.rhs[3 * i + k] = -g[k];
+            }
+        }
+        jacobian.solve_in_place(ColMut::from_slice_mut(&mut self.rhs));
+        if self.rhs.iter().any(|x| !x.is_finite()) {
+            return false;
+        }
+        for (d, s) in self.step.iter_mut().zip(self.rhs.chunks_exact(3)) {
+            *d = Vector3::new(s[0], s[1], s[2]);
+        }
+        true
+    }
+
+    /// Coulomb's fixed point on Tresca's problems, the first way a step is solved (see the
+    /// module's comment). Returns the Newton steps used, or why it stalled.
     #[allow(clippy::too_many_arguments)]
-    pub fn solve(
+    fn bounds_fixed_point(
         &mut self,
         mass: &[Vector3<f64>],
         reach: &[Vector3<f64>],
         v_free: &[Vector3<f64>],
         contacts: &[Contact],
         v: &mut [Vector3<f64>],
-        impulses: &mut [Vector2<f64>],
         tolerance_m_s: f64,
     ) -> Result<usize, Stall> {
-        let mut outcome = Err(Stall::Iterations);
         let mut keep_bounds = false;
         // The smallest step seen right after the bounds moved, and how many such steps since
         // have not halved it.
@@ -342,21 +430,10 @@ impl WallNewton {
             }
             self.gradient_at(mass, v_free, contacts, v);
             let Some(llt) = self.jacobian(mass, contacts, v) else {
-                outcome = Err(Stall::Singular);
-                break;
+                return Err(Stall::Singular);
             };
-            for (i, g) in self.gradient.iter().enumerate() {
-                for k in 0..3 {
-                    self.rhs[3 * i + k] = -g[k];
-                }
-            }
-            llt.solve_in_place(ColMut::from_slice_mut(&mut self.rhs));
-            if self.rhs.iter().any(|x| !x.is_finite()) {
-                outcome = Err(Stall::Singular);
-                break;
-            }
-            for (i, d) in self.step.iter_mut().enumerate() {
-                *d = Vector3::new(self.rhs[3 * i], self.rhs[3 * i + 1], self.rhs[3 * i + 2]);
+            if !self.newton_step(&llt) {
+                return Err(Stall::Singular);
             }
             let alpha = self.line_minimum(mass, v_free, contacts, v);
             let mut change: f64 = 0.0;
@@ -369,8 +446,7 @@ impl WallNewton {
             let settled = change <= tolerance_m_s;
             if !keep_bounds {
                 if settled {
-                    outcome = Ok(iteration);
-                    break;
+                    return Ok(iteration);
                 }
                 // The bounds' fixed point converges linearly until the round-off of p_n =
                 // -u_n / eps (an ulp of u_n over eps) moves the bounds by as much as it gains;
@@ -381,11 +457,118 @@ impl WallNewton {
                     stalled += 1;
                 }
                 if stalled >= STALLED_UPDATES && best <= ROUND_OFF_FLOOR * tolerance_m_s {
-                    outcome = Ok(iteration);
-                    break;
+                    return Ok(iteration);
                 }
             }
             keep_bounds = !settled;
+        }
+        Err(Stall::Iterations)
+    }
+
+    /// Semismooth Newton on Coulomb's law itself, F(v) = 0 with the bounds following the
+    /// normal impulses, from where the fixed point stopped: each step solves the unsymmetric
+    /// Jacobian (faer's sparse LU on the same pattern) and backtracks until 1/2 F' M^-1 F falls
+    /// (Armijo). Where no step along Newton's direction lowers it (a kink of some contact's
+    /// law lies within 1e-10 of a step), that step is within [`ROUND_OFF_FLOOR`] times the
+    /// tolerance (the round-off floor, as for the fixed point) or one step of Tresca's problem
+    /// under the current bounds is taken instead, which moves the iterate off the kink. Returns
+    /// the Newton steps used, or why it stalled.
+    #[allow(clippy::too_many_arguments)]
+    fn coulomb(
+        &mut self,
+        mass: &[Vector3<f64>],
+        reach: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &mut [Vector3<f64>],
+        tolerance_m_s: f64,
+    ) -> Result<usize, Stall> {
+        let mut size_now = self.residual(mass, v_free, contacts, v);
+        for iteration in 1..=MAX_ITERATIONS {
+            let Some(lu) = self.coulomb_jacobian(mass, contacts, v) else {
+                return Err(Stall::Singular);
+            };
+            if !self.newton_step(&lu) {
+                return Err(Stall::Singular);
+            }
+            let change = self
+                .step
+                .iter()
+                .zip(reach)
+                .map(|(d, r)| d.component_mul(r).abs().max())
+                .fold(0.0, f64::max);
+            if change <= tolerance_m_s {
+                for (vi, d) in v.iter_mut().zip(&self.step) {
+                    *vi += d;
+                }
+                return Ok(iteration);
+            }
+            self.start.clear();
+            self.start.extend_from_slice(v);
+            let mut alpha = 1.0;
+            loop {
+                for ((vi, s), d) in v.iter_mut().zip(&self.start).zip(&self.step) {
+                    *vi = s + alpha * d;
+                }
+                let size = self.residual(mass, v_free, contacts, v);
+                // Armijo's condition: along Newton's direction 1/2 F' M^-1 F falls at twice
+                // its value per unit step where F is smooth.
+                if size <= (1.0 - 2e-4 * alpha) * size_now {
+                    size_now = size;
+                    break;
+                }
+                alpha *= 0.5;
+                if alpha >= 1e-10 {
+                    continue;
+                }
+                v.copy_from_slice(&self.start);
+                if change <= ROUND_OFF_FLOOR * tolerance_m_s {
+                    return Ok(iteration);
+                }
+                // Tresca's step under the bounds of `v`, as `residual` left them.
+                self.residual(mass, v_free, contacts, v);
+                let Some(llt) = self.jacobian(mass, contacts, v) else {
+                    return Err(Stall::Singular);
+                };
+                if !self.newton_step(&llt) {
+                    return Err(Stall::Singular);
+                }
+                let alpha = self.line_minimum(mass, v_free, contacts, v);
+                for (vi, d) in v.iter_mut().zip(&self.step) {
+                    *vi += alpha * d;
+                }
+                size_now = self.residual(mass, v_free, contacts, v);
+                break;
+            }
+        }
+        Err(Stall::Iterations)
+    }
+
+    /// Solves the step: `v` comes in as the first guess (the velocities before the step) and
+    /// leaves as the solution; `impulses[k]` is contact k's impulse there. `mass` is each
+    /// block's (m, m, I) (a block that does not move has no part in any contact and keeps its
+    /// free velocity); `reach` turns a change of a block's velocity into one of its points'
+    /// ((1, 1, its half diagonal)), and the iteration stops once no block's velocity changes by
+    /// more than `tolerance_m_s` under the friction bounds those velocities give. The fixed
+    /// point on the bounds comes first; where it uses its iterations, semismooth Newton on
+    /// Coulomb's law goes on from its last iterate. Returns the Newton steps used, or why the
+    /// step stalled.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(
+        &mut self,
+        mass: &[Vector3<f64>],
+        reach: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &mut [Vector3<f64>],
+        impulses: &mut [Vector2<f64>],
+        tolerance_m_s: f64,
+    ) -> Result<usize, Stall> {
+        let mut outcome = self.bounds_fixed_point(mass, reach, v_free, contacts, v, tolerance_m_s);
+        if outcome == Err(Stall::Iterations) {
+            outcome = self
+                .coulomb(mass, reach, v_free, contacts, v, tolerance_m_s)
+                .map(|n| n + MAX_ITERATIONS);
         }
         for (c, p) in contacts.iter().zip(impulses.iter_mut()) {
             let bound = c.friction * c.normal_impulse(v);
@@ -507,5 +690,40 @@ mod tests {
             "{}",
             v.x
         );
+    }
+
+    /// Semismooth Newton on Coulomb's law, run alone from rest, reaches the answer of the
+    /// fixed point on the bounds (to the tolerance both stop at) in a few steps, whether the
+    /// block slides (the friction moment shifting its load to the front contact, the coupling
+    /// the fixed point needs its updates for) or is brought to rest (every contact sticking).
+    #[test]
+    fn newton_on_coulombs_law_reaches_the_fixed_points_answer() {
+        let (contacts, mass) = block_on(&[-0.5, 0.5], &[1e-11, 1e-11], 0.8);
+        for v_free in [
+            Vector3::new(2.0, -G_DT, 0.0),
+            Vector3::new(0.5 * 0.8 * G_DT, -G_DT, 0.0),
+        ] {
+            let (expected, _) = solve(&contacts, mass, v_free, Vector3::zeros());
+            let mut solver = WallNewton::new(1, []);
+            let mut v = [Vector3::zeros()];
+            let reach = [Vector3::new(1.0, 1.0, 0.56)];
+            let used = solver.coulomb(&[mass], &reach, &[v_free], &contacts, &mut v, 1e-10 * G_DT);
+            assert!(matches!(used, Ok(1..=8)), "{used:?}");
+            assert!(
+                (v[0] - expected).abs().max() < 2e-10 * G_DT,
+                "{:?} {expected:?}",
+                v[0]
+            );
+            let slides = v_free.x > 1.0;
+            let mut balance = mass.component_mul(&(v[0] - v_free));
+            for c in &contacts {
+                let (p, sticks) = c.impulse_at(c.velocity(&v), c.friction * c.normal_impulse(&v));
+                assert_eq!(sticks, !slides, "{p:?}");
+                let [n, t] = c.parts[0].unwrap().rows;
+                balance -= n * p.x + t * p.y;
+            }
+            // The balance of the step at the answer, to the tolerance times the mass.
+            assert!(balance.abs().max() < 1e-9 * mass.x * G_DT, "{balance:?}");
+        }
     }
 }
