@@ -469,10 +469,10 @@ impl WallNewton {
     /// normal impulses, from where the fixed point stopped: each step solves the unsymmetric
     /// Jacobian (faer's sparse LU on the same pattern) and backtracks until 1/2 F' M^-1 F falls
     /// (Armijo). Where no step along Newton's direction lowers it (a kink of some contact's
-    /// law lies within 1e-10 of a step), that step is within [`ROUND_OFF_FLOOR`] times the
-    /// tolerance (the round-off floor, as for the fixed point) or one step of Tresca's problem
-    /// under the current bounds is taken instead, which moves the iterate off the kink. Returns
-    /// the Newton steps used, or why it stalled.
+    /// law lies within 1e-10 of the step), the iteration ends if Newton's step is within
+    /// [`ROUND_OFF_FLOOR`] times the tolerance (the round-off floor, as for the fixed point),
+    /// and otherwise takes one step of Tresca's problem under the current bounds instead,
+    /// which moves the iterate off the kink. Returns the Newton steps used, or why it stalled.
     #[allow(clippy::too_many_arguments)]
     fn coulomb(
         &mut self,
