@@ -26,10 +26,16 @@
 //! length, in the limit of infinite stiffness, the split of least complementary energy (the
 //! elastic answer). docs/rocking-walls.md compares it with eq. 3's tributary split.
 
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::{ColMut, Side};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    SymmetricOrdering,
+};
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
+use faer::{ColMut, Conj, Par, Side};
 use nalgebra::{Matrix3, Vector2, Vector3};
 
 /// A contact's compliance relative to the wall's mean inverse mass (for a contact of the mean
@@ -115,6 +121,65 @@ pub enum Stall {
     Singular,
 }
 
+/// The Cholesky factorisation of Tresca's Jacobian, supernodal: faer would pick its simplicial
+/// form for walls of a hundred blocks, whose scalar loops took nearly half of a run
+/// (docs/rocking-walls.md). Its values and working memory are made once per run.
+struct Cholesky {
+    symbolic: SymbolicCholesky<usize>,
+    values: Vec<f64>,
+    memory: MemBuffer,
+}
+
+impl Cholesky {
+    fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Cholesky {
+        let symbolic = factorize_symbolic_cholesky(
+            pattern,
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .expect("a symbolic Cholesky factorisation of a pattern that holds its diagonal");
+        let memory = MemBuffer::new(
+            symbolic
+                .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+                .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq)),
+        );
+        Cholesky {
+            values: vec![0.0; symbolic.len_val()],
+            symbolic,
+            memory,
+        }
+    }
+
+    /// Factorises `matrix` (its lower triangle); false if it is not positive definite.
+    fn factorise(&mut self, matrix: SparseColMatRef<'_, usize, f64>) -> bool {
+        self.symbolic
+            .factorize_numeric_llt(
+                &mut self.values,
+                matrix,
+                Side::Lower,
+                Default::default(),
+                Par::Seq,
+                MemStack::new(&mut self.memory),
+                Default::default(),
+            )
+            .is_ok()
+    }
+
+    /// Solves the last factorised system in place.
+    fn solve(&mut self, rhs: &mut [f64]) {
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            ColMut::from_slice_mut(rhs).as_mat_mut(),
+            Par::Seq,
+            MemStack::new(&mut self.memory),
+        );
+    }
+}
+
 /// The solver of a run: the wall's sparsity pattern and its symbolic factorisation, and the
 /// working memory kept from one step to the next.
 pub struct WallNewton {
@@ -122,7 +187,7 @@ pub struct WallNewton {
     /// rows of these blocks in this order.
     neighbours: Vec<Vec<usize>>,
     symbolic: SymbolicSparseColMat<usize>,
-    llt: SymbolicLlt<usize>,
+    cholesky: Cholesky,
     lu: SymbolicLu<usize>,
     start: Vec<Vector3<f64>>,
     values: Vec<f64>,
@@ -160,14 +225,13 @@ impl WallNewton {
         }
         let nnz = row_idx.len();
         let symbolic = SymbolicSparseColMat::new_checked(3 * n, 3 * n, col_ptr, None, row_idx);
-        let llt = SymbolicLlt::try_new(symbolic.as_ref(), Side::Lower)
-            .expect("a symbolic Cholesky factorisation of a pattern that holds its diagonal");
+        let cholesky = Cholesky::new(symbolic.as_ref());
         let lu = SymbolicLu::try_new(symbolic.as_ref())
             .expect("a symbolic LU factorisation of a pattern that holds its diagonal");
         WallNewton {
             neighbours,
             symbolic,
-            llt,
+            cholesky,
             lu,
             start: Vec::new(),
             values: vec![0.0; nnz],
@@ -214,13 +278,14 @@ impl WallNewton {
     }
 
     /// The Jacobian of the gradient at `v` (the contacts closing or at rest add their normal
-    /// stiffness, those sticking their tangential one), factorised.
+    /// stiffness, those sticking their tangential one), factorised in `self.cholesky`; false
+    /// if it is not positive definite.
     fn jacobian(
         &mut self,
         mass: &[Vector3<f64>],
         contacts: &[Contact],
         v: &[Vector3<f64>],
-    ) -> Option<Llt<usize, f64>> {
+    ) -> bool {
         self.values.iter_mut().for_each(|x| *x = 0.0);
         for (i, m) in mass.iter().enumerate() {
             self.add(i, i, &Matrix3::from_diagonal(m));
@@ -252,7 +317,7 @@ impl WallNewton {
         }
         self.bounds = bounds;
         let matrix = SparseColMatRef::new(self.symbolic.as_ref(), &self.values);
-        Llt::try_new_with_symbolic(self.llt.clone(), matrix, Side::Lower).ok()
+        self.cholesky.factorise(matrix)
     }
 
     /// The step length along `self.step` from `v` that minimises the potential: the root of
@@ -388,15 +453,18 @@ impl WallNewton {
         Lu::try_new_with_symbolic(self.lu.clone(), matrix).ok()
     }
 
-    /// Solves `self.step` from the factorised Jacobian and the gradient; false if the step is
-    /// not finite.
-    fn newton_step(&mut self, jacobian: &impl Solve<f64>) -> bool {
+    /// Solves `self.step` from the gradient and the Jacobian just factorised, Coulomb's `lu`
+    /// or else Tresca's in `self.cholesky`; false if the step is not finite.
+    fn newton_step(&mut self, lu: Option<&Lu<usize, f64>>) -> bool {
         for (i, g) in self.gradient.iter().enumerate() {
             for k in 0..3 {
                 self.rhs[3 * i + k] = -g[k];
             }
         }
-        jacobian.solve_in_place(ColMut::from_slice_mut(&mut self.rhs));
+        match lu {
+            Some(lu) => lu.solve_in_place(ColMut::from_slice_mut(&mut self.rhs)),
+            None => self.cholesky.solve(&mut self.rhs),
+        }
         if self.rhs.iter().any(|x| !x.is_finite()) {
             return false;
         }
@@ -429,10 +497,7 @@ impl WallNewton {
                     .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
             }
             self.gradient_at(mass, v_free, contacts, v);
-            let Some(llt) = self.jacobian(mass, contacts, v) else {
-                return Err(Stall::Singular);
-            };
-            if !self.newton_step(&llt) {
+            if !self.jacobian(mass, contacts, v) || !self.newton_step(None) {
                 return Err(Stall::Singular);
             }
             let alpha = self.line_minimum(mass, v_free, contacts, v);
@@ -488,7 +553,7 @@ impl WallNewton {
             let Some(lu) = self.coulomb_jacobian(mass, contacts, v) else {
                 return Err(Stall::Singular);
             };
-            if !self.newton_step(&lu) {
+            if !self.newton_step(Some(&lu)) {
                 return Err(Stall::Singular);
             }
             let change = self
@@ -527,10 +592,7 @@ impl WallNewton {
                 }
                 // Tresca's step under the bounds of `v`, as `residual` left them.
                 self.residual(mass, v_free, contacts, v);
-                let Some(llt) = self.jacobian(mass, contacts, v) else {
-                    return Err(Stall::Singular);
-                };
-                if !self.newton_step(&llt) {
+                if !self.jacobian(mass, contacts, v) || !self.newton_step(None) {
                     return Err(Stall::Singular);
                 }
                 let alpha = self.line_minimum(mass, v_free, contacts, v);
