@@ -1084,3 +1084,25 @@ fn newton_on_coulombs_law_solves_a_running_bond_whose_blocks_turn() {
     };
     assert!(steps(false) <= 10 && steps(true) <= 2, "{:?}", s.warnings);
 }
+
+/// The warnings give the end of a step k dt as a reader writes it: the step ending at
+/// 1,128 x 5e-4 s is 0.564 s, not the float product 0.5640000000000001 s.
+#[test]
+fn a_warning_gives_a_steps_end_to_the_nanosecond() {
+    let t = 1128.0 * 5e-4;
+    assert_ne!(t, 0.564);
+    let fell_back = Warning::NewtonFellBack {
+        steps: 3,
+        first_s: t,
+    };
+    let unconverged = Warning::Unconverged {
+        steps: 1,
+        sweeps: 10_000,
+        first_s: Some(t),
+        blocks: vec![("B13".to_string(), 1)],
+    };
+    for w in [fell_back, unconverged] {
+        let text = w.to_string();
+        assert!(text.contains("the first ending at 0.564 s"), "{text}");
+    }
+}
