@@ -474,6 +474,26 @@ impl WallNewton {
         true
     }
 
+    /// One Newton step on Tresca's problem under the current bounds, from `v` with its
+    /// gradient already in `self.gradient`, taken to the exact minimum along it: `v` moves by
+    /// the returned length times `self.step`.
+    fn tresca_step(
+        &mut self,
+        mass: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &mut [Vector3<f64>],
+    ) -> Result<f64, Stall> {
+        if !self.jacobian(mass, contacts, v) || !self.newton_step(None) {
+            return Err(Stall::Singular);
+        }
+        let alpha = self.line_minimum(mass, v_free, contacts, v);
+        for (vi, d) in v.iter_mut().zip(&self.step) {
+            *vi += alpha * d;
+        }
+        Ok(alpha)
+    }
+
     /// Coulomb's fixed point on Tresca's problems, the first way a step is solved (see the
     /// module's comment). Returns the Newton steps used, or why it stalled.
     #[allow(clippy::too_many_arguments)]
@@ -497,13 +517,9 @@ impl WallNewton {
                     .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
             }
             self.gradient_at(mass, v_free, contacts, v);
-            if !self.jacobian(mass, contacts, v) || !self.newton_step(None) {
-                return Err(Stall::Singular);
-            }
-            let alpha = self.line_minimum(mass, v_free, contacts, v);
+            let alpha = self.tresca_step(mass, v_free, contacts, v)?;
             let mut change: f64 = 0.0;
-            for ((vi, d), r) in v.iter_mut().zip(&self.step).zip(reach) {
-                *vi += alpha * d;
+            for (d, r) in self.step.iter().zip(reach) {
                 change = change.max((alpha * d).component_mul(r).abs().max());
             }
             // A small step under bounds just taken from the velocities: Coulomb's fixed point.
@@ -590,15 +606,9 @@ impl WallNewton {
                 if change <= ROUND_OFF_FLOOR * tolerance_m_s {
                     return Ok(iteration);
                 }
-                // Tresca's step under the bounds of `v`, as `residual` left them.
+                // Tresca's step under the bounds of `v`, as `residual` leaves them.
                 self.residual(mass, v_free, contacts, v);
-                if !self.jacobian(mass, contacts, v) || !self.newton_step(None) {
-                    return Err(Stall::Singular);
-                }
-                let alpha = self.line_minimum(mass, v_free, contacts, v);
-                for (vi, d) in v.iter_mut().zip(&self.step) {
-                    *vi += alpha * d;
-                }
+                self.tresca_step(mass, v_free, contacts, v)?;
                 size_now = self.residual(mass, v_free, contacts, v);
                 break;
             }
