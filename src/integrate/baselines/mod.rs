@@ -8,6 +8,7 @@ mod moreau;
 mod moreau_wall;
 mod paper;
 mod regularized;
+mod wall_dual;
 mod wall_newton;
 
 pub use moreau::Moreau;

@@ -804,7 +804,9 @@ impl NewtonStep {
                 compliance: self.compliance[act.candidate],
             });
         }
-        self.impulses.resize(active.len(), Vector2::zeros());
+        self.impulses.clear();
+        self.impulses
+            .extend(active.iter().map(|act| impulses[act.candidate]));
         self.v_free.clear();
         self.v_free.extend_from_slice(v);
         for (i, vi) in v.iter_mut().enumerate() {

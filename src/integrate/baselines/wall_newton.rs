@@ -26,6 +26,7 @@
 //! length, in the limit of infinite stiffness, the split of least complementary energy (the
 //! elastic answer). docs/rocking-walls.md compares it with eq. 3's tributary split.
 
+use super::wall_dual::WallDual;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::cholesky::{
@@ -46,7 +47,7 @@ pub const COMPLIANCE: f64 = 1e-8;
 
 /// Newton steps allowed per time step, the bounds' updates included; a time step that needs
 /// more is counted as unconverged.
-const MAX_ITERATIONS: usize = 200;
+pub(super) const MAX_ITERATIONS: usize = 200;
 
 /// Updates of the friction bounds that have not halved the best step since, after which the
 /// bounds are taken as at their fixed point if that step is within [`ROUND_OFF_FLOOR`] times
@@ -54,11 +55,11 @@ const MAX_ITERATIONS: usize = 200;
 /// the contact's velocity over its compliance) stops the fixed point a few times above the
 /// tolerance (the Ollantaytambo wall's fillers: 2e-12 to 5e-11 m/s against 5e-13 at dt =
 /// 5e-4 s).
-const STALLED_UPDATES: usize = 4;
+pub(super) const STALLED_UPDATES: usize = 4;
 
 /// How far above the tolerance a stalled fixed point is still accepted: with the time-stepped
 /// model's 1e-10 g dt, 1e-8 g dt, no more than the error the compliance itself makes.
-const ROUND_OFF_FLOOR: f64 = 100.0;
+pub(super) const ROUND_OFF_FLOOR: f64 = 100.0;
 
 /// One moving block's share of a contact: the rows of the contact's (normal, tangential)
 /// relative velocity for that block's (x, y, rotation) velocity.
@@ -86,7 +87,7 @@ pub struct Contact {
 
 impl Contact {
     /// The contact's (normal, tangential) relative velocity when the blocks move at `v`.
-    fn velocity(&self, v: &[Vector3<f64>]) -> Vector2<f64> {
+    pub(super) fn velocity(&self, v: &[Vector3<f64>]) -> Vector2<f64> {
         let mut u = Vector2::zeros();
         for p in self.parts.iter().flatten() {
             u += Vector2::new(p.rows[0].dot(&v[p.body]), p.rows[1].dot(&v[p.body]));
@@ -121,17 +122,18 @@ pub enum Stall {
     Singular,
 }
 
-/// The Cholesky factorisation of Tresca's Jacobian, supernodal: faer would pick its simplicial
-/// form for walls of a hundred blocks, whose scalar loops took nearly half of a run
-/// (docs/rocking-walls.md). Its values and working memory are made once per run.
-struct Cholesky {
+/// A sparse Cholesky factorisation, supernodal: faer would pick its simplicial form for
+/// Tresca's Jacobian of walls of a hundred blocks, whose scalar loops took nearly half of a run
+/// (docs/rocking-walls.md). Its values and working memory are made once per pattern (per run
+/// here, per step in `wall_dual.rs`).
+pub(super) struct Cholesky {
     symbolic: SymbolicCholesky<usize>,
     values: Vec<f64>,
     memory: MemBuffer,
 }
 
 impl Cholesky {
-    fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Cholesky {
+    pub(super) fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Cholesky {
         let symbolic = factorize_symbolic_cholesky(
             pattern,
             Side::Lower,
@@ -155,7 +157,7 @@ impl Cholesky {
     }
 
     /// Factorises `matrix` (its lower triangle); false if it is not positive definite.
-    fn factorise(&mut self, matrix: SparseColMatRef<'_, usize, f64>) -> bool {
+    pub(super) fn factorise(&mut self, matrix: SparseColMatRef<'_, usize, f64>) -> bool {
         self.symbolic
             .factorize_numeric_llt(
                 &mut self.values,
@@ -170,7 +172,7 @@ impl Cholesky {
     }
 
     /// Solves the last factorised system in place.
-    fn solve(&mut self, rhs: &mut [f64]) {
+    pub(super) fn solve(&mut self, rhs: &mut [f64]) {
         LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
             Conj::No,
             ColMut::from_slice_mut(rhs).as_mat_mut(),
@@ -196,6 +198,8 @@ pub struct WallNewton {
     gradient: Vec<Vector3<f64>>,
     bounds: Vec<f64>,
     lines: Vec<(Vector2<f64>, Vector2<f64>)>,
+    /// The last resort, in impulses.
+    dual: WallDual,
 }
 
 impl WallNewton {
@@ -240,6 +244,7 @@ impl WallNewton {
             gradient: vec![Vector3::zeros(); n],
             bounds: Vec::new(),
             lines: Vec::new(),
+            dual: WallDual::default(),
         }
     }
 
@@ -617,14 +622,16 @@ impl WallNewton {
     }
 
     /// Solves the step: `v` comes in as the first guess (the velocities before the step) and
-    /// leaves as the solution; `impulses[k]` is contact k's impulse there. `mass` is each
+    /// leaves as the solution; `impulses[k]` comes in as contact k's last impulse and leaves
+    /// as its impulse at the solution. `mass` is each
     /// block's (m, m, I) (a block that does not move has no part in any contact and keeps its
     /// free velocity); `reach` turns a change of a block's velocity into one of its points'
     /// ((1, 1, its half diagonal)), and the iteration stops once no block's velocity changes by
     /// more than `tolerance_m_s` under the friction bounds those velocities give. The fixed
     /// point on the bounds comes first; where it uses its iterations, semismooth Newton on
-    /// Coulomb's law goes on from its last iterate. Returns the Newton steps used, or why the
-    /// step stalled.
+    /// Coulomb's law goes on from its last iterate; where that fails too, the same fixed point
+    /// in the impulses (`wall_dual.rs`) from the last impulses. Returns
+    /// the Newton steps used, or why the step stalled.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
@@ -641,6 +648,12 @@ impl WallNewton {
             outcome = self
                 .coulomb(mass, reach, v_free, contacts, v, tolerance_m_s)
                 .map(|n| n + MAX_ITERATIONS);
+        }
+        if outcome.is_err() {
+            return self
+                .dual
+                .solve(mass, reach, v_free, contacts, v, impulses, tolerance_m_s)
+                .map(|n| n + 2 * MAX_ITERATIONS);
         }
         for (c, p) in contacts.iter().zip(impulses.iter_mut()) {
             let bound = c.friction * c.normal_impulse(v);
