@@ -8,6 +8,7 @@ mod moreau;
 mod moreau_wall;
 mod paper;
 mod regularized;
+mod release;
 mod wall_dual;
 mod wall_newton;
 

@@ -12,9 +12,9 @@
 //! the exact rocking engine converges to (a free-standing block, a wall of columns) and the
 //! fallback for walls whose blocks may rock beyond it (docs/rocking-walls.md).
 
+use super::release::released;
 use super::wall_newton::{Contact, Part, WallNewton, COMPLIANCE};
 use crate::error::SimulationError;
-use crate::integrate::rocking;
 use crate::integrate::stepping::{lerp, outputs_in_step, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Scenario};
 use crate::response::{Collapse, CollapseCause, ModelUsed, Recorder, Response, Warning};
@@ -66,9 +66,9 @@ pub struct MoreauWall {
     /// this fraction of g times the step: 1e-10 by default, above the round-off of its stiff
     /// systems (about 1e-12), below the error its compliance itself makes (1e-8, `wall_newton.rs`).
     pub newton_tolerance: f64,
-    /// A wall of one column released from a rotation: a block of its moving body and the
-    /// rotation (rad, clockwise positive), the body turned about the end of its base on that
-    /// side ([`crate::integrate::rocking::Column::released`]).
+    /// A block released from a rotation (rad, clockwise positive): in a wall of one column the
+    /// column's moving body, turned about the end of its base on that side; in any other wall
+    /// the block alone, if it carries nothing (`release.rs`).
     pub initial_rotation: Option<(String, f64)>,
 }
 
@@ -361,13 +361,8 @@ impl Integrator for MoreauWall {
         }
         let mut q = vec![Vector3::<f64>::zeros(); n];
         if let Some((name, theta)) = &self.initial_rotation {
-            let columns = rocking::columns(wall, topo)?;
-            rocking::released_body(&columns, std::slice::from_ref(&(name.clone(), *theta)))?;
-            for (block, dx, dy, phi) in columns[0].released(*theta) {
-                let i = wall
-                    .block_index(&block)
-                    .expect("a column's block is the wall's");
-                q[i] = Vector3::new(dx, dy, phi);
+            for (i, moved) in released(wall, topo, name, *theta)? {
+                q[i] = moved;
             }
         }
         let mut v = vec![Vector3::<f64>::zeros(); n];
