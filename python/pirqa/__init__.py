@@ -18,6 +18,7 @@ Sweeps over many walls, motions and friction samples run on any
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -73,6 +74,8 @@ def run(
     dt_s: float | None = None,
     model: str = "auto",
     contact_solver: str = "gauss-seidel",
+    direction: str = "in-plane",
+    initial_rotation: Mapping[str, float] | None = None,
     log_events: bool = False,
 ) -> Result:
     """Runs ``wall`` under ``motion`` (the GIL is released while it runs).
@@ -82,7 +85,11 @@ def run(
     "paper" (time stepping, with ``dt_s``). ``model``: "auto", "slide" or "slide-rock".
     ``contact_solver``: how "moreau" with model "slide-rock" solves each step's contacts,
     "gauss-seidel" (rigid contacts) or "newton" (the whole wall at once, stiff contacts: many
-    times faster on tall walls; docs/rocking-walls.md).
+    times faster on tall walls; docs/rocking-walls.md). ``direction``: "in-plane" or
+    "out-of-plane" (the part above each bed joint rocks across the wall as one body).
+    ``initial_rotation``: blocks (or sections across the plane) started from rest at a rotation,
+    ``{"B17": 0.1}`` in rad (positive: on the right corner, or towards the back face), as
+    ``pirqa run --initial-rotation``; on still ground give ``Motion.rest()`` and ``duration_s``.
     """
     raw = _run(
         wall,
@@ -93,6 +100,8 @@ def run(
         dt_s=dt_s,
         model=model,
         contact_solver=contact_solver,
+        direction=direction,
+        initial_rotation=None if initial_rotation is None else dict(initial_rotation),
         log_events=log_events,
     )
     history = None

@@ -57,6 +57,8 @@ class Motion:
     def sine(
         amplitude: str, *, frequency_hz: float, duration_s: float, phase_deg: float = 0.0
     ) -> Motion: ...
+    @staticmethod
+    def rest() -> Motion: ...
     @property
     def duration_s(self) -> float: ...
     @property
@@ -85,6 +87,8 @@ def run(
     dt_s: float | None = None,
     model: str = "auto",
     contact_solver: str = "gauss-seidel",
+    direction: str = "in-plane",
+    initial_rotation: dict[str, float] | None = None,
     log_events: bool = False,
 ) -> dict[str, Any]: ...
 def sweep_info(path: str | PathLike[str]) -> dict[str, Any]: ...

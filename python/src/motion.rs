@@ -125,6 +125,15 @@ impl Motion {
         })
     }
 
+    /// The ground at rest, for a block released from a rotation (`pirqa.run` with
+    /// `initial_rotation` and `duration_s`).
+    #[staticmethod]
+    fn rest() -> Motion {
+        Motion {
+            motion: Arc::new(pirqa::Motion::Pulse(pirqa::Pulse::rest())),
+        }
+    }
+
     /// Length of the motion (s).
     #[getter]
     fn duration_s(&self) -> f64 {
@@ -168,6 +177,7 @@ impl Motion {
                 "Motion.sine({} m/s2, {} Hz, {} s)",
                 s.amplitude_m_s2, s.frequency_hz, s.duration_s
             ),
+            pirqa::Motion::Pulse(p) if *p == pirqa::Pulse::rest() => "Motion.rest()".into(),
             pirqa::Motion::Pulse(p) => format!(
                 "Motion.pulse({} m/s2, {} s)",
                 p.amplitude_m_s2, p.duration_s
@@ -218,11 +228,21 @@ impl Motion {
                 (s.amplitude_m_s2, s.frequency_hz, s.duration_s, s.phase_rad),
             )
                 .into_pyobject(py),
+            pirqa::Motion::Pulse(p) if *p == pirqa::Pulse::rest() => {
+                (class.getattr("rest")?, ()).into_pyobject(py)
+            }
             // The Python API makes neither.
             pirqa::Motion::Record(_) | pirqa::Motion::Pulse(_) => Err(option(
                 "motion",
-                "only records without a vertical component and sines pickle",
+                "only records without a vertical component, sines and the ground at rest pickle",
             )),
         }
+    }
+}
+
+impl Motion {
+    /// Whether this is the ground at rest ([`Motion::rest`]), whose run needs a duration.
+    pub fn is_rest(&self) -> bool {
+        matches!(&*self.motion, pirqa::Motion::Pulse(p) if *p == pirqa::Pulse::rest())
     }
 }

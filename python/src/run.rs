@@ -8,7 +8,7 @@ use crate::to_python::to_python;
 use crate::wall::Wall;
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
-use pirqa::{ContactSolver, Method, ModelChoice, RunSettings};
+use pirqa::{ContactSolver, Direction, Method, ModelChoice, RunSettings};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -66,10 +66,45 @@ fn contact_solver(name: &str) -> PyResult<ContactSolver> {
     }
 }
 
+fn direction(name: &str) -> PyResult<Direction> {
+    match name {
+        "in-plane" => Ok(Direction::InPlane),
+        "out-of-plane" => Ok(Direction::OutOfPlane),
+        _ => Err(option(
+            "direction",
+            format!("\"{name}\": give in-plane or out-of-plane"),
+        )),
+    }
+}
+
+/// The releases of a dict {name: rotation in rad}, in its order.
+fn releases(given: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, f64)>> {
+    let Some(given) = given else {
+        return Ok(Vec::new());
+    };
+    given
+        .iter()
+        .map(|(name, theta)| {
+            let bad = || {
+                option(
+                    "initial_rotation",
+                    "give a dict of block (or section) names to rotations in rad, \
+                     {\"B17\": 0.1}",
+                )
+            };
+            Ok((
+                name.extract::<String>().map_err(|_| bad())?,
+                theta.extract::<f64>().map_err(|_| bad())?,
+            ))
+        })
+        .collect()
+}
+
 /// Runs `wall` under `motion`; see `pirqa.run`.
 #[pyfunction]
 #[pyo3(signature = (wall, motion, *, duration_s = None, output_dt_s = None, method = "event",
-    dt_s = None, model = "auto", contact_solver = "gauss-seidel", log_events = false))]
+    dt_s = None, model = "auto", contact_solver = "gauss-seidel", direction = "in-plane",
+    initial_rotation = None, log_events = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -81,8 +116,16 @@ pub fn run<'py>(
     dt_s: Option<f64>,
     model: &str,
     contact_solver: &str,
+    direction: &str,
+    initial_rotation: Option<&Bound<'_, PyDict>>,
     log_events: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    if motion.is_rest() && duration_s.is_none() {
+        return Err(option(
+            "duration_s",
+            "a block released on still ground (Motion.rest()) needs duration_s",
+        ));
+    }
     let settings = RunSettings {
         duration_s,
         output_dt_s,
@@ -90,6 +133,8 @@ pub fn run<'py>(
         method: self::method(method, dt_s)?,
         model: self::model(model)?,
         contact_solver: self::contact_solver(contact_solver)?,
+        direction: self::direction(direction)?,
+        initial_rotation: releases(initial_rotation)?,
         ..RunSettings::default()
     };
     let (m, g) = (wall.model.clone(), motion.motion.clone());

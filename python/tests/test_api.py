@@ -210,3 +210,42 @@ def test_time_stepping_with_rotations_takes_either_contact_solver(root):
         peaks[solver] = max(b["max_abs_displacement_m"] for b in result.summary["blocks"])
     assert peaks["newton"] > 0.01
     assert abs(peaks["newton"] - peaks["gauss-seidel"]) < 5e-6, peaks
+
+
+def test_releases_and_runs_across_the_plane_are_the_command_lines(root, cli, tmp_path):
+    """Blocks released from a rotation on still ground (the standing stone exactly, the paper
+    wall's top left block time stepped with every block's rotation) and a run across the wall's
+    plane: the same summary as `pirqa run` with the same options, every number to the bit."""
+    cases = [
+        ("walls/inca/stela.ron", ["--initial-rotation", "Huanca=0.1", "--duration", "3"],
+         pirqa.Motion.rest(), dict(duration_s=3.0, initial_rotation={"Huanca": 0.1})),
+        (PAPER, ["--initial-rotation", "B3=-0.1", "--duration", "1", "--model", "slide-rock",
+                 "--method", "moreau", "--dt", "1e-3"],
+         pirqa.Motion.rest(),
+         dict(duration_s=1.0, initial_rotation={"B3": -0.1}, model="slide-rock",
+              method="moreau", dt_s=1e-3)),
+        (PAPER, ["--sine", "0.3g", "--freq", "1.5", "--duration", "2", "--direction",
+                 "out-of-plane"],
+         pirqa.Motion.sine("0.3g", frequency_hz=1.5, duration_s=2.0),
+         dict(direction="out-of-plane")),
+    ]
+    found = []
+    for k, (path, options, motion, settings) in enumerate(cases):
+        out = tmp_path / f"out{k}"
+        code, err = cli("run", str(root / path), *options, "--out", str(out))
+        assert code == 0, err
+        expected = json.loads((out / "summary.json").read_text())
+        found.append(pirqa.run(pirqa.Wall.from_file(root / path), motion, **settings).summary)
+        assert found[-1] == expected
+    # The released blocks start at their rotation; the third run is across the plane.
+    assert found[0]["blocks"][0]["max_abs_rotation_rad"] == 0.1
+    assert found[1]["blocks"][2]["max_abs_rotation_rad"] == 0.1
+    assert found[2]["model"]["direction"] == "out-of-plane"
+    assert pickle.loads(pickle.dumps(pirqa.Motion.rest())).duration_s == 0.0
+    wall = pirqa.Wall.from_file(root / "walls/inca/stela.ron")
+    with pytest.raises(pirqa.OptionError, match="duration_s"):
+        pirqa.run(wall, pirqa.Motion.rest(), initial_rotation={"Huanca": 0.1})
+    with pytest.raises(pirqa.OptionError, match="initial_rotation"):
+        pirqa.run(wall, pirqa.Motion.rest(), duration_s=1.0, initial_rotation={"Huanca": "x"})
+    with pytest.raises(pirqa.OptionError, match="direction"):
+        pirqa.run(wall, pirqa.Motion.rest(), duration_s=1.0, direction="sideways")
