@@ -1138,8 +1138,9 @@ fn a_warning_gives_a_steps_end_to_the_nanosecond() {
 /// falls back as the same block alone on the ground released the same way, the wall below
 /// holding still, until it lands: to 1e-9 rad (4.5e-10 measured; the two runs' Gauss-Seidel
 /// sweeps stop within their tolerance at different iterates, the wall's having more contacts
-/// to settle). Turned the other way it would reach into its neighbour, and
-/// a block that carries another is not released alone: both refused, naming the block.
+/// to settle). Turned the other way it would reach into its neighbour, a block that carries
+/// another is not released alone, and a name the wall does not have is no block: each refused
+/// with the reason.
 #[test]
 fn a_top_block_released_in_a_running_bond_falls_back_as_the_block_alone() {
     let spec = pirqa::wall::RunningBond {
@@ -1198,6 +1199,7 @@ fn a_top_block_released_in_a_running_bond_falls_back_as_the_block_alone() {
     for (name, theta, words) in [
         (last.name.as_str(), -0.1, "would reach into B16"),
         ("B8", 0.1, "rests on it"),
+        ("B99", 0.1, "no block of that name"),
     ] {
         let refused = released(&model, name, theta).unwrap_err().to_string();
         assert!(refused.contains(words), "{refused}");

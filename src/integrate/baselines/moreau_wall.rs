@@ -768,8 +768,9 @@ impl NewtonStep {
     }
 
     /// Solves a step's contacts from the free velocities `v` (left with the solution, and
-    /// each active candidate's impulse in `impulses`), starting from the velocities at the
-    /// step's start; false, `v` and `impulses` as they came, if Newton did not converge.
+    /// each active candidate's impulse in `impulses`, which come in as the last step's: the
+    /// impulse solver's first guess), starting from the velocities at the step's start;
+    /// false, `v` and `impulses` as they came, if Newton did not converge.
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &mut self,

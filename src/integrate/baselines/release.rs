@@ -5,7 +5,7 @@
 //! it clear of every other block.
 
 use crate::error::SimulationError;
-use crate::integrate::rocking::{self, Column};
+use crate::integrate::rocking;
 use crate::topology::{Base, Topology};
 use crate::wall::Wall;
 use nalgebra::Vector3;
@@ -18,23 +18,28 @@ pub fn released(
     name: &str,
     theta_rad: f64,
 ) -> Result<Vec<(usize, Vector3<f64>)>, SimulationError> {
+    let Some(named) = wall.block_index(name) else {
+        return Err(SimulationError::UnknownName {
+            option: "--initial-rotation",
+            name: name.to_string(),
+            known: "the wall has no block of that name".into(),
+        });
+    };
     let index = |block: &str| {
         wall.block_index(block)
-            .expect("a released block is the wall's")
+            .expect("a column's block is the wall's")
     };
     let initial = [(name.to_string(), theta_rad)];
     let moved = match rocking::columns(wall, topo) {
         Ok(columns) if columns.len() == 1 => {
             rocking::released_body(&columns, &initial)?;
-            Column::released(&columns[0], theta_rad)
+            columns[0]
+                .released(theta_rad)
                 .into_iter()
                 .map(|(block, dx, dy, phi)| (index(&block), Vector3::new(dx, dy, phi)))
                 .collect()
         }
-        _ => vec![(
-            index(name),
-            released_block(wall, topo, index(name), theta_rad)?,
-        )],
+        _ => vec![(named, released_block(wall, topo, named, theta_rad)?)],
     };
     Ok(moved)
 }

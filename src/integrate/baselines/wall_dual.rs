@@ -263,13 +263,12 @@ impl WallDual {
         // H' p, less its target, plus its compliance times its impulse.
         let p = std::mem::take(&mut self.p);
         self.on_blocks(contacts, &p, mass.len());
+        for (r, m) in self.r.iter_mut().zip(mass) {
+            *r = r.component_div(m);
+        }
         self.gradient.clear();
         for (k, c) in contacts.iter().enumerate() {
-            let mut u = Vector2::zeros();
-            for part in c.parts.iter().flatten() {
-                let dv = self.r[part.body].component_div(&mass[part.body]);
-                u += Vector2::new(part.rows[0].dot(&dv), part.rows[1].dot(&dv));
-            }
+            let u = c.velocity(&self.r);
             for j in 0..2 {
                 let i = 2 * k + j;
                 self.gradient
