@@ -13,6 +13,7 @@
 //! fallback for walls whose blocks may rock beyond it (docs/rocking-walls.md).
 
 use super::release::released;
+use super::wall_dual::WallDual;
 use super::wall_newton::{Contact, Part, WallNewton, COMPLIANCE};
 use crate::error::SimulationError;
 use crate::integrate::stepping::{lerp, outputs_in_step, time_step};
@@ -733,6 +734,10 @@ struct NewtonStep {
     contacts: Vec<Contact>,
     impulses: Vec<Vector2<f64>>,
     v_free: Vec<Vector3<f64>>,
+    /// The last resort where Newton in the blocks' velocities fails: the step in the
+    /// contacts' impulses, from the last step's.
+    dual: WallDual,
+    last_impulses: Vec<Vector2<f64>>,
 }
 
 impl NewtonStep {
@@ -764,13 +769,15 @@ impl NewtonStep {
             contacts: Vec::new(),
             impulses: Vec::new(),
             v_free: Vec::new(),
+            dual: WallDual::default(),
+            last_impulses: Vec::new(),
         }
     }
 
     /// Solves a step's contacts from the free velocities `v` (left with the solution, and
-    /// each active candidate's impulse in `impulses`, which come in as the last step's: the
-    /// impulse solver's first guess), starting from the velocities at the step's start;
-    /// false, `v` and `impulses` as they came, if Newton did not converge.
+    /// each active candidate's impulse in `impulses`), starting from the velocities at the
+    /// step's start, or, where that fails, in the impulses from the last step's (`impulses`
+    /// as they come); false, `v` and `impulses` as they came, if neither converged.
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &mut self,
@@ -800,9 +807,10 @@ impl NewtonStep {
                 compliance: self.compliance[act.candidate],
             });
         }
-        self.impulses.clear();
-        self.impulses
+        self.last_impulses.clear();
+        self.last_impulses
             .extend(active.iter().map(|act| impulses[act.candidate]));
+        self.impulses.clone_from(&self.last_impulses);
         self.v_free.clear();
         self.v_free.extend_from_slice(v);
         for (i, vi) in v.iter_mut().enumerate() {
@@ -810,7 +818,7 @@ impl NewtonStep {
                 *vi = v_start[i];
             }
         }
-        let outcome = self.solver.solve(
+        let mut outcome = self.solver.solve(
             &self.mass,
             &self.reach,
             &self.v_free,
@@ -819,6 +827,18 @@ impl NewtonStep {
             &mut self.impulses,
             tolerance_m_s,
         );
+        if outcome.is_err() {
+            self.impulses.clone_from(&self.last_impulses);
+            outcome = self.dual.solve(
+                &self.mass,
+                &self.reach,
+                &self.v_free,
+                &self.contacts,
+                v,
+                &mut self.impulses,
+                tolerance_m_s,
+            );
+        }
         if outcome.is_err() {
             // Back to the free velocities, the last step's impulses left for Gauss-Seidel's
             // warm start.

@@ -26,7 +26,6 @@
 //! length, in the limit of infinite stiffness, the split of least complementary energy (the
 //! elastic answer). docs/rocking-walls.md compares it with eq. 3's tributary split.
 
-use super::wall_dual::WallDual;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::cholesky::{
@@ -198,8 +197,6 @@ pub struct WallNewton {
     gradient: Vec<Vector3<f64>>,
     bounds: Vec<f64>,
     lines: Vec<(Vector2<f64>, Vector2<f64>)>,
-    /// The last resort, in impulses.
-    dual: WallDual,
 }
 
 impl WallNewton {
@@ -244,7 +241,6 @@ impl WallNewton {
             gradient: vec![Vector3::zeros(); n],
             bounds: Vec::new(),
             lines: Vec::new(),
-            dual: WallDual::default(),
         }
     }
 
@@ -622,16 +618,14 @@ impl WallNewton {
     }
 
     /// Solves the step: `v` comes in as the first guess (the velocities before the step) and
-    /// leaves as the solution; `impulses[k]` comes in as contact k's last impulse and leaves
-    /// as its impulse at the solution. `mass` is each
+    /// leaves as the solution; `impulses[k]` is contact k's impulse there. `mass` is each
     /// block's (m, m, I) (a block that does not move has no part in any contact and keeps its
     /// free velocity); `reach` turns a change of a block's velocity into one of its points'
     /// ((1, 1, its half diagonal)), and the iteration stops once no block's velocity changes by
     /// more than `tolerance_m_s` under the friction bounds those velocities give. The fixed
     /// point on the bounds comes first; where it uses its iterations, semismooth Newton on
-    /// Coulomb's law goes on from its last iterate; where that fails too, the same fixed point
-    /// in the impulses (`wall_dual.rs`) from the last impulses. Returns
-    /// the Newton steps used, or why the step stalled.
+    /// Coulomb's law goes on from its last iterate. Returns the Newton steps used, or why the
+    /// step stalled.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
@@ -648,12 +642,6 @@ impl WallNewton {
             outcome = self
                 .coulomb(mass, reach, v_free, contacts, v, tolerance_m_s)
                 .map(|n| n + MAX_ITERATIONS);
-        }
-        if outcome.is_err() {
-            return self
-                .dual
-                .solve(mass, reach, v_free, contacts, v, impulses, tolerance_m_s)
-                .map(|n| n + 2 * MAX_ITERATIONS);
         }
         for (c, p) in contacts.iter().zip(impulses.iter_mut()) {
             let bound = c.friction * c.normal_impulse(v);
