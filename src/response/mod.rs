@@ -450,6 +450,14 @@ pub enum Warning {
         /// The end of the first of them (s).
         first_s: f64,
     },
+    /// Newton's method on the whole wall did not converge in the blocks' velocities in some
+    /// steps, which the same problem in the contacts' impulses solved.
+    NewtonInImpulses {
+        /// Those steps.
+        steps: u64,
+        /// The end of the first of them (s).
+        first_s: f64,
+    },
 }
 
 impl std::fmt::Display for Warning {
@@ -558,6 +566,13 @@ impl std::fmt::Display for Warning {
                 f,
                 "Newton's method did not converge within its iterations in {steps} steps (the \
                  first ending at {} s); Gauss-Seidel solved them instead",
+                to_the_nanosecond(*first_s)
+            ),
+            Warning::NewtonInImpulses { steps, first_s } => write!(
+                f,
+                "Newton's method did not converge in the blocks' velocities in {steps} steps (the \
+                 first ending at {} s); the same problem in the contacts' impulses solved them \
+                 (docs/rocking-walls.md)",
                 to_the_nanosecond(*first_s)
             ),
         }

@@ -424,6 +424,7 @@ impl Integrator for MoreauWall {
         let mut impulses = vec![Vector2::<f64>::zeros(); candidates.len()];
         let mut unconverged = 0u64;
         let mut fell_back = 0u64;
+        let (mut in_impulses, mut first_in_impulses) = (0u64, None);
         // When the solvers first failed, and which block each unconverged step left changing
         // fastest (counted per block): what the warnings say of where.
         let (mut first_unconverged, mut first_fell_back) = (None, None);
@@ -504,11 +505,18 @@ impl Integrator for MoreauWall {
                     &mut impulses,
                     self.newton_tolerance * scale,
                 );
-                if !solved {
-                    fell_back += 1;
-                    first_fell_back.get_or_insert(k as f64 * dt);
+                match solved {
+                    Solved::InVelocities => {}
+                    Solved::InImpulses => {
+                        in_impulses += 1;
+                        first_in_impulses.get_or_insert(k as f64 * dt);
+                    }
+                    Solved::Neither => {
+                        fell_back += 1;
+                        first_fell_back.get_or_insert(k as f64 * dt);
+                    }
                 }
-                solved
+                solved != Solved::Neither
             });
             let converged = by_newton || {
                 // Warm start: the last step's impulses of the contacts still active.
@@ -699,6 +707,12 @@ impl Integrator for MoreauWall {
                 blocks,
             });
         }
+        if let Some(first_s) = first_in_impulses {
+            rec.warnings.push(Warning::NewtonInImpulses {
+                steps: in_impulses,
+                first_s,
+            });
+        }
         if let Some(first_s) = first_fell_back {
             rec.warnings.push(Warning::NewtonFellBack {
                 steps: fell_back,
@@ -777,7 +791,7 @@ impl NewtonStep {
     /// Solves a step's contacts from the free velocities `v` (left with the solution, and
     /// each active candidate's impulse in `impulses`), starting from the velocities at the
     /// step's start, or, where that fails, in the impulses from the last step's (`impulses`
-    /// as they come); false, `v` and `impulses` as they came, if neither converged.
+    /// as they come); `v` and `impulses` as they came if neither converged.
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &mut self,
@@ -788,7 +802,7 @@ impl NewtonStep {
         v: &mut [Vector3<f64>],
         impulses: &mut [Vector2<f64>],
         tolerance_m_s: f64,
-    ) -> bool {
+    ) -> Solved {
         self.contacts.clear();
         for act in active {
             let c = &candidates[act.candidate];
@@ -818,6 +832,7 @@ impl NewtonStep {
                 *vi = v_start[i];
             }
         }
+        let mut solved = Solved::InVelocities;
         let mut outcome = self.solver.solve(
             &self.mass,
             &self.reach,
@@ -828,6 +843,7 @@ impl NewtonStep {
             tolerance_m_s,
         );
         if outcome.is_err() {
+            solved = Solved::InImpulses;
             self.impulses.clone_from(&self.last_impulses);
             outcome = self.dual.solve(
                 &self.mass,
@@ -843,11 +859,22 @@ impl NewtonStep {
             // Back to the free velocities, the last step's impulses left for Gauss-Seidel's
             // warm start.
             v.copy_from_slice(&self.v_free);
-            return false;
+            return Solved::Neither;
         }
         for (act, p) in active.iter().zip(&self.impulses) {
             impulses[act.candidate] = *p;
         }
-        true
+        solved
     }
+}
+
+/// How a step's contacts were solved by [`NewtonStep::solve`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Solved {
+    /// By Newton's method in the blocks' velocities.
+    InVelocities,
+    /// In the contacts' impulses, where that failed.
+    InImpulses,
+    /// By neither: Gauss-Seidel's turn.
+    Neither,
 }
