@@ -4,6 +4,7 @@
 //! run` says so when a run is large (`--estimate` prints it without running), so that a run of
 //! hours or a history of gigabytes is never a surprise.
 
+use crate::integrate::rocking::ModelChoice;
 use crate::model::Model;
 use crate::motion::Motion;
 use crate::run::{Method, RunSettings};
@@ -12,6 +13,10 @@ use std::fmt;
 /// A run is called large from these amounts on.
 const LARGE_EVENTS: f64 = 1e6;
 const LARGE_STEP_BLOCKS: f64 = 1e9;
+/// Time stepping with every block's rotation solves a contact problem over the whole wall at
+/// each step: 12-41 microseconds per block and step with the whole-wall Newton solver on the
+/// development machine (docs/reliability.md), a thousand times a sliding step's.
+const LARGE_ROTATING_STEP_BLOCKS: f64 = 1e7;
 const LARGE_HISTORY_BYTES: f64 = 1e9;
 
 /// Bytes of one number in history.csv (`-1.2345678901234567e-3,` at most).
@@ -34,6 +39,9 @@ pub struct Estimate {
     pub events: f64,
     /// Time steps of a fixed-step method (0 for the exact one and the adaptive one).
     pub steps: f64,
+    /// Whether each step turns every block (Moreau-Jean with `--model slide-rock`): a contact
+    /// problem over the whole wall per step.
+    pub rotating: bool,
     /// Rows of the history, when one is kept.
     pub history_rows: f64,
     /// Size of history.csv (bytes), when a history is kept.
@@ -80,6 +88,8 @@ pub fn estimate(model: &Model, motion: &Motion, settings: &RunSettings) -> Estim
         joints_that_can_slip,
         events,
         steps,
+        rotating: matches!(settings.method, Method::Moreau { .. })
+            && settings.model == ModelChoice::SlideRock,
         history_rows,
         history_bytes,
     }
@@ -123,7 +133,14 @@ impl Estimate {
                 self.events, self.slip_episodes, self.joints_that_can_slip
             ));
         }
-        if self.steps * self.blocks as f64 > LARGE_STEP_BLOCKS {
+        let block_steps = self.steps * self.blocks as f64;
+        if self.rotating && block_steps > LARGE_ROTATING_STEP_BLOCKS {
+            why.push(format!(
+                "{:.1e} time steps of {} blocks, each with its rotation (a contact problem over \
+                 the whole wall per step: minutes from 1e7 block-steps)",
+                self.steps, self.blocks
+            ));
+        } else if block_steps > LARGE_STEP_BLOCKS {
             why.push(format!(
                 "{:.1e} time steps of {} blocks",
                 self.steps, self.blocks
@@ -164,7 +181,12 @@ impl fmt::Display for Estimate {
             self.events
         )?;
         if self.steps > 0.0 {
-            writeln!(f, "  time steps           {:.1e}", self.steps)?;
+            let turning = if self.rotating {
+                " (every block with its rotation: a contact problem over the whole wall each)"
+            } else {
+                ""
+            };
+            writeln!(f, "  time steps           {:.1e}{turning}", self.steps)?;
         }
         if self.history_rows > 0.0 {
             writeln!(
@@ -224,5 +246,32 @@ mod tests {
         let e = estimate(&paper_wall(), &sine(4.0, 1e5), &settings);
         let why = e.large().join("\n");
         assert!(why.contains("time steps") && why.contains("GB"), "{why}");
+    }
+
+    /// 3e6 steps of the paper's five blocks: 1.5e7 block-steps, a short run sliding (a few
+    /// seconds) and a long one with every block's rotation (minutes).
+    #[test]
+    fn time_steps_with_rotations_are_large_sooner() {
+        let sliding = RunSettings {
+            method: Method::Moreau { dt_s: 1e-5 },
+            ..RunSettings::default()
+        };
+        let rotating = RunSettings {
+            model: ModelChoice::SlideRock,
+            ..sliding.clone()
+        };
+        let motion = sine(4.0, 30.0);
+        let e = estimate(&paper_wall(), &motion, &sliding);
+        assert!(!e.rotating && e.large().is_empty(), "{:?}", e.large());
+        let e = estimate(&paper_wall(), &motion, &rotating);
+        let why = e.large().join("\n");
+        assert!(
+            e.rotating && why.contains("each with its rotation"),
+            "{why}"
+        );
+        assert!(
+            e.to_string().contains("every block with its rotation"),
+            "{e}"
+        );
     }
 }
