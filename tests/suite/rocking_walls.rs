@@ -540,7 +540,9 @@ fn time_stepping_releases_a_column_as_the_exact_model_does() {
 
 /// A rocking run tells its progress the time reached and stops when asked (Ctrl-C, a
 /// notebook's interrupt): the exact column model and the time-stepped wall end where the stop
-/// found them, their summaries saying when; unasked, both run to the end and report it.
+/// found them, their summaries saying when, the time-stepped wall at its next step (a step of
+/// a large wall takes long: it used to look every 1,024); unasked, both run to the end and
+/// report it.
 #[test]
 fn rocking_runs_report_progress_and_stop_when_asked() {
     use pirqa::integrate::Progress;
@@ -572,8 +574,12 @@ fn rocking_runs_report_progress_and_stop_when_asked() {
         stop.store(true, Ordering::Relaxed);
         let cut = run(stop);
         let at = cut.interrupted_at_s.expect("the run stops when asked");
+        let within = match method {
+            Method::Moreau { dt_s } => dt_s,
+            _ => 1.1,
+        };
         assert!(
-            at < 1.1 && cut.duration_s <= at + 1e-9,
+            at <= within && cut.duration_s <= at + 1e-9,
             "{method:?}: {at} {}",
             cut.duration_s
         );

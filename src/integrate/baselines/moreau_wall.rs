@@ -48,7 +48,9 @@ const ON_FACE: f64 = 1e-9;
 /// sweeps on.
 const TOUCH_M: f64 = 1e-12;
 
-/// Steps between two reports of the time reached (and looks at a request to stop).
+/// Steps between two reports of the time reached. A request to stop is looked at every step:
+/// a step of a wall of a thousand blocks takes 20 ms, and a step Gauss-Seidel takes over a
+/// second, so 1,024 of them kept Ctrl-C waiting for minutes.
 const PROGRESS_STEPS: u64 = 1024;
 
 /// Moreau-Jean with rotations, on a wall of any number of blocks.
@@ -434,12 +436,15 @@ impl Integrator for MoreauWall {
         let mut t = 0.0;
         for k in 1..=steps {
             let t_prev = t;
-            if k % PROGRESS_STEPS == 0 {
-                if let Some(p) = &settings.progress {
-                    if !p.at(t) {
-                        rec.interrupted_at_s = Some(t);
-                        break;
-                    }
+            if let Some(p) = &settings.progress {
+                let go_on = if k % PROGRESS_STEPS == 0 {
+                    p.at(t)
+                } else {
+                    !p.stop_requested()
+                };
+                if !go_on {
+                    rec.interrupted_at_s = Some(t);
+                    break;
                 }
             }
             let t_mid = (k as f64 - 0.5) * dt;
