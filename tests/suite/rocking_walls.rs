@@ -1052,6 +1052,18 @@ fn a_step_newton_cannot_solve_is_left_to_gauss_seidel() {
     assert!(blocks.iter().map(|b| b.1).sum::<u64>() <= 300, "{blocks:?}");
 }
 
+/// A running bond of two courses of eight blocks (`pirqa generate --courses 2
+/// --blocks-per-course 8`): docs/rocking-walls.md's 17-block wall, whose slender end half
+/// blocks and inner blocks turn under 400 gal at 2 Hz.
+fn running_bond_2x8() -> Model {
+    let spec = pirqa::wall::RunningBond {
+        courses: 2,
+        blocks_per_course: 8,
+        ..pirqa::wall::RunningBond::paper_wall(5)
+    };
+    Model::new(pirqa::Wall::from_description(&spec.description().unwrap()).unwrap()).unwrap()
+}
+
 /// A running bond of two courses of eight blocks (docs/rocking-walls.md's 17-block wall) under
 /// 400 gal at 2 Hz for 1 s, dt = 5e-4 s: once its inner blocks turn (from 0.37 s) the fixed
 /// point on the friction bounds cycles, and on its own it left 158 steps to Gauss-Seidel, which
@@ -1061,13 +1073,7 @@ fn a_step_newton_cannot_solve_is_left_to_gauss_seidel() {
 /// the test bounds their number, far below the fixed point's alone.
 #[test]
 fn newton_on_coulombs_law_solves_a_running_bond_whose_blocks_turn() {
-    let spec = pirqa::wall::RunningBond {
-        courses: 2,
-        blocks_per_course: 8,
-        ..pirqa::wall::RunningBond::paper_wall(5)
-    };
-    let wall = pirqa::Wall::from_description(&spec.description().unwrap()).unwrap();
-    let model = Model::new(wall).unwrap();
+    let model = running_bond_2x8();
     let s = stepped_by(&model, &sine(4.0, 2.0, 1.0), 5e-4, ContactSolver::Newton);
     assert!(
         s.blocks
@@ -1098,13 +1104,7 @@ fn newton_on_coulombs_law_solves_a_running_bond_whose_blocks_turn() {
 /// a warning counts them.
 #[test]
 fn the_impulses_solve_the_steps_the_velocities_leave() {
-    let spec = pirqa::wall::RunningBond {
-        courses: 2,
-        blocks_per_course: 8,
-        ..pirqa::wall::RunningBond::paper_wall(5)
-    };
-    let wall = pirqa::Wall::from_description(&spec.description().unwrap()).unwrap();
-    let model = Model::new(wall).unwrap();
+    let model = running_bond_2x8();
     let s = stepped_by(&model, &sine(4.0, 2.0, 1.0), 1.25e-4, ContactSolver::Newton);
     let steps = |in_impulses: bool| {
         s.warnings
@@ -1153,12 +1153,8 @@ fn a_warning_gives_a_steps_end_to_the_nanosecond() {
 /// with the reason.
 #[test]
 fn a_top_block_released_in_a_running_bond_falls_back_as_the_block_alone() {
-    let spec = pirqa::wall::RunningBond {
-        courses: 2,
-        blocks_per_course: 8,
-        ..pirqa::wall::RunningBond::paper_wall(5)
-    };
-    let wall = pirqa::Wall::from_description(&spec.description().unwrap()).unwrap();
+    let model = running_bond_2x8();
+    let wall = model.wall();
     let last = wall.blocks.last().unwrap().clone();
     let alone = Model::from_ron_str(&format!(
         "(version: 1, name: \"alone\", thickness_m: {}, density_kg_m3: {}, friction: {}, \
@@ -1171,7 +1167,6 @@ fn a_top_block_released_in_a_running_bond_falls_back_as_the_block_alone() {
         last.name
     ))
     .unwrap();
-    let model = Model::new(wall).unwrap();
     let rest = Motion::Pulse(pirqa::Pulse::rest());
     let released = |model: &Model, name: &str, theta: f64| {
         let settings = RunSettings {
@@ -1190,7 +1185,7 @@ fn a_top_block_released_in_a_running_bond_falls_back_as_the_block_alone() {
     };
     let in_wall = rotation(
         &released(&model, &last.name, 0.1).unwrap(),
-        model.wall().blocks.len() - 1,
+        wall.blocks.len() - 1,
     );
     let by_itself = rotation(&released(&alone, &last.name, 0.1).unwrap(), 0);
     let falling = by_itself.iter().take_while(|&&th| th > 0.0).count();

@@ -14,7 +14,7 @@
 
 use super::release::released;
 use super::wall_dual::WallDual;
-use super::wall_newton::{Contact, Part, WallNewton, COMPLIANCE};
+use super::wall_newton::{Contact, Part, StepProblem, WallNewton, COMPLIANCE};
 use crate::error::SimulationError;
 use crate::integrate::stepping::{lerp, outputs_in_step, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Scenario};
@@ -829,7 +829,7 @@ impl NewtonStep {
         self.last_impulses.clear();
         self.last_impulses
             .extend(active.iter().map(|act| impulses[act.candidate]));
-        self.impulses.clone_from(&self.last_impulses);
+        self.impulses.resize(active.len(), Vector2::zeros());
         self.v_free.clear();
         self.v_free.extend_from_slice(v);
         for (i, vi) in v.iter_mut().enumerate() {
@@ -837,28 +837,19 @@ impl NewtonStep {
                 *vi = v_start[i];
             }
         }
-        let mut solved = Solved::InVelocities;
-        let mut outcome = self.solver.solve(
-            &self.mass,
-            &self.reach,
-            &self.v_free,
-            &self.contacts,
-            v,
-            &mut self.impulses,
+        let step = StepProblem {
+            mass: &self.mass,
+            reach: &self.reach,
+            v_free: &self.v_free,
+            contacts: &self.contacts,
             tolerance_m_s,
-        );
+        };
+        let mut solved = Solved::InVelocities;
+        let mut outcome = self.solver.solve(&step, v, &mut self.impulses);
         if outcome.is_err() {
             solved = Solved::InImpulses;
             self.impulses.clone_from(&self.last_impulses);
-            outcome = self.dual.solve(
-                &self.mass,
-                &self.reach,
-                &self.v_free,
-                &self.contacts,
-                v,
-                &mut self.impulses,
-                tolerance_m_s,
-            );
+            outcome = self.dual.solve(&step, v, &mut self.impulses);
         }
         if outcome.is_err() {
             // Back to the free velocities, the last step's impulses left for Gauss-Seidel's

@@ -26,7 +26,7 @@
 //! comes last.
 
 use super::wall_newton::{
-    Cholesky, Contact, Stall, MAX_ITERATIONS, ROUND_OFF_FLOOR, STALLED_UPDATES,
+    Cholesky, Contact, Stall, StepProblem, MAX_ITERATIONS, ROUND_OFF_FLOOR, STALLED_UPDATES,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use nalgebra::{Vector2, Vector3};
@@ -71,19 +71,21 @@ impl WallDual {
     /// Solves the step in impulses: `impulses` comes in as the first guess (the last step's)
     /// and leaves as the answer, `v` as the velocities v_free + M^-1 H' p. The iteration stops
     /// as the velocity-space solver's does: once a step under bounds fresh from the impulses
-    /// moves no block's velocity by more than `tolerance_m_s` (through `reach`). Returns the
-    /// projected Newton steps used, or why it stalled.
-    #[allow(clippy::too_many_arguments)]
+    /// moves no block's velocity by more than the step's tolerance. Returns the projected
+    /// Newton steps used, or why it stalled.
     pub fn solve(
         &mut self,
-        mass: &[Vector3<f64>],
-        reach: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
+        step: &StepProblem<'_>,
         v: &mut [Vector3<f64>],
         impulses: &mut [Vector2<f64>],
-        tolerance_m_s: f64,
     ) -> Result<usize, Stall> {
+        let StepProblem {
+            mass,
+            reach,
+            v_free,
+            contacts,
+            tolerance_m_s,
+        } = *step;
         if contacts.is_empty() {
             v.copy_from_slice(v_free);
             return Ok(0);
@@ -439,6 +441,21 @@ mod tests {
 
     const REACH: [Vector3<f64>; 2] = [Vector3::new(1.0, 1.0, 0.56), Vector3::new(1.0, 1.0, 0.56)];
 
+    /// The stack's step under the free velocities `v_free`.
+    fn step<'a>(
+        contacts: &'a [Contact],
+        mass: &'a [Vector3<f64>; 2],
+        v_free: &'a [Vector3<f64>; 2],
+    ) -> StepProblem<'a> {
+        StepProblem {
+            mass,
+            reach: &REACH,
+            v_free,
+            contacts,
+            tolerance_m_s: 1e-10 * G_DT,
+        }
+    }
+
     /// The dual's answer from the given first impulses, and the steps it used.
     fn dual(
         contacts: &[Contact],
@@ -449,7 +466,7 @@ mod tests {
         let mut v = [Vector3::zeros(); 2];
         let mut p = vec![first; contacts.len()];
         let used = WallDual::default()
-            .solve(mass, &REACH, v_free, contacts, &mut v, &mut p, 1e-10 * G_DT)
+            .solve(&step(contacts, mass, v_free), &mut v, &mut p)
             .expect("solved");
         (v, p, used)
     }
@@ -469,15 +486,7 @@ mod tests {
             let mut expected = [Vector3::zeros(); 2];
             let mut unused = vec![Vector2::zeros(); contacts.len()];
             WallNewton::new(2, [(0, 1)])
-                .solve(
-                    &mass,
-                    &REACH,
-                    &v_free,
-                    &contacts,
-                    &mut expected,
-                    &mut unused,
-                    1e-10 * G_DT,
-                )
+                .solve(&step(&contacts, &mass, &v_free), &mut expected, &mut unused)
                 .expect("the velocity-space solver converges here");
             for first in [Vector2::zeros(), Vector2::new(1e3, -1e3)] {
                 let (v, p, used) = dual(&contacts, &mass, &v_free, first);

@@ -112,6 +112,23 @@ impl Contact {
     }
 }
 
+/// One step's contact problem, as both of its solvers take it (this one and `wall_dual.rs`).
+pub struct StepProblem<'a> {
+    /// Each block's (m, m, I); a block that does not move has no part in any contact and keeps
+    /// its free velocity.
+    pub mass: &'a [Vector3<f64>],
+    /// Turns a change of a block's velocity into one of its points': (1, 1, its half
+    /// diagonal).
+    pub reach: &'a [Vector3<f64>],
+    /// The blocks' velocities without contacts.
+    pub v_free: &'a [Vector3<f64>],
+    /// The step's contacts.
+    pub contacts: &'a [Contact],
+    /// The iteration stops once no block's velocity (through `reach`) changes by more than
+    /// this under the friction bounds those velocities give (m/s).
+    pub tolerance_m_s: f64,
+}
+
 /// Why a step's Newton iteration stopped without converging.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Stall {
@@ -618,25 +635,23 @@ impl WallNewton {
     }
 
     /// Solves the step: `v` comes in as the first guess (the velocities before the step) and
-    /// leaves as the solution; `impulses[k]` is contact k's impulse there. `mass` is each
-    /// block's (m, m, I) (a block that does not move has no part in any contact and keeps its
-    /// free velocity); `reach` turns a change of a block's velocity into one of its points'
-    /// ((1, 1, its half diagonal)), and the iteration stops once no block's velocity changes by
-    /// more than `tolerance_m_s` under the friction bounds those velocities give. The fixed
-    /// point on the bounds comes first; where it uses its iterations, semismooth Newton on
-    /// Coulomb's law goes on from its last iterate. Returns the Newton steps used, or why the
-    /// step stalled.
-    #[allow(clippy::too_many_arguments)]
+    /// leaves as the solution; `impulses[k]` is contact k's impulse there. The fixed point on
+    /// the bounds comes first; where it uses its iterations, semismooth Newton on Coulomb's
+    /// law goes on from its last iterate. Returns the Newton steps used, or why the step
+    /// stalled.
     pub fn solve(
         &mut self,
-        mass: &[Vector3<f64>],
-        reach: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
+        step: &StepProblem<'_>,
         v: &mut [Vector3<f64>],
         impulses: &mut [Vector2<f64>],
-        tolerance_m_s: f64,
     ) -> Result<usize, Stall> {
+        let StepProblem {
+            mass,
+            reach,
+            v_free,
+            contacts,
+            tolerance_m_s,
+        } = *step;
         let mut outcome = self.bounds_fixed_point(mass, reach, v_free, contacts, v, tolerance_m_s);
         if outcome == Err(Stall::Iterations) {
             outcome = self
@@ -690,15 +705,14 @@ mod tests {
         let mut solver = WallNewton::new(1, []);
         let mut v = [start];
         let mut p = vec![Vector2::zeros(); contacts.len()];
-        let used = solver.solve(
-            &[mass],
-            &[Vector3::new(1.0, 1.0, 0.56)],
-            &[v_free],
+        let step = StepProblem {
+            mass: &[mass],
+            reach: &[Vector3::new(1.0, 1.0, 0.56)],
+            v_free: &[v_free],
             contacts,
-            &mut v,
-            &mut p,
-            1e-10 * G_DT,
-        );
+            tolerance_m_s: 1e-10 * G_DT,
+        };
+        let used = solver.solve(&step, &mut v, &mut p);
         assert!(used.is_ok(), "{used:?}");
         (v[0], p)
     }
