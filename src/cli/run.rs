@@ -358,7 +358,8 @@ pub struct RunArgs {
     /// Start a block (or a section across the plane) from rest at this rotation, NAME=RAD
     /// (positive: on its right corner, or towards the back face); in a wall of one column, a
     /// block of its moving body releases the body; time stepped (--method moreau), any block
-    /// that carries nothing and turns clear of the others; repeatable across the plane.
+    /// with the blocks resting on it alone, turned as one clear of the others; repeatable
+    /// across the plane.
     /// Without a ground motion the ground rests for --duration.
     #[arg(long, value_name = "NAME=RAD", value_parser = parse_rotation)]
     pub initial_rotation: Vec<(String, f64)>,

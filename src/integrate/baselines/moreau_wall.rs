@@ -71,7 +71,7 @@ pub struct MoreauWall {
     pub newton_tolerance: f64,
     /// A block released from a rotation (rad, clockwise positive): in a wall of one column the
     /// column's moving body, turned about the end of its base on that side; in any other wall
-    /// the block alone, if it carries nothing (`release.rs`).
+    /// the block with the blocks resting on it alone, turned as one (`release.rs`).
     pub initial_rotation: Option<(String, f64)>,
 }
 
