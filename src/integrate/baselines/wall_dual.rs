@@ -15,9 +15,10 @@
 //! strictly convex and the method converges from any start; Coulomb's law is, as in
 //! velocities, the fixed point b = mu p_n, and where the velocity-space fixed point cycles
 //! this one often settles (docs/rocking-walls.md: every step the velocities leave on a
-//! turning running bond, 1 to 20 of 1,000 to 8,000). It does not rescue the 976-block wall: W has rank at most three per block,
-//! so W + E has thousands of eigenvalues of the size of the compliance, along which only the
-//! box decides, and its projected steps stay short there.
+//! turning running bond, 1 to 20 of 1,000 to 8,000). It does not rescue the 976-block wall:
+//! W has rank at most three per block, so W + E has thousands of eigenvalues of the size of
+//! the compliance, along which only the box decides, and its projected steps stay short
+//! there.
 //!
 //! Each step factorises W + E with the rows and columns of the unknowns held at a bound
 //! replaced by the identity's, so the pattern (every pair of contacts sharing a block) and its

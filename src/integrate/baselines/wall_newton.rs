@@ -341,7 +341,8 @@ impl WallNewton {
     /// The step length along `self.step` from `v` that minimises the potential: the root of
     /// its derivative, piecewise linear and increasing in the length, by Newton's method on
     /// that derivative safeguarded by bisection (exact in a few steps: a full step where the
-    /// contacts' states it assumed hold).
+    /// contacts' states it assumed hold), stopping where the derivative is zero within the
+    /// round-off of its sum.
     fn line_minimum(
         &mut self,
         mass: &[Vector3<f64>],
