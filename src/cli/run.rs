@@ -380,7 +380,8 @@ fn parse_rotation(text: &str) -> Result<(String, f64), String> {
         .map_err(|_| format!("\"{value}\" is not a number of radians"))?;
     if !theta.is_finite() || theta.abs() >= std::f64::consts::FRAC_PI_2 {
         return Err(format!(
-            "{theta} rad: a rotation must be finite and below pi/2 in size"
+            "{} rad: a rotation must be finite and below pi/2 in size",
+            value.trim()
         ));
     }
     Ok((name.trim().to_string(), theta))

@@ -1479,6 +1479,18 @@ fn rocking_runs_pulses_releases_and_refusals() {
             "below pi/2",
         ),
         (
+            // The value as written, not its 301-digit decimal expansion.
+            vec![
+                "run",
+                stela,
+                "--initial-rotation",
+                "Huanca=-1e300",
+                "--duration",
+                "1",
+            ],
+            "'Huanca=-1e300' for '--initial-rotation <NAME=RAD>': -1e300 rad: a rotation",
+        ),
+        (
             vec![
                 "run",
                 stela,
