@@ -170,7 +170,7 @@ pub enum WallError {
         supported: u32,
     },
     /// A wall-level number is out of range.
-    #[error("{field} = {value}: {rule}")]
+    #[error("{field} = {}: {rule}", crate::units::shown(.value))]
     Field {
         /// Field name.
         field: String,
@@ -188,7 +188,7 @@ pub enum WallError {
     #[error("the wall has no blocks: give `rows` or `rectangles`")]
     Empty,
     /// A block's number is out of range.
-    #[error("{}: {field} = {value}: {rule}", block_place(.block, .origin))]
+    #[error("{}: {field} = {}: {rule}", block_place(.block, .origin), crate::units::shown(.value))]
     BlockField {
         /// Block name, if the file gave one (the default names are given after the checks).
         block: Option<String>,
@@ -529,7 +529,7 @@ pub enum SimulationError {
         count: usize,
     },
     /// A setting of the run is out of its range.
-    #[error("{what} {value}{unit}: {rule}")]
+    #[error("{what} {}{unit}: {rule}", crate::units::shown(.value))]
     Setting {
         /// The setting (duration, output interval, a method's step or tolerance).
         what: String,
@@ -541,7 +541,7 @@ pub enum SimulationError {
         rule: &'static str,
     },
     /// A rocking body's size or property is out of its range.
-    #[error("{body}: {what} {value}: {rule}")]
+    #[error("{body}: {what} {}: {rule}", crate::units::shown(.value))]
     Body {
         /// The body.
         body: String,

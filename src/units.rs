@@ -17,6 +17,27 @@ pub const ACCELERATION_UNITS: &str = "gal, g, m/s2 (e.g. 400gal, 0.41g, 4.0m/s2)
 /// Units of length accepted on input.
 pub const LENGTH_UNITS: &str = "mm, cm, m (e.g. 5mm, 0.5cm, 0.005m)";
 
+/// A number as a message shows it: as Rust writes it where that is short, in exponent form
+/// where it is very large or very small (1e300, not its 301 digits; 1e-300, not 300 zeros).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shown(pub f64);
+
+impl std::fmt::Display for Shown {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
+}
+
+/// [`Shown`] of a borrowed number, for error messages' fields.
+pub fn shown(x: &f64) -> Shown {
+    Shown(*x)
+}
+
 /// A unit of acceleration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -113,6 +134,25 @@ pub fn length_unit_m(unit: &str) -> Option<f64> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_message_shows_huge_and_tiny_numbers_in_exponent_form() {
+        for (x, text) in [
+            (0.0, "0"),
+            (0.05, "0.05"),
+            (-400.0, "-400"),
+            (1e-5, "0.00001"),
+            (1e-6, "1e-6"),
+            (-1e300, "-1e300"),
+            (1.5e-300, "1.5e-300"),
+            (1e16, "1e16"),
+            (f64::NAN, "NaN"),
+            (f64::INFINITY, "inf"),
+        ] {
+            assert_eq!(Shown(x).to_string(), text);
+        }
+    }
+
     use super::*;
     use approx::assert_relative_eq;
 

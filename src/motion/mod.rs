@@ -15,6 +15,7 @@ pub use segment::{Segment, Shape};
 
 use crate::bounds;
 use crate::error::MotionError;
+use crate::units::Shown;
 
 /// A horizontal ground acceleration history.
 #[derive(Debug, Clone, PartialEq)]
@@ -136,8 +137,11 @@ impl Sine {
         if !ok {
             return Err(MotionError::Parameter {
                 what: format!(
-                    "sine of {} m/s2, phase {} rad, {f} Hz, {d} s",
-                    self.amplitude_m_s2, self.phase_rad
+                    "sine of {} m/s2, phase {} rad, {} Hz, {} s",
+                    Shown(self.amplitude_m_s2),
+                    Shown(self.phase_rad),
+                    Shown(f),
+                    Shown(d)
                 ),
                 rule: format!(
                     "a sine needs an amplitude of at most {} m/s2 (about 100 g), a frequency \
@@ -198,7 +202,7 @@ impl Record {
     ) -> Result<Record, MotionError> {
         if !bounds::within(dt_s, bounds::RECORD_DT_S) {
             return Err(MotionError::Parameter {
-                what: format!("time step dt = {dt_s} s"),
+                what: format!("time step dt = {} s", Shown(dt_s)),
                 rule: format!(
                     "it must lie from {} to {} s",
                     bounds::RECORD_DT_S.0,
@@ -208,7 +212,7 @@ impl Record {
         }
         if accel_m_s2.len() as f64 * dt_s > bounds::MAX_DURATION_S {
             return Err(MotionError::Parameter {
-                what: format!("{} samples at {dt_s} s", accel_m_s2.len()),
+                what: format!("{} samples at {} s", accel_m_s2.len(), Shown(dt_s)),
                 rule: format!("a record may last {} s at most", bounds::MAX_DURATION_S),
             });
         }
@@ -227,7 +231,7 @@ impl Record {
                     "sample {} (t = {} s) = {} m/s2",
                     k + 1,
                     k as f64 * dt_s,
-                    accel_m_s2[k]
+                    Shown(accel_m_s2[k])
                 ),
                 rule: format!(
                     "a ground acceleration must be a number of at most {} m/s2 (about 100 g)",
@@ -302,7 +306,8 @@ impl Record {
             return Err(MotionError::Contradiction(format!(
                 "the vertical component's time step {} s differs from the horizontal one's {} s: \
                  resample one of them",
-                vertical.dt_s, self.dt_s
+                Shown(vertical.dt_s),
+                Shown(self.dt_s)
             )));
         }
         let n = self.accel_m_s2.len();

@@ -111,7 +111,7 @@ fn positive(what: &str, x: f64) -> Result<(), MotionError> {
         Ok(())
     } else {
         Err(MotionError::Parameter {
-            what: format!("{what} = {x}"),
+            what: format!("{what} = {}", crate::units::Shown(x)),
             rule: "it must be positive".into(),
         })
     }

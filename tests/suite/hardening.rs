@@ -51,9 +51,17 @@ fn motions_beyond_the_bounds_are_refused_with_the_bound() {
     let frequency = "a frequency from 0.0001 to 1000 Hz";
     for (amplitude, freq, duration, says) in [
         ("1e307m/s2", "1", "2", "at most 1000 m/s2"),
+        // The value shown as a number, not its 308 digits.
+        (
+            "1e307m/s2",
+            "1",
+            "2",
+            "sine of 1e307 m/s2, phase 0 rad, 1 Hz, 2 s",
+        ),
         ("4m/s2", "1e12", "2", frequency),
         // Found by the fuzzer: a subnormal frequency overflowed A / omega^2 into NaN energies.
         ("4m/s2", "5e-324", "2", frequency),
+        ("4m/s2", "5e-324", "2", "5e-324 Hz"),
         (
             "4m/s2",
             "1",
