@@ -1,5 +1,6 @@
 //! Quantities with the units engineers use: accelerations in gal, g or m/s2, lengths in mm, cm
-//! or m. Everything inside pirqa is SI (m, s, kg, N); these functions are the only way in.
+//! or m. Everything inside pirqa is SI (m, s, kg, N); these functions are the only way in, and
+//! [`Shown`] is how a message writes a number back out.
 
 use crate::error::UnitError;
 
