@@ -1092,9 +1092,10 @@ fn fallbacks(s: &Summary) -> Fallbacks {
 /// point on the friction bounds cycles, and on its own it left 158 steps to Gauss-Seidel, which
 /// failed in 24. Semismooth Newton on Coulomb's law, taking over where the fixed point stops,
 /// leaves a few. Which few depends on round-off (a rocking wall's path does: the simplicial and
-/// supernodal Cholesky factorisations left 2 steps, none unsolved, and 3, one unsolved; since
-/// the line search stops at its derivative's round-off, one, solved in impulses), so the test
-/// bounds their number, far below the fixed point's alone.
+/// supernodal Cholesky factorisations left 2 steps, none unsolved, and 3, one unsolved; once
+/// the line search stopped at its derivative's round-off, one, solved in impulses; since
+/// Coulomb's Newton is tried at the fixed point's first stall, none), so the test bounds their
+/// number, far below the fixed point's alone.
 #[test]
 fn newton_on_coulombs_law_solves_a_running_bond_whose_blocks_turn() {
     let model = running_bond_2x8();
@@ -1112,18 +1113,20 @@ fn newton_on_coulombs_law_solves_a_running_bond_whose_blocks_turn() {
     assert!(f.fell_back <= 10 && f.unconverged <= 2, "{:?}", s.warnings);
 }
 
-/// The same wall at dt = 1.25e-4 s, where the two phases in velocities leave some of the 8,000
-/// steps (their fixed point and Coulomb's Newton cycling at the kinks of turning blocks; 23 to
-/// 26 before their line search stopped at its derivative's round-off, 20 since): the third
-/// solver, projected Newton on the same problem in the contacts' impulses, solves them (all
-/// but two before that change, all since), and a warning counts them.
+/// The same wall at dt = 1.25e-4 s, where the two phases in velocities leave a few of the
+/// 8,000 steps (their fixed point and Coulomb's Newton cycling at the kinks of turning blocks):
+/// the third solver, projected Newton on the same problem in the contacts' impulses, solves
+/// them, and a warning counts them. There were 20 such steps while Coulomb's Newton waited for
+/// the fixed point to use its 200 iterations; handed the fixed point's iterate at its first
+/// stall (and giving it back where it fails), it leaves 2, so the test asks for at least one,
+/// that the impulses are exercised, and for fewer than 20.
 #[test]
 fn the_impulses_solve_the_steps_the_velocities_leave() {
     let model = running_bond_2x8();
     let s = stepped_by(&model, &sine(4.0, 2.0, 1.0), 1.25e-4, ContactSolver::Newton);
     let f = fallbacks(&s);
-    // The warning counts the steps solved in impulses (20 in this build).
-    assert!(f.in_impulses >= 15 && f.fell_back <= 6, "{:?}", s.warnings);
+    assert!((1..=5).contains(&f.in_impulses), "{:?}", s.warnings);
+    assert_eq!((f.fell_back, f.unconverged), (0, 0), "{:?}", s.warnings);
 }
 
 /// Newton's exact line search stops where the derivative along the step is zero within the

@@ -13,11 +13,13 @@
 //! Cholesky factorisation, whose symbolic part is made once per run over every pair of blocks
 //! that can touch. Coulomb's law is the fixed point b = mu p_n: once Tresca's problem is solved
 //! the bounds move to mu p_n and Newton goes on, until a step with fresh bounds changes nothing.
-//! That fixed point can cycle (in a running bond whose blocks turn, the bounds move by millions
-//! of their round-off from one update to the next); where it has not settled in its iterations,
-//! semismooth Newton on Coulomb's law itself takes over from its last iterate: the Jacobian is
-//! then unsymmetric (a sliding contact's friction follows its normal impulse), solved by faer's
-//! sparse LU on the same pattern, with a backtracking line search on the residual's size.
+//! That fixed point can cycle or creep (in a running bond whose blocks turn, the bounds move by
+//! millions of their round-off from one update to the next); where it first stalls, semismooth
+//! Newton on Coulomb's law itself is tried from its iterate: the Jacobian is then unsymmetric (a
+//! sliding contact's friction follows its normal impulse), solved by faer's sparse LU on the
+//! same pattern, with a backtracking line search on the residual's size. Where that does not
+//! converge in a few steps, the fixed point goes on from where it stalled, and Newton on
+//! Coulomb's law takes its last iterate again if it never settles.
 //!
 //! With eps small the answer is the rigid one to a relative O(eps): a resting contact closes at
 //! a speed of eps p_n (about [`COMPLIANCE`] times g dt). Where rigid blocks leave the split
@@ -59,6 +61,22 @@ pub(super) const STALLED_UPDATES: usize = 4;
 /// How far above the tolerance a stalled fixed point is still accepted: with the time-stepped
 /// model's 1e-10 g dt, 1e-8 g dt, no more than the error the compliance itself makes.
 pub(super) const ROUND_OFF_FLOOR: f64 = 100.0;
+
+/// Coulomb's Newton steps tried where the fixed point on the bounds first stalls. Where it
+/// converges from there it takes 2 or 3 steps in most cases, up to 20 in a few (the 2 x 8
+/// running bond of docs/rocking-walls.md at dt = 1.25e-4 s); a failed try costs its steps, and
+/// the fixed point's iterate is given back. 10 and 40 left more steps to the slower solvers.
+const EARLY_NEWTON: usize = 20;
+
+/// How the fixed point on the bounds ended.
+enum FixedPoint {
+    /// Settled in these Newton steps.
+    Settled(usize),
+    /// Stalled above the round-off floor after these steps.
+    Stalled(usize),
+    /// Used its budget.
+    Exhausted,
+}
 
 /// One moving block's share of a contact: the rows of the contact's (normal, tangential)
 /// relative velocity for that block's (x, y, rotation) velocity.
@@ -208,6 +226,7 @@ pub struct WallNewton {
     cholesky: Cholesky,
     lu: SymbolicLu<usize>,
     start: Vec<Vector3<f64>>,
+    stalled_at: Vec<Vector3<f64>>,
     values: Vec<f64>,
     step: Vec<Vector3<f64>>,
     rhs: Vec<f64>,
@@ -252,6 +271,7 @@ impl WallNewton {
             cholesky,
             lu,
             start: Vec::new(),
+            stalled_at: Vec::new(),
             values: vec![0.0; nnz],
             step: vec![Vector3::zeros(); n],
             rhs: vec![0.0; 3 * n],
@@ -519,7 +539,8 @@ impl WallNewton {
     }
 
     /// Coulomb's fixed point on Tresca's problems, the first way a step is solved (see the
-    /// module's comment). Returns the Newton steps used, or why it stalled.
+    /// module's comment), within `budget` Newton steps; with `stop_at_stall` it ends where it
+    /// first stalls above its round-off floor.
     #[allow(clippy::too_many_arguments)]
     fn bounds_fixed_point(
         &mut self,
@@ -529,12 +550,14 @@ impl WallNewton {
         contacts: &[Contact],
         v: &mut [Vector3<f64>],
         tolerance_m_s: f64,
-    ) -> Result<usize, Stall> {
+        budget: usize,
+        stop_at_stall: bool,
+    ) -> Result<FixedPoint, Stall> {
         let mut keep_bounds = false;
         // The smallest step seen right after the bounds moved, and how many such steps since
         // have not halved it.
         let (mut best, mut stalled) = (f64::INFINITY, 0);
-        for iteration in 1..=MAX_ITERATIONS {
+        for iteration in 1..=budget {
             if !keep_bounds {
                 self.bounds.clear();
                 self.bounds
@@ -551,7 +574,7 @@ impl WallNewton {
             let settled = change <= tolerance_m_s;
             if !keep_bounds {
                 if settled {
-                    return Ok(iteration);
+                    return Ok(FixedPoint::Settled(iteration));
                 }
                 // The bounds' fixed point converges linearly until the round-off of p_n =
                 // -u_n / eps (an ulp of u_n over eps) moves the bounds by as much as it gains;
@@ -561,13 +584,18 @@ impl WallNewton {
                 } else {
                     stalled += 1;
                 }
-                if stalled >= STALLED_UPDATES && best <= ROUND_OFF_FLOOR * tolerance_m_s {
-                    return Ok(iteration);
+                if stalled >= STALLED_UPDATES {
+                    if best <= ROUND_OFF_FLOOR * tolerance_m_s {
+                        return Ok(FixedPoint::Settled(iteration));
+                    }
+                    if stop_at_stall {
+                        return Ok(FixedPoint::Stalled(iteration));
+                    }
                 }
             }
             keep_bounds = !settled;
         }
-        Err(Stall::Iterations)
+        Ok(FixedPoint::Exhausted)
     }
 
     /// Semismooth Newton on Coulomb's law itself, F(v) = 0 with the bounds following the
@@ -577,7 +605,8 @@ impl WallNewton {
     /// law lies within 1e-10 of the step), the iteration ends if Newton's step is within
     /// [`ROUND_OFF_FLOOR`] times the tolerance (the round-off floor, as for the fixed point),
     /// and otherwise takes one step of Tresca's problem under the current bounds instead,
-    /// which moves the iterate off the kink. Returns the Newton steps used, or why it stalled.
+    /// which moves the iterate off the kink. Returns the Newton steps used (at most `budget`),
+    /// or why it stalled.
     #[allow(clippy::too_many_arguments)]
     fn coulomb(
         &mut self,
@@ -587,9 +616,10 @@ impl WallNewton {
         contacts: &[Contact],
         v: &mut [Vector3<f64>],
         tolerance_m_s: f64,
+        budget: usize,
     ) -> Result<usize, Stall> {
         let mut size_now = self.residual(mass, v_free, contacts, v);
-        for iteration in 1..=MAX_ITERATIONS {
+        for iteration in 1..=budget {
             let Some(lu) = self.coulomb_jacobian(mass, contacts, v) else {
                 return Err(Stall::Singular);
             };
@@ -640,11 +670,71 @@ impl WallNewton {
         Err(Stall::Iterations)
     }
 
+    /// The fixed point on the bounds, and where it stalls, Coulomb's Newton from its iterate
+    /// for at most [`EARLY_NEWTON`] steps; where that fails, the fixed point goes on from where
+    /// it stalled for the rest of its iterations, then Coulomb's Newton for its own.
+    fn settle(
+        &mut self,
+        mass: &[Vector3<f64>],
+        reach: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &mut [Vector3<f64>],
+        tolerance_m_s: f64,
+    ) -> Result<usize, Stall> {
+        let mut used = 0;
+        let mut stop_at_stall = true;
+        loop {
+            let budget = MAX_ITERATIONS - used;
+            match self.bounds_fixed_point(
+                mass,
+                reach,
+                v_free,
+                contacts,
+                v,
+                tolerance_m_s,
+                budget,
+                stop_at_stall,
+            )? {
+                FixedPoint::Settled(n) => return Ok(used + n),
+                FixedPoint::Exhausted => {
+                    return self
+                        .coulomb(
+                            mass,
+                            reach,
+                            v_free,
+                            contacts,
+                            v,
+                            tolerance_m_s,
+                            MAX_ITERATIONS,
+                        )
+                        .map(|n| n + MAX_ITERATIONS);
+                }
+                FixedPoint::Stalled(n) => {
+                    used += n;
+                    stop_at_stall = false;
+                    self.stalled_at.clear();
+                    self.stalled_at.extend_from_slice(v);
+                    if let Ok(k) = self.coulomb(
+                        mass,
+                        reach,
+                        v_free,
+                        contacts,
+                        v,
+                        tolerance_m_s,
+                        EARLY_NEWTON,
+                    ) {
+                        return Ok(used + k);
+                    }
+                    v.copy_from_slice(&self.stalled_at);
+                }
+            }
+        }
+    }
+
     /// Solves the step: `v` comes in as the first guess (the velocities before the step) and
-    /// leaves as the solution; `impulses[k]` is contact k's impulse there. The fixed point on
-    /// the bounds comes first; where it uses its iterations, semismooth Newton on Coulomb's
-    /// law goes on from its last iterate. Returns the Newton steps used, or why the step
-    /// stalled.
+    /// leaves as the solution; `impulses[k]` is contact k's impulse there, by
+    /// [`WallNewton::settle`]. Returns the Newton steps used, or why the step stalled.
     pub fn solve(
         &mut self,
         step: &StepProblem<'_>,
@@ -658,12 +748,7 @@ impl WallNewton {
             contacts,
             tolerance_m_s,
         } = *step;
-        let mut outcome = self.bounds_fixed_point(mass, reach, v_free, contacts, v, tolerance_m_s);
-        if outcome == Err(Stall::Iterations) {
-            outcome = self
-                .coulomb(mass, reach, v_free, contacts, v, tolerance_m_s)
-                .map(|n| n + MAX_ITERATIONS);
-        }
+        let outcome = self.settle(mass, reach, v_free, contacts, v, tolerance_m_s);
         for (c, p) in contacts.iter().zip(impulses.iter_mut()) {
             let bound = c.friction * c.normal_impulse(v);
             *p = c.impulse_at(c.velocity(v), bound).0;
@@ -800,7 +885,15 @@ mod tests {
             let mut solver = WallNewton::new(1, []);
             let mut v = [Vector3::zeros()];
             let reach = [Vector3::new(1.0, 1.0, 0.56)];
-            let used = solver.coulomb(&[mass], &reach, &[v_free], &contacts, &mut v, 1e-10 * G_DT);
+            let used = solver.coulomb(
+                &[mass],
+                &reach,
+                &[v_free],
+                &contacts,
+                &mut v,
+                1e-10 * G_DT,
+                MAX_ITERATIONS,
+            );
             assert!(matches!(used, Ok(1..=8)), "{used:?}");
             assert!(
                 (v[0] - expected).abs().max() < 2e-10 * G_DT,
