@@ -458,6 +458,14 @@ pub enum Warning {
         /// The end of the first of them (s).
         first_s: f64,
     },
+    /// Newton's method on the whole wall converged neither in the blocks' velocities nor in
+    /// the contacts' impulses in some steps, which an interior point in the velocities solved.
+    NewtonByInteriorPoint {
+        /// Those steps.
+        steps: u64,
+        /// The end of the first of them (s).
+        first_s: f64,
+    },
 }
 
 impl std::fmt::Display for Warning {
@@ -573,6 +581,13 @@ impl std::fmt::Display for Warning {
                 "Newton's method did not converge in the blocks' velocities in {steps} steps (the \
                  first ending at {} s); the same problem in the contacts' impulses solved them \
                  (docs/rocking-walls.md)",
+                to_the_nanosecond(*first_s)
+            ),
+            Warning::NewtonByInteriorPoint { steps, first_s } => write!(
+                f,
+                "Newton's method converged neither in the blocks' velocities nor in the \
+                 contacts' impulses in {steps} steps (the first ending at {} s); an interior \
+                 point in the velocities solved them (docs/rocking-walls.md)",
                 to_the_nanosecond(*first_s)
             ),
         }

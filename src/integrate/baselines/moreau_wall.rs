@@ -427,6 +427,7 @@ impl Integrator for MoreauWall {
         let mut unconverged = 0u64;
         let mut fell_back = 0u64;
         let (mut in_impulses, mut first_in_impulses) = (0u64, None);
+        let (mut by_interior, mut first_by_interior) = (0u64, None);
         // When the solvers first failed, and which block each unconverged step left changing
         // fastest (counted per block): what the warnings say of where.
         let (mut first_unconverged, mut first_fell_back) = (None, None);
@@ -515,6 +516,10 @@ impl Integrator for MoreauWall {
                     Solved::InImpulses => {
                         in_impulses += 1;
                         first_in_impulses.get_or_insert(k as f64 * dt);
+                    }
+                    Solved::ByInteriorPoint => {
+                        by_interior += 1;
+                        first_by_interior.get_or_insert(k as f64 * dt);
                     }
                     Solved::Neither => {
                         fell_back += 1;
@@ -718,6 +723,12 @@ impl Integrator for MoreauWall {
                 first_s,
             });
         }
+        if let Some(first_s) = first_by_interior {
+            rec.warnings.push(Warning::NewtonByInteriorPoint {
+                steps: by_interior,
+                first_s,
+            });
+        }
         if let Some(first_s) = first_fell_back {
             rec.warnings.push(Warning::NewtonFellBack {
                 steps: fell_back,
@@ -852,6 +863,15 @@ impl NewtonStep {
             outcome = self.dual.solve(&step, v, &mut self.impulses);
         }
         if outcome.is_err() {
+            solved = Solved::ByInteriorPoint;
+            for (i, vi) in v.iter_mut().enumerate() {
+                if moves(i) {
+                    *vi = v_start[i];
+                }
+            }
+            outcome = self.solver.solve_interior(&step, v, &mut self.impulses);
+        }
+        if outcome.is_err() {
             // Back to the free velocities, the last step's impulses left for Gauss-Seidel's
             // warm start.
             v.copy_from_slice(&self.v_free);
@@ -871,6 +891,8 @@ enum Solved {
     InVelocities,
     /// In the contacts' impulses, where that failed.
     InImpulses,
+    /// By the interior point in the blocks' velocities, where both failed.
+    ByInteriorPoint,
     /// By neither: Gauss-Seidel's turn.
     Neither,
 }
