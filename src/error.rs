@@ -377,20 +377,8 @@ pub enum SurveyError {
     },
 }
 
-/// A quantity with units could not be read.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum UnitError {
-    /// Not a number followed by a known unit.
-    #[error("cannot read {what} \"{text}\": write a number and a unit, one of {units}")]
-    Unreadable {
-        /// What was expected (acceleration, length...).
-        what: &'static str,
-        /// The text given.
-        text: String,
-        /// The units accepted.
-        units: &'static str,
-    },
-}
+/// A quantity with units could not be read (defined beside the units it reads).
+pub use crate::units::UnitError;
 
 /// What is wrong with a ground motion.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

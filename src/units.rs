@@ -2,8 +2,6 @@
 //! or m. Everything inside pirqa is SI (m, s, kg, N); these functions are the only way in, and
 //! [`Shown`] is how a message writes a number back out.
 
-use crate::error::UnitError;
-
 /// The value of one g used to convert accelerations given in g (m/s2). The paper, the wall files
 /// and most record processing (PEER: 981 cm/s2) use 9.81; standard gravity 9.80665 differs by
 /// 0.03 %.
@@ -17,6 +15,21 @@ pub const ACCELERATION_UNITS: &str = "gal, g, m/s2 (e.g. 400gal, 0.41g, 4.0m/s2)
 
 /// Units of length accepted on input.
 pub const LENGTH_UNITS: &str = "mm, cm, m (e.g. 5mm, 0.5cm, 0.005m)";
+
+/// A quantity with units could not be read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum UnitError {
+    /// Not a number followed by a known unit.
+    #[error("cannot read {what} \"{text}\": write a number and a unit, one of {units}")]
+    Unreadable {
+        /// What was expected (acceleration, length...).
+        what: &'static str,
+        /// The text given.
+        text: String,
+        /// The units accepted.
+        units: &'static str,
+    },
+}
 
 /// A number as a message shows it: as Rust writes it where that is short, in exponent form
 /// where it is very large or very small (1e300, not its 301 digits; 1e-300, not 300 zeros).
