@@ -343,6 +343,14 @@ impl Contact {
     }
 }
 
+/// Each contact's impulse at the velocities `v`, under the bounds they give.
+fn impulses_at(contacts: &[Contact], v: &[Vector3<f64>], impulses: &mut [Vector2<f64>]) {
+    for (c, p) in contacts.iter().zip(impulses.iter_mut()) {
+        let bound = c.friction * c.normal_impulse(v);
+        *p = c.impulse_at(c.velocity(v), bound).0;
+    }
+}
+
 /// One step's contact problem, as both of its solvers take it (this one and `wall_dual.rs`).
 pub struct StepProblem<'a> {
     /// Each block's (m, m, I); a block that does not move has no part in any contact and keeps
@@ -509,6 +517,13 @@ impl WallNewton {
         }
     }
 
+    /// The friction bounds mu p_n that the velocities `v` give.
+    fn bounds_from(&mut self, contacts: &[Contact], v: &[Vector3<f64>]) {
+        self.bounds.clear();
+        self.bounds
+            .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
+    }
+
     /// The potential's gradient M (v - v_free) - sum H' p(v) under the current bounds.
     fn gradient_at(
         &mut self,
@@ -653,9 +668,7 @@ impl WallNewton {
         contacts: &[Contact],
         v: &[Vector3<f64>],
     ) -> f64 {
-        self.bounds.clear();
-        self.bounds
-            .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
+        self.bounds_from(contacts, v);
         self.gradient_at(mass, v_free, contacts, v);
         0.5 * self
             .gradient
@@ -772,16 +785,10 @@ impl WallNewton {
         let (mut best, mut stalled) = (f64::INFINITY, 0);
         for iteration in 1..=budget {
             if !keep_bounds {
-                self.bounds.clear();
-                self.bounds
-                    .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
+                self.bounds_from(contacts, v);
             }
             self.gradient_at(mass, v_free, contacts, v);
-            let alpha = self.tresca_step(mass, v_free, contacts, v)?;
-            let mut change: f64 = 0.0;
-            for (d, r) in self.step.iter().zip(reach) {
-                change = change.max((alpha * d).component_mul(r).abs().max());
-            }
+            let change = self.tresca_change(mass, reach, v_free, contacts, v)?;
             // A small step under bounds just taken from the velocities: Coulomb's fixed point.
             // A small step under older bounds: Tresca's problem solved, the bounds move.
             let settled = change <= tolerance_m_s;
@@ -1049,9 +1056,7 @@ impl WallNewton {
         let g_dt = tolerance_m_s * 1e10;
         let mut used = 0;
         for _ in 0..MAX_INTERIOR_UPDATES {
-            self.bounds.clear();
-            self.bounds
-                .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
+            self.bounds_from(contacts, v);
             used += self.tresca_interior(mass, v_free, contacts, v, g_dt)?;
             for _ in 0..MAX_POLISH {
                 self.gradient_at(mass, v_free, contacts, v);
@@ -1060,9 +1065,7 @@ impl WallNewton {
                     break;
                 }
             }
-            self.bounds.clear();
-            self.bounds
-                .extend(contacts.iter().map(|c| c.friction * c.normal_impulse(v)));
+            self.bounds_from(contacts, v);
             self.gradient_at(mass, v_free, contacts, v);
             used += 1;
             let fresh = self.tresca_change(mass, reach, v_free, contacts, v)?;
@@ -1083,10 +1086,7 @@ impl WallNewton {
                 }
             }
             if done {
-                for (c, p) in contacts.iter().zip(impulses.iter_mut()) {
-                    let bound = c.friction * c.normal_impulse(v);
-                    *p = c.impulse_at(c.velocity(v), bound).0;
-                }
+                impulses_at(contacts, v, impulses);
                 return Ok(used);
             }
         }
@@ -1191,10 +1191,7 @@ impl WallNewton {
             tolerance_m_s,
         } = *step;
         let outcome = self.settle(mass, reach, v_free, contacts, v, tolerance_m_s);
-        for (c, p) in contacts.iter().zip(impulses.iter_mut()) {
-            let bound = c.friction * c.normal_impulse(v);
-            *p = c.impulse_at(c.velocity(v), bound).0;
-        }
+        impulses_at(contacts, v, impulses);
         outcome
     }
 }
