@@ -517,6 +517,36 @@ impl WallNewton {
         }
     }
 
+    /// Fills the matrix with M + sum over contacts of n n' k_n + t t' k_t - t n' k_s (n, t a
+    /// contact's normal and tangential rows), each contact's stiffnesses (k_n, k_t, k_s) from
+    /// `stiffness` given its index (`None`: the contact adds nothing). Tresca's Jacobian, the
+    /// interior point's system and, with k_s the coupling of a sliding contact's friction to
+    /// its normal velocity, Coulomb's Jacobian.
+    fn assemble(
+        &mut self,
+        mass: &[Vector3<f64>],
+        contacts: &[Contact],
+        mut stiffness: impl FnMut(usize, &Contact) -> Option<(f64, f64, f64)>,
+    ) {
+        self.values.iter_mut().for_each(|x| *x = 0.0);
+        for (i, m) in mass.iter().enumerate() {
+            self.add(i, i, &Matrix3::from_diagonal(m));
+        }
+        for (s, c) in contacts.iter().enumerate() {
+            let Some((kn, kt, ks)) = stiffness(s, c) else {
+                continue;
+            };
+            for a in c.parts.iter().flatten() {
+                for b in c.parts.iter().flatten() {
+                    let block = a.rows[0] * b.rows[0].transpose() * kn
+                        + a.rows[1] * b.rows[1].transpose() * kt
+                        - a.rows[1] * b.rows[0].transpose() * ks;
+                    self.add(a.body, b.body, &block);
+                }
+            }
+        }
+    }
+
     /// The friction bounds mu p_n that the velocities `v` give.
     fn bounds_from(&mut self, contacts: &[Contact], v: &[Vector3<f64>]) {
         self.bounds.clear();
@@ -552,35 +582,21 @@ impl WallNewton {
         contacts: &[Contact],
         v: &[Vector3<f64>],
     ) -> bool {
-        self.values.iter_mut().for_each(|x| *x = 0.0);
-        for (i, m) in mass.iter().enumerate() {
-            self.add(i, i, &Matrix3::from_diagonal(m));
-        }
         // The bounds lent out while the blocks are added to the matrix beside them.
         let bounds = std::mem::take(&mut self.bounds);
-        for (c, &bound) in contacts.iter().zip(&bounds) {
+        self.assemble(mass, contacts, |s, c| {
             let u = c.velocity(v);
             // At rest (u_n exactly on its target) the contact counts as closed: a resting
             // wall's first step starts there, and an open Jacobian would send it into free fall.
             let closed = u.x <= c.target_m_s;
-            let (_, sticks) = c.impulse_at(u, bound);
-            if !closed && !sticks {
-                continue;
-            }
+            let (_, sticks) = c.impulse_at(u, bounds[s]);
             let stiffness = 1.0 / c.compliance;
-            for a in c.parts.iter().flatten() {
-                for b in c.parts.iter().flatten() {
-                    let mut block = Matrix3::zeros();
-                    if closed {
-                        block += a.rows[0] * b.rows[0].transpose() * stiffness;
-                    }
-                    if sticks {
-                        block += a.rows[1] * b.rows[1].transpose() * stiffness;
-                    }
-                    self.add(a.body, b.body, &block);
-                }
-            }
-        }
+            (closed || sticks).then_some((
+                if closed { stiffness } else { 0.0 },
+                if sticks { stiffness } else { 0.0 },
+                0.0,
+            ))
+        });
         self.bounds = bounds;
         let matrix = SparseColMatRef::new(self.symbolic.as_ref(), &self.values);
         self.cholesky.factorise(matrix)
@@ -687,38 +703,24 @@ impl WallNewton {
         contacts: &[Contact],
         v: &[Vector3<f64>],
     ) -> Option<Lu<usize, f64>> {
-        self.values.iter_mut().for_each(|x| *x = 0.0);
-        for (i, m) in mass.iter().enumerate() {
-            self.add(i, i, &Matrix3::from_diagonal(m));
-        }
-        for c in contacts {
+        self.assemble(mass, contacts, |_, c| {
             let u = c.velocity(v);
             let closed = u.x <= c.target_m_s;
             let (_, sticks) = c.impulse_at(u, c.friction * c.normal_impulse(v));
-            if !closed && !sticks {
-                continue;
-            }
             let stiffness = 1.0 / c.compliance;
             // Sliding in direction s = sign(u_t): p_t = s mu (u_n - target) / eps.
-            let slip = if closed && !sticks {
-                u.y.signum() * c.friction * stiffness
-            } else {
-                0.0
-            };
-            for a in c.parts.iter().flatten() {
-                for b in c.parts.iter().flatten() {
-                    let mut block = Matrix3::zeros();
-                    if closed {
-                        block += a.rows[0] * b.rows[0].transpose() * stiffness;
-                    }
-                    if sticks {
-                        block += a.rows[1] * b.rows[1].transpose() * stiffness;
-                    }
-                    block -= a.rows[1] * b.rows[0].transpose() * slip;
-                    self.add(a.body, b.body, &block);
-                }
-            }
-        }
+            (closed || sticks).then(|| {
+                (
+                    if closed { stiffness } else { 0.0 },
+                    if sticks { stiffness } else { 0.0 },
+                    if closed && !sticks {
+                        u.y.signum() * c.friction * stiffness
+                    } else {
+                        0.0
+                    },
+                )
+            })
+        });
         let matrix = SparseColMatRef::new(self.symbolic.as_ref(), &self.values);
         Lu::try_new_with_symbolic(self.lu.clone(), matrix).ok()
     }
@@ -949,20 +951,10 @@ impl WallNewton {
                 let g = k.constraint_values(c, c.velocity(v));
                 k.residual = std::array::from_fn(|i| g[i] - k.w[i]);
             }
-            self.values.iter_mut().for_each(|x| *x = 0.0);
-            for (i, m) in mass.iter().enumerate() {
-                self.add(i, i, &Matrix3::from_diagonal(m));
-            }
-            for (c, k) in contacts.iter().zip(&slacks) {
-                let (kn, kt) = k.stiffness(c.compliance);
-                for a in c.parts.iter().flatten() {
-                    for b in c.parts.iter().flatten() {
-                        let block = a.rows[0] * b.rows[0].transpose() * kn
-                            + a.rows[1] * b.rows[1].transpose() * kt;
-                        self.add(a.body, b.body, &block);
-                    }
-                }
-            }
+            self.assemble(mass, contacts, |s, c| {
+                let (kn, kt) = slacks[s].stiffness(c.compliance);
+                Some((kn, kt, 0.0))
+            });
             let matrix = SparseColMatRef::new(self.symbolic.as_ref(), &self.values);
             if !self.cholesky.factorise(matrix) {
                 // Deep in the path the barrier's curvatures span more than the factorisation's
