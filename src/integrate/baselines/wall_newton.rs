@@ -108,9 +108,11 @@ struct Slacks {
     dw: [f64; 4],
     dl: [f64; 4],
     d_local: [f64; 3],
-    /// Condensed right-hand sides of the local equations, kept between condense and expand.
+    /// Condensed right-hand sides of the local equations, and the force they add to the
+    /// blocks' equations, kept between condense and expand.
     rhs_s: f64,
-    rhs_zr: [f64; 2],
+    tangent_rhs: [f64; 2],
+    force: Vector2<f64>,
 }
 
 impl Slacks {
@@ -130,7 +132,8 @@ impl Slacks {
             dl: [0.0; 4],
             d_local: [0.0; 3],
             rhs_s: 0.0,
-            rhs_zr: [0.0; 2],
+            tangent_rhs: [0.0; 2],
+            force: Vector2::zeros(),
         };
         k.w = k.constraint_values(c, u);
         if !k.tangential() {
@@ -205,62 +208,95 @@ impl Slacks {
 
     /// Eliminates the local variables from this direction's equations: returns the force
     /// (normal, tangential) they add to the blocks' right-hand side.
+    ///
+    /// Written so that no curvature l / w multiplies a computed quantity: deep in the path
+    /// they pass 1e19 while the blocks' rows stay near 1 / eps, and a product such as
+    /// d3 dg3 would carry d3 times dg3's round-off into the impulses. With e_i = (target_i -
+    /// l_i residual_i) / w_i, the normal force is (e1 (1/eps + d2) - d1 (R_s + e2)) / a_s
+    /// (R_s = l1 + l2 - s / eps the balance of s, a_s = 1/eps + d1 + d2); the tangential one
+    /// is R_z - X / (1 + eps H) (R_z = l3 - l4 - z / eps, H = 4 d3 d4 / (d3 + d4), X = R_z -
+    /// (d3 - d4) / (d3 + d4) R_r + 2 d4 e3 / (d3 + d4) - 2 d3 e4 / (d3 + d4), R_r = l3 + l4 -
+    /// b the balance of r), each e_i / (d3 + d4) formed as (target_i - l_i residual_i) /
+    /// (l_i + w_i d_j), j the other tangential constraint.
     fn condense(&mut self, eps: f64) -> Vector2<f64> {
         let d = self.curvatures();
         let n = self.constraints();
-        let e: [f64; 4] = std::array::from_fn(|i| {
+        let lifted: [f64; 4] = std::array::from_fn(|i| {
             if i < n {
-                (self.target[i] - self.l[i] * self.residual[i]) / self.w[i]
+                self.target[i] - self.l[i] * self.residual[i]
             } else {
                 0.0
             }
         });
+        let e: [f64; 4] = std::array::from_fn(|i| if i < n { lifted[i] / self.w[i] } else { 0.0 });
         let a_s = 1.0 / eps + d[0] + d[1];
-        self.rhs_s = -(self.s / eps - self.l[0] - self.l[1]) + e[0] + e[1];
-        let normal = e[0] - d[0] * self.rhs_s / a_s;
+        let r_s = self.l[0] + self.l[1] - self.s / eps;
+        self.rhs_s = r_s + e[0] + e[1];
+        let normal = (e[0] * (1.0 / eps + d[1]) - d[0] * (r_s + e[1])) / a_s;
         if !self.tangential() {
-            return Vector2::new(normal, 0.0);
+            self.force = Vector2::new(normal, 0.0);
+            return self.force;
         }
-        let (rz, rr) = (
-            -(self.z / eps - self.l[2] + self.l[3]) + e[2] - e[3],
-            -(self.bound - self.l[2] - self.l[3]) + e[2] + e[3],
+        let sum = d[2] + d[3];
+        let h = 4.0 * d[2] * d[3] / sum;
+        let (e3, e4) = (
+            lifted[2] / (self.l[2] + self.w[2] * d[3]),
+            lifted[3] / (self.l[3] + self.w[3] * d[2]),
         );
-        self.rhs_zr = [rz, rr];
-        let (y0, y1) = self.local_solve(eps, rz, rr);
-        let (k0, k1) = (-(d[2] + d[3]), d[3] - d[2]);
-        Vector2::new(normal, -e[2] + e[3] - (k0 * y0 + k1 * y1))
-    }
-
-    /// The 2 x 2 system of z and r: [[1/eps + d3 + d4, d3 - d4], [d3 - d4, d3 + d4]].
-    fn local_solve(&self, eps: f64, b0: f64, b1: f64) -> (f64, f64) {
-        let [_, _, d3, d4] = self.curvatures();
-        let (a, c, dd) = (1.0 / eps + d3 + d4, d3 - d4, d3 + d4);
-        let det = dd / eps + 4.0 * d3 * d4;
-        ((dd * b0 - c * b1) / det, (-c * b0 + a * b1) / det)
+        let r_z = self.l[2] - self.l[3] - self.z / eps;
+        let r_r = self.l[2] + self.l[3] - self.bound;
+        let x = r_z - (d[2] - d[3]) / sum * r_r + 2.0 * d[3] * e3 - 2.0 * d[2] * e4;
+        self.tangent_rhs = [x, r_r / sum + e3 + e4];
+        self.force = Vector2::new(normal, r_z - x / (1.0 + eps * h));
+        self.force
     }
 
     /// Recovers the local variables' and the constraints' parts of the direction from the
-    /// contact's relative velocity along it, `du`.
+    /// contact's relative velocity along it, `du`. The impulse changes by the f - K du that
+    /// the blocks' system assumed; each multiplier comes from its complementarity (its change
+    /// good to l / w times its slack's round-off) only where l / w is under 1 / eps, the
+    /// stiffest the blocks' rows get, and from the balances of s and r elsewhere.
     fn expand(&mut self, eps: f64, du: Vector2<f64>) {
         let d = self.curvatures();
+        let (kn, kt) = self.stiffness(eps);
+        let dp = self.force - Vector2::new(kn * du.x, kt * du.y);
         let ds = (self.rhs_s - d[0] * du.x) / (1.0 / eps + d[0] + d[1]);
         let (mut dz, mut dr) = (0.0, 0.0);
         if self.tangential() {
-            let (k0, k1) = (-(d[2] + d[3]), d[3] - d[2]);
-            (dz, dr) =
-                self.local_solve(eps, self.rhs_zr[0] - k0 * du.y, self.rhs_zr[1] - k1 * du.y);
+            let sum = d[2] + d[3];
+            let h = 4.0 * d[2] * d[3] / sum;
+            let [x, r0] = self.tangent_rhs;
+            dz = eps * (x + h * du.y) / (1.0 + eps * h);
+            dr = r0 + (d[2] - d[3]) / sum * (du.y - dz);
         }
         self.d_local = [ds, dz, dr];
         let dg = [ds + du.x, ds, dr - du.y + dz, dr + du.y - dz];
         let n = self.constraints();
         self.dw = std::array::from_fn(|i| if i < n { dg[i] + self.residual[i] } else { 0.0 });
-        self.dl = std::array::from_fn(|i| {
-            if i < n {
-                (self.target[i] - self.l[i] * self.dw[i]) / self.w[i]
+        let complementary = |k: &Slacks, i: usize| (k.target[i] - k.l[i] * k.dw[i]) / k.w[i];
+        let stiff = |i: usize| d[i] * eps > 1.0;
+        self.dl = [0.0; 4];
+        self.dl[0] = dp.x;
+        self.dl[1] = if stiff(1) {
+            // s's balance: ds / eps - dl1 - dl2 = l1 + l2 - s / eps.
+            ds / eps - dp.x - (self.l[0] + self.l[1] - self.s / eps)
+        } else {
+            complementary(self, 1)
+        };
+        if self.tangential() {
+            if stiff(2) && stiff(3) {
+                // r's balance: dl3 + dl4 = b - l3 - l4.
+                let r_balance = self.bound - self.l[2] - self.l[3];
+                self.dl[2] = 0.5 * (r_balance - dp.y);
+                self.dl[3] = 0.5 * (r_balance + dp.y);
+            } else if d[2] <= d[3] {
+                self.dl[2] = complementary(self, 2);
+                self.dl[3] = self.dl[2] + dp.y;
             } else {
-                0.0
+                self.dl[3] = complementary(self, 3);
+                self.dl[2] = self.dl[3] - dp.y;
             }
-        });
+        }
     }
 
     /// The longest step along every contact's direction that keeps every slack and
@@ -1064,15 +1100,7 @@ impl WallNewton {
             let mut done = fresh <= ROUND_OFF_FLOOR * tolerance_m_s;
             if !done {
                 // As after the fixed point's stall: Coulomb's Newton from this iterate.
-                if let Ok(n) = self.coulomb(
-                    mass,
-                    reach,
-                    v_free,
-                    contacts,
-                    v,
-                    tolerance_m_s,
-                    EARLY_NEWTON,
-                ) {
+                if let Some(n) = self.try_coulomb(mass, reach, v_free, contacts, v, tolerance_m_s) {
                     used += n;
                     done = true;
                 }
@@ -1083,6 +1111,35 @@ impl WallNewton {
             }
         }
         Err(Stall::Iterations)
+    }
+
+    /// Coulomb's Newton from `v` for at most [`EARLY_NEWTON`] steps, and the steps it took;
+    /// where it does not converge, `v` is given back as it came (Newton's last iterate may
+    /// lie far from any answer).
+    fn try_coulomb(
+        &mut self,
+        mass: &[Vector3<f64>],
+        reach: &[Vector3<f64>],
+        v_free: &[Vector3<f64>],
+        contacts: &[Contact],
+        v: &mut [Vector3<f64>],
+        tolerance_m_s: f64,
+    ) -> Option<usize> {
+        self.stalled_at.clear();
+        self.stalled_at.extend_from_slice(v);
+        let tried = self.coulomb(
+            mass,
+            reach,
+            v_free,
+            contacts,
+            v,
+            tolerance_m_s,
+            EARLY_NEWTON,
+        );
+        if tried.is_err() {
+            v.copy_from_slice(&self.stalled_at);
+        }
+        tried.ok()
     }
 
     /// One Newton step on Tresca's problem (see [`WallNewton::tresca_step`]), and how far it
@@ -1147,20 +1204,11 @@ impl WallNewton {
                 FixedPoint::Stalled(n) => {
                     used += n;
                     stop_at_stall = false;
-                    self.stalled_at.clear();
-                    self.stalled_at.extend_from_slice(v);
-                    if let Ok(k) = self.coulomb(
-                        mass,
-                        reach,
-                        v_free,
-                        contacts,
-                        v,
-                        tolerance_m_s,
-                        EARLY_NEWTON,
-                    ) {
+                    if let Some(k) =
+                        self.try_coulomb(mass, reach, v_free, contacts, v, tolerance_m_s)
+                    {
                         return Ok(used + k);
                     }
-                    v.copy_from_slice(&self.stalled_at);
                 }
             }
         }
@@ -1216,6 +1264,66 @@ mod tests {
             })
             .collect();
         (contacts, Vector3::new(m, m, m * (1.0 + 0.25) / 12.0))
+    }
+
+    /// Deep in the interior point's path a contact's constraints sit within 1e-21 m/s of their
+    /// bounds, where l / w reaches 1e19: a multiplier's change read from its complementarity
+    /// is then off by that times the round-off of its slack's change (about 1e3 N s here),
+    /// and a force condensed through such a curvature likewise. The direction must still solve
+    /// every one of the contact's linear equations to round-off of its terms: the blocks' (the
+    /// impulse changes by the f - K du their condensed system assumed), the balances of s, z
+    /// and r, and each constraint's linearised complementarity, or the blocks stop balancing
+    /// (the uniform 976-block wall of docs/rocking-walls.md). Closed and sliding forward, then
+    /// closed and sticking.
+    #[test]
+    fn a_contact_at_its_bounds_solves_its_linear_equations() {
+        let eps = 1e-8;
+        let (contacts, _) = block_on(&[0.0], &[eps], 0.6);
+        let b = 0.018;
+        let holds = |what: &str, terms: &[f64]| {
+            let (sum, size) = terms
+                .iter()
+                .fold((0.0, 0.0), |(s, a), t| (s + t, a + t.abs()));
+            assert!(
+                sum.abs() <= 1e-12 * size,
+                "{what}: off by {sum:e} in terms of {size:e}"
+            );
+        };
+        for (w, l) in [
+            ([1e-22, 3e-10, 1e-21, 2e-2], [0.03, 1e-19, 0.018, 1e-20]),
+            ([1e-22, 3e-10, 1e-21, 3e-21], [0.03, 1e-19, 0.012, 0.006]),
+        ] {
+            let mut k = Slacks::start(&contacts[0], b, Vector2::zeros(), 1.0, 0.03);
+            (k.s, k.z, k.r) = (3e-10, 1e-10, 1e-2);
+            (k.w, k.l) = (w, l);
+            k.residual = [2e-23, -1e-23, 5e-22, 0.0];
+            k.target = [1e-24; 4];
+            let f = k.condense(eps);
+            let du = Vector2::new(2.5e-12, -1.5e-12);
+            k.expand(eps, du);
+            let (kn, kt) = k.stiffness(eps);
+            let ([ds, dz, dr], dl, dw) = (k.d_local, k.dl, k.dw);
+            holds("normal impulse", &[dl[0], -f.x, kn * du.x]);
+            holds("tangential impulse", &[dl[3], -dl[2], -f.y, kt * du.y]);
+            holds("s", &[ds / eps, -dl[0], -dl[1], -l[0], -l[1], k.s / eps]);
+            holds("z", &[dz / eps, -dl[2], dl[3], -l[2], l[3], k.z / eps]);
+            holds("r", &[dl[2], dl[3], l[2], l[3], -b]);
+            // Each constraint's change term by term: dw is good to their round-off only.
+            let dg = [
+                vec![ds, du.x],
+                vec![ds],
+                vec![dr, -du.y, dz],
+                vec![dr, du.y, -dz],
+            ];
+            for i in 0..4 {
+                let mut slack = vec![dw[i], -k.residual[i]];
+                slack.extend(dg[i].iter().map(|t| -t));
+                holds("slack", &slack);
+                let mut complementarity = vec![w[i] * dl[i], l[i] * k.residual[i], -k.target[i]];
+                complementarity.extend(dg[i].iter().map(|t| l[i] * t));
+                holds("complementarity", &complementarity);
+            }
+        }
     }
 
     fn solve(
