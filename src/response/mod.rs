@@ -459,12 +459,15 @@ pub enum Warning {
         first_s: f64,
     },
     /// Newton's method on the whole wall converged neither in the blocks' velocities nor in
-    /// the contacts' impulses in some steps, which an interior point in the velocities solved.
+    /// the contacts' impulses in some steps, which an interior point in the velocities solved;
+    /// it was then given some of the steps after them first.
     NewtonByInteriorPoint {
         /// Those steps.
         steps: u64,
         /// The end of the first of them (s).
         first_s: f64,
+        /// Steps after them that the interior point was given first, and solved.
+        given_first: u64,
     },
 }
 
@@ -583,13 +586,26 @@ impl std::fmt::Display for Warning {
                  (docs/rocking-walls.md)",
                 to_the_nanosecond(*first_s)
             ),
-            Warning::NewtonByInteriorPoint { steps, first_s } => write!(
-                f,
-                "Newton's method converged neither in the blocks' velocities nor in the \
-                 contacts' impulses in {steps} steps (the first ending at {} s); an interior \
-                 point in the velocities solved them (docs/rocking-walls.md)",
-                to_the_nanosecond(*first_s)
-            ),
+            Warning::NewtonByInteriorPoint {
+                steps,
+                first_s,
+                given_first,
+            } => {
+                write!(
+                    f,
+                    "Newton's method converged neither in the blocks' velocities nor in the \
+                     contacts' impulses in {steps} steps (the first ending at {} s); an \
+                     interior point in the velocities solved them",
+                    to_the_nanosecond(*first_s)
+                )?;
+                if *given_first > 0 {
+                    write!(
+                        f,
+                        ", and {given_first} steps after them that it was given first"
+                    )?;
+                }
+                write!(f, " (docs/rocking-walls.md)")
+            }
         }
     }
 }

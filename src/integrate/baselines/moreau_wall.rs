@@ -14,7 +14,7 @@
 
 use super::release::released;
 use super::wall_dual::WallDual;
-use super::wall_newton::{Contact, Part, StepProblem, WallNewton, COMPLIANCE};
+use super::wall_newton::{Contact, Part, Stall, StepProblem, WallNewton, COMPLIANCE};
 use crate::error::SimulationError;
 use crate::integrate::stepping::{lerp, outputs_in_step, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Scenario};
@@ -428,6 +428,7 @@ impl Integrator for MoreauWall {
         let mut fell_back = 0u64;
         let (mut in_impulses, mut first_in_impulses) = (0u64, None);
         let (mut by_interior, mut first_by_interior) = (0u64, None);
+        let mut interior_first = 0u64;
         // When the solvers first failed, and which block each unconverged step left changing
         // fastest (counted per block): what the warnings say of where.
         let (mut first_unconverged, mut first_fell_back) = (None, None);
@@ -521,6 +522,7 @@ impl Integrator for MoreauWall {
                         by_interior += 1;
                         first_by_interior.get_or_insert(k as f64 * dt);
                     }
+                    Solved::InteriorFirst => interior_first += 1,
                     Solved::Neither => {
                         fell_back += 1;
                         first_fell_back.get_or_insert(k as f64 * dt);
@@ -727,6 +729,7 @@ impl Integrator for MoreauWall {
             rec.warnings.push(Warning::NewtonByInteriorPoint {
                 steps: by_interior,
                 first_s,
+                given_first: interior_first,
             });
         }
         if let Some(first_s) = first_fell_back {
@@ -768,7 +771,16 @@ struct NewtonStep {
     /// contacts' impulses, from the last step's.
     dual: WallDual,
     last_impulses: Vec<Vector2<f64>>,
+    /// Steps still to try the interior point first: after a step only it solved, the next
+    /// [`INTERIOR_FIRST`] - 1 try it first, then one goes through the usual order again.
+    interior_first_left: usize,
 }
+
+/// Where the interior point solved a step the others could not, it is tried first in the
+/// steps that follow, for this many steps at a time: the three solvers before it fail
+/// there at several times its cost (docs/rocking-walls.md), and one step in this many tries
+/// them again to find where the wall has become easy.
+const INTERIOR_FIRST: usize = 8;
 
 impl NewtonStep {
     fn new(bodies: &[Body], candidates: &[Candidate]) -> NewtonStep {
@@ -801,6 +813,7 @@ impl NewtonStep {
             v_free: Vec::new(),
             dual: WallDual::default(),
             last_impulses: Vec::new(),
+            interior_first_left: 0,
         }
     }
 
@@ -855,21 +868,40 @@ impl NewtonStep {
             contacts: &self.contacts,
             tolerance_m_s,
         };
-        let mut solved = Solved::InVelocities;
-        let mut outcome = self.solver.solve(&step, v, &mut self.impulses);
-        if outcome.is_err() {
-            solved = Solved::InImpulses;
-            self.impulses.clone_from(&self.last_impulses);
-            outcome = self.dual.solve(&step, v, &mut self.impulses);
-        }
-        if outcome.is_err() {
-            solved = Solved::ByInteriorPoint;
+        let restart = |v: &mut [Vector3<f64>]| {
             for (i, vi) in v.iter_mut().enumerate() {
                 if moves(i) {
                     *vi = v_start[i];
                 }
             }
+        };
+        let interior_first = self.interior_first_left > 0;
+        let mut solved = Solved::InteriorFirst;
+        let mut outcome = Err(Stall::Iterations);
+        if interior_first {
+            self.interior_first_left -= 1;
             outcome = self.solver.solve_interior(&step, v, &mut self.impulses);
+            if outcome.is_err() {
+                self.interior_first_left = 0;
+                restart(v);
+            }
+        }
+        if outcome.is_err() {
+            solved = Solved::InVelocities;
+            outcome = self.solver.solve(&step, v, &mut self.impulses);
+        }
+        if outcome.is_err() {
+            solved = Solved::InImpulses;
+            self.impulses.clone_from(&self.last_impulses);
+            outcome = self.dual.solve(&step, v, &mut self.impulses);
+        }
+        if outcome.is_err() && !interior_first {
+            solved = Solved::ByInteriorPoint;
+            restart(v);
+            outcome = self.solver.solve_interior(&step, v, &mut self.impulses);
+            if outcome.is_ok() {
+                self.interior_first_left = INTERIOR_FIRST - 1;
+            }
         }
         if outcome.is_err() {
             // Back to the free velocities, the last step's impulses left for Gauss-Seidel's
@@ -893,6 +925,8 @@ enum Solved {
     InImpulses,
     /// By the interior point in the blocks' velocities, where both failed.
     ByInteriorPoint,
+    /// By the interior point, tried first after a step only it solved ([`INTERIOR_FIRST`]).
+    InteriorFirst,
     /// By neither: Gauss-Seidel's turn.
     Neither,
 }
