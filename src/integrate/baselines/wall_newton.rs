@@ -240,16 +240,16 @@ impl Slacks {
             self.force = Vector2::new(normal, 0.0);
             return self.force;
         }
-        let sum = d[2] + d[3];
-        let h = 4.0 * d[2] * d[3] / sum;
-        let (e3, e4) = (
+        let (sum, h) = tangential_sum_and_harmonic(d);
+        // e_3 / (d3 + d4) and e_4 / (d3 + d4).
+        let (e3_share, e4_share) = (
             lifted[2] / (self.l[2] + self.w[2] * d[3]),
             lifted[3] / (self.l[3] + self.w[3] * d[2]),
         );
         let r_z = self.l[2] - self.l[3] - self.z / eps;
         let r_r = self.l[2] + self.l[3] - self.bound;
-        let x = r_z - (d[2] - d[3]) / sum * r_r + 2.0 * d[3] * e3 - 2.0 * d[2] * e4;
-        self.tangent_rhs = [x, r_r / sum + e3 + e4];
+        let x = r_z - (d[2] - d[3]) / sum * r_r + 2.0 * d[3] * e3_share - 2.0 * d[2] * e4_share;
+        self.tangent_rhs = [x, r_r / sum + e3_share + e4_share];
         self.force = Vector2::new(normal, r_z - x / (1.0 + eps * h));
         self.force
     }
@@ -266,8 +266,7 @@ impl Slacks {
         let ds = (self.rhs_s - d[0] * du.x) / (1.0 / eps + d[0] + d[1]);
         let (mut dz, mut dr) = (0.0, 0.0);
         if self.tangential() {
-            let sum = d[2] + d[3];
-            let h = 4.0 * d[2] * d[3] / sum;
+            let (sum, h) = tangential_sum_and_harmonic(d);
             let [x, r0] = self.tangent_rhs;
             dz = eps * (x + h * du.y) / (1.0 + eps * h);
             dr = r0 + (d[2] - d[3]) / sum * (du.y - dz);
@@ -328,6 +327,13 @@ impl Slacks {
             self.l[i] += alpha * self.dl[i];
         }
     }
+}
+
+/// Of the tangential curvatures d3, d4 (`d[2]`, `d[3]`): their sum and H = 4 d3 d4 / (d3 +
+/// d4), the curvature r's elimination leaves on u_t - z.
+fn tangential_sum_and_harmonic(d: [f64; 4]) -> (f64, f64) {
+    let sum = d[2] + d[3];
+    (sum, 4.0 * d[2] * d[3] / sum)
 }
 
 /// One moving block's share of a contact: the rows of the contact's (normal, tangential)
