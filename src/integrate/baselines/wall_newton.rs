@@ -1109,7 +1109,7 @@ impl WallNewton {
             let mut done = fresh <= ROUND_OFF_FLOOR * tolerance_m_s;
             if !done {
                 // As after the fixed point's stall: Coulomb's Newton from this iterate.
-                if let Some(n) = self.try_coulomb(mass, reach, v_free, contacts, v, tolerance_m_s) {
+                if let Some(n) = self.try_coulomb(step, v) {
                     used += n;
                     done = true;
                 }
@@ -1125,15 +1125,14 @@ impl WallNewton {
     /// Coulomb's Newton from `v` for at most [`EARLY_NEWTON`] steps, and the steps it took;
     /// where it does not converge, `v` is given back as it came (Newton's last iterate may
     /// lie far from any answer).
-    fn try_coulomb(
-        &mut self,
-        mass: &[Vector3<f64>],
-        reach: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
-        v: &mut [Vector3<f64>],
-        tolerance_m_s: f64,
-    ) -> Option<usize> {
+    fn try_coulomb(&mut self, step: &StepProblem<'_>, v: &mut [Vector3<f64>]) -> Option<usize> {
+        let StepProblem {
+            mass,
+            reach,
+            v_free,
+            contacts,
+            tolerance_m_s,
+        } = *step;
         self.stalled_at.clear();
         self.stalled_at.extend_from_slice(v);
         let tried = self.coulomb(
@@ -1173,15 +1172,14 @@ impl WallNewton {
     /// The fixed point on the bounds, and where it stalls, Coulomb's Newton from its iterate
     /// for at most [`EARLY_NEWTON`] steps; where that fails, the fixed point goes on from where
     /// it stalled for the rest of its iterations, then Coulomb's Newton for its own.
-    fn settle(
-        &mut self,
-        mass: &[Vector3<f64>],
-        reach: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
-        v: &mut [Vector3<f64>],
-        tolerance_m_s: f64,
-    ) -> Result<usize, Stall> {
+    fn settle(&mut self, step: &StepProblem<'_>, v: &mut [Vector3<f64>]) -> Result<usize, Stall> {
+        let StepProblem {
+            mass,
+            reach,
+            v_free,
+            contacts,
+            tolerance_m_s,
+        } = *step;
         let mut used = 0;
         let mut stop_at_stall = true;
         loop {
@@ -1213,9 +1211,7 @@ impl WallNewton {
                 FixedPoint::Stalled(n) => {
                     used += n;
                     stop_at_stall = false;
-                    if let Some(k) =
-                        self.try_coulomb(mass, reach, v_free, contacts, v, tolerance_m_s)
-                    {
+                    if let Some(k) = self.try_coulomb(step, v) {
                         return Ok(used + k);
                     }
                 }
@@ -1232,15 +1228,8 @@ impl WallNewton {
         v: &mut [Vector3<f64>],
         impulses: &mut [Vector2<f64>],
     ) -> Result<usize, Stall> {
-        let StepProblem {
-            mass,
-            reach,
-            v_free,
-            contacts,
-            tolerance_m_s,
-        } = *step;
-        let outcome = self.settle(mass, reach, v_free, contacts, v, tolerance_m_s);
-        impulses_at(contacts, v, impulses);
+        let outcome = self.settle(step, v);
+        impulses_at(step.contacts, v, impulses);
         outcome
     }
 }
