@@ -600,13 +600,13 @@ impl WallNewton {
     }
 
     /// The potential's gradient M (v - v_free) - sum H' p(v) under the current bounds.
-    fn gradient_at(
-        &mut self,
-        mass: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
-        v: &[Vector3<f64>],
-    ) {
+    fn gradient_at(&mut self, step: &StepProblem<'_>, v: &[Vector3<f64>]) {
+        let StepProblem {
+            mass,
+            v_free,
+            contacts,
+            ..
+        } = *step;
         for (i, g) in self.gradient.iter_mut().enumerate() {
             *g = mass[i].component_mul(&(v[i] - v_free[i]));
         }
@@ -621,12 +621,8 @@ impl WallNewton {
     /// The Jacobian of the gradient at `v` (the contacts closing or at rest add their normal
     /// stiffness, those sticking their tangential one), factorised in `self.cholesky`; false
     /// if it is not positive definite.
-    fn jacobian(
-        &mut self,
-        mass: &[Vector3<f64>],
-        contacts: &[Contact],
-        v: &[Vector3<f64>],
-    ) -> bool {
+    fn jacobian(&mut self, step: &StepProblem<'_>, v: &[Vector3<f64>]) -> bool {
+        let StepProblem { mass, contacts, .. } = *step;
         // The bounds lent out while the blocks are added to the matrix beside them.
         let bounds = std::mem::take(&mut self.bounds);
         self.assemble(mass, contacts, |s, c| {
@@ -652,13 +648,13 @@ impl WallNewton {
     /// that derivative safeguarded by bisection (exact in a few steps: a full step where the
     /// contacts' states it assumed hold), stopping where the derivative is zero within the
     /// round-off of its sum.
-    fn line_minimum(
-        &mut self,
-        mass: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
-        v: &[Vector3<f64>],
-    ) -> f64 {
+    fn line_minimum(&mut self, step: &StepProblem<'_>, v: &[Vector3<f64>]) -> f64 {
+        let StepProblem {
+            mass,
+            v_free,
+            contacts,
+            ..
+        } = *step;
         let (mut a, mut b) = (0.0, 0.0);
         for (i, d) in self.step.iter().enumerate() {
             let md = mass[i].component_mul(d);
@@ -722,19 +718,13 @@ impl WallNewton {
 
     /// Coulomb's residual at `v`, the gradient with the bounds taken from `v` itself (left in
     /// `self.gradient`), and its size 1/2 F' M^-1 F.
-    fn residual(
-        &mut self,
-        mass: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
-        v: &[Vector3<f64>],
-    ) -> f64 {
-        self.bounds_from(contacts, v);
-        self.gradient_at(mass, v_free, contacts, v);
+    fn residual(&mut self, step: &StepProblem<'_>, v: &[Vector3<f64>]) -> f64 {
+        self.bounds_from(step.contacts, v);
+        self.gradient_at(step, v);
         0.5 * self
             .gradient
             .iter()
-            .zip(mass)
+            .zip(step.mass)
             .map(|(g, m)| g.component_div(m).dot(g))
             .sum::<f64>()
     }
@@ -744,11 +734,10 @@ impl WallNewton {
     /// makes it unsymmetric).
     fn coulomb_jacobian(
         &mut self,
-        mass: &[Vector3<f64>],
-        contacts: &[Contact],
+        step: &StepProblem<'_>,
         v: &[Vector3<f64>],
     ) -> Option<Lu<usize, f64>> {
-        self.assemble(mass, contacts, |_, c| {
+        self.assemble(step.mass, step.contacts, |_, c| {
             let u = c.velocity(v);
             let closed = u.x <= c.target_m_s;
             let (_, sticks) = c.impulse_at(u, c.friction * c.normal_impulse(v));
@@ -796,15 +785,13 @@ impl WallNewton {
     /// the returned length times `self.step`.
     fn tresca_step(
         &mut self,
-        mass: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
+        step: &StepProblem<'_>,
         v: &mut [Vector3<f64>],
     ) -> Result<f64, Stall> {
-        if !self.jacobian(mass, contacts, v) || !self.newton_step(None) {
+        if !self.jacobian(step, v) || !self.newton_step(None) {
             return Err(Stall::Singular);
         }
-        let alpha = self.line_minimum(mass, v_free, contacts, v);
+        let alpha = self.line_minimum(step, v);
         for (vi, d) in v.iter_mut().zip(&self.step) {
             *vi += alpha * d;
         }
@@ -814,28 +801,24 @@ impl WallNewton {
     /// Coulomb's fixed point on Tresca's problems, the first way a step is solved (see the
     /// module's comment), within `budget` Newton steps; with `stop_at_stall` it ends where it
     /// first stalls above its round-off floor.
-    #[allow(clippy::too_many_arguments)]
     fn bounds_fixed_point(
         &mut self,
-        mass: &[Vector3<f64>],
-        reach: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
+        step: &StepProblem<'_>,
         v: &mut [Vector3<f64>],
-        tolerance_m_s: f64,
         budget: usize,
         stop_at_stall: bool,
     ) -> Result<FixedPoint, Stall> {
+        let tolerance_m_s = step.tolerance_m_s;
         let mut keep_bounds = false;
         // The smallest step seen right after the bounds moved, and how many such steps since
         // have not halved it.
         let (mut best, mut stalled) = (f64::INFINITY, 0);
         for iteration in 1..=budget {
             if !keep_bounds {
-                self.bounds_from(contacts, v);
+                self.bounds_from(step.contacts, v);
             }
-            self.gradient_at(mass, v_free, contacts, v);
-            let change = self.tresca_change(mass, reach, v_free, contacts, v)?;
+            self.gradient_at(step, v);
+            let change = self.tresca_change(step, v)?;
             // A small step under bounds just taken from the velocities: Coulomb's fixed point.
             // A small step under older bounds: Tresca's problem solved, the bounds move.
             let settled = change <= tolerance_m_s;
@@ -874,20 +857,16 @@ impl WallNewton {
     /// and otherwise takes one step of Tresca's problem under the current bounds instead,
     /// which moves the iterate off the kink. Returns the Newton steps used (at most `budget`),
     /// or why it stalled.
-    #[allow(clippy::too_many_arguments)]
     fn coulomb(
         &mut self,
-        mass: &[Vector3<f64>],
-        reach: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
+        step: &StepProblem<'_>,
         v: &mut [Vector3<f64>],
-        tolerance_m_s: f64,
         budget: usize,
     ) -> Result<usize, Stall> {
-        let mut size_now = self.residual(mass, v_free, contacts, v);
+        let (reach, tolerance_m_s) = (step.reach, step.tolerance_m_s);
+        let mut size_now = self.residual(step, v);
         for iteration in 1..=budget {
-            let Some(lu) = self.coulomb_jacobian(mass, contacts, v) else {
+            let Some(lu) = self.coulomb_jacobian(step, v) else {
                 return Err(Stall::Singular);
             };
             if !self.newton_step(Some(&lu)) {
@@ -912,7 +891,7 @@ impl WallNewton {
                 for ((vi, s), d) in v.iter_mut().zip(&self.start).zip(&self.step) {
                     *vi = s + alpha * d;
                 }
-                let size = self.residual(mass, v_free, contacts, v);
+                let size = self.residual(step, v);
                 // Armijo's condition: along Newton's direction 1/2 F' M^-1 F falls at twice
                 // its value per unit step where F is smooth.
                 if size <= (1.0 - 2e-4 * alpha) * size_now {
@@ -928,9 +907,9 @@ impl WallNewton {
                     return Ok(iteration);
                 }
                 // Tresca's step under the bounds of `v`, as `residual` leaves them.
-                self.residual(mass, v_free, contacts, v);
-                self.tresca_step(mass, v_free, contacts, v)?;
-                size_now = self.residual(mass, v_free, contacts, v);
+                self.residual(step, v);
+                self.tresca_step(step, v)?;
+                size_now = self.residual(step, v);
                 break;
             }
         }
@@ -952,12 +931,16 @@ impl WallNewton {
     /// iterations.
     fn tresca_interior(
         &mut self,
-        mass: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
+        step: &StepProblem<'_>,
         v: &mut [Vector3<f64>],
         g_dt: f64,
     ) -> Result<usize, Stall> {
+        let StepProblem {
+            mass,
+            v_free,
+            contacts,
+            ..
+        } = *step;
         let mean_mass = mass.iter().map(|m| m.x).sum::<f64>() / mass.len() as f64;
         let mut slacks: Vec<Slacks> = contacts
             .iter()
@@ -1082,11 +1065,9 @@ impl WallNewton {
         impulses: &mut [Vector2<f64>],
     ) -> Result<usize, Stall> {
         let StepProblem {
-            mass,
-            reach,
-            v_free,
             contacts,
             tolerance_m_s,
+            ..
         } = *step;
         // The tolerance is 1e-10 g dt (`moreau_wall.rs`): the velocity a step's gravity gives
         // sets the slacks' first margins.
@@ -1094,18 +1075,18 @@ impl WallNewton {
         let mut used = 0;
         for _ in 0..MAX_INTERIOR_UPDATES {
             self.bounds_from(contacts, v);
-            used += self.tresca_interior(mass, v_free, contacts, v, g_dt)?;
+            used += self.tresca_interior(step, v, g_dt)?;
             for _ in 0..MAX_POLISH {
-                self.gradient_at(mass, v_free, contacts, v);
+                self.gradient_at(step, v);
                 used += 1;
-                if self.tresca_change(mass, reach, v_free, contacts, v)? <= tolerance_m_s {
+                if self.tresca_change(step, v)? <= tolerance_m_s {
                     break;
                 }
             }
             self.bounds_from(contacts, v);
-            self.gradient_at(mass, v_free, contacts, v);
+            self.gradient_at(step, v);
             used += 1;
-            let fresh = self.tresca_change(mass, reach, v_free, contacts, v)?;
+            let fresh = self.tresca_change(step, v)?;
             let mut done = fresh <= ROUND_OFF_FLOOR * tolerance_m_s;
             if !done {
                 // As after the fixed point's stall: Coulomb's Newton from this iterate.
@@ -1126,24 +1107,9 @@ impl WallNewton {
     /// where it does not converge, `v` is given back as it came (Newton's last iterate may
     /// lie far from any answer).
     fn try_coulomb(&mut self, step: &StepProblem<'_>, v: &mut [Vector3<f64>]) -> Option<usize> {
-        let StepProblem {
-            mass,
-            reach,
-            v_free,
-            contacts,
-            tolerance_m_s,
-        } = *step;
         self.stalled_at.clear();
         self.stalled_at.extend_from_slice(v);
-        let tried = self.coulomb(
-            mass,
-            reach,
-            v_free,
-            contacts,
-            v,
-            tolerance_m_s,
-            EARLY_NEWTON,
-        );
+        let tried = self.coulomb(step, v, EARLY_NEWTON);
         if tried.is_err() {
             v.copy_from_slice(&self.stalled_at);
         }
@@ -1154,17 +1120,14 @@ impl WallNewton {
     /// moved the blocks' points (m/s).
     fn tresca_change(
         &mut self,
-        mass: &[Vector3<f64>],
-        reach: &[Vector3<f64>],
-        v_free: &[Vector3<f64>],
-        contacts: &[Contact],
+        step: &StepProblem<'_>,
         v: &mut [Vector3<f64>],
     ) -> Result<f64, Stall> {
-        let alpha = self.tresca_step(mass, v_free, contacts, v)?;
+        let alpha = self.tresca_step(step, v)?;
         Ok(self
             .step
             .iter()
-            .zip(reach)
+            .zip(step.reach)
             .map(|(d, r)| (alpha * d).component_mul(r).abs().max())
             .fold(0.0, f64::max))
     }
@@ -1173,39 +1136,15 @@ impl WallNewton {
     /// for at most [`EARLY_NEWTON`] steps; where that fails, the fixed point goes on from where
     /// it stalled for the rest of its iterations, then Coulomb's Newton for its own.
     fn settle(&mut self, step: &StepProblem<'_>, v: &mut [Vector3<f64>]) -> Result<usize, Stall> {
-        let StepProblem {
-            mass,
-            reach,
-            v_free,
-            contacts,
-            tolerance_m_s,
-        } = *step;
         let mut used = 0;
         let mut stop_at_stall = true;
         loop {
             let budget = MAX_ITERATIONS - used;
-            match self.bounds_fixed_point(
-                mass,
-                reach,
-                v_free,
-                contacts,
-                v,
-                tolerance_m_s,
-                budget,
-                stop_at_stall,
-            )? {
+            match self.bounds_fixed_point(step, v, budget, stop_at_stall)? {
                 FixedPoint::Settled(n) => return Ok(used + n),
                 FixedPoint::Exhausted => {
                     return self
-                        .coulomb(
-                            mass,
-                            reach,
-                            v_free,
-                            contacts,
-                            v,
-                            tolerance_m_s,
-                            MAX_ITERATIONS,
-                        )
+                        .coulomb(step, v, MAX_ITERATIONS)
                         .map(|n| n + MAX_ITERATIONS);
                 }
                 FixedPoint::Stalled(n) => {
@@ -1421,16 +1360,14 @@ mod tests {
             let (expected, _) = solve(&contacts, mass, v_free, Vector3::zeros());
             let mut solver = WallNewton::new(1, []);
             let mut v = [Vector3::zeros()];
-            let reach = [Vector3::new(1.0, 1.0, 0.56)];
-            let used = solver.coulomb(
-                &[mass],
-                &reach,
-                &[v_free],
-                &contacts,
-                &mut v,
-                1e-10 * G_DT,
-                MAX_ITERATIONS,
-            );
+            let step = StepProblem {
+                mass: &[mass],
+                reach: &[Vector3::new(1.0, 1.0, 0.56)],
+                v_free: &[v_free],
+                contacts: &contacts,
+                tolerance_m_s: 1e-10 * G_DT,
+            };
+            let used = solver.coulomb(&step, &mut v, MAX_ITERATIONS);
             assert!(matches!(used, Ok(1..=8)), "{used:?}");
             assert!(
                 (v[0] - expected).abs().max() < 2e-10 * G_DT,
