@@ -443,7 +443,9 @@ pub enum Warning {
         blocks: Vec<(String, u64)>,
     },
     /// Newton's method on the whole wall (Moreau-Jean with rotations, `--contact-solver
-    /// newton`) stopped at its iteration limit in some steps, which Gauss-Seidel solved instead.
+    /// newton`) stopped at its iteration limit in some steps, which were given to Gauss-Seidel
+    /// instead (where Gauss-Seidel does not settle them either, [`Warning::Unconverged`] counts
+    /// them too).
     NewtonFellBack {
         /// Those steps.
         steps: u64,
@@ -576,7 +578,8 @@ impl std::fmt::Display for Warning {
             Warning::NewtonFellBack { steps, first_s } => write!(
                 f,
                 "Newton's method did not converge within its iterations in {steps} steps (the \
-                 first ending at {} s); Gauss-Seidel solved them instead",
+                 first ending at {} s); they were given to Gauss-Seidel instead (a warning \
+                 on Gauss-Seidel counts those it did not settle either)",
                 to_the_nanosecond(*first_s)
             ),
             Warning::NewtonInImpulses { steps, first_s } => write!(

@@ -1134,9 +1134,11 @@ fn the_impulses_solve_the_steps_the_velocities_leave() {
 /// solver in the impulses settles a step, and the interior point does. Its directions lost
 /// the blocks' balance deep in its path (multipliers read from their complementarity at l / w
 /// of 1e19), which left 4 of the 8 steps to 0.0445 s to Gauss-Seidel, failing in all; now none.
-/// After a step only it solved, it is given the next steps first: here 1 step through the
-/// usual order and 7 given first (the answers are those of the usual order, the same to the
-/// byte on this run, in a third of the time).
+/// After a step only it solved, it is given the next steps first (the answers are those of the
+/// usual order, in a fraction of the time). Run to 0.05 s: in the step ending there the plain
+/// update of the friction bounds, b = mu p_n, cycled with period three through all its 30
+/// updates and the step went to Gauss-Seidel, which failed; with Anderson's mix of the updates
+/// after the fourth, every step is solved.
 #[test]
 fn the_interior_point_solves_a_976_block_wall_as_its_end_blocks_lift() {
     let spec = pirqa::wall::RunningBond {
@@ -1146,7 +1148,7 @@ fn the_interior_point_solves_a_976_block_wall_as_its_end_blocks_lift() {
     };
     let model =
         Model::new(pirqa::Wall::from_description(&spec.description().unwrap()).unwrap()).unwrap();
-    let s = stepped_by(&model, &sine(6.0, 2.0, 0.0445), 5e-4, ContactSolver::Newton);
+    let s = stepped_by(&model, &sine(6.0, 2.0, 0.05), 5e-4, ContactSolver::Newton);
     let by_interior = s.warnings.iter().find_map(|w| match w {
         Warning::NewtonByInteriorPoint {
             steps, given_first, ..
@@ -1155,7 +1157,7 @@ fn the_interior_point_solves_a_976_block_wall_as_its_end_blocks_lift() {
     });
     let (steps, given_first) = by_interior.expect("steps solved by the interior point");
     assert!(
-        steps >= 1 && given_first >= 1 && steps + given_first >= 8,
+        steps >= 1 && given_first >= 1 && steps + given_first >= 19,
         "{:?}",
         s.warnings
     );
@@ -1202,6 +1204,9 @@ fn a_warning_gives_a_steps_end_to_the_nanosecond() {
         first_s: Some(t),
         blocks: vec![("B13".to_string(), 1)],
     };
+    // The steps Newton leaves are given to Gauss-Seidel, which may fail in them too: the
+    // warning must not say they were solved.
+    assert!(!fell_back.to_string().contains("solved"), "{fell_back}");
     for w in [fell_back, unconverged] {
         let text = w.to_string();
         assert!(text.contains("the first ending at 0.564 s"), "{text}");

@@ -4,6 +4,7 @@
 //! regularized friction with penalty contacts under an adaptive Runge-Kutta method. Same trait, same outputs; `docs/accuracy.md` says where each
 //! fails.
 
+mod anderson;
 mod moreau;
 mod moreau_wall;
 mod paper;

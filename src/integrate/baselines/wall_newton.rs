@@ -22,7 +22,8 @@
 //! Coulomb's law takes its last iterate again if it never settles. Where neither this nor the
 //! same problem in the contacts' impulses (`wall_dual.rs`) converges, each Tresca problem is
 //! solved by a primal-dual interior point in the velocities (its barrier smooths every kink at
-//! once) and finished by Newton, the bounds updated as in the fixed point.
+//! once) and finished by Newton, the bounds updated as in the fixed point for a few updates and
+//! then by Anderson's mix of the last few, where the plain update cycles (`anderson.rs`).
 //!
 //! With eps small the answer is the rigid one to a relative O(eps): a resting contact closes at
 //! a speed of eps p_n (about [`COMPLIANCE`] times g dt). Where rigid blocks leave the split
@@ -31,6 +32,7 @@
 //! length, in the limit of infinite stiffness, the split of least complementary energy (the
 //! elastic answer). docs/rocking-walls.md compares it with eq. 3's tributary split.
 
+use super::anderson::Anderson;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::cholesky::{
@@ -92,6 +94,16 @@ const MAX_INTERIOR_UPDATES: usize = 30;
 
 /// Newton steps that finish each of the interior point's Tresca problems.
 const MAX_POLISH: usize = 60;
+
+/// The interior point's updates of the bounds taken plainly, b = mu p_n; from the next on,
+/// each is Anderson's mix of the last [`ANDERSON_DEPTH`] + 1 (on the uniform 976-block wall
+/// from the first update, 6 steps of its first 0.05 s were left unsolved, from the fifth or
+/// ninth none, from the sixteenth one: docs/rocking-walls.md).
+const PLAIN_UPDATES: usize = 4;
+
+/// Residual differences the interior point's updates of the bounds are accelerated with
+/// ([`Anderson`]).
+const ANDERSON_DEPTH: usize = 3;
 
 /// One contact's slack variables in the interior point: s (normal), z and r (tangential), and
 /// for its constraints g_i >= 0 (s + u_n - target, s, r - u_t + z, r + u_t - z) their
@@ -1054,10 +1066,11 @@ impl WallNewton {
     }
 
     /// Coulomb's law with each Tresca problem solved by the interior point and finished by
-    /// Newton, the bounds then moved to mu p_n, until a Newton step under fresh bounds is
-    /// within the fixed point's round-off floor, or Coulomb's Newton converges from there in
-    /// [`EARLY_NEWTON`] steps: the last way a step is solved before Gauss-Seidel
-    /// (docs/rocking-walls.md). Returns the Newton and interior iterations used.
+    /// Newton, the bounds then moved to mu p_n (for the first [`PLAIN_UPDATES`] updates, then
+    /// by Anderson's mix of the last few: the plain update can cycle), until a Newton step
+    /// under fresh bounds is within the fixed point's round-off floor, or Coulomb's Newton
+    /// converges from there in [`EARLY_NEWTON`] steps: the last way a step is solved before
+    /// Gauss-Seidel (docs/rocking-walls.md). Returns the Newton and interior iterations used.
     pub(super) fn solve_interior(
         &mut self,
         step: &StepProblem<'_>,
@@ -1073,8 +1086,11 @@ impl WallNewton {
         // sets the slacks' first margins.
         let g_dt = tolerance_m_s * 1e10;
         let mut used = 0;
-        for _ in 0..MAX_INTERIOR_UPDATES {
-            self.bounds_from(contacts, v);
+        let mut anderson = Anderson::new(ANDERSON_DEPTH);
+        let mut tried = Vec::with_capacity(contacts.len());
+        self.bounds_from(contacts, v);
+        for update in 1..=MAX_INTERIOR_UPDATES {
+            tried.clone_from(&self.bounds);
             used += self.tresca_interior(step, v, g_dt)?;
             for _ in 0..MAX_POLISH {
                 self.gradient_at(step, v);
@@ -1084,6 +1100,7 @@ impl WallNewton {
                 }
             }
             self.bounds_from(contacts, v);
+            anderson.push(&tried, &self.bounds);
             self.gradient_at(step, v);
             used += 1;
             let fresh = self.tresca_change(step, v)?;
@@ -1098,6 +1115,14 @@ impl WallNewton {
             if done {
                 impulses_at(contacts, v, impulses);
                 return Ok(used);
+            }
+            if update <= PLAIN_UPDATES {
+                self.bounds_from(contacts, v);
+            } else {
+                anderson.next(&mut self.bounds);
+                for b in &mut self.bounds {
+                    *b = b.max(0.0);
+                }
             }
         }
         Err(Stall::Iterations)
