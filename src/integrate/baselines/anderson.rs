@@ -42,7 +42,7 @@ impl Anderson {
     pub(super) fn next(&self, next: &mut Vec<f64>) {
         let last = self.x.len() - 1;
         next.clone_from(&self.g[last]);
-        if last == 0 {
+        if last == 0 || next.is_empty() {
             return;
         }
         let n = next.len();
@@ -51,6 +51,10 @@ impl Anderson {
         let f = DVector::from_fn(n, |i, _| residual(last, i));
         let svd = df.svd(true, true);
         let floor = 1e-10 * svd.singular_values.max();
+        // Every difference zero (the same iterate again): nothing to fit.
+        if floor <= 0.0 {
+            return;
+        }
         let Ok(gamma) = svd.solve(&f, floor) else {
             return;
         };
