@@ -1,4 +1,7 @@
-//! COMPONENT
+//! Steps 1 and 3 of a regrouping: the component of an event (whole clusters joined through
+//! joints whose sides move with equal velocities, those velocities made equal where they agree
+//! within round-off), and its exact decision problem (masses, the friction of sliding joints as
+//! external forces, the joints still undecided).
 
 use super::scratch::{Equal, Local, SetVel};
 use crate::exact::Q;

@@ -1,4 +1,5 @@
-//! FALLEN
+//! A fallen block under `--after-collapse continue`: it leaves the wall with its load, whatever
+//! rested only on it falls too, and the whole wall is decided again.
 
 use crate::error::SimulationError;
 use crate::exact::Q;

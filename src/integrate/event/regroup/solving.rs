@@ -1,4 +1,6 @@
-//! SOLVING
+//! Step 4 of a regrouping: the component's problem solved, stuck pieces by their stick
+//! intervals and the rest by the general decision (remembered per run where it can be met
+//! again), at the exact ground acceleration of the instant.
 
 use super::scratch::Decided;
 use super::scratch::NONE;
