@@ -1288,6 +1288,24 @@ mod tests {
         }
     }
 
+    /// The test block's points through its half diagonal.
+    const REACH: [Vector3<f64>; 1] = [Vector3::new(1.0, 1.0, 0.56)];
+
+    /// The step of the test block of mass `mass` on `contacts`, at the runs' tolerance.
+    fn one_block<'a>(
+        mass: &'a [Vector3<f64>; 1],
+        v_free: &'a [Vector3<f64>; 1],
+        contacts: &'a [Contact],
+    ) -> StepProblem<'a> {
+        StepProblem {
+            mass,
+            reach: &REACH,
+            v_free,
+            contacts,
+            tolerance_m_s: 1e-10 * G_DT,
+        }
+    }
+
     fn solve(
         contacts: &[Contact],
         mass: Vector3<f64>,
@@ -1297,13 +1315,8 @@ mod tests {
         let mut solver = WallNewton::new(1, []);
         let mut v = [start];
         let mut p = vec![Vector2::zeros(); contacts.len()];
-        let step = StepProblem {
-            mass: &[mass],
-            reach: &[Vector3::new(1.0, 1.0, 0.56)],
-            v_free: &[v_free],
-            contacts,
-            tolerance_m_s: 1e-10 * G_DT,
-        };
+        let (mass, v_free) = ([mass], [v_free]);
+        let step = one_block(&mass, &v_free, contacts);
         let used = solver.solve(&step, &mut v, &mut p);
         assert!(used.is_ok(), "{used:?}");
         (v[0], p)
@@ -1385,13 +1398,8 @@ mod tests {
             let (expected, _) = solve(&contacts, mass, v_free, Vector3::zeros());
             let mut solver = WallNewton::new(1, []);
             let mut v = [Vector3::zeros()];
-            let step = StepProblem {
-                mass: &[mass],
-                reach: &[Vector3::new(1.0, 1.0, 0.56)],
-                v_free: &[v_free],
-                contacts: &contacts,
-                tolerance_m_s: 1e-10 * G_DT,
-            };
+            let (m, free) = ([mass], [v_free]);
+            let step = one_block(&m, &free, &contacts);
             let used = solver.coulomb(&step, &mut v, MAX_ITERATIONS);
             assert!(matches!(used, Ok(1..=8)), "{used:?}");
             assert!(
@@ -1433,17 +1441,11 @@ mod tests {
             let mut solver = WallNewton::new(1, []);
             let mut v = [Vector3::zeros()];
             let mut p = vec![Vector2::zeros(); contacts.len()];
-            let step = StepProblem {
-                mass: &[mass],
-                reach: &[Vector3::new(1.0, 1.0, 0.56)],
-                v_free: &[v_free],
-                contacts: &contacts,
-                tolerance_m_s: 1e-10 * G_DT,
-            };
+            let (m, free) = ([mass], [v_free]);
+            let step = one_block(&m, &free, &contacts);
             let used = solver.solve_interior(&step, &mut v, &mut p);
             assert!(used.is_ok(), "{used:?}");
-            let reach = Vector3::new(1.0, 1.0, 0.56);
-            let apart = (v[0] - expected).component_mul(&reach).abs().max();
+            let apart = (v[0] - expected).component_mul(&REACH[0]).abs().max();
             assert!(
                 apart <= 2.0 * ROUND_OFF_FLOOR * 1e-10 * G_DT,
                 "{v_free:?}: {:?} against {expected:?}",
