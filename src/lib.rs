@@ -36,6 +36,7 @@ pub mod error;
 pub mod estimate;
 pub mod exact;
 pub mod integrate;
+pub mod limit;
 pub mod model;
 pub mod motion;
 pub mod plot;

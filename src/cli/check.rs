@@ -137,27 +137,39 @@ fn top_name(top: Top) -> &'static str {
     }
 }
 
-pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
+pub fn check(path: &Path, json: bool, limit: bool) -> Result<(), pirqa::Error> {
     let (wall, topo) = topology::load(path)?;
     let r = topo.report(&wall);
     // A wall made of columns: where each joint gives way, and which the column moves on.
     let columns = (wall.blocks.len() > 1)
         .then(|| pirqa::integrate::rocking::columns(&wall, &topo).ok())
         .flatten();
+    // Where the wall at rest stops being held, when asked (a wall too large for the exact
+    // program says why instead).
+    let limit = limit.then(|| limit_at_rest(&wall, &topo));
     if json {
-        /// The graph's report, and a wall of columns' joint limits after it.
+        /// The graph's report, a wall of columns' joint limits and the limits at rest after it.
         #[derive(serde::Serialize)]
         struct Report<'a> {
             #[serde(flatten)]
             graph: &'a topology::TopologyReport,
             #[serde(skip_serializing_if = "Option::is_none")]
             columns: Option<Vec<&'a [pirqa::integrate::rocking::JointLimit]>>,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            limit_at_rest: Option<&'a pirqa::limit::Limits>,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            limit_at_rest_not_computed: Option<&'a str>,
         }
         let report = Report {
             graph: &r,
             columns: columns
                 .as_ref()
                 .map(|cs| cs.iter().map(|c| c.limits.as_slice()).collect()),
+            limit_at_rest: limit.as_ref().and_then(|l| l.as_ref().ok()),
+            limit_at_rest_not_computed: limit
+                .as_ref()
+                .and_then(|l| l.as_ref().err())
+                .map(String::as_str),
         };
         print_out(&(serde_json::to_string_pretty(&report).expect("report serialises") + "\n"));
         return Ok(());
@@ -262,8 +274,71 @@ pub fn check(path: &Path, json: bool) -> Result<(), pirqa::Error> {
             );
         }
     }
+    let Some(limit) = limit else {
+        print_out(&out);
+        return Ok(());
+    };
+    let _ = writeln!(
+        out,
+        "\nlimit at rest (every block seated and moving with the ground; rigid blocks, joints \
+         without tension, Coulomb's cone at each end of each joint)"
+    );
+    match &limit {
+        Ok(l) => {
+            for (side, l) in [("+x", &l.towards_plus_x), ("-x", &l.towards_minus_x)] {
+                write_limit(&mut out, side, l);
+            }
+        }
+        Err(why) => {
+            let _ = writeln!(out, "  not computed: {why}");
+        }
+    }
     print_out(&out);
     Ok(())
+}
+
+/// The wall's limit at rest, a spinner on the terminal while the exact program runs; a wall
+/// too large for it gives the reason.
+fn limit_at_rest(
+    wall: &pirqa::wall::Wall,
+    topo: &topology::Topology,
+) -> Result<pirqa::limit::Limits, String> {
+    let spinner = indicatif::ProgressBar::new_spinner();
+    spinner.set_message("the limit at rest: solving its exact linear program");
+    spinner.enable_steady_tick(std::time::Duration::from_millis(200));
+    let limit = pirqa::limit::at_rest(wall, topo).map_err(|e| match e {
+        pirqa::SimulationError::NotApplicable(why) => why,
+        other => other.to_string(),
+    });
+    spinner.finish_and_clear();
+    limit
+}
+
+/// One direction's limit at rest and the mechanism beyond it.
+fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
+    match l {
+        pirqa::limit::Limit::Unlimited => {
+            let _ = writeln!(
+                out,
+                "  ground towards {side}: held at any acceleration (the abutments hold it)"
+            );
+        }
+        pirqa::limit::Limit::Holds {
+            accel_m_s2,
+            accel_g,
+            exact_g,
+            mechanism,
+        } => {
+            let _ = writeln!(
+                out,
+                "  ground towards {side}: held up to {accel_g:.4} g ({accel_m_s2:.4} m/s2; exactly \
+                 {exact_g} g), then"
+            );
+            for m in mechanism {
+                let _ = writeln!(out, "    {:<8} {}", m.block, m.how);
+            }
+        }
+    }
 }
 
 /// Draws the wall as built, or where the run saved in a directory left it (at its end or at a

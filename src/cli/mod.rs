@@ -40,6 +40,12 @@ enum Command {
         /// ground acceleration that starts it rocking and its capacity curve lambda(theta).
         #[arg(long)]
         out_of_plane: bool,
+        /// Also find the wall's limit at rest in its plane: the ground acceleration, each way,
+        /// beyond which no contact forces hold every block seated, and the mechanism past it
+        /// (an exact linear program, walls of up to 150 movable blocks; up to a minute on
+        /// irregular ones).
+        #[arg(long, conflicts_with = "out_of_plane")]
+        limit: bool,
         /// With --out-of-plane: the top free (a cantilever) or held sideways (a one-way
         /// spanning wall).
         #[arg(long, value_enum, default_value_t = Top::Free, requires = "out_of_plane")]
@@ -123,8 +129,11 @@ pub fn run() -> Result<(), pirqa::Error> {
             top,
             overburden_kn_m,
             plot,
+            ..
         } => check::out_of_plane(&wall, json, top, overburden_kn_m, plot.as_deref()),
-        Command::Check { wall, json, .. } => check::check(&wall, json),
+        Command::Check {
+            wall, json, limit, ..
+        } => check::check(&wall, json, limit),
         Command::Draw {
             wall,
             output,

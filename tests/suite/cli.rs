@@ -100,6 +100,41 @@ fn check_gives_a_columns_joint_limits_and_the_joint_it_moves_on() {
     assert!(v.get("columns").is_none());
 }
 
+/// `check` gives the limit at rest each way, exact, and the mechanism beyond it: the paper's
+/// variable wall lets B3 (friction 0.28 on B1) slide first towards -x, and B5 (0.28 on B2)
+/// towards +x; the two-block column turns as one about the lower drum's corner at b/h of the
+/// whole column (0.5 / 3.0 = 1/6).
+#[test]
+fn check_gives_the_limit_at_rest_and_its_mechanism() {
+    let (ok, out, err) = pirqa(&["check", "walls/five-block-variable.ron", "--limit"]);
+    assert!(ok, "{err}");
+    for line in [
+        "  ground towards +x: held up to 0.2800 g (2.7468 m/s2; exactly 7/25 g), then\n    B3       slides towards -x\n",
+        "  ground towards -x: held up to 0.2800 g (2.7468 m/s2; exactly 7/25 g), then\n    B5       slides towards +x\n",
+    ] {
+        assert!(out.contains(line), "missing `{line}` in\n{out}");
+    }
+    let (ok, out, err) = pirqa(&[
+        "check",
+        "walls/rocking/two-block-column.ron",
+        "--json",
+        "--limit",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let plus = &v["limit_at_rest"]["towards_plus_x"];
+    assert_eq!(plus["kind"], "holds");
+    assert_eq!(plus["exact_g"], "1/6");
+    assert_eq!(
+        plus["mechanism"][1]["how"],
+        "turns counterclockwise about Drum1's bottom-left corner"
+    );
+    assert!(v.get("limit_at_rest_not_computed").is_none());
+    // Asked for only: a plain check stays a table of the graph.
+    let (_, out, _) = pirqa(&["check", "walls/five-block-variable.ron"]);
+    assert!(!out.contains("limit at rest"), "{out}");
+}
+
 #[test]
 fn invalid_input_exits_non_zero_with_the_file_named() {
     let (ok, _, err) = pirqa(&["check", "walls/does-not-exist.ron"]);

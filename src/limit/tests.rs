@@ -1,0 +1,253 @@
+//! The limits at rest against closed forms: a block standing alone (Shenton 1996: the smaller of
+//! its friction and b/h), a column (the column model's joint limits, computed from centroids,
+//! not from a program), two blocks side by side pushing one another, the paper's uniform wall,
+//! and a block the abutments hold.
+use super::*;
+use crate::model::Model;
+
+fn model(rows: &str, friction: &str) -> Model {
+    Model::from_ron_str(&format!(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: {friction}, rows: [{rows}])"
+    ))
+    .unwrap()
+}
+
+fn limits(m: &Model) -> Limits {
+    at_rest(m.wall(), m.topology()).unwrap()
+}
+
+/// The limit as an exact fraction of g, and its mechanism.
+fn holds(l: &Limit) -> (Q, &[Moves]) {
+    let Limit::Holds {
+        exact_g,
+        accel_g,
+        accel_m_s2,
+        mechanism,
+    } = l
+    else {
+        panic!("unlimited: {l:?}");
+    };
+    let g = parse(exact_g);
+    assert_eq!(*accel_g, g.to_f64());
+    assert_eq!(*accel_m_s2, (&g * &Q::frac(981, 100)).to_f64());
+    (g, mechanism)
+}
+
+fn parse(s: &str) -> Q {
+    match s.split_once('/') {
+        Some((n, d)) => Q::frac(
+            n.parse().unwrap_or_else(|e| panic!("{s}: {e}")),
+            d.parse().unwrap(),
+        ),
+        None => Q::frac(s.parse().unwrap_or_else(|e| panic!("{s}: {e}")), 1),
+    }
+}
+
+#[test]
+fn a_block_alone_slides_at_its_friction_or_tips_at_b_over_h() {
+    // 0.6 by 1.2 m: b/h = 1/2. Friction 0.3 slides first, 0.7 tips first, 0.5 is the tie.
+    let rows = "(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\")])";
+    let slides = limits(&model(rows, "0.3"));
+    for (l, towards) in [
+        (&slides.towards_plus_x, "-x"),
+        (&slides.towards_minus_x, "+x"),
+    ] {
+        let (g, mech) = holds(l);
+        assert_eq!(g, Q::frac(3, 10));
+        assert_eq!(mech.len(), 1);
+        assert_eq!(mech[0].how, format!("slides towards {towards}"));
+        assert_eq!(mech[0].omega_rad_s, 0.0);
+    }
+    let tips = limits(&model(rows, "0.7"));
+    let (g, mech) = holds(&tips.towards_plus_x);
+    assert_eq!(g, Q::frac(1, 2));
+    // Left behind by a ground that accelerates towards +x, it turns back over its trailing
+    // corner.
+    assert_eq!(
+        mech[0].how,
+        "turns counterclockwise about its bottom-left corner"
+    );
+    let (g, mech) = holds(&tips.towards_minus_x);
+    assert_eq!(g, Q::frac(1, 2));
+    assert_eq!(mech[0].how, "turns clockwise about its bottom-right corner");
+    // A column of two such blocks turns as one about the lower one's corner.
+    let two = limits(&model(
+        &format!("{rows}, {}", rows.replace('A', "B")),
+        "0.7",
+    ));
+    let (g, mech) = holds(&two.towards_plus_x);
+    assert_eq!(g, Q::frac(1, 4));
+    assert_eq!(
+        mech[1].how,
+        "turns counterclockwise about A's bottom-left corner"
+    );
+    let tie = limits(&model(rows, "0.5"));
+    assert_eq!(holds(&tie.towards_plus_x).0, Q::frac(1, 2));
+}
+
+#[test]
+fn a_column_gives_way_where_the_column_model_says_and_no_earlier() {
+    // Three blocks of different sizes, off-centre from one another (the column model's own
+    // test column), each joint's friction in turn low enough to slip first or not.
+    let rows = "(height_m: 0.4, blocks: [(width_m: 1.2, name: \"A\")]),
+                (height_m: 0.6, x_m: 0.2, blocks: [(width_m: 0.8, name: \"B\")]),
+                (height_m: 1.5, x_m: 0.35, blocks: [(width_m: 0.5, name: \"C\")])";
+    for friction in ["0.15", "0.25", "0.6"] {
+        let m = model(rows, friction);
+        let wall = m.wall();
+        // Each joint's limits from the centroid of what is above it: friction, and its
+        // distances to the joint's ends over its height.
+        let mut plus = Q::frac(1000, 1);
+        let mut minus = Q::frac(1000, 1);
+        for j in 0..3 {
+            let above = &wall.blocks[j..];
+            let mass: Q = above.iter().map(Block::area).sum();
+            let x_g = above.iter().map(|b| b.area() * b.centroid_x()).sum::<Q>() / &mass;
+            let y_g = above
+                .iter()
+                .map(|b| b.area() * (&b.y + &b.height * Q::frac(1, 2)))
+                .sum::<Q>()
+                / &mass;
+            let b = &wall.blocks[j];
+            let (l, r) = match j {
+                0 => (b.x.clone(), b.right()),
+                _ => {
+                    let below = &wall.blocks[j - 1];
+                    (
+                        b.x.clone().max(below.x.clone()),
+                        b.right().min(below.right()),
+                    )
+                }
+            };
+            let h = &y_g - &b.y;
+            let mu = Q::parse_decimal(friction).unwrap();
+            plus = plus.min(mu.clone().min((&x_g - &l) / &h));
+            minus = minus.min(mu.min((&r - &x_g) / &h));
+        }
+        let l = limits(&m);
+        assert_eq!(holds(&l.towards_plus_x).0, plus, "friction {friction}");
+        assert_eq!(holds(&l.towards_minus_x).0, minus, "friction {friction}");
+        // The column model (floating point) finds the same smallest limit.
+        let col = crate::integrate::rocking::columns(wall, m.topology()).unwrap();
+        let smallest = col[0]
+            .limits
+            .iter()
+            .map(|j| j.slip_g.min(j.tips_left_g))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            (smallest - plus.to_f64()).abs() <= 1e-15,
+            "{smallest} {plus}"
+        );
+    }
+}
+
+#[test]
+fn blocks_side_by_side_push_one_another_but_cannot_pull() {
+    // Two squat blocks touching on the ground, 2.0 and 1.0 m wide (masses 2:1), frictions
+    // 0.2 (left) and 0.5 (right). Towards +x the right block can be helped by the left one
+    // pushing it, not the left by the right: min(mu_l, (mu_l m_l + mu_r m_r) / (m_l + m_r)).
+    let m = Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.2,
+          joint_friction: {\"R/ground\": 0.5},
+          rows: [(height_m: 0.25, blocks: [(width_m: 2.0, name: \"L\"), (width_m: 1.0, name: \"R\")])])",
+    )
+    .unwrap();
+    let l = limits(&m);
+    let (plus, mech) = holds(&l.towards_plus_x);
+    assert_eq!(plus, Q::frac(2, 10));
+    assert_eq!(mech.len(), 1, "{mech:?}");
+    assert_eq!(mech[0].block, "L");
+    // Towards -x the left block is pushed by the right one: (0.2 * 2 + 0.5 * 1) / 3 = 0.3.
+    let (minus, mech) = holds(&l.towards_minus_x);
+    assert_eq!(minus, Q::frac(3, 10));
+    assert_eq!(mech.len(), 2, "{mech:?}");
+    assert!(mech.iter().all(|b| b.how == "slides towards +x"));
+}
+
+#[test]
+fn the_papers_uniform_wall_slides_at_its_friction() {
+    let m = Model::from_file("walls/five-block-uniform.ron").unwrap();
+    let l = limits(&m);
+    assert_eq!(holds(&l.towards_plus_x).0, Q::frac(3, 10));
+    assert_eq!(holds(&l.towards_minus_x).0, Q::frac(3, 10));
+}
+
+#[test]
+fn a_trilith_lifts_where_its_columns_would_alone() {
+    // A lintel on two equal columns moves as a parallelogram whose columns turn on their
+    // corners, at the acceleration a column alone tips at, g b/h (Makris and Vassiliou 2013).
+    let m = Model::from_file("walls/rocking/trilith.ron").unwrap();
+    let column = m.wall().blocks.iter().find(|b| b.name == "Left").unwrap();
+    let l = limits(&m);
+    let (g, mech) = holds(&l.towards_plus_x);
+    assert_eq!(g, &column.width / &column.height);
+    let how: Vec<&str> = mech.iter().map(|b| b.how.as_str()).collect();
+    assert_eq!(
+        how,
+        [
+            "turns counterclockwise about its bottom-left corner",
+            "turns counterclockwise about its bottom-left corner",
+            "moves towards -x without turning, carried"
+        ]
+    );
+}
+
+#[test]
+fn a_block_between_abutments_is_held_whatever_the_ground_does() {
+    let rows = "(height_m: 0.5, blocks: [(width_m: 0.4, fixed: true, name: \"P\"),
+                 (width_m: 1.0, name: \"A\"), (width_m: 0.4, fixed: true, name: \"Q\")])";
+    let l = limits(&model(rows, "0.3"));
+    assert_eq!(l.towards_plus_x, Limit::Unlimited);
+    assert_eq!(l.towards_minus_x, Limit::Unlimited);
+}
+
+/// Each block stands over its own support, so the graph takes the wall; but B and C together
+/// lean past A's right end (their centroid at 1.154 m over A's 0 to 1 m), and the program,
+/// with no seated balance even at rest, says so with the fall: B turning over A's corner (how
+/// C goes with it is one of many motions that show it, not asked for).
+#[test]
+fn a_stack_leaning_past_its_base_cannot_stand() {
+    let m = Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6, rectangles: [
+          (x_m: 0.0, y_m: 0.0, width_m: 1.0, height_m: 0.5, name: \"A\"),
+          (x_m: 0.2, y_m: 0.5, width_m: 1.4, height_m: 0.5, name: \"B\"),
+          (x_m: 1.3, y_m: 1.0, width_m: 0.3, height_m: 2.0, name: \"C\")])",
+    )
+    .unwrap();
+    let err = at_rest(m.wall(), m.topology()).unwrap_err().to_string();
+    assert!(
+        err.contains("cannot stand even on still ground")
+            && err.contains("B turns clockwise about A's top-right corner"),
+        "{err}"
+    );
+    // A squat C leans B and C past A's corner too (centroid at 1.063 m) but does not tip
+    // itself: the ground accelerating towards +x at about 0.12 g would hold them back, and
+    // the wall still cannot stand at rest.
+    let m = Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6, rectangles: [
+          (x_m: 0.0, y_m: 0.0, width_m: 1.0, height_m: 0.5, name: \"A\"),
+          (x_m: 0.2, y_m: 0.5, width_m: 1.4, height_m: 0.5, name: \"B\"),
+          (x_m: 1.0, y_m: 1.0, width_m: 0.6, height_m: 0.8, name: \"C\")])",
+    )
+    .unwrap();
+    let err = at_rest(m.wall(), m.topology()).unwrap_err().to_string();
+    assert!(err.contains("cannot stand even on still ground"), "{err}");
+    let (w, t) = (m.wall(), m.topology());
+    let plus = direction(w, t, &[0, 1, 2], &forces(w, t), 1).unwrap();
+    assert!(holds(&plus).0.is_positive());
+}
+
+#[test]
+fn a_wall_beyond_the_size_of_the_exact_program_is_refused_by_name() {
+    let blocks = vec!["(width_m: 1.0)"; MAX_BLOCKS + 1].join(", ");
+    let m = model(&format!("(height_m: 0.5, blocks: [{blocks}])"), "0.3");
+    let err = at_rest(m.wall(), m.topology()).unwrap_err().to_string();
+    assert!(
+        err.contains(&format!("up to {MAX_BLOCKS} movable blocks")),
+        "{err}"
+    );
+    assert!(
+        err.contains(&format!("this wall has {}", MAX_BLOCKS + 1)),
+        "{err}"
+    );
+}
