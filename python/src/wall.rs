@@ -139,6 +139,20 @@ impl Wall {
             .collect()
     }
 
+    /// The wall's limit at rest in its plane (`pirqa check --limit`, docs/rocking-walls.md): a
+    /// dict with `towards_plus_x` and `towards_minus_x`, each `{"kind": "holds", "accel_g",
+    /// "accel_m_s2", "exact_g" (a fraction), "mechanism": [{"block", "how", "u", "v",
+    /// "omega_rad_s"}, ...]}` or `{"kind": "unlimited"}`. The exact program runs without the
+    /// GIL.
+    fn limit_at_rest<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let model = Arc::clone(&self.model);
+        let limits = py
+            .detach(move || pirqa::limit::at_rest(model.wall(), model.topology()))
+            .map_err(pirqa::Error::from)
+            .py()?;
+        crate::to_python::to_python(py, &limits)
+    }
+
     /// The wall as RON text (what `from_ron` reads back).
     #[getter]
     fn ron(&self) -> String {

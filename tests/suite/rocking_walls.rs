@@ -1350,3 +1350,52 @@ fn a_top_block_released_in_a_running_bond_falls_back_as_the_block_alone() {
         assert!(refused.contains(words), "{refused}");
     }
 }
+
+/// The limit at rest (`pirqa check --limit`, exact limit analysis) is where time stepping with
+/// every block's rotation leaves rest, on walls whose loads the balances determine: a ground
+/// acceleration held for 0.3 s at 2 % under the limit turns no block (rotations at round-off),
+/// 2 % over it turns the mechanism's. (A block on two others is another matter: time stepping
+/// takes its own split of the load and leaves rest earlier; docs/rocking-walls.md.)
+#[test]
+fn time_stepping_leaves_rest_at_the_limit_at_rest() {
+    for (file, turns) in [
+        ("walls/rocking/two-block-column.ron", "Drum1"),
+        ("walls/rocking/trilith.ron", "Left"),
+        ("walls/inca/ollantaytambo-monoliths.ron", "F1"),
+    ] {
+        let model = Model::from_file(file).unwrap();
+        let limits = pirqa::limit::at_rest(model.wall(), model.topology()).unwrap();
+        let pirqa::limit::Limit::Holds { accel_m_s2, .. } = limits.towards_plus_x else {
+            panic!("{file}: no limit");
+        };
+        for (factor, moves) in [(0.98, false), (1.02, true)] {
+            let motion = Motion::Pulse(pirqa::Pulse {
+                amplitude_m_s2: factor * accel_m_s2,
+                duration_s: 0.3,
+            });
+            let s = stepped(&model, &motion, 1e-4);
+            let largest = s
+                .blocks
+                .iter()
+                .map(|b| b.max_abs_rotation_rad)
+                .fold(0.0, f64::max);
+            let turned = s
+                .blocks
+                .iter()
+                .find(|b| b.name == turns)
+                .unwrap()
+                .max_abs_rotation_rad;
+            if moves {
+                assert!(
+                    turned > 1e-5,
+                    "{file} at {factor} of its limit: {turned} rad"
+                );
+            } else {
+                assert!(
+                    largest < 1e-10,
+                    "{file} at {factor} of its limit: {largest} rad"
+                );
+            }
+        }
+    }
+}
