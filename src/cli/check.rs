@@ -137,7 +137,12 @@ fn top_name(top: Top) -> &'static str {
     }
 }
 
-pub fn check(path: &Path, json: bool, limit: bool) -> Result<(), pirqa::Error> {
+pub fn check(
+    path: &Path,
+    json: bool,
+    limit: bool,
+    mechanism: Option<&Path>,
+) -> Result<(), pirqa::Error> {
     let (wall, topo) = topology::load(path)?;
     let r = topo.report(&wall);
     // A wall made of columns: where each joint gives way, and which the column moves on.
@@ -147,6 +152,9 @@ pub fn check(path: &Path, json: bool, limit: bool) -> Result<(), pirqa::Error> {
     // Where the wall at rest stops being held, when asked (a wall too large for the exact
     // program says why instead).
     let limit = limit.then(|| limit_at_rest(&wall, &topo));
+    if let (Some(dir), Some(Ok(l))) = (mechanism, &limit) {
+        write_mechanisms(dir, &wall, &topo, l)?;
+    }
     if json {
         /// The graph's report, a wall of columns' joint limits and the limits at rest after it.
         #[derive(serde::Serialize)]
@@ -312,6 +320,55 @@ fn limit_at_rest(
     });
     spinner.finish_and_clear();
     limit
+}
+
+/// The limits as JSON and each direction's mechanism drawn, into `dir`.
+fn write_mechanisms(
+    dir: &Path,
+    wall: &pirqa::wall::Wall,
+    topo: &topology::Topology,
+    limits: &pirqa::limit::Limits,
+) -> Result<(), pirqa::Error> {
+    std::fs::create_dir_all(dir).map_err(|source| pirqa::Error::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let json = serde_json::to_string_pretty(limits).expect("limits serialise") + "\n";
+    write_file(&dir.join("limit.json"), &json)?;
+    for (side, name, l) in [
+        ("+x", "plus-x", &limits.towards_plus_x),
+        ("-x", "minus-x", &limits.towards_minus_x),
+    ] {
+        let pirqa::limit::Limit::Holds {
+            accel_g,
+            exact_g,
+            mechanism,
+            ..
+        } = l
+        else {
+            continue;
+        };
+        let (u, theta, w) = pirqa::plot::mechanism_pose(wall, mechanism);
+        let drawing = WallDrawing {
+            title: format!(
+                "{}: past its limit at rest towards {side}, {accel_g:.4} g ({exact_g} g)",
+                wall.name
+            ),
+            displacement_m: Some(u),
+            pose: Some((theta, w)),
+            note: Some(
+                "the mechanism, exaggerated (pirqa check --limit; a slipping joint dilates at the \
+                 friction angle: the associative mechanism)"
+                    .into(),
+            ),
+            ..WallDrawing::default()
+        };
+        write_file(
+            &dir.join(format!("mechanism-{name}.svg")),
+            &draw_wall(wall, topo, &drawing),
+        )?;
+    }
+    Ok(())
 }
 
 /// One direction's limit at rest and the mechanism beyond it.

@@ -46,6 +46,10 @@ enum Command {
         /// irregular ones).
         #[arg(long, conflicts_with = "out_of_plane")]
         limit: bool,
+        /// With --limit: write the limits (limit.json) and a drawing of each mechanism
+        /// (mechanism-plus-x.svg, mechanism-minus-x.svg) into this folder.
+        #[arg(long, value_name = "DIR", requires = "limit")]
+        mechanism: Option<PathBuf>,
         /// With --out-of-plane: the top free (a cantilever) or held sideways (a one-way
         /// spanning wall).
         #[arg(long, value_enum, default_value_t = Top::Free, requires = "out_of_plane")]
@@ -132,8 +136,12 @@ pub fn run() -> Result<(), pirqa::Error> {
             ..
         } => check::out_of_plane(&wall, json, top, overburden_kn_m, plot.as_deref()),
         Command::Check {
-            wall, json, limit, ..
-        } => check::check(&wall, json, limit),
+            wall,
+            json,
+            limit,
+            mechanism,
+            ..
+        } => check::check(&wall, json, limit, mechanism.as_deref()),
         Command::Draw {
             wall,
             output,

@@ -251,3 +251,22 @@ fn a_wall_beyond_the_size_of_the_exact_program_is_refused_by_name() {
         "{err}"
     );
 }
+
+/// The drawing of a mechanism keeps still the point the mechanism turns a block about: a
+/// block tipping on its bottom-left corner is drawn turned counterclockwise (at most 0.1 rad)
+/// about that corner.
+#[test]
+fn a_mechanism_is_drawn_turning_about_its_point_at_rest() {
+    let m = model(
+        "(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\")])",
+        "0.7",
+    );
+    let l = limits(&m);
+    let (_, mech) = holds(&l.towards_plus_x);
+    let (u, theta, w) = crate::plot::mechanism_pose(m.wall(), mech);
+    let phi = -theta[0];
+    assert!(phi > 0.0 && phi <= 0.1, "{theta:?}");
+    // The middle of the base, 0.3 m from the corner, swung up by phi about it.
+    assert!((u[0] - 0.3 * (phi.cos() - 1.0)).abs() < 1e-15, "{u:?}");
+    assert!((w[0] - 0.3 * phi.sin()).abs() < 1e-15, "{w:?}");
+}

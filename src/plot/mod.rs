@@ -9,4 +9,4 @@ mod wall_drawing;
 
 pub use response_chart::{response_charts, MOST_MOVED};
 pub use svg::{Style, Svg};
-pub use wall_drawing::{draw_wall, WallDrawing};
+pub use wall_drawing::{draw_wall, mechanism_pose, WallDrawing};

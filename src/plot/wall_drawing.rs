@@ -250,3 +250,58 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
     }
     svg.finish()
 }
+
+/// A limit's mechanism as a pose to draw ([`WallDrawing::displacement_m`] and
+/// [`WallDrawing::pose`]): each block that moves turned about its point at rest, or moved
+/// without turning, by one exaggerated step of the mechanism (its largest turn 0.1 rad, or its
+/// fastest block moved by a twentieth of the wall's height, whichever is smaller).
+pub fn mechanism_pose(
+    wall: &Wall,
+    mechanism: &[crate::limit::Moves],
+) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let n = wall.blocks.len();
+    let (mut u, mut theta, mut w) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let height = wall
+        .blocks
+        .iter()
+        .map(|b| b.top().to_f64())
+        .fold(0.0, f64::max);
+    let turn = mechanism
+        .iter()
+        .map(|m| m.omega_rad_s.abs())
+        .fold(0.0, f64::max);
+    let speed = mechanism
+        .iter()
+        .map(|m| m.u.hypot(m.v))
+        .fold(0.0, f64::max)
+        .max(1e-300);
+    let k = (0.05 * height / speed).min(if turn > 0.0 {
+        0.1 / turn
+    } else {
+        f64::INFINITY
+    });
+    for m in mechanism {
+        let Some(i) = wall.blocks.iter().position(|b| b.name == m.block) else {
+            continue;
+        };
+        let b = &wall.blocks[i];
+        let (cx, cy) = (
+            b.centroid_x().to_f64(),
+            b.y.to_f64() + b.height.to_f64() / 2.0,
+        );
+        let (mx, my) = (b.x.to_f64() + b.width.to_f64() / 2.0, b.y.to_f64());
+        if m.omega_rad_s == 0.0 {
+            (u[i], w[i]) = (k * m.u, k * m.v);
+            continue;
+        }
+        // Turned about the point the mechanism holds still, counterclockwise by k omega.
+        let (ix, iy) = (cx - m.v / m.omega_rad_s, cy + m.u / m.omega_rad_s);
+        let phi = k * m.omega_rad_s;
+        let (sin, cos) = phi.sin_cos();
+        let (rx, ry) = (mx - ix, my - iy);
+        u[i] = ix + cos * rx - sin * ry - mx;
+        w[i] = iy + sin * rx + cos * ry - my;
+        theta[i] = -phi;
+    }
+    (u, theta, w)
+}

@@ -130,6 +130,26 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
         "turns counterclockwise about Drum1's bottom-left corner"
     );
     assert!(v.get("limit_at_rest_not_computed").is_none());
+    // The mechanisms drawn, beside the limits they were drawn from.
+    let dir = temp_dir("limit-mechanism");
+    let (ok, _, err) = pirqa(&[
+        "check",
+        "walls/rocking/two-block-column.ron",
+        "--limit",
+        "--mechanism",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let saved: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("limit.json")).unwrap()).unwrap();
+    assert_eq!(saved, v["limit_at_rest"]);
+    for side in ["plus-x", "minus-x"] {
+        let svg = std::fs::read_to_string(dir.join(format!("mechanism-{side}.svg"))).unwrap();
+        assert!(
+            svg.contains("past its limit at rest") && svg.contains("Drum2"),
+            "{svg}"
+        );
+    }
     // Asked for only: a plain check stays a table of the graph.
     let (_, out, _) = pirqa(&["check", "walls/five-block-variable.ron"]);
     assert!(!out.contains("limit at rest"), "{out}");

@@ -221,3 +221,18 @@ fn tracked_files() -> Vec<std::path::PathBuf> {
     }
     files
 }
+
+/// The limits at rest committed in docs/rocking/limit-at-rest are what the program gives now:
+/// a change to it must write them again (`pirqa check FILE --limit --mechanism DIR`).
+#[test]
+fn committed_limits_at_rest_are_what_the_program_gives() {
+    let model = pirqa::Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
+    let limits = pirqa::limit::at_rest(model.wall(), model.topology()).unwrap();
+    let committed =
+        std::fs::read_to_string("docs/rocking/limit-at-rest/ollantaytambo/limit.json").unwrap();
+    // Compared as text: what `--mechanism` writes, to the digit.
+    assert_eq!(
+        serde_json::to_string_pretty(&limits).unwrap() + "\n",
+        committed
+    );
+}
