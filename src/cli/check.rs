@@ -152,7 +152,11 @@ pub fn check(
     // Where the wall at rest stops being held, when asked (a wall too large for the exact
     // program says why instead).
     let limit = limit.then(|| limit_at_rest(&wall, &topo));
-    if let (Some(dir), Some(Ok(l))) = (mechanism, &limit) {
+    if let (Some(dir), Some(l)) = (mechanism, &limit) {
+        // Drawings asked for and not made are an error, not a line of the report.
+        let l = l
+            .as_ref()
+            .map_err(|why| pirqa::SimulationError::NotApplicable(why.clone()))?;
         write_mechanisms(dir, &wall, &topo, l)?;
     }
     if json {

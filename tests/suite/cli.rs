@@ -150,6 +150,27 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
             "{svg}"
         );
     }
+    // A wall beyond the exact program's size: the report says why; drawings asked for are an
+    // error that says it too.
+    let blocks = vec!["(width_m: 1.0)"; 151].join(", ");
+    let big = common::file(
+        "long.ron",
+        &format!(
+            "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.3, \
+             rows: [(height_m: 0.5, blocks: [{blocks}])])"
+        ),
+    );
+    let (ok, out, err) = pirqa(&["check", big.to_str().unwrap(), "--limit"]);
+    assert!(ok, "{err}");
+    assert!(out.contains("not computed: the limit at rest is computed for walls of up to 150"));
+    let (ok, _, err) = pirqa(&[
+        "check",
+        big.to_str().unwrap(),
+        "--limit",
+        "--mechanism",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(!ok && err.contains("up to 150 movable blocks"), "{err}");
     // Asked for only: a plain check stays a table of the graph.
     let (_, out, _) = pirqa(&["check", "walls/five-block-variable.ron"]);
     assert!(!out.contains("limit at rest"), "{out}");
