@@ -63,7 +63,7 @@ pub struct Moves {
     /// The motion in words ("turns about its bottom-left corner", "slides towards -x").
     pub how: String,
     /// Its centroid's velocity and its angular velocity (counterclockwise), scaled so that the
-    /// fastest centroid of the mechanism moves at 1 (m/s, m/s, rad/s).
+    /// largest velocity component of any centroid of the mechanism is 1 (m/s, m/s, rad/s).
     pub u: f64,
     /// See `u`.
     pub v: f64,

@@ -40,10 +40,9 @@ struct Tableau {
 }
 
 impl Tableau {
-    /// Reduced costs and value for `cost` (one per column, artificial ones included).
-    fn price(&mut self, cost: &[Q]) -> Q {
+    /// Reduced costs for `cost` (one per column, artificial ones included).
+    fn price(&mut self, cost: &[Q]) {
         self.reduced = cost.to_vec();
-        let mut value = Q::zero();
         for (i, row) in self.rows.iter().enumerate() {
             let cb = &cost[self.basis[i]];
             if cb.is_zero() {
@@ -54,11 +53,10 @@ impl Tableau {
                     *r = &*r - cb * t;
                 }
             }
-            value = value + cb * &self.rhs[i];
         }
-        value
     }
 
+    /// Makes column j basic in row p (Gauss-Jordan on the rows and the reduced costs).
     fn pivot(&mut self, p: usize, j: usize) {
         let inv = self.rows[p][j].recip();
         for t in self.rows[p].iter_mut() {
