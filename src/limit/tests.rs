@@ -201,19 +201,26 @@ fn a_block_between_abutments_is_held_whatever_the_ground_does() {
     assert_eq!(l.towards_minus_x, Limit::Unlimited);
 }
 
+/// A on the ground, B on A reaching past its right end, and C (x, width, height) on B's right
+/// part.
+fn stack(c: (f64, f64, f64)) -> Model {
+    let (x, width, height) = c;
+    Model::from_ron_str(&format!(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6, rectangles: [
+          (x_m: 0.0, y_m: 0.0, width_m: 1.0, height_m: 0.5, name: \"A\"),
+          (x_m: 0.2, y_m: 0.5, width_m: 1.4, height_m: 0.5, name: \"B\"),
+          (x_m: {x}, y_m: 1.0, width_m: {width}, height_m: {height}, name: \"C\")])"
+    ))
+    .unwrap()
+}
+
 /// Each block stands over its own support, so the graph takes the wall; but B and C together
 /// lean past A's right end (their centroid at 1.154 m over A's 0 to 1 m), and the program,
 /// with no seated balance even at rest, says so with the fall: B turning over A's corner (how
 /// C goes with it is one of many motions that show it, not asked for).
 #[test]
 fn a_stack_leaning_past_its_base_cannot_stand() {
-    let m = Model::from_ron_str(
-        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6, rectangles: [
-          (x_m: 0.0, y_m: 0.0, width_m: 1.0, height_m: 0.5, name: \"A\"),
-          (x_m: 0.2, y_m: 0.5, width_m: 1.4, height_m: 0.5, name: \"B\"),
-          (x_m: 1.3, y_m: 1.0, width_m: 0.3, height_m: 2.0, name: \"C\")])",
-    )
-    .unwrap();
+    let m = stack((1.3, 0.3, 2.0));
     let err = at_rest(m.wall(), m.topology()).unwrap_err().to_string();
     assert!(
         err.contains("cannot stand even on still ground")
@@ -223,13 +230,7 @@ fn a_stack_leaning_past_its_base_cannot_stand() {
     // A squat C leans B and C past A's corner too (centroid at 1.063 m) but does not tip
     // itself: the ground accelerating towards +x at about 0.12 g would hold them back, and
     // the wall still cannot stand at rest.
-    let m = Model::from_ron_str(
-        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6, rectangles: [
-          (x_m: 0.0, y_m: 0.0, width_m: 1.0, height_m: 0.5, name: \"A\"),
-          (x_m: 0.2, y_m: 0.5, width_m: 1.4, height_m: 0.5, name: \"B\"),
-          (x_m: 1.0, y_m: 1.0, width_m: 0.6, height_m: 0.8, name: \"C\")])",
-    )
-    .unwrap();
+    let m = stack((1.0, 0.6, 0.8));
     let err = at_rest(m.wall(), m.topology()).unwrap_err().to_string();
     assert!(err.contains("cannot stand even on still ground"), "{err}");
     let (w, t) = (m.wall(), m.topology());
