@@ -4,7 +4,7 @@
 
 use crate::error::{Error, SimulationError};
 use crate::integrate::baselines::{ContactSolver, Moreau, MoreauWall, PaperNewmark, Regularized};
-use crate::integrate::event::EventDriven;
+use crate::integrate::event::{EventDriven, Params};
 use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
 use crate::integrate::stepping::positive;
 use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario, Settings};
@@ -81,6 +81,9 @@ pub struct RunSettings {
     pub contact_solver: ContactSolver,
     /// Told the simulated time as the run goes on.
     pub progress: Option<Progress>,
+    /// Watch the exact sliding run for the first instant some block must start to turn
+    /// (`limit::seated`; summary.json's `uplift_check`).
+    pub check_uplift: bool,
 }
 
 fn incompatible(asked: &'static str, fix: &'static str) -> SimulationError {
@@ -179,7 +182,17 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
             ))),
         }
     };
+    let no_uplift_check = |why: &str| {
+        SimulationError::NotApplicable(format!(
+            "--check-uplift watches the exact sliding engine, which does not run here ({why}): \
+             leave --check-uplift out, or run the sliding model with the exact integrator \
+             (--model slide, no --method)"
+        ))
+    };
     if settings.direction == Direction::OutOfPlane {
+        if settings.check_uplift {
+            return Err(no_uplift_check("across the plane the wall rocks"));
+        }
         exact_only("rocking across the plane")?;
         return rocking::out_of_plane(
             sc.wall,
@@ -191,6 +204,9 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
         );
     }
     let (rocks, why) = in_plane_model(sc, settings)?;
+    if settings.check_uplift && (rocks || !matches!(settings.method, Method::Event)) {
+        return Err(no_uplift_check(&why));
+    }
     let initial = settings.initial_rotation.first().map_or(0.0, |r| r.1);
     let mut response = match (&settings.method, rocks) {
         (Method::Moreau { .. }, true) if settings.rocking.is_some() => {
@@ -213,7 +229,13 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
             }
             .run(sc)?
         }
-        (Method::Event, false) => EventDriven::default().run(sc)?,
+        (Method::Event, false) => EventDriven {
+            params: Params {
+                watch_uplift: settings.check_uplift,
+                ..Params::default()
+            },
+        }
+        .run(sc)?,
         (Method::Paper { dt_s }, false) => PaperNewmark { dt_s: *dt_s }.run(sc)?,
         (Method::Moreau { .. }, false) if settings.contact_solver != ContactSolver::GaussSeidel => {
             return Err(incompatible(

@@ -77,6 +77,7 @@ def run(
     direction: str = "in-plane",
     initial_rotation: Mapping[str, float] | None = None,
     log_events: bool = False,
+    check_uplift: bool = False,
 ) -> Result:
     """Runs ``wall`` under ``motion`` (the GIL is released while it runs).
 
@@ -90,6 +91,9 @@ def run(
     ``initial_rotation``: blocks (or sections across the plane) started from rest at a rotation,
     ``{"B17": 0.1}`` in rad (positive: on the right corner, or towards the back face), as
     ``pirqa run --initial-rotation``; on still ground give ``Motion.rest()`` and ``duration_s``.
+    ``check_uplift``: watch the exact sliding run for the first instant at which no contact
+    forces keep every block seated (``summary["uplift_check"]``), as ``pirqa run
+    --check-uplift``.
     """
     raw = _run(
         wall,
@@ -103,6 +107,7 @@ def run(
         direction=direction,
         initial_rotation=None if initial_rotation is None else dict(initial_rotation),
         log_events=log_events,
+        check_uplift=check_uplift,
     )
     history = None
     if raw["history"] is not None:

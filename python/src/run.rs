@@ -104,7 +104,7 @@ fn releases(given: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, f64)>> {
 #[pyfunction]
 #[pyo3(signature = (wall, motion, *, duration_s = None, output_dt_s = None, method = "event",
     dt_s = None, model = "auto", contact_solver = "gauss-seidel", direction = "in-plane",
-    initial_rotation = None, log_events = false))]
+    initial_rotation = None, log_events = false, check_uplift = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -119,6 +119,7 @@ pub fn run<'py>(
     direction: &str,
     initial_rotation: Option<&Bound<'_, PyDict>>,
     log_events: bool,
+    check_uplift: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     if motion.is_rest() && duration_s.is_none() {
         return Err(option(
@@ -135,6 +136,7 @@ pub fn run<'py>(
         contact_solver: self::contact_solver(contact_solver)?,
         direction: self::direction(direction)?,
         initial_rotation: releases(initial_rotation)?,
+        check_uplift,
         ..RunSettings::default()
     };
     let (m, g) = (wall.model.clone(), motion.motion.clone());

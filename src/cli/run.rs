@@ -314,6 +314,12 @@ pub struct RunArgs {
     /// every block at every event takes longer than the run); the logs are written as usual.
     #[arg(long, requires = "out", conflicts_with = "output_dt")]
     pub no_history: bool,
+    /// Watch the sliding run for the first instant at which no contact forces keep every block
+    /// seated (each block's moments balanced inside its joints), and say when and which blocks
+    /// would start to turn (summary.json's `uplift_check`); exact sliding engine only, walls of
+    /// up to 150 movable blocks.
+    #[arg(long)]
+    pub check_uplift: bool,
     /// Write only the summary, to this file.
     #[arg(long, value_name = "FILE")]
     pub summary: Option<PathBuf>,
@@ -454,6 +460,7 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         initial_rotation: args.initial_rotation.clone(),
         contact_solver: args.contact_solver,
         progress: None,
+        check_uplift: args.check_uplift,
     };
     let cost = pirqa::estimate(&model, &motion, &settings);
     if args.estimate {
@@ -683,6 +690,23 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
         );
     }
     let _ = writeln!(t, ", residual {:.2e}", e.residual_j);
+    if let Some(c) = &s.uplift_check {
+        let _ = match &c.first_uplift {
+            None => writeln!(
+                t,
+                "  uplift check: every block stays seated up to t = {} s",
+                c.checked_until_s
+            ),
+            Some(u) => writeln!(
+                t,
+                "  uplift check: at t = {:.6} s (a_g = {:.4} m/s2) no contact forces keep every \
+                 block seated: {}",
+                u.time_s,
+                u.ground_accel_m_s2,
+                u.turning.join(", ")
+            ),
+        };
+    }
     for w in &s.warnings {
         let _ = writeln!(t, "  warning: {w}");
     }

@@ -14,11 +14,12 @@
 //! blocks move and about which points, not how fast. The loads here are free: a block on two
 //! others passes its weight however its balance needs, not by eq. (3)'s tributary split.
 
+pub mod seated;
 mod simplex;
 
 use crate::error::SimulationError;
 use crate::exact::Q;
-use crate::topology::{Base, BlockId, Topology};
+use crate::topology::{Base, BlockId, HorizontalJoint, Topology, VerticalJoint};
 use crate::wall::{Block, Wall};
 use simplex::{Outcome, Program};
 
@@ -107,16 +108,10 @@ fn forces(wall: &Wall, topo: &Topology) -> Vec<Force> {
     let mut out = Vec::new();
     for h in &topo.horizontal {
         let up = &wall.blocks[h.upper.0];
-        let (l, r, against) = match h.lower {
-            Base::Ground => (up.x.clone(), up.right(), None),
-            Base::Block(BlockId(j)) => {
-                let lo = &wall.blocks[j];
-                (
-                    up.x.clone().max(lo.x.clone()),
-                    up.right().min(lo.right()),
-                    movable(j),
-                )
-            }
+        let [l, r] = overlap(wall, h);
+        let against = match h.lower {
+            Base::Ground => None,
+            Base::Block(BlockId(j)) => movable(j),
         };
         let edges: &[i128] = if h.friction.is_zero() { &[1] } else { &[1, -1] };
         for x in [l, r] {
@@ -131,32 +126,52 @@ fn forces(wall: &Wall, topo: &Topology) -> Vec<Force> {
         }
     }
     for v in topo.vertical.iter().filter(|v| v.gap_m.is_zero()) {
-        let (a, b) = (&wall.blocks[v.left.0], &wall.blocks[v.right.0]);
-        let lo = a.y.clone().max(b.y.clone());
-        let hi = a.top().min(b.top());
-        for y in [lo, hi] {
-            // A push on the right block towards +x and its opposite on the left; where the
-            // right one is an abutment, the push on the left is the force.
+        out.extend(pushes(wall, v, movable));
+    }
+    out
+}
+
+/// The ends of a horizontal joint's contact (m): where its upper block meets its base.
+fn overlap(wall: &Wall, h: &HorizontalJoint) -> [Q; 2] {
+    let up = &wall.blocks[h.upper.0];
+    match h.lower {
+        Base::Ground => [up.x.clone(), up.right()],
+        Base::Block(BlockId(j)) => {
+            let lo = &wall.blocks[j];
+            [up.x.clone().max(lo.x.clone()), up.right().min(lo.right())]
+        }
+    }
+}
+
+/// The pushes of a vertical joint, one at each end of the height its faces share: on the right
+/// block towards +x and its opposite on the left; where the right one does not move (an
+/// abutment; `moves` says which do), the push on the left is the force.
+fn pushes(wall: &Wall, v: &VerticalJoint, moves: impl Fn(usize) -> Option<usize>) -> Vec<Force> {
+    let (a, b) = (&wall.blocks[v.left.0], &wall.blocks[v.right.0]);
+    let lo = a.y.clone().max(b.y.clone());
+    let hi = a.top().min(b.top());
+    let (right, left) = (moves(v.right.0), moves(v.left.0));
+    [lo, hi]
+        .into_iter()
+        .filter_map(|y| {
             let at = [a.right(), y];
-            let force = match (movable(v.right.0), movable(v.left.0)) {
-                (Some(on), against) => Force {
+            match (right, left) {
+                (Some(on), against) => Some(Force {
                     on,
                     against,
                     at,
                     direction: [Q::one(), Q::zero()],
-                },
-                (None, Some(on)) => Force {
+                }),
+                (None, Some(on)) => Some(Force {
                     on,
                     against: None,
                     at,
                     direction: [-Q::one(), Q::zero()],
-                },
-                (None, None) => continue,
-            };
-            out.push(force);
-        }
-    }
-    out
+                }),
+                (None, None) => None,
+            }
+        })
+        .collect()
 }
 
 /// The centroid of a block (m).

@@ -354,6 +354,32 @@ pub struct Summary {
     /// Across the wall's plane: the section nearest to overturning (absent when none lifted).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub worst: Option<Worst>,
+    /// Whether every block could stay seated along the sliding run (`--check-uplift`), and the
+    /// first instant one could not; absent when not asked.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub uplift_check: Option<UpliftCheck>,
+}
+
+/// The uplift check of a sliding run: at every instant, whether contact forces exist that give
+/// each block its sliding acceleration with no block turning (`limit::seated`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct UpliftCheck {
+    /// Checked from t = 0 up to this time (s): the run's end, or the first uplift.
+    pub checked_until_s: f64,
+    /// The first instant some block must start to turn; `None`: every block stayed seated.
+    pub first_uplift: Option<Uplift>,
+}
+
+/// The first instant of a sliding run at which no contact forces keep every block seated.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Uplift {
+    /// When (s).
+    pub time_s: f64,
+    /// The ground's acceleration then (m/s2).
+    pub ground_accel_m_s2: f64,
+    /// The blocks that start to turn, each with how (`F1 turns counterclockwise about its
+    /// bottom-left corner`), from the mechanism of the seated program's multipliers.
+    pub turning: Vec<String>,
 }
 
 /// The body of a run nearest to overturning: the first to overturn, or the one whose largest
@@ -392,6 +418,13 @@ pub enum Warning {
     MoreCouldRock {
         /// How many more.
         more: usize,
+    },
+    /// The uplift check found an instant from which the sliding answer leaves rocking out.
+    Lifts {
+        /// When (s).
+        time_s: f64,
+        /// The blocks that start to turn, each with how.
+        turning: Vec<String>,
     },
     /// A rocking body left the ground on both corners: the run stopped there.
     Flight {
@@ -495,6 +528,13 @@ impl std::fmt::Display for Warning {
                 )
             }
             Warning::MoreCouldRock { more } => write!(f, "... and {more} more blocks could rock"),
+            Warning::Lifts { time_s, turning } => write!(
+                f,
+                "at t = {time_s} s no contact forces keep every block seated ({}): from there \
+                 the sliding answer leaves out rocking that the motion causes (run the wall \
+                 with --model slide-rock --method moreau --dt S to follow it)",
+                turning.join(", ")
+            ),
             Warning::Flight { body, time_s } => write!(
                 f,
                 "{body} leaves the ground on both corners at t = {time_s} s (free flight): the \

@@ -5,7 +5,7 @@ use super::partial::PartialFile;
 use super::{
     BlockSummary, Collapse, DecisionRecord, Energy, EventKind, EventRecord, EventsTo, History,
     HistoryFile, HistoryTo, HorizontalJointSummary, ModelUsed, Response, Stats, Stream, Summary,
-    Warning,
+    UpliftCheck, Warning,
 };
 use crate::topology::{Base, BlockId, HorizontalId, JointRef, Topology, VerticalId};
 use crate::wall::Wall;
@@ -58,6 +58,8 @@ pub struct Recorder {
     pub interrupted_at_s: Option<f64>,
     /// The model that ran.
     pub model: ModelUsed,
+    /// The uplift check, when asked for.
+    pub uplift_check: Option<UpliftCheck>,
 }
 
 /// A wall's horizontal joints as a recorder lists them: (upper block, lower block or `None`
@@ -144,6 +146,7 @@ impl Recorder {
             warnings: Vec::new(),
             interrupted_at_s: None,
             model: ModelUsed::default(),
+            uplift_check: None,
         }
     }
 
@@ -446,6 +449,7 @@ impl Recorder {
                 stats: self.stats,
                 warnings: self.warnings,
                 worst: None,
+                uplift_check: self.uplift_check,
             },
             history: self.history,
             history_file: self.stream.map(|(stream, _)| {

@@ -655,6 +655,64 @@ fn a_tall_block_rocks_and_the_sliding_model_says_it_would() {
 }
 
 #[test]
+fn run_checks_uplift_when_asked_and_refuses_walls_too_large_for_it() {
+    let dir = temp_dir("uplift");
+    let (ok, out, err) = pirqa(&[
+        "run",
+        "walls/inca/ollantaytambo-monoliths.ron",
+        "--model",
+        "slide",
+        "--check-uplift",
+        "--record",
+        "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+        "--pga",
+        "0.3g",
+        "--no-history",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("uplift check: at t = 2.13")
+            && out.contains("F5 turns clockwise about its bottom-right corner")
+            && out.contains("warning: at t = 2.13"),
+        "{out}"
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let first = &s["uplift_check"]["first_uplift"];
+    assert_eq!(
+        first["turning"][0],
+        "F5 turns clockwise about its bottom-right corner"
+    );
+    assert!((first["ground_accel_m_s2"].as_f64().unwrap() + 0.2834 * 9.81).abs() < 0.001);
+    // 13 courses of 13: more movable blocks than the exact program takes.
+    let wall = dir.join("large.ron");
+    let (ok, _, err) = pirqa(&[
+        "generate",
+        "--courses",
+        "13",
+        "--blocks-per-course",
+        "13",
+        "-o",
+        wall.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let (ok, _, err) = pirqa(&[
+        "run",
+        wall.to_str().unwrap(),
+        "--check-uplift",
+        "--sine",
+        "0.3g",
+        "--freq",
+        "1",
+        "--duration",
+        "1",
+    ]);
+    assert!(!ok && err.contains("up to 150 movable blocks"), "{err}");
+}
+
+#[test]
 fn every_method_writes_the_same_outputs_with_its_name() {
     for (method, extra) in [
         ("event", vec![]),

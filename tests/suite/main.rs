@@ -26,5 +26,6 @@ mod shards;
 mod survey;
 mod sweep;
 mod topology;
+mod uplift_check;
 mod vertical;
 mod wall_input;

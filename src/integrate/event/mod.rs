@@ -52,6 +52,7 @@ mod schedule;
 mod slip;
 mod solver;
 mod stuck;
+mod uplift;
 
 use crate::error::SimulationError;
 use crate::exact::Q;
@@ -89,6 +90,10 @@ pub struct Params {
     /// stick interval, where that shows the answer (`usize::MAX`: never). Below it, the
     /// decision over the whole piece costs no more.
     pub beside_stuck_from: usize,
+    /// Watch the run for the first instant at which no contact forces keep every block seated
+    /// (`uplift.rs`, summary.json's `uplift_check`): adds to the answer, changes none of it.
+    /// Walls of up to `limit::MAX_BLOCKS` moving blocks.
+    pub watch_uplift: bool,
 }
 
 impl Default for Params {
@@ -98,6 +103,7 @@ impl Default for Params {
             max_collisions_per_chain: None,
             kept_limits_from: KEPT_LIMITS_FROM,
             beside_stuck_from: BESIDE_STUCK_FROM,
+            watch_uplift: false,
         }
     }
 }
@@ -241,6 +247,8 @@ pub(crate) struct Engine<'a> {
     scratch: Scratch,
     count: Counter,
     rec: Recorder,
+    /// The uplift watch, when asked for.
+    uplift: Option<uplift::Watch>,
 }
 
 impl<'a> Engine<'a> {
@@ -274,6 +282,15 @@ impl<'a> Engine<'a> {
         if sc.settings.log_decisions {
             rec.log_decisions(sc.settings.decisions_file.as_deref());
         }
+        let movable = wall.blocks.iter().filter(|b| !b.fixed).count();
+        if params.watch_uplift && movable > crate::limit::MAX_BLOCKS {
+            return Err(SimulationError::NotApplicable(format!(
+                "the uplift check is computed for walls of up to {} movable blocks (its exact \
+                 program is dense); this wall has {movable}: leave --check-uplift out",
+                crate::limit::MAX_BLOCKS
+            )));
+        }
+        let uplift = params.watch_uplift.then(uplift::Watch::default);
         Ok(Engine {
             given: Given {
                 wall,
@@ -326,6 +343,7 @@ impl<'a> Engine<'a> {
             scratch: Scratch::default(),
             count: Counter::default(),
             rec,
+            uplift,
         })
     }
 
@@ -345,10 +363,12 @@ impl<'a> Engine<'a> {
                     if !self.output_until(p.t) {
                         break;
                     }
+                    self.watch_uplift(p.t)?;
                     self.t = p.t;
                     self.rec.stats.events += 1;
                     self.progress_guard(&p)?;
                     self.handle(p.ev)?;
+                    self.uplift_state_changed();
                     if self.stopped {
                         break;
                     }
@@ -362,6 +382,7 @@ impl<'a> Engine<'a> {
                     if !self.output_until(seg_end) {
                         break;
                     }
+                    self.watch_uplift(seg_end)?;
                     self.t = seg_end;
                     if !self.keep_going() || seg_end >= self.given.t_end {
                         break;
@@ -370,6 +391,7 @@ impl<'a> Engine<'a> {
                 }
             }
         }
+        self.uplift_watch_ends();
         Ok(self.finish())
     }
 
@@ -651,11 +673,13 @@ impl<'a> Engine<'a> {
             .sum();
         self.rec.stats.root_evaluations = self.count.0;
         self.rec.stats.flow_nodes = flow::take_pass_nodes();
-        self.rec.warnings = crate::validity::rocking_warnings(
+        // After the uplift check's, if it found one.
+        let could_rock = crate::validity::rocking_warnings(
             self.given.wall,
             self.given.topo,
             self.rec.peak_accel(),
         );
+        self.rec.warnings.extend(could_rock);
         let motion = self.given.motion.describe();
         self.rec
             .finish("event", &self.given.wall.name, motion, t, &u, &v)

@@ -12,8 +12,34 @@
 use super::cluster::ClusterId;
 use super::cluster::{GroundHits, Mode, Slide};
 use super::queue::{Constraint, Ev};
-use super::roots::{first_violation, polish, sign_changes, valid_after, Fun};
+use super::roots::{first_violation, polish, sign_changes, valid_after, Counter, Fun};
 use super::Engine;
+use crate::motion::Segment;
+
+/// The first instant of [t0, t1], within the segment `seg` and from the current time t0, at
+/// which a_g / lambda passes `limit` on the side of `s` (+1: above it): a_g - limit lambda changes
+/// sign (linear with a vertical component, a_g alone otherwise, monotone on a segment either
+/// way). At t0 itself only where it is leaving, not where it touches and turns back.
+pub(super) fn limit_passed(
+    seg: &Segment,
+    limit: f64,
+    s: f64,
+    (t0, t1): (f64, f64),
+    count: &mut Counter,
+) -> Option<f64> {
+    let (r1, r2) = seg.accel_rates(t0 - seg.t0);
+    let f = |x: f64| s * (limit * seg.lambda_at(x - seg.t0) - seg.accel(x - seg.t0));
+    if !valid_after(f(t0), 0.0, &[s * (limit * seg.lambda.1 - r1), -s * r2]) {
+        Some(t0)
+    } else if f(t1) <= 0.0 {
+        let guess = seg
+            .time_of_ratio(limit, t0 - seg.t0, t1 - seg.t0)
+            .map_or(t1, |x| seg.t0 + x);
+        Some(polish(&f, guess, t0, t1, count))
+    } else {
+        None
+    }
+}
 
 fn constraint_bits(c: Constraint) -> u64 {
     match c {
@@ -91,30 +117,15 @@ impl Engine<'_> {
         let (t0, t1) = (self.t, seg.t1.min(self.given.t_end));
         let ver = self.clusters[k].version;
         let (r1, r2) = seg.accel_rates(self.s());
-        let ag = move |x: f64| seg.accel(x - seg.t0);
         match &self.clusters[k].mode {
             Mode::Stuck { lo, hi, .. } => {
                 let (lo, hi) = (*lo, *hi);
-                // a_g/lambda leaves [lo, hi]: a_g - limit lambda changes sign (linear with a
-                // vertical component, a_g alone otherwise, monotone on a segment either way).
-                let dl = seg.lambda.1;
                 for (limit, upper) in [(hi, true), (lo, false)] {
                     if !limit.is_finite() {
                         continue;
                     }
                     let s = if upper { 1.0 } else { -1.0 };
-                    let f = |x: f64| s * (limit * seg.lambda_at(x - seg.t0) - ag(x));
-                    let hit = if !valid_after(f(t0), 0.0, &[s * (limit * dl - r1), -s * r2]) {
-                        Some(t0)
-                    } else if f(t1) <= 0.0 {
-                        let guess = seg
-                            .time_of_ratio(limit, t0 - seg.t0, t1 - seg.t0)
-                            .map_or(t1, |x| seg.t0 + x);
-                        Some(polish(&f, guess, t0, t1, &mut self.count))
-                    } else {
-                        None
-                    };
-                    if let Some(t) = hit {
+                    if let Some(t) = limit_passed(&seg, limit, s, (t0, t1), &mut self.count) {
                         self.queue
                             .push(t, Ev::Threshold { k, ver, upper }, &self.clusters);
                     }

@@ -1,0 +1,201 @@
+//! Watching a sliding run for its first uplift (`Params::watch_uplift`): between two events the
+//! wall's state is fixed, and whether it keeps every block seated is an interval of a_g
+//! (`limit::seated`), worked out once per state met and remembered by state. Each stretch the
+//! run advances by is compared with it, and the crossing located as a stuck cluster's stick
+//! limit is (`schedule_segment`). The watch reads the engine and changes nothing in it: a run
+//! watched gives the same answer as one not watched, with the check added.
+
+use super::cluster::{ClusterId, Mode};
+use super::roots::Counter;
+use super::schedule::limit_passed;
+use super::Engine;
+use crate::error::SimulationError;
+use crate::exact::Q;
+use crate::limit::seated::{self, Interval, Moving, State};
+use crate::limit::Moves;
+use crate::response::{Uplift, UpliftCheck, Warning};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// What the watch keeps.
+#[derive(Default)]
+pub(super) struct Watch {
+    /// Intervals worked out, by state.
+    memo: HashMap<State, Rc<Interval>>,
+    /// The interval of the state since the last event; `None` once an event may have changed it.
+    current: Option<Rc<Interval>>,
+    /// The first uplift was found (the sliding answer leaves rocking out from there on).
+    done: bool,
+    /// Function evaluations of its crossings, kept out of the run's own count.
+    count: Counter,
+}
+
+/// How a block moves with others: touching faces of blocks that move together can push.
+#[derive(PartialEq)]
+enum Together {
+    Ground,
+    Cluster(ClusterId),
+}
+
+impl Engine<'_> {
+    /// The watch must work the state out again: an event may have changed it.
+    pub(super) fn uplift_state_changed(&mut self) {
+        if let Some(w) = &mut self.uplift {
+            w.current = None;
+        }
+    }
+
+    /// The run is about to advance from `self.t` to `t_next` in its state: records the first
+    /// instant in between at which no contact forces keep every block seated, if there is one.
+    pub(super) fn watch_uplift(&mut self, t_next: f64) -> Result<(), SimulationError> {
+        let Some(mut w) = self.uplift.take() else {
+            return Ok(());
+        };
+        let found = if w.done || t_next <= self.t {
+            None
+        } else {
+            self.first_uplift(&mut w, t_next)?
+        };
+        if let Some((t, mechanism)) = found {
+            // The blocks that turn; the others of the mechanism move with them.
+            let names: Vec<String> = mechanism
+                .iter()
+                .filter(|m| m.omega_rad_s != 0.0)
+                .map(|m| format!("{} {}", m.block, m.how))
+                .collect();
+            self.rec.uplift_check = Some(UpliftCheck {
+                checked_until_s: t,
+                first_uplift: Some(Uplift {
+                    time_s: t,
+                    ground_accel_m_s2: self.seg.accel(t - self.seg.t0),
+                    turning: names.clone(),
+                }),
+            });
+            self.rec.warnings.push(Warning::Lifts {
+                time_s: t,
+                turning: names,
+            });
+            w.done = true;
+        }
+        self.uplift = Some(w);
+        Ok(())
+    }
+
+    /// The run's end: a watch that found no uplift says how far it looked.
+    pub(super) fn uplift_watch_ends(&mut self) {
+        if self.uplift.as_ref().is_some_and(|w| !w.done) {
+            self.rec.uplift_check = Some(UpliftCheck {
+                checked_until_s: self.t,
+                first_uplift: None,
+            });
+        }
+    }
+
+    fn first_uplift(
+        &self,
+        w: &mut Watch,
+        t_next: f64,
+    ) -> Result<Option<(f64, Vec<Moves>)>, SimulationError> {
+        let interval = match &w.current {
+            Some(i) => i.clone(),
+            None => {
+                let state = self.seated_state();
+                let i = match w.memo.get(&state) {
+                    Some(i) => i.clone(),
+                    None => {
+                        let i =
+                            Rc::new(seated::interval(self.given.wall, self.given.topo, &state)?);
+                        w.memo.insert(state, i.clone());
+                        i
+                    }
+                };
+                w.current = Some(i.clone());
+                i
+            }
+        };
+        let (lo, hi) = match &*interval {
+            Interval::Empty { mechanism } => return Ok(Some((self.t, mechanism.clone()))),
+            Interval::Between { lo, hi } => (lo, hi),
+        };
+        let mut first: Option<(f64, Vec<Moves>)> = None;
+        for (side, s) in [(hi, 1.0), (lo, -1.0)] {
+            let Some(side) = side
+                .as_ref()
+                .filter(|d| self.before_stick_limit(&d.accel, s))
+            else {
+                continue;
+            };
+            // a_g / lambda passes the side: as a stuck cluster's limit is found.
+            let limit = side.accel.to_f64();
+            let hit = limit_passed(&self.seg, limit, s, (self.t, t_next), &mut w.count);
+            if let Some(t) = hit {
+                if first.as_ref().is_none_or(|(f, _)| t < *f) {
+                    first = Some((t, side.mechanism.clone()));
+                }
+            }
+        }
+        Ok(first)
+    }
+
+    /// The seated side `accel` (towards the side of `s`, +1: +x) comes strictly before every
+    /// stuck cluster's stick limit that way. Where it does not, the sliding model's own event
+    /// (a slip) ends the state first, or at the same instant, and the state has no uplift of
+    /// its own. A limit kept as a bound is at or inside the exact one: a seated side inside
+    /// the bound is inside the limit; one at or past it is met again after the bound's event
+    /// works the limit out.
+    fn before_stick_limit(&self, accel: &Q, s: f64) -> bool {
+        self.clusters.ids().all(|k| match &self.clusters[k].mode {
+            _ if self.clusters[k].blocks.is_empty() => true,
+            Mode::Sliding(_) => true,
+            Mode::Stuck { lo_q, hi_q, .. } => match (s > 0.0, hi_q, lo_q) {
+                (true, Some(hi), _) => *accel < *hi,
+                (false, _, Some(lo)) => *accel > *lo,
+                _ => true,
+            },
+        })
+    }
+
+    /// The state of the wall as the sliding model has it now.
+    fn seated_state(&self) -> State {
+        let g = &self.given;
+        let together = |i: usize| -> Option<Together> {
+            if g.fixed[i] {
+                return Some(Together::Ground);
+            }
+            if self.fallen[i] {
+                return None;
+            }
+            match self.clusters[self.of[i]].mode {
+                Mode::Stuck { .. } => Some(Together::Ground),
+                Mode::Sliding(_) => Some(Together::Cluster(self.of[i])),
+            }
+        };
+        let moving = (0..g.n)
+            .map(|i| {
+                if g.fixed[i] || self.fallen[i] {
+                    return None;
+                }
+                Some(match &self.clusters[self.of[i]].mode {
+                    Mode::Stuck { .. } => Moving::Ground,
+                    Mode::Sliding(sl) => Moving::At(sl.c_q.clone()),
+                })
+            })
+            .collect();
+        State {
+            moving,
+            slip: self.slip.iter().map(|s| s.sign()).collect(),
+            pushes: g
+                .topo
+                .vertical
+                .iter()
+                .zip(&self.touching)
+                .map(|(v, &touching)| {
+                    touching && {
+                        let (l, r) = (together(v.left.0), together(v.right.0));
+                        l.is_some() && l == r
+                    }
+                })
+                .collect(),
+        }
+    }
+}

@@ -1,0 +1,236 @@
+//! Whether every block of a sliding state can stay seated: the ground accelerations at which
+//! contact forces exist that give each block the acceleration its state gives it (moving with
+//! the ground, or a sliding cluster's constant one) with no block turning. The sliding model
+//! decides horizontal forces only; a block also needs the moments of its forces balanced, by
+//! where its joints' normal forces act inside each joint's overlap. Where no such forces exist
+//! some block must start to turn: the uplift the sliding model leaves out.
+//!
+//! The contact forces are those of the limit at rest (`at_rest`), with the state's slips: each
+//! horizontal joint is two corner forces, each in its friction cone where the joint is stuck
+//! and on the cone's edge against the slip where it slips (Coulomb, eq. 2); touching faces of
+//! blocks that move together push. The loads are free: a block on two others may pass its
+//! weight however its balance needs, so an interval's side is where no load split at all keeps
+//! the blocks seated (eq. 3's tributary split is one of those tried). In a state with nothing
+//! sliding the interval is the limit at rest.
+
+use super::simplex::{self, Outcome, Program};
+use super::{centroid, entries, mechanism, overlap, pushes, Force, Moves};
+use crate::error::SimulationError;
+use crate::exact::Q;
+use crate::topology::{Base, BlockId, Topology};
+use crate::wall::Wall;
+
+/// How a block moves in the state.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum Moving {
+    /// With the ground (stuck to it, through its joints).
+    Ground,
+    /// At this constant absolute acceleration (m/s2): a sliding cluster's.
+    At(Q),
+}
+
+/// A sliding state of the wall, as the sliding model has it between two events.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct State {
+    /// Per block: how it moves; `None` for a fixed block or one that has fallen.
+    pub moving: Vec<Option<Moving>>,
+    /// Per horizontal joint: 0 where it is stuck, +1 (-1) where its upper block slips towards
+    /// +x (-x) on the lower one.
+    pub slip: Vec<i8>,
+    /// Per vertical joint: its faces touch and its blocks move together, so it may push.
+    pub pushes: Vec<bool>,
+}
+
+/// One side of the interval: the furthest ground acceleration that way (m/s2) at which every
+/// block stays seated, and how the blocks move past it. Friction is in the program, so a side
+/// may be a slip (a mechanism that turns no block); which comes first, that side or the
+/// sliding model's own limit, is the caller's comparison (`integrate::event::uplift`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Side {
+    /// The acceleration.
+    pub accel: Q,
+    /// How the blocks move past it, from the program's multipliers (the mechanism, as the
+    /// limit at rest gives it).
+    pub mechanism: Vec<Moves>,
+}
+
+impl Side {
+    /// Some block of the mechanism turns.
+    pub fn turns(&self) -> bool {
+        self.mechanism.iter().any(|m| m.omega_rad_s != 0.0)
+    }
+}
+
+/// The ground accelerations at which the state keeps every block seated.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Interval {
+    /// None: in this state some block turns whatever the ground does.
+    Empty {
+        /// How the blocks move, from the program's certificate.
+        mechanism: Vec<Moves>,
+    },
+    /// Seated between `lo` and `hi`; `None`: no limit that way (no block moves with the ground,
+    /// or abutments hold the wall).
+    Between {
+        /// Towards -x.
+        lo: Option<Side>,
+        /// Towards +x.
+        hi: Option<Side>,
+    },
+}
+
+/// The interval of ground accelerations in which `state` keeps every block seated.
+pub fn interval(wall: &Wall, topo: &Topology, state: &State) -> Result<Interval, SimulationError> {
+    let movable: Vec<usize> = (0..wall.blocks.len())
+        .filter(|&i| state.moving[i].is_some())
+        .collect();
+    if movable.len() > super::MAX_BLOCKS {
+        return Err(SimulationError::NotApplicable(format!(
+            "the uplift check is computed for walls of up to {} moving blocks (its exact \
+             program is dense); this wall has {}",
+            super::MAX_BLOCKS,
+            movable.len()
+        )));
+    }
+    if movable.is_empty() {
+        return Ok(Interval::Between { lo: None, hi: None });
+    }
+    let program = Builder::new(wall, topo, state, &movable);
+    let mut sides = Vec::with_capacity(2);
+    for s in [-1, 1] {
+        match simplex::solve(&program.program(s)) {
+            // Infeasibility does not depend on the objective: the first side tells.
+            Outcome::Infeasible { y } => {
+                return Ok(Interval::Empty {
+                    mechanism: program.mechanism(wall, topo, &y),
+                })
+            }
+            Outcome::Unbounded => sides.push(None),
+            Outcome::Optimal { value, y, .. } => sides.push(Some(Side {
+                accel: -&value * &Q::frac(s, 1),
+                mechanism: program.mechanism(wall, topo, &y),
+            })),
+        }
+    }
+    let hi = sides.pop().expect("two sides");
+    let lo = sides.pop().expect("two sides");
+    Ok(Interval::Between { lo, hi })
+}
+
+/// Balances per block: horizontal, vertical, moment.
+const ROWS: usize = 3;
+
+/// The program of a state: columns are unit contact forces (and a_g's two parts), rows each
+/// block's horizontal, vertical and moment balances (moments about its centroid).
+struct Builder<'a> {
+    movable: &'a [usize],
+    a: Vec<Vec<Q>>,
+    b: Vec<Q>,
+    /// Column of a_g's positive part (its negative part follows).
+    ag: usize,
+}
+
+impl<'a> Builder<'a> {
+    fn new(wall: &Wall, topo: &Topology, state: &State, movable: &'a [usize]) -> Builder<'a> {
+        let mut row_of = vec![None; wall.blocks.len()];
+        for (k, &i) in movable.iter().enumerate() {
+            row_of[i] = Some(ROWS * k);
+        }
+        let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
+        let alive = |i: usize| state.moving[i].is_some().then_some(i);
+        let mut columns: Vec<Force> = Vec::new();
+        for (h, joint) in topo.horizontal.iter().enumerate() {
+            let Some(on) = alive(joint.upper.0) else {
+                continue;
+            };
+            let against = match joint.lower {
+                Base::Ground => None,
+                // A fallen support left with its load.
+                Base::Block(BlockId(j)) if !wall.blocks[j].fixed && alive(j).is_none() => continue,
+                Base::Block(BlockId(j)) => alive(j),
+            };
+            // The cone's edges: both where the joint is stuck, the one against the slip where
+            // it slips (a slip towards +x meets friction towards -x).
+            let edges: &[i128] = match state.slip[h] {
+                _ if joint.friction.is_zero() => &[1],
+                0 => &[1, -1],
+                s if s > 0 => &[-1],
+                _ => &[1],
+            };
+            for x in overlap(wall, joint) {
+                for &e in edges {
+                    columns.push(Force {
+                        on,
+                        against,
+                        at: [x.clone(), wall.blocks[on].y.clone()],
+                        direction: [&joint.friction * &Q::frac(e, 1), Q::one()],
+                    });
+                }
+            }
+        }
+        for (v, joint) in topo.vertical.iter().enumerate() {
+            if state.pushes[v] {
+                columns.extend(pushes(wall, joint, alive));
+            }
+        }
+        let m = ROWS * movable.len();
+        let ag = columns.len();
+        let mut a = vec![vec![Q::zero(); ag + 2]; m];
+        let mut b = vec![Q::zero(); m];
+        for (j, f) in columns.iter().enumerate() {
+            for (o, sign) in [(Some(f.on), 1), (f.against, -1)] {
+                let Some(r0) = o.and_then(|o| row_of[o]) else {
+                    continue;
+                };
+                let e = entries(f, &centroids[o.expect("a row's block")]);
+                for (k, x) in e.into_iter().enumerate() {
+                    a[r0 + k][j] = &x * &Q::frac(sign, 1);
+                }
+            }
+        }
+        for (k, &i) in movable.iter().enumerate() {
+            let mass = &topo.blocks[i].mass_kg;
+            let row = ROWS * k;
+            match state.moving[i].as_ref().expect("movable") {
+                Moving::Ground => {
+                    a[row][ag] = -mass.clone();
+                    a[row][ag + 1] = mass.clone();
+                }
+                Moving::At(c) => b[row] = mass * c,
+            }
+            b[row + 1] = mass * &wall.g_m_s2;
+        }
+        Builder { movable, a, b, ag }
+    }
+
+    /// The program that pushes a_g furthest towards the side of `s` (+1: +x): minimise -s a_g.
+    fn program(&self, s: i128) -> Program {
+        let mut c = vec![Q::zero(); self.a[0].len()];
+        c[self.ag] = Q::frac(-s, 1);
+        c[self.ag + 1] = Q::frac(s, 1);
+        Program {
+            a: self.a.clone(),
+            b: self.b.clone(),
+            c,
+        }
+    }
+
+    /// The mechanism the multipliers of the balances give. A turn about a point that is no
+    /// block's corner keeps only its sense: with blocks sliding the multipliers' field mixes
+    /// the slip into the turn, and such a point is nowhere a user could find on the wall.
+    fn mechanism(&self, wall: &Wall, topo: &Topology, y: &[Q]) -> Vec<Moves> {
+        let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
+        let mut moves = mechanism(wall, topo, self.movable, &centroids, y);
+        for m in &mut moves {
+            if let Some((sense, point)) = m.how.split_once(" about ") {
+                if !point.ends_with("corner") {
+                    m.how = sense.to_string();
+                }
+            }
+        }
+        moves
+    }
+}
+
+#[cfg(test)]
+mod tests;

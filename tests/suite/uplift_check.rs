@@ -1,0 +1,214 @@
+//! The uplift check of a sliding run (`--check-uplift`, `limit::seated`): the first instant at
+//! which no contact forces keep every block seated, located exactly. Against closed forms: a
+//! slender block where a sine reaches g b/h, a block dragged by one sliding on it where its
+//! moments say (the sliding state's own interval, not the one at rest); against the limit at
+//! rest on the Ollantaytambo wall under El Centro; a watched run's answer otherwise the same to
+//! the bit as an unwatched one; refused where the sliding engine does not run.
+
+use pirqa::limit::{at_rest, Limit};
+use pirqa::motion::{Motion, Sine};
+use pirqa::response::{Uplift, UpliftCheck};
+use pirqa::{Direction, Method, Model, ModelChoice, Response, RunSettings, Warning};
+use std::f64::consts::PI;
+
+fn sine(amplitude_g: f64, duration_s: f64) -> Motion {
+    Motion::sine(Sine {
+        amplitude_m_s2: amplitude_g * 9.81,
+        frequency_hz: 1.0,
+        duration_s,
+        ..Sine::default()
+    })
+    .unwrap()
+}
+
+fn watched(model: &Model, motion: &Motion, check_uplift: bool) -> Response {
+    let settings = RunSettings {
+        model: ModelChoice::Slide,
+        check_uplift,
+        log_events: true,
+        ..RunSettings::default()
+    };
+    pirqa::run(model, motion, &settings).unwrap()
+}
+
+/// A block 0.6 x 1.2 m (b/h = 1/2) alone on the ground.
+fn slender(friction: &str) -> Model {
+    Model::from_ron_str(&format!(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: {friction},
+          rows: [(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\")])])"
+    ))
+    .unwrap()
+}
+
+fn first_uplift(r: &Response) -> &Uplift {
+    let check = r.summary.uplift_check.as_ref().expect("checked");
+    let u = check.first_uplift.as_ref().expect("an uplift");
+    assert_eq!(check.checked_until_s, u.time_s);
+    assert!(r
+        .summary
+        .warnings
+        .iter()
+        .any(|w| matches!(w, Warning::Lifts { time_s, .. } if *time_s == u.time_s)));
+    u
+}
+
+/// Where a unit sine of amplitude `amplitude_g` (1 Hz) first reaches `level_g`.
+fn first_reach(level_g: f64, amplitude_g: f64) -> f64 {
+    (level_g / amplitude_g).asin() / (2.0 * PI)
+}
+
+#[test]
+fn a_slender_block_lifts_where_a_sine_reaches_g_b_over_h() {
+    // b/h = 1/2 under friction 0.6: at rest it tips at g/2 before it could slide.
+    let r = watched(&slender("0.6"), &sine(0.55, 2.0), true);
+    let u = first_uplift(&r);
+    assert!(
+        (u.time_s - first_reach(0.5, 0.55)).abs() <= 1e-13,
+        "{}",
+        u.time_s
+    );
+    assert!((u.ground_accel_m_s2 - 0.5 * 9.81).abs() <= 1e-12);
+    assert_eq!(
+        u.turning,
+        ["A turns counterclockwise about its bottom-left corner"]
+    );
+}
+
+#[test]
+fn at_the_tie_of_friction_and_b_over_h_a_block_slides_and_stays_seated() {
+    // Friction 0.5 = b/h: the ground reaches the stick limit and the seated side at one
+    // instant, and the sliding model's slip ends the state there; sliding, the resultant sits
+    // at the leading corner, still seated. Friction 0.51 lifts, at g/2.
+    let r = watched(&slender("0.5"), &sine(0.7, 3.0), true);
+    assert!(r.summary.stick_slip_transitions > 0);
+    assert_eq!(
+        r.summary.uplift_check,
+        Some(UpliftCheck {
+            checked_until_s: 3.0,
+            first_uplift: None
+        })
+    );
+    let r = watched(&slender("0.51"), &sine(0.7, 3.0), true);
+    assert!((first_uplift(&r).time_s - first_reach(0.5, 0.7)).abs() <= 1e-13);
+}
+
+#[test]
+fn a_block_dragged_by_a_sliding_one_lifts_where_its_moments_say() {
+    // L (0.5 x 1.0 m, friction 0.8 on the ground) carries U (0.25 x 0.25 m, centred, friction
+    // 0.3). At rest the pair would tip at 0.439 g, but U slides first, at 0.3 g, backwards on
+    // L; then L's balance of moments (the unit test of `seated` works it by hand) holds while
+    // a_g <= 153/320 g = 0.478 g, where L turns, U's friction dragging its top.
+    let m = Model::from_file("walls/rocking/dragged-block.ron").unwrap();
+    let r = watched(&m, &sine(0.7, 2.0), true);
+    let u = first_uplift(&r);
+    let slip = r
+        .events
+        .iter()
+        .find(|e| e.joint.as_deref() == Some("U/L"))
+        .expect("U slips");
+    assert!((slip.time_s - first_reach(0.3, 0.7)).abs() <= 1e-13);
+    assert!(
+        (u.time_s - first_reach(153.0 / 320.0, 0.7)).abs() <= 1e-13,
+        "{}",
+        u.time_s
+    );
+    assert!(u.time_s > slip.time_s);
+    assert_eq!(
+        u.turning[0],
+        "L turns counterclockwise about its bottom-left corner"
+    );
+}
+
+#[test]
+fn at_rest_the_check_meets_the_limit_at_rest_on_the_ollantaytambo_wall() {
+    // El Centro at 0.3 g takes the wall past its limit towards -x (0.2834 g: F5 rocks against
+    // its monolith) before anything slides.
+    let m = Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
+    let record = pirqa::motion::read_record(
+        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        None,
+        &pirqa::motion::ReadOptions::default(),
+    )
+    .unwrap();
+    let motion = Motion::Record(record.scaled(0.3 * 9.81 / record.pga_m_s2()).unwrap());
+    let r = watched(&m, &motion, true);
+    let u = first_uplift(&r);
+    let limits = at_rest(m.wall(), m.topology()).unwrap();
+    let Limit::Holds {
+        accel_m_s2,
+        mechanism,
+        ..
+    } = limits.towards_minus_x
+    else {
+        panic!("unlimited");
+    };
+    assert!((u.ground_accel_m_s2 + accel_m_s2).abs() <= 1e-12 * accel_m_s2);
+    let turning: Vec<String> = mechanism
+        .iter()
+        .filter(|b| b.omega_rad_s != 0.0)
+        .map(|b| format!("{} {}", b.block, b.how))
+        .collect();
+    assert_eq!(u.turning, turning);
+    assert!(
+        r.events.iter().all(|e| e.time_s >= u.time_s),
+        "still at rest"
+    );
+}
+
+#[test]
+fn watching_changes_nothing_else_and_finds_nothing_on_the_papers_wall() {
+    let m = Model::from_file("walls/five-block-variable.ron").unwrap();
+    let motion = sine(400.0 / 981.0, 20.0);
+    let (plain, seen) = (watched(&m, &motion, false), watched(&m, &motion, true));
+    assert_eq!(
+        seen.summary.uplift_check,
+        Some(UpliftCheck {
+            checked_until_s: 20.0,
+            first_uplift: None
+        })
+    );
+    let mut seen_summary = seen.summary.clone();
+    seen_summary.uplift_check = None;
+    assert_eq!(seen_summary, plain.summary);
+    assert_eq!(seen.events, plain.events);
+    assert_eq!(seen.final_displacement_m, plain.final_displacement_m);
+    assert!(!plain.summary_json().contains("uplift_check"));
+}
+
+#[test]
+fn the_check_is_refused_where_the_sliding_engine_does_not_run() {
+    // Time stepping, a block alone that `auto` gives the exact rocking model, and the
+    // direction across the plane.
+    let wall = Model::from_file("walls/five-block-variable.ron").unwrap();
+    let block = slender("0.6");
+    for (m, method, model, direction) in [
+        (
+            &wall,
+            Method::Moreau { dt_s: 1e-3 },
+            ModelChoice::Slide,
+            Direction::InPlane,
+        ),
+        (&block, Method::Event, ModelChoice::Auto, Direction::InPlane),
+        (
+            &wall,
+            Method::Event,
+            ModelChoice::Auto,
+            Direction::OutOfPlane,
+        ),
+    ] {
+        let settings = RunSettings {
+            method,
+            model,
+            direction,
+            check_uplift: true,
+            ..RunSettings::default()
+        };
+        let e = pirqa::run(m, &sine(0.55, 2.0), &settings)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("--check-uplift watches the exact sliding engine"),
+            "{e}"
+        );
+    }
+}
