@@ -124,6 +124,7 @@ const ROWS: usize = 3;
 /// block's horizontal, vertical and moment balances (moments about its centroid).
 struct Builder<'a> {
     movable: &'a [usize],
+    centroids: Vec<[Q; 2]>,
     a: Vec<Vec<Q>>,
     b: Vec<Q>,
     /// Column of a_g's positive part (its negative part follows).
@@ -179,11 +180,10 @@ impl<'a> Builder<'a> {
         let mut b = vec![Q::zero(); m];
         for (j, f) in columns.iter().enumerate() {
             for (o, sign) in [(Some(f.on), 1), (f.against, -1)] {
-                let Some(r0) = o.and_then(|o| row_of[o]) else {
+                let Some((o, r0)) = o.and_then(|o| Some((o, row_of[o]?))) else {
                     continue;
                 };
-                let e = entries(f, &centroids[o.expect("a row's block")]);
-                for (k, x) in e.into_iter().enumerate() {
+                for (k, x) in entries(f, &centroids[o]).into_iter().enumerate() {
                     a[r0 + k][j] = &x * &Q::frac(sign, 1);
                 }
             }
@@ -200,7 +200,13 @@ impl<'a> Builder<'a> {
             }
             b[row + 1] = mass * &wall.g_m_s2;
         }
-        Builder { movable, a, b, ag }
+        Builder {
+            movable,
+            centroids,
+            a,
+            b,
+            ag,
+        }
     }
 
     /// The program that pushes a_g furthest towards the side of `s` (+1: +x): minimise -s a_g.
@@ -219,8 +225,7 @@ impl<'a> Builder<'a> {
     /// block's corner keeps only its sense: with blocks sliding the multipliers' field mixes
     /// the slip into the turn, and such a point is nowhere a user could find on the wall.
     fn mechanism(&self, wall: &Wall, topo: &Topology, y: &[Q]) -> Vec<Moves> {
-        let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
-        let mut moves = mechanism(wall, topo, self.movable, &centroids, y);
+        let mut moves = mechanism(wall, topo, self.movable, &self.centroids, y);
         for m in &mut moves {
             if let Some((sense, point)) = m.how.split_once(" about ") {
                 if !point.ends_with("corner") {

@@ -22,8 +22,10 @@ use std::rc::Rc;
 pub(super) struct Watch {
     /// Intervals worked out, by state.
     memo: HashMap<State, Rc<Interval>>,
-    /// The interval of the state since the last event; `None` once an event may have changed it.
-    current: Option<Rc<Interval>>,
+    /// The interval of the state since the last event, and which of its ends (towards -x,
+    /// towards +x) come before the stuck clusters' stick limits; `None` once an event may have
+    /// changed either.
+    current: Option<(Rc<Interval>, [bool; 2])>,
     /// The first uplift was found (the sliding answer leaves rocking out from there on).
     done: bool,
     /// Function evaluations of its crossings, kept out of the run's own count.
@@ -96,8 +98,8 @@ impl Engine<'_> {
         w: &mut Watch,
         t_next: f64,
     ) -> Result<Option<(f64, Vec<Moves>)>, SimulationError> {
-        let interval = match &w.current {
-            Some(i) => i.clone(),
+        let (interval, watched) = match &w.current {
+            Some((i, watched)) => (i.clone(), *watched),
             None => {
                 let state = self.seated_state();
                 let i = match w.memo.get(&state) {
@@ -109,8 +111,16 @@ impl Engine<'_> {
                         i
                     }
                 };
-                w.current = Some(i.clone());
-                i
+                // The stick limits change only at events, so this holds until the next one.
+                let watched = match &*i {
+                    Interval::Empty { .. } => [false; 2],
+                    Interval::Between { lo, hi } => [(lo, -1.0), (hi, 1.0)].map(|(side, s)| {
+                        side.as_ref()
+                            .is_some_and(|d| self.before_stick_limit(&d.accel, s))
+                    }),
+                };
+                w.current = Some((i.clone(), watched));
+                (i, watched)
             }
         };
         let (lo, hi) = match &*interval {
@@ -118,11 +128,8 @@ impl Engine<'_> {
             Interval::Between { lo, hi } => (lo, hi),
         };
         let mut first: Option<(f64, Vec<Moves>)> = None;
-        for (side, s) in [(hi, 1.0), (lo, -1.0)] {
-            let Some(side) = side
-                .as_ref()
-                .filter(|d| self.before_stick_limit(&d.accel, s))
-            else {
+        for (side, s, watch) in [(hi, 1.0, watched[1]), (lo, -1.0, watched[0])] {
+            let Some(side) = side.as_ref().filter(|_| watch) else {
                 continue;
             };
             // a_g / lambda passes the side: as a stuck cluster's limit is found.
