@@ -14,6 +14,7 @@
 //! blocks move and about which points, not how fast. The loads here are free: a block on two
 //! others passes its weight however its balance needs, not by eq. (3)'s tributary split.
 
+mod certify;
 pub mod seated;
 mod simplex;
 
@@ -23,9 +24,10 @@ use crate::topology::{Base, BlockId, HorizontalJoint, Topology, VerticalJoint};
 use crate::wall::{Block, Wall};
 use simplex::{Outcome, Program};
 
-/// The most movable blocks a limit is computed for. The dense exact tableau grows with the
-/// square of the wall and its fractions with the digits of the geometry: a running bond of 102
-/// blocks takes 0.7 s, the 60 blocks of walls/inca/qorikancha.ron 25 s.
+/// The most movable blocks a limit is computed for. The floating-point run whose basis is
+/// certified answers larger walls (410 blocks in 8 s), but where its basis fails the check the
+/// exact tableau answers, and its fractions grow with every pivot: a running bond of 102 blocks
+/// took it 0.7 s, the 60 blocks of walls/inca/qorikancha.ron 25 s.
 pub const MAX_BLOCKS: usize = 150;
 
 /// The wall's limits at rest, towards +x and towards -x.
@@ -89,7 +91,7 @@ pub fn at_rest(wall: &Wall, topo: &Topology) -> Result<Limits, SimulationError> 
     if movable.len() > MAX_BLOCKS {
         return Err(SimulationError::NotApplicable(format!(
             "the limit at rest is computed for walls of up to {MAX_BLOCKS} movable blocks (its \
-             exact program is dense); this wall has {}",
+             exact fallback is a dense tableau); this wall has {}",
             movable.len()
         )));
     }
@@ -196,36 +198,8 @@ fn direction(
     forces: &[Force],
     s: i128,
 ) -> Result<Limit, SimulationError> {
-    let row_of: std::collections::HashMap<usize, usize> = movable
-        .iter()
-        .enumerate()
-        .map(|(k, &i)| (i, 3 * k))
-        .collect();
-    let m = 3 * movable.len();
-    let n = forces.len() + 1;
-    let mut a = vec![vec![Q::zero(); n]; m];
     let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
-    for (j, f) in forces.iter().enumerate() {
-        let e = entries(f, &centroids[f.on]);
-        for (k, x) in e.into_iter().enumerate() {
-            a[row_of[&f.on] + k][j] = x;
-        }
-        if let Some(o) = f.against {
-            for (k, x) in entries(f, &centroids[o]).into_iter().enumerate() {
-                a[row_of[&o] + k][j] = -x;
-            }
-        }
-    }
-    let mut b = vec![Q::zero(); m];
-    for (k, &i) in movable.iter().enumerate() {
-        let mass = &topo.blocks[i].mass_kg;
-        a[3 * k][n - 1] = -(mass * &Q::frac(s, 1));
-        b[3 * k + 1] = mass * &wall.g_m_s2;
-    }
-    let mut c = vec![Q::zero(); n];
-    c[n - 1] = -Q::one();
-    let program = Program { a, b, c };
-    match simplex::solve(&program) {
+    match simplex::solve(&program(wall, topo, movable, forces, &centroids, s)) {
         Outcome::Unbounded => Ok(Limit::Unlimited),
         Outcome::Infeasible { y } => {
             // The graph checks each block over its own supports; a stack can pass that and
@@ -255,6 +229,47 @@ fn direction(
             })
         }
     }
+}
+
+/// The program of the limit towards the side of `s`: columns are the unit contact forces and
+/// the acceleration a (last), rows each movable block's horizontal, vertical and moment
+/// balances; minimise -a.
+fn program(
+    wall: &Wall,
+    topo: &Topology,
+    movable: &[usize],
+    forces: &[Force],
+    centroids: &[[Q; 2]],
+    s: i128,
+) -> Program {
+    let row_of: std::collections::HashMap<usize, usize> = movable
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| (i, 3 * k))
+        .collect();
+    let m = 3 * movable.len();
+    let n = forces.len() + 1;
+    let mut a = vec![vec![Q::zero(); n]; m];
+    for (j, f) in forces.iter().enumerate() {
+        let e = entries(f, &centroids[f.on]);
+        for (k, x) in e.into_iter().enumerate() {
+            a[row_of[&f.on] + k][j] = x;
+        }
+        if let Some(o) = f.against {
+            for (k, x) in entries(f, &centroids[o]).into_iter().enumerate() {
+                a[row_of[&o] + k][j] = -x;
+            }
+        }
+    }
+    let mut b = vec![Q::zero(); m];
+    for (k, &i) in movable.iter().enumerate() {
+        let mass = &topo.blocks[i].mass_kg;
+        a[3 * k][n - 1] = -(mass * &Q::frac(s, 1));
+        b[3 * k + 1] = mass * &wall.g_m_s2;
+    }
+    let mut c = vec![Q::zero(); n];
+    c[n - 1] = -Q::one();
+    Program { a, b, c }
 }
 
 /// The mechanism from the multipliers of the balances: minus each block's three multipliers

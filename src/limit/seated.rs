@@ -87,7 +87,7 @@ pub fn interval(wall: &Wall, topo: &Topology, state: &State) -> Result<Interval,
     if movable.len() > super::MAX_BLOCKS {
         return Err(SimulationError::NotApplicable(format!(
             "the uplift check is computed for walls of up to {} moving blocks (its exact \
-             program is dense); this wall has {}",
+             fallback is a dense tableau); this wall has {}",
             super::MAX_BLOCKS,
             movable.len()
         )));

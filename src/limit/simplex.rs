@@ -1,10 +1,20 @@
-//! Linear programs in exact rationals: minimise c x subject to A x = b, x >= 0, by the dense
-//! two-phase simplex method with Bland's rule. Exact arithmetic makes every answer a vertex
-//! of the problem to the last digit (a limit load that is a tie stays one) and Bland's rule
-//! ends every run, however degenerate (limit analysis of block walls is: most contact forces
-//! of a mechanism are zero); the price is a dense tableau, so this serves small problems.
+//! Linear programs: minimise c x subject to A x = b, x >= 0, by the dense two-phase simplex
+//! method with Bland's rule, answered exactly. Exact answers make every result a vertex of the
+//! problem to the last digit (a limit load that is a tie stays one), and Bland's rule ends every
+//! run, however degenerate (limit analysis of block walls is: most contact forces of a mechanism
+//! are zero).
+//!
+//! Why two arithmetics: pivoting a dense tableau in rationals grows the fractions with every
+//! pivot (sampled friction coefficients carry sixteen digits each), so the same method first
+//! runs in floating point, and only its last basis is worked out in rationals (`certify`): the
+//! primal and dual solutions of that basis, checked to satisfy every constraint exactly, prove
+//! the answer as the exact run would (or the Farkas vector an infeasible program, or the ray an
+//! unbounded one). Where the check fails (round-off chose a basis that is not optimal), the exact
+//! tableau answers from the start; floating point never decides anything.
 
+use super::certify;
 use crate::exact::Q;
+use std::cmp::Ordering;
 
 /// A linear program in standard form: minimise `c x` subject to `a x = b`, `x >= 0`.
 pub(crate) struct Program {
@@ -28,20 +38,183 @@ pub(crate) enum Outcome {
     Unbounded,
 }
 
-/// The tableau: B^-1 [A | I] with B^-1 b after it, the basic column of each row, and the
-/// reduced costs of every column.
-struct Tableau {
-    rows: Vec<Vec<Q>>,
-    rhs: Vec<Q>,
-    basis: Vec<usize>,
-    reduced: Vec<Q>,
-    /// Columns of A (the artificial ones follow).
-    n: usize,
+/// Solves the program: the floating-point run's basis certified exactly, or the exact run.
+pub(crate) fn solve(program: &Program) -> Outcome {
+    certified(program).unwrap_or_else(|| exact(program))
 }
 
-impl Tableau {
+/// The answer of the floating-point run where its last basis proves it exactly; `None` where
+/// the run gave up or its basis proves nothing.
+pub(crate) fn certified(program: &Program) -> Option<Outcome> {
+    let (ending, basis, scales) = floating(program)?;
+    // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
+    let weights: Option<Vec<Q>> = scales
+        .iter()
+        .map(|&s| Q::from_f64_exact(s).map(|s| s.recip()))
+        .collect();
+    certify::basis(program, &basis, ending, &weights?)
+}
+
+/// How a run ended: the basis it ends with says the rest.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Ending {
+    /// Phase 2 ended: the basis is optimal.
+    Optimal,
+    /// Phase 1 ended with artificial variables above zero: the basis's phase-1 multipliers
+    /// are the Farkas vector.
+    Infeasible,
+    /// Phase 2 found column `entering` with a negative reduced cost and nothing to stop it.
+    Unbounded { entering: usize },
+}
+
+/// The arithmetic a tableau runs in: exact rationals, or floating point with its signs read
+/// past a tolerance.
+trait Number: Clone {
+    fn zero() -> Self;
+    fn one() -> Self;
+    /// -1, 0 or 1.
+    fn sign(&self) -> i32;
+    /// Whether `self` is below `o` (beyond round-off, in floating point).
+    fn below(&self, o: &Self) -> bool;
+    fn times(&self, o: &Self) -> Self;
+    fn over(&self, o: &Self) -> Self;
+    /// self - f x.
+    fn less(&self, f: &Self, x: &Self) -> Self;
+    fn negated(&self) -> Self;
+    fn is_zero(&self) -> bool {
+        self.sign() == 0
+    }
+    fn is_negative(&self) -> bool {
+        self.sign() < 0
+    }
+    fn is_positive(&self) -> bool {
+        self.sign() > 0
+    }
+}
+
+impl Number for Q {
+    fn zero() -> Self {
+        Q::zero()
+    }
+    fn one() -> Self {
+        Q::one()
+    }
+    fn sign(&self) -> i32 {
+        self.signum()
+    }
+    fn below(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Less
+    }
+    fn times(&self, o: &Self) -> Self {
+        self * o
+    }
+    fn over(&self, o: &Self) -> Self {
+        self / o
+    }
+    fn less(&self, f: &Self, x: &Self) -> Self {
+        self - &(f * x)
+    }
+    fn negated(&self) -> Self {
+        -self
+    }
+}
+
+/// A float whose sign is zero within `TOLERANCE` (the rows are scaled to entries of at most 1),
+/// and a difference that cancels to round-off is zero, so the tableau keeps its zeros.
+#[derive(Clone, Copy)]
+struct Float(f64);
+
+const TOLERANCE: f64 = 1e-9;
+
+impl Number for Float {
+    fn zero() -> Self {
+        Float(0.0)
+    }
+    fn one() -> Self {
+        Float(1.0)
+    }
+    fn sign(&self) -> i32 {
+        if self.0 > TOLERANCE {
+            1
+        } else if self.0 < -TOLERANCE {
+            -1
+        } else {
+            0
+        }
+    }
+    fn below(&self, o: &Self) -> bool {
+        self.0 < o.0 - TOLERANCE * (1.0 + self.0.abs().max(o.0.abs()))
+    }
+    fn times(&self, o: &Self) -> Self {
+        Float(self.0 * o.0)
+    }
+    fn over(&self, o: &Self) -> Self {
+        Float(self.0 / o.0)
+    }
+    fn less(&self, f: &Self, x: &Self) -> Self {
+        let p = f.0 * x.0;
+        let d = self.0 - p;
+        Float(if d.abs() <= 1e-12 * (self.0.abs() + p.abs()) {
+            0.0
+        } else {
+            d
+        })
+    }
+    fn negated(&self) -> Self {
+        Float(-self.0)
+    }
+}
+
+/// The tableau: B^-1 [A | I] with B^-1 b after it, the basic column of each row, and the
+/// reduced costs of every column. Rows with b < 0 are negated first, so that the artificial
+/// basis starts feasible.
+struct Tableau<T> {
+    rows: Vec<Vec<T>>,
+    rhs: Vec<T>,
+    basis: Vec<usize>,
+    reduced: Vec<T>,
+    /// Columns of A (the artificial ones follow).
+    n: usize,
+    /// The rows negated.
+    flipped: Vec<bool>,
+    /// Pivots left before the run gives up (round-off can make Bland's rule cycle; exact
+    /// arithmetic cannot).
+    budget: usize,
+}
+
+/// Why a phase stopped.
+enum Stop {
+    Optimal,
+    Unbounded { entering: usize },
+    GaveUp,
+}
+
+impl<T: Number> Tableau<T> {
+    fn new(a: Vec<Vec<T>>, b: Vec<T>, budget: usize) -> Self {
+        let (m, n) = (b.len(), a.first().map_or(0, Vec::len));
+        let flipped: Vec<bool> = b.iter().map(T::is_negative).collect();
+        let mut rows = Vec::with_capacity(m);
+        let mut rhs = Vec::with_capacity(m);
+        for (k, (row, b)) in a.into_iter().zip(b).enumerate() {
+            let s = |x: T| if flipped[k] { x.negated() } else { x };
+            let mut r: Vec<T> = row.into_iter().map(s).collect();
+            r.extend((0..m).map(|i| if i == k { T::one() } else { T::zero() }));
+            rows.push(r);
+            rhs.push(s(b));
+        }
+        Tableau {
+            rows,
+            rhs,
+            basis: (n..n + m).collect(),
+            reduced: Vec::new(),
+            n,
+            flipped,
+            budget,
+        }
+    }
+
     /// Reduced costs for `cost` (one per column, artificial ones included).
-    fn price(&mut self, cost: &[Q]) {
+    fn price(&mut self, cost: &[T]) {
         self.reduced = cost.to_vec();
         for (i, row) in self.rows.iter().enumerate() {
             let cb = &cost[self.basis[i]];
@@ -50,7 +223,7 @@ impl Tableau {
             }
             for (r, t) in self.reduced.iter_mut().zip(row) {
                 if !t.is_zero() {
-                    *r = &*r - cb * t;
+                    *r = r.less(cb, t);
                 }
             }
         }
@@ -58,20 +231,20 @@ impl Tableau {
 
     /// Makes column j basic in row p (Gauss-Jordan on the rows and the reduced costs).
     fn pivot(&mut self, p: usize, j: usize) {
-        let inv = self.rows[p][j].recip();
+        let inv = T::one().over(&self.rows[p][j]);
         for t in self.rows[p].iter_mut() {
             if !t.is_zero() {
-                *t = &*t * &inv;
+                *t = t.times(&inv);
             }
         }
-        self.rhs[p] = &self.rhs[p] * &inv;
+        self.rhs[p] = self.rhs[p].times(&inv);
         let (row_p, rhs_p) = (self.rows[p].clone(), self.rhs[p].clone());
         let nonzero: Vec<usize> = (0..row_p.len()).filter(|&k| !row_p[k].is_zero()).collect();
-        let eliminate = |row: &mut Vec<Q>, rhs: &mut Q, f: &Q| {
+        let eliminate = |row: &mut Vec<T>, rhs: &mut T, f: &T| {
             for &k in &nonzero {
-                row[k] = &row[k] - f * &row_p[k];
+                row[k] = row[k].less(f, &row_p[k]);
             }
-            *rhs = &*rhs - f * &rhs_p;
+            *rhs = rhs.less(f, &rhs_p);
         };
         for i in 0..self.rows.len() {
             if i == p || self.rows[i][j].is_zero() {
@@ -83,128 +256,146 @@ impl Tableau {
         }
         if !self.reduced[j].is_zero() {
             let f = self.reduced[j].clone();
-            let mut ignored = Q::zero();
+            let mut ignored = T::zero();
             eliminate(&mut self.reduced, &mut ignored, &f);
         }
         self.basis[p] = j;
     }
 
-    /// Runs Bland's rule over the columns `allowed` admits; false when the cost is unbounded.
-    /// (Dantzig's rule of the most negative reduced cost, tried on the Inca walls, took longer
-    /// by far: its pivots grew the fractions.)
-    fn optimise(&mut self, allowed: impl Fn(usize) -> bool) -> bool {
+    /// Runs Bland's rule over the columns `allowed` admits. (Dantzig's rule of the most
+    /// negative reduced cost, tried on the Inca walls, took longer by far in exact arithmetic:
+    /// its pivots grew the fractions; in floating point, on the 105-block running bond's
+    /// uplift programs, it took longer too and ended phase 1 short of feasibility.)
+    fn optimise(&mut self, allowed: impl Fn(usize) -> bool) -> Stop {
         loop {
             let Some(j) =
                 (0..self.reduced.len()).find(|&j| allowed(j) && self.reduced[j].is_negative())
             else {
-                return true;
+                return Stop::Optimal;
             };
-            let mut leave: Option<(usize, Q)> = None;
+            let mut leave: Option<(usize, T)> = None;
             for i in 0..self.rows.len() {
                 let t = &self.rows[i][j];
                 if !t.is_positive() {
                     continue;
                 }
-                let ratio = &self.rhs[i] / t;
+                let ratio = self.rhs[i].over(t);
                 let better = match &leave {
                     None => true,
-                    Some((l, r)) => ratio < *r || (ratio == *r && self.basis[i] < self.basis[*l]),
+                    Some((l, r)) => {
+                        ratio.below(r) || (!r.below(&ratio) && self.basis[i] < self.basis[*l])
+                    }
                 };
                 if better {
                     leave = Some((i, ratio));
                 }
             }
             let Some((p, _)) = leave else {
-                return false;
+                return Stop::Unbounded { entering: j };
             };
+            if self.budget == 0 {
+                return Stop::GaveUp;
+            }
+            self.budget -= 1;
             self.pivot(p, j);
         }
     }
 
     /// The multipliers of the rows for the costs last priced: the artificial column of row k
     /// started as e_k, so its reduced cost is its cost less y_k.
-    fn multipliers(&self, cost: &[Q], flipped: &[bool]) -> Vec<Q> {
+    fn multipliers(&self, cost: &[T]) -> Vec<T> {
         (0..self.rows.len())
             .map(|k| {
-                let y = &cost[self.n + k] - &self.reduced[self.n + k];
-                if flipped[k] {
-                    -y
+                let y = cost[self.n + k].less(&T::one(), &self.reduced[self.n + k]);
+                if self.flipped[k] {
+                    y.negated()
                 } else {
                     y
                 }
             })
             .collect()
     }
+
+    /// Both phases; the costs are `c` followed by zeros for the artificial columns.
+    fn run(&mut self, c: Vec<T>) -> Option<(Ending, Vec<T>)> {
+        let (m, n) = (self.rows.len(), self.n);
+        // Phase 1: the sum of the artificial variables to zero.
+        let phase1: Vec<T> = (0..n + m)
+            .map(|j| if j < n { T::zero() } else { T::one() })
+            .collect();
+        self.price(&phase1);
+        if let Stop::GaveUp = self.optimise(|_| true) {
+            return None;
+        }
+        let infeasible = (0..m).any(|i| self.basis[i] >= n && self.rhs[i].is_positive());
+        if infeasible {
+            return Some((Ending::Infeasible, phase1));
+        }
+        // Artificial variables left in the basis at zero: swap each for a column of A where its
+        // row has one; a row with none is a combination of the others and stays as it is.
+        for i in 0..m {
+            if self.basis[i] >= n {
+                if let Some(j) = (0..n).find(|&j| !self.rows[i][j].is_zero()) {
+                    self.pivot(i, j);
+                }
+            }
+        }
+        // Phase 2: the program's costs, artificial columns barred.
+        let cost: Vec<T> = c.into_iter().chain((0..m).map(|_| T::zero())).collect();
+        self.price(&cost);
+        match self.optimise(|j| j < n) {
+            Stop::GaveUp => None,
+            Stop::Unbounded { entering } => Some((Ending::Unbounded { entering }, cost)),
+            Stop::Optimal => Some((Ending::Optimal, cost)),
+        }
+    }
 }
 
-/// Solves the program.
-pub(crate) fn solve(program: &Program) -> Outcome {
-    let (m, n) = (program.b.len(), program.c.len());
-    // Rows with b >= 0, so that the artificial basis starts feasible.
-    let flipped: Vec<bool> = program.b.iter().map(Q::is_negative).collect();
-    let mut rows = Vec::with_capacity(m);
-    let mut rhs = Vec::with_capacity(m);
-    for (k, (row, b)) in program.a.iter().zip(&program.b).enumerate() {
-        let s = |x: &Q| if flipped[k] { -x } else { x.clone() };
-        let mut r: Vec<Q> = row.iter().map(s).collect();
-        r.extend((0..m).map(|i| if i == k { Q::one() } else { Q::zero() }));
-        rows.push(r);
-        rhs.push(s(b));
-    }
-    let mut t = Tableau {
-        rows,
-        rhs,
-        basis: (n..n + m).collect(),
-        reduced: Vec::new(),
-        n,
-    };
-    // Phase 1: the sum of the artificial variables to zero.
-    let phase1: Vec<Q> = (0..n + m)
-        .map(|j| if j < n { Q::zero() } else { Q::one() })
-        .collect();
-    t.price(&phase1);
-    t.optimise(|_| true);
-    let infeasibility: Q = (0..m)
-        .filter(|&i| t.basis[i] >= n)
-        .map(|i| t.rhs[i].clone())
-        .sum();
-    if infeasibility.is_positive() {
-        return Outcome::Infeasible {
-            y: t.multipliers(&phase1, &flipped),
-        };
-    }
-    // Artificial variables left in the basis at zero: swap each for a column of A where its
-    // row has one; a row with none is a combination of the others and stays as it is.
-    for i in 0..m {
-        if t.basis[i] >= n {
-            if let Some(j) = (0..n).find(|&j| !t.rows[i][j].is_zero()) {
-                t.pivot(i, j);
+/// Solves the program in exact arithmetic alone.
+pub(crate) fn exact(program: &Program) -> Outcome {
+    let mut t = Tableau::new(program.a.clone(), program.b.clone(), usize::MAX);
+    let (ending, cost) = t.run(program.c.clone()).expect("exact runs have no budget");
+    match ending {
+        Ending::Infeasible => Outcome::Infeasible {
+            y: t.multipliers(&cost),
+        },
+        Ending::Unbounded { .. } => Outcome::Unbounded,
+        Ending::Optimal => {
+            let mut x = vec![Q::zero(); t.n];
+            for (i, &j) in t.basis.iter().enumerate() {
+                if j < t.n {
+                    x[j] = t.rhs[i].clone();
+                }
+            }
+            let value = (0..t.n).map(|j| &program.c[j] * &x[j]).sum::<Q>();
+            Outcome::Optimal {
+                y: t.multipliers(&cost),
+                x,
+                value,
             }
         }
     }
-    // Phase 2: the program's costs, artificial columns barred.
-    let cost: Vec<Q> = program
-        .c
-        .iter()
-        .cloned()
-        .chain((0..m).map(|_| Q::zero()))
-        .collect();
-    t.price(&cost);
-    if !t.optimise(|j| j < n) {
-        return Outcome::Unbounded;
+}
+
+/// Runs the program in floating point, each row divided by its largest entry (the scaling
+/// changes no x, and the basis is all that is kept): how it ended, its last basis (columns
+/// `n..n + m` are the rows' artificial variables) and the rows' divisors, or `None` where it
+/// ran out of pivots.
+fn floating(program: &Program) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
+    let (mut a, mut b, mut scales) = (Vec::with_capacity(program.b.len()), Vec::new(), Vec::new());
+    for (row, rhs) in program.a.iter().zip(&program.b) {
+        let row: Vec<f64> = row.iter().map(Q::to_f64).collect();
+        let scale = row.iter().fold(rhs.to_f64().abs(), |s, x| s.max(x.abs()));
+        let scale = if scale > 0.0 { scale } else { 1.0 };
+        a.push(row.into_iter().map(|x| Float(x / scale)).collect());
+        b.push(Float(rhs.to_f64() / scale));
+        scales.push(scale);
     }
-    let mut x = vec![Q::zero(); n];
-    for (i, &j) in t.basis.iter().enumerate() {
-        if j < n {
-            x[j] = t.rhs[i].clone();
-        }
-    }
-    let value = (0..n).map(|j| &program.c[j] * &x[j]).sum::<Q>();
-    Outcome::Optimal {
-        y: t.multipliers(&cost, &flipped),
-        x,
-        value,
-    }
+    let c = program.c.iter().map(|x| Float(x.to_f64())).collect();
+    let (m, n) = (program.b.len(), program.c.len());
+    let mut t = Tableau::new(a, b, 50 * (m + n) + 1000);
+    let (ending, _) = t.run(c)?;
+    Some((ending, t.basis, scales))
 }
 
 #[cfg(test)]
@@ -227,7 +418,7 @@ mod tests {
 
     /// Checks an optimum's certificate: A x = b, x >= 0, c - A^T y >= 0 with complementary
     /// slackness, and b y equal to c x (strong duality).
-    fn certified(p: &Program, out: &Outcome) {
+    fn optimal(p: &Program, out: &Outcome) {
         let Outcome::Optimal { x, value, y } = out else {
             panic!("not optimal: {out:?}");
         };
@@ -248,6 +439,21 @@ mod tests {
         assert_eq!(&by, value);
     }
 
+    /// The floating-point run's basis is certified, and proves what the exact run finds: the
+    /// same kind of outcome and the same optimal value (the vertex may differ where optima tie).
+    fn agrees(p: &Program) -> Outcome {
+        let fast = certified(p).expect("the floating-point basis proves the answer");
+        match (&fast, &exact(p)) {
+            (Outcome::Optimal { value: a, .. }, Outcome::Optimal { value: b, .. }) => {
+                assert_eq!(a, b)
+            }
+            (Outcome::Infeasible { .. }, Outcome::Infeasible { .. })
+            | (Outcome::Unbounded, Outcome::Unbounded) => {}
+            (fast, slow) => panic!("certified {fast:?}, exact {slow:?}"),
+        }
+        fast
+    }
+
     #[test]
     fn a_textbook_program_reaches_its_optimum_with_its_certificate() {
         // max 3 x1 + 5 x2 with x1 <= 4, 2 x2 <= 12, 3 x1 + 2 x2 <= 18 (slacks x3..x5): 36 at
@@ -257,8 +463,9 @@ mod tests {
             &[4, 12, 18],
             &[-3, -5, 0, 0, 0],
         );
-        let out = solve(&p);
-        certified(&p, &out);
+        let out = agrees(&p);
+        optimal(&p, &out);
+        optimal(&p, &exact(&p));
         let Outcome::Optimal { x, value, .. } = out else {
             unreachable!()
         };
@@ -270,8 +477,9 @@ mod tests {
     fn negative_right_hand_sides_and_redundant_rows_keep_the_multipliers_right() {
         // x1 + x2 = 2 written twice (once negated), x1 - x2 = 0: min x1 + 2 x2 = 3 at (1, 1).
         let p = program(&[&[1, 1], &[-1, -1], &[1, -1]], &[2, -2, 0], &[1, 2]);
-        let out = solve(&p);
-        certified(&p, &out);
+        let out = agrees(&p);
+        optimal(&p, &out);
+        optimal(&p, &exact(&p));
         assert!(matches!(out, Outcome::Optimal { value, .. } if value == q(3)));
     }
 
@@ -279,22 +487,24 @@ mod tests {
     fn an_infeasible_program_comes_with_a_farkas_certificate() {
         // x1 + x2 = 1 and x1 + x2 = 2.
         let p = program(&[&[1, 1], &[1, 1]], &[1, 2], &[0, 0]);
-        let Outcome::Infeasible { y } = solve(&p) else {
-            panic!("feasible?")
-        };
-        for j in 0..2 {
-            let aty: Q = p.a.iter().zip(&y).map(|(r, y)| &r[j] * y).sum();
-            assert!(!aty.is_positive());
+        for out in [agrees(&p), exact(&p)] {
+            let Outcome::Infeasible { y } = out else {
+                panic!("feasible?")
+            };
+            for j in 0..2 {
+                let aty: Q = p.a.iter().zip(&y).map(|(r, y)| &r[j] * y).sum();
+                assert!(!aty.is_positive());
+            }
+            let by: Q = p.b.iter().zip(&y).map(|(b, y)| b * y).sum();
+            assert!(by.is_positive());
         }
-        let by: Q = p.b.iter().zip(&y).map(|(b, y)| b * y).sum();
-        assert!(by.is_positive());
     }
 
     #[test]
     fn an_unbounded_program_says_so() {
         // min -x1 with x1 - x2 = 1.
         let p = program(&[&[1, -1]], &[1], &[-1, 0]);
-        assert_eq!(solve(&p), Outcome::Unbounded);
+        assert_eq!(agrees(&p), Outcome::Unbounded);
     }
 
     #[test]
@@ -311,8 +521,62 @@ mod tests {
             b: r(&[(0, 1), (0, 1), (1, 1)]),
             c: r(&[(-3, 4), (150, 1), (-1, 50), (6, 1), (0, 1), (0, 1), (0, 1)]),
         };
-        let out = solve(&p);
-        certified(&p, &out);
+        let out = agrees(&p);
+        optimal(&p, &out);
         assert!(matches!(out, Outcome::Optimal { value, .. } if value == Q::frac(-1, 20)));
+    }
+
+    #[test]
+    fn a_basis_that_proves_nothing_is_refused() {
+        // The textbook program above: its optimal basis {x1, x2, x3} (in any order) proves
+        // -36; the slack basis is feasible but not optimal, {x1, x2, x5} is not even feasible
+        // (x5 = -6), a feasible program has no Farkas vector, and x1 meets a bound.
+        let p = program(
+            &[&[1, 0, 1, 0, 0], &[0, 2, 0, 1, 0], &[3, 2, 0, 0, 1]],
+            &[4, 12, 18],
+            &[-3, -5, 0, 0, 0],
+        );
+        let ones = [q(1), q(1), q(1)];
+        let out = certify::basis(&p, &[2, 0, 1], Ending::Optimal, &ones);
+        assert!(matches!(out, Some(Outcome::Optimal { value, .. }) if value == q(-36)));
+        assert_eq!(certify::basis(&p, &[2, 3, 4], Ending::Optimal, &ones), None);
+        assert_eq!(certify::basis(&p, &[0, 1, 4], Ending::Optimal, &ones), None);
+        assert_eq!(
+            certify::basis(&p, &[2, 3, 4], Ending::Infeasible, &ones),
+            None
+        );
+        let unbounded = Ending::Unbounded { entering: 0 };
+        assert_eq!(certify::basis(&p, &[2, 3, 4], unbounded, &ones), None);
+        // A singular basis (x1 twice) and one of the wrong size prove nothing either.
+        assert_eq!(certify::basis(&p, &[0, 0, 4], Ending::Optimal, &ones), None);
+        assert_eq!(certify::basis(&p, &[2, 3], Ending::Optimal, &ones), None);
+    }
+
+    #[test]
+    fn random_programs_get_the_exact_answer_from_their_floating_point_basis() {
+        // Dense programs with small integer data, a third of them infeasible or unbounded by
+        // construction of signs: every floating-point basis must be certified here, since
+        // round-off cannot mislead a run on such well-scaled numbers.
+        let mut rng = crate::rng::Rng::new(37);
+        let mut small = |span: i128| (rng.next_u64() % (2 * span as u64 + 1)) as i128 - span;
+        let mut kinds = [0; 3];
+        for _ in 0..200 {
+            let (m, n) = (2 + small(2).unsigned_abs() as usize, 6 + small(3) as usize);
+            let a: Vec<Vec<i128>> = (0..m).map(|_| (0..n).map(|_| small(4)).collect()).collect();
+            let b: Vec<i128> = (0..m).map(|_| small(6)).collect();
+            let c: Vec<i128> = (0..n).map(|_| small(3)).collect();
+            let rows: Vec<&[i128]> = a.iter().map(Vec::as_slice).collect();
+            let p = program(&rows, &b, &c);
+            let out = agrees(&p);
+            if matches!(out, Outcome::Optimal { .. }) {
+                optimal(&p, &out);
+            }
+            kinds[match out {
+                Outcome::Optimal { .. } => 0,
+                Outcome::Infeasible { .. } => 1,
+                Outcome::Unbounded => 2,
+            }] += 1;
+        }
+        assert!(kinds.iter().all(|&k| k > 10), "outcomes by kind: {kinds:?}");
     }
 }

@@ -271,3 +271,42 @@ fn a_mechanism_is_drawn_turning_about_its_point_at_rest() {
     assert!((u[0] - 0.3 * (phi.cos() - 1.0)).abs() < 1e-15, "{u:?}");
     assert!((w[0] - 0.3 * phi.sin()).abs() < 1e-15, "{w:?}");
 }
+
+#[test]
+fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
+    // The floating-point run answers (its basis is certified, no exact tableau needed) on every
+    // shipped wall, with the exact tableau's limit where that takes under a second.
+    let walls = [
+        ("walls/five-block-uniform.ron", true),
+        ("walls/five-block-variable.ron", true),
+        ("walls/inca-coursed.ron", true),
+        ("walls/inca/ollantaytambo-monoliths.ron", true),
+        ("walls/inca/ollantaytambo-filler.ron", true),
+        ("walls/inca/machu-picchu-torreon.ron", false),
+        ("walls/inca/kancha-enclosure.ron", false),
+        ("walls/inca/qorikancha.ron", false),
+        ("walls/rocking/trilith.ron", true),
+        ("walls/rocking/dragged-block.ron", true),
+    ];
+    for (path, compare) in walls {
+        let m = Model::from_file(path).unwrap();
+        let (wall, topo) = (m.wall(), m.topology());
+        let movable: Vec<usize> = (0..wall.blocks.len())
+            .filter(|&i| !wall.blocks[i].fixed)
+            .collect();
+        let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
+        let forces = forces(wall, topo);
+        for s in [1, -1] {
+            let p = program(wall, topo, &movable, &forces, &centroids, s);
+            let fast = simplex::certified(&p)
+                .unwrap_or_else(|| panic!("{path}, side {s}: no certified basis"));
+            if compare {
+                let value = |o: &Outcome| match o {
+                    Outcome::Optimal { value, .. } => value.clone(),
+                    other => panic!("{path}: {other:?}"),
+                };
+                assert_eq!(value(&fast), value(&simplex::exact(&p)), "{path}, side {s}");
+            }
+        }
+    }
+}

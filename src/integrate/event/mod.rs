@@ -286,7 +286,7 @@ impl<'a> Engine<'a> {
         if params.watch_uplift && movable > crate::limit::MAX_BLOCKS {
             return Err(SimulationError::NotApplicable(format!(
                 "the uplift check is computed for walls of up to {} movable blocks (its exact \
-                 program is dense); this wall has {movable}: leave --check-uplift out",
+                 fallback is a dense tableau); this wall has {movable}: leave --check-uplift out",
                 crate::limit::MAX_BLOCKS
             )));
         }
