@@ -1,13 +1,31 @@
-//! The exact proof of a floating-point simplex run's answer. A basis (m columns of [A | I])
+//! The answers of the limit programs: a floating-point simplex run's answer, proved exactly,
+//! or the exact run where the proof fails. A basis (m columns of [A | I])
 //! determines everything the simplex method would report from it: the vertex B^-1 b, the
 //! multipliers B^-T c_B, and for an unbounded run the edge B^-1 A_j. Solving those few square
 //! systems in rationals and checking every constraint on the results proves the answer as
 //! firmly as an exact run, at the cost of one sparse elimination instead of every pivot of a
 //! dense tableau.
 
-use super::simplex::{Ending, Outcome, Program};
+use super::simplex::{self, Ending, Outcome, Program};
 use crate::exact::Q;
 use std::collections::{BTreeMap, BTreeSet};
+
+/// Solves the program: the floating-point run's basis certified exactly, or the exact run.
+pub(crate) fn solve(program: &Program) -> Outcome {
+    certified(program).unwrap_or_else(|| simplex::exact(program))
+}
+
+/// The answer of the floating-point run where its last basis proves it exactly; `None` where
+/// the run gave up or its basis proves nothing.
+pub(crate) fn certified(program: &Program) -> Option<Outcome> {
+    let (ending, last, scales) = simplex::floating(program)?;
+    // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
+    let weights: Option<Vec<Q>> = scales
+        .iter()
+        .map(|&s| Q::from_f64_exact(s).map(|s| s.recip()))
+        .collect();
+    basis(program, &last, ending, &weights?)
+}
 
 /// The outcome `basis` proves for `program` when the run ended with `ending`; `None` where it
 /// proves nothing (round-off chose it) and the exact run must answer.
@@ -62,7 +80,7 @@ pub(super) fn basis(
     let unflipped = |y: Vec<Q>| -> Vec<Q> { y.iter().zip(&sign).map(|(y, s)| y * s).collect() };
     match ending {
         Ending::Optimal => {
-            let x_b = solve(rows, b)?;
+            let x_b = eliminate(rows, b)?;
             let feasible =
                 (0..m).all(|k| !x_b[k].is_negative() && (!artificial(k) || x_b[k].is_zero()));
             if !feasible {
@@ -78,7 +96,7 @@ pub(super) fn basis(
                     }
                 })
                 .collect();
-            let y = solve(transposed, c_b)?;
+            let y = eliminate(transposed, c_b)?;
             let dual_feasible =
                 (0..n).all(|j| !(&program.c[j] - &dot(&columns[j], &y)).is_negative());
             if !dual_feasible {
@@ -108,7 +126,7 @@ pub(super) fn basis(
                     }
                 })
                 .collect();
-            let y = solve(transposed, c_b)?;
+            let y = eliminate(transposed, c_b)?;
             let farkas = (0..n).all(|j| !dot(&columns[j], &y).is_positive())
                 && b.iter()
                     .zip(&y)
@@ -126,8 +144,8 @@ pub(super) fn basis(
             for (i, a) in column(entering) {
                 a_j[i] = a;
             }
-            let x_b = solve(rows.clone(), b)?;
-            let w = solve(rows, a_j)?;
+            let x_b = eliminate(rows.clone(), b)?;
+            let w = eliminate(rows, a_j)?;
             let ray = (0..m).all(|k| {
                 !x_b[k].is_negative()
                     && if artificial(k) {
@@ -152,7 +170,7 @@ pub(super) fn basis(
 /// Gaussian elimination that takes at each step the column held by the fewest rows and, in it,
 /// the shortest row (a Markowitz-like order that keeps a wall's block-by-joint structure from
 /// filling in).
-fn solve(mut rows: Vec<BTreeMap<usize, Q>>, mut r: Vec<Q>) -> Option<Vec<Q>> {
+fn eliminate(mut rows: Vec<BTreeMap<usize, Q>>, mut r: Vec<Q>) -> Option<Vec<Q>> {
     let size = rows.len();
     // For each column, the rows not yet eliminated that hold it.
     let mut holders: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); size];
@@ -201,4 +219,185 @@ fn solve(mut rows: Vec<BTreeMap<usize, Q>>, mut r: Vec<Q>) -> Option<Vec<Q>> {
         z[c] = &v / &rows[p][&c];
     }
     Some(z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use simplex::exact;
+
+    fn q(n: i128) -> Q {
+        Q::frac(n, 1)
+    }
+
+    fn program(a: &[&[i128]], b: &[i128], c: &[i128]) -> Program {
+        Program {
+            a: a.iter()
+                .map(|r| r.iter().map(|&v| q(v)).collect())
+                .collect(),
+            b: b.iter().map(|&v| q(v)).collect(),
+            c: c.iter().map(|&v| q(v)).collect(),
+        }
+    }
+
+    /// Checks an optimum's certificate: A x = b, x >= 0, c - A^T y >= 0 with complementary
+    /// slackness, and b y equal to c x (strong duality).
+    fn optimal(p: &Program, out: &Outcome) {
+        let Outcome::Optimal { x, value, y } = out else {
+            panic!("not optimal: {out:?}");
+        };
+        for (row, b) in p.a.iter().zip(&p.b) {
+            let ax: Q = row.iter().zip(x).map(|(a, x)| a * x).sum();
+            assert_eq!(&ax, b);
+        }
+        for j in 0..p.c.len() {
+            assert!(!x[j].is_negative());
+            let slack = &p.c[j] - p.a.iter().zip(y).map(|(r, y)| &r[j] * y).sum::<Q>();
+            assert!(!slack.is_negative(), "dual infeasible in column {j}");
+            assert!(
+                x[j].is_zero() || slack.is_zero(),
+                "not complementary in {j}"
+            );
+        }
+        let by: Q = p.b.iter().zip(y).map(|(b, y)| b * y).sum();
+        assert_eq!(&by, value);
+    }
+
+    /// The floating-point run's basis is certified, and proves what the exact run finds: the
+    /// same kind of outcome and the same optimal value (the vertex may differ where optima tie).
+    fn agrees(p: &Program) -> Outcome {
+        let fast = certified(p).expect("the floating-point basis proves the answer");
+        match (&fast, &exact(p)) {
+            (Outcome::Optimal { value: a, .. }, Outcome::Optimal { value: b, .. }) => {
+                assert_eq!(a, b)
+            }
+            (Outcome::Infeasible { .. }, Outcome::Infeasible { .. })
+            | (Outcome::Unbounded, Outcome::Unbounded) => {}
+            (fast, slow) => panic!("certified {fast:?}, exact {slow:?}"),
+        }
+        fast
+    }
+
+    #[test]
+    fn a_textbook_program_reaches_its_optimum_with_its_certificate() {
+        // max 3 x1 + 5 x2 with x1 <= 4, 2 x2 <= 12, 3 x1 + 2 x2 <= 18 (slacks x3..x5): 36 at
+        // (2, 6).
+        let p = program(
+            &[&[1, 0, 1, 0, 0], &[0, 2, 0, 1, 0], &[3, 2, 0, 0, 1]],
+            &[4, 12, 18],
+            &[-3, -5, 0, 0, 0],
+        );
+        let out = agrees(&p);
+        optimal(&p, &out);
+        optimal(&p, &exact(&p));
+        let Outcome::Optimal { x, value, .. } = out else {
+            unreachable!()
+        };
+        assert_eq!(value, q(-36));
+        assert_eq!((x[0].clone(), x[1].clone()), (q(2), q(6)));
+    }
+
+    #[test]
+    fn negative_right_hand_sides_and_redundant_rows_keep_the_multipliers_right() {
+        // x1 + x2 = 2 written twice (once negated), x1 - x2 = 0: min x1 + 2 x2 = 3 at (1, 1).
+        let p = program(&[&[1, 1], &[-1, -1], &[1, -1]], &[2, -2, 0], &[1, 2]);
+        let out = agrees(&p);
+        optimal(&p, &out);
+        optimal(&p, &exact(&p));
+        assert!(matches!(out, Outcome::Optimal { value, .. } if value == q(3)));
+    }
+
+    #[test]
+    fn an_infeasible_program_comes_with_a_farkas_certificate() {
+        // x1 + x2 = 1 and x1 + x2 = 2.
+        let p = program(&[&[1, 1], &[1, 1]], &[1, 2], &[0, 0]);
+        for out in [agrees(&p), exact(&p)] {
+            let Outcome::Infeasible { y } = out else {
+                panic!("feasible?")
+            };
+            for j in 0..2 {
+                let aty: Q = p.a.iter().zip(&y).map(|(r, y)| &r[j] * y).sum();
+                assert!(!aty.is_positive());
+            }
+            let by: Q = p.b.iter().zip(&y).map(|(b, y)| b * y).sum();
+            assert!(by.is_positive());
+        }
+    }
+
+    #[test]
+    fn an_unbounded_program_says_so() {
+        // min -x1 with x1 - x2 = 1.
+        let p = program(&[&[1, -1]], &[1], &[-1, 0]);
+        assert_eq!(agrees(&p), Outcome::Unbounded);
+    }
+
+    #[test]
+    fn a_degenerate_program_that_cycles_without_blands_rule_ends() {
+        // Beale's example (max 3/4 x4 - 150 x5 + 1/50 x6 - 6 x7), which cycles under the
+        // largest-coefficient rule; optimum 1/20.
+        let r = |v: &[(i128, i128)]| v.iter().map(|&(n, d)| Q::frac(n, d)).collect::<Vec<_>>();
+        let p = Program {
+            a: vec![
+                r(&[(1, 4), (-60, 1), (-1, 25), (9, 1), (1, 1), (0, 1), (0, 1)]),
+                r(&[(1, 2), (-90, 1), (-1, 50), (3, 1), (0, 1), (1, 1), (0, 1)]),
+                r(&[(0, 1), (0, 1), (1, 1), (0, 1), (0, 1), (0, 1), (1, 1)]),
+            ],
+            b: r(&[(0, 1), (0, 1), (1, 1)]),
+            c: r(&[(-3, 4), (150, 1), (-1, 50), (6, 1), (0, 1), (0, 1), (0, 1)]),
+        };
+        let out = agrees(&p);
+        optimal(&p, &out);
+        assert!(matches!(out, Outcome::Optimal { value, .. } if value == Q::frac(-1, 20)));
+    }
+
+    #[test]
+    fn a_basis_that_proves_nothing_is_refused() {
+        // The textbook program above: its optimal basis {x1, x2, x3} (in any order) proves
+        // -36; the slack basis is feasible but not optimal, {x1, x2, x5} is not even feasible
+        // (x5 = -6), a feasible program has no Farkas vector, and x1 meets a bound.
+        let p = program(
+            &[&[1, 0, 1, 0, 0], &[0, 2, 0, 1, 0], &[3, 2, 0, 0, 1]],
+            &[4, 12, 18],
+            &[-3, -5, 0, 0, 0],
+        );
+        let ones = [q(1), q(1), q(1)];
+        let out = basis(&p, &[2, 0, 1], Ending::Optimal, &ones);
+        assert!(matches!(out, Some(Outcome::Optimal { value, .. }) if value == q(-36)));
+        assert_eq!(basis(&p, &[2, 3, 4], Ending::Optimal, &ones), None);
+        assert_eq!(basis(&p, &[0, 1, 4], Ending::Optimal, &ones), None);
+        assert_eq!(basis(&p, &[2, 3, 4], Ending::Infeasible, &ones), None);
+        let unbounded = Ending::Unbounded { entering: 0 };
+        assert_eq!(basis(&p, &[2, 3, 4], unbounded, &ones), None);
+        // A singular basis (x1 twice) and one of the wrong size prove nothing either.
+        assert_eq!(basis(&p, &[0, 0, 4], Ending::Optimal, &ones), None);
+        assert_eq!(basis(&p, &[2, 3], Ending::Optimal, &ones), None);
+    }
+
+    #[test]
+    fn random_programs_get_the_exact_answer_from_their_floating_point_basis() {
+        // Dense programs with small integer data, a third of them infeasible or unbounded by
+        // construction of signs: every floating-point basis must be certified here, since
+        // round-off cannot mislead a run on such well-scaled numbers.
+        let mut rng = crate::rng::Rng::new(37);
+        let mut small = |span: i128| (rng.next_u64() % (2 * span as u64 + 1)) as i128 - span;
+        let mut kinds = [0; 3];
+        for _ in 0..200 {
+            let (m, n) = (2 + small(2).unsigned_abs() as usize, 6 + small(3) as usize);
+            let a: Vec<Vec<i128>> = (0..m).map(|_| (0..n).map(|_| small(4)).collect()).collect();
+            let b: Vec<i128> = (0..m).map(|_| small(6)).collect();
+            let c: Vec<i128> = (0..n).map(|_| small(3)).collect();
+            let rows: Vec<&[i128]> = a.iter().map(Vec::as_slice).collect();
+            let p = program(&rows, &b, &c);
+            let out = agrees(&p);
+            if matches!(out, Outcome::Optimal { .. }) {
+                optimal(&p, &out);
+            }
+            kinds[match out {
+                Outcome::Optimal { .. } => 0,
+                Outcome::Infeasible { .. } => 1,
+                Outcome::Unbounded => 2,
+            }] += 1;
+        }
+        assert!(kinds.iter().all(|&k| k > 10), "outcomes by kind: {kinds:?}");
+    }
 }

@@ -199,7 +199,7 @@ fn direction(
     s: i128,
 ) -> Result<Limit, SimulationError> {
     let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
-    match simplex::solve(&program(wall, topo, movable, forces, &centroids, s)) {
+    match certify::solve(&program(wall, topo, movable, forces, &centroids, s)) {
         Outcome::Unbounded => Ok(Limit::Unlimited),
         Outcome::Infeasible { y } => {
             // The graph checks each block over its own supports; a stack can pass that and

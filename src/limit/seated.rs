@@ -13,7 +13,8 @@
 //! the blocks seated (eq. 3's tributary split is one of those tried). In a state with nothing
 //! sliding the interval is the limit at rest.
 
-use super::simplex::{self, Outcome, Program};
+use super::certify;
+use super::simplex::{Outcome, Program};
 use super::{centroid, entries, mechanism, overlap, pushes, Force, Moves};
 use crate::error::SimulationError;
 use crate::exact::Q;
@@ -98,7 +99,7 @@ pub fn interval(wall: &Wall, topo: &Topology, state: &State) -> Result<Interval,
     let program = Builder::new(wall, topo, state, &movable);
     let mut sides = Vec::with_capacity(2);
     for s in [-1, 1] {
-        match simplex::solve(&program.program(s)) {
+        match certify::solve(&program.program(s)) {
             // Infeasibility does not depend on the objective: the first side tells.
             Outcome::Infeasible { y } => {
                 return Ok(Interval::Empty {

@@ -12,7 +12,6 @@
 //! unbounded one). Where the check fails (round-off chose a basis that is not optimal), the exact
 //! tableau answers from the start; floating point never decides anything.
 
-use super::certify;
 use crate::exact::Q;
 use std::cmp::Ordering;
 
@@ -36,23 +35,6 @@ pub(crate) enum Outcome {
     Infeasible { y: Vec<Q> },
     /// The cost falls without bound.
     Unbounded,
-}
-
-/// Solves the program: the floating-point run's basis certified exactly, or the exact run.
-pub(crate) fn solve(program: &Program) -> Outcome {
-    certified(program).unwrap_or_else(|| exact(program))
-}
-
-/// The answer of the floating-point run where its last basis proves it exactly; `None` where
-/// the run gave up or its basis proves nothing.
-pub(crate) fn certified(program: &Program) -> Option<Outcome> {
-    let (ending, basis, scales) = floating(program)?;
-    // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
-    let weights: Option<Vec<Q>> = scales
-        .iter()
-        .map(|&s| Q::from_f64_exact(s).map(|s| s.recip()))
-        .collect();
-    certify::basis(program, &basis, ending, &weights?)
 }
 
 /// How a run ended: the basis it ends with says the rest.
@@ -352,7 +334,7 @@ impl<T: Number> Tableau<T> {
 }
 
 /// Solves the program in exact arithmetic alone.
-pub(crate) fn exact(program: &Program) -> Outcome {
+pub(super) fn exact(program: &Program) -> Outcome {
     let mut t = Tableau::new(program.a.clone(), program.b.clone(), usize::MAX);
     let (ending, cost) = t.run(program.c.clone()).expect("exact runs have no budget");
     match ending {
@@ -381,7 +363,7 @@ pub(crate) fn exact(program: &Program) -> Outcome {
 /// changes no x, and the basis is all that is kept): how it ended, its last basis (columns
 /// `n..n + m` are the rows' artificial variables) and the rows' divisors, or `None` where it
 /// ran out of pivots.
-fn floating(program: &Program) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
+pub(super) fn floating(program: &Program) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
     let (mut a, mut b, mut scales) = (Vec::with_capacity(program.b.len()), Vec::new(), Vec::new());
     for (row, rhs) in program.a.iter().zip(&program.b) {
         let row: Vec<f64> = row.iter().map(Q::to_f64).collect();
@@ -396,187 +378,4 @@ fn floating(program: &Program) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
     let mut t = Tableau::new(a, b, 50 * (m + n) + 1000);
     let (ending, _) = t.run(c)?;
     Some((ending, t.basis, scales))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn q(n: i128) -> Q {
-        Q::frac(n, 1)
-    }
-
-    fn program(a: &[&[i128]], b: &[i128], c: &[i128]) -> Program {
-        Program {
-            a: a.iter()
-                .map(|r| r.iter().map(|&v| q(v)).collect())
-                .collect(),
-            b: b.iter().map(|&v| q(v)).collect(),
-            c: c.iter().map(|&v| q(v)).collect(),
-        }
-    }
-
-    /// Checks an optimum's certificate: A x = b, x >= 0, c - A^T y >= 0 with complementary
-    /// slackness, and b y equal to c x (strong duality).
-    fn optimal(p: &Program, out: &Outcome) {
-        let Outcome::Optimal { x, value, y } = out else {
-            panic!("not optimal: {out:?}");
-        };
-        for (row, b) in p.a.iter().zip(&p.b) {
-            let ax: Q = row.iter().zip(x).map(|(a, x)| a * x).sum();
-            assert_eq!(&ax, b);
-        }
-        for j in 0..p.c.len() {
-            assert!(!x[j].is_negative());
-            let slack = &p.c[j] - p.a.iter().zip(y).map(|(r, y)| &r[j] * y).sum::<Q>();
-            assert!(!slack.is_negative(), "dual infeasible in column {j}");
-            assert!(
-                x[j].is_zero() || slack.is_zero(),
-                "not complementary in {j}"
-            );
-        }
-        let by: Q = p.b.iter().zip(y).map(|(b, y)| b * y).sum();
-        assert_eq!(&by, value);
-    }
-
-    /// The floating-point run's basis is certified, and proves what the exact run finds: the
-    /// same kind of outcome and the same optimal value (the vertex may differ where optima tie).
-    fn agrees(p: &Program) -> Outcome {
-        let fast = certified(p).expect("the floating-point basis proves the answer");
-        match (&fast, &exact(p)) {
-            (Outcome::Optimal { value: a, .. }, Outcome::Optimal { value: b, .. }) => {
-                assert_eq!(a, b)
-            }
-            (Outcome::Infeasible { .. }, Outcome::Infeasible { .. })
-            | (Outcome::Unbounded, Outcome::Unbounded) => {}
-            (fast, slow) => panic!("certified {fast:?}, exact {slow:?}"),
-        }
-        fast
-    }
-
-    #[test]
-    fn a_textbook_program_reaches_its_optimum_with_its_certificate() {
-        // max 3 x1 + 5 x2 with x1 <= 4, 2 x2 <= 12, 3 x1 + 2 x2 <= 18 (slacks x3..x5): 36 at
-        // (2, 6).
-        let p = program(
-            &[&[1, 0, 1, 0, 0], &[0, 2, 0, 1, 0], &[3, 2, 0, 0, 1]],
-            &[4, 12, 18],
-            &[-3, -5, 0, 0, 0],
-        );
-        let out = agrees(&p);
-        optimal(&p, &out);
-        optimal(&p, &exact(&p));
-        let Outcome::Optimal { x, value, .. } = out else {
-            unreachable!()
-        };
-        assert_eq!(value, q(-36));
-        assert_eq!((x[0].clone(), x[1].clone()), (q(2), q(6)));
-    }
-
-    #[test]
-    fn negative_right_hand_sides_and_redundant_rows_keep_the_multipliers_right() {
-        // x1 + x2 = 2 written twice (once negated), x1 - x2 = 0: min x1 + 2 x2 = 3 at (1, 1).
-        let p = program(&[&[1, 1], &[-1, -1], &[1, -1]], &[2, -2, 0], &[1, 2]);
-        let out = agrees(&p);
-        optimal(&p, &out);
-        optimal(&p, &exact(&p));
-        assert!(matches!(out, Outcome::Optimal { value, .. } if value == q(3)));
-    }
-
-    #[test]
-    fn an_infeasible_program_comes_with_a_farkas_certificate() {
-        // x1 + x2 = 1 and x1 + x2 = 2.
-        let p = program(&[&[1, 1], &[1, 1]], &[1, 2], &[0, 0]);
-        for out in [agrees(&p), exact(&p)] {
-            let Outcome::Infeasible { y } = out else {
-                panic!("feasible?")
-            };
-            for j in 0..2 {
-                let aty: Q = p.a.iter().zip(&y).map(|(r, y)| &r[j] * y).sum();
-                assert!(!aty.is_positive());
-            }
-            let by: Q = p.b.iter().zip(&y).map(|(b, y)| b * y).sum();
-            assert!(by.is_positive());
-        }
-    }
-
-    #[test]
-    fn an_unbounded_program_says_so() {
-        // min -x1 with x1 - x2 = 1.
-        let p = program(&[&[1, -1]], &[1], &[-1, 0]);
-        assert_eq!(agrees(&p), Outcome::Unbounded);
-    }
-
-    #[test]
-    fn a_degenerate_program_that_cycles_without_blands_rule_ends() {
-        // Beale's example (max 3/4 x4 - 150 x5 + 1/50 x6 - 6 x7), which cycles under the
-        // largest-coefficient rule; optimum 1/20.
-        let r = |v: &[(i128, i128)]| v.iter().map(|&(n, d)| Q::frac(n, d)).collect::<Vec<_>>();
-        let p = Program {
-            a: vec![
-                r(&[(1, 4), (-60, 1), (-1, 25), (9, 1), (1, 1), (0, 1), (0, 1)]),
-                r(&[(1, 2), (-90, 1), (-1, 50), (3, 1), (0, 1), (1, 1), (0, 1)]),
-                r(&[(0, 1), (0, 1), (1, 1), (0, 1), (0, 1), (0, 1), (1, 1)]),
-            ],
-            b: r(&[(0, 1), (0, 1), (1, 1)]),
-            c: r(&[(-3, 4), (150, 1), (-1, 50), (6, 1), (0, 1), (0, 1), (0, 1)]),
-        };
-        let out = agrees(&p);
-        optimal(&p, &out);
-        assert!(matches!(out, Outcome::Optimal { value, .. } if value == Q::frac(-1, 20)));
-    }
-
-    #[test]
-    fn a_basis_that_proves_nothing_is_refused() {
-        // The textbook program above: its optimal basis {x1, x2, x3} (in any order) proves
-        // -36; the slack basis is feasible but not optimal, {x1, x2, x5} is not even feasible
-        // (x5 = -6), a feasible program has no Farkas vector, and x1 meets a bound.
-        let p = program(
-            &[&[1, 0, 1, 0, 0], &[0, 2, 0, 1, 0], &[3, 2, 0, 0, 1]],
-            &[4, 12, 18],
-            &[-3, -5, 0, 0, 0],
-        );
-        let ones = [q(1), q(1), q(1)];
-        let out = certify::basis(&p, &[2, 0, 1], Ending::Optimal, &ones);
-        assert!(matches!(out, Some(Outcome::Optimal { value, .. }) if value == q(-36)));
-        assert_eq!(certify::basis(&p, &[2, 3, 4], Ending::Optimal, &ones), None);
-        assert_eq!(certify::basis(&p, &[0, 1, 4], Ending::Optimal, &ones), None);
-        assert_eq!(
-            certify::basis(&p, &[2, 3, 4], Ending::Infeasible, &ones),
-            None
-        );
-        let unbounded = Ending::Unbounded { entering: 0 };
-        assert_eq!(certify::basis(&p, &[2, 3, 4], unbounded, &ones), None);
-        // A singular basis (x1 twice) and one of the wrong size prove nothing either.
-        assert_eq!(certify::basis(&p, &[0, 0, 4], Ending::Optimal, &ones), None);
-        assert_eq!(certify::basis(&p, &[2, 3], Ending::Optimal, &ones), None);
-    }
-
-    #[test]
-    fn random_programs_get_the_exact_answer_from_their_floating_point_basis() {
-        // Dense programs with small integer data, a third of them infeasible or unbounded by
-        // construction of signs: every floating-point basis must be certified here, since
-        // round-off cannot mislead a run on such well-scaled numbers.
-        let mut rng = crate::rng::Rng::new(37);
-        let mut small = |span: i128| (rng.next_u64() % (2 * span as u64 + 1)) as i128 - span;
-        let mut kinds = [0; 3];
-        for _ in 0..200 {
-            let (m, n) = (2 + small(2).unsigned_abs() as usize, 6 + small(3) as usize);
-            let a: Vec<Vec<i128>> = (0..m).map(|_| (0..n).map(|_| small(4)).collect()).collect();
-            let b: Vec<i128> = (0..m).map(|_| small(6)).collect();
-            let c: Vec<i128> = (0..n).map(|_| small(3)).collect();
-            let rows: Vec<&[i128]> = a.iter().map(Vec::as_slice).collect();
-            let p = program(&rows, &b, &c);
-            let out = agrees(&p);
-            if matches!(out, Outcome::Optimal { .. }) {
-                optimal(&p, &out);
-            }
-            kinds[match out {
-                Outcome::Optimal { .. } => 0,
-                Outcome::Infeasible { .. } => 1,
-                Outcome::Unbounded => 2,
-            }] += 1;
-        }
-        assert!(kinds.iter().all(|&k| k > 10), "outcomes by kind: {kinds:?}");
-    }
 }

@@ -298,7 +298,7 @@ fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
         let forces = forces(wall, topo);
         for s in [1, -1] {
             let p = program(wall, topo, &movable, &forces, &centroids, s);
-            let fast = simplex::certified(&p)
+            let fast = certify::certified(&p)
                 .unwrap_or_else(|| panic!("{path}, side {s}: no certified basis"));
             if compare {
                 let value = |o: &Outcome| match o {
