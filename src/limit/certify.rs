@@ -278,15 +278,19 @@ mod tests {
         fast
     }
 
-    #[test]
-    fn a_textbook_program_reaches_its_optimum_with_its_certificate() {
-        // max 3 x1 + 5 x2 with x1 <= 4, 2 x2 <= 12, 3 x1 + 2 x2 <= 18 (slacks x3..x5): 36 at
-        // (2, 6).
-        let p = program(
+    /// max 3 x1 + 5 x2 with x1 <= 4, 2 x2 <= 12, 3 x1 + 2 x2 <= 18 (slacks x3..x5): 36 at
+    /// (2, 6).
+    fn textbook() -> Program {
+        program(
             &[&[1, 0, 1, 0, 0], &[0, 2, 0, 1, 0], &[3, 2, 0, 0, 1]],
             &[4, 12, 18],
             &[-3, -5, 0, 0, 0],
-        );
+        )
+    }
+
+    #[test]
+    fn a_textbook_program_reaches_its_optimum_with_its_certificate() {
+        let p = textbook();
         let out = agrees(&p);
         optimal(&p, &out);
         optimal(&p, &exact(&p));
@@ -352,14 +356,10 @@ mod tests {
 
     #[test]
     fn a_basis_that_proves_nothing_is_refused() {
-        // The textbook program above: its optimal basis {x1, x2, x3} (in any order) proves
+        // The textbook program: its optimal basis {x1, x2, x3} (in any order) proves
         // -36; the slack basis is feasible but not optimal, {x1, x2, x5} is not even feasible
         // (x5 = -6), a feasible program has no Farkas vector, and x1 meets a bound.
-        let p = program(
-            &[&[1, 0, 1, 0, 0], &[0, 2, 0, 1, 0], &[3, 2, 0, 0, 1]],
-            &[4, 12, 18],
-            &[-3, -5, 0, 0, 0],
-        );
+        let p = textbook();
         let ones = [q(1), q(1), q(1)];
         let out = basis(&p, &[2, 0, 1], Ending::Optimal, &ones);
         assert!(matches!(out, Some(Outcome::Optimal { value, .. }) if value == q(-36)));
