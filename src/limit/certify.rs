@@ -10,15 +10,17 @@ use super::simplex::{self, Ending, Outcome, Program};
 use crate::exact::Q;
 use std::collections::{BTreeMap, BTreeSet};
 
-/// Solves the program: the floating-point run's basis certified exactly, or the exact run.
-pub(crate) fn solve(program: &Program) -> Outcome {
-    certified(program).unwrap_or_else(|| simplex::exact(program))
+/// Solves the program: the floating-point run's basis certified exactly, or the exact run;
+/// `None` where `stop` asked them to stop (both look at it at every pivot: the exact run of a
+/// large program with sampled friction can take hours).
+pub(crate) fn solve(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+    certified(program, stop).or_else(|| simplex::exact(program, stop))
 }
 
 /// The answer of the floating-point run where its last basis proves it exactly; `None` where
-/// the run gave up or its basis proves nothing.
-pub(crate) fn certified(program: &Program) -> Option<Outcome> {
-    let (ending, last, scales) = simplex::floating(program)?;
+/// the run gave up, was stopped, or its basis proves nothing.
+pub(crate) fn certified(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+    let (ending, last, scales) = simplex::floating(program, stop)?;
     // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
     let weights: Option<Vec<Q>> = scales
         .iter()
@@ -224,7 +226,11 @@ fn eliminate(mut rows: Vec<BTreeMap<usize, Q>>, mut r: Vec<Q>) -> Option<Vec<Q>>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use simplex::exact;
+
+    /// The exact run, never stopped.
+    fn exact(p: &Program) -> Outcome {
+        simplex::exact(p, &|| false).expect("not stopped")
+    }
 
     fn q(n: i128) -> Q {
         Q::frac(n, 1)
@@ -266,7 +272,7 @@ mod tests {
     /// The floating-point run's basis is certified, and proves what the exact run finds: the
     /// same kind of outcome and the same optimal value (the vertex may differ where optima tie).
     fn agrees(p: &Program) -> Outcome {
-        let fast = certified(p).expect("the floating-point basis proves the answer");
+        let fast = certified(p, &|| false).expect("the floating-point basis proves the answer");
         match (&fast, &exact(p)) {
             (Outcome::Optimal { value: a, .. }, Outcome::Optimal { value: b, .. }) => {
                 assert_eq!(a, b)
@@ -286,6 +292,21 @@ mod tests {
             &[4, 12, 18],
             &[-3, -5, 0, 0, 0],
         )
+    }
+
+    #[test]
+    fn a_stop_request_ends_both_runs_at_their_next_pivot() {
+        let p = textbook();
+        let asked = std::cell::Cell::new(0);
+        // Stop from the second question on: the floating-point run stops after one pivot
+        // (the textbook takes more), the exact run at its first.
+        let stop = || {
+            asked.set(asked.get() + 1);
+            asked.get() > 1
+        };
+        assert_eq!(solve(&p, &stop), None);
+        assert_eq!(asked.get(), 3);
+        assert!(solve(&p, &|| false).is_some());
     }
 
     #[test]

@@ -25,10 +25,23 @@ use crate::wall::{Block, Wall};
 use simplex::{Outcome, Program};
 
 /// The most movable blocks a limit is computed for. The floating-point run whose basis is
-/// certified answers larger walls (410 blocks in 8 s), but where its basis fails the check the
-/// exact tableau answers, and its fractions grow with every pivot: a running bond of 102 blocks
-/// took it 0.7 s, the 60 blocks of walls/inca/qorikancha.ron 25 s.
+/// certified answers larger walls where it does not stall (a slender running bond of 410
+/// blocks in 8 s; the generated running bond of 300 blocks, one friction everywhere, ran its
+/// float simplex for more than 200 s), and where its basis fails the check the exact tableau
+/// answers, whose fractions grow with every pivot: a running bond of 102 blocks took it 0.7 s,
+/// the 60 blocks of walls/inca/qorikancha.ron 25 s.
 pub const MAX_BLOCKS: usize = 150;
+
+/// Why a program over `movable` blocks is not built (beyond [`MAX_BLOCKS`]), naming `what` it
+/// is for.
+pub(crate) fn too_large(what: &str, movable: usize) -> Option<String> {
+    (movable > MAX_BLOCKS).then(|| {
+        format!(
+            "{what} is computed for walls of up to {MAX_BLOCKS} movable blocks (its exact \
+             fallback is a dense tableau); this wall has {movable}"
+        )
+    })
+}
 
 /// The wall's limits at rest, towards +x and towards -x.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -88,12 +101,8 @@ pub fn at_rest(wall: &Wall, topo: &Topology) -> Result<Limits, SimulationError> 
     let movable: Vec<usize> = (0..wall.blocks.len())
         .filter(|&i| !wall.blocks[i].fixed)
         .collect();
-    if movable.len() > MAX_BLOCKS {
-        return Err(SimulationError::NotApplicable(format!(
-            "the limit at rest is computed for walls of up to {MAX_BLOCKS} movable blocks (its \
-             exact fallback is a dense tableau); this wall has {}",
-            movable.len()
-        )));
+    if let Some(why) = too_large("the limit at rest", movable.len()) {
+        return Err(SimulationError::NotApplicable(why));
     }
     let forces = forces(wall, topo);
     Ok(Limits {
@@ -199,7 +208,8 @@ fn direction(
     s: i128,
 ) -> Result<Limit, SimulationError> {
     let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
-    match certify::solve(&program(wall, topo, movable, forces, &centroids, s)) {
+    let program = program(wall, topo, movable, forces, &centroids, s);
+    match certify::solve(&program, &|| false).expect("never stopped") {
         Outcome::Unbounded => Ok(Limit::Unlimited),
         Outcome::Infeasible { y } => {
             // The graph checks each block over its own supports; a stack can pass that and

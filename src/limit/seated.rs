@@ -80,31 +80,36 @@ pub enum Interval {
     },
 }
 
-/// The interval of ground accelerations in which `state` keeps every block seated.
-pub fn interval(wall: &Wall, topo: &Topology, state: &State) -> Result<Interval, SimulationError> {
+/// The interval of ground accelerations in which `state` keeps every block seated; `None`
+/// where `stop` asked the programs to stop (a Ctrl-C, a job's time limit), which they look at
+/// at every pivot.
+pub fn interval(
+    wall: &Wall,
+    topo: &Topology,
+    state: &State,
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<Interval>, SimulationError> {
     let movable: Vec<usize> = (0..wall.blocks.len())
         .filter(|&i| state.moving[i].is_some())
         .collect();
-    if movable.len() > super::MAX_BLOCKS {
-        return Err(SimulationError::NotApplicable(format!(
-            "the uplift check is computed for walls of up to {} moving blocks (its exact \
-             fallback is a dense tableau); this wall has {}",
-            super::MAX_BLOCKS,
-            movable.len()
-        )));
+    if let Some(why) = super::too_large(WHAT, movable.len()) {
+        return Err(SimulationError::NotApplicable(why));
     }
     if movable.is_empty() {
-        return Ok(Interval::Between { lo: None, hi: None });
+        return Ok(Some(Interval::Between { lo: None, hi: None }));
     }
     let program = Builder::new(wall, topo, state, &movable);
     let mut sides = Vec::with_capacity(2);
     for s in [-1, 1] {
-        match certify::solve(&program.program(s)) {
+        let Some(out) = certify::solve(&program.program(s), stop) else {
+            return Ok(None);
+        };
+        match out {
             // Infeasibility does not depend on the objective: the first side tells.
             Outcome::Infeasible { y } => {
-                return Ok(Interval::Empty {
+                return Ok(Some(Interval::Empty {
                     mechanism: program.mechanism(wall, topo, &y),
-                })
+                }))
             }
             Outcome::Unbounded => sides.push(None),
             Outcome::Optimal { value, y, .. } => sides.push(Some(Side {
@@ -115,8 +120,11 @@ pub fn interval(wall: &Wall, topo: &Topology, state: &State) -> Result<Interval,
     }
     let hi = sides.pop().expect("two sides");
     let lo = sides.pop().expect("two sides");
-    Ok(Interval::Between { lo, hi })
+    Ok(Some(Interval::Between { lo, hi }))
 }
+
+/// What the programs here are for, in refusals.
+pub(crate) const WHAT: &str = "the uplift check";
 
 /// Balances per block: horizontal, vertical, moment.
 const ROWS: usize = 3;

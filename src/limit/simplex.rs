@@ -244,11 +244,11 @@ impl<T: Number> Tableau<T> {
         self.basis[p] = j;
     }
 
-    /// Runs Bland's rule over the columns `allowed` admits. (Dantzig's rule of the most
+    /// Runs Bland's rule over the columns `allowed` admits, until `stop` says so. (Dantzig's rule of the most
     /// negative reduced cost, tried on the Inca walls, took longer by far in exact arithmetic:
     /// its pivots grew the fractions; in floating point, on the 105-block running bond's
     /// uplift programs, it took longer too and ended phase 1 short of feasibility.)
-    fn optimise(&mut self, allowed: impl Fn(usize) -> bool) -> Stop {
+    fn optimise(&mut self, allowed: impl Fn(usize) -> bool, stop: &dyn Fn() -> bool) -> Stop {
         loop {
             let Some(j) =
                 (0..self.reduced.len()).find(|&j| allowed(j) && self.reduced[j].is_negative())
@@ -275,7 +275,7 @@ impl<T: Number> Tableau<T> {
             let Some((p, _)) = leave else {
                 return Stop::Unbounded { entering: j };
             };
-            if self.budget == 0 {
+            if self.budget == 0 || stop() {
                 return Stop::GaveUp;
             }
             self.budget -= 1;
@@ -298,15 +298,16 @@ impl<T: Number> Tableau<T> {
             .collect()
     }
 
-    /// Both phases; the costs are `c` followed by zeros for the artificial columns.
-    fn run(&mut self, c: Vec<T>) -> Option<(Ending, Vec<T>)> {
+    /// Both phases; the costs are `c` followed by zeros for the artificial columns. `None`
+    /// where the run ran out of pivots or `stop` said so.
+    fn run(&mut self, c: Vec<T>, stop: &dyn Fn() -> bool) -> Option<(Ending, Vec<T>)> {
         let (m, n) = (self.rows.len(), self.n);
         // Phase 1: the sum of the artificial variables to zero.
         let phase1: Vec<T> = (0..n + m)
             .map(|j| if j < n { T::zero() } else { T::one() })
             .collect();
         self.price(&phase1);
-        if let Stop::GaveUp = self.optimise(|_| true) {
+        if let Stop::GaveUp = self.optimise(|_| true, stop) {
             return None;
         }
         let infeasible = (0..m).any(|i| self.basis[i] >= n && self.rhs[i].is_positive());
@@ -325,7 +326,7 @@ impl<T: Number> Tableau<T> {
         // Phase 2: the program's costs, artificial columns barred.
         let cost: Vec<T> = c.into_iter().chain((0..m).map(|_| T::zero())).collect();
         self.price(&cost);
-        match self.optimise(|j| j < n) {
+        match self.optimise(|j| j < n, stop) {
             Stop::GaveUp => None,
             Stop::Unbounded { entering } => Some((Ending::Unbounded { entering }, cost)),
             Stop::Optimal => Some((Ending::Optimal, cost)),
@@ -333,11 +334,12 @@ impl<T: Number> Tableau<T> {
     }
 }
 
-/// Solves the program in exact arithmetic alone.
-pub(super) fn exact(program: &Program) -> Outcome {
+/// Solves the program in exact arithmetic alone; `None` where `stop` asked it to stop (it
+/// looks at every pivot: a run of a large program can take hours).
+pub(super) fn exact(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
     let mut t = Tableau::new(program.a.clone(), program.b.clone(), usize::MAX);
-    let (ending, cost) = t.run(program.c.clone()).expect("exact runs have no budget");
-    match ending {
+    let (ending, cost) = t.run(program.c.clone(), stop)?;
+    Some(match ending {
         Ending::Infeasible => Outcome::Infeasible {
             y: t.multipliers(&cost),
         },
@@ -356,14 +358,17 @@ pub(super) fn exact(program: &Program) -> Outcome {
                 value,
             }
         }
-    }
+    })
 }
 
 /// Runs the program in floating point, each row divided by its largest entry (the scaling
 /// changes no x, and the basis is all that is kept): how it ended, its last basis (columns
 /// `n..n + m` are the rows' artificial variables) and the rows' divisors, or `None` where it
-/// ran out of pivots.
-pub(super) fn floating(program: &Program) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
+/// ran out of pivots or `stop` said so.
+pub(super) fn floating(
+    program: &Program,
+    stop: &dyn Fn() -> bool,
+) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
     let (mut a, mut b, mut scales) = (Vec::with_capacity(program.b.len()), Vec::new(), Vec::new());
     for (row, rhs) in program.a.iter().zip(&program.b) {
         let row: Vec<f64> = row.iter().map(Q::to_f64).collect();
@@ -376,6 +381,6 @@ pub(super) fn floating(program: &Program) -> Option<(Ending, Vec<usize>, Vec<f64
     let c = program.c.iter().map(|x| Float(x.to_f64())).collect();
     let (m, n) = (program.b.len(), program.c.len());
     let mut t = Tableau::new(a, b, 50 * (m + n) + 1000);
-    let (ending, _) = t.run(c)?;
+    let (ending, _) = t.run(c, stop)?;
     Some((ending, t.basis, scales))
 }

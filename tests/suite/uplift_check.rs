@@ -212,3 +212,37 @@ fn the_check_is_refused_where_the_sliding_engine_does_not_run() {
         );
     }
 }
+
+#[test]
+fn a_stop_request_ends_the_run_while_the_checks_programs_run() {
+    // A request to stop (Ctrl-C, a job's SIGTERM) reaches the check's linear programs, which
+    // look at it at every pivot: an exact program of a large wall can take hours, and a run
+    // that looked only where it reports its progress would not stop within them. Asked from
+    // the start, the run without the check stops where it first reports (a quarter of the
+    // sine's period); with the check it stops in the first state's programs, at t = 0.
+    use pirqa::integrate::Progress;
+    use std::sync::atomic::AtomicBool;
+    use std::sync::Arc;
+    let m = Model::from_file("walls/five-block-variable.ron").unwrap();
+    let motion = sine(400.0 / 981.0, 20.0);
+    let run = |check_uplift: bool| {
+        let settings = RunSettings {
+            model: ModelChoice::Slide,
+            check_uplift,
+            output_dt_s: None,
+            progress: Some(Progress::new(|_| {}).with_stop(Arc::new(AtomicBool::new(true)))),
+            ..RunSettings::default()
+        };
+        pirqa::run(&m, &motion, &settings).unwrap().summary
+    };
+    assert_eq!(run(false).interrupted_at_s, Some(0.25));
+    let stopped = run(true);
+    assert_eq!(stopped.interrupted_at_s, Some(0.0));
+    assert_eq!(
+        stopped.uplift_check,
+        Some(UpliftCheck {
+            checked_until_s: 0.0,
+            first_uplift: None
+        })
+    );
+}

@@ -283,11 +283,10 @@ impl<'a> Engine<'a> {
             rec.log_decisions(sc.settings.decisions_file.as_deref());
         }
         let movable = wall.blocks.iter().filter(|b| !b.fixed).count();
-        if params.watch_uplift && movable > crate::limit::MAX_BLOCKS {
+        let too_large = crate::limit::too_large(crate::limit::seated::WHAT, movable);
+        if let Some(why) = too_large.filter(|_| params.watch_uplift) {
             return Err(SimulationError::NotApplicable(format!(
-                "the uplift check is computed for walls of up to {} movable blocks (its exact \
-                 fallback is a dense tableau); this wall has {movable}: leave --check-uplift out",
-                crate::limit::MAX_BLOCKS
+                "{why}: leave --check-uplift out"
             )));
         }
         let uplift = params.watch_uplift.then(uplift::Watch::default);
@@ -363,7 +362,9 @@ impl<'a> Engine<'a> {
                     if !self.output_until(p.t) {
                         break;
                     }
-                    self.watch_uplift(p.t)?;
+                    if !self.watch_uplift(p.t)? {
+                        break;
+                    }
                     self.t = p.t;
                     self.rec.stats.events += 1;
                     self.progress_guard(&p)?;
@@ -382,7 +383,9 @@ impl<'a> Engine<'a> {
                     if !self.output_until(seg_end) {
                         break;
                     }
-                    self.watch_uplift(seg_end)?;
+                    if !self.watch_uplift(seg_end)? {
+                        break;
+                    }
                     self.t = seg_end;
                     if !self.keep_going() || seg_end >= self.given.t_end {
                         break;

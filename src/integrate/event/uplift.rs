@@ -11,6 +11,7 @@ use super::schedule::limit_passed;
 use super::Engine;
 use crate::error::SimulationError;
 use crate::exact::Q;
+use crate::integrate::Progress;
 use crate::limit::seated::{self, Interval, Moving, State};
 use crate::limit::Moves;
 use crate::response::{Uplift, UpliftCheck, Warning};
@@ -32,6 +33,16 @@ pub(super) struct Watch {
     count: Counter,
 }
 
+/// What the watch sees over a stretch of the run.
+enum Look {
+    /// Every block stays seated.
+    Clear,
+    /// The first uplift, at this time, by this mechanism.
+    Lifts(f64, Vec<Moves>),
+    /// The run was asked to stop while the programs ran.
+    Stopped,
+}
+
 /// How a block moves with others: touching faces of blocks that move together can push.
 #[derive(PartialEq)]
 enum Together {
@@ -49,38 +60,51 @@ impl Engine<'_> {
 
     /// The run is about to advance from `self.t` to `t_next` in its state: records the first
     /// instant in between at which no contact forces keep every block seated, if there is one.
-    pub(super) fn watch_uplift(&mut self, t_next: f64) -> Result<(), SimulationError> {
+    /// False (and the run marked interrupted at `self.t`) where the run was asked to stop
+    /// while the check's programs ran.
+    pub(super) fn watch_uplift(&mut self, t_next: f64) -> Result<bool, SimulationError> {
         let Some(mut w) = self.uplift.take() else {
-            return Ok(());
+            return Ok(true);
         };
-        let found = if w.done || t_next <= self.t {
-            None
+        let look = if w.done || t_next <= self.t {
+            Look::Clear
         } else {
             self.first_uplift(&mut w, t_next)?
         };
-        if let Some((t, mechanism)) = found {
-            // The blocks that turn; the others of the mechanism move with them.
-            let names: Vec<String> = mechanism
-                .iter()
-                .filter(|m| m.omega_rad_s != 0.0)
-                .map(|m| format!("{} {}", m.block, m.how))
-                .collect();
-            self.rec.uplift_check = Some(UpliftCheck {
-                checked_until_s: t,
-                first_uplift: Some(Uplift {
-                    time_s: t,
-                    ground_accel_m_s2: self.seg.accel(t - self.seg.t0),
-                    turning: names.clone(),
-                }),
-            });
-            self.rec.warnings.push(Warning::Lifts {
-                time_s: t,
-                turning: names,
-            });
-            w.done = true;
+        w.done |= matches!(look, Look::Lifts(..));
+        let mut go_on = true;
+        match look {
+            Look::Clear => {}
+            Look::Lifts(t, mechanism) => self.record_uplift(t, &mechanism),
+            Look::Stopped => {
+                self.rec.interrupted_at_s = Some(self.t);
+                go_on = false;
+            }
         }
         self.uplift = Some(w);
-        Ok(())
+        Ok(go_on)
+    }
+
+    /// Records the first uplift, at `t`, by `mechanism`.
+    fn record_uplift(&mut self, t: f64, mechanism: &[Moves]) {
+        // The blocks that turn; the others of the mechanism move with them.
+        let names: Vec<String> = mechanism
+            .iter()
+            .filter(|m| m.omega_rad_s != 0.0)
+            .map(|m| format!("{} {}", m.block, m.how))
+            .collect();
+        self.rec.uplift_check = Some(UpliftCheck {
+            checked_until_s: t,
+            first_uplift: Some(Uplift {
+                time_s: t,
+                ground_accel_m_s2: self.seg.accel(t - self.seg.t0),
+                turning: names.clone(),
+            }),
+        });
+        self.rec.warnings.push(Warning::Lifts {
+            time_s: t,
+            turning: names,
+        });
     }
 
     /// The run's end: a watch that found no uplift says how far it looked.
@@ -93,11 +117,7 @@ impl Engine<'_> {
         }
     }
 
-    fn first_uplift(
-        &self,
-        w: &mut Watch,
-        t_next: f64,
-    ) -> Result<Option<(f64, Vec<Moves>)>, SimulationError> {
+    fn first_uplift(&self, w: &mut Watch, t_next: f64) -> Result<Look, SimulationError> {
         let (interval, watched) = match &w.current {
             Some((i, watched)) => (i.clone(), *watched),
             None => {
@@ -105,8 +125,13 @@ impl Engine<'_> {
                 let i = match w.memo.get(&state) {
                     Some(i) => i.clone(),
                     None => {
-                        let i =
-                            Rc::new(seated::interval(self.given.wall, self.given.topo, &state)?);
+                        let stop =
+                            || (self.given.progress.as_ref()).is_some_and(Progress::stop_requested);
+                        let g = &self.given;
+                        let Some(i) = seated::interval(g.wall, g.topo, &state, &stop)? else {
+                            return Ok(Look::Stopped);
+                        };
+                        let i = Rc::new(i);
                         w.memo.insert(state, i.clone());
                         i
                     }
@@ -124,7 +149,7 @@ impl Engine<'_> {
             }
         };
         let (lo, hi) = match &*interval {
-            Interval::Empty { mechanism } => return Ok(Some((self.t, mechanism.clone()))),
+            Interval::Empty { mechanism } => return Ok(Look::Lifts(self.t, mechanism.clone())),
             Interval::Between { lo, hi } => (lo, hi),
         };
         let mut first: Option<(f64, Vec<Moves>)> = None;
@@ -141,7 +166,7 @@ impl Engine<'_> {
                 }
             }
         }
-        Ok(first)
+        Ok(first.map_or(Look::Clear, |(t, m)| Look::Lifts(t, m)))
     }
 
     /// The seated side `accel` (towards the side of `s`, +1: +x) comes strictly before every

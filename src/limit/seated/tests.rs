@@ -29,7 +29,9 @@ fn at_rest_state(m: &Model) -> State {
 }
 
 fn seated(m: &Model, state: &State) -> Interval {
-    interval(m.wall(), m.topology(), state).unwrap()
+    interval(m.wall(), m.topology(), state, &|| false)
+        .unwrap()
+        .expect("not stopped")
 }
 
 fn sides(i: Interval) -> (Side, Side) {
