@@ -246,3 +246,38 @@ fn a_stop_request_ends_the_run_while_the_checks_programs_run() {
         })
     );
 }
+
+#[test]
+fn under_vertical_shaking_a_block_lifts_where_its_ground_acceleration_over_the_load_reaches_g_b_over_h(
+) {
+    // Every load of a seated state scales with the vertical load factor lambda = 1 + a_v/g,
+    // so the block lifts where a_h / lambda = g b/h. Ramps in both directions, linear between
+    // samples as every record is: a_h = s_h t, lambda = 1 + s_v t / g, so the block lifts at
+    // t = (g b/h) / (s_h - s_v b/h). A falling ground (s_v < 0) lightens the block and it
+    // lifts sooner than on level ground, still before it could slide (friction 0.6 > 1/2).
+    let (g, dt, n) = (9.81, 0.01, 301);
+    let (s_h, s_v) = (4.0, -3.0);
+    let ramp = |s: f64| (0..n).map(|k| s * (k as f64 * dt)).collect::<Vec<f64>>();
+    let horizontal = pirqa::motion::Record::new("h", dt, ramp(s_h)).unwrap();
+    let vertical = pirqa::motion::Record::new("v", dt, ramp(s_v)).unwrap();
+    let both = Motion::Record(horizontal.with_vertical(&vertical, g).unwrap());
+    let u = first_uplift(&watched(&slender("0.6"), &both, true)).clone();
+    let expected = (g / 2.0) / (s_h - s_v / 2.0);
+    assert!(
+        (u.time_s - expected).abs() <= 1e-12,
+        "{} {expected}",
+        u.time_s
+    );
+    assert!((u.ground_accel_m_s2 - s_h * expected).abs() <= 1e-12);
+    assert_eq!(
+        u.turning,
+        ["A turns counterclockwise about its bottom-left corner"]
+    );
+    // The same ramp without the vertical component: later, at g/2 itself.
+    let level = first_uplift(&watched(&slender("0.6"), &Motion::Record(horizontal), true)).clone();
+    assert!(
+        (level.time_s - (g / 2.0) / s_h).abs() <= 1e-12,
+        "{}",
+        level.time_s
+    );
+}
