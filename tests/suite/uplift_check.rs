@@ -281,3 +281,49 @@ fn under_vertical_shaking_a_block_lifts_where_its_ground_acceleration_over_the_l
         level.time_s
     );
 }
+
+#[test]
+fn after_a_fall_the_check_goes_on_without_the_fallen_block() {
+    // A slender block (0.4 x 1.0 m, friction 0.6 on the ground) carries a slab (0.4 x 0.2 m,
+    // friction 0.1). Under 3 m/s2 the slab slides off, relative acceleration 3 - 0.1 g, and
+    // falls once its centroid passes the edge, 0.2 m on: at sqrt(0.4 / (3 - 0.1 g)). From 1 s
+    // the ground ramps up at 2 m/s3; run on past the fall (`after_collapse: Continue`), the
+    // check takes the block alone, which lifts at g b/h = 0.4 g (at 1 + (0.4 g - 3) / 2 s).
+    // Had the fallen slab still weighed on it, the pair would lift elsewhere.
+    use pirqa::integrate::AfterCollapse;
+    let g = 9.81;
+    let m = Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6,
+          joint_friction: {\"S/A\": 0.1},
+          rows: [(height_m: 1.0, blocks: [(width_m: 0.4, name: \"A\")]),
+                 (height_m: 0.2, blocks: [(width_m: 0.4, name: \"S\")])])",
+    )
+    .unwrap();
+    let dt = 0.01;
+    let samples: Vec<f64> = (0..=200)
+        .map(|k| 3.0 + 2.0 * (k as f64 * dt - 1.0).max(0.0))
+        .collect();
+    let motion = Motion::Record(pirqa::motion::Record::new("ramp", dt, samples).unwrap());
+    let settings = RunSettings {
+        model: ModelChoice::Slide,
+        check_uplift: true,
+        after_collapse: AfterCollapse::Continue,
+        ..RunSettings::default()
+    };
+    let r = pirqa::run(&m, &motion, &settings).unwrap();
+    let fall = r.summary.collapse.as_ref().expect("the slab falls");
+    assert_eq!(fall.block, "S");
+    let falls_at = (0.4f64 / (3.0 - 0.1 * g)).sqrt();
+    assert!((fall.time_s - falls_at).abs() <= 1e-12, "{}", fall.time_s);
+    let u = first_uplift(&r);
+    let lifts_at = 1.0 + (0.4 * g - 3.0) / 2.0;
+    assert!(
+        (u.time_s - lifts_at).abs() <= 1e-12,
+        "{} {lifts_at}",
+        u.time_s
+    );
+    assert_eq!(
+        u.turning,
+        ["A turns counterclockwise about its bottom-left corner"]
+    );
+}
