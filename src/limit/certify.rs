@@ -82,7 +82,7 @@ pub(super) fn basis(
     let unflipped = |y: Vec<Q>| -> Vec<Q> { y.iter().zip(&sign).map(|(y, s)| y * s).collect() };
     match ending {
         Ending::Optimal => {
-            let x_b = eliminate(rows, b)?;
+            let [x_b] = eliminate(rows, [b])?;
             let feasible =
                 (0..m).all(|k| !x_b[k].is_negative() && (!artificial(k) || x_b[k].is_zero()));
             if !feasible {
@@ -98,7 +98,7 @@ pub(super) fn basis(
                     }
                 })
                 .collect();
-            let y = eliminate(transposed, c_b)?;
+            let [y] = eliminate(transposed, [c_b])?;
             let dual_feasible =
                 (0..n).all(|j| !(&program.c[j] - &dot(&columns[j], &y)).is_negative());
             if !dual_feasible {
@@ -128,7 +128,7 @@ pub(super) fn basis(
                     }
                 })
                 .collect();
-            let y = eliminate(transposed, c_b)?;
+            let [y] = eliminate(transposed, [c_b])?;
             let farkas = (0..n).all(|j| !dot(&columns[j], &y).is_positive())
                 && b.iter()
                     .zip(&y)
@@ -146,8 +146,7 @@ pub(super) fn basis(
             for (i, a) in column(entering) {
                 a_j[i] = a;
             }
-            let x_b = eliminate(rows.clone(), b)?;
-            let w = eliminate(rows, a_j)?;
+            let [x_b, w] = eliminate(rows, [b, a_j])?;
             let ray = (0..m).all(|k| {
                 !x_b[k].is_negative()
                     && if artificial(k) {
@@ -168,11 +167,15 @@ pub(super) fn basis(
     }
 }
 
-/// Solves B z = r exactly, B square and given by its sparse rows; `None` where B is singular.
-/// Gaussian elimination that takes at each step the column held by the fewest rows and, in it,
-/// the shortest row (a Markowitz-like order that keeps a wall's block-by-joint structure from
-/// filling in).
-fn eliminate(mut rows: Vec<BTreeMap<usize, Q>>, mut r: Vec<Q>) -> Option<Vec<Q>> {
+/// Solves B z = r exactly for each of the right-hand sides `r`, B square and given by its sparse
+/// rows; `None` where B is singular. Gaussian elimination that takes at each step the column
+/// held by the fewest rows and, in it, the shortest row (a Markowitz-like order that keeps a
+/// wall's block-by-joint structure from filling in); the sides share the elimination, the
+/// costly part.
+fn eliminate<const K: usize>(
+    mut rows: Vec<BTreeMap<usize, Q>>,
+    mut r: [Vec<Q>; K],
+) -> Option<[Vec<Q>; K]> {
     let size = rows.len();
     // For each column, the rows not yet eliminated that hold it.
     let mut holders: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); size];
@@ -192,7 +195,8 @@ fn eliminate(mut rows: Vec<BTreeMap<usize, Q>>, mut r: Vec<Q>) -> Option<Vec<Q>>
         for k in rows[p].keys() {
             holders[*k].remove(&p);
         }
-        let (pivot_row, pivot_r) = (rows[p].clone(), r[p].clone());
+        let pivot_row = rows[p].clone();
+        let pivot_r: Vec<Q> = r.iter().map(|r| r[p].clone()).collect();
         let pivot = pivot_row[&c].clone();
         for i in std::mem::take(&mut holders[c]) {
             let f = &rows[i][&c] / &pivot;
@@ -206,21 +210,25 @@ fn eliminate(mut rows: Vec<BTreeMap<usize, Q>>, mut r: Vec<Q>) -> Option<Vec<Q>>
                     holders[*k].insert(i);
                 }
             }
-            r[i] = &r[i] - &(&f * &pivot_r);
+            for (r, pivot_r) in r.iter_mut().zip(&pivot_r) {
+                r[i] = &r[i] - &(&f * pivot_r);
+            }
         }
         order.push((p, c));
     }
-    let mut z = vec![Q::zero(); size];
-    for &(p, c) in order.iter().rev() {
-        let mut v = r[p].clone();
-        for (k, a) in &rows[p] {
-            if *k != c {
-                v = &v - &(a * &z[*k]);
+    Some(r.map(|r| {
+        let mut z = vec![Q::zero(); size];
+        for &(p, c) in order.iter().rev() {
+            let mut v = r[p].clone();
+            for (k, a) in &rows[p] {
+                if *k != c {
+                    v = &v - &(a * &z[*k]);
+                }
             }
+            z[c] = &v / &rows[p][&c];
         }
-        z[c] = &v / &rows[p][&c];
-    }
-    Some(z)
+        z
+    }))
 }
 
 #[cfg(test)]
