@@ -306,8 +306,8 @@ mod tests {
     fn a_stop_request_ends_both_runs_at_their_next_pivot() {
         let p = textbook();
         let asked = std::cell::Cell::new(0);
-        // Stop from the second question on: the floating-point run stops after one pivot
-        // (the textbook takes more), the exact run at its first.
+        // Asked before each pivot, stop from the second question on: the floating-point run
+        // stops after one pivot (the textbook takes more), the exact run before its first.
         let stop = || {
             asked.set(asked.get() + 1);
             asked.get() > 1
