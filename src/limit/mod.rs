@@ -3,8 +3,9 @@
 //! and the mechanism the wall must move by beyond it (Livesley 1978: rigid blocks, joints that
 //! carry no tension). Every joint is two corner forces, each in its friction cone; vertical
 //! joints push and carry no friction, as in the sliding model. The program and its dual are
-//! solved in exact rationals (`simplex`), so a limit is exact: a block that tips at g b/h
-//! tips there to the last digit.
+//! answered exactly (`certify`: a floating-point simplex run's basis proved in rationals, or
+//! the exact tableau of `simplex`), so a limit is exact: a block that tips at g b/h tips
+//! there to the last digit.
 //!
 //! What the limit means: below it, rest is a state the rigid model admits (a distribution of
 //! contact forces balances every block); beyond it, none exists and the wall must move. With

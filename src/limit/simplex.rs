@@ -244,10 +244,10 @@ impl<T: Number> Tableau<T> {
         self.basis[p] = j;
     }
 
-    /// Runs Bland's rule over the columns `allowed` admits, until `stop` says so. (Dantzig's rule of the most
-    /// negative reduced cost, tried on the Inca walls, took longer by far in exact arithmetic:
-    /// its pivots grew the fractions; in floating point, on the 105-block running bond's
-    /// uplift programs, it took longer too and ended phase 1 short of feasibility.)
+    /// Runs Bland's rule over the columns `allowed` admits, until `stop` says so. (Dantzig's
+    /// rule of the most negative reduced cost took longer by far in exact arithmetic, its
+    /// pivots growing the fractions, and longer in floating point too: docs/rocking-walls.md,
+    /// the limit at rest's cost.)
     fn optimise(&mut self, allowed: impl Fn(usize) -> bool, stop: &dyn Fn() -> bool) -> Stop {
         loop {
             let Some(j) =

@@ -71,11 +71,13 @@ impl Engine<'_> {
         } else {
             self.first_uplift(&mut w, t_next)?
         };
-        w.done |= matches!(look, Look::Lifts(..));
         let mut go_on = true;
         match look {
             Look::Clear => {}
-            Look::Lifts(t, mechanism) => self.record_uplift(t, &mechanism),
+            Look::Lifts(t, mechanism) => {
+                self.record_uplift(t, &mechanism);
+                w.done = true;
+            }
             Look::Stopped => {
                 self.rec.interrupted_at_s = Some(self.t);
                 go_on = false;
