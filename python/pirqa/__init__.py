@@ -94,21 +94,36 @@ def run(
     ``check_uplift``: watch the exact sliding run for the first instant at which no contact
     forces keep every block seated (``summary["uplift_check"]``), as ``pirqa run
     --check-uplift``.
+
+    Ctrl-C (or a notebook's interrupt) stops the run within about 50 ms of wall-clock time and
+    raises ``KeyboardInterrupt``; what the run reached is the exception's ``result``, its
+    summary's ``interrupted_at_s`` saying where it stopped, as ``pirqa run`` writes it.
     """
-    raw = _run(
-        wall,
-        motion,
-        duration_s=duration_s,
-        output_dt_s=output_dt_s,
-        method=method,
-        dt_s=dt_s,
-        model=model,
-        contact_solver=contact_solver,
-        direction=direction,
-        initial_rotation=None if initial_rotation is None else dict(initial_rotation),
-        log_events=log_events,
-        check_uplift=check_uplift,
-    )
+    try:
+        raw = _run(
+            wall,
+            motion,
+            duration_s=duration_s,
+            output_dt_s=output_dt_s,
+            method=method,
+            dt_s=dt_s,
+            model=model,
+            contact_solver=contact_solver,
+            direction=direction,
+            initial_rotation=None if initial_rotation is None else dict(initial_rotation),
+            log_events=log_events,
+            check_uplift=check_uplift,
+        )
+    except BaseException as signal:
+        partial = getattr(signal, "partial", None)
+        if partial is not None:
+            signal.result = _result(partial)
+            del signal.partial
+        raise
+    return _result(raw)
+
+
+def _result(raw: dict[str, Any]) -> Result:
     history = None
     if raw["history"] is not None:
         history = History(blocks=raw["blocks"], **raw["history"])

@@ -102,6 +102,10 @@ def sweep(
     discards what is there). Without ``out`` the files go to a temporary folder.
 
     ``progress(done, total)`` is called as batches finish (default: a line on a terminal).
+
+    Ctrl-C (or a notebook's interrupt) starts no more cases. In this process the cases running
+    finish and are stored, then ``KeyboardInterrupt`` is raised; with an executor it is raised
+    at once and the batches not started are cancelled. Either way ``resume=True`` runs the rest.
     """
     if resume and fresh:
         raise _option("resume", "give resume or fresh, not both")
@@ -143,15 +147,18 @@ def _sweep(path, executor, out, existing, batch_size, threads, progress):
             executor.submit(_run_batch, path, store.fingerprint, ids): len(ids) for ids in batches
         }
         remaining = set(futures)
-        while remaining:
-            finished, remaining = wait(remaining, return_when=FIRST_EXCEPTION)
-            for f in finished:
-                if f.exception() is not None:
-                    for other in remaining:
-                        other.cancel()
-                    raise f.exception()
-                store.append(f.result())
-                done += futures[f]
-                report(done, total)
+        try:
+            while remaining:
+                finished, remaining = wait(remaining, return_when=FIRST_EXCEPTION)
+                for f in finished:
+                    if f.exception() is not None:
+                        raise f.exception()
+                    store.append(f.result())
+                    done += futures[f]
+                    report(done, total)
+        except BaseException:
+            for other in remaining:
+                other.cancel()
+            raise
     store.finish()
     return read_sweep(out)

@@ -4,6 +4,7 @@
 //! classes and the type stubs. Every solver call releases the GIL.
 
 mod errors;
+mod interrupt;
 mod motion;
 mod run;
 mod sweep;

@@ -1,13 +1,16 @@
-//! `pirqa.run`: one run of a wall under a motion, the GIL released while it runs. It returns
-//! plain data (summary.json's values as a dict, the history as numpy arrays moved out of Rust,
-//! the event log as dicts) that the Python `Result` wraps, so a result pickles as it is.
+//! `pirqa.run`: one run of a wall under a motion, the GIL released while it runs and Ctrl-C
+//! heard (`interrupt`). It returns plain data (summary.json's values as a dict, the history as
+//! numpy arrays moved out of Rust, the event log as dicts) that the Python `Result` wraps, so a
+//! result pickles as it is.
 
 use crate::errors::{option, IntoPy};
+use crate::interrupt::Interrupt;
 use crate::motion::Motion;
 use crate::to_python::to_python;
 use crate::wall::Wall;
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
+use pirqa::integrate::Progress;
 use pirqa::{ContactSolver, Direction, Method, ModelChoice, RunSettings};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -127,6 +130,7 @@ pub fn run<'py>(
             "a block released on still ground (Motion.rest()) needs duration_s",
         ));
     }
+    let interrupt = Interrupt::new(py)?;
     let settings = RunSettings {
         duration_s,
         output_dt_s,
@@ -137,10 +141,24 @@ pub fn run<'py>(
         direction: self::direction(direction)?,
         initial_rotation: releases(initial_rotation)?,
         check_uplift,
+        progress: Some(Progress::new(|_| {}).with_stop_when(interrupt.check())),
         ..RunSettings::default()
     };
     let (m, g) = (wall.model.clone(), motion.motion.clone());
     let response = py.detach(move || pirqa::run(&m, &g, &settings)).py()?;
+    let out = result(py, response)?;
+    match interrupt.raised() {
+        // What the run reached goes with the exception, as the command line writes it.
+        Some(signal) => {
+            signal.value(py).setattr("partial", out)?;
+            Err(signal)
+        }
+        None => Ok(out),
+    }
+}
+
+/// A run's response as the plain data `pirqa.Result` wraps.
+fn result(py: Python<'_>, response: pirqa::Response) -> PyResult<Bound<'_, PyDict>> {
     let out = PyDict::new(py);
     out.set_item("summary", to_python(py, &response.summary)?)?;
     out.set_item("events", to_python(py, &response.events)?)?;

@@ -4,6 +4,7 @@
 //! same files, resumes the same way and draws the same charts.
 
 use crate::errors::{option, to_py, IntoPy};
+use crate::interrupt::Interrupt;
 use pirqa::study::sweep::analysis::analyse;
 use pirqa::study::sweep::batch::Batch;
 use pirqa::study::sweep::store::{Existing, Store};
@@ -145,7 +146,8 @@ impl SweepStore {
     }
 
     /// Runs the cases `ids` in this process on `threads` threads (default: every core),
-    /// storing each as it finishes.
+    /// storing each as it finishes. Ctrl-C starts no more cases: those running finish and are
+    /// stored, then the signal's exception is raised (a resumed sweep runs the rest).
     #[pyo3(signature = (ids, threads = None))]
     fn run(&mut self, py: Python<'_>, ids: Vec<usize>, threads: Option<usize>) -> PyResult<()> {
         let sweep = self.sweep.clone();
@@ -154,8 +156,18 @@ impl SweepStore {
             .num_threads(threads.unwrap_or(0))
             .build()
             .map_err(|e| option("threads", e.to_string()))?;
-        py.detach(|| pool.install(|| sweep.run_ids(&ids, |row, blocks| store.append(row, blocks))))
-            .py()
+        let interrupt = Interrupt::new(py)?;
+        let ran = py.detach(|| {
+            interrupt.around(|stop| {
+                pool.install(|| {
+                    sweep.run_ids_until(&ids, stop, |row, blocks| store.append(row, blocks))
+                })
+            })
+        });
+        match interrupt.raised() {
+            Some(signal) => Err(signal),
+            None => ran.py(),
+        }
     }
 
     /// Writes the tables in case order, results.json and the charts; returns the folder.

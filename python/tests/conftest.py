@@ -33,8 +33,9 @@ def cli():
     return run
 
 
-def write_sweep(folder: Path, *, samples: int = 15, seed: int = 7) -> Path:
-    """A friction Monte Carlo on the paper's wall under sines: 4 motions x ``samples`` cases."""
+def write_sweep(folder: Path, *, samples: int = 15, seed: int = 7, duration_s: float = 5.0) -> Path:
+    """A friction Monte Carlo on the paper's wall under sines of ``duration_s``: 4 motions x
+    ``samples`` cases."""
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"mc-{seed}.ron"
     path.write_text(
@@ -42,7 +43,7 @@ def write_sweep(folder: Path, *, samples: int = 15, seed: int = 7) -> Path:
     version: 1,
     name: "python sweep",
     walls: [File(path: "{ROOT / 'walls/five-block-variable.ron'}")],
-    motion: Sine(amplitudes: ["300gal", "500gal"], frequencies_hz: List([1.0, 2.0]), duration_s: 5.0),
+    motion: Sine(amplitudes: ["300gal", "500gal"], frequencies_hz: List([1.0, 2.0]), duration_s: {duration_s}),
     friction: Random(distribution: Lognormal, cov: 0.2, samples: {samples}, seed: {seed}),
 )
 """

@@ -1,6 +1,7 @@
 """The Python API against the command line and against itself: the same numbers as `pirqa run`,
 walls from files, RON and arrays alike, results that pickle, errors whose messages are the
-command line's, histories handed over without a copy, the GIL released while a run goes."""
+command line's, histories handed over without a copy, the GIL released while a run goes, and
+an interrupt heard during one."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import json
 import pickle
 import threading
 import time
+import _thread
 
 import numpy as np
 import pytest
@@ -183,6 +185,29 @@ def test_a_run_releases_the_gil(root):
     worker.join()
     run_s = span["end"] - span["start"]
     assert longest < 0.5 * run_s, f"paused {longest:.4f} s during a run of {run_s:.4f} s"
+
+
+def test_an_interrupt_stops_a_run_and_keeps_what_it_reached(root):
+    """An interrupt (what Ctrl-C or a notebook's "interrupt the kernel" sends) half a second into
+    a run that would take half a minute: KeyboardInterrupt, carrying the run up to where it
+    stopped, which is the same run made to end there."""
+    wall = pirqa.Wall.from_file(root / PAPER)
+    motion = pirqa.Motion.sine("400gal", frequency_hz=1.0, duration_s=1e6)
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt) as stopped:
+            pirqa.run(wall, motion)
+    finally:
+        timer.cancel()
+    partial = stopped.value.result.summary
+    t = partial["interrupted_at_s"]
+    assert 0.0 < t < 1e6
+    whole = pirqa.run(wall, motion, duration_s=t).summary
+    assert whole.get("interrupted_at_s") is None
+    assert [b["max_abs_displacement_m"] for b in partial["blocks"]] == [
+        b["max_abs_displacement_m"] for b in whole["blocks"]
+    ]
 
 
 def test_the_history_names_its_blocks_as_the_run_lists_them():

@@ -10,6 +10,8 @@ import shutil
 import signal
 import subprocess
 import sys
+import threading
+import _thread
 from concurrent.futures import ProcessPoolExecutor
 
 import pytest
@@ -119,6 +121,26 @@ def test_a_killed_sweep_resumes_to_the_uninterrupted_files(spec, serial, tmp_pat
     frame = pirqa.sweep(spec, out=out, resume=True)
     assert frame.equals(serial[1])
     assert same_files(serial[0], out) >= 6
+
+
+def test_an_interrupted_sweep_stores_the_cases_it_ran_and_resumes_to_the_same_files(tmp_path):
+    """An interrupt (what Ctrl-C or a notebook's "interrupt the kernel" sends) during a sweep in
+    this process, of cases about a tenth of a second each: KeyboardInterrupt after the case
+    running is stored, no more started; a resumption ends with the uninterrupted files."""
+    spec = write_sweep(tmp_path / "spec", samples=10, duration_s=2000.0)
+    out = tmp_path / "interrupted"
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            pirqa.sweep(spec, out=out, threads=1)
+    finally:
+        timer.cancel()
+    stored = (out / "cases.csv").read_text().count("\n") - 1
+    assert 1 <= stored < 40, stored
+    frame = pirqa.sweep(spec, out=out, resume=True)
+    assert frame.equals(pirqa.sweep(spec, out=tmp_path / "whole", threads=2))
+    assert same_files(tmp_path / "whole", out) >= 6
 
 
 def test_an_existing_folder_is_refused_and_bad_options_named(spec, serial):

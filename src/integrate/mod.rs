@@ -68,7 +68,7 @@ pub struct Settings {
 #[derive(Clone)]
 pub struct Progress {
     report: Arc<dyn Fn(f64) + Send + Sync>,
-    stop: Option<Arc<AtomicBool>>,
+    stop: Option<Arc<dyn Fn() -> bool + Send + Sync>>,
 }
 
 impl Progress {
@@ -88,8 +88,15 @@ impl Progress {
     /// The same, also stopping the run once `stop` is set (by a Ctrl-C handler, a notebook's
     /// interrupt, a time limit).
     pub fn with_stop(self, stop: Arc<AtomicBool>) -> Progress {
+        self.with_stop_when(move || stop.load(Ordering::Relaxed))
+    }
+
+    /// The same, asking `asked` whether to stop (for a caller that must look somewhere itself,
+    /// as the Python package looks at Python's signals). The run asks before each pivot of the
+    /// uplift check's programs and at each report, so `asked` should be cheap most times.
+    pub fn with_stop_when(self, asked: impl Fn() -> bool + Send + Sync + 'static) -> Progress {
         Progress {
-            stop: Some(stop),
+            stop: Some(Arc::new(asked)),
             ..self
         }
     }
@@ -102,9 +109,7 @@ impl Progress {
 
     /// The run is asked to stop.
     pub fn stop_requested(&self) -> bool {
-        self.stop
-            .as_ref()
-            .is_some_and(|s| s.load(Ordering::Relaxed))
+        self.stop.as_ref().is_some_and(|asked| asked())
     }
 }
 

@@ -869,18 +869,30 @@ impl Sweep {
     pub fn run_ids(
         &self,
         ids: &[usize],
+        sink: impl FnMut(CaseRow, Vec<BlockRow>) -> Result<(), Error> + Send,
+    ) -> Result<(), Error> {
+        self.run_ids_until(ids, &std::sync::atomic::AtomicBool::new(false), sink)
+    }
+
+    /// Runs the cases `ids` as [`Sweep::run_ids`] does, starting none once `stop` is set: the
+    /// cases already running finish and reach `sink` (a case stopped halfway would be a wrong
+    /// row), the rest are left for a resumed sweep.
+    pub fn run_ids_until(
+        &self,
+        ids: &[usize],
+        stop: &std::sync::atomic::AtomicBool,
         mut sink: impl FnMut(CaseRow, Vec<BlockRow>) -> Result<(), Error> + Send,
     ) -> Result<(), Error> {
         use std::sync::atomic::{AtomicBool, Ordering};
         self.check_ids(ids)?;
-        let stop = AtomicBool::new(false);
+        let failed = AtomicBool::new(false);
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::scope(|scope| {
-            let stop = &stop;
+            let failed = &failed;
             let writer = scope.spawn(move || {
                 for (row, blocks) in rx {
                     if let Err(e) = sink(row, blocks) {
-                        stop.store(true, Ordering::Relaxed);
+                        failed.store(true, Ordering::Relaxed);
                         return Err(e);
                     }
                 }
@@ -888,7 +900,7 @@ impl Sweep {
             });
             // On the calling thread, so that a pool the caller installed is the one used.
             ids.par_iter().for_each_with(tx, |tx, &id| {
-                if !stop.load(Ordering::Relaxed) {
+                if !(stop.load(Ordering::Relaxed) || failed.load(Ordering::Relaxed)) {
                     let _ = tx.send(self.run_case(id));
                 }
             });
