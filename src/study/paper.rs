@@ -92,6 +92,7 @@ fn grid(duration_s: f64, frequencies: Frequencies) -> SweepDescription {
         method: Default::default(),
         fallback: Default::default(),
         contact_solver: Default::default(),
+        check_uplift: false,
     }
 }
 

@@ -793,3 +793,107 @@ fn a_rocking_case_on_a_sliding_stepper_fails_with_the_sweeps_own_words() {
         "{error}"
     );
 }
+
+/// `check_uplift: true` watches every case that slides, as `pirqa run --check-uplift` does: on
+/// the dragged block of walls/rocking/ (model Slide, a 0.7 g sine) the first uplift is where
+/// L's balance of moments fails, a_g = 153/320 g after U started to slide (the closed form of
+/// `tests/suite/uplift_check.rs`, to 1e-13 s), and the case's rerun command asks for the
+/// check; at 0.3 g nothing lifts and the case is checked to its end.
+#[test]
+fn a_sweep_asked_to_check_uplift_gives_each_cases_first_uplift() {
+    let s = sweep(
+        r#"(
+    version: 1,
+    name: "uplift",
+    walls: [File(path: "walls/rocking/dragged-block.ron")],
+    motion: Sine(amplitudes: ["2.943m/s2", "6.867m/s2"], frequencies_hz: List([1.0]), duration_s: 2.0),
+    model: Slide,
+    check_uplift: true,
+)"#,
+    )
+    .unwrap();
+    let rows: Vec<CaseRow> = (0..s.len()).map(|id| s.run_case(id).0).collect();
+    assert_eq!(rows[0].uplift_checked_until_s, Some(2.0));
+    assert_eq!(
+        (&rows[0].uplift_time_s, &rows[0].uplift_turning),
+        (&None, &None)
+    );
+    let expected = (153.0f64 / 320.0 / 0.7).asin() / (2.0 * std::f64::consts::PI);
+    let t = rows[1].uplift_time_s.expect("an uplift");
+    assert!((t - expected).abs() <= 1e-13, "{t} against {expected}");
+    assert_eq!(rows[1].uplift_checked_until_s, Some(t));
+    // The run `rerun.txt` names says the same, to the bit.
+    let run = pirqa::run(
+        &pirqa::Model::from_file("walls/rocking/dragged-block.ron").unwrap(),
+        &pirqa::Motion::sine(pirqa::Sine {
+            amplitude_m_s2: 6.867,
+            frequency_hz: 1.0,
+            duration_s: 2.0,
+            ..pirqa::Sine::default()
+        })
+        .unwrap(),
+        &pirqa::RunSettings {
+            model: pirqa::ModelChoice::Slide,
+            check_uplift: true,
+            ..pirqa::RunSettings::default()
+        },
+    )
+    .unwrap();
+    let first = run.summary.uplift_check.unwrap().first_uplift.unwrap();
+    assert_eq!(first.time_s, t);
+    assert!(first.turning[0].starts_with("L turns counterclockwise about its bottom-left"));
+    assert_eq!(rows[1].uplift_turning, Some(first.turning.join("; ")));
+    for id in 0..2 {
+        assert!(s.case_options(id).unwrap().ends_with("--check-uplift"));
+    }
+    // The check watches the sliding engine: a case that rocks under Auto is left unchecked,
+    // and a sweep no case of which slides exactly is refused, naming the field.
+    let auto = sweep(
+        r#"(
+    version: 1,
+    name: "uplift, auto",
+    walls: [File(path: "walls/rocking/slender-on-stack.ron")],
+    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0),
+    check_uplift: true,
+)"#,
+    )
+    .unwrap();
+    let (slid, rocked) = (auto.run_case(0).0, auto.run_case(1).0);
+    assert_eq!(
+        (slid.model.as_str(), slid.uplift_checked_until_s),
+        ("slide", Some(2.0))
+    );
+    assert_eq!(
+        (rocked.model.as_str(), rocked.uplift_checked_until_s),
+        ("slide-rock", None)
+    );
+    assert!(!auto.case_options(1).unwrap().contains("--check-uplift"));
+    // Left out or false, the sweep is the one it was before the field existed (its folders
+    // resume); asked for, another.
+    let unchecked = sweep(
+        r#"(version: 1, name: "uplift, auto", walls: [File(path: "walls/rocking/slender-on-stack.ron")],
+    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0))"#,
+    )
+    .unwrap();
+    let explicit = sweep(
+        r#"(version: 1, name: "uplift, auto", walls: [File(path: "walls/rocking/slender-on-stack.ron")],
+    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0),
+    check_uplift: false)"#,
+    )
+    .unwrap();
+    assert_eq!(unchecked.fingerprint, explicit.fingerprint);
+    assert_ne!(unchecked.fingerprint, auto.fingerprint);
+    for (model, method) in [("Slide", "Moreau(dt_s: 0.001)"), ("SlideRock", "Event")] {
+        let e = sweep(&format!(
+            r#"(version: 1, name: "x", walls: [File(path: "walls/rocking/dragged-block.ron")],
+    motion: Sine(amplitudes: ["0.3g"], frequencies_hz: List([1.0]), duration_s: 1.0),
+    model: {model}, method: {method}, check_uplift: true)"#
+        ))
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("check_uplift") && e.contains("set method to Event"),
+            "{e}"
+        );
+    }
+}

@@ -66,6 +66,11 @@ pub struct SweepDescription {
     /// wall at once, docs/rocking-walls.md).
     #[serde(default, skip_serializing_if = "is_gauss_seidel")]
     pub contact_solver: ContactSolver,
+    /// Watch each case that slides for the first instant some block must start to turn, as
+    /// `pirqa run --check-uplift` (cases.csv's `uplift_*` columns; default false). The exact
+    /// sliding engine only: the method at Event and the model Auto or Slide.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub check_uplift: bool,
 }
 
 fn is_gauss_seidel(s: &ContactSolver) -> bool {
@@ -344,6 +349,8 @@ pub struct Sweep {
     pub fallback: Fallback,
     /// How Moreau-Jean with rotations solves a step's contacts.
     pub contact_solver: ContactSolver,
+    /// Watch the cases that slide for their first uplift.
+    pub check_uplift: bool,
 }
 
 /// An error of the sweep file `path`.
@@ -473,6 +480,9 @@ impl Sweep {
         // sweeps begun then resume.
         let text = format!("{:?}", d.by_file_name());
         let text = text
+            .strip_suffix(", check_uplift: false }")
+            .map_or_else(|| text.clone(), |t| format!("{t} }}"));
+        let text = text
             .strip_suffix(", contact_solver: GaussSeidel }")
             .map_or_else(|| text.clone(), |t| format!("{t} }}"));
         let text = text
@@ -537,6 +547,15 @@ impl Sweep {
                     .into(),
             ));
         }
+        if d.check_uplift && (d.method != SweepMethod::Event || d.model == ModelChoice::SlideRock) {
+            return Err(field(
+                origin,
+                "check_uplift",
+                "watches the exact sliding engine, and no case runs it: set method to Event \
+                 (or leave it out) and model to Auto or Slide, or leave check_uplift out"
+                    .into(),
+            ));
+        }
         let mut hash = fnv(FNV_OFFSET, text.as_bytes());
         let mut walls = Vec::new();
         for source in &d.walls {
@@ -570,6 +589,7 @@ impl Sweep {
             method: d.method,
             fallback: d.fallback,
             contact_solver: d.contact_solver,
+            check_uplift: d.check_uplift,
         })
     }
 
@@ -716,7 +736,10 @@ impl Sweep {
     /// where the exact model stops before the end; the fallback's run says so (its model is
     /// [`FALLBACK_MODEL`], and why names where the exact run stopped).
     fn integrate(&self, sc: &Scenario) -> Result<Response, SimulationError> {
-        let r = run_scenario(sc, &self.run_settings())?;
+        let mut settings = self.run_settings();
+        // The check watches the sliding engine: a case that rocks is not checked.
+        settings.check_uplift = self.check_uplift && !in_plane_model(sc, &settings)?.0;
+        let r = run_scenario(sc, &settings)?;
         let (Fallback::Moreau { dt_s }, Some(why)) = (self.fallback, beyond_model(&r.summary))
         else {
             return Ok(r);
@@ -756,9 +779,14 @@ impl Sweep {
 
     /// `pirqa run`'s options of the model and method case `id` runs on.
     pub fn case_options(&self, id: usize) -> Result<String, SimulationError> {
+        let model = self.case_model(id)?;
+        let check = if self.check_uplift && model == "slide" {
+            " --check-uplift"
+        } else {
+            ""
+        };
         Ok(format!(
-            "--model {}{}",
-            self.case_model(id)?,
+            "--model {model}{}{check}",
             self.method_options(self.method)
         ))
     }
@@ -1202,6 +1230,13 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         let peaks: Vec<f64> = s.blocks.iter().map(|b| b.max_abs_accel_m_s2).collect();
         crate::validity::max_accel_over_tipping(wall, &peaks)
     });
+    if let Some(check) = &s.uplift_check {
+        row.uplift_checked_until_s = Some(check.checked_until_s);
+        if let Some(first) = &check.first_uplift {
+            row.uplift_time_s = Some(first.time_s);
+            row.uplift_turning = Some(first.turning.join("; "));
+        }
+    }
     // A run the model stopped before its end (a held joint gave way, a body left the ground)
     // has no answer past that instant: the case says so instead of passing for complete.
     row.error = beyond_model(s);

@@ -102,6 +102,18 @@ pub struct CaseRow {
     /// [`max_accel_over_tipping`]: crate::validity::max_accel_over_tipping
     #[serde(serialize_with = "table::sci_opt")]
     pub max_accel_over_tipping: Option<f64>,
+    /// How far the uplift check watched the case (s; the sweep's `check_uplift`): to its end,
+    /// or to where the run stopped. Empty where the case was not checked (the sweep did not
+    /// ask, or the case rocked).
+    #[serde(serialize_with = "table::plain_opt")]
+    pub uplift_checked_until_s: Option<f64>,
+    /// The first instant at which no contact forces keep every block seated (s): from there
+    /// the sliding answer leaves out rocking the motion causes. Empty where the check found
+    /// none (or did not run).
+    #[serde(serialize_with = "table::plain_opt")]
+    pub uplift_time_s: Option<f64>,
+    /// The blocks that would turn then, and how (`; ` between blocks).
+    pub uplift_turning: Option<String>,
     /// CPU time of the run (s): a measurement, kept in timing.csv, not in cases.csv.
     #[serde(skip)]
     pub cpu_s: f64,
@@ -140,7 +152,7 @@ pub struct TimingRow {
 }
 
 /// Columns of `cases.csv`.
-pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,max_accel_over_tipping,error";
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,max_accel_over_tipping,uplift_checked_until_s,uplift_time_s,uplift_turning,error";
 
 /// Columns of `timing.csv`.
 pub const TIMING_HEADER: &str = "case,cpu_s";
