@@ -116,6 +116,10 @@ fn committed_studies_are_what_their_cases_draw() {
             "walls/studies/ollantaytambo-sliding.ron",
             "docs/rocking/ollantaytambo-sliding",
         ),
+        (
+            "walls/studies/ollantaytambo-uplift.ron",
+            "docs/rocking/ollantaytambo-uplift",
+        ),
     ] {
         let sweep = Sweep::load(std::path::Path::new(file)).unwrap();
         let rows = Store::finished(std::path::Path::new(dir), &sweep).unwrap();

@@ -478,6 +478,7 @@ fn every_shipped_study_loads() {
         ("long-walls.ron", 5 * 8),
         ("ollantaytambo-rocking.ron", 6),
         ("ollantaytambo-sliding.ron", 6),
+        ("ollantaytambo-uplift.ron", 9 * 50),
         ("paper-fig3-4.ron", 3 * 4 * 100),
         ("trilith-fragility.ron", 11 * 20),
         ("trilith-moreau.ron", 11),
@@ -846,6 +847,18 @@ fn a_sweep_asked_to_check_uplift_gives_each_cases_first_uplift() {
     for id in 0..2 {
         assert!(s.case_options(id).unwrap().ends_with("--check-uplift"));
     }
+    // results.json counts them per wall and motion.
+    let results = pirqa::study::sweep::analysis::analyse(&s, &rows).results;
+    let found: Vec<(u64, u64, Option<f64>)> = results["uplift"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|u| {
+            let n = |k: &str| u[k].as_u64().unwrap();
+            (n("checked"), n("lifted"), u["first_uplift_s"].as_f64())
+        })
+        .collect();
+    assert_eq!(found, [(1, 0, None), (1, 1, Some(t))]);
     // The check watches the sliding engine: a case that rocks under Auto is left unchecked,
     // and a sweep no case of which slides exactly is refused, naming the field.
     let auto = sweep(

@@ -1,8 +1,9 @@
 //! What a sweep's rows show: response spectra and collapse maps for sine grids, incremental
 //! dynamic analysis for scaled records, and, with random friction, the distribution of the
 //! maximum displacement, the probability of collapse with its confidence interval, and
-//! lognormal fragility curves; across walls cut into different numbers of blocks, how response
-//! and cost change with the block count.
+//! lognormal fragility curves (and, where the sweep checked uplift, the probability that some
+//! block must start to turn beside them); across walls cut into different numbers of blocks,
+//! how response and cost change with the block count.
 
 use super::store::CaseRow;
 use super::{FrictionModel, Sweep, SweepMethod};
@@ -70,6 +71,12 @@ impl Cell<'_> {
     fn collapses(&self) -> (u64, u64) {
         let n = self.ok().count() as u64;
         (self.ok().filter(|r| r.collapsed).count() as u64, n)
+    }
+    /// (cases where some block had to start to turn, cases the uplift check watched).
+    fn uplifts(&self) -> (u64, u64) {
+        let checked = || self.ok().filter(|r| r.uplift_checked_until_s.is_some());
+        let lifted = checked().filter(|r| r.uplift_time_s.is_some()).count();
+        (lifted as u64, checked().count() as u64)
     }
 }
 
@@ -147,6 +154,9 @@ pub fn analyse(sweep: &Sweep, rows: &[CaseRow]) -> Report {
             figures.push(("fragility".into(), charts, 2));
             results.insert("fragility".into(), fits);
         }
+    }
+    if sweep.check_uplift {
+        results.insert("uplift".into(), uplift(&cells, sweep));
     }
     if let Some((charts, numbers)) = block_count(sweep, &cells) {
         figures.push(("block-count".into(), charts, 2));
@@ -387,6 +397,90 @@ fn distributions(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<
 
 /// Per wall and record (or sine frequency): the probability of collapse against PGA with its
 /// 95 % interval, and the lognormal fragility curve fitted to it.
+/// Pushes the series of a probability against PGA (observed, its 95 % interval dashed, and its
+/// lognormal fit) in colour `k`, labelled by `what`; returns the fit.
+fn probability_series(
+    series: &mut Vec<Series>,
+    levels: &[(f64, u64, u64)],
+    k: usize,
+    what: &str,
+) -> Option<crate::study::stats::Fragility> {
+    let [p, lower, upper] = observed(levels);
+    series.push(Series {
+        scatter: true,
+        ..line(format!("{what}: observed"), k, p)
+    });
+    for band in [lower, upper] {
+        series.push(Series {
+            dashed: true,
+            ..line(String::new(), k, band)
+        });
+    }
+    let fit = fit_fragility(levels);
+    if let Some(f) = fit {
+        let (x0, x1) = (levels[0].0, levels[levels.len() - 1].0);
+        let curve = (0..=60)
+            .map(|i| {
+                let x = x0 + (x1 - x0) * i as f64 / 60.0;
+                (x, f.probability(x))
+            })
+            .collect();
+        series.push(Series {
+            markers: false,
+            ..line(
+                format!(
+                    "{what}: lognormal fit, median {:.0} gal, beta {:.2}",
+                    f.median, f.beta
+                ),
+                k,
+                curve,
+            )
+        });
+    }
+    fit
+}
+
+/// Per wall and motion, what the uplift check found: the cases it watched, those in which some
+/// block had to start to turn, and the earliest such instant.
+fn uplift(cells: &BTreeMap<(usize, usize), Cell>, sweep: &Sweep) -> Value {
+    let rows: Vec<Value> = cells
+        .values()
+        .map(|c| {
+            let (lifted, checked) = c.uplifts();
+            let first = c
+                .ok()
+                .filter_map(|r| r.uplift_time_s)
+                .min_by(f64::total_cmp);
+            json!({
+                "wall": sweep.walls[c.wall].label,
+                "motion": c.first().motion,
+                "pga_gal": c.first().pga_gal,
+                "checked": checked,
+                "lifted": lifted,
+                "first_uplift_s": first,
+            })
+        })
+        .collect();
+    Value::Array(rows)
+}
+
+/// The points of a probability against PGA (gal) from (pga, cases, hits) levels, with the
+/// 95 % interval's lower and upper bounds.
+fn observed(levels: &[(f64, u64, u64)]) -> [Vec<(f64, f64)>; 3] {
+    let counted = || levels.iter().filter(|l| l.1 > 0);
+    [
+        counted()
+            .map(|&(x, n, h)| (x, h as f64 / n as f64))
+            .collect(),
+        counted()
+            .map(|&(x, n, h)| (x, wilson(h, n, Z95).0))
+            .collect(),
+        counted()
+            .map(|&(x, n, h)| (x, wilson(h, n, Z95).1))
+            .collect(),
+    ]
+}
+
 fn fragility(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Value) {
     let mut charts = Vec::new();
     let mut fits = Vec::new();
@@ -402,74 +496,54 @@ fn fragility(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Char
         }
         let mut series = Vec::new();
         for (k, (group, cs)) in groups.iter().enumerate().take(4) {
-            let mut levels: Vec<(f64, u64, u64)> = cs
-                .iter()
-                .map(|c| {
-                    let (hits, n) = c.collapses();
-                    (c.first().pga_gal, n, hits)
-                })
-                .collect();
-            levels.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let p: Vec<(f64, f64)> = levels
-                .iter()
-                .filter(|l| l.1 > 0)
-                .map(|&(x, n, h)| (x, h as f64 / n as f64))
-                .collect();
-            let band = |upper: bool| -> Vec<(f64, f64)> {
-                levels
+            let levels = |count: &dyn Fn(&Cell) -> (u64, u64)| -> Vec<(f64, u64, u64)> {
+                let mut levels: Vec<(f64, u64, u64)> = cs
                     .iter()
-                    .filter(|l| l.1 > 0)
-                    .map(|&(x, n, h)| {
-                        let (lo, hi) = wilson(h, n, Z95);
-                        (x, if upper { hi } else { lo })
-                    })
-                    .collect()
-            };
-            series.push(Series {
-                scatter: true,
-                ..line(format!("{group}: observed"), k, p)
-            });
-            series.push(Series {
-                dashed: true,
-                ..line(String::new(), k, band(false))
-            });
-            series.push(Series {
-                dashed: true,
-                ..line(String::new(), k, band(true))
-            });
-            let fit = fit_fragility(&levels);
-            if let Some(f) = fit {
-                let (x0, x1) = (levels[0].0, levels[levels.len() - 1].0);
-                let curve = (0..=60)
-                    .map(|i| {
-                        let x = x0 + (x1 - x0) * i as f64 / 60.0;
-                        (x, f.probability(x))
+                    .map(|c| {
+                        let (hits, n) = count(c);
+                        (c.first().pga_gal, n, hits)
                     })
                     .collect();
-                series.push(Series {
-                    markers: false,
-                    ..line(
-                        format!(
-                            "{group}: lognormal fit, median {:.0} gal, beta {:.2}",
-                            f.median, f.beta
-                        ),
-                        k,
-                        curve,
-                    )
-                });
-            }
-            fits.push(json!({
+                levels.sort_by(|a, b| a.0.total_cmp(&b.0));
+                levels
+            };
+            let collapses = levels(&|c| c.collapses());
+            // Beside uplift, collapse says what it is.
+            let what = if sweep.check_uplift {
+                format!("{group}: collapse")
+            } else {
+                group.clone()
+            };
+            let fit = probability_series(&mut series, &collapses, k, &what);
+            let mut numbers = json!({
                 "wall": wall.label,
                 "group": group,
-                "levels": levels.iter().map(|l| json!({"pga_gal": l.0, "samples": l.1, "collapses": l.2})).collect::<Vec<_>>(),
+                "levels": collapses.iter().map(|l| json!({"pga_gal": l.0, "samples": l.1, "collapses": l.2})).collect::<Vec<_>>(),
                 "median_pga_gal": fit.map(|f| f.median),
                 "beta": fit.map(|f| f.beta),
-            }));
+            });
+            if sweep.check_uplift {
+                // Beside collapse, the probability that the sliding answer leaves rocking out.
+                let lifts = levels(&|c| c.uplifts());
+                let fit =
+                    probability_series(&mut series, &lifts, k + 4, &format!("{group}: uplift"));
+                numbers["uplift_levels"] = lifts
+                    .iter()
+                    .map(|l| json!({"pga_gal": l.0, "checked": l.1, "lifted": l.2}))
+                    .collect();
+                numbers["uplift_median_pga_gal"] = json!(fit.map(|f| f.median));
+                numbers["uplift_beta"] = json!(fit.map(|f| f.beta));
+            }
+            fits.push(numbers);
         }
         charts.push(Chart {
             title: format!("{}: fragility (95 % intervals dashed)", wall.label),
             x_label: "PGA (gal)".into(),
-            y_label: "probability of collapse".into(),
+            y_label: if sweep.check_uplift {
+                "probability of collapse, of uplift".into()
+            } else {
+                "probability of collapse".into()
+            },
             series,
             legend: Corner::UpperLeft,
             ..Default::default()
