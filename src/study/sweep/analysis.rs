@@ -395,8 +395,6 @@ fn distributions(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<
     (charts, Value::Array(numbers))
 }
 
-/// Per wall and record (or sine frequency): the probability of collapse against PGA with its
-/// 95 % interval, and the lognormal fragility curve fitted to it.
 /// Pushes the series of a probability against PGA (observed, its 95 % interval dashed, and its
 /// lognormal fit) in colour `k`, labelled by `what`; returns the fit.
 fn probability_series(
@@ -481,6 +479,9 @@ fn observed(levels: &[(f64, u64, u64)]) -> [Vec<(f64, f64)>; 3] {
     ]
 }
 
+/// Per wall and record (or sine frequency): the probability of collapse against PGA with its
+/// 95 % interval, and the lognormal fragility curve fitted to it (and of uplift, where
+/// the sweep checked it).
 fn fragility(sweep: &Sweep, cells: &BTreeMap<(usize, usize), Cell>) -> (Vec<Chart>, Value) {
     let mut charts = Vec::new();
     let mut fits = Vec::new();
