@@ -155,6 +155,48 @@ fn at_rest_the_check_meets_the_limit_at_rest_on_the_ollantaytambo_wall() {
     );
 }
 
+/// The run's warnings that a block's peak acceleration reaches g b/h bound what a block
+/// standing free could do; a check that watched the run and found every block seated answers
+/// it for the wall, and they are left out. The Ollantaytambo fillers would lift standing free
+/// at 0.06-0.09 g: under El Centro at 0.1 g each is warned about unwatched, and watched the
+/// check finds them seated throughout, without those warnings; at 0.3 g, where it finds an
+/// uplift, the warnings stay beside it.
+#[test]
+fn a_check_that_finds_every_block_seated_supersedes_the_free_standing_warnings() {
+    let m = Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
+    let record = pirqa::motion::read_record(
+        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        None,
+        &pirqa::motion::ReadOptions::default(),
+    )
+    .unwrap();
+    let at = |g: f64| Motion::Record(record.scaled(g * 9.81 / record.pga_m_s2()).unwrap());
+    let could_rock = |r: &Response| -> Vec<String> {
+        (r.summary.warnings.iter())
+            .filter_map(|w| match w {
+                Warning::CouldRock { name, .. } => Some(name.clone()),
+                _ => None,
+            })
+            .collect()
+    };
+    let (plain, seen) = (watched(&m, &at(0.1), false), watched(&m, &at(0.1), true));
+    assert_eq!(could_rock(&plain), ["F1", "F2", "F3", "F4", "F5"]);
+    let check = seen.summary.uplift_check.as_ref().unwrap();
+    assert_eq!(check.first_uplift, None);
+    assert!(could_rock(&seen).is_empty(), "{:?}", seen.summary.warnings);
+    let mut seen_summary = seen.summary.clone();
+    seen_summary.uplift_check = None;
+    seen_summary.warnings.clone_from(&plain.summary.warnings);
+    assert_eq!(seen_summary, plain.summary);
+    let lifted = watched(&m, &at(0.3), true);
+    first_uplift(&lifted);
+    assert_eq!(
+        could_rock(&lifted),
+        could_rock(&watched(&m, &at(0.3), false))
+    );
+    assert!(!could_rock(&lifted).is_empty());
+}
+
 #[test]
 fn watching_changes_nothing_else_and_finds_nothing_on_the_papers_wall() {
     let m = Model::from_file("walls/five-block-variable.ron").unwrap();

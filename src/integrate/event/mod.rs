@@ -676,13 +676,18 @@ impl<'a> Engine<'a> {
             .sum();
         self.rec.stats.root_evaluations = self.count.0;
         self.rec.stats.flow_nodes = flow::take_pass_nodes();
-        // After the uplift check's, if it found one.
-        let could_rock = crate::validity::rocking_warnings(
-            self.given.wall,
-            self.given.topo,
-            self.rec.peak_accel(),
-        );
-        self.rec.warnings.extend(could_rock);
+        // After the uplift check's, if it found one. Where it watched the run and found every
+        // block seated throughout, it has answered for the wall what these bound for blocks
+        // standing free, and they would only contradict it.
+        let seated = (self.rec.uplift_check.as_ref()).is_some_and(|c| c.first_uplift.is_none());
+        if !seated {
+            let could_rock = crate::validity::rocking_warnings(
+                self.given.wall,
+                self.given.topo,
+                self.rec.peak_accel(),
+            );
+            self.rec.warnings.extend(could_rock);
+        }
         let motion = self.given.motion.describe();
         self.rec
             .finish("event", &self.given.wall.name, motion, t, &u, &v)
