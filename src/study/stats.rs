@@ -130,7 +130,8 @@ pub fn fit_fragility(levels: &[(f64, u64, u64)]) -> Option<Fragility> {
     if data.len() < 2 || hits == 0.0 || hits == trials {
         return None;
     }
-    // P = Phi(a + b ln x); start from the straight line through the empirical probits.
+    // P = Phi(a + b ln x); start from a unit slope through the trials' mean ln x (P = 1/2
+    // there).
     let (mut a, mut b) = (0.0, 1.0);
     let mean_ln: f64 = data.iter().map(|d| d.0 * d.1).sum::<f64>() / trials;
     a -= b * mean_ln;
