@@ -861,16 +861,14 @@ fn a_sweep_asked_to_check_uplift_gives_each_cases_first_uplift() {
     assert_eq!(found, [(1, 0, None), (1, 1, Some(t))]);
     // The check watches the sliding engine: a case that rocks under Auto is left unchecked,
     // and a sweep no case of which slides exactly is refused, naming the field.
-    let auto = sweep(
-        r#"(
-    version: 1,
-    name: "uplift, auto",
-    walls: [File(path: "walls/rocking/slender-on-stack.ron")],
-    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0),
-    check_uplift: true,
-)"#,
-    )
-    .unwrap();
+    let stack = |extra: &str| {
+        sweep(&format!(
+            r#"(version: 1, name: "uplift, auto", walls: [File(path: "walls/rocking/slender-on-stack.ron")],
+    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0){extra})"#
+        ))
+        .unwrap()
+    };
+    let auto = stack(", check_uplift: true");
     let (slid, rocked) = (auto.run_case(0).0, auto.run_case(1).0);
     assert_eq!(
         (slid.model.as_str(), slid.uplift_checked_until_s),
@@ -883,18 +881,11 @@ fn a_sweep_asked_to_check_uplift_gives_each_cases_first_uplift() {
     assert!(!auto.case_options(1).unwrap().contains("--check-uplift"));
     // Left out or false, the sweep is the one it was before the field existed (its folders
     // resume); asked for, another.
-    let unchecked = sweep(
-        r#"(version: 1, name: "uplift, auto", walls: [File(path: "walls/rocking/slender-on-stack.ron")],
-    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0))"#,
-    )
-    .unwrap();
-    let explicit = sweep(
-        r#"(version: 1, name: "uplift, auto", walls: [File(path: "walls/rocking/slender-on-stack.ron")],
-    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.5]), duration_s: 2.0),
-    check_uplift: false)"#,
-    )
-    .unwrap();
-    assert_eq!(unchecked.fingerprint, explicit.fingerprint);
+    let unchecked = stack("");
+    assert_eq!(
+        unchecked.fingerprint,
+        stack(", check_uplift: false").fingerprint
+    );
     assert_ne!(unchecked.fingerprint, auto.fingerprint);
     for (model, method) in [("Slide", "Moreau(dt_s: 0.001)"), ("SlideRock", "Event")] {
         let e = sweep(&format!(

@@ -40,6 +40,17 @@ fn slender(friction: &str) -> Model {
     .unwrap()
 }
 
+/// El Centro 1940 (N-S) scaled to a peak of `pga_g` g.
+fn el_centro(pga_g: f64) -> Motion {
+    let record = pirqa::motion::read_record(
+        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        None,
+        &pirqa::motion::ReadOptions::default(),
+    )
+    .unwrap();
+    Motion::Record(record.scaled(pga_g * 9.81 / record.pga_m_s2()).unwrap())
+}
+
 fn first_uplift(r: &Response) -> &Uplift {
     let check = r.summary.uplift_check.as_ref().expect("checked");
     let u = check.first_uplift.as_ref().expect("an uplift");
@@ -124,13 +135,7 @@ fn at_rest_the_check_meets_the_limit_at_rest_on_the_ollantaytambo_wall() {
     // El Centro at 0.3 g takes the wall past its limit towards -x (0.2834 g: F5 rocks against
     // its monolith) before anything slides.
     let m = Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
-    let record = pirqa::motion::read_record(
-        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
-        None,
-        &pirqa::motion::ReadOptions::default(),
-    )
-    .unwrap();
-    let motion = Motion::Record(record.scaled(0.3 * 9.81 / record.pga_m_s2()).unwrap());
+    let motion = el_centro(0.3);
     let r = watched(&m, &motion, true);
     let u = first_uplift(&r);
     let limits = at_rest(m.wall(), m.topology()).unwrap();
@@ -164,13 +169,6 @@ fn at_rest_the_check_meets_the_limit_at_rest_on_the_ollantaytambo_wall() {
 #[test]
 fn a_check_that_finds_every_block_seated_supersedes_the_free_standing_warnings() {
     let m = Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
-    let record = pirqa::motion::read_record(
-        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
-        None,
-        &pirqa::motion::ReadOptions::default(),
-    )
-    .unwrap();
-    let at = |g: f64| Motion::Record(record.scaled(g * 9.81 / record.pga_m_s2()).unwrap());
     let could_rock = |r: &Response| -> Vec<String> {
         (r.summary.warnings.iter())
             .filter_map(|w| match w {
@@ -179,7 +177,10 @@ fn a_check_that_finds_every_block_seated_supersedes_the_free_standing_warnings()
             })
             .collect()
     };
-    let (plain, seen) = (watched(&m, &at(0.1), false), watched(&m, &at(0.1), true));
+    let (plain, seen) = (
+        watched(&m, &el_centro(0.1), false),
+        watched(&m, &el_centro(0.1), true),
+    );
     assert_eq!(could_rock(&plain), ["F1", "F2", "F3", "F4", "F5"]);
     let check = seen.summary.uplift_check.as_ref().unwrap();
     assert_eq!(check.first_uplift, None);
@@ -188,11 +189,11 @@ fn a_check_that_finds_every_block_seated_supersedes_the_free_standing_warnings()
     seen_summary.uplift_check = None;
     seen_summary.warnings.clone_from(&plain.summary.warnings);
     assert_eq!(seen_summary, plain.summary);
-    let lifted = watched(&m, &at(0.3), true);
+    let lifted = watched(&m, &el_centro(0.3), true);
     first_uplift(&lifted);
     assert_eq!(
         could_rock(&lifted),
-        could_rock(&watched(&m, &at(0.3), false))
+        could_rock(&watched(&m, &el_centro(0.3), false))
     );
     assert!(!could_rock(&lifted).is_empty());
 }
