@@ -6,6 +6,7 @@
 //! firmly as an exact run, at the cost of one sparse elimination instead of every pivot of a
 //! dense tableau.
 
+use super::revised;
 use super::simplex::{self, Ending, Outcome, Program};
 use crate::exact::Q;
 use std::collections::{BTreeMap, BTreeSet};
@@ -20,7 +21,7 @@ pub(crate) fn solve(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcom
 /// The answer of the floating-point run where its last basis proves it exactly; `None` where
 /// the run gave up, was stopped, or its basis proves nothing.
 pub(crate) fn certified(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
-    let (ending, last, scales) = simplex::floating(program, stop)?;
+    let (ending, last, scales) = revised::floating(program, stop)?;
     // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
     let weights: Option<Vec<Q>> = scales
         .iter()

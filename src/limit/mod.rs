@@ -16,6 +16,7 @@
 //! others passes its weight however its balance needs, not by eq. (3)'s tributary split.
 
 mod certify;
+mod revised;
 pub mod seated;
 mod simplex;
 
@@ -26,9 +27,9 @@ use crate::wall::{Block, Wall};
 use simplex::{Outcome, Program};
 
 /// The most movable blocks a limit is computed for. The floating-point run whose basis is
-/// certified answers larger walls where it does not stall (a slender running bond of 410
-/// blocks in 8 s; the generated running bond of 300 blocks, one friction everywhere, ran its
-/// float simplex for more than 200 s), and where its basis fails the check the exact tableau
+/// certified answered larger walls where it did not stall (measured before the revised simplex,
+/// with a dense float tableau: a slender running bond of 410 blocks in 8 s; the generated
+/// running bond of 300 blocks, one friction everywhere, more than 200 s), and where its basis fails the check the exact tableau
 /// answers, whose fractions grow with every pivot: a running bond of 102 blocks took it 0.7 s,
 /// the 60 blocks of walls/inca/qorikancha.ron 25 s.
 pub const MAX_BLOCKS: usize = 150;
