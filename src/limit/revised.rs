@@ -229,11 +229,10 @@ impl Run {
         let mut alpha = vec![0.0; m];
         let norms: Vec<f64> = (0..cost.len())
             .map(|j| {
-                self.column(j)
-                    .iter()
-                    .map(|&(_, a)| a * a)
-                    .sum::<f64>()
-                    .sqrt()
+                // An artificial column is a unit vector.
+                self.columns
+                    .get(j)
+                    .map_or(1.0, |c| c.iter().map(|&(_, a)| a * a).sum::<f64>().sqrt())
             })
             .collect();
         let mut stalled = 0usize;

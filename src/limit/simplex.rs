@@ -5,7 +5,7 @@
 //! are zero).
 //!
 //! This tableau is the fallback: pivoting in rationals grows the fractions with every pivot
-//! (sampled friction coefficients carry sixteen digits each), so the same rule first runs in
+//! (sampled friction coefficients carry sixteen digits each), so the program first runs in
 //! floating point (`revised`), and only its last basis is worked out in rationals (`certify`):
 //! the primal and dual solutions of that basis, checked to satisfy every constraint exactly,
 //! prove the answer as this run would (or the Farkas vector an infeasible program, or the ray an
