@@ -481,25 +481,27 @@ mod tests {
         Program { a, b, c }
     }
 
+    /// The program written in `text` (`read`) has an optimum its floating-point run proves.
+    fn proved(text: &str) {
+        let out = certified(&read(text), &|| false).expect("the last basis proves the answer");
+        assert!(matches!(out, Outcome::Optimal { .. }), "{out:?}");
+    }
+
     #[test]
     fn a_column_whose_reduced_cost_hides_in_round_off_is_found_by_the_careful_pricing() {
         // Without the careful pricing this run ends on a basis with an exact reduced cost of
         // -4.1e-13, which certify refuses (and the exact tableau does not finish on 315 rows).
-        let p = read(include_str!(
+        proved(include_str!(
             "../../tests/data/limit/uplift-careful-pricing.txt"
         ));
-        let out = certified(&p, &|| false).expect("the last basis proves the answer");
-        assert!(matches!(out, Outcome::Optimal { .. }), "{out:?}");
     }
 
     #[test]
     fn entries_of_the_size_of_the_round_off_are_never_pivots() {
         // With pivots down to 1e-9 this run reaches a singular basis and gives up.
-        let p = read(include_str!(
+        proved(include_str!(
             "../../tests/data/limit/uplift-small-pivot.txt"
         ));
-        let out = certified(&p, &|| false).expect("the last basis proves the answer");
-        assert!(matches!(out, Outcome::Optimal { .. }), "{out:?}");
     }
 
     #[test]
