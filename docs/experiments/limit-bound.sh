@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Reproduces the table "Raising the bound" of docs/rocking-walls.md: the limit at rest of
+# generated running bonds beyond limit::MAX_BLOCKS (300), in a scratch worktree whose bound is
+# raised to 2000 (pirqa itself refuses them). Each `pirqa check --limit` is timed and stopped
+# after 400 s (the 495-block bond is: its float run gives up and the exact tableau runs on).
+# About 10 minutes.
+#
+#   bash docs/experiments/limit-bound.sh [WORKDIR]
+set -euo pipefail
+root=$(git rev-parse --show-toplevel)
+work=${1:-/tmp/pirqa-limit-bound}
+base=7eb8ca9
+mkdir -p "$work"
+cd "$root"
+tree="$work/tree"
+if [ ! -d "$tree" ]; then
+    git worktree add --detach "$tree" "$base"
+    sed -i 's/^pub const MAX_BLOCKS: usize = 300;$/pub const MAX_BLOCKS: usize = 2000;/' "$tree/src/limit/mod.rs"
+    grep -q '^pub const MAX_BLOCKS: usize = 2000;$' "$tree/src/limit/mod.rs"
+fi
+(cd "$tree" && cargo build --release)
+pirqa="$tree/target/release/pirqa"
+walls=()
+for n in 203 250 297 320 360 500 600; do
+    "$pirqa" generate --blocks "$n" -o "$work/bond-$n.ron"
+    walls+=("$work/bond-$n.ron")
+done
+for courses in 8 10; do
+    "$pirqa" generate --courses "$courses" --blocks-per-course $((4 * courses)) -o "$work/slender-$courses.ron"
+    walls+=("$work/slender-$courses.ron")
+done
+for w in "${walls[@]}"; do
+    /usr/bin/time -f "$(basename "$w"): %e s, %M KB" timeout -s KILL 400 \
+        "$pirqa" check "$w" --limit 2>&1 | grep -E 'wrote|held up|s, [0-9]+ KB' || true
+done
+echo "remove the scratch tree with: git worktree remove --force $tree"
