@@ -42,7 +42,7 @@ enum Command {
         out_of_plane: bool,
         /// Also find the wall's limit at rest in its plane: the ground acceleration, each way,
         /// beyond which no contact forces hold every block seated, and the mechanism past it
-        /// (an exact linear program, walls of up to 300 movable blocks; under a second on the
+        /// (an exact linear program, walls of up to 600 movable blocks; under a second on the
         /// shipped walls).
         #[arg(long, conflicts_with = "out_of_plane")]
         limit: bool,

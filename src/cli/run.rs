@@ -317,7 +317,7 @@ pub struct RunArgs {
     /// Watch the sliding run for the first instant at which no contact forces keep every block
     /// seated (each block's moments balanced inside its joints), and say when and which blocks
     /// would start to turn (summary.json's `uplift_check`); exact sliding engine only, walls of
-    /// up to 300 movable blocks.
+    /// up to 600 movable blocks.
     #[arg(long)]
     pub check_uplift: bool,
     /// Write only the summary, to this file.

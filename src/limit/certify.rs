@@ -18,16 +18,29 @@ pub(crate) fn solve(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcom
     certified(program, stop).or_else(|| simplex::exact(program, stop))
 }
 
-/// The answer of the floating-point run where its last basis proves it exactly; `None` where
-/// the run gave up, was stopped, or its basis proves nothing.
+/// The answer of a floating-point run whose last basis proves it exactly, the runs of
+/// [`revised::BLAND_FLOORS`] tried in turn; `None` where each gave up or its basis proves
+/// nothing, or where `stop` said so (no run is tried after that).
 pub(crate) fn certified(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
-    let (ending, last, scales) = revised::floating(program, stop)?;
-    // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
-    let weights: Option<Vec<Q>> = scales
-        .iter()
-        .map(|&s| Q::from_f64_exact(s).map(|s| s.recip()))
-        .collect();
-    basis(program, &last, ending, &weights?)
+    let stopped = std::cell::Cell::new(false);
+    let watched = || {
+        let asked = stop();
+        stopped.set(stopped.get() || asked);
+        asked
+    };
+    revised::BLAND_FLOORS.iter().find_map(|&floor| {
+        if stopped.get() {
+            return None;
+        }
+        let (ending, last, scales) = revised::floating(program, floor, &watched)?;
+        // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as
+        // given.
+        let weights: Option<Vec<Q>> = scales
+            .iter()
+            .map(|&s| Q::from_f64_exact(s).map(|s| s.recip()))
+            .collect();
+        basis(program, &last, ending, &weights?)
+    })
 }
 
 /// The outcome `basis` proves for `program` when the run ended with `ending`; `None` where it

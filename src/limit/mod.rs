@@ -26,13 +26,14 @@ use crate::topology::{Base, BlockId, HorizontalJoint, Topology, VerticalJoint};
 use crate::wall::{Block, Wall};
 use simplex::{Outcome, Program};
 
-/// The most movable blocks a limit is computed for: where the revised simplex's basis is proved
-/// on every wall tried (generated running bonds of 203 to 370 blocks at rest in 1.5 to 11 s,
-/// docs/rocking-walls.md). Beyond, not always: 405 and 588 blocks were proved, but at 495 the
-/// float run gave up and the exact tableau, whose fractions grow with every pivot and which
-/// is dense, had not finished after 400 s (a running bond of 102 blocks took it 0.7 s, the 60
-/// blocks of walls/inca/qorikancha.ron 25 s).
-pub const MAX_BLOCKS: usize = 300;
+/// The most movable blocks a limit is computed for: below every size where the revised
+/// simplex's basis was proved on every wall tried (generated running bonds of 203 to 689
+/// blocks at rest in 2 to 64 s, docs/rocking-walls.md), and a dense program of about half a
+/// gigabyte at 600 blocks. A basis that is not proved falls back to the exact tableau, whose
+/// fractions grow with every pivot and which is dense: it had not finished on 495 blocks after
+/// 400 s (a running bond of 102 blocks took it 0.7 s, the 60 blocks of
+/// walls/inca/qorikancha.ron 25 s).
+pub const MAX_BLOCKS: usize = 600;
 
 /// Why a program over `movable` blocks is not built (beyond [`MAX_BLOCKS`]), naming `what` it
 /// is for.

@@ -50,12 +50,24 @@ const STALL: usize = 5;
 /// Pivots between two factorisations of the basis.
 const REFACTOR_EVERY: usize = 64;
 
+/// The runs `certify` tries in turn, each a floor on the pivot of a tie under Bland's rule as a
+/// share of the largest pivot among the tied rows: none, then a tenth. Why a second: Bland's
+/// tie-break takes the least basic column whatever its entry, and on the limit program of a
+/// generated running bond of 370 blocks a pivot on 1.2e-5 beside entries near 1 began bases so
+/// ill-conditioned that the run ended on a singular one; the second run proves it. Why not
+/// the second alone: with it, the 451-, 495-, 540- and 689-block bonds' programs end singular
+/// (docs/rocking-walls.md, "Raising the bound"); which run proves a program is round-off's
+/// choice, not a rule's merit.
+pub(super) const BLAND_FLOORS: [f64; 2] = [0.0, 0.1];
+
 /// Runs the program in floating point, each row divided by its largest entry (the scaling
-/// changes no x, and the basis is all that is kept): how it ended, its last basis (columns
+/// changes no x, and the basis is all that is kept), Bland's ties broken above `bland_floor`
+/// (one of [`BLAND_FLOORS`]): how it ended, its last basis (columns
 /// `n..n + m` are the rows' artificial variables) and the rows' divisors, or `None` where it
 /// ran out of pivots, its basis could not be factorised, or `stop` said so.
 pub(super) fn floating(
     program: &Program,
+    bland_floor: f64,
     stop: &dyn Fn() -> bool,
 ) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
     let (m, n) = (program.b.len(), program.c.len());
@@ -78,7 +90,7 @@ pub(super) fn floating(
         scales.push(scale);
     }
     let c: Vec<f64> = program.c.iter().map(Q::to_f64).collect();
-    let mut run = Run::new(columns, b, 50 * (m + n) + 1000)?;
+    let mut run = Run::new(columns, b, 50 * (m + n) + 1000, bland_floor)?;
     let ending = run.both_phases(&c, stop)?;
     Some((ending, run.basis, scales))
 }
@@ -105,10 +117,17 @@ struct Run {
     /// Pivots left before the run gives up (round-off can make even Bland's rule cycle; exact
     /// arithmetic cannot).
     budget: usize,
+    /// See [`BLAND_FLOORS`].
+    bland_floor: f64,
 }
 
 impl Run {
-    fn new(columns: Vec<Vec<(usize, f64)>>, b: Vec<f64>, budget: usize) -> Option<Run> {
+    fn new(
+        columns: Vec<Vec<(usize, f64)>>,
+        b: Vec<f64>,
+        budget: usize,
+        bland_floor: f64,
+    ) -> Option<Run> {
         let (m, n) = (b.len(), columns.len());
         let mut run = Run {
             basis: (n..n + m).collect(),
@@ -121,6 +140,7 @@ impl Run {
             columns,
             b,
             budget,
+            bland_floor,
         };
         run.refactor()?;
         Some(run)
@@ -197,18 +217,23 @@ impl Run {
         }
     }
 
-    /// The entering column a second, more careful pricing finds where the usual one finds
-    /// none: the multipliers refined once (B^T y's residual, in twice the working precision,
-    /// solved for its correction) and each reduced cost summed in twice the working precision.
-    /// Why: at the end of a long degenerate run the usual pricing's round-off (about 1e-13 on
-    /// the block-count study's 315-row programs) hides columns whose exact reduced cost is
-    /// -4e-13, and `certify` then refuses the basis.
+    /// The entering column by the careful pricing: the multipliers refined once (B^T y's
+    /// residual, in twice the working precision, solved for its correction) and each reduced
+    /// cost summed in twice the working precision; under Bland's rule the first column it finds
+    /// negative, else the most negative over its length. Why: at the end of a long degenerate
+    /// run the usual pricing's round-off (about 1e-13 on the block-count study's 315-row
+    /// programs) hides columns whose exact reduced cost is -4e-13, and `certify` then refuses
+    /// the basis; and Bland's rule decided on it can cycle: on a 495-block running bond's
+    /// limit program (1,485 rows) two columns whose reduced costs were round-off (-1.3e-12 and
+    /// -3.8e-12) took turns on one row for hundreds of pivots, until a pivot on a small entry
+    /// wrecked the basis and the run gave up.
     fn careful(
         &self,
         cost: &[f64],
         allowed: &impl Fn(usize) -> bool,
         y: &[f64],
         norms: &[f64],
+        bland: bool,
     ) -> Option<usize> {
         let mut dy: Vec<f64> = self
             .basis
@@ -216,12 +241,16 @@ impl Run {
             .map(|&j| self.reduced(cost[j], j, y, None))
             .collect();
         self.btran(&mut dy);
-        (0..cost.len())
+        let mut negative = (0..cost.len())
             .filter(|&j| allowed(j) && self.row_of[j].is_none())
             .map(|j| (j, self.reduced(cost[j], j, y, Some(&dy))))
-            .filter(|&(_, d)| d < -CAREFUL)
-            .min_by(|a, b| (a.1 / norms[a.0]).total_cmp(&(b.1 / norms[b.0])))
-            .map(|(j, _)| j)
+            .filter(|&(_, d)| d < -CAREFUL);
+        if bland {
+            negative.next()
+        } else {
+            negative.min_by(|a, b| (a.1 / norms[a.0]).total_cmp(&(b.1 / norms[b.0])))
+        }
+        .map(|(j, _)| j)
     }
 
     /// cost - a_j . (y + dy), the products and sums of `y`'s part carried in twice the working
@@ -282,10 +311,11 @@ impl Run {
 
     /// The primal simplex over the columns `allowed` admits, for the costs `cost` (one per
     /// column of [A | I]): the column whose reduced cost over its length is most negative enters
-    /// (Dantzig's rule on scaled columns), the row with the least ratio leaves, a tie to the
-    /// largest pivot. After [`STALL`] degenerate pivots in a row Bland's rule picks instead (the
-    /// first negative column enters, a tie leaves by the least basic column), which cannot cycle,
-    /// until a step moves the vertex again.
+    /// (Dantzig's rule on scaled columns; the careful pricing where the usual one finds none),
+    /// the row with the least ratio leaves, a tie to the largest pivot. After [`STALL`]
+    /// degenerate pivots in a row Bland's rule picks instead (the first column negative to the
+    /// careful pricing enters, a tie leaves by the least basic column), which cannot cycle in
+    /// exact arithmetic, until a step moves the vertex again.
     fn optimise(
         &mut self,
         cost: &[f64],
@@ -310,18 +340,18 @@ impl Run {
             }
             self.btran(&mut y);
             let bland = stalled >= STALL;
-            let candidates = (0..cost.len())
-                .filter(|&j| allowed(j) && self.row_of[j].is_none())
-                .map(|j| (j, cost[j] - self.dot(j, &y)))
-                .filter(|&(_, d)| d < -PRICING);
             let entering = if bland {
-                candidates.map(|(j, _)| j).next()
+                self.careful(cost, &allowed, &y, &norms, true)
             } else {
-                candidates
+                (0..cost.len())
+                    .filter(|&j| allowed(j) && self.row_of[j].is_none())
+                    .map(|j| (j, cost[j] - self.dot(j, &y)))
+                    .filter(|&(_, d)| d < -PRICING)
                     .min_by(|a, b| (a.1 / norms[a.0]).total_cmp(&(b.1 / norms[b.0])))
                     .map(|(j, _)| j)
+                    .or_else(|| self.careful(cost, &allowed, &y, &norms, false))
             };
-            let Some(j) = entering.or_else(|| self.careful(cost, &allowed, &y, &norms)) else {
+            let Some(j) = entering else {
                 return Stop::Optimal;
             };
             alpha.iter_mut().for_each(|a| *a = 0.0);
@@ -330,8 +360,26 @@ impl Run {
             }
             self.ftran(&mut alpha);
             let mut leave: Option<(usize, f64)> = None;
+            let mut floor = PIVOT;
+            if bland && self.bland_floor > 0.0 {
+                let least = alpha
+                    .iter()
+                    .zip(&self.x)
+                    .filter(|(&a, _)| a > PIVOT)
+                    .map(|(&a, &x)| x.max(0.0) / a)
+                    .fold(f64::INFINITY, f64::min);
+                let widest = alpha
+                    .iter()
+                    .zip(&self.x)
+                    .filter(|(&a, &x)| {
+                        a > PIVOT && x.max(0.0) / a <= least + TOLERANCE * (1.0 + least)
+                    })
+                    .map(|(&a, _)| a)
+                    .fold(0.0, f64::max);
+                floor = floor.max(self.bland_floor * widest);
+            }
             for (i, &a) in alpha.iter().enumerate() {
-                if a <= PIVOT {
+                if a <= floor {
                     continue;
                 }
                 let ratio = self.x[i].max(0.0) / a;

@@ -152,7 +152,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     }
     // A wall beyond the exact program's size: the report says why; drawings asked for are an
     // error that says it too.
-    let blocks = vec!["(width_m: 1.0)"; 301].join(", ");
+    let blocks = vec!["(width_m: 1.0)"; 601].join(", ");
     let big = common::file(
         "long.ron",
         &format!(
@@ -162,7 +162,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     );
     let (ok, out, err) = pirqa(&["check", big.to_str().unwrap(), "--limit"]);
     assert!(ok, "{err}");
-    assert!(out.contains("not computed: the limit at rest is computed for walls of up to 300"));
+    assert!(out.contains("not computed: the limit at rest is computed for walls of up to 600"));
     let (ok, _, err) = pirqa(&[
         "check",
         big.to_str().unwrap(),
@@ -170,7 +170,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
         "--mechanism",
         dir.to_str().unwrap(),
     ]);
-    assert!(!ok && err.contains("up to 300 movable blocks"), "{err}");
+    assert!(!ok && err.contains("up to 600 movable blocks"), "{err}");
     // Asked for only: a plain check stays a table of the graph.
     let (_, out, _) = pirqa(&["check", "walls/five-block-variable.ron"]);
     assert!(!out.contains("limit at rest"), "{out}");
@@ -686,14 +686,14 @@ fn run_checks_uplift_when_asked_and_refuses_walls_too_large_for_it() {
         "F5 turns clockwise about its bottom-right corner"
     );
     assert!((first["ground_accel_m_s2"].as_f64().unwrap() + 0.2834 * 9.81).abs() < 0.001);
-    // 18 courses of 18: more movable blocks than the exact program takes.
+    // 25 courses of 25 (637 blocks): more movable blocks than the exact program takes.
     let wall = dir.join("large.ron");
     let (ok, _, err) = pirqa(&[
         "generate",
         "--courses",
-        "18",
+        "25",
         "--blocks-per-course",
-        "18",
+        "25",
         "-o",
         wall.to_str().unwrap(),
     ]);
@@ -709,7 +709,7 @@ fn run_checks_uplift_when_asked_and_refuses_walls_too_large_for_it() {
         "--duration",
         "1",
     ]);
-    assert!(!ok && err.contains("up to 300 movable blocks"), "{err}");
+    assert!(!ok && err.contains("up to 600 movable blocks"), "{err}");
 }
 
 #[test]
