@@ -8,7 +8,7 @@
 set -euo pipefail
 root=$(git rev-parse --show-toplevel)
 work=${1:-/tmp/pirqa-limit-bound}
-base=BASE
+base=bd68838
 mkdir -p "$work"
 cd "$root"
 tree="$work/tree"

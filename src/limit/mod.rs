@@ -28,7 +28,7 @@ use simplex::{Outcome, Program};
 
 /// The most movable blocks a limit is computed for: below every size where the revised
 /// simplex's basis was proved on every wall tried (generated running bonds of 203 to 689
-/// blocks at rest in 2 to 64 s, docs/rocking-walls.md), and a dense program of about half a
+/// blocks at rest in 1.5 to 66 s, docs/rocking-walls.md), and a dense program of about half a
 /// gigabyte at 600 blocks. A basis that is not proved falls back to the exact tableau, whose
 /// fractions grow with every pivot and which is dense: it had not finished on 495 blocks after
 /// 400 s (a running bond of 102 blocks took it 0.7 s, the 60 blocks of

@@ -314,8 +314,9 @@ impl Run {
     /// (Dantzig's rule on scaled columns; the careful pricing where the usual one finds none),
     /// the row with the least ratio leaves, a tie to the largest pivot. After [`STALL`]
     /// degenerate pivots in a row Bland's rule picks instead (the first column negative to the
-    /// careful pricing enters, a tie leaves by the least basic column), which cannot cycle in
-    /// exact arithmetic, until a step moves the vertex again.
+    /// careful pricing enters, a tie leaves by the least basic column among the pivots above
+    /// the run's floor, [`BLAND_FLOORS`]), which cannot cycle in exact arithmetic, until a step
+    /// moves the vertex again.
     fn optimise(
         &mut self,
         cost: &[f64],
