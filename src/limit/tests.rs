@@ -272,6 +272,16 @@ fn a_mechanism_is_drawn_turning_about_its_point_at_rest() {
     assert!((w[0] - 0.3 * phi.sin()).abs() < 1e-15, "{w:?}");
 }
 
+/// The limit program of the wall towards the side of `s`, as `direction` builds it.
+fn side_program(m: &Model, s: i128) -> Program {
+    let (wall, topo) = (m.wall(), m.topology());
+    let movable: Vec<usize> = (0..wall.blocks.len())
+        .filter(|&i| !wall.blocks[i].fixed)
+        .collect();
+    let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
+    program(wall, topo, &movable, &forces(wall, topo), &centroids, s)
+}
+
 #[test]
 fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
     // The floating-point run answers (its basis is certified, no exact tableau needed) on every
@@ -290,14 +300,8 @@ fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
     ];
     for (path, compare) in walls {
         let m = Model::from_file(path).unwrap();
-        let (wall, topo) = (m.wall(), m.topology());
-        let movable: Vec<usize> = (0..wall.blocks.len())
-            .filter(|&i| !wall.blocks[i].fixed)
-            .collect();
-        let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
-        let forces = forces(wall, topo);
         for s in [1, -1] {
-            let p = program(wall, topo, &movable, &forces, &centroids, s);
+            let p = side_program(&m, s);
             let fast = certify::certified(&p, &|| false)
                 .unwrap_or_else(|| panic!("{path}, side {s}: no certified basis"));
             if compare {
@@ -332,14 +336,14 @@ fn large_running_bonds_are_proved_from_their_floating_point_bases() {
             .description()
             .unwrap();
         let m = Model::from_ron_str(&crate::wall::to_ron_string(&d)).unwrap();
-        let (wall, topo) = (m.wall(), m.topology());
-        let movable: Vec<usize> = (0..wall.blocks.len()).collect();
-        assert_eq!(movable.len(), blocks);
-        let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
-        let p = program(wall, topo, &movable, &forces(wall, topo), &centroids, 1);
-        match certify::certified(&p, &|| false) {
+        assert_eq!(m.wall().blocks.len(), blocks);
+        match certify::certified(&side_program(&m, 1), &|| false) {
             Some(Outcome::Optimal { value, .. }) => {
-                assert_eq!(-value, &Q::frac(3, 10) * &wall.g_m_s2, "{blocks} blocks")
+                assert_eq!(
+                    -value,
+                    &Q::frac(3, 10) * &m.wall().g_m_s2,
+                    "{blocks} blocks"
+                )
             }
             other => panic!("{blocks} blocks: {other:?}"),
         }
