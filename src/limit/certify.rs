@@ -19,8 +19,8 @@ pub(crate) fn solve(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcom
 }
 
 /// The answer of a floating-point run whose last basis proves it exactly, the runs of
-/// [`revised::BLAND_FLOORS`] tried in turn; `None` where each gave up or its basis proves
-/// nothing, or where `stop` said so (no run is tried after that).
+/// [`revised::RUNS`] tried in turn; `None` where each gave up or its basis proves nothing, or
+/// where `stop` said so (no run is tried after that).
 pub(crate) fn certified(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
     let stopped = std::cell::Cell::new(false);
     let watched = || {
@@ -28,19 +28,25 @@ pub(crate) fn certified(program: &Program, stop: &dyn Fn() -> bool) -> Option<Ou
         stopped.set(stopped.get() || asked);
         asked
     };
-    revised::BLAND_FLOORS.iter().find_map(|&floor| {
-        if stopped.get() {
-            return None;
-        }
-        let (ending, last, scales) = revised::floating(program, floor, &watched)?;
-        // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as
-        // given.
-        let weights: Option<Vec<Q>> = scales
-            .iter()
-            .map(|&s| Q::from_f64_exact(s).map(|s| s.recip()))
-            .collect();
-        basis(program, &last, ending, &weights?)
-    })
+    revised::RUNS
+        .iter()
+        .take_while(|_| !stopped.get())
+        .find_map(|&rules| certified_by(program, rules, &watched))
+}
+
+/// The answer of the floating-point run under `rules`, where its last basis proves it.
+pub(super) fn certified_by(
+    program: &Program,
+    rules: revised::Rules,
+    stop: &dyn Fn() -> bool,
+) -> Option<Outcome> {
+    let (ending, last, scales) = revised::floating(program, rules, stop)?;
+    // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
+    let weights: Option<Vec<Q>> = scales
+        .iter()
+        .map(|&s| Q::from_f64_exact(s).map(|s| s.recip()))
+        .collect();
+    basis(program, &last, ending, &weights?)
 }
 
 /// The outcome `basis` proves for `program` when the run ended with `ending`; `None` where it

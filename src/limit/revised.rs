@@ -44,30 +44,64 @@ const PRICING: f64 = 1e-12;
 /// must at -1e-13.
 const CAREFUL: f64 = 1e-15;
 
-/// Degenerate pivots in a row after which Bland's rule picks until the next step that moves.
+/// Degenerate pivots in a row after which the run moves bounds ([`Rules::shift`]) or Bland's
+/// rule picks until the next step that moves.
 const STALL: usize = 5;
 
 /// Pivots between two factorisations of the basis.
 const REFACTOR_EVERY: usize = 64;
 
-/// The runs `certify` tries in turn, each a floor on the pivot of a tie under Bland's rule as a
-/// share of the largest pivot among the tied rows: none, then a tenth. Why a second: Bland's
-/// tie-break takes the least basic column whatever its entry, and on the limit program of a
-/// generated running bond of 370 blocks a pivot on 1.2e-5 beside entries near 1 began bases so
-/// ill-conditioned that the run ended on a singular one; the second run proves it. Why not
-/// the second alone: with it, the 451-, 495-, 540- and 689-block bonds' programs end singular
-/// (docs/rocking-walls.md, "Raising the bound"); which run proves a program is round-off's
-/// choice, not a rule's merit.
-pub(super) const BLAND_FLOORS: [f64; 2] = [0.0, 0.1];
+/// How a run decides where round-off could otherwise decide for it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Rules {
+    /// Where the run stalls ([`STALL`] degenerate pivots in a row), the lower bound of each
+    /// basic variable at zero moves from 0 to minus this share of the program's unit (its
+    /// largest right-hand side over its largest entry) times a pseudo-random factor in [1, 2)
+    /// of its own, instead of Bland's rule deciding (0: Bland's rule decides). Why: the limit
+    /// programs are highly degenerate (most contact forces of a mechanism are zero), and at a
+    /// vertex where many bases meet Bland's rule breaks ties that round-off sets; bounds moved
+    /// each by its own amount make that vertex many, apart, so the next pivots move and no tie
+    /// is left to break. Only the basis leaves the run, and `certify` checks it against the
+    /// program as given, where it proves the answer as long as the moves are too small to
+    /// change which basis is optimal.
+    pub(super) shift: f64,
+    /// Bland's ties broken only among pivots of at least this share of the largest tied one
+    /// (0: among all). Why: Bland's tie-break takes the least basic column whatever its entry,
+    /// and on the limit program of a generated running bond of 370 blocks a pivot on 1.2e-5
+    /// beside entries near 1 began bases so ill-conditioned that the plain run ended on a
+    /// singular one.
+    pub(super) bland_floor: f64,
+}
+
+/// The runs `certify` tries in turn until one's basis proves the answer: bounds moved by a
+/// hundred-thousandth where the run stalls, then Bland's rule with its ties among all pivots,
+/// then among those of a tenth of the largest at least. The first proves every limit program
+/// met so far on its own, in fewer pivots; the others each fail some (the 451-, 495-, 540-
+/// and 689-block bonds' programs end singular with the floor, the 370-block one without it)
+/// and stay as its fallbacks (docs/rocking-walls.md, "Raising the bound").
+pub(super) const RUNS: [Rules; 3] = [
+    Rules {
+        shift: 1e-5,
+        bland_floor: 0.0,
+    },
+    Rules {
+        shift: 0.0,
+        bland_floor: 0.0,
+    },
+    Rules {
+        shift: 0.0,
+        bland_floor: 0.1,
+    },
+];
 
 /// Runs the program in floating point, each row divided by its largest entry (the scaling
-/// changes no x, and the basis is all that is kept), Bland's ties broken above `bland_floor`
-/// (one of [`BLAND_FLOORS`]): how it ended, its last basis (columns
-/// `n..n + m` are the rows' artificial variables) and the rows' divisors, or `None` where it
-/// ran out of pivots, its basis could not be factorised, or `stop` said so.
+/// changes no x, and the basis is all that is kept), with its bounds moved and Bland's ties
+/// broken as `rules` say: how it ended, its last basis (columns `n..n + m` are the rows'
+/// artificial variables) and the rows' divisors, or `None` where it ran out of pivots, its
+/// basis could not be factorised, or `stop` said so.
 pub(super) fn floating(
     program: &Program,
-    bland_floor: f64,
+    rules: Rules,
     stop: &dyn Fn() -> bool,
 ) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
     let (m, n) = (program.b.len(), program.c.len());
@@ -90,7 +124,11 @@ pub(super) fn floating(
         scales.push(scale);
     }
     let c: Vec<f64> = program.c.iter().map(Q::to_f64).collect();
-    let mut run = Run::new(columns, b, 50 * (m + n) + 1000, bland_floor)?;
+    let largest = |v: &mut dyn Iterator<Item = &Q>| v.map(|q| q.to_f64().abs()).fold(0.0, f64::max);
+    let unit = largest(&mut program.b.iter()) / largest(&mut program.a.iter().flatten());
+    let unit = if unit.is_normal() { unit } else { 1.0 };
+    let mut run = Run::new(columns, b, 50 * (m + n) + 1000, rules.bland_floor)?;
+    run.unstall = rules.shift * unit;
     let ending = run.both_phases(&c, stop)?;
     Some((ending, run.basis, scales))
 }
@@ -117,8 +155,13 @@ struct Run {
     /// Pivots left before the run gives up (round-off can make even Bland's rule cycle; exact
     /// arithmetic cannot).
     budget: usize,
-    /// See [`BLAND_FLOORS`].
+    /// See [`Rules::bland_floor`].
     bland_floor: f64,
+    /// The move of a bound at a stall ([`Rules::shift`] times the program's unit); 0 where
+    /// Bland's rule decides instead.
+    unstall: f64,
+    /// The factors of the moves, the same at every run.
+    rng: crate::rng::Rng,
 }
 
 impl Run {
@@ -141,6 +184,8 @@ impl Run {
             b,
             budget,
             bland_floor,
+            unstall: 0.0,
+            rng: crate::rng::Rng::new(0x5eed),
         };
         run.refactor()?;
         Some(run)
@@ -282,6 +327,28 @@ impl Run {
         sum + (error - correction)
     }
 
+    /// Moves the lower bound of each basic column of A at zero to minus its own share of
+    /// `unstall` ([`Rules::shift`]): in x' = x + d >= 0 the rows A x = b read A x' = b + B d,
+    /// so b takes B d and the variable's value d; the basis and its factorisation stay.
+    /// Artificial variables keep theirs (phase 1 is over when they reach zero). Whether any
+    /// bound moved.
+    fn unstall_at_zero(&mut self) -> bool {
+        let mut moved = false;
+        for r in 0..self.m() {
+            let j = self.basis[r];
+            if j >= self.n() || self.x[r] > TOLERANCE {
+                continue;
+            }
+            let d = self.unstall * (1.0 + self.rng.uniform());
+            self.x[r] += d;
+            for &(i, a) in &self.columns[j] {
+                self.b[i] += a * d;
+            }
+            moved = true;
+        }
+        moved
+    }
+
     /// Makes column j basic in row p, given its solve `alpha` = B^-1 a_j.
     fn pivot(&mut self, p: usize, j: usize, alpha: &[f64]) -> Option<()> {
         let theta = self.x[p].max(0.0) / alpha[p];
@@ -313,10 +380,12 @@ impl Run {
     /// column of [A | I]): the column whose reduced cost over its length is most negative enters
     /// (Dantzig's rule on scaled columns; the careful pricing where the usual one finds none),
     /// the row with the least ratio leaves, a tie to the largest pivot. After [`STALL`]
-    /// degenerate pivots in a row Bland's rule picks instead (the first column negative to the
-    /// careful pricing enters, a tie leaves by the least basic column among the pivots above
-    /// the run's floor, [`BLAND_FLOORS`]), which cannot cycle in exact arithmetic, until a step
-    /// moves the vertex again.
+    /// degenerate pivots in a row the bounds of the basic variables at zero move apart where
+    /// the run's rules say so ([`Rules::shift`]); otherwise, or where only artificial variables
+    /// are at zero, Bland's rule picks (the first column negative to the careful pricing enters,
+    /// a tie leaves by the least basic column among the pivots above the run's floor,
+    /// [`Rules::bland_floor`]), which cannot cycle in exact arithmetic, until a step moves the
+    /// vertex again.
     fn optimise(
         &mut self,
         cost: &[f64],
@@ -340,6 +409,9 @@ impl Run {
                 *y = cost[j];
             }
             self.btran(&mut y);
+            if stalled >= STALL && self.unstall > 0.0 && self.unstall_at_zero() {
+                stalled = 0;
+            }
             let bland = stalled >= STALL;
             let entering = if bland {
                 self.careful(cost, &allowed, &y, &norms, true)
