@@ -6,19 +6,11 @@
 #
 #   bash docs/experiments/limit-bound.sh [WORKDIR]
 set -euo pipefail
-root=$(git rev-parse --show-toplevel)
+source "$(dirname "$0")/scratch-tree.sh"
 work=${1:-/tmp/pirqa-limit-bound}
-base=bd68838
-mkdir -p "$work"
-cd "$root"
-tree="$work/tree"
-if [ ! -d "$tree" ]; then
-    git worktree add --detach "$tree" "$base"
-    sed -i 's/^pub const MAX_BLOCKS: usize = 600;$/pub const MAX_BLOCKS: usize = 2000;/' "$tree/src/limit/mod.rs"
-    grep -q '^pub const MAX_BLOCKS: usize = 2000;$' "$tree/src/limit/mod.rs"
-fi
-(cd "$tree" && cargo build --release)
-pirqa="$tree/target/release/pirqa"
+scratch_tree "$work" bd68838 -c \
+    "sed -i 's/^pub const MAX_BLOCKS: usize = 600;\$/pub const MAX_BLOCKS: usize = 2000;/' src/limit/mod.rs &&
+     grep -q '^pub const MAX_BLOCKS: usize = 2000;\$' src/limit/mod.rs"
 walls=()
 for n in 203 250 297 320 360 400 450 500 550 600 700; do
     "$pirqa" generate --blocks "$n" -o "$work/bond-$n.ron"

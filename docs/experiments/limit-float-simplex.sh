@@ -14,19 +14,9 @@
 #
 #   bash docs/experiments/limit-float-simplex.sh [WORKDIR]
 set -euo pipefail
-root=$(git rev-parse --show-toplevel)
+source "$(dirname "$0")/scratch-tree.sh"
 work=${1:-/tmp/pirqa-limit-simplex}
-base=979b6fd400fb4437d16329f3d0da8b75fb167820
-mkdir -p "$work"
-cd "$root"
-
-tree="$work/tree"
-if [ ! -d "$tree" ]; then
-    git worktree add --detach "$tree" "$base"
-    git -C "$tree" apply "$root/docs/experiments/limit-float-simplex.patch"
-fi
-(cd "$tree" && cargo build --release)
-pirqa="$tree/target/release/pirqa"
+scratch_tree "$work" 979b6fd400fb4437d16329f3d0da8b75fb167820 docs/experiments/limit-float-simplex.patch
 
 for blocks in 200 300; do
     "$pirqa" generate --blocks "$blocks" -o "$work/bond-$blocks.ron"

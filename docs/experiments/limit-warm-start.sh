@@ -15,19 +15,9 @@
 #
 #   bash docs/experiments/limit-warm-start.sh [WORKDIR]
 set -euo pipefail
-root=$(git rev-parse --show-toplevel)
+source "$(dirname "$0")/scratch-tree.sh"
 work=${1:-/tmp/pirqa-limit-warm}
-base=bb69292
-mkdir -p "$work"
-cd "$root"
-
-tree="$work/tree"
-if [ ! -d "$tree" ]; then
-    git worktree add --detach "$tree" "$base"
-    git -C "$tree" apply "$root/docs/experiments/limit-warm-start.patch"
-fi
-(cd "$tree" && cargo build --release)
-pirqa="$tree/target/release/pirqa"
+scratch_tree "$work" bb69292 docs/experiments/limit-warm-start.patch
 
 for case in 12 16; do
     "$pirqa" sweep walls/studies/block-count.ron --case "$case" --out "$work/cases-$case" \

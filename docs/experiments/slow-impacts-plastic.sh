@@ -9,19 +9,9 @@
 #
 #   bash docs/experiments/slow-impacts-plastic.sh [WORKDIR]
 set -euo pipefail
-root=$(git rev-parse --show-toplevel)
+source "$(dirname "$0")/scratch-tree.sh"
 work=${1:-/tmp/pirqa-slow-impacts}
-base=26887a432dd1196fcdaa7ff68c9401ebbdc66966
-mkdir -p "$work"
-cd "$root"
-
-tree="$work/tree"
-if [ ! -d "$tree" ]; then
-    git worktree add --detach "$tree" "$base"
-    git -C "$tree" apply "$root/docs/experiments/slow-impacts-plastic.patch"
-fi
-(cd "$tree" && cargo build --release)
-pirqa="$tree/target/release/pirqa"
+scratch_tree "$work" 26887a432dd1196fcdaa7ff68c9401ebbdc66966 docs/experiments/slow-impacts-plastic.patch
 
 for case in 26 34; do
     "$pirqa" sweep walls/studies/block-count.ron --case "$case" --out "$work/cases" --no-history
