@@ -324,6 +324,7 @@ mod tests {
         assert_eq!(fit_fragility(&[(1.0, 10, 10), (2.0, 10, 10)]), None);
         assert_eq!(fit_fragility(&[(1.0, 10, 0), (2.0, 10, 10)]), None);
     }
+
     #[test]
     fn every_determined_data_set_is_fitted_whatever_its_levels() {
         // Twelve levels spread from lo to hi times the median, a million trials each, counts
@@ -378,6 +379,7 @@ mod tests {
         }
         assert_eq!((fitted, separated), (89, 29));
     }
+
     #[test]
     fn the_fits_of_the_studies_in_docs_are_those_of_full_steps_to_the_bit() {
         // The levels and fits of docs/rocking/fragility-moreau/results.json and of
