@@ -4,6 +4,7 @@ test suite built (PIRQA_BIN), and small sweep files written for a test."""
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 from pathlib import Path
 
@@ -15,6 +16,17 @@ ROOT = Path(__file__).resolve().parents[2]
 @pytest.fixture(scope="session")
 def root() -> Path:
     return ROOT
+
+
+@pytest.fixture
+def interruptible():
+    """Python's own SIGINT handler (KeyboardInterrupt) for the test, whatever the process was
+    started with: a shell starts background jobs with SIGINT ignored, and then
+    `_thread.interrupt_main` (the tests' Ctrl-C) does nothing and the test would fail for the
+    launcher's sake, not pirqa's."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
 
 
 @pytest.fixture(scope="session")

@@ -187,7 +187,7 @@ def test_a_run_releases_the_gil(root):
     assert longest < 0.5 * run_s, f"paused {longest:.4f} s during a run of {run_s:.4f} s"
 
 
-def test_an_interrupt_stops_a_run_and_keeps_what_it_reached(root):
+def test_an_interrupt_stops_a_run_and_keeps_what_it_reached(root, interruptible):
     """An interrupt (what Ctrl-C or a notebook's "interrupt the kernel" sends) half a second into
     a run that would take half a minute: KeyboardInterrupt, carrying the run up to where it
     stopped, which is the same run made to end there."""

@@ -123,7 +123,9 @@ def test_a_killed_sweep_resumes_to_the_uninterrupted_files(spec, serial, tmp_pat
     assert same_files(serial[0], out) >= 6
 
 
-def test_an_interrupted_sweep_stores_the_cases_it_ran_and_resumes_to_the_same_files(tmp_path):
+def test_an_interrupted_sweep_stores_the_cases_it_ran_and_resumes_to_the_same_files(
+    tmp_path, interruptible
+):
     """An interrupt (what Ctrl-C or a notebook's "interrupt the kernel" sends) during a sweep in
     this process, of cases about a tenth of a second each: KeyboardInterrupt after the case
     running is stored, no more started; a resumption ends with the uninterrupted files."""
