@@ -55,7 +55,7 @@ const REFACTOR_EVERY: usize = 64;
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Rules {
     /// Where the run stalls ([`STALL`] degenerate pivots in a row), the lower bound of each
-    /// basic variable at zero moves from 0 to minus this share of the program's unit (its
+    /// basic column of A at zero moves from 0 to minus this share of the program's unit (its
     /// largest right-hand side over its largest entry) times a pseudo-random factor in [1, 2)
     /// of its own, instead of Bland's rule deciding (0: Bland's rule decides). Why: the limit
     /// programs are highly degenerate (most contact forces of a mechanism are zero), and at a
@@ -129,8 +129,7 @@ pub(super) fn floating(
     let largest = |v: &mut dyn Iterator<Item = &Q>| v.map(|q| q.to_f64().abs()).fold(0.0, f64::max);
     let unit = largest(&mut program.b.iter()) / largest(&mut program.a.iter().flatten());
     let unit = if unit.is_normal() { unit } else { 1.0 };
-    let mut run = Run::new(columns, b, 50 * (m + n) + 1000, rules.bland_floor)?;
-    run.unstall = rules.shift * unit;
+    let mut run = Run::new(columns, b, 50 * (m + n) + 1000, rules, unit)?;
     let ending = run.both_phases(&c, stop)?;
     Some((ending, run.basis, scales))
 }
@@ -171,7 +170,8 @@ impl Run {
         columns: Vec<Vec<(usize, f64)>>,
         b: Vec<f64>,
         budget: usize,
-        bland_floor: f64,
+        rules: Rules,
+        unit: f64,
     ) -> Option<Run> {
         let (m, n) = (b.len(), columns.len());
         let mut run = Run {
@@ -185,8 +185,8 @@ impl Run {
             columns,
             b,
             budget,
-            bland_floor,
-            unstall: 0.0,
+            bland_floor: rules.bland_floor,
+            unstall: rules.shift * unit,
             rng: crate::rng::Rng::new(0x5eed),
         };
         run.refactor()?;

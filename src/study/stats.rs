@@ -126,11 +126,7 @@ impl Fragility {
 /// only collapses, or a threshold that separates collapses from survivals, ties at it allowed
 /// (the likelihood then has no maximum: beta would go to zero).
 pub fn fit_fragility(levels: &[(f64, u64, u64)]) -> Option<Fragility> {
-    let data: Vec<(f64, f64, f64)> = levels
-        .iter()
-        .filter(|l| l.0 > 0.0 && l.1 > 0)
-        .map(|&(x, n, k)| (x.ln(), n as f64, k as f64))
-        .collect();
+    let data = probit_rows(levels);
     let (trials, hits) = data.iter().fold((0.0, 0.0), |(n, k), d| (n + d.1, k + d.2));
     if data.len() < 2 || hits == 0.0 || hits == trials || separated(&data) {
         return None;
@@ -207,6 +203,16 @@ pub fn fit_fragility(levels: &[(f64, u64, u64)]) -> Option<Fragility> {
         }
     }
     None
+}
+
+/// The levels (x, trials, collapses) as the fit reads them: (ln x, trials, collapses) in
+/// floats, levels without trials or at x <= 0 left out.
+fn probit_rows(levels: &[(f64, u64, u64)]) -> Vec<(f64, f64, f64)> {
+    levels
+        .iter()
+        .filter(|l| l.0 > 0.0 && l.1 > 0)
+        .map(|&(x, n, k)| (x.ln(), n as f64, k as f64))
+        .collect()
 }
 
 /// Whether one threshold on ln x puts every collapse on one side and every survival on the
@@ -355,10 +361,7 @@ mod tests {
                             // The maximum of the rounded counts' likelihood: above the truth's
                             // and above every neighbour a ten-thousandth away in either
                             // parameter (the likelihood is concave, so local is global).
-                            let data: Vec<(f64, f64, f64)> = levels
-                                .iter()
-                                .map(|&(x, n, k)| (x.ln(), n as f64, k as f64))
-                                .collect();
+                            let data = probit_rows(&levels);
                             let at = |f: Fragility| {
                                 log_likelihood(&data, -f.median.ln() / f.beta, 1.0 / f.beta)
                             };
