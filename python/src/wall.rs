@@ -2,6 +2,7 @@
 //! block rectangles. It pickles as its RON text, so a worker process rebuilds the same wall.
 
 use crate::errors::{option, IntoPy};
+use crate::interrupt::Interrupt;
 use pirqa::wall::{parse_description, to_ron_string, RectangleDescription, WallDescription};
 use pirqa::Model;
 use pyo3::prelude::*;
@@ -142,15 +143,25 @@ impl Wall {
     /// The wall's limit at rest in its plane (`pirqa check --limit`, docs/rocking-walls.md): a
     /// dict with `towards_plus_x` and `towards_minus_x`, each `{"kind": "holds", "accel_g",
     /// "accel_m_s2", "exact_g" (a fraction), "mechanism": [{"block", "how", "u", "v",
-    /// "omega_rad_s"}, ...]}` or `{"kind": "unlimited"}`. The exact program runs without the
-    /// GIL.
+    /// "omega_rad_s"}, ...]}` or `{"kind": "unlimited"}`. The exact programs run without the
+    /// GIL; Ctrl-C (a notebook's interrupt) stops them, raising `KeyboardInterrupt` (a large
+    /// wall's take minutes).
     fn limit_at_rest<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let model = Arc::clone(&self.model);
+        let interrupt = Interrupt::new(py)?;
+        let stop = interrupt.check();
         let limits = py
-            .detach(move || pirqa::limit::at_rest(model.wall(), model.topology()))
+            .detach(move || pirqa::limit::at_rest_until(model.wall(), model.topology(), &stop))
             .map_err(pirqa::Error::from)
             .py()?;
-        crate::to_python::to_python(py, &limits)
+        match (limits, interrupt.raised()) {
+            (_, Some(signal)) => Err(signal),
+            (Some(limits), None) => crate::to_python::to_python(py, &limits),
+            // The stop is set only where a signal's handler raised, so this is not met.
+            (None, None) => Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
+                "the limit at rest was stopped",
+            )),
+        }
     }
 
     /// The wall as RON text (what `from_ron` reads back).

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import pickle
+import sys
 import threading
 import time
 import _thread
@@ -208,6 +209,32 @@ def test_an_interrupt_stops_a_run_and_keeps_what_it_reached(root, interruptible)
     assert [b["max_abs_displacement_m"] for b in partial["blocks"]] == [
         b["max_abs_displacement_m"] for b in whole["blocks"]
     ]
+
+
+def test_an_interrupt_stops_the_limit_at_rest_inside_its_programs(cli, tmp_path, interruptible):
+    """An interrupt a second into the limit at rest of a 495-block running bond (whose exact
+    programs take many seconds): KeyboardInterrupt, raised from inside the call (the profiler
+    sees the call end with an exception, not return and the signal handled after it)."""
+    path = tmp_path / "bond.ron"
+    code, err = cli("generate", "--blocks", "500", "-o", str(path))
+    assert code == 0, err
+    wall = pirqa.Wall.from_file(path)
+    ends = []
+
+    def watch(frame, event, arg):
+        if event in ("c_return", "c_exception") and getattr(arg, "__name__", "") == "limit_at_rest":
+            ends.append(event)
+
+    timer = threading.Timer(1.0, _thread.interrupt_main)
+    timer.start()
+    sys.setprofile(watch)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            wall.limit_at_rest()
+    finally:
+        sys.setprofile(None)
+        timer.cancel()
+    assert ends == ["c_exception"]
 
 
 def test_the_history_names_its_blocks_as_the_run_lists_them():

@@ -152,7 +152,8 @@ pub fn check(
     // Where the wall at rest stops being held, when asked (a wall too large for the exact
     // program says why instead).
     let limit = limit.then(|| limit_at_rest(&wall, &topo));
-    if let (Some(dir), Some(l)) = (mechanism, &limit) {
+    // Stopped by Ctrl-C, the report says so and the command ends with 130, drawing nothing.
+    if let (Some(dir), Some(l), false) = (mechanism, &limit, super::interrupted()) {
         // Drawings asked for and not made are an error, not a line of the report.
         let l = l
             .as_ref()
@@ -310,20 +311,30 @@ pub fn check(
 }
 
 /// The wall's limit at rest, a spinner on the terminal while the exact program runs; a wall
-/// too large for it gives the reason.
+/// too large for it gives the reason, and so does a Ctrl-C that stopped it (a large wall's
+/// programs can take minutes).
 fn limit_at_rest(
     wall: &pirqa::wall::Wall,
     topo: &topology::Topology,
 ) -> Result<pirqa::limit::Limits, String> {
     let spinner = indicatif::ProgressBar::new_spinner();
-    spinner.set_message("the limit at rest: solving its exact linear program");
+    spinner.set_message("the limit at rest: solving its exact linear programs (Ctrl-C stops)");
     spinner.enable_steady_tick(std::time::Duration::from_millis(200));
-    let limit = pirqa::limit::at_rest(wall, topo).map_err(|e| match e {
-        pirqa::SimulationError::NotApplicable(why) => why,
-        other => other.to_string(),
+    let stop = super::stop_flag();
+    let started = std::time::Instant::now();
+    let limit = pirqa::limit::at_rest_until(wall, topo, &|| {
+        stop.load(std::sync::atomic::Ordering::Relaxed)
     });
     spinner.finish_and_clear();
-    limit
+    match limit {
+        Ok(Some(limit)) => Ok(limit),
+        Ok(None) => Err(format!(
+            "stopped by Ctrl-C after {:.1} s, before the programs of both sides were proved",
+            started.elapsed().as_secs_f64()
+        )),
+        Err(pirqa::SimulationError::NotApplicable(why)) => Err(why),
+        Err(other) => Err(other.to_string()),
+    }
 }
 
 /// The limits as JSON and each direction's mechanism drawn, into `dir`.

@@ -173,7 +173,8 @@ pub fn run() -> Result<(), pirqa::Error> {
 }
 
 /// The request to stop, set by the first Ctrl-C (or SIGTERM): a run then ends at the time it
-/// reached and writes what it has, flagged; a second Ctrl-C ends the process at once. The
+/// reached and writes what it has, flagged (a sweep keeps its finished cases, `check --limit`
+/// reports the limit not computed); a second Ctrl-C ends the process at once. The
 /// handler is installed at the first call (a command that never asks keeps the default).
 pub fn stop_flag() -> Arc<AtomicBool> {
     STOP.get_or_init(|| {
@@ -186,7 +187,7 @@ pub fn stop_flag() -> Arc<AtomicBool> {
             if set.swap(true, Ordering::SeqCst) {
                 std::process::exit(130);
             }
-            eprintln!("\nstopping at the time reached (Ctrl-C again to quit at once)");
+            eprintln!("\nstopping: what was reached is kept (Ctrl-C again to quit at once)");
         });
         flag
     })

@@ -101,6 +101,17 @@ struct Force {
 
 /// The limits of the wall at rest (every block seated, moving with the ground).
 pub fn at_rest(wall: &Wall, topo: &Topology) -> Result<Limits, SimulationError> {
+    Ok(at_rest_until(wall, topo, &|| false)?.expect("never stopped"))
+}
+
+/// [`at_rest`], asking `stop` before every pivot of its programs (a large wall's can take
+/// minutes): `None` where it said so, with nothing of either side kept (a side is known only
+/// once its program is proved).
+pub fn at_rest_until(
+    wall: &Wall,
+    topo: &Topology,
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<Limits>, SimulationError> {
     let movable: Vec<usize> = (0..wall.blocks.len())
         .filter(|&i| !wall.blocks[i].fixed)
         .collect();
@@ -108,10 +119,16 @@ pub fn at_rest(wall: &Wall, topo: &Topology) -> Result<Limits, SimulationError> 
         return Err(SimulationError::NotApplicable(why));
     }
     let forces = forces(wall, topo);
-    Ok(Limits {
-        towards_plus_x: direction(wall, topo, &movable, &forces, 1)?,
-        towards_minus_x: direction(wall, topo, &movable, &forces, -1)?,
-    })
+    let Some(towards_plus_x) = direction(wall, topo, &movable, &forces, 1, stop)? else {
+        return Ok(None);
+    };
+    let Some(towards_minus_x) = direction(wall, topo, &movable, &forces, -1, stop)? else {
+        return Ok(None);
+    };
+    Ok(Some(Limits {
+        towards_plus_x,
+        towards_minus_x,
+    }))
 }
 
 /// Every contact force of the wall as unit forces: at each end of each horizontal joint the two
@@ -202,18 +219,23 @@ fn entries(f: &Force, c: &[Q; 2]) -> [Q; 3] {
 }
 
 /// The limit towards the side of `s` (+1: the ground accelerating towards +x): the largest a
-/// with every block's balance m a s = sum of forces on it, the weight carried, no moment.
+/// with every block's balance m a s = sum of forces on it, the weight carried, no moment;
+/// `None` where `stop` said so.
 fn direction(
     wall: &Wall,
     topo: &Topology,
     movable: &[usize],
     forces: &[Force],
     s: i128,
-) -> Result<Limit, SimulationError> {
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<Limit>, SimulationError> {
     let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
     let program = program(wall, topo, movable, forces, &centroids, s);
-    match certify::solve(&program, &|| false).expect("never stopped") {
-        Outcome::Unbounded => Ok(Limit::Unlimited),
+    let Some(outcome) = certify::solve(&program, stop) else {
+        return Ok(None);
+    };
+    match outcome {
+        Outcome::Unbounded => Ok(Some(Limit::Unlimited)),
         Outcome::Infeasible { y } => {
             // The graph checks each block over its own supports; a stack can pass that and
             // still lean past a support lower down. The accelerations that hold a wall are one
@@ -234,12 +256,12 @@ fn direction(
         Outcome::Optimal { value, y, .. } => {
             let accel = -value;
             let g = &accel / &wall.g_m_s2;
-            Ok(Limit::Holds {
+            Ok(Some(Limit::Holds {
                 accel_m_s2: accel.to_f64(),
                 accel_g: g.to_f64(),
                 exact_g: format!("{g:?}"),
                 mechanism: mechanism(wall, topo, movable, &centroids, &y),
-            })
+            }))
         }
     }
 }

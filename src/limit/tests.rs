@@ -234,8 +234,43 @@ fn a_stack_leaning_past_its_base_cannot_stand() {
     let err = at_rest(m.wall(), m.topology()).unwrap_err().to_string();
     assert!(err.contains("cannot stand even on still ground"), "{err}");
     let (w, t) = (m.wall(), m.topology());
-    let plus = direction(w, t, &[0, 1, 2], &forces(w, t), 1).unwrap();
-    assert!(holds(&plus).0.is_positive());
+    let plus = direction(w, t, &[0, 1, 2], &forces(w, t), 1, &|| false).unwrap();
+    assert!(holds(&plus.expect("not stopped")).0.is_positive());
+}
+
+/// Asked to stop at its k-th question, the limit stops there whichever side's program it is
+/// in, keeping nothing; never asked, it is the limit `at_rest` gives.
+#[test]
+fn a_stop_request_ends_the_limit_without_an_answer() {
+    let m = Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
+    let (w, t) = (m.wall(), m.topology());
+    let asked = std::cell::Cell::new(0_usize);
+    let count = || {
+        asked.set(asked.get() + 1);
+        false
+    };
+    assert_eq!(at_rest_until(w, t, &count).unwrap(), Some(limits(&m)));
+    let questions = asked.get();
+    // Both sides' programs take pivots, so the last question comes in the second one's.
+    assert!(questions > 4, "{questions}");
+    for k in [1, 2, questions / 2, questions - 1, questions] {
+        let asked = std::cell::Cell::new(0_usize);
+        let stop_at_k = || {
+            asked.set(asked.get() + 1);
+            asked.get() >= k
+        };
+        assert_eq!(
+            at_rest_until(w, t, &stop_at_k).unwrap(),
+            None,
+            "stopped at {k}"
+        );
+        // The exact fallback asks once more before its first pivot, and nothing after that.
+        assert!(
+            asked.get() <= k + 1,
+            "asked {} times after the stop",
+            asked.get() - k
+        );
+    }
 }
 
 #[test]

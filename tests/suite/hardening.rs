@@ -372,6 +372,51 @@ fn ctrl_c_stops_a_run_and_writes_what_it_has() {
     }
 }
 
+/// Ctrl-C stops `check --limit` on a wall whose exact programs take many seconds (a generated
+/// running bond of 495 blocks): exit code 130, the report whole but for the limit, which it
+/// says was stopped, and no mechanism drawn.
+#[test]
+#[cfg(unix)]
+fn ctrl_c_stops_the_limit_at_rest_and_says_so() {
+    let dir = common::scratch("ctrl-c-limit");
+    let wall = dir.join("bond.ron");
+    let (code, _, err) = pirqa(&["generate", "--blocks", "500", "-o", wall.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let drawings = dir.join("mechanism");
+    let child = Command::new(env!("CARGO_BIN_EXE_pirqa"))
+        .args([
+            "check",
+            wall.to_str().unwrap(),
+            "--limit",
+            "--json",
+            "--mechanism",
+        ])
+        .arg(&drawings)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let sent = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let out = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(130), "{stdout}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(report["blocks"].as_array().unwrap().len(), 495);
+    assert!(report.get("limit_at_rest").is_none(), "{stdout}");
+    let why = report["limit_at_rest_not_computed"].as_str().unwrap();
+    assert!(
+        why.starts_with("stopped by Ctrl-C after ")
+            && why.ends_with("before the programs of both sides were proved"),
+        "{why}"
+    );
+    assert!(!drawings.exists());
+}
+
 /// A disk that fills up during the writing of a run's files: a clear error that says so and
 /// what to do, no cut file, and no summary.json (which is written last, so its presence means
 /// the run's files are whole). Needs a small tmpfs, so root; elsewhere the test says it could
