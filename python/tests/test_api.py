@@ -330,10 +330,10 @@ def test_a_walls_limit_at_rest_is_exact_with_its_mechanism(root):
         assert limit["kind"] == "holds" and limit["exact_g"] == "7/25"
         assert limit["accel_g"] == 0.28
         assert [(m["block"], m["how"]) for m in limit["mechanism"]] == [(block, how)]
-    x = np.arange(601, dtype=float)
+    x = np.arange(1001, dtype=float)
     big = pirqa.Wall.from_rectangles(
-        x, np.zeros(601), np.ones(601), np.full(601, 0.5),
+        x, np.zeros(1001), np.ones(1001), np.full(1001, 0.5),
         thickness_m=0.5, friction=0.3, density_kg_m3=2500,
     )
-    with pytest.raises(pirqa.PirqaError, match="up to 600 movable blocks"):
+    with pytest.raises(pirqa.PirqaError, match="up to 1000 movable blocks"):
         big.limit_at_rest()

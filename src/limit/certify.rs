@@ -72,15 +72,13 @@ pub(super) fn basis(
         .map(|b| if b.is_negative() { -Q::one() } else { Q::one() })
         .collect();
     let b: Vec<Q> = program.b.iter().zip(&sign).map(|(b, s)| b * s).collect();
-    // The columns of A with the rows negated, sparse.
-    let mut columns: Vec<Vec<(usize, Q)>> = vec![Vec::new(); n];
-    for (i, row) in program.a.iter().enumerate() {
-        for (j, a) in row.iter().enumerate() {
-            if !a.is_zero() {
-                columns[j].push((i, a * &sign[i]));
-            }
-        }
-    }
+    // The columns of A with the rows negated.
+    let columns: Vec<Vec<(usize, Q)>> = (0..n)
+        .map(|j| {
+            let column = program.column(j).iter();
+            column.map(|(i, a)| (*i, a * &sign[*i])).collect()
+        })
+        .collect();
     let column = |j: usize| -> Vec<(usize, Q)> {
         if j < n {
             columns[j].clone()
@@ -252,7 +250,7 @@ fn eliminate<const K: usize>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     /// The exact run, never stopped.
@@ -265,13 +263,23 @@ mod tests {
     }
 
     fn program(a: &[&[i128]], b: &[i128], c: &[i128]) -> Program {
-        Program {
-            a: a.iter()
-                .map(|r| r.iter().map(|&v| q(v)).collect())
-                .collect(),
-            b: b.iter().map(|&v| q(v)).collect(),
-            c: c.iter().map(|&v| q(v)).collect(),
-        }
+        let rows: Vec<Vec<Q>> = a
+            .iter()
+            .map(|r| r.iter().map(|&v| q(v)).collect())
+            .collect();
+        from_rows(
+            &rows,
+            b.iter().map(|&v| q(v)).collect(),
+            c.iter().map(|&v| q(v)).collect(),
+        )
+    }
+
+    /// The program of A's dense `rows` (each as long as `c`).
+    pub(in crate::limit) fn from_rows(rows: &[Vec<Q>], b: Vec<Q>, c: Vec<Q>) -> Program {
+        let columns = (0..c.len())
+            .map(|j| rows.iter().map(|r| r[j].clone()).enumerate().collect())
+            .collect();
+        Program::new(columns, b, c)
     }
 
     /// Checks an optimum's certificate: A x = b, x >= 0, c - A^T y >= 0 with complementary
@@ -280,18 +288,16 @@ mod tests {
         let Outcome::Optimal { x, value, y } = out else {
             panic!("not optimal: {out:?}");
         };
-        for (row, b) in p.a.iter().zip(&p.b) {
-            let ax: Q = row.iter().zip(x).map(|(a, x)| a * x).sum();
-            assert_eq!(&ax, b);
+        let mut ax = vec![Q::zero(); p.b.len()];
+        for (i, j, a) in p.entries() {
+            ax[i] = &ax[i] + &(a * &x[j]);
         }
-        for j in 0..p.c.len() {
-            assert!(!x[j].is_negative());
-            let slack = &p.c[j] - p.a.iter().zip(y).map(|(r, y)| &r[j] * y).sum::<Q>();
+        assert_eq!(ax, p.b);
+        for (j, (x, c)) in x.iter().zip(&p.c).enumerate() {
+            assert!(!x.is_negative());
+            let slack = c - &p.dot(j, y);
             assert!(!slack.is_negative(), "dual infeasible in column {j}");
-            assert!(
-                x[j].is_zero() || slack.is_zero(),
-                "not complementary in {j}"
-            );
+            assert!(x.is_zero() || slack.is_zero(), "not complementary in {j}");
         }
         let by: Q = p.b.iter().zip(y).map(|(b, y)| b * y).sum();
         assert_eq!(&by, value);
@@ -369,8 +375,7 @@ mod tests {
                 panic!("feasible?")
             };
             for j in 0..2 {
-                let aty: Q = p.a.iter().zip(&y).map(|(r, y)| &r[j] * y).sum();
-                assert!(!aty.is_positive());
+                assert!(!p.dot(j, &y).is_positive());
             }
             let by: Q = p.b.iter().zip(&y).map(|(b, y)| b * y).sum();
             assert!(by.is_positive());
@@ -389,15 +394,15 @@ mod tests {
         // Beale's example (max 3/4 x4 - 150 x5 + 1/50 x6 - 6 x7), which cycles under the
         // largest-coefficient rule; optimum 1/20.
         let r = |v: &[(i128, i128)]| v.iter().map(|&(n, d)| Q::frac(n, d)).collect::<Vec<_>>();
-        let p = Program {
-            a: vec![
+        let p = from_rows(
+            &[
                 r(&[(1, 4), (-60, 1), (-1, 25), (9, 1), (1, 1), (0, 1), (0, 1)]),
                 r(&[(1, 2), (-90, 1), (-1, 50), (3, 1), (0, 1), (1, 1), (0, 1)]),
                 r(&[(0, 1), (0, 1), (1, 1), (0, 1), (0, 1), (0, 1), (1, 1)]),
             ],
-            b: r(&[(0, 1), (0, 1), (1, 1)]),
-            c: r(&[(-3, 4), (150, 1), (-1, 50), (6, 1), (0, 1), (0, 1), (0, 1)]),
-        };
+            r(&[(0, 1), (0, 1), (1, 1)]),
+            r(&[(-3, 4), (150, 1), (-1, 50), (6, 1), (0, 1), (0, 1), (0, 1)]),
+        );
         let out = agrees(&p);
         optimal(&p, &out);
         assert!(matches!(out, Outcome::Optimal { value, .. } if value == Q::frac(-1, 20)));

@@ -26,24 +26,37 @@ use crate::topology::{Base, BlockId, HorizontalJoint, Topology, VerticalJoint};
 use crate::wall::{Block, Wall};
 use simplex::{Outcome, Program};
 
-/// The most movable blocks a limit is computed for: below every size where the revised
-/// simplex's basis was proved on every wall tried (generated running bonds of 203 to 689
-/// blocks at rest in 1.5 to 66 s, docs/rocking-walls.md), and a dense program of about half a
-/// gigabyte at 600 blocks. A basis that is not proved falls back to the exact tableau, whose
-/// fractions grow with every pivot and which is dense: it had not finished on 495 blocks after
-/// 400 s (a running bond of 102 blocks took it 0.7 s, the 60 blocks of
-/// walls/inca/qorikancha.ron 25 s).
-pub const MAX_BLOCKS: usize = 600;
+/// The most movable blocks the limit at rest is computed for: the size up to which the
+/// revised simplex's bases were proved on every wall tried (generated running bonds up to 976
+/// blocks, the block-count study's 976-block wall with sampled friction; a few minutes at the
+/// largest, docs/rocking-walls.md "Raising the bound"). The programs are sparse, a few
+/// megabytes at this size; the time grows faster than the square of the wall.
+pub const MAX_BLOCKS: usize = 1000;
 
-/// Why a program over `movable` blocks is not built (beyond [`MAX_BLOCKS`]), naming `what` it
-/// is for.
-pub(crate) fn too_large(what: &str, movable: usize) -> Option<String> {
-    (movable > MAX_BLOCKS).then(|| {
-        format!(
-            "{what} is computed for walls of up to {MAX_BLOCKS} movable blocks (its exact \
-             fallback is a dense tableau); this wall has {movable}"
-        )
+/// The most movable blocks whose programs fall back to the exact tableau where no
+/// floating-point run's basis is proved, and so the most the uplift check takes (a run asks it
+/// for many programs, each of which must be answered). The tableau is dense, rows times
+/// columns of rationals whose fractions grow with every pivot: it had not finished on 495
+/// blocks after 400 s (a running bond of 102 blocks took it 0.7 s, the 60 blocks of
+/// walls/inca/qorikancha.ron 25 s), and at 600 blocks it starts at half a gigabyte.
+pub const EXACT_BLOCKS: usize = 600;
+
+/// Why a program over `movable` blocks is not built (beyond `bound`), naming `what` it is for
+/// and `why` the bound.
+pub(crate) fn too_large(what: &str, movable: usize, bound: usize, why: &str) -> Option<String> {
+    (movable > bound).then(|| {
+        format!("{what} is computed for walls of up to {bound} movable blocks ({why}); this wall has {movable}")
     })
+}
+
+/// Why the uplift check is not computed for `movable` blocks, where it is not.
+pub(crate) fn too_large_for_exact(what: &str, movable: usize) -> Option<String> {
+    too_large(
+        what,
+        movable,
+        EXACT_BLOCKS,
+        "its exact fallback is a dense tableau",
+    )
 }
 
 /// The wall's limits at rest, towards +x and towards -x.
@@ -115,7 +128,8 @@ pub fn at_rest_until(
     let movable: Vec<usize> = (0..wall.blocks.len())
         .filter(|&i| !wall.blocks[i].fixed)
         .collect();
-    if let Some(why) = too_large("the limit at rest", movable.len()) {
+    let why = "its programs take minutes at that size, and more beyond";
+    if let Some(why) = too_large("the limit at rest", movable.len(), MAX_BLOCKS, why) {
         return Err(SimulationError::NotApplicable(why));
     }
     let forces = forces(wall, topo);
@@ -231,7 +245,28 @@ fn direction(
 ) -> Result<Option<Limit>, SimulationError> {
     let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
     let program = program(wall, topo, movable, forces, &centroids, s);
-    let Some(outcome) = certify::solve(&program, stop) else {
+    let outcome = if movable.len() <= EXACT_BLOCKS {
+        certify::solve(&program, stop)
+    } else {
+        let stopped = std::cell::Cell::new(false);
+        let watched = || {
+            stopped.set(stopped.get() || stop());
+            stopped.get()
+        };
+        let proved = certify::certified(&program, &watched);
+        if proved.is_none() && !stopped.get() {
+            return Err(SimulationError::NotApplicable(format!(
+                "the limit at rest towards {} was not proved: no floating-point run of its \
+                 program ended on a basis that checks exactly, and the exact tableau is run \
+                 only for walls of up to {EXACT_BLOCKS} movable blocks (it is dense); this \
+                 wall has {}",
+                if s > 0 { "+x" } else { "-x" },
+                movable.len()
+            )));
+        }
+        proved
+    };
+    let Some(outcome) = outcome else {
         return Ok(None);
     };
     match outcome {
@@ -283,28 +318,32 @@ fn program(
         .map(|(k, &i)| (i, 3 * k))
         .collect();
     let m = 3 * movable.len();
-    let n = forces.len() + 1;
-    let mut a = vec![vec![Q::zero(); n]; m];
-    for (j, f) in forces.iter().enumerate() {
-        let e = entries(f, &centroids[f.on]);
-        for (k, x) in e.into_iter().enumerate() {
-            a[row_of[&f.on] + k][j] = x;
-        }
-        if let Some(o) = f.against {
-            for (k, x) in entries(f, &centroids[o]).into_iter().enumerate() {
-                a[row_of[&o] + k][j] = -x;
+    let mut columns: Vec<Vec<(usize, Q)>> = forces
+        .iter()
+        .map(|f| {
+            let on = entries(f, &centroids[f.on]).into_iter();
+            let mut column: Vec<(usize, Q)> = on
+                .enumerate()
+                .map(|(k, x)| (row_of[&f.on] + k, x))
+                .collect();
+            if let Some(o) = f.against {
+                let against = entries(f, &centroids[o]).into_iter().enumerate();
+                column.extend(against.map(|(k, x)| (row_of[&o] + k, -x)));
             }
-        }
-    }
+            column
+        })
+        .collect();
     let mut b = vec![Q::zero(); m];
+    let mut accel = Vec::with_capacity(movable.len());
     for (k, &i) in movable.iter().enumerate() {
         let mass = &topo.blocks[i].mass_kg;
-        a[3 * k][n - 1] = -(mass * &Q::frac(s, 1));
+        accel.push((3 * k, -(mass * &Q::frac(s, 1))));
         b[3 * k + 1] = mass * &wall.g_m_s2;
     }
-    let mut c = vec![Q::zero(); n];
-    c[n - 1] = -Q::one();
-    Program { a, b, c }
+    columns.push(accel);
+    let mut c = vec![Q::zero(); columns.len()];
+    c[columns.len() - 1] = -Q::one();
+    Program::new(columns, b, c)
 }
 
 /// The mechanism from the multipliers of the balances: minus each block's three multipliers

@@ -107,27 +107,34 @@ pub(super) fn floating(
     stop: &dyn Fn() -> bool,
 ) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
     let (m, n) = (program.b.len(), program.c.len());
-    let mut scales = Vec::with_capacity(m);
-    let mut b = Vec::with_capacity(m);
-    let mut columns: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
-    for (i, (row, rhs)) in program.a.iter().zip(&program.b).enumerate() {
-        let row: Vec<f64> = row.iter().map(Q::to_f64).collect();
-        let rhs = rhs.to_f64();
-        let scale = row.iter().fold(rhs.abs(), |s, x| s.max(x.abs()));
-        let scale = if scale > 0.0 { scale } else { 1.0 };
-        // Rows with b < 0 are negated, so the artificial basis starts feasible.
-        let sign = if rhs < 0.0 { -1.0 } else { 1.0 };
-        for (j, &a) in row.iter().enumerate() {
-            if a != 0.0 {
-                columns[j].push((i, sign * a / scale));
-            }
-        }
-        b.push(sign * rhs / scale);
-        scales.push(scale);
+    let rhs: Vec<f64> = program.b.iter().map(Q::to_f64).collect();
+    // Each row divided by its largest entry (b's included).
+    let mut scales: Vec<f64> = rhs.iter().map(|r| r.abs()).collect();
+    for (i, _, a) in program.entries() {
+        scales[i] = scales[i].max(a.to_f64().abs());
     }
+    scales
+        .iter_mut()
+        .filter(|s| **s == 0.0)
+        .for_each(|s| *s = 1.0);
+    // Rows with b < 0 are negated, so the artificial basis starts feasible.
+    let sign: Vec<f64> = rhs
+        .iter()
+        .map(|&r| if r < 0.0 { -1.0 } else { 1.0 })
+        .collect();
+    let columns: Vec<Vec<(usize, f64)>> = (0..n)
+        .map(|j| {
+            let column = program.column(j).iter().map(|(i, a)| (*i, a.to_f64()));
+            column
+                .filter(|&(_, a)| a != 0.0)
+                .map(|(i, a)| (i, sign[i] * a / scales[i]))
+                .collect()
+        })
+        .collect();
+    let b: Vec<f64> = (0..m).map(|i| sign[i] * rhs[i] / scales[i]).collect();
     let c: Vec<f64> = program.c.iter().map(Q::to_f64).collect();
     let largest = |v: &mut dyn Iterator<Item = &Q>| v.map(|q| q.to_f64().abs()).fold(0.0, f64::max);
-    let unit = largest(&mut program.b.iter()) / largest(&mut program.a.iter().flatten());
+    let unit = largest(&mut program.b.iter()) / largest(&mut program.entries().map(|(.., a)| a));
     let unit = if unit.is_normal() { unit } else { 1.0 };
     let mut run = Run::new(columns, b, 50 * (m + n) + 1000, rules, unit)?;
     let ending = run.both_phases(&c, stop)?;
@@ -538,6 +545,7 @@ impl Run {
 mod tests {
     use super::*;
     use crate::limit::certify::certified;
+    use crate::limit::certify::tests::from_rows;
     use crate::limit::simplex::Outcome;
 
     /// A sparse program with small integer data, three entries a column: feasible (b = A x0,
@@ -555,13 +563,11 @@ mod tests {
         let b = a.iter().map(|r| (0..n).map(|j| r[j] * x0[j]).sum::<i128>());
         let c = (0..n).map(|j| (0..m).map(|i| a[i][j] * y0[i]).sum::<i128>() + small(4));
         let q = |v: i128| Q::frac(v, 1);
-        Program {
-            a: a.iter()
-                .map(|r| r.iter().map(|&v| q(v)).collect())
-                .collect(),
-            b: b.map(q).collect(),
-            c: c.map(q).collect(),
-        }
+        let rows: Vec<Vec<Q>> = a
+            .iter()
+            .map(|r| r.iter().map(|&v| q(v)).collect())
+            .collect();
+        from_rows(&rows, b.map(q).collect(), c.map(q).collect())
     }
 
     /// A program written as tests/data/limit/*.txt say: "m n", b and c as `index:value`,
@@ -594,14 +600,8 @@ mod tests {
         };
         let b = dense(m, entries(line()));
         let c = dense(n, entries(line()));
-        let mut a = vec![vec![Q::zero(); n]; m];
         let columns: Vec<_> = (0..n).map(|_| entries(line())).collect();
-        for (j, column) in columns.into_iter().enumerate() {
-            for (i, x) in column {
-                a[i][j] = x;
-            }
-        }
-        Program { a, b, c }
+        Program::new(columns, b, c)
     }
 
     /// The program written in `text` (`read`) has an optimum its floating-point run proves.

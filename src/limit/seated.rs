@@ -92,7 +92,7 @@ pub fn interval(
     let movable: Vec<usize> = (0..wall.blocks.len())
         .filter(|&i| state.moving[i].is_some())
         .collect();
-    if let Some(why) = super::too_large(WHAT, movable.len()) {
+    if let Some(why) = super::too_large_for_exact(WHAT, movable.len()) {
         return Err(SimulationError::NotApplicable(why));
     }
     if movable.is_empty() {
@@ -134,7 +134,8 @@ const ROWS: usize = 3;
 struct Builder<'a> {
     movable: &'a [usize],
     centroids: Vec<[Q; 2]>,
-    a: Vec<Vec<Q>>,
+    /// A's columns, a_g's two parts last.
+    columns: Vec<Vec<(usize, Q)>>,
     b: Vec<Q>,
     /// Column of a_g's positive part (its negative part follows).
     ag: usize,
@@ -185,34 +186,39 @@ impl<'a> Builder<'a> {
         }
         let m = ROWS * movable.len();
         let ag = columns.len();
-        let mut a = vec![vec![Q::zero(); ag + 2]; m];
-        let mut b = vec![Q::zero(); m];
-        for (j, f) in columns.iter().enumerate() {
-            for (o, sign) in [(Some(f.on), 1), (f.against, -1)] {
-                let Some((o, r0)) = o.and_then(|o| Some((o, row_of[o]?))) else {
-                    continue;
-                };
-                for (k, x) in entries(f, &centroids[o]).into_iter().enumerate() {
-                    a[r0 + k][j] = &x * &Q::frac(sign, 1);
+        let mut a: Vec<Vec<(usize, Q)>> = columns
+            .iter()
+            .map(|f| {
+                let mut column = Vec::with_capacity(2 * ROWS);
+                for (o, sign) in [(Some(f.on), 1), (f.against, -1)] {
+                    let Some((o, r0)) = o.and_then(|o| Some((o, row_of[o]?))) else {
+                        continue;
+                    };
+                    let e = entries(f, &centroids[o]).into_iter().enumerate();
+                    column.extend(e.map(|(k, x)| (r0 + k, &x * &Q::frac(sign, 1))));
                 }
-            }
-        }
+                column
+            })
+            .collect();
+        let mut b = vec![Q::zero(); m];
+        let (mut plus, mut minus) = (Vec::new(), Vec::new());
         for (k, &i) in movable.iter().enumerate() {
             let mass = &topo.blocks[i].mass_kg;
             let row = ROWS * k;
             match state.moving[i].as_ref().expect("movable") {
                 Moving::Ground => {
-                    a[row][ag] = -mass.clone();
-                    a[row][ag + 1] = mass.clone();
+                    plus.push((row, -mass.clone()));
+                    minus.push((row, mass.clone()));
                 }
                 Moving::At(c) => b[row] = mass * c,
             }
             b[row + 1] = mass * &wall.g_m_s2;
         }
+        a.extend([plus, minus]);
         Builder {
             movable,
             centroids,
-            a,
+            columns: a,
             b,
             ag,
         }
@@ -220,14 +226,10 @@ impl<'a> Builder<'a> {
 
     /// The program that pushes a_g furthest towards the side of `s` (+1: +x): minimise -s a_g.
     fn program(&self, s: i128) -> Program {
-        let mut c = vec![Q::zero(); self.a[0].len()];
+        let mut c = vec![Q::zero(); self.columns.len()];
         c[self.ag] = Q::frac(-s, 1);
         c[self.ag + 1] = Q::frac(s, 1);
-        Program {
-            a: self.a.clone(),
-            b: self.b.clone(),
-            c,
-        }
+        Program::new(self.columns.clone(), self.b.clone(), c)
     }
 
     /// The mechanism the multipliers of the balances give. A turn about a point that is no

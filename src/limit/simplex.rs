@@ -14,14 +14,56 @@
 
 use crate::exact::Q;
 
-/// A linear program in standard form: minimise `c x` subject to `a x = b`, `x >= 0`.
+/// A linear program in standard form: minimise `c x` subject to `A x = b`, `x >= 0`. A is kept
+/// by columns, sparse: a contact force enters the balances of at most two blocks, six entries
+/// in a column of thousands of rows (dense, the program of 600 blocks took half a gigabyte).
 pub(crate) struct Program {
-    /// The rows of A (each as long as `c`).
-    pub(crate) a: Vec<Vec<Q>>,
+    /// The columns of A (one per cost), each its nonzero entries `(row, value)` by row.
+    columns: Vec<Vec<(usize, Q)>>,
     /// The right-hand side, one per row.
     pub(crate) b: Vec<Q>,
     /// The costs, one per column.
     pub(crate) c: Vec<Q>,
+}
+
+impl Program {
+    /// The program of A's `columns` (entries in any order, zeros allowed; a row given twice in
+    /// a column is a mistake), `b` and `c`.
+    pub(crate) fn new(columns: Vec<Vec<(usize, Q)>>, b: Vec<Q>, c: Vec<Q>) -> Program {
+        debug_assert_eq!(columns.len(), c.len());
+        let columns = columns
+            .into_iter()
+            .map(|mut column| {
+                column.retain(|(i, a)| {
+                    debug_assert!(*i < b.len());
+                    !a.is_zero()
+                });
+                column.sort_unstable_by_key(|&(i, _)| i);
+                debug_assert!(column.windows(2).all(|w| w[0].0 < w[1].0));
+                column
+            })
+            .collect();
+        Program { columns, b, c }
+    }
+
+    /// Column j of A: its nonzero entries by row.
+    pub(crate) fn column(&self, j: usize) -> &[(usize, Q)] {
+        &self.columns[j]
+    }
+
+    /// Every nonzero entry of A, `(row, column, value)`.
+    pub(crate) fn entries(&self) -> impl Iterator<Item = (usize, usize, &Q)> {
+        self.columns
+            .iter()
+            .enumerate()
+            .flat_map(|(j, column)| column.iter().map(move |(i, a)| (*i, j, a)))
+    }
+
+    /// The product A^T y of column j with the row multipliers `y`.
+    #[cfg(test)]
+    pub(crate) fn dot(&self, j: usize, y: &[Q]) -> Q {
+        self.columns[j].iter().map(|(i, a)| a * &y[*i]).sum()
+    }
 }
 
 /// What a program has.
@@ -73,18 +115,22 @@ pub(super) enum Stop {
 }
 
 impl Tableau {
-    fn new(a: Vec<Vec<Q>>, b: Vec<Q>) -> Self {
-        let (m, n) = (b.len(), a.first().map_or(0, Vec::len));
-        let flipped: Vec<bool> = b.iter().map(Q::is_negative).collect();
-        let mut rows = Vec::with_capacity(m);
-        let mut rhs = Vec::with_capacity(m);
-        for (k, (row, b)) in a.into_iter().zip(b).enumerate() {
-            let s = |x: Q| if flipped[k] { -x } else { x };
-            let mut r: Vec<Q> = row.into_iter().map(s).collect();
-            r.extend((0..m).map(|i| if i == k { Q::one() } else { Q::zero() }));
-            rows.push(r);
-            rhs.push(s(b));
+    /// The tableau of `program`, dense, with an artificial column per row.
+    fn new(program: &Program) -> Self {
+        let (m, n) = (program.b.len(), program.c.len());
+        let flipped: Vec<bool> = program.b.iter().map(Q::is_negative).collect();
+        let s = |k: usize, x: Q| if flipped[k] { -x } else { x };
+        let mut rows: Vec<Vec<Q>> = (0..m)
+            .map(|k| {
+                let mut r = vec![Q::zero(); n + m];
+                r[n + k] = Q::one();
+                r
+            })
+            .collect();
+        for (i, j, a) in program.entries() {
+            rows[i][j] = s(i, a.clone());
         }
+        let rhs = (0..m).map(|k| s(k, program.b[k].clone())).collect();
         Tableau {
             rows,
             rhs,
@@ -234,7 +280,7 @@ impl Tableau {
 /// Solves the program in exact arithmetic alone; `None` where `stop` asked it to stop (it
 /// looks at every pivot: a run of a large program can take hours).
 pub(super) fn exact(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
-    let mut t = Tableau::new(program.a.clone(), program.b.clone());
+    let mut t = Tableau::new(program);
     let (ending, cost) = t.run(program.c.clone(), stop)?;
     Some(match ending {
         Ending::Infeasible => Outcome::Infeasible {

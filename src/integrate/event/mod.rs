@@ -92,7 +92,7 @@ pub struct Params {
     pub beside_stuck_from: usize,
     /// Watch the run for the first instant at which no contact forces keep every block seated
     /// (`uplift.rs`, summary.json's `uplift_check`): adds to the answer, changes none of it.
-    /// Walls of up to `limit::MAX_BLOCKS` moving blocks.
+    /// Walls of up to `limit::EXACT_BLOCKS` moving blocks.
     pub watch_uplift: bool,
 }
 
@@ -283,7 +283,7 @@ impl<'a> Engine<'a> {
             rec.log_decisions(sc.settings.decisions_file.as_deref());
         }
         let movable = wall.blocks.iter().filter(|b| !b.fixed).count();
-        let too_large = crate::limit::too_large(crate::limit::seated::WHAT, movable);
+        let too_large = crate::limit::too_large_for_exact(crate::limit::seated::WHAT, movable);
         if let Some(why) = too_large.filter(|_| params.watch_uplift) {
             return Err(SimulationError::NotApplicable(format!(
                 "{why}: leave --check-uplift out"
