@@ -22,16 +22,40 @@ pub(crate) fn solve(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcom
 /// [`revised::RUNS`] tried in turn; `None` where each gave up or its basis proves nothing, or
 /// where `stop` said so (no run is tried after that).
 pub(crate) fn certified(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
+    watched(program, stop).0
+}
+
+/// No floating-point run ended on a basis that proves its answer.
+#[derive(Debug, PartialEq)]
+pub(crate) struct NotProved;
+
+/// [`certified`], telling a stop from runs that all failed: `Ok(None)` where `stop` said so,
+/// `Err(NotProved)` where no run's basis proved the answer (for programs too large for the
+/// exact run to follow).
+pub(crate) fn proved(
+    program: &Program,
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<Outcome>, NotProved> {
+    match watched(program, stop) {
+        (Some(outcome), _) => Ok(Some(outcome)),
+        (None, true) => Ok(None),
+        (None, false) => Err(NotProved),
+    }
+}
+
+/// The certified runs' answer, and whether `stop` said to stop.
+fn watched(program: &Program, stop: &dyn Fn() -> bool) -> (Option<Outcome>, bool) {
     let stopped = std::cell::Cell::new(false);
     let watched = || {
         let asked = stop();
         stopped.set(stopped.get() || asked);
         asked
     };
-    revised::RUNS
+    let outcome = revised::RUNS
         .iter()
         .take_while(|_| !stopped.get())
-        .find_map(|&rules| certified_by(program, rules, &watched))
+        .find_map(|&rules| certified_by(program, rules, &watched));
+    (outcome, stopped.get())
 }
 
 /// The answer of the floating-point run under `rules`, where its last basis proves it.
@@ -341,6 +365,26 @@ pub(super) mod tests {
         assert_eq!(solve(&p, &stop), None);
         assert_eq!(asked.get(), 3);
         assert!(solve(&p, &|| false).is_some());
+    }
+
+    /// Rows that differ below the last bit of a float: every floating-point run sees the
+    /// same row twice, and no basis it ends on holds up in rationals. The exact run finds the
+    /// optimum; without it the program is not proved, which a stop is told from.
+    #[test]
+    fn a_program_whose_rows_round_alike_is_not_proved_by_floating_point() {
+        let e = Q::frac(1, 1_000_000_000_000_000_000);
+        let p = from_rows(
+            &[vec![q(1), q(1)], vec![q(1), &q(1) + &e]],
+            vec![q(1), &q(1) + &(&e * &Q::frac(1, 2))],
+            vec![q(1), q(1)],
+        );
+        assert_eq!(proved(&p, &|| false), Err(NotProved));
+        assert_eq!(proved(&p, &|| true), Ok(None));
+        let half = Q::frac(1, 2);
+        let Some(Outcome::Optimal { x, value, .. }) = solve(&p, &|| false) else {
+            panic!("the exact run solves it");
+        };
+        assert_eq!((x, value), (vec![half.clone(), half], q(1)));
     }
 
     #[test]

@@ -248,23 +248,16 @@ fn direction(
     let outcome = if movable.len() <= EXACT_BLOCKS {
         certify::solve(&program, stop)
     } else {
-        let stopped = std::cell::Cell::new(false);
-        let watched = || {
-            stopped.set(stopped.get() || stop());
-            stopped.get()
-        };
-        let proved = certify::certified(&program, &watched);
-        if proved.is_none() && !stopped.get() {
-            return Err(SimulationError::NotApplicable(format!(
+        certify::proved(&program, stop).map_err(|certify::NotProved| {
+            SimulationError::NotApplicable(format!(
                 "the limit at rest towards {} was not proved: no floating-point run of its \
                  program ended on a basis that checks exactly, and the exact tableau is run \
                  only for walls of up to {EXACT_BLOCKS} movable blocks (it is dense); this \
                  wall has {}",
                 if s > 0 { "+x" } else { "-x" },
                 movable.len()
-            )));
-        }
-        proved
+            ))
+        })?
     };
     let Some(outcome) = outcome else {
         return Ok(None);
