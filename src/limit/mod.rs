@@ -45,7 +45,10 @@ pub const EXACT_BLOCKS: usize = 600;
 /// and `why` the bound.
 pub(crate) fn too_large(what: &str, movable: usize, bound: usize, why: &str) -> Option<String> {
     (movable > bound).then(|| {
-        format!("{what} is computed for walls of up to {bound} movable blocks ({why}); this wall has {movable}")
+        format!(
+            "{what} is computed for walls of up to {bound} movable blocks ({why}); this wall \
+             has {movable}"
+        )
     })
 }
 
