@@ -407,8 +407,13 @@ impl<'a> Engine<'a> {
         if p.at(self.t.min(self.given.t_end)) || self.t >= self.given.t_end {
             return true;
         }
-        self.rec.interrupted_at_s = Some(self.t);
+        self.interrupt();
         false
+    }
+
+    /// Marks the run stopped at the time it reached: it ends there with what it has.
+    pub(super) fn interrupt(&mut self) {
+        self.rec.interrupted_at_s = Some(self.t);
     }
 
     fn s(&self) -> f64 {

@@ -79,7 +79,7 @@ impl Engine<'_> {
                 w.done = true;
             }
             Look::Stopped => {
-                self.rec.interrupted_at_s = Some(self.t);
+                self.interrupt();
                 go_on = false;
             }
         }
