@@ -322,7 +322,17 @@ fn limit_at_rest(
     spinner.enable_steady_tick(std::time::Duration::from_millis(200));
     let stop = super::stop_flag();
     let started = std::time::Instant::now();
+    // The programs ask before every pivot: a count of them shows a large wall's check moving.
+    let pivots = std::cell::Cell::new(0_u64);
     let limit = pirqa::limit::at_rest_until(wall, topo, &|| {
+        pivots.set(pivots.get() + 1);
+        if pivots.get().is_multiple_of(1024) {
+            spinner.set_message(format!(
+                "the limit at rest: {} pivots of its linear programs in {:.0} s (Ctrl-C stops)",
+                pivots.get(),
+                started.elapsed().as_secs_f64()
+            ));
+        }
         stop.load(std::sync::atomic::Ordering::Relaxed)
     });
     spinner.finish_and_clear();
