@@ -113,7 +113,19 @@ def test_a_killed_sweep_resumes_to_the_uninterrupted_files(spec, serial, tmp_pat
     out = tmp_path / "killed"
     script = tmp_path / "killed.py"
     script.write_text(KILLED)
-    run = lambda *args: subprocess.run([sys.executable, str(script), str(spec), str(out), *args])
+
+    def run(*args: str) -> subprocess.Popen:
+        # In a process group of its own, whose pool workers, orphaned by the kill, go with it
+        # (as a batch system ends a job's processes), instead of outliving the tests.
+        p = subprocess.Popen([sys.executable, str(script), str(spec), str(out), *args],
+                             start_new_session=True)
+        p.wait()
+        try:
+            os.killpg(p.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        return p
+
     assert run("3").returncode == -signal.SIGKILL
     stored = (out / "cases.csv").read_text().count("\n") - 1
     assert 12 <= stored < 60, stored
