@@ -46,7 +46,7 @@ pub(crate) fn proved(
 /// The certified runs' answer, and whether `stop` said to stop.
 fn watched(program: &Program, stop: &dyn Fn() -> bool) -> (Option<Outcome>, bool) {
     let stopped = std::cell::Cell::new(false);
-    let watched = || {
+    let ask = || {
         let asked = stop();
         stopped.set(stopped.get() || asked);
         asked
@@ -54,7 +54,7 @@ fn watched(program: &Program, stop: &dyn Fn() -> bool) -> (Option<Outcome>, bool
     let outcome = revised::RUNS
         .iter()
         .take_while(|_| !stopped.get())
-        .find_map(|&rules| certified_by(program, rules, &watched));
+        .find_map(|&rules| certified_by(program, rules, &ask));
     (outcome, stopped.get())
 }
 

@@ -298,6 +298,29 @@ fn a_vertical_component_beside_a_sine_is_refused() {
     );
 }
 
+/// Runs pirqa with `args`, sends it SIGINT (what Ctrl-C sends) after `wait_ms`, and returns
+/// its exit code and stdout.
+#[cfg(unix)]
+fn interrupted_after(args: &[&str], wait_ms: u64) -> (Option<i32>, String) {
+    let child = Command::new(env!("CARGO_BIN_EXE_pirqa"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(wait_ms));
+    let sent = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+    )
+}
+
 /// Ctrl-C (SIGINT) stops a long run at the time it reached: exit code 130, and the files of the
 /// motion up to then, the summary saying where it stopped. Both kinds of integrator: the
 /// event-driven one on a sine of one segment (it looks at the request every few thousand
@@ -329,21 +352,8 @@ fn ctrl_c_stops_a_run_and_writes_what_it_has() {
         let mut args = vec!["run", WALL, "--sine", "400gal", "--freq", "1"];
         args.extend(extra);
         args.extend(["--out", dir.to_str().unwrap()]);
-        let child = Command::new(env!("CARGO_BIN_EXE_pirqa"))
-            .args(&args)
-            .stdout(std::process::Stdio::piped())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        std::thread::sleep(std::time::Duration::from_millis(800));
-        let sent = Command::new("kill")
-            .args(["-INT", &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
-        let out = child.wait_with_output().unwrap();
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        assert_eq!(out.status.code(), Some(130), "{args:?}: {stdout}");
+        let (code, stdout) = interrupted_after(&args, 800);
+        assert_eq!(code, Some(130), "{args:?}: {stdout}");
         assert!(stdout.contains("INTERRUPTED at t = "), "{stdout}");
         let summary: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
@@ -383,28 +393,17 @@ fn ctrl_c_stops_the_limit_at_rest_and_says_so() {
     let (code, _, err) = pirqa(&["generate", "--blocks", "500", "-o", wall.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let drawings = dir.join("mechanism");
-    let child = Command::new(env!("CARGO_BIN_EXE_pirqa"))
-        .args([
-            "check",
-            wall.to_str().unwrap(),
-            "--limit",
-            "--json",
-            "--mechanism",
-        ])
-        .arg(&drawings)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    let sent = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(sent.success());
-    let out = child.wait_with_output().unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(130), "{stdout}");
+    let (wall, drawings_arg) = (wall.to_str().unwrap(), drawings.to_str().unwrap());
+    let args = [
+        "check",
+        wall,
+        "--limit",
+        "--json",
+        "--mechanism",
+        drawings_arg,
+    ];
+    let (code, stdout) = interrupted_after(&args, 1500);
+    assert_eq!(code, Some(130), "{stdout}");
     let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert_eq!(report["blocks"].as_array().unwrap().len(), 495);
     assert!(report.get("limit_at_rest").is_none(), "{stdout}");
