@@ -127,6 +127,25 @@ def test_the_uplift_check_says_when_a_block_would_start_to_turn(root):
     assert "uplift_check" not in pirqa.run(wall, motion, model="slide").summary
 
 
+def test_a_sliding_run_says_how_much_overlap_sliding_took_away():
+    """A block bridging two abutments, pushed right at (3 - 0.2 g) m/s2 relative to them for
+    0.5 s, leaves (3 - 0.2 g) 0.5^2 / 2 m of its 0.8 m on the left one: summary["max_overlap_loss"]
+    to round-off, and the warning that names the joint; with rotations there is none."""
+    wall = pirqa.Wall.from_ron(
+        """(version: 1, thickness_m: 1, density_kg_m3: 2000, friction: 0.2, rectangles: [
+            (x_m: 0, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
+            (x_m: 1.2, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
+            (x_m: 0.2, y_m: 0.5, width_m: 1.2, height_m: 0.5, name: "Top"),
+        ])"""
+    )
+    push = pirqa.Motion.from_array(np.full(52, -3.0), dt_s=0.01)
+    s = pirqa.run(wall, push, duration_s=0.5).summary
+    assert abs(s["max_overlap_loss"] - (3 - 0.2 * 9.81) * 0.125 / 0.8) < 1e-15
+    assert any(w.startswith("Top on B1: at u_Top - u_B1 = 0.129") for w in s["warnings"])
+    turning = pirqa.run(wall, push, duration_s=0.5, model="slide-rock", method="moreau", dt_s=1e-3)
+    assert "max_overlap_loss" not in turning.summary
+
+
 def test_errors_are_classed_and_say_what_the_command_line_says(root, cli, tmp_path):
     bad = tmp_path / "floating.ron"
     bad.write_text(

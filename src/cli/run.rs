@@ -661,6 +661,13 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
             let _ = writeln!(t, "  no collapse");
         }
     }
+    if let Some(loss) = s.max_overlap_loss {
+        let _ = writeln!(
+            t,
+            "  overlap lost to sliding: at most {:.1} % of a joint's at rest",
+            100.0 * loss
+        );
+    }
     match &s.worst {
         Some(w) => {
             let _ = writeln!(

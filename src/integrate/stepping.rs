@@ -302,7 +302,7 @@ impl<'a> Observer<'a> {
             let d = self.d(j, u);
             self.rec.energy.friction_j += j.capacity * (d - self.d_last[k]).abs();
             self.d_last[k] = d;
-            self.rec.horizontal_extreme(k, d.abs());
+            self.rec.horizontal_extreme(k, d);
         }
         if let Some(i) = m.fallen(u, &self.gone) {
             if self.rec.collapse.is_none() {
@@ -362,6 +362,7 @@ impl<'a> Observer<'a> {
         self.rec.stats.events = steps;
         self.rec.warnings =
             crate::validity::rocking_warnings(sc.wall, sc.topology, self.rec.peak_accel());
+        self.rec.note_overlap_loss(sc.wall, sc.topology);
         self.rec
             .finish(method, &sc.wall.name, sc.motion.describe(), t, &u, &v)
     }

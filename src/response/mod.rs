@@ -349,6 +349,13 @@ pub struct Summary {
     pub energy: Energy,
     /// Work counters.
     pub stats: Stats,
+    /// The largest share of a joint's overlap at rest (where a block rests on another) that
+    /// sliding took away, 0 to 1: the sliding model keeps the loads and capacities of the
+    /// overlaps at rest, so its answer is one of small displacements while this is small
+    /// (a warning from [`crate::validity::SMALL_OVERLAP_LOSS`]). Absent for runs with rotations,
+    /// whose geometry moves.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_overlap_loss: Option<f64>,
     /// Warnings about the validity of the model for this run.
     pub warnings: Vec<Warning>,
     /// Across the wall's plane: the section nearest to overturning (absent when none lifted).
@@ -418,6 +425,21 @@ pub enum Warning {
     MoreCouldRock {
         /// How many more.
         more: usize,
+    },
+    /// A joint of a sliding run lost a share of its overlap at rest that is no longer small
+    /// ([`crate::validity::SMALL_OVERLAP_LOSS`]): the model keeps the loads and capacities of
+    /// the overlaps at rest.
+    OverlapLost {
+        /// The block on top.
+        upper: String,
+        /// What it rests on.
+        lower: String,
+        /// The joint's overlap at rest (m).
+        at_rest_m: f64,
+        /// Its least overlap along the run (m).
+        least_m: f64,
+        /// u_upper - u_lower there (m).
+        slip_m: f64,
     },
     /// The uplift check found an instant from which the sliding answer leaves rocking out.
     Lifts {
@@ -528,6 +550,26 @@ impl std::fmt::Display for Warning {
                 )
             }
             Warning::MoreCouldRock { more } => write!(f, "... and {more} more blocks could rock"),
+            Warning::OverlapLost {
+                upper,
+                lower,
+                at_rest_m,
+                least_m,
+                slip_m,
+            } => write!(
+                f,
+                "{upper} on {lower}: at u_{upper} - u_{lower} = {slip_m:.4} m their overlap was \
+                 {least_m:.4} m, {:.0} % less than its {at_rest_m:.4} m at rest{}; the sliding \
+                 model (and the uplift check) keeps the loads and friction capacities of the \
+                 overlaps at rest (eq. 3: small displacements), so its answer is approximate \
+                 once a joint has slid that far",
+                100.0 * (at_rest_m - least_m) / at_rest_m,
+                if *least_m == 0.0 {
+                    format!(", and {upper} no longer rested on {lower}")
+                } else {
+                    String::new()
+                }
+            ),
             Warning::Lifts { time_s, turning } => write!(
                 f,
                 "at t = {time_s} s no contact forces keep every block seated ({}): from there \

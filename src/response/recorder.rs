@@ -8,6 +8,7 @@ use super::{
     UpliftCheck, Warning,
 };
 use crate::topology::{Base, BlockId, HorizontalId, JointRef, Topology, VerticalId};
+use crate::validity;
 use crate::wall::Wall;
 
 /// Collects results as an integrator runs. Public for integrators outside the crate (the rapier
@@ -20,7 +21,8 @@ pub struct Recorder {
     vertical: Vec<(usize, usize)>,
     max_u: Vec<f64>,
     max_v: Vec<f64>,
-    max_d: Vec<f64>,
+    /// Least and greatest u_upper - u_lower of each horizontal joint so far (m).
+    relative_range: Vec<(f64, f64)>,
     max_a: Vec<f64>,
     max_theta: Vec<f64>,
     uplift: Vec<Option<f64>>,
@@ -60,6 +62,9 @@ pub struct Recorder {
     pub model: ModelUsed,
     /// The uplift check, when asked for.
     pub uplift_check: Option<UpliftCheck>,
+    /// The largest share of a joint's overlap lost to sliding, once noted at a sliding run's
+    /// end ([`Recorder::note_overlap_loss`]).
+    overlap_loss: Option<f64>,
 }
 
 /// A wall's horizontal joints as a recorder lists them: (upper block, lower block or `None`
@@ -83,6 +88,12 @@ pub fn horizontal_joints(
             )
         })
         .collect()
+}
+
+/// Widens the range (least, greatest) to take in `x`.
+fn widen((lo, hi): &mut (f64, f64), x: f64) {
+    *lo = lo.min(x);
+    *hi = hi.max(x);
 }
 
 impl Recorder {
@@ -115,7 +126,7 @@ impl Recorder {
             HistoryTo::Nowhere | HistoryTo::Memory => None,
         };
         Recorder {
-            max_d: vec![0.0; horizontal.len()],
+            relative_range: vec![(0.0, 0.0); horizontal.len()],
             names,
             horizontal,
             vertical: Vec::new(),
@@ -147,6 +158,7 @@ impl Recorder {
             interrupted_at_s: None,
             model: ModelUsed::default(),
             uplift_check: None,
+            overlap_loss: None,
         }
     }
 
@@ -176,9 +188,9 @@ impl Recorder {
 
     /// Notes the relative displacement of every joint from block displacements u.
     pub fn joint_extremes(&mut self, u: &[f64]) {
-        for (k, (upper, lower, _, _)) in self.horizontal.iter().enumerate() {
-            let d = u[*upper] - lower.map_or(0.0, |l| u[l]);
-            self.max_d[k] = self.max_d[k].max(d.abs());
+        let joints = self.horizontal.iter().zip(&mut self.relative_range);
+        for ((upper, lower, _, _), range) in joints {
+            widen(range, u[*upper] - lower.map_or(0.0, |l| u[l]));
         }
     }
 
@@ -192,9 +204,19 @@ impl Recorder {
         &self.max_a
     }
 
-    /// Notes that horizontal joint k reached |u_upper - u_lower| = `d_abs`.
-    pub fn horizontal_extreme(&mut self, k: usize, d_abs: f64) {
-        self.max_d[k] = self.max_d[k].max(d_abs);
+    /// Notes that horizontal joint k reached u_upper - u_lower = `d` (m).
+    pub fn horizontal_extreme(&mut self, k: usize, d: f64) {
+        widen(&mut self.relative_range[k], d);
+    }
+
+    /// At the end of a sliding run (blocks that do not turn, on the overlaps at rest): notes
+    /// the largest share of a joint's overlap that sliding took away, and warns where it is no
+    /// longer small.
+    pub fn note_overlap_loss(&mut self, wall: &Wall, topo: &Topology) {
+        let loss = validity::largest_overlap_loss(wall, topo, &self.relative_range);
+        self.overlap_loss = Some(loss.as_ref().map_or(0.0, validity::OverlapLoss::share));
+        let warning = loss.and_then(|loss| validity::overlap_warning(wall, topo, &loss));
+        self.warnings.extend(warning);
     }
 
     /// Notes that block i reached |theta| = `theta_abs` (rad).
@@ -425,7 +447,10 @@ impl Recorder {
                 joint: HorizontalId(k),
                 upper: un.clone(),
                 lower: ln.clone(),
-                max_abs_relative_displacement_m: self.max_d[k],
+                max_abs_relative_displacement_m: {
+                    let (lo, hi) = self.relative_range[k];
+                    lo.abs().max(hi.abs())
+                },
                 final_relative_displacement_m: u[*upper] - lower.map_or(0.0, |l| u[l]),
             })
             .collect();
@@ -447,6 +472,7 @@ impl Recorder {
                 collapse: self.collapse,
                 energy: self.energy,
                 stats: self.stats,
+                max_overlap_loss: self.overlap_loss,
                 warnings: self.warnings,
                 worst: None,
                 uplift_check: self.uplift_check,

@@ -1,11 +1,12 @@
-//! Collapse: a block falls when its centroid leaves the span its supports give it.
+//! Collapse: a block falls when its centroid leaves the span its supports give it; until then
+//! the sliding model keeps the overlaps at rest, and says how much of them sliding took away.
 
 use crate::engine;
 
 use engine::{constant, exact};
 use pirqa::integrate::{AfterCollapse, Settings};
 use pirqa::motion::Motion;
-use pirqa::response::Response;
+use pirqa::response::{Response, Warning};
 use pirqa::{samples, Wall};
 
 fn run(wall: &Wall, motion: &Motion, duration: f64, after: AfterCollapse) -> Response {
@@ -67,6 +68,40 @@ fn a_block_bridging_a_gap_stands_until_its_centroid_leaves_the_far_support() {
         "{} vs {expect}",
         c.time_s
     );
+}
+
+/// The bridge's top block, pushed right at (3 - 0.2 g) m/s2 relative to its abutments for t
+/// seconds, leaves (3 - 0.2 g) t^2 / 2 of its 0.8 m on the left one: the share lost, to
+/// round-off, and a warning from a tenth (at 0.3 s 5.8 %, at 0.5 s 16.2 %).
+#[test]
+fn a_sliding_run_says_how_much_overlap_sliding_took_away() {
+    let relative = 3.0 - 0.2 * 9.81;
+    for (t, warned) in [(0.3, false), (0.5, true)] {
+        let r = run(&bridge(), &constant(-3.0, t), t, AfterCollapse::Stop);
+        let slip = relative * t * t / 2.0;
+        let loss = r.summary.max_overlap_loss.expect("a sliding run notes it");
+        assert!(
+            (loss - slip / 0.8).abs() < 1e-15,
+            "{t} s: {loss} vs {}",
+            slip / 0.8
+        );
+        let warning = r.summary.warnings.iter().find_map(|w| match w {
+            Warning::OverlapLost {
+                upper,
+                lower,
+                least_m,
+                ..
+            } => Some((upper.as_str(), lower.as_str(), *least_m)),
+            _ => None,
+        });
+        if warned {
+            let (upper, lower, least_m) = warning.expect("a warning from a tenth lost");
+            assert_eq!((upper, lower), ("Top", "B1"));
+            assert!((least_m - (0.8 - slip)).abs() < 1e-15, "{least_m}");
+        } else {
+            assert_eq!(warning, None, "{t} s");
+        }
+    }
 }
 
 #[test]

@@ -155,7 +155,7 @@ impl Engine<'_> {
         }
         self.d_last[s] = d;
         self.t_fric[s] = self.t;
-        self.rec.horizontal_extreme(s, d.abs());
+        self.rec.horizontal_extreme(s, d);
     }
 
     /// Integral of block i's displacement from t_a to now (m s), within the current segment.

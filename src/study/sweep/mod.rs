@@ -1230,6 +1230,7 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         let peaks: Vec<f64> = s.blocks.iter().map(|b| b.max_abs_accel_m_s2).collect();
         crate::validity::max_accel_over_tipping(wall, &peaks)
     });
+    row.max_overlap_loss = s.max_overlap_loss;
     if let Some(check) = &s.uplift_check {
         row.uplift_checked_until_s = Some(check.checked_until_s);
         if let Some(first) = &check.first_uplift {

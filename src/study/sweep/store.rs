@@ -102,6 +102,12 @@ pub struct CaseRow {
     /// [`max_accel_over_tipping`]: crate::validity::max_accel_over_tipping
     #[serde(serialize_with = "table::sci_opt")]
     pub max_accel_over_tipping: Option<f64>,
+    /// The largest share of a joint's overlap at rest that sliding took away (a block on
+    /// another; 0 to 1): the sliding model keeps the loads of the overlaps at rest, so its
+    /// answer is one of small displacements while this is small. Empty where the case ran a
+    /// model that rocks blocks.
+    #[serde(serialize_with = "table::sci_opt")]
+    pub max_overlap_loss: Option<f64>,
     /// How far the uplift check watched the case (s; the sweep's `check_uplift`): to its end,
     /// or to where the run stopped. Empty where the case was not checked (the sweep did not
     /// ask, or the case rocked).
@@ -152,7 +158,7 @@ pub struct TimingRow {
 }
 
 /// Columns of `cases.csv`.
-pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,max_accel_over_tipping,uplift_checked_until_s,uplift_time_s,uplift_turning,error";
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,max_accel_over_tipping,max_overlap_loss,uplift_checked_until_s,uplift_time_s,uplift_turning,error";
 
 /// Columns of `timing.csv`.
 pub const TIMING_HEADER: &str = "case,cpu_s";
