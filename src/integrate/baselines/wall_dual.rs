@@ -395,66 +395,25 @@ impl WallDual {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrate::baselines::wall_newton::test_blocks::{seated, step, G_DT, MASS};
     use crate::integrate::baselines::wall_newton::{Part, WallNewton};
 
-    const G_DT: f64 = 9.81e-3;
-
-    /// Two 1 x 0.5 m blocks of 1,300 kg, block 1 on block 0 and block 0 on the ground, each
-    /// joint's two corners a contact (compliance 1e-11 m/s per N s), friction `mu_ground`
-    /// and `mu_joint`.
+    /// Two test blocks, block 1 on block 0 and block 0 on the ground, each joint's two corners
+    /// a contact (compliance 1e-11 m/s per N s), friction `mu_ground` and `mu_joint`.
     fn stack(mu_ground: f64, mu_joint: f64) -> (Vec<Contact>, [Vector3<f64>; 2]) {
-        let (m, h) = (1300.0, 0.25);
         let mut contacts = Vec::new();
         for x in [-0.5, 0.5] {
-            contacts.push(Contact {
-                parts: [
-                    Some(Part {
-                        body: 0,
-                        rows: [Vector3::new(0.0, 1.0, x), Vector3::new(1.0, 0.0, h)],
-                    }),
-                    None,
-                ],
-                target_m_s: 0.0,
-                friction: mu_ground,
-                compliance: 1e-11,
-            });
+            contacts.push(seated(0, x, mu_ground, 1e-11));
             // Block 1's corner (x, -h from its centroid) on block 0's top face (x, +h from
             // block 0's): the relative velocity of the two points.
-            contacts.push(Contact {
-                parts: [
-                    Some(Part {
-                        body: 1,
-                        rows: [Vector3::new(0.0, 1.0, x), Vector3::new(1.0, 0.0, h)],
-                    }),
-                    Some(Part {
-                        body: 0,
-                        rows: [Vector3::new(0.0, -1.0, -x), Vector3::new(-1.0, 0.0, h)],
-                    }),
-                ],
-                target_m_s: 0.0,
-                friction: mu_joint,
-                compliance: 1e-11,
+            let mut on_block = seated(1, x, mu_joint, 1e-11);
+            on_block.parts[1] = Some(Part {
+                body: 0,
+                rows: [Vector3::new(0.0, -1.0, -x), Vector3::new(-1.0, 0.0, 0.25)],
             });
+            contacts.push(on_block);
         }
-        let mass = Vector3::new(m, m, m * (1.0 + 0.25) / 12.0);
-        (contacts, [mass, mass])
-    }
-
-    const REACH: [Vector3<f64>; 2] = [Vector3::new(1.0, 1.0, 0.56), Vector3::new(1.0, 1.0, 0.56)];
-
-    /// The stack's step under the free velocities `v_free`.
-    fn step<'a>(
-        contacts: &'a [Contact],
-        mass: &'a [Vector3<f64>; 2],
-        v_free: &'a [Vector3<f64>; 2],
-    ) -> StepProblem<'a> {
-        StepProblem {
-            mass,
-            reach: &REACH,
-            v_free,
-            contacts,
-            tolerance_m_s: 1e-10 * G_DT,
-        }
+        (contacts, [MASS, MASS])
     }
 
     /// The dual's answer from the given first impulses, and the steps it used.
@@ -467,7 +426,7 @@ mod tests {
         let mut v = [Vector3::zeros(); 2];
         let mut p = vec![first; contacts.len()];
         let used = WallDual::default()
-            .solve(&step(contacts, mass, v_free), &mut v, &mut p)
+            .solve(&step(mass, v_free, contacts), &mut v, &mut p)
             .expect("solved");
         (v, p, used)
     }
@@ -487,7 +446,7 @@ mod tests {
             let mut expected = [Vector3::zeros(); 2];
             let mut unused = vec![Vector2::zeros(); contacts.len()];
             WallNewton::new(2, [(0, 1)])
-                .solve(&step(&contacts, &mass, &v_free), &mut expected, &mut unused)
+                .solve(&step(&mass, &v_free, &contacts), &mut expected, &mut unused)
                 .expect("the velocity-space solver converges here");
             for first in [Vector2::zeros(), Vector2::new(1e3, -1e3)] {
                 let (v, p, used) = dual(&contacts, &mass, &v_free, first);

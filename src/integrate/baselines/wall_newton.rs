@@ -1198,34 +1198,77 @@ impl WallNewton {
     }
 }
 
+/// The test blocks of this solver's and the impulse solver's tests: 1 x 0.5 m, 1,300 kg,
+/// their steps at g dt = 9.81e-3 m/s and the runs' tolerance.
+#[cfg(test)]
+pub(super) mod test_blocks {
+    use super::{Contact, Part, StepProblem};
+    use nalgebra::Vector3;
+
+    /// g dt (m/s) of the tests' steps.
+    pub(in crate::integrate::baselines) const G_DT: f64 = 9.81e-3;
+
+    /// A test block's (m, m, I).
+    pub(in crate::integrate::baselines) const MASS: Vector3<f64> =
+        Vector3::new(1300.0, 1300.0, 1300.0 * (1.0 + 0.25) / 12.0);
+
+    /// Each test block's points through its half diagonal (as many as the step has blocks).
+    pub(in crate::integrate::baselines) const REACH: [Vector3<f64>; 2] =
+        [Vector3::new(1.0, 1.0, 0.56), Vector3::new(1.0, 1.0, 0.56)];
+
+    /// The point of `body`'s base at `x` from its centroid on what lies under it (normal (0, 1)
+    /// and tangent (1, 0) at r = (x, -h): (d, r x d)), the other side fixed.
+    pub(in crate::integrate::baselines) fn seated(
+        body: usize,
+        x: f64,
+        friction: f64,
+        compliance: f64,
+    ) -> Contact {
+        Contact {
+            parts: [
+                Some(Part {
+                    body,
+                    rows: [Vector3::new(0.0, 1.0, x), Vector3::new(1.0, 0.0, 0.25)],
+                }),
+                None,
+            ],
+            target_m_s: 0.0,
+            friction,
+            compliance,
+        }
+    }
+
+    /// The step of the test blocks of masses `mass` under `v_free` on `contacts`, at the
+    /// runs' tolerance.
+    pub(in crate::integrate::baselines) fn step<'a>(
+        mass: &'a [Vector3<f64>],
+        v_free: &'a [Vector3<f64>],
+        contacts: &'a [Contact],
+    ) -> StepProblem<'a> {
+        StepProblem {
+            mass,
+            reach: &REACH[..mass.len()],
+            v_free,
+            contacts,
+            tolerance_m_s: 1e-10 * G_DT,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use super::test_blocks::{seated, step, G_DT, MASS, REACH};
     use super::*;
 
-    const G_DT: f64 = 9.81e-3;
-
-    /// A 1 x 0.5 m block of 1,300 kg (its centroid at the origin) on points of its base at
-    /// `xs`, each with its compliance: the contacts, the block's (m, m, I) and reach.
+    /// A test block (its centroid at the origin) on points of its base at `xs`, each with its
+    /// compliance: the contacts and the block's (m, m, I).
     fn block_on(xs: &[f64], eps: &[f64], friction: f64) -> (Vec<Contact>, Vector3<f64>) {
-        let (m, h) = (1300.0, 0.25);
         let contacts = xs
             .iter()
             .zip(eps)
-            .map(|(&x, &compliance)| Contact {
-                parts: [
-                    Some(Part {
-                        body: 0,
-                        // Normal (0, 1) and tangent (1, 0) at r = (x, -h): (d, r x d).
-                        rows: [Vector3::new(0.0, 1.0, x), Vector3::new(1.0, 0.0, h)],
-                    }),
-                    None,
-                ],
-                target_m_s: 0.0,
-                friction,
-                compliance,
-            })
+            .map(|(&x, &compliance)| seated(0, x, friction, compliance))
             .collect();
-        (contacts, Vector3::new(m, m, m * (1.0 + 0.25) / 12.0))
+        (contacts, MASS)
     }
 
     /// Deep in the interior point's path a contact's constraints sit within 1e-21 m/s of their
@@ -1288,24 +1331,6 @@ mod tests {
         }
     }
 
-    /// The test block's points through its half diagonal.
-    const REACH: [Vector3<f64>; 1] = [Vector3::new(1.0, 1.0, 0.56)];
-
-    /// The step of the test block of mass `mass` on `contacts`, at the runs' tolerance.
-    fn one_block<'a>(
-        mass: &'a [Vector3<f64>; 1],
-        v_free: &'a [Vector3<f64>; 1],
-        contacts: &'a [Contact],
-    ) -> StepProblem<'a> {
-        StepProblem {
-            mass,
-            reach: &REACH,
-            v_free,
-            contacts,
-            tolerance_m_s: 1e-10 * G_DT,
-        }
-    }
-
     fn solve(
         contacts: &[Contact],
         mass: Vector3<f64>,
@@ -1316,7 +1341,7 @@ mod tests {
         let mut v = [start];
         let mut p = vec![Vector2::zeros(); contacts.len()];
         let (mass, v_free) = ([mass], [v_free]);
-        let step = one_block(&mass, &v_free, contacts);
+        let step = step(&mass, &v_free, contacts);
         let used = solver.solve(&step, &mut v, &mut p);
         assert!(used.is_ok(), "{used:?}");
         (v[0], p)
@@ -1399,7 +1424,7 @@ mod tests {
             let mut solver = WallNewton::new(1, []);
             let mut v = [Vector3::zeros()];
             let (m, free) = ([mass], [v_free]);
-            let step = one_block(&m, &free, &contacts);
+            let step = step(&m, &free, &contacts);
             let used = solver.coulomb(&step, &mut v, MAX_ITERATIONS);
             assert!(matches!(used, Ok(1..=8)), "{used:?}");
             assert!(
@@ -1442,7 +1467,7 @@ mod tests {
             let mut v = [Vector3::zeros()];
             let mut p = vec![Vector2::zeros(); contacts.len()];
             let (m, free) = ([mass], [v_free]);
-            let step = one_block(&m, &free, &contacts);
+            let step = step(&m, &free, &contacts);
             let used = solver.solve_interior(&step, &mut v, &mut p);
             assert!(used.is_ok(), "{used:?}");
             let apart = (v[0] - expected).component_mul(&REACH[0]).abs().max();
