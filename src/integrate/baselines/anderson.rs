@@ -25,14 +25,16 @@ impl Anderson {
         }
     }
 
-    /// Remembers that `x` was mapped to `g`.
+    /// Remembers that `x` was mapped to `g`, in the memory of the oldest pair once `depth + 1`
+    /// are kept (the caller's buffers change at every iteration, so the pair is copied).
     pub(super) fn push(&mut self, x: &[f64], g: &[f64]) {
-        if self.x.len() > self.depth {
-            self.x.pop_front();
-            self.g.pop_front();
+        let full = self.x.len() > self.depth;
+        for (kept, new) in [(&mut self.x, x), (&mut self.g, g)] {
+            let mut memory = if full { kept.pop_front() } else { None }.unwrap_or_default();
+            memory.clear();
+            memory.extend_from_slice(new);
+            kept.push_back(memory);
         }
-        self.x.push_back(x.to_vec());
-        self.g.push_back(g.to_vec());
     }
 
     /// The next iterate into `next`: the last image less the combination of the images'
