@@ -158,6 +158,10 @@ pub fn analyse(sweep: &Sweep, rows: &[CaseRow]) -> Report {
     if sweep.check_uplift {
         results.insert("uplift".into(), uplift(&cells, sweep));
     }
+    if rows.iter().any(|r| r.max_overlap_loss.is_some()) {
+        let beyond = small_displacements(&cells, sweep);
+        results.insert("small_displacements".into(), beyond);
+    }
     if let Some((charts, numbers)) = block_count(sweep, &cells) {
         figures.push(("block-count".into(), charts, 2));
         results.insert("block_count".into(), numbers);
@@ -456,6 +460,33 @@ fn uplift(cells: &BTreeMap<(usize, usize), Cell>, sweep: &Sweep) -> Value {
                 "checked": checked,
                 "lifted": lifted,
                 "first_uplift_s": first,
+            })
+        })
+        .collect();
+    Value::Array(rows)
+}
+
+/// Per wall and motion, how far the sliding cases left the overlaps at rest whose loads the
+/// model keeps: the cases that slid, those that lost a share of some joint's overlap no longer
+/// small ([`SMALL_OVERLAP_LOSS`], each of them warned), and the largest share lost.
+///
+/// [`SMALL_OVERLAP_LOSS`]: crate::validity::SMALL_OVERLAP_LOSS
+fn small_displacements(cells: &BTreeMap<(usize, usize), Cell>, sweep: &Sweep) -> Value {
+    let rows: Vec<Value> = cells
+        .values()
+        .map(|c| {
+            let losses: Vec<f64> = c.ok().filter_map(|r| r.max_overlap_loss).collect();
+            let beyond = losses
+                .iter()
+                .filter(|&&l| l >= crate::validity::SMALL_OVERLAP_LOSS)
+                .count();
+            json!({
+                "wall": sweep.walls[c.wall].label,
+                "motion": c.first().motion,
+                "pga_gal": c.first().pga_gal,
+                "slid": losses.len(),
+                "beyond_small": beyond,
+                "largest_overlap_loss": losses.iter().copied().reduce(f64::max),
             })
         })
         .collect();
