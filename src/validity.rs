@@ -9,7 +9,7 @@
 //! those of the overlaps at rest (eq. 3), so every sliding run also says how much of a joint's
 //! overlap sliding took away, and warns where it is no longer small.
 
-use crate::response::Warning;
+use crate::response::{Recorder, Warning};
 use crate::topology::{Base, BlockId, HorizontalId, Topology};
 use crate::wall::{Block, Wall};
 
@@ -136,6 +136,16 @@ pub fn largest_overlap_loss(
         })
     })
     .max_by(|a, b| a.share().total_cmp(&b.share()))
+}
+
+/// At the end of a sliding run (blocks that do not turn, on the overlaps at rest): notes in
+/// `rec` the largest share of a joint's overlap that sliding took away, and warns where it is
+/// no longer small.
+pub fn note_overlap_loss(wall: &Wall, topo: &Topology, rec: &mut Recorder) {
+    let loss = largest_overlap_loss(wall, topo, rec.relative_ranges());
+    rec.overlap_loss = Some(loss.as_ref().map_or(0.0, OverlapLoss::share));
+    let warning = loss.and_then(|loss| overlap_warning(wall, topo, &loss));
+    rec.warnings.extend(warning);
 }
 
 /// The warning for the joint that lost the largest share of its overlap, where that share

@@ -362,7 +362,7 @@ impl<'a> Observer<'a> {
         self.rec.stats.events = steps;
         self.rec.warnings =
             crate::validity::rocking_warnings(sc.wall, sc.topology, self.rec.peak_accel());
-        self.rec.note_overlap_loss(sc.wall, sc.topology);
+        crate::validity::note_overlap_loss(sc.wall, sc.topology, &mut self.rec);
         self.rec
             .finish(method, &sc.wall.name, sc.motion.describe(), t, &u, &v)
     }

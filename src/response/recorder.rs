@@ -8,7 +8,6 @@ use super::{
     UpliftCheck, Warning,
 };
 use crate::topology::{Base, BlockId, HorizontalId, JointRef, Topology, VerticalId};
-use crate::validity;
 use crate::wall::Wall;
 
 /// Collects results as an integrator runs. Public for integrators outside the crate (the rapier
@@ -62,9 +61,9 @@ pub struct Recorder {
     pub model: ModelUsed,
     /// The uplift check, when asked for.
     pub uplift_check: Option<UpliftCheck>,
-    /// The largest share of a joint's overlap lost to sliding, once noted at a sliding run's
-    /// end ([`Recorder::note_overlap_loss`]).
-    overlap_loss: Option<f64>,
+    /// The largest share of a joint's overlap lost to sliding, noted at a sliding run's end
+    /// ([`crate::validity::note_overlap_loss`]).
+    pub overlap_loss: Option<f64>,
 }
 
 /// A wall's horizontal joints as a recorder lists them: (upper block, lower block or `None`
@@ -209,14 +208,9 @@ impl Recorder {
         widen(&mut self.relative_range[k], d);
     }
 
-    /// At the end of a sliding run (blocks that do not turn, on the overlaps at rest): notes
-    /// the largest share of a joint's overlap that sliding took away, and warns where it is no
-    /// longer small.
-    pub fn note_overlap_loss(&mut self, wall: &Wall, topo: &Topology) {
-        let loss = validity::largest_overlap_loss(wall, topo, &self.relative_range);
-        self.overlap_loss = Some(loss.as_ref().map_or(0.0, validity::OverlapLoss::share));
-        let warning = loss.and_then(|loss| validity::overlap_warning(wall, topo, &loss));
-        self.warnings.extend(warning);
+    /// Least and greatest u_upper - u_lower of each horizontal joint so far (m).
+    pub fn relative_ranges(&self) -> &[(f64, f64)] {
+        &self.relative_range
     }
 
     /// Notes that block i reached |theta| = `theta_abs` (rad).

@@ -693,7 +693,7 @@ impl<'a> Engine<'a> {
             );
             self.rec.warnings.extend(could_rock);
         }
-        self.rec.note_overlap_loss(self.given.wall, self.given.topo);
+        crate::validity::note_overlap_loss(self.given.wall, self.given.topo, &mut self.rec);
         let motion = self.given.motion.describe();
         self.rec
             .finish("event", &self.given.wall.name, motion, t, &u, &v)
