@@ -183,29 +183,26 @@ mod tests {
         (wall, topo)
     }
 
-    /// The joints' ranges of u_upper - u_lower, named `upper/lower`, the rest at rest.
-    fn ranges(topo: &Topology, wall: &Wall, given: &[(&str, (f64, f64))]) -> Vec<(f64, f64)> {
-        let name = |s: &crate::topology::HorizontalJoint| {
-            format!(
-                "{}/{}",
-                wall.blocks[s.upper.0].name,
-                topo.base_name(wall, s.lower)
-            )
-        };
-        let found = |s| given.iter().find(|(n, _)| *n == name(s)).map(|(_, r)| *r);
-        topo.horizontal
-            .iter()
-            .map(|s| found(s).unwrap_or((0.0, 0.0)))
-            .collect()
-    }
-
-    fn joint_name(wall: &Wall, topo: &Topology, loss: &OverlapLoss) -> String {
-        let s = &topo.horizontal[loss.joint.0];
+    /// Horizontal joint k as `upper/lower`.
+    fn name(wall: &Wall, topo: &Topology, k: usize) -> String {
+        let s = &topo.horizontal[k];
         format!(
             "{}/{}",
             wall.blocks[s.upper.0].name,
             topo.base_name(wall, s.lower)
         )
+    }
+
+    /// The joints' ranges of u_upper - u_lower, named `upper/lower`, the rest at rest.
+    fn ranges(topo: &Topology, wall: &Wall, given: &[(&str, (f64, f64))]) -> Vec<(f64, f64)> {
+        let found = |k| given.iter().find(|(n, _)| *n == name(wall, topo, k));
+        (0..topo.horizontal.len())
+            .map(|k| found(k).map_or((0.0, 0.0), |(_, r)| *r))
+            .collect()
+    }
+
+    fn joint_name(wall: &Wall, topo: &Topology, loss: &OverlapLoss) -> String {
+        name(wall, topo, loss.joint.0)
     }
 
     #[test]
