@@ -1929,16 +1929,9 @@ fn a_sweep_runs_its_cases_on_time_stepping_with_rotations_when_asked() {
 /// abutment: 16.2 %); a run whose blocks turn has its geometry moved, and says nothing of it.
 #[test]
 fn sliding_runs_say_how_much_overlap_sliding_took_away() {
-    let wall = common::file(
-        "bridge.ron",
-        r#"(version: 1, thickness_m: 1, density_kg_m3: 2000, friction: 0.2, rectangles: [
-            (x_m: 0, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
-            (x_m: 1.2, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
-            (x_m: 0.2, y_m: 0.5, width_m: 1.2, height_m: 0.5, name: "Top"),
-        ])"#,
-    );
-    let exact = (3.0 - 0.2 * 9.81) * 0.5 * 0.5 / 2.0 / 0.8;
-    for (method, tolerance) in [(None, 1e-15), (Some("moreau"), 1e-3), (Some("paper"), 1e-3)] {
+    let wall = common::file("bridge.ron", crate::collapse::BRIDGE_RON);
+    // The bridge pushed for 0.5 s with `more` arguments: the terminal's text and summary.json.
+    let pushed = |more: &[&str]| {
         let file = temp_dir("bridge.json");
         let mut args = vec![
             "run",
@@ -1946,53 +1939,44 @@ fn sliding_runs_say_how_much_overlap_sliding_took_away() {
             "--pulse=-3m/s2",
             "--pulse-s",
             "0.5",
-            "--duration",
-            "0.5",
-            "--summary",
-            file.to_str().unwrap(),
         ];
-        if let Some(m) = method {
-            args.extend(["--method", m, "--dt", "1e-4"]);
-        }
+        args.extend(["--duration", "0.5", "--summary", file.to_str().unwrap()]);
+        args.extend(more);
         let (ok, out, err) = pirqa(&args);
-        assert!(ok, "{method:?}: {err}");
+        assert!(ok, "{more:?}: {err}");
+        let text = std::fs::read_to_string(&*file).unwrap();
+        (
+            out,
+            serde_json::from_str::<serde_json::Value>(&text).unwrap(),
+        )
+    };
+    let exact = (3.0 - 0.2 * 9.81) * 0.5 * 0.5 / 2.0 / 0.8;
+    for (method, tolerance) in [("event", 1e-15), ("moreau", 1e-3), ("paper", 1e-3)] {
+        let stepped = ["--method", method, "--dt", "1e-4"];
+        let (out, s) = pushed(if method == "event" { &[] } else { &stepped });
         assert!(
             out.contains("overlap lost to sliding: at most 16.2 % of a joint's at rest"),
-            "{method:?}: {out}"
+            "{method}: {out}"
         );
         assert!(
             out.contains("warning: Top on B1: at u_Top - u_B1 = 0.129"),
             "{out}"
         );
-        let s: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&*file).unwrap()).unwrap();
         let loss = s["max_overlap_loss"].as_f64().unwrap();
         assert!(
             (loss - exact).abs() < tolerance,
-            "{method:?}: {loss} vs {exact}"
+            "{method}: {loss} vs {exact}"
         );
     }
-    let file = temp_dir("turning.json");
-    let (ok, out, err) = pirqa(&[
-        "run",
-        wall.to_str().unwrap(),
-        "--pulse=-3m/s2",
-        "--pulse-s",
-        "0.5",
-        "--duration",
-        "0.5",
+    let turning = [
         "--model",
         "slide-rock",
         "--method",
         "moreau",
         "--dt",
         "1e-3",
-        "--summary",
-        file.to_str().unwrap(),
-    ]);
-    assert!(ok, "{err}");
+    ];
+    let (out, s) = pushed(&turning);
     assert!(!out.contains("overlap lost"), "{out}");
-    let s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&*file).unwrap()).unwrap();
     assert!(s.get("max_overlap_loss").is_none(), "{s}");
 }

@@ -43,16 +43,17 @@ fn a_block_sliding_off_its_support_falls_at_half_its_width() {
     assert!(r.summary.blocks[1].fell);
 }
 
+/// Two abutments with a 0.2 m gap between them; a block, "Top", bridges it, on 0.8 m of the
+/// left one and 0.2 m of the right.
+pub const BRIDGE_RON: &str = r#"(version: 1, thickness_m: 1, density_kg_m3: 2000, friction: 0.2,
+    rectangles: [
+        (x_m: 0, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
+        (x_m: 1.2, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
+        (x_m: 0.2, y_m: 0.5, width_m: 1.2, height_m: 0.5, name: "Top"),
+    ])"#;
+
 fn bridge() -> Wall {
-    // Two abutments with a 0.2 m gap between them; a block bridges it.
-    Wall::from_ron_str(
-        r#"(version: 1, thickness_m: 1, density_kg_m3: 2000, friction: 0.2, rectangles: [
-            (x_m: 0, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
-            (x_m: 1.2, y_m: 0, width_m: 1, height_m: 0.5, fixed: true),
-            (x_m: 0.2, y_m: 0.5, width_m: 1.2, height_m: 0.5, name: "Top"),
-        ])"#,
-    )
-    .unwrap()
+    Wall::from_ron_str(BRIDGE_RON).unwrap()
 }
 
 #[test]
