@@ -7,7 +7,7 @@
 use crate::integrate::rocking::ModelChoice;
 use crate::model::Model;
 use crate::motion::Motion;
-use crate::run::{Method, RunSettings};
+use crate::run::{AfterUplift, Method, RunSettings};
 use std::fmt;
 
 /// A run is called large from these amounts on.
@@ -39,9 +39,11 @@ pub struct Estimate {
     pub events: f64,
     /// Time steps of a fixed-step method (0 for the exact one and the adaptive one).
     pub steps: f64,
-    /// Whether each step turns every block (Moreau-Jean with `--model slide-rock`): a contact
-    /// problem over the whole wall per step.
+    /// Whether each step turns every block (Moreau-Jean with `--model slide-rock`, or after the
+    /// first uplift): a contact problem over the whole wall per step.
     pub rotating: bool,
+    /// The steps are those of `--after-uplift moreau`: at most, from an uplift at the start.
+    pub after_uplift: bool,
     /// Rows of the history, when one is kept.
     pub history_rows: f64,
     /// Size of history.csv (bytes), when a history is kept.
@@ -67,10 +69,15 @@ pub fn estimate(model: &Model, motion: &Motion, settings: &RunSettings) -> Estim
         0.0
     };
     let events = 2.0 * slip_episodes * joints_that_can_slip as f64;
-    let steps = match &settings.method {
-        Method::Paper { dt_s } | Method::Moreau { dt_s } => (duration_s / dt_s).ceil(),
-        Method::Event | Method::Regularized(_) => 0.0,
+    let steps = match (&settings.method, settings.after_uplift) {
+        (Method::Paper { dt_s } | Method::Moreau { dt_s }, _) => (duration_s / dt_s).ceil(),
+        (_, AfterUplift::Moreau { dt_s }) => (duration_s / dt_s).ceil(),
+        (Method::Event | Method::Regularized(_), AfterUplift::Slide) => 0.0,
     };
+    let after_uplift = settings.after_uplift != AfterUplift::Slide;
+    let rotating = after_uplift
+        || (matches!(settings.method, Method::Moreau { .. })
+            && settings.model == ModelChoice::SlideRock);
     let blocks = model.wall().blocks.len();
     let history_rows = settings.output_dt_s.map_or(0.0, |dt| {
         let rows = (duration_s / dt).floor() + 1.0;
@@ -80,7 +87,9 @@ pub fn estimate(model: &Model, motion: &Motion, settings: &RunSettings) -> Estim
             _ => rows,
         }
     });
-    let history_bytes = history_rows * (1.0 + 2.0 * blocks as f64) * BYTES_PER_NUMBER;
+    // u and v of every block, and theta, omega and w where steps turn them.
+    let per_block = if rotating { 5.0 } else { 2.0 };
+    let history_bytes = history_rows * (1.0 + per_block * blocks as f64) * BYTES_PER_NUMBER;
     Estimate {
         duration_s,
         blocks,
@@ -88,8 +97,8 @@ pub fn estimate(model: &Model, motion: &Motion, settings: &RunSettings) -> Estim
         joints_that_can_slip,
         events,
         steps,
-        rotating: matches!(settings.method, Method::Moreau { .. })
-            && settings.model == ModelChoice::SlideRock,
+        rotating,
+        after_uplift,
         history_rows,
         history_bytes,
     }
@@ -181,10 +190,15 @@ impl fmt::Display for Estimate {
             self.events
         )?;
         if self.steps > 0.0 {
-            let turning = if self.rotating {
-                " (every block with its rotation: a contact problem over the whole wall each)"
-            } else {
-                ""
+            let turning = match (self.rotating, self.after_uplift) {
+                (_, true) => {
+                    " at most (from the first uplift on, every block with its rotation: a contact \
+                     problem over the whole wall each)"
+                }
+                (true, false) => {
+                    " (every block with its rotation: a contact problem over the whole wall each)"
+                }
+                (false, false) => "",
             };
             writeln!(f, "  time steps           {:.1e}{turning}", self.steps)?;
         }
@@ -271,6 +285,27 @@ mod tests {
         );
         assert!(
             e.to_string().contains("every block with its rotation"),
+            "{e}"
+        );
+    }
+
+    /// After the first uplift the steps turn every block; the uplift may come at once, so the
+    /// whole duration's steps are the most it can take, and each history row holds five
+    /// numbers a block.
+    #[test]
+    fn the_steps_after_an_uplift_are_counted_as_at_most_the_whole_run() {
+        let settings = RunSettings {
+            output_dt_s: Some(0.01),
+            after_uplift: AfterUplift::Moreau { dt_s: 1e-5 },
+            ..RunSettings::default()
+        };
+        let e = estimate(&paper_wall(), &sine(2.9, 30.0), &settings);
+        assert_eq!(e.steps, 3e6);
+        assert!(e.rotating && e.after_uplift);
+        assert_eq!(e.history_bytes, 3001.0 * 26.0 * BYTES_PER_NUMBER);
+        assert!(e.large().join("\n").contains("each with its rotation"));
+        assert!(
+            e.to_string().contains("at most (from the first uplift on"),
             "{e}"
         );
     }

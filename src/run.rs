@@ -4,9 +4,9 @@
 
 use crate::error::{Error, SimulationError};
 use crate::integrate::baselines::{ContactSolver, Moreau, MoreauWall, PaperNewmark, Regularized};
-use crate::integrate::event::{EventDriven, Params};
+use crate::integrate::event::{Ended, EventDriven, Params};
 use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
-use crate::integrate::stepping::positive;
+use crate::integrate::stepping::{positive, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario, Settings};
 use crate::model::Model;
 use crate::motion::Motion;
@@ -30,6 +30,22 @@ pub enum Method {
     },
     /// Regularized friction and penalty contacts under Dormand-Prince 5(4).
     Regularized(Regularized),
+}
+
+/// What a sliding run does at the first instant some block must start to turn (found by the
+/// uplift check, `limit::seated`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum AfterUplift {
+    /// Slides on, the check saying when and which blocks would turn (with `check_uplift`).
+    #[default]
+    Slide,
+    /// Hands the state of that instant to Moreau-Jean with rotations, step `dt_s`, which runs
+    /// the rest: exact sliding while every block stays seated, every block with its rotation
+    /// from the first uplift on.
+    Moreau {
+        /// Time step (s).
+        dt_s: f64,
+    },
 }
 
 /// The direction of the ground motion relative to the wall.
@@ -84,6 +100,8 @@ pub struct RunSettings {
     /// Watch the exact sliding run for the first instant some block must start to turn
     /// (`limit::seated`; summary.json's `uplift_check`).
     pub check_uplift: bool,
+    /// What follows that instant (the watch is on whenever this is not `Slide`).
+    pub after_uplift: AfterUplift,
 }
 
 fn incompatible(asked: &'static str, fix: &'static str) -> SimulationError {
@@ -115,11 +133,39 @@ impl RunSettings {
         }
         if self.contact_solver != ContactSolver::GaussSeidel
             && !matches!(self.method, Method::Moreau { .. })
+            && self.after_uplift == AfterUplift::Slide
         {
             return Err(Error::Simulation(incompatible(
                 "--contact-solver chooses how Moreau-Jean solves a step's contacts",
                 "add --method moreau --dt S, or leave --contact-solver out",
             )));
+        }
+        if let AfterUplift::Moreau { dt_s } = self.after_uplift {
+            positive("time step", dt_s, " s")?;
+            let hand_off = |asked| {
+                Err(Error::Simulation(incompatible(
+                    asked,
+                    "leave --after-uplift out, or the option it names",
+                )))
+            };
+            if !matches!(self.method, Method::Event) {
+                return hand_off(
+                    "--after-uplift hands the exact sliding run over at its first uplift, and \
+                     --method chooses another integrator for the whole run",
+                );
+            }
+            if self.model != ModelChoice::Auto {
+                return hand_off(
+                    "--after-uplift chooses what follows a sliding run's first uplift, which \
+                     the model auto runs, and --model chooses one model for the whole run",
+                );
+            }
+            if self.direction == Direction::OutOfPlane || !self.initial_rotation.is_empty() {
+                return hand_off(
+                    "--after-uplift follows a wall that starts at rest and slides in its \
+                     plane, and --direction out-of-plane or --initial-rotation starts it rocking",
+                );
+            }
         }
         if self.rocking.is_some() && self.model == ModelChoice::Slide {
             return Err(Error::Simulation(incompatible(
@@ -207,6 +253,15 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
     if settings.check_uplift && (rocks || !matches!(settings.method, Method::Event)) {
         return Err(no_uplift_check(&why));
     }
+    if let AfterUplift::Moreau { dt_s } = settings.after_uplift {
+        if rocks {
+            return Err(SimulationError::NotApplicable(format!(
+                "the exact rocking model follows this wall's uplift itself ({why}): leave \
+                 --after-uplift out"
+            )));
+        }
+        return hand_off_at_uplift(sc, settings, dt_s);
+    }
     let initial = settings.initial_rotation.first().map_or(0.0, |r| r.1);
     let mut response = match (&settings.method, rocks) {
         (Method::Moreau { .. }, true) if settings.rocking.is_some() => {
@@ -248,6 +303,53 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
     };
     response.summary.model.why = why;
     Ok(response)
+}
+
+/// The exact sliding run up to its first uplift, Moreau-Jean with rotations from there.
+fn hand_off_at_uplift(
+    sc: &Scenario,
+    settings: &RunSettings,
+    dt_s: f64,
+) -> Result<Response, SimulationError> {
+    let sliding = EventDriven {
+        params: Params::default(),
+    };
+    let stepper = MoreauWall {
+        solver: settings.contact_solver,
+        ..MoreauWall::new(dt_s)
+    };
+    // The step is checked before the sliding run, which may take long.
+    time_step(sc, dt_s)?;
+    Ok(match sliding.run_to_uplift(sc)? {
+        Ended::Seated(mut r) => {
+            r.summary.model.why = if r.summary.interrupted_at_s.is_some() {
+                "auto with --after-uplift moreau: stopped while the exact sliding model ran"
+            } else {
+                "auto with --after-uplift moreau: no block had to start turning before the run \
+                 ended (the uplift check), so the exact sliding answer is the answer"
+            }
+            .into();
+            *r
+        }
+        Ended::Lifted(h) => {
+            let (t, turning) = (h.t_s, lifted_blocks(&h.rec));
+            let mut r = stepper.run_from(sc, *h)?;
+            r.summary.model.why = format!(
+                "auto with --after-uplift moreau: exact sliding while every block stayed seated, \
+                 to the first uplift at t = {t} s ({turning}); from there Moreau-Jean with every \
+                 block's rotation, dt = {dt_s} s"
+            );
+            r
+        }
+    })
+}
+
+/// The blocks the uplift check found turning, as its warning names them.
+fn lifted_blocks(rec: &crate::response::Recorder) -> String {
+    rec.uplift_check
+        .as_ref()
+        .and_then(|c| c.first_uplift.as_ref())
+        .map_or_else(String::new, |u| u.turning.join(", "))
 }
 
 /// Whether a run in the wall's plane turns blocks under `settings`, and why (the sentence of

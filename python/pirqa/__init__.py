@@ -78,6 +78,7 @@ def run(
     initial_rotation: Mapping[str, float] | None = None,
     log_events: bool = False,
     check_uplift: bool = False,
+    after_uplift: str = "slide",
 ) -> Result:
     """Runs ``wall`` under ``motion`` (the GIL is released while it runs).
 
@@ -93,7 +94,9 @@ def run(
     ``pirqa run --initial-rotation``; on still ground give ``Motion.rest()`` and ``duration_s``.
     ``check_uplift``: watch the exact sliding run for the first instant at which no contact
     forces keep every block seated (``summary["uplift_check"]``), as ``pirqa run
-    --check-uplift``.
+    --check-uplift``. ``after_uplift``: what follows that instant on a wall the sliding model
+    runs, "slide" (slide on) or "moreau" (exact sliding up to it, then Moreau-Jean with every
+    block's rotation, step ``dt_s``), as ``pirqa run --after-uplift``.
 
     Ctrl-C (or a notebook's interrupt) stops the run within about 50 ms of wall-clock time and
     raises ``KeyboardInterrupt``; what the run reached is the exception's ``result``, its
@@ -113,6 +116,7 @@ def run(
             initial_rotation=None if initial_rotation is None else dict(initial_rotation),
             log_events=log_events,
             check_uplift=check_uplift,
+            after_uplift=after_uplift,
         )
     except BaseException as signal:
         partial = getattr(signal, "partial", None)

@@ -11,7 +11,7 @@ use crate::wall::Wall;
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
 use pirqa::integrate::Progress;
-use pirqa::{ContactSolver, Direction, Method, ModelChoice, RunSettings};
+use pirqa::{AfterUplift, ContactSolver, Direction, Method, ModelChoice, RunSettings};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -42,6 +42,33 @@ fn method(name: &str, dt_s: Option<f64>) -> PyResult<Method> {
         _ => Err(option(
             "method",
             format!("\"{name}\": give event (exact), moreau or paper"),
+        )),
+    }
+}
+
+/// The integrator and what follows a first uplift: with "moreau" after it, `dt_s` is the step
+/// of the time stepping that takes over, and the exact method runs up to the uplift.
+fn method_after_uplift(
+    method: &str,
+    after_uplift: &str,
+    dt_s: Option<f64>,
+) -> PyResult<(Method, AfterUplift)> {
+    match after_uplift {
+        "slide" => Ok((self::method(method, dt_s)?, AfterUplift::Slide)),
+        "moreau" => {
+            let dt_s = dt_s.ok_or_else(|| {
+                option(
+                    "dt_s",
+                    "after_uplift \"moreau\" needs the time step dt_s of the stepping that \
+                     takes over",
+                )
+            })?;
+            let own = (method != "event").then_some(dt_s);
+            Ok((self::method(method, own)?, AfterUplift::Moreau { dt_s }))
+        }
+        _ => Err(option(
+            "after_uplift",
+            format!("\"{after_uplift}\": give slide or moreau"),
         )),
     }
 }
@@ -107,7 +134,7 @@ fn releases(given: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, f64)>> {
 #[pyfunction]
 #[pyo3(signature = (wall, motion, *, duration_s = None, output_dt_s = None, method = "event",
     dt_s = None, model = "auto", contact_solver = "gauss-seidel", direction = "in-plane",
-    initial_rotation = None, log_events = false, check_uplift = false))]
+    initial_rotation = None, log_events = false, check_uplift = false, after_uplift = "slide"))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -123,6 +150,7 @@ pub fn run<'py>(
     initial_rotation: Option<&Bound<'_, PyDict>>,
     log_events: bool,
     check_uplift: bool,
+    after_uplift: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     if motion.is_rest() && duration_s.is_none() {
         return Err(option(
@@ -131,11 +159,13 @@ pub fn run<'py>(
         ));
     }
     let interrupt = Interrupt::new(py)?;
+    let (method, after_uplift) = method_after_uplift(method, after_uplift, dt_s)?;
     let settings = RunSettings {
         duration_s,
         output_dt_s,
         log_events,
-        method: self::method(method, dt_s)?,
+        method,
+        after_uplift,
         model: self::model(model)?,
         contact_solver: self::contact_solver(contact_solver)?,
         direction: self::direction(direction)?,

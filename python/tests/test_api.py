@@ -127,6 +127,29 @@ def test_the_uplift_check_says_when_a_block_would_start_to_turn(root):
     assert "uplift_check" not in pirqa.run(wall, motion, model="slide").summary
 
 
+def test_after_the_first_uplift_moreau_jean_takes_over():
+    """A slender block beside a squat one under a ground acceleration rising at 2 m/s3 lifts
+    at g b/h = g/4, t = 1.22625 s: exact sliding to there, then every block with its rotation,
+    in one history; the step is the stepping's, and asked for."""
+    wall = pirqa.Wall.from_ron(
+        """(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6, rows: [
+            (height_m: 1.2, blocks: [(width_m: 0.3, name: "S"), (width_m: 1.2, name: "W")])])"""
+    )
+    ramp = pirqa.Motion.from_array(2.0 * 0.01 * np.arange(301), dt_s=0.01)
+    r = pirqa.run(wall, ramp, duration_s=2.0, output_dt_s=0.01, after_uplift="moreau", dt_s=1e-3)
+    s = r.summary
+    assert s["method"] == "event+moreau"
+    assert abs(s["uplift_check"]["first_uplift"]["time_s"] - 9.81 / 8) <= 1e-12
+    theta = r.history.rotation_rad
+    before = r.history.time_s <= 9.81 / 8
+    assert np.all(theta[before] == 0.0)
+    assert abs(theta[-1, 0]) > 0.25 and abs(theta[-1, 1]) < 1e-6
+    with pytest.raises(pirqa.OptionError, match="dt_s"):
+        pirqa.run(wall, ramp, after_uplift="moreau")
+    with pytest.raises(pirqa.OptionError, match="give slide or moreau"):
+        pirqa.run(wall, ramp, after_uplift="rock", dt_s=1e-3)
+
+
 def test_a_sliding_run_says_how_much_overlap_sliding_took_away():
     """A block bridging two abutments, pushed right at (3 - 0.2 g) m/s2 relative to them for
     0.5 s, leaves (3 - 0.2 g) 0.5^2 / 2 m of its 0.8 m on the left one: summary["max_overlap_loss"]

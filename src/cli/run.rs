@@ -320,6 +320,12 @@ pub struct RunArgs {
     /// up to 600 movable blocks.
     #[arg(long)]
     pub check_uplift: bool,
+    /// What follows the first instant some block must start to turn, on a wall the sliding
+    /// model runs: slide (slide on; with --check-uplift the run says when and which blocks), or
+    /// moreau (exact sliding up to that instant, found by the uplift check, then Moreau-Jean
+    /// with every block's rotation, step --dt; docs/rocking-walls.md).
+    #[arg(long, value_enum, value_name = "MODEL", default_value_t = AfterUplift::Slide)]
+    pub after_uplift: AfterUplift,
     /// Write only the summary, to this file.
     #[arg(long, value_name = "FILE")]
     pub summary: Option<PathBuf>,
@@ -336,7 +342,7 @@ pub struct RunArgs {
     /// Integrator: the exact event-driven one, or a time-stepping baseline.
     #[arg(long, value_enum, default_value_t = Method::Event)]
     pub method: Method,
-    /// Time step of `paper` and `moreau` (s).
+    /// Time step of `paper` and `moreau`, and of `--after-uplift moreau` (s).
     #[arg(long, value_name = "S", default_value_t = 1e-3)]
     pub dt: f64,
     /// Relative tolerance of `regularized`.
@@ -391,6 +397,15 @@ fn parse_rotation(text: &str) -> Result<(String, f64), String> {
         ));
     }
     Ok((name.trim().to_string(), theta))
+}
+
+/// What follows a sliding run's first uplift.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum AfterUplift {
+    /// Slide on.
+    Slide,
+    /// Moreau-Jean with rotations from there.
+    Moreau,
 }
 
 /// Integrators.
@@ -461,6 +476,10 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         contact_solver: args.contact_solver,
         progress: None,
         check_uplift: args.check_uplift,
+        after_uplift: match args.after_uplift {
+            AfterUplift::Slide => pirqa::AfterUplift::Slide,
+            AfterUplift::Moreau => pirqa::AfterUplift::Moreau { dt_s: args.dt },
+        },
     };
     let cost = pirqa::estimate(&model, &motion, &settings);
     if args.estimate {

@@ -1980,3 +1980,54 @@ fn sliding_runs_say_how_much_overlap_sliding_took_away() {
     assert!(!out.contains("overlap lost"), "{out}");
     assert!(s.get("max_overlap_loss").is_none(), "{s}");
 }
+
+/// `--after-uplift moreau`: the Ollantaytambo wall under a 0.3 g sine slides exactly until F1
+/// must turn (the instant the uplift check finds, the same to the last digit as the checked
+/// sliding run's), then every block steps with its rotation; one history with rotations, the
+/// summary naming both methods. Combinations that cannot hand off are refused with the reason.
+#[test]
+fn after_the_first_uplift_time_stepping_with_rotations_takes_over() {
+    let dir = temp_dir("after-uplift");
+    let run = |more: &[&str]| {
+        let mut args = vec![
+            "run",
+            "walls/inca/ollantaytambo-monoliths.ron",
+            "--sine",
+            "0.3g",
+            "--freq",
+            "1",
+            "--duration",
+            "0.5",
+        ];
+        args.extend(more);
+        pirqa(&args)
+    };
+    let summary = |name: &str| -> serde_json::Value {
+        let text = std::fs::read_to_string(dir.join(name).join("summary.json")).unwrap();
+        serde_json::from_str(&text).unwrap()
+    };
+    let out_dir = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let (handed, checked) = (out_dir("handed"), out_dir("checked"));
+    let (ok, out, err) = run(&["--after-uplift", "moreau", "--dt", "1e-3", "--out", &handed]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("| event+moreau |") && out.contains("from there Moreau-Jean with every"),
+        "{out}"
+    );
+    let (ok, _, err) = run(&["--model", "slide", "--check-uplift", "--out", &checked]);
+    assert!(ok, "{err}");
+    let (a, b) = (summary("handed"), summary("checked"));
+    assert_eq!(a["uplift_check"], b["uplift_check"]);
+    assert_eq!(
+        a["uplift_check"]["first_uplift"]["turning"][0],
+        "F1 turns counterclockwise about its bottom-left corner"
+    );
+    assert_eq!(a["method"], "event+moreau");
+    let history = std::fs::read_to_string(dir.join("handed").join("history.csv")).unwrap();
+    assert!(history.lines().next().unwrap().contains(",theta_F1_rad,"));
+    let (ok, _, err) = run(&["--after-uplift", "moreau", "--method", "paper"]);
+    assert!(
+        !ok && err.contains("--method chooses another integrator"),
+        "{err}"
+    );
+}

@@ -16,6 +16,7 @@ use super::release::released;
 use super::wall_dual::WallDual;
 use super::wall_newton::{Contact, Part, Stall, StepProblem, WallNewton, COMPLIANCE};
 use crate::error::SimulationError;
+use crate::integrate::event::HandOff;
 use crate::integrate::stepping::{lerp, outputs_in_step, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Scenario};
 use crate::response::{Collapse, CollapseCause, ModelUsed, Recorder, Response, Warning};
@@ -322,6 +323,23 @@ impl Integrator for MoreauWall {
     }
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
+        self.stepped(sc, None)
+    }
+}
+
+impl MoreauWall {
+    /// Goes on from the exact sliding run's first uplift: its blocks where the sliding model
+    /// had them, seated and unturned, with its velocities, recorder and energy terms.
+    pub(crate) fn run_from(
+        &self,
+        sc: &Scenario,
+        start: HandOff,
+    ) -> Result<Response, SimulationError> {
+        self.stepped(sc, Some(start))
+    }
+
+    /// Steps from rest at t = 0 (a released block turned), or from `start`.
+    fn stepped(&self, sc: &Scenario, start: Option<HandOff>) -> Result<Response, SimulationError> {
         let dt = self.dt_s;
         time_step(sc, dt)?;
         let (wall, topo, settings) = (sc.wall, sc.topology, sc.settings);
@@ -344,7 +362,31 @@ impl Integrator for MoreauWall {
             .collect();
         let n = bodies.len();
         let candidates = candidates(sc);
-        let mut rec = Recorder::new(wall, topo, settings.history_to(), settings.events_to());
+        let (handed, t0) = (start.is_some(), start.as_ref().map_or(0.0, |h| h.t_s));
+        let (mut q, mut v) = (
+            vec![Vector3::<f64>::zeros(); n],
+            vec![Vector3::<f64>::zeros(); n],
+        );
+        let mut gone = vec![false; n];
+        // The energy terms at the start, for the balance of the steps (friction and landings).
+        let mut before = Before::default();
+        let mut rec = match start {
+            Some(h) => {
+                for i in 0..n {
+                    q[i].x = h.u_m[i];
+                    v[i].x = h.v_m_s[i];
+                }
+                gone = h.fallen;
+                before = Before {
+                    mechanical_j: h.kinetic_j,
+                    input_j: h.rec.energy.input_j,
+                    fallen_j: h.rec.energy.fallen_j,
+                    friction_j: h.rec.energy.friction_j,
+                };
+                h.rec
+            }
+            None => Recorder::new(wall, topo, settings.history_to(), settings.events_to()),
+        };
         let on_several: Vec<String> = (0..n)
             .filter(|&i| {
                 topo.horizontal
@@ -362,14 +404,11 @@ impl Integrator for MoreauWall {
                 elastic: self.solver == ContactSolver::Newton,
             });
         }
-        let mut q = vec![Vector3::<f64>::zeros(); n];
         if let Some((name, theta)) = &self.initial_rotation {
             for (i, moved) in released(wall, topo, name, *theta)? {
                 q[i] = moved;
             }
         }
-        let mut v = vec![Vector3::<f64>::zeros(); n];
-        let mut gone = vec![false; n];
         let moves = |i: usize, gone: &[bool]| bodies[i].free && !gone[i];
         let energy_of = |i: usize, q: &[Vector3<f64>], v: &[Vector3<f64>]| {
             let b = &bodies[i];
@@ -410,10 +449,19 @@ impl Integrator for MoreauWall {
         };
         let mut previous = outputs(&q, &v);
         extremes(&mut rec, &previous);
-        let (u0, uv0, theta0, omega0, w0) = &previous;
-        rec.sample_rotating(0.0, [u0, uv0, theta0, omega0, w0]);
         let mut next_output = 1;
-        let steps = (settings.duration_s / dt).ceil() as u64;
+        if !handed {
+            let (u0, uv0, theta0, omega0, w0) = &previous;
+            rec.sample_rotating(0.0, [u0, uv0, theta0, omega0, w0]);
+        } else if let Some(o) = settings.output_dt_s {
+            // The sliding run wrote the rows up to the hand-off and one at it.
+            next_output = (t0 / o).floor() as u64;
+            while next_output as f64 * o <= t0 {
+                next_output += 1;
+            }
+        }
+        let steps = ((settings.duration_s - t0) / dt).ceil() as u64;
+        let at = |k: u64| t0 + k as f64 * dt;
         let scale = g * dt;
         let inv = |i: usize| {
             Vector3::new(
@@ -435,7 +483,7 @@ impl Integrator for MoreauWall {
         let mut fastest = vec![0u64; n];
         let mut newton =
             (self.solver == ContactSolver::Newton).then(|| NewtonStep::new(&bodies, &candidates));
-        let mut t = 0.0;
+        let mut t = t0;
         for k in 1..=steps {
             let t_prev = t;
             if let Some(p) = &settings.progress {
@@ -449,14 +497,26 @@ impl Integrator for MoreauWall {
                     break;
                 }
             }
-            let t_mid = (k as f64 - 0.5) * dt;
+            // After a hand-off the grid starts at the uplift, and its last step is cut to end at
+            // the duration.
+            let last = handed && k == steps;
+            let h = if last {
+                settings.duration_s - t_prev
+            } else {
+                dt
+            };
+            let t_mid = if last {
+                t_prev + 0.5 * h
+            } else {
+                t0 + (k as f64 - 0.5) * dt
+            };
             let seg = sc.motion.segment_at(t_mid);
             let s = t_mid - seg.t0;
             let (a, lambda) = (seg.accel(s), seg.lambda.0 + seg.lambda.1 * s);
             let v_start = v.clone();
             for (i, vi) in v.iter_mut().enumerate() {
                 if moves(i, &gone) {
-                    *vi += dt * Vector3::new(-a, -g * lambda, 0.0);
+                    *vi += h * Vector3::new(-a, -g * lambda, 0.0);
                 }
             }
             // The contacts predicted closed at mid-step, on the blocks where they were at its
@@ -473,7 +533,7 @@ impl Integrator for MoreauWall {
                     continue;
                 };
                 let before = geometry.velocity(c, &v_start);
-                if geometry.gap + 0.5 * dt * before.x > TOUCH_M {
+                if geometry.gap + 0.5 * h * before.x > TOUCH_M {
                     impulses[ci] = Vector2::zeros();
                     continue;
                 }
@@ -516,16 +576,16 @@ impl Integrator for MoreauWall {
                     Solved::InVelocities => {}
                     Solved::InImpulses => {
                         in_impulses += 1;
-                        first_in_impulses.get_or_insert(k as f64 * dt);
+                        first_in_impulses.get_or_insert(at(k));
                     }
                     Solved::ByInteriorPoint => {
                         by_interior += 1;
-                        first_by_interior.get_or_insert(k as f64 * dt);
+                        first_by_interior.get_or_insert(at(k));
                     }
                     Solved::InteriorFirst => interior_first += 1,
                     Solved::Neither => {
                         fell_back += 1;
-                        first_fell_back.get_or_insert(k as f64 * dt);
+                        first_fell_back.get_or_insert(at(k));
                     }
                 }
                 solved != Solved::Neither
@@ -600,7 +660,7 @@ impl Integrator for MoreauWall {
             };
             if !converged {
                 unconverged += 1;
-                first_unconverged.get_or_insert(k as f64 * dt);
+                first_unconverged.get_or_insert(at(k));
             }
             // A vertical joint whose faces met approaching (one impact, however many of its
             // corners took part).
@@ -625,13 +685,13 @@ impl Integrator for MoreauWall {
                     v[i] = Vector3::zeros();
                     continue;
                 }
-                let dq = 0.5 * dt * (v_start[i] + v[i]);
+                let dq = 0.5 * h * (v_start[i] + v[i]);
                 let m = bodies[i].mass;
                 // Work of the ground's inertial force and of the vertical motion's extra weight.
                 rec.energy.input_j += -m * a * dq.x - m * g * (lambda - 1.0) * dq.y;
                 q[i] += dq;
             }
-            t = k as f64 * dt;
+            t = if last { settings.duration_s } else { at(k) };
             rec.stats.steps += 1;
             let mut fell_now = false;
             for i in 0..n {
@@ -640,7 +700,7 @@ impl Integrator for MoreauWall {
                 }
                 let b = &bodies[i];
                 if q[i].z.abs() * b.half.x.max(b.half.y) > UPLIFT_M {
-                    rec.uplift(i, t - dt);
+                    rec.uplift(i, t - h);
                 }
                 // Overturned, or dropped by half its height: it left what carried it.
                 if q[i].z.abs() >= std::f64::consts::FRAC_PI_2 || q[i].y < -b.half.y {
@@ -700,9 +760,18 @@ impl Integrator for MoreauWall {
             rec.energy.potential_j += b.mass * g * q[i].y;
         }
         // What the contacts took: the rest of the balance (friction and landings together,
-        // which time stepping does not tell apart).
+        // which time stepping does not tell apart); after a hand-off, the rest of the steps'
+        // balance added to what the sliding run lost, whose own balance stays as it closed.
         let e = &mut rec.energy;
-        e.friction_j = e.initial_j + e.input_j - e.kinetic_j - e.potential_j - e.fallen_j;
+        e.friction_j = if !handed {
+            e.initial_j + e.input_j - e.kinetic_j - e.potential_j - e.fallen_j
+        } else {
+            let stepped = (e.input_j - before.input_j) + before.mechanical_j
+                - e.kinetic_j
+                - e.potential_j
+                - (e.fallen_j - before.fallen_j);
+            before.friction_j + stepped
+        };
         rec.stats.unconverged_steps = unconverged;
         if unconverged > 0 {
             let mut blocks: Vec<(String, u64)> = (0..n)
@@ -740,7 +809,8 @@ impl Integrator for MoreauWall {
         }
         let (u, uv, _, _, _) = outputs(&q, &v);
         let motion = sc.motion.describe();
-        let mut r = rec.finish("moreau", &wall.name, motion, t, &u, &uv);
+        let method = if handed { "event+moreau" } else { "moreau" };
+        let mut r = rec.finish(method, &wall.name, motion, t, &u, &uv);
         r.summary.model = ModelUsed {
             name: "slide-rock".into(),
             equations: Some(
@@ -755,6 +825,19 @@ impl Integrator for MoreauWall {
         };
         Ok(r)
     }
+}
+
+/// Energy terms where the steps start (J).
+#[derive(Default)]
+struct Before {
+    /// Kinetic and potential energy.
+    mechanical_j: f64,
+    /// Work put in by the ground.
+    input_j: f64,
+    /// Energy of the blocks fallen.
+    fallen_j: f64,
+    /// Friction's work (the sliding run's impacts keep their own term).
+    friction_j: f64,
 }
 
 /// Newton's method on the whole wall, with what a run prepares once: the sparsity of the

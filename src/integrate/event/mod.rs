@@ -53,6 +53,7 @@ mod slip;
 mod solver;
 mod stuck;
 mod uplift;
+use uplift::Next;
 
 use crate::error::SimulationError;
 use crate::exact::Q;
@@ -138,7 +139,54 @@ impl Integrator for EventDriven {
     }
 
     fn run(&self, scenario: &Scenario) -> Result<Response, SimulationError> {
-        Engine::new(scenario, &self.params)?.run()
+        let mut engine = Engine::new(scenario, &self.params)?;
+        engine.run_loop()?;
+        Ok(engine.finish())
+    }
+}
+
+/// How a run watched for its first uplift ended.
+pub(crate) enum Ended {
+    /// Every block stayed seated (or the run stopped first): the sliding answer is the answer.
+    Seated(Box<Response>),
+    /// Some block must start to turn: the state at that instant, for a model with rotations.
+    Lifted(Box<HandOff>),
+}
+
+/// The sliding run's state at its first uplift, with what it recorded up to then.
+pub(crate) struct HandOff {
+    /// The instant of the uplift (s).
+    pub t_s: f64,
+    /// Every block's displacement (m) and velocity (m/s) relative to the ground.
+    pub u_m: Vec<f64>,
+    pub v_m_s: Vec<f64>,
+    /// Blocks fallen before it (`--after-collapse continue`).
+    pub fallen: Vec<bool>,
+    /// Kinetic energy at the instant (J), for the balance of what follows.
+    pub kinetic_j: f64,
+    /// Extremes, history rows (with rotations at zero), events and energy terms so far.
+    pub rec: Recorder,
+}
+
+impl EventDriven {
+    /// Runs the exact sliding model, watched for its first uplift, and stops there with the
+    /// state of that instant (the whole run where every block stays seated): the first part
+    /// of a run that a model with rotations takes over.
+    pub(crate) fn run_to_uplift(&self, scenario: &Scenario) -> Result<Ended, SimulationError> {
+        let params = Params {
+            watch_uplift: true,
+            ..self.params.clone()
+        };
+        let mut engine = Engine::new(scenario, &params)?;
+        engine.rec.rows_with_rotations();
+        if let Some(w) = &mut engine.uplift {
+            w.hand_off = true;
+        }
+        Ok(if engine.run_loop()? {
+            Ended::Lifted(Box::new(engine.hand_off()))
+        } else {
+            Ended::Seated(Box::new(engine.finish()))
+        })
     }
 }
 
@@ -286,7 +334,7 @@ impl<'a> Engine<'a> {
         let too_large = crate::limit::too_large_for_exact(crate::limit::seated::WHAT, movable);
         if let Some(why) = too_large.filter(|_| params.watch_uplift) {
             return Err(SimulationError::NotApplicable(format!(
-                "{why}: leave --check-uplift out"
+                "{why}: leave --check-uplift (and --after-uplift) out"
             )));
         }
         let uplift = params.watch_uplift.then(uplift::Watch::default);
@@ -346,7 +394,9 @@ impl<'a> Engine<'a> {
         })
     }
 
-    fn run(mut self) -> Result<Response, SimulationError> {
+    /// Runs to the end, or to the first uplift where the watch is to hand off there (true,
+    /// the engine advanced to that instant).
+    fn run_loop(&mut self) -> Result<bool, SimulationError> {
         // The flow passes counted from here on are this run's (a failed run on this thread
         // may have left some).
         flow::take_pass_nodes();
@@ -359,10 +409,15 @@ impl<'a> Engine<'a> {
             let seg_end = self.seg.t1.min(self.given.t_end);
             match self.queue.pop_until(seg_end, &self.clusters) {
                 Some(p) => {
-                    if !self.output_until(p.t) {
+                    if !self.watch_uplift(p.t)? {
                         break;
                     }
-                    if !self.watch_uplift(p.t)? {
+                    match self.at_hand_off() {
+                        Next::Run => {}
+                        Next::HandOff => return Ok(true),
+                        Next::Stop => break,
+                    }
+                    if !self.output_until(p.t) {
                         break;
                     }
                     self.t = p.t;
@@ -380,10 +435,15 @@ impl<'a> Engine<'a> {
                     }
                 }
                 None => {
-                    if !self.output_until(seg_end) {
+                    if !self.watch_uplift(seg_end)? {
                         break;
                     }
-                    if !self.watch_uplift(seg_end)? {
+                    match self.at_hand_off() {
+                        Next::Run => {}
+                        Next::HandOff => return Ok(true),
+                        Next::Stop => break,
+                    }
+                    if !self.output_until(seg_end) {
                         break;
                     }
                     self.t = seg_end;
@@ -395,7 +455,7 @@ impl<'a> Engine<'a> {
             }
         }
         self.uplift_watch_ends();
-        Ok(self.finish())
+        Ok(false)
     }
 
     /// Tells the caller how far the run is; false (and the run marked interrupted) when it is
@@ -664,9 +724,10 @@ impl<'a> Engine<'a> {
         done
     }
 
-    fn finish(mut self) -> Response {
-        let t = self.t.min(self.given.t_end);
-        self.t = t;
+    /// Every cluster's work, extremes and joints accounted up to now; the blocks'
+    /// displacements and velocities and their kinetic energy.
+    fn settle(&mut self) -> (Vec<f64>, Vec<f64>, f64) {
+        let t = self.t;
         self.account_all(t);
         for k in self.clusters.ids() {
             self.record_extremes(k);
@@ -675,12 +736,35 @@ impl<'a> Engine<'a> {
             self.account_horizontal(s);
         }
         let (u, v) = self.state_now();
-        self.rec.energy.kinetic_j = (0..self.given.n)
+        let kinetic = (0..self.given.n)
             .filter(|&i| !self.fallen[i])
             .map(|i| 0.5 * self.given.mass[i] * v[i] * v[i])
             .sum();
         self.rec.stats.root_evaluations = self.count.0;
         self.rec.stats.flow_nodes = flow::take_pass_nodes();
+        (u, v, kinetic)
+    }
+
+    /// The state at the first uplift, the engine advanced to it; how much overlap sliding took
+    /// away up to then is noted (the check that found the uplift used the overlaps at rest).
+    fn hand_off(mut self) -> HandOff {
+        let (u, v, kinetic) = self.settle();
+        crate::validity::note_overlap_loss(self.given.wall, self.given.topo, &mut self.rec);
+        HandOff {
+            t_s: self.t,
+            u_m: u,
+            v_m_s: v,
+            fallen: self.fallen,
+            kinetic_j: kinetic,
+            rec: self.rec,
+        }
+    }
+
+    fn finish(mut self) -> Response {
+        self.t = self.t.min(self.given.t_end);
+        let t = self.t;
+        let (u, v, kinetic) = self.settle();
+        self.rec.energy.kinetic_j = kinetic;
         // After the uplift check's, if it found one. Where it watched the run and found every
         // block seated throughout, it has answered for the wall what these bound for blocks
         // standing free, and they would only contradict it.

@@ -29,6 +29,11 @@ pub(super) struct Watch {
     current: Option<(Rc<Interval>, [bool; 2])>,
     /// The first uplift was found (the sliding answer leaves rocking out from there on).
     done: bool,
+    /// The run stops at the first uplift for a model with rotations to go on from there
+    /// (`EventDriven::run_to_uplift`), instead of sliding on with a warning.
+    pub(super) hand_off: bool,
+    /// When the first uplift was found, until the run has handed off there.
+    due: Option<f64>,
     /// Function evaluations of its crossings, kept out of the run's own count.
     count: Counter,
 }
@@ -41,6 +46,16 @@ enum Look {
     Lifts(f64, Vec<Moves>),
     /// The run was asked to stop while the programs ran.
     Stopped,
+}
+
+/// What the run does after the watch has looked at a stretch.
+pub(super) enum Next {
+    /// Goes on.
+    Run,
+    /// Stops at the first uplift, advanced to it, for a model with rotations.
+    HandOff,
+    /// Stops: asked to, while writing the history up to the uplift.
+    Stop,
 }
 
 /// How a block moves with others: touching faces of blocks that move together can push.
@@ -75,8 +90,9 @@ impl Engine<'_> {
         match look {
             Look::Clear => {}
             Look::Lifts(t, mechanism) => {
-                self.record_uplift(t, &mechanism);
+                self.record_uplift(t, &mechanism, !w.hand_off);
                 w.done = true;
+                w.due = w.hand_off.then_some(t);
             }
             Look::Stopped => {
                 self.interrupt();
@@ -87,8 +103,25 @@ impl Engine<'_> {
         Ok(go_on)
     }
 
-    /// Records the first uplift, at `t`, by `mechanism`.
-    fn record_uplift(&mut self, t: f64, mechanism: &[Moves]) {
+    /// Where the watch has found the first uplift and is to hand off there: advances the run to
+    /// that instant (its history rows up to it, and one at it).
+    pub(super) fn at_hand_off(&mut self) -> Next {
+        let Some(t) = self.uplift.as_mut().and_then(|w| w.due.take()) else {
+            return Next::Run;
+        };
+        if !self.output_until(t) {
+            return Next::Stop;
+        }
+        self.t = t;
+        if self.rec.last_row_time() != Some(t) {
+            self.sample();
+        }
+        Next::HandOff
+    }
+
+    /// Records the first uplift, at `t`, by `mechanism`; with `warn`, warns that the sliding
+    /// answer leaves out the rocking from there.
+    fn record_uplift(&mut self, t: f64, mechanism: &[Moves], warn: bool) {
         // The blocks that turn; the others of the mechanism move with them.
         let names: Vec<String> = mechanism
             .iter()
@@ -103,10 +136,12 @@ impl Engine<'_> {
                 turning: names.clone(),
             }),
         });
-        self.rec.warnings.push(Warning::Lifts {
-            time_s: t,
-            turning: names,
-        });
+        if warn {
+            self.rec.warnings.push(Warning::Lifts {
+                time_s: t,
+                turning: names,
+            });
+        }
     }
 
     /// The run's end: a watch that found no uplift says how far it looked.
