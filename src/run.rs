@@ -33,8 +33,9 @@ pub enum Method {
 }
 
 /// What a sliding run does at the first instant some block must start to turn (found by the
-/// uplift check, `limit::seated`).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// uplift check, `limit::seated`); a sweep file's `after_uplift` (`Slide`, `Moreau(dt_s: S)`).
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum AfterUplift {
     /// Slides on, the check saying when and which blocks would turn (with `check_uplift`).
     #[default]

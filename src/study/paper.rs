@@ -93,6 +93,7 @@ fn grid(duration_s: f64, frequencies: Frequencies) -> SweepDescription {
         fallback: Default::default(),
         contact_solver: Default::default(),
         check_uplift: false,
+        after_uplift: Default::default(),
     }
 }
 

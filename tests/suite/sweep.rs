@@ -476,6 +476,7 @@ fn every_shipped_study_loads() {
         ("fragility.ron", 6 * 200),
         ("friction-mc.ron", 1000),
         ("long-walls.ron", 5 * 8),
+        ("ollantaytambo-handed.ron", 6),
         ("ollantaytambo-rocking.ron", 6),
         ("ollantaytambo-sliding.ron", 6),
         ("ollantaytambo-uplift.ron", 9 * 50),
@@ -900,4 +901,60 @@ fn a_sweep_asked_to_check_uplift_gives_each_cases_first_uplift() {
             "{e}"
         );
     }
+}
+
+/// `after_uplift: Moreau(dt_s: ...)` hands each case that slides to Moreau-Jean with rotations
+/// at its first uplift, as `pirqa run --after-uplift moreau` does: on the Ollantaytambo wall
+/// under a 1 Hz sine, at 0.2 g nothing lifts (the wall's limit at rest is 0.28 g) and the case
+/// keeps its exact sliding answer; at 0.3 g it lifts where the checked sliding run says, to the
+/// bit, and its blocks turn from there; both cases rerun with the hand-off's options. Asked of
+/// a sweep whose cases do not run the exact sliding engine, it is refused.
+#[test]
+fn a_sweep_asked_to_hand_off_at_the_first_uplift_does_so_case_by_case() {
+    let text = |method: &str| {
+        format!(
+            r#"(
+    version: 1,
+    name: "hand-off",
+    walls: [File(path: "walls/inca/ollantaytambo-monoliths.ron")],
+    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.0]), duration_s: 0.5),
+    {method}
+    after_uplift: Moreau(dt_s: 0.001),
+)"#
+        )
+    };
+    let s = sweep(&text("")).unwrap();
+    let rows: Vec<CaseRow> = (0..s.len()).map(|id| s.run_case(id).0).collect();
+    assert_eq!(rows[0].model, "slide");
+    assert_eq!(rows[0].uplift_time_s, None);
+    assert_eq!(rows[0].max_abs_rotation_rad, 0.0);
+    assert_eq!(rows[1].model, pirqa::study::sweep::AFTER_UPLIFT_MODEL);
+    assert!(rows[1].max_abs_rotation_rad > 0.0);
+    let checked = pirqa::run(
+        &pirqa::Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap(),
+        &pirqa::Motion::sine(pirqa::Sine {
+            amplitude_m_s2: 0.3 * 9.81,
+            frequency_hz: 1.0,
+            duration_s: 0.5,
+            ..pirqa::Sine::default()
+        })
+        .unwrap(),
+        &pirqa::RunSettings {
+            model: pirqa::ModelChoice::Slide,
+            check_uplift: true,
+            ..pirqa::RunSettings::default()
+        },
+    )
+    .unwrap();
+    let first = checked.summary.uplift_check.unwrap().first_uplift.unwrap();
+    assert_eq!(rows[1].uplift_time_s, Some(first.time_s));
+    assert_eq!(rows[1].error, None);
+    for id in 0..2 {
+        assert_eq!(
+            s.case_options(id).unwrap(),
+            "--after-uplift moreau --dt 0.001"
+        );
+    }
+    let refused = sweep(&text("method: Moreau(dt_s: 0.001),")).unwrap_err();
+    assert!(format!("{refused}").contains("after_uplift"), "{refused}");
 }

@@ -14,7 +14,7 @@ mod wall_dual;
 mod wall_newton;
 
 pub use moreau::Moreau;
-pub use moreau_wall::{ContactSolver, MoreauWall};
+pub use moreau_wall::{ContactSolver, MoreauWall, HANDED_OFF};
 pub use paper::PaperNewmark;
 pub use regularized::Regularized;
 

@@ -54,6 +54,9 @@ const TOUCH_M: f64 = 1e-12;
 /// second, so 1,024 of them kept Ctrl-C waiting for minutes.
 const PROGRESS_STEPS: u64 = 1024;
 
+/// The `method` of a run the exact sliding engine handed over at its first uplift.
+pub const HANDED_OFF: &str = "event+moreau";
+
 /// Moreau-Jean with rotations, on a wall of any number of blocks.
 #[derive(Debug, Clone)]
 pub struct MoreauWall {
@@ -809,7 +812,7 @@ impl MoreauWall {
         }
         let (u, uv, _, _, _) = outputs(&q, &v);
         let motion = sc.motion.describe();
-        let method = if handed { "event+moreau" } else { "moreau" };
+        let method = if handed { HANDED_OFF } else { "moreau" };
         let mut r = rec.finish(method, &wall.name, motion, t, &u, &uv);
         r.summary.model = ModelUsed {
             name: "slide-rock".into(),

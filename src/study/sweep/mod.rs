@@ -12,14 +12,14 @@ pub mod store;
 use crate::clock::ThreadClock;
 use crate::error::{Error, MotionError, SimulationError, SweepError};
 use crate::exact::Q;
-use crate::integrate::baselines::ContactSolver;
+use crate::integrate::baselines::{ContactSolver, HANDED_OFF};
 use crate::integrate::rocking::ModelChoice;
 use crate::integrate::{Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
 use crate::response::{Summary, Warning};
 use crate::rng::Rng;
-use crate::run::{in_plane_model, run_scenario, Method, RunSettings};
+use crate::run::{in_plane_model, run_scenario, AfterUplift, Method, RunSettings};
 use crate::topology::Topology;
 use crate::units::parse_acceleration;
 use crate::wall::{RunningBond, Wall, WallDescription};
@@ -71,6 +71,16 @@ pub struct SweepDescription {
     /// sliding engine only: the method at Event and the model Auto or Slide.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub check_uplift: bool,
+    /// What follows the first uplift of a case that slides, as `pirqa run --after-uplift`
+    /// (default `Slide`; `Moreau(dt_s: S)`: Moreau-Jean with every block's rotation from there,
+    /// the case's `model` reading [`AFTER_UPLIFT_MODEL`] where it lifted). The method at Event
+    /// and the model Auto.
+    #[serde(default, skip_serializing_if = "is_slide_on")]
+    pub after_uplift: AfterUplift,
+}
+
+fn is_slide_on(a: &AfterUplift) -> bool {
+    *a == AfterUplift::Slide
 }
 
 fn is_gauss_seidel(s: &ContactSolver) -> bool {
@@ -100,6 +110,10 @@ pub enum Fallback {
 
 /// The `model` of a case the fallback answered.
 pub const FALLBACK_MODEL: &str = "slide-rock (moreau fallback)";
+
+/// The `model` of a case that slid exactly to its first uplift and was time stepped with
+/// rotations from there (`after_uplift: Moreau(...)`).
+pub const AFTER_UPLIFT_MODEL: &str = "slide, then slide-rock (moreau after the first uplift)";
 
 /// Why a run ended before its end where the model stops being valid (its warning), if it did:
 /// a held joint gave way, a body left the ground.
@@ -351,6 +365,8 @@ pub struct Sweep {
     pub contact_solver: ContactSolver,
     /// Watch the cases that slide for their first uplift.
     pub check_uplift: bool,
+    /// What follows the first uplift of a case that slides.
+    pub after_uplift: AfterUplift,
 }
 
 /// An error of the sweep file `path`.
@@ -480,6 +496,9 @@ impl Sweep {
         // sweeps begun then resume.
         let text = format!("{:?}", d.by_file_name());
         let text = text
+            .strip_suffix(", after_uplift: Slide }")
+            .map_or_else(|| text.clone(), |t| format!("{t} }}"));
+        let text = text
             .strip_suffix(", check_uplift: false }")
             .map_or_else(|| text.clone(), |t| format!("{t} }}"));
         let text = text
@@ -536,14 +555,15 @@ impl Sweep {
         }
         let rotations_stepped = matches!(d.method, SweepMethod::Moreau { .. })
             && d.model == ModelChoice::SlideRock
-            || matches!(d.fallback, Fallback::Moreau { .. });
+            || matches!(d.fallback, Fallback::Moreau { .. })
+            || matches!(d.after_uplift, AfterUplift::Moreau { .. });
         if d.contact_solver != ContactSolver::GaussSeidel && !rotations_stepped {
             return Err(field(
                 origin,
                 "contact_solver",
                 "chooses how Moreau-Jean with rotations solves a step's contacts, and no case \
                  runs it: set method to Moreau(dt_s: ...) with model SlideRock (or a Moreau \
-                 fallback), or leave contact_solver out"
+                 fallback, or after_uplift), or leave contact_solver out"
                     .into(),
             ));
         }
@@ -555,6 +575,25 @@ impl Sweep {
                  (or leave it out) and model to Auto or Slide, or leave check_uplift out"
                     .into(),
             ));
+        }
+        if let AfterUplift::Moreau { dt_s } = d.after_uplift {
+            if !(dt_s.is_finite() && dt_s > 0.0) {
+                return Err(field(
+                    origin,
+                    "after_uplift",
+                    format!("time step {dt_s} s: it must be positive"),
+                ));
+            }
+            if d.method != SweepMethod::Event || d.model != ModelChoice::Auto {
+                return Err(field(
+                    origin,
+                    "after_uplift",
+                    "hands a case's exact sliding run over at its first uplift, and no case \
+                     runs it: set method to Event and model to Auto (or leave them out), or \
+                     leave after_uplift out"
+                        .into(),
+                ));
+            }
         }
         let mut hash = fnv(FNV_OFFSET, text.as_bytes());
         let mut walls = Vec::new();
@@ -590,6 +629,7 @@ impl Sweep {
             fallback: d.fallback,
             contact_solver: d.contact_solver,
             check_uplift: d.check_uplift,
+            after_uplift: d.after_uplift,
         })
     }
 
@@ -737,9 +777,18 @@ impl Sweep {
     /// [`FALLBACK_MODEL`], and why names where the exact run stopped).
     fn integrate(&self, sc: &Scenario) -> Result<Response, SimulationError> {
         let mut settings = self.run_settings();
-        // The check watches the sliding engine: a case that rocks is not checked.
-        settings.check_uplift = self.check_uplift && !in_plane_model(sc, &settings)?.0;
-        let r = run_scenario(sc, &settings)?;
+        // The check watches the sliding engine: a case that rocks is not checked, nor handed
+        // over at an uplift (the exact rocking model follows it).
+        let slides = !in_plane_model(sc, &settings)?.0;
+        settings.check_uplift = self.check_uplift && slides;
+        if slides && self.after_uplift != AfterUplift::Slide {
+            settings.after_uplift = self.after_uplift;
+            settings.contact_solver = self.contact_solver;
+        }
+        let mut r = run_scenario(sc, &settings)?;
+        if r.summary.method == HANDED_OFF {
+            r.summary.model.name = AFTER_UPLIFT_MODEL.into();
+        }
         let (Fallback::Moreau { dt_s }, Some(why)) = (self.fallback, beyond_model(&r.summary))
         else {
             return Ok(r);
@@ -777,9 +826,23 @@ impl Sweep {
         }
     }
 
+    /// `pirqa run`'s option of the sweep's contact solver, where it is not the default.
+    fn solver_option(&self) -> &'static str {
+        match self.contact_solver {
+            ContactSolver::GaussSeidel => "",
+            ContactSolver::Newton => " --contact-solver newton",
+        }
+    }
+
     /// `pirqa run`'s options of the model and method case `id` runs on.
     pub fn case_options(&self, id: usize) -> Result<String, SimulationError> {
         let model = self.case_model(id)?;
+        if let (AfterUplift::Moreau { dt_s }, "slide") = (self.after_uplift, model) {
+            return Ok(format!(
+                "--after-uplift moreau --dt {dt_s}{}",
+                self.solver_option()
+            ));
+        }
         let check = if self.check_uplift && model == "slide" {
             " --check-uplift"
         } else {
