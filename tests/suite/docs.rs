@@ -120,6 +120,10 @@ fn committed_studies_are_what_their_cases_draw() {
             "walls/studies/ollantaytambo-uplift.ron",
             "docs/rocking/ollantaytambo-uplift",
         ),
+        (
+            "walls/studies/ollantaytambo-handed.ron",
+            "docs/rocking/ollantaytambo-handed",
+        ),
     ] {
         let sweep = Sweep::load(std::path::Path::new(file)).unwrap();
         let rows = Store::finished(std::path::Path::new(dir), &sweep).unwrap();
