@@ -2,7 +2,8 @@
 //! block's rotation from there. Before the uplift the answer is the exact sliding run's to the
 //! bit; after it, a slender block that tips away from its neighbour rocks as the exact rocking
 //! model rocks it standing alone, the gap closing as the step falls; a wall that never lifts
-//! keeps its exact sliding answer; combinations that cannot hand off are refused.
+//! keeps its exact sliding answer; a stop request ends either part with what it reached;
+//! combinations that cannot hand off are refused.
 
 use pirqa::motion::{Motion, Record, Sine};
 use pirqa::{AfterUplift, Method, Model, ModelChoice, Response, RunSettings};
@@ -234,4 +235,45 @@ fn what_cannot_hand_off_is_refused_with_the_reason() {
     );
     let e = refused(&pair(), settings(1.0, AfterUplift::Moreau { dt_s: -1.0 }));
     assert!(e.contains("time step"), "{e}");
+}
+
+#[test]
+fn a_stop_request_ends_a_handed_over_run_with_what_it_reached() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    // Asked before it starts: the sliding part ends at once, and says so.
+    let at_once = RunSettings {
+        progress: Some(pirqa::integrate::Progress::new(|_| {}).with_stop_when(|| true)),
+        ..settings(2.0, AfterUplift::Moreau { dt_s: 1e-4 })
+    };
+    let r = pirqa::run(&pair(), &ramp(), &at_once).unwrap();
+    assert!(r.summary.interrupted_at_s.is_some());
+    assert!(r
+        .summary
+        .model
+        .why
+        .contains("stopped while the exact sliding model ran"));
+    // Asked once the steps after the uplift (1.22625 s) have passed 1.5 s: they end there,
+    // the hand-off and the rotations so far kept.
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&stop);
+    let later = RunSettings {
+        progress: Some(
+            pirqa::integrate::Progress::new(move |t| {
+                if t >= 1.5 {
+                    flag.store(true, Ordering::Relaxed);
+                }
+            })
+            .with_stop(stop),
+        ),
+        ..settings(2.0, AfterUplift::Moreau { dt_s: 1e-4 })
+    };
+    let r = pirqa::run(&pair(), &ramp(), &later).unwrap();
+    let t = r.summary.interrupted_at_s.expect("stopped");
+    assert!((1.5..1.7).contains(&t), "{t}");
+    assert_eq!(r.summary.method, "event+moreau");
+    assert_eq!(r.summary.duration_s, t);
+    let h = history(&r);
+    assert!(*h.time_s.last().unwrap() <= t);
+    assert!(h.rotation_rad.last().unwrap()[0].abs() > 0.0);
 }
