@@ -796,6 +796,32 @@ fn a_rocking_case_on_a_sliding_stepper_fails_with_the_sweeps_own_words() {
     );
 }
 
+/// The first uplift of `wall` sliding under a 1 Hz sine of `amplitude_m_s2` for `duration_s`,
+/// as `pirqa run --model slide --check-uplift` finds it: what a sweep's case must say.
+fn checked_first_uplift(
+    wall: &str,
+    amplitude_m_s2: f64,
+    duration_s: f64,
+) -> pirqa::response::Uplift {
+    let run = pirqa::run(
+        &pirqa::Model::from_file(wall).unwrap(),
+        &pirqa::Motion::sine(pirqa::Sine {
+            amplitude_m_s2,
+            frequency_hz: 1.0,
+            duration_s,
+            ..pirqa::Sine::default()
+        })
+        .unwrap(),
+        &pirqa::RunSettings {
+            model: pirqa::ModelChoice::Slide,
+            check_uplift: true,
+            ..pirqa::RunSettings::default()
+        },
+    )
+    .unwrap();
+    run.summary.uplift_check.unwrap().first_uplift.unwrap()
+}
+
 /// `check_uplift: true` watches every case that slides, as `pirqa run --check-uplift` does: on
 /// the dragged block of walls/rocking/ (model Slide, a 0.7 g sine) the first uplift is where
 /// L's balance of moments fails, a_g = 153/320 g after U started to slide (the closed form of
@@ -825,23 +851,7 @@ fn a_sweep_asked_to_check_uplift_gives_each_cases_first_uplift() {
     assert!((t - expected).abs() <= 1e-13, "{t} against {expected}");
     assert_eq!(rows[1].uplift_checked_until_s, Some(t));
     // The run `rerun.txt` names says the same, to the bit.
-    let run = pirqa::run(
-        &pirqa::Model::from_file("walls/rocking/dragged-block.ron").unwrap(),
-        &pirqa::Motion::sine(pirqa::Sine {
-            amplitude_m_s2: 6.867,
-            frequency_hz: 1.0,
-            duration_s: 2.0,
-            ..pirqa::Sine::default()
-        })
-        .unwrap(),
-        &pirqa::RunSettings {
-            model: pirqa::ModelChoice::Slide,
-            check_uplift: true,
-            ..pirqa::RunSettings::default()
-        },
-    )
-    .unwrap();
-    let first = run.summary.uplift_check.unwrap().first_uplift.unwrap();
+    let first = checked_first_uplift("walls/rocking/dragged-block.ron", 6.867, 2.0);
     assert_eq!(first.time_s, t);
     assert!(first.turning[0].starts_with("L turns counterclockwise about its bottom-left"));
     assert_eq!(rows[1].uplift_turning, Some(first.turning.join("; ")));
@@ -930,23 +940,7 @@ fn a_sweep_asked_to_hand_off_at_the_first_uplift_does_so_case_by_case() {
     assert_eq!(rows[0].max_abs_rotation_rad, 0.0);
     assert_eq!(rows[1].model, pirqa::study::sweep::AFTER_UPLIFT_MODEL);
     assert!(rows[1].max_abs_rotation_rad > 0.0);
-    let checked = pirqa::run(
-        &pirqa::Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap(),
-        &pirqa::Motion::sine(pirqa::Sine {
-            amplitude_m_s2: 0.3 * 9.81,
-            frequency_hz: 1.0,
-            duration_s: 0.5,
-            ..pirqa::Sine::default()
-        })
-        .unwrap(),
-        &pirqa::RunSettings {
-            model: pirqa::ModelChoice::Slide,
-            check_uplift: true,
-            ..pirqa::RunSettings::default()
-        },
-    )
-    .unwrap();
-    let first = checked.summary.uplift_check.unwrap().first_uplift.unwrap();
+    let first = checked_first_uplift("walls/inca/ollantaytambo-monoliths.ron", 0.3 * 9.81, 0.5);
     assert_eq!(rows[1].uplift_time_s, Some(first.time_s));
     assert_eq!(rows[1].error, None);
     for id in 0..2 {
