@@ -42,7 +42,8 @@ pub struct Estimate {
     /// Whether each step turns every block (Moreau-Jean with `--model slide-rock`, or after the
     /// first uplift): a contact problem over the whole wall per step.
     pub rotating: bool,
-    /// The steps are those of `--after-uplift moreau`: at most, from an uplift at the start.
+    /// The steps are those of `--after-uplift moreau` (or `moreau-while-rocking`): at most,
+    /// from an uplift at the start.
     pub after_uplift: bool,
     /// Rows of the history, when one is kept.
     pub history_rows: f64,
@@ -69,10 +70,11 @@ pub fn estimate(model: &Model, motion: &Motion, settings: &RunSettings) -> Estim
         0.0
     };
     let events = 2.0 * slip_episodes * joints_that_can_slip as f64;
-    let steps = match (&settings.method, settings.after_uplift) {
-        (Method::Paper { dt_s } | Method::Moreau { dt_s }, _) => (duration_s / dt_s).ceil(),
-        (_, AfterUplift::Moreau { dt_s }) => (duration_s / dt_s).ceil(),
-        (Method::Event | Method::Regularized(_), AfterUplift::Slide) => 0.0,
+    let steps = match (settings.method.clone(), settings.after_uplift.step_s()) {
+        (Method::Paper { dt_s } | Method::Moreau { dt_s }, _) | (_, Some(dt_s)) => {
+            (duration_s / dt_s).ceil()
+        }
+        (Method::Event | Method::Regularized(_), None) => 0.0,
     };
     let after_uplift = settings.after_uplift != AfterUplift::Slide;
     let rotating = after_uplift

@@ -3,7 +3,9 @@
 //! with a word on which model ran and why. `pirqa run` is this function behind its options.
 
 use crate::error::{Error, SimulationError};
-use crate::integrate::baselines::{ContactSolver, Moreau, MoreauWall, PaperNewmark, Regularized};
+use crate::integrate::baselines::{
+    ContactSolver, Moreau, MoreauWall, PaperNewmark, Regularized, Stepped, HANDED_OFF,
+};
 use crate::integrate::event::{Ended, EventDriven, Params};
 use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
 use crate::integrate::stepping::{positive, time_step};
@@ -33,7 +35,8 @@ pub enum Method {
 }
 
 /// What a sliding run does at the first instant some block must start to turn (found by the
-/// uplift check, `limit::seated`); a sweep file's `after_uplift` (`Slide`, `Moreau(dt_s: S)`).
+/// uplift check, `limit::seated`); a sweep file's `after_uplift` (`Slide`, `Moreau(dt_s: S)`,
+/// `MoreauWhileRocking(dt_s: S)`).
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum AfterUplift {
@@ -47,6 +50,33 @@ pub enum AfterUplift {
         /// Time step (s).
         dt_s: f64,
     },
+    /// As `Moreau`, until every block is seated again and has stopped turning: the exact
+    /// sliding run takes the wall back from there (blocks set down flat, `docs/rocking-walls.md`)
+    /// and hands it over again at its next uplift. Only the stretches in which something rocks
+    /// are time stepped.
+    MoreauWhileRocking {
+        /// Time step (s).
+        dt_s: f64,
+    },
+}
+
+impl AfterUplift {
+    /// The time step of the stepping after an uplift; `None`: slides on.
+    pub fn step_s(&self) -> Option<f64> {
+        match *self {
+            AfterUplift::Slide => None,
+            AfterUplift::Moreau { dt_s } | AfterUplift::MoreauWhileRocking { dt_s } => Some(dt_s),
+        }
+    }
+
+    /// The value of `--after-uplift` that asks for it.
+    pub fn option(&self) -> &'static str {
+        match self {
+            AfterUplift::Slide => "slide",
+            AfterUplift::Moreau { .. } => "moreau",
+            AfterUplift::MoreauWhileRocking { .. } => "moreau-while-rocking",
+        }
+    }
 }
 
 /// The direction of the ground motion relative to the wall.
@@ -141,7 +171,7 @@ impl RunSettings {
                 "add --method moreau --dt S, or leave --contact-solver out",
             )));
         }
-        if let AfterUplift::Moreau { dt_s } = self.after_uplift {
+        if let Some(dt_s) = self.after_uplift.step_s() {
             positive("time step", dt_s, " s")?;
             let hand_off = |asked| {
                 Err(Error::Simulation(incompatible(
@@ -254,7 +284,7 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
     if settings.check_uplift && (rocks || !matches!(settings.method, Method::Event)) {
         return Err(no_uplift_check(&why));
     }
-    if let AfterUplift::Moreau { dt_s } = settings.after_uplift {
+    if let Some(dt_s) = settings.after_uplift.step_s() {
         if rocks {
             return Err(SimulationError::NotApplicable(format!(
                 "the exact rocking model follows this wall's uplift itself ({why}): leave \
@@ -306,7 +336,9 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
     Ok(response)
 }
 
-/// The exact sliding run up to its first uplift, Moreau-Jean with rotations from there.
+/// The exact sliding run up to its first uplift, Moreau-Jean with rotations from there: to the
+/// end, or (`MoreauWhileRocking`) until every block is seated again, where the exact sliding
+/// run goes on, to its next uplift.
 fn hand_off_at_uplift(
     sc: &Scenario,
     settings: &RunSettings,
@@ -319,30 +351,100 @@ fn hand_off_at_uplift(
         solver: settings.contact_solver,
         ..MoreauWall::new(dt_s)
     };
+    let back = matches!(
+        settings.after_uplift,
+        AfterUplift::MoreauWhileRocking { .. }
+    );
+    let option = settings.after_uplift.option();
     // The step is checked before the sliding run, which may take long.
     time_step(sc, dt_s)?;
-    Ok(match sliding.run_to_uplift(sc)? {
-        Ended::Seated(mut r) => {
-            r.summary.model.why = if r.summary.interrupted_at_s.is_some() {
-                "auto with --after-uplift moreau: stopped while the exact sliding model ran"
-            } else {
-                "auto with --after-uplift moreau: no block had to start turning before the run \
-                 ended (the uplift check), so the exact sliding answer is the answer"
+    let mut ended = sliding.run_to_uplift(sc)?;
+    // The stretches time stepped: from an uplift to where the wall was set down.
+    let mut stepped: Vec<(f64, f64)> = Vec::new();
+    let mut turning = String::new();
+    loop {
+        match ended {
+            Ended::Seated(r) if stepped.is_empty() => {
+                let mut r = *r;
+                r.summary.model.why = if r.summary.interrupted_at_s.is_some() {
+                    format!(
+                        "auto with --after-uplift {option}: stopped while the exact sliding \
+                         model ran"
+                    )
+                } else {
+                    format!(
+                        "auto with --after-uplift {option}: no block had to start turning \
+                         before the run ended (the uplift check), so the exact sliding answer is \
+                         the answer"
+                    )
+                };
+                return Ok(r);
             }
-            .into();
-            *r
+            Ended::Seated(r) => {
+                let mut r = *r;
+                r.summary.method = HANDED_OFF.into();
+                r.summary.model = stepper.model_used(&stretches(&turning, &stepped, None, dt_s));
+                return Ok(r);
+            }
+            Ended::Lifted(h) => {
+                let t = h.t_s;
+                if stepped.is_empty() {
+                    turning = lifted_blocks(&h.rec);
+                }
+                match stepper.run_from(sc, *h, back)? {
+                    Stepped::Ended(r) => {
+                        let mut r = *r;
+                        r.summary.model.why = if back {
+                            stretches(&turning, &stepped, Some(t), dt_s)
+                        } else {
+                            format!(
+                                "auto with --after-uplift moreau: exact sliding while every \
+                                 block stayed seated, to the first uplift at t = {t} s \
+                                 ({turning}); from there Moreau-Jean with every block's \
+                                 rotation, dt = {dt_s} s"
+                            )
+                        };
+                        return Ok(r);
+                    }
+                    Stepped::Seated(h) => {
+                        stepped.push((t, h.t_s));
+                        ended = sliding.resume(sc, *h)?;
+                    }
+                }
+            }
         }
-        Ended::Lifted(h) => {
-            let (t, turning) = (h.t_s, lifted_blocks(&h.rec));
-            let mut r = stepper.run_from(sc, *h)?;
-            r.summary.model.why = format!(
-                "auto with --after-uplift moreau: exact sliding while every block stayed seated, \
-                 to the first uplift at t = {t} s ({turning}); from there Moreau-Jean with every \
-                 block's rotation, dt = {dt_s} s"
-            );
-            r
-        }
-    })
+    }
+}
+
+/// Stretches listed in `model.why` one by one; beyond them, counted.
+const STRETCHES_LISTED: usize = 5;
+
+/// The `model.why` of a run handed back and forth: the first uplift (the blocks that
+/// turned), the stretches time stepped until the wall was set down again, and the last,
+/// from `open_from`, where stepping ran to the end.
+fn stretches(turning: &str, stepped: &[(f64, f64)], open_from: Option<f64>, dt_s: f64) -> String {
+    let mut spans: Vec<String> = stepped
+        .iter()
+        .map(|(a, b)| format!("{a} to {b} s"))
+        .chain(open_from.map(|a| format!("{a} s to the end")))
+        .collect();
+    let count = spans.len();
+    if count > STRETCHES_LISTED {
+        spans.truncate(STRETCHES_LISTED);
+        spans.push(format!("{} more", count - STRETCHES_LISTED));
+    }
+    let first = stepped
+        .first()
+        .map(|s| s.0)
+        .or(open_from)
+        .unwrap_or_default();
+    format!(
+        "auto with --after-uplift moreau-while-rocking: exact sliding while every block stayed \
+         seated; from each uplift (the first at t = {first} s: {turning}) Moreau-Jean with every \
+         block's rotation, dt = {dt_s} s, until every block was seated and still again (set \
+         down flat, the exact sliding model went on); stretches stepped ({count}): {}",
+        spans.join(", ")
+    )
 }
 
 /// The blocks the uplift check found turning, as its warning names them.

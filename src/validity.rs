@@ -144,6 +144,9 @@ pub fn largest_overlap_loss(
 pub fn note_overlap_loss(wall: &Wall, topo: &Topology, rec: &mut Recorder) {
     let loss = largest_overlap_loss(wall, topo, rec.relative_ranges());
     rec.overlap_loss = Some(loss.as_ref().map_or(0.0, OverlapLoss::share));
+    // A run handed from model to model notes it at each hand-over: the last one holds.
+    rec.warnings
+        .retain(|w| !matches!(w, Warning::OverlapLost { .. }));
     let warning = loss.and_then(|loss| overlap_warning(wall, topo, &loss));
     rec.warnings.extend(warning);
 }

@@ -46,8 +46,9 @@ fn method(name: &str, dt_s: Option<f64>) -> PyResult<Method> {
     }
 }
 
-/// The integrator and what follows a first uplift: with "moreau" after it, `dt_s` is the step
-/// of the time stepping that takes over, and the exact method runs up to the uplift.
+/// The integrator and what follows a first uplift: with "moreau" (or "moreau-while-rocking")
+/// after it, `dt_s` is the step of the time stepping that takes over, and the exact method runs
+/// up to the uplift (and again wherever every block is seated and still).
 fn method_after_uplift(
     method: &str,
     after_uplift: &str,
@@ -55,20 +56,27 @@ fn method_after_uplift(
 ) -> PyResult<(Method, AfterUplift)> {
     match after_uplift {
         "slide" => Ok((self::method(method, dt_s)?, AfterUplift::Slide)),
-        "moreau" => {
+        "moreau" | "moreau-while-rocking" => {
             let dt_s = dt_s.ok_or_else(|| {
                 option(
                     "dt_s",
-                    "after_uplift \"moreau\" needs the time step dt_s of the stepping that \
-                     takes over",
+                    format!(
+                        "after_uplift \"{after_uplift}\" needs the time step dt_s of the \
+                         stepping that takes over"
+                    ),
                 )
             })?;
             let own = (method != "event").then_some(dt_s);
-            Ok((self::method(method, own)?, AfterUplift::Moreau { dt_s }))
+            let after = if after_uplift == "moreau" {
+                AfterUplift::Moreau { dt_s }
+            } else {
+                AfterUplift::MoreauWhileRocking { dt_s }
+            };
+            Ok((self::method(method, own)?, after))
         }
         _ => Err(option(
             "after_uplift",
-            format!("\"{after_uplift}\": give slide or moreau"),
+            format!("\"{after_uplift}\": give slide, moreau or moreau-while-rocking"),
         )),
     }
 }

@@ -146,8 +146,30 @@ def test_after_the_first_uplift_moreau_jean_takes_over():
     assert abs(theta[-1, 0]) > 0.25 and abs(theta[-1, 1]) < 1e-6
     with pytest.raises(pirqa.OptionError, match="dt_s"):
         pirqa.run(wall, ramp, after_uplift="moreau")
-    with pytest.raises(pirqa.OptionError, match="give slide or moreau"):
+    with pytest.raises(pirqa.OptionError, match="give slide, moreau or moreau-while-rocking"):
         pirqa.run(wall, ramp, after_uplift="rock", dt_s=1e-3)
+
+
+def test_while_blocks_rock_moreau_jean_steps_them_and_then_gives_the_wall_back():
+    """The slender block under a pulse to 3.5 m/s2 and back: it lifts at g/4 on the way up,
+    rocks, lands and settles; from there the exact sliding model has the wall again, every
+    rotation zero, nothing moving on still ground."""
+    wall = pirqa.Wall.from_ron(
+        """(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6, rows: [
+            (height_m: 1.2, blocks: [(width_m: 0.3, name: "S"), (width_m: 1.2, name: "W")])])"""
+    )
+    rise = np.linspace(0.0, 3.5, 41)
+    pulse = pirqa.Motion.from_array(np.concatenate([rise, rise[-2::-1], np.zeros(220)]), dt_s=0.01)
+    r = pirqa.run(
+        wall, pulse, duration_s=3.0, output_dt_s=0.01, after_uplift="moreau-while-rocking", dt_s=1e-3
+    )
+    s = r.summary
+    assert s["method"] == "event+moreau"
+    assert "stretches stepped (1)" in s["model"]["why"]
+    assert s["stats"]["steps"] < 1500
+    after = r.history.time_s >= 2.0
+    assert np.all(r.history.rotation_rad[after] == 0.0)
+    assert np.all(r.history.displacement_m[after] == r.history.displacement_m[-1])
 
 
 def test_a_sliding_run_says_how_much_overlap_sliding_took_away():

@@ -323,7 +323,9 @@ pub struct RunArgs {
     /// What follows the first instant some block must start to turn, on a wall the sliding
     /// model runs: slide (slide on; with --check-uplift the run says when and which blocks), or
     /// moreau (exact sliding up to that instant, found by the uplift check, then Moreau-Jean
-    /// with every block's rotation, step --dt; docs/rocking-walls.md).
+    /// with every block's rotation, step --dt; docs/rocking-walls.md), or moreau-while-rocking
+    /// (as moreau until every block is seated and still again, then exact sliding again, to
+    /// the next uplift).
     #[arg(long, value_enum, value_name = "MODEL", default_value_t = AfterUplift::Slide)]
     pub after_uplift: AfterUplift,
     /// Write only the summary, to this file.
@@ -342,7 +344,8 @@ pub struct RunArgs {
     /// Integrator: the exact event-driven one, or a time-stepping baseline.
     #[arg(long, value_enum, default_value_t = Method::Event)]
     pub method: Method,
-    /// Time step of `paper` and `moreau`, and of `--after-uplift moreau` (s).
+    /// Time step of `paper` and `moreau`, and of `--after-uplift moreau` or
+    /// `moreau-while-rocking` (s).
     #[arg(long, value_name = "S", default_value_t = 1e-3)]
     pub dt: f64,
     /// Relative tolerance of `regularized`.
@@ -406,6 +409,9 @@ pub enum AfterUplift {
     Slide,
     /// Moreau-Jean with rotations from there.
     Moreau,
+    /// Moreau-Jean with rotations from there while any block rocks: exact sliding again once
+    /// every block is seated and still, until the next uplift.
+    MoreauWhileRocking,
 }
 
 /// Integrators.
@@ -479,6 +485,9 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
         after_uplift: match args.after_uplift {
             AfterUplift::Slide => pirqa::AfterUplift::Slide,
             AfterUplift::Moreau => pirqa::AfterUplift::Moreau { dt_s: args.dt },
+            AfterUplift::MoreauWhileRocking => {
+                pirqa::AfterUplift::MoreauWhileRocking { dt_s: args.dt }
+            }
         },
     };
     let cost = pirqa::estimate(&model, &motion, &settings);

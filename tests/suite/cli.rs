@@ -2031,3 +2031,54 @@ fn after_the_first_uplift_time_stepping_with_rotations_takes_over() {
         "{err}"
     );
 }
+
+#[test]
+fn while_blocks_rock_time_stepping_takes_over_and_gives_the_wall_back() {
+    let dir = temp_dir("while-rocking");
+    let out = dir.join("pulse");
+    let (ok, text, err) = pirqa(&[
+        "run",
+        "walls/rocking/slab-beside-block.ron",
+        "--pulse",
+        "0.3g",
+        "--pulse-s",
+        "0.3",
+        "--duration",
+        "3",
+        "--after-uplift",
+        "moreau-while-rocking",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        text.contains("| event+moreau |") && text.contains("stretches stepped (1): 0 to "),
+        "{text}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["model"]["name"], "slide-rock");
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let last = history.lines().last().unwrap();
+    // At the end the exact sliding model has the wall: rotations and velocities exactly zero.
+    let columns: Vec<&str> = history.lines().next().unwrap().split(',').collect();
+    let values: Vec<&str> = last.split(',').collect();
+    for (name, value) in columns.iter().zip(&values) {
+        if name.starts_with("theta_") || name.starts_with("omega_") || name.starts_with("v_") {
+            assert_eq!(*value, "0e0", "{name} in {last}");
+        }
+    }
+    let (ok, _, err) = pirqa(&[
+        "run",
+        "walls/rocking/slab-beside-block.ron",
+        "--pulse",
+        "0.3g",
+        "--pulse-s",
+        "0.3",
+        "--after-uplift",
+        "moreau-while-rocking",
+        "--model",
+        "slide",
+    ]);
+    assert!(!ok && err.contains("--model chooses one model"), "{err}");
+}

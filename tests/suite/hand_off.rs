@@ -11,15 +11,12 @@ use pirqa::{AfterUplift, Method, Model, ModelChoice, Response, RunSettings};
 const G: f64 = 9.81;
 
 /// A slender block S (0.3 x 1.2 m, b/h = 1/4) beside a squat one W (1.2 x 1.2 m), touching, on
-/// the ground, friction 0.6: not free columns, so the sliding model runs it. Under a ground
-/// accelerating to the right both lean left; S has nothing on its left to hold it and lifts
-/// alone at g b/h = g/4, turning away from W, which would lift at g and slide at 0.6 g.
-fn pair() -> Model {
-    Model::from_ron_str(
-        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6,
-          rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"), (width_m: 1.2, name: \"W\")])])",
-    )
-    .unwrap()
+/// the ground, friction 0.6 (walls/rocking/slab-beside-block.ron): not free columns, so the
+/// sliding model runs it. Under a ground accelerating to the right both lean left; S has nothing
+/// on its left to hold it and lifts alone at g b/h = g/4, turning away from W, which would lift
+/// at g and slide at 0.6 g.
+pub(crate) fn pair() -> Model {
+    Model::from_file("walls/rocking/slab-beside-block.ron").unwrap()
 }
 
 /// S alone.
@@ -38,7 +35,7 @@ fn ramp() -> Motion {
     Motion::Record(Record::new("ramp", dt, samples).unwrap())
 }
 
-fn settings(duration_s: f64, after_uplift: AfterUplift) -> RunSettings {
+pub(crate) fn settings(duration_s: f64, after_uplift: AfterUplift) -> RunSettings {
     RunSettings {
         duration_s: Some(duration_s),
         output_dt_s: Some(0.01),
@@ -48,7 +45,7 @@ fn settings(duration_s: f64, after_uplift: AfterUplift) -> RunSettings {
     }
 }
 
-fn history(r: &Response) -> &pirqa::response::History {
+pub(crate) fn history(r: &Response) -> &pirqa::response::History {
     r.history.as_ref().expect("a history")
 }
 

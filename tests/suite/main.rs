@@ -15,6 +15,7 @@ mod docs;
 mod event_driven;
 mod fuzz;
 mod generate;
+mod hand_back;
 mod hand_off;
 mod hardening;
 mod large_walls;

@@ -952,3 +952,36 @@ fn a_sweep_asked_to_hand_off_at_the_first_uplift_does_so_case_by_case() {
     let refused = sweep(&text("method: Moreau(dt_s: 0.001),")).unwrap_err();
     assert!(format!("{refused}").contains("after_uplift"), "{refused}");
 }
+
+/// `after_uplift: MoreauWhileRocking(dt_s: ...)`: each case that slides is time stepped from
+/// its first uplift while its blocks rock, as `pirqa run --after-uplift moreau-while-rocking`
+/// does: the case that lifts is named for it, lifts where the checked sliding run says, and
+/// reruns with its option; the sweep is another than the one that steps to the end.
+#[test]
+fn a_sweep_asked_to_step_only_while_blocks_rock_does_so_case_by_case() {
+    let text = |after: &str| {
+        format!(
+            r#"(
+    version: 1,
+    name: "while-rocking",
+    walls: [File(path: "walls/rocking/slab-beside-block.ron")],
+    motion: Sine(amplitudes: ["0.2g", "0.3g"], frequencies_hz: List([1.0]), duration_s: 3.0),
+    after_uplift: {after}(dt_s: 0.001),
+)"#
+        )
+    };
+    let s = sweep(&text("MoreauWhileRocking")).unwrap();
+    let rows: Vec<CaseRow> = (0..s.len()).map(|id| s.run_case(id).0).collect();
+    assert_eq!(rows[0].model, "slide");
+    assert_eq!(rows[0].max_abs_rotation_rad, 0.0);
+    assert_eq!(rows[1].model, pirqa::study::sweep::WHILE_ROCKING_MODEL);
+    assert!(rows[1].max_abs_rotation_rad > 0.01);
+    let first = checked_first_uplift("walls/rocking/slab-beside-block.ron", 0.3 * 9.81, 3.0);
+    assert_eq!(rows[1].uplift_time_s, Some(first.time_s));
+    assert_eq!(rows[1].error, None);
+    assert_eq!(
+        s.case_options(1).unwrap(),
+        "--after-uplift moreau-while-rocking --dt 0.001"
+    );
+    assert_ne!(s.fingerprint, sweep(&text("Moreau")).unwrap().fingerprint);
+}

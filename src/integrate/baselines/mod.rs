@@ -10,13 +10,16 @@ mod moreau_wall;
 mod paper;
 mod regularized;
 mod release;
+mod set_down;
 mod wall_dual;
 mod wall_newton;
 
 pub use moreau::Moreau;
+pub(crate) use moreau_wall::Stepped;
 pub use moreau_wall::{ContactSolver, MoreauWall, HANDED_OFF};
 pub use paper::PaperNewmark;
 pub use regularized::Regularized;
+pub use set_down::{SEATED_M, SEATED_M_S, SEATED_STEPS};
 
 /// Pairwise Newton impact between velocities vl, vr (m/s) of masses ml, mr (kg; `None` = fixed).
 pub(crate) fn collide(vl: f64, vr: f64, ml: Option<f64>, mr: Option<f64>, e: f64) -> (f64, f64) {

@@ -13,6 +13,7 @@
 //! fallback for walls whose blocks may rock beyond it (docs/rocking-walls.md).
 
 use super::release::released;
+use super::set_down::{set_down, still, SEATED_M, SEATED_STEPS};
 use super::wall_dual::WallDual;
 use super::wall_newton::{Contact, Part, Stall, StepProblem, WallNewton, COMPLIANCE};
 use crate::error::SimulationError;
@@ -326,23 +327,34 @@ impl Integrator for MoreauWall {
     }
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
-        self.stepped(sc, None)
+        match self.stepped(sc, None, false)? {
+            Stepped::Ended(r) => Ok(*r),
+            Stepped::Seated(_) => unreachable!("a stepper not asked to set the wall down did"),
+        }
     }
 }
 
 impl MoreauWall {
-    /// Goes on from the exact sliding run's first uplift: its blocks where the sliding model
-    /// had them, seated and unturned, with its velocities, recorder and energy terms.
+    /// Goes on from an uplift the exact sliding run found: its blocks where the sliding model
+    /// had them, seated and unturned, with its velocities, recorder and energy terms; to the
+    /// end, or, `until_seated`, until every block is seated again and still
+    /// ([`set_down::SEATED_STEPS`] steps in a row), where it sets the wall down.
     pub(crate) fn run_from(
         &self,
         sc: &Scenario,
         start: HandOff,
-    ) -> Result<Response, SimulationError> {
-        self.stepped(sc, Some(start))
+        until_seated: bool,
+    ) -> Result<Stepped, SimulationError> {
+        self.stepped(sc, Some(start), until_seated)
     }
 
     /// Steps from rest at t = 0 (a released block turned), or from `start`.
-    fn stepped(&self, sc: &Scenario, start: Option<HandOff>) -> Result<Response, SimulationError> {
+    fn stepped(
+        &self,
+        sc: &Scenario,
+        start: Option<HandOff>,
+        until_seated: bool,
+    ) -> Result<Stepped, SimulationError> {
         let dt = self.dt_s;
         time_step(sc, dt)?;
         let (wall, topo, settings) = (sc.wall, sc.topology, sc.settings);
@@ -373,8 +385,11 @@ impl MoreauWall {
         let mut gone = vec![false; n];
         // The energy terms at the start, for the balance of the steps (friction and landings).
         let mut before = Before::default();
+        let mut next_output = 1;
         let mut rec = match start {
             Some(h) => {
+                // The sliding run wrote the rows up to the hand-off and one at it.
+                next_output = h.next_output;
                 for i in 0..n {
                     q[i].x = h.u_m[i];
                     v[i].x = h.v_m_s[i];
@@ -400,7 +415,8 @@ impl MoreauWall {
             })
             .map(|i| wall.blocks[i].name.clone())
             .collect();
-        if !on_several.is_empty() {
+        let warned = |w: &Warning| matches!(w, Warning::IndeterminateSupport { .. });
+        if !on_several.is_empty() && !rec.warnings.iter().any(warned) {
             rec.warnings.push(Warning::IndeterminateSupport {
                 count: on_several.len(),
                 blocks: on_several.into_iter().take(5).collect(),
@@ -452,16 +468,9 @@ impl MoreauWall {
         };
         let mut previous = outputs(&q, &v);
         extremes(&mut rec, &previous);
-        let mut next_output = 1;
         if !handed {
             let (u0, uv0, theta0, omega0, w0) = &previous;
             rec.sample_rotating(0.0, [u0, uv0, theta0, omega0, w0]);
-        } else if let Some(o) = settings.output_dt_s {
-            // The sliding run wrote the rows up to the hand-off and one at it.
-            next_output = (t0 / o).floor() as u64;
-            while next_output as f64 * o <= t0 {
-                next_output += 1;
-            }
         }
         let steps = ((settings.duration_s - t0) / dt).ceil() as u64;
         let at = |k: u64| t0 + k as f64 * dt;
@@ -475,15 +484,12 @@ impl MoreauWall {
         };
         // Impulses of the last step, per candidate (warm start).
         let mut impulses = vec![Vector2::<f64>::zeros(); candidates.len()];
-        let mut unconverged = 0u64;
-        let mut fell_back = 0u64;
-        let (mut in_impulses, mut first_in_impulses) = (0u64, None);
-        let (mut by_interior, mut first_by_interior) = (0u64, None);
-        let mut interior_first = 0u64;
-        // When the solvers first failed, and which block each unconverged step left changing
-        // fastest (counted per block): what the warnings say of where.
-        let (mut first_unconverged, mut first_fell_back) = (None, None);
-        let mut fastest = vec![0u64; n];
+        let mut struggles = Struggles {
+            fastest: vec![0; n],
+            ..Struggles::default()
+        };
+        // Steps in a row with every block seated (`--after-uplift moreau-while-rocking`).
+        let mut seated_steps = 0;
         let mut newton =
             (self.solver == ContactSolver::Newton).then(|| NewtonStep::new(&bodies, &candidates));
         let mut t = t0;
@@ -525,6 +531,8 @@ impl MoreauWall {
             // The contacts predicted closed at mid-step, on the blocks where they were at its
             // start; the others lose their impulse.
             let mut active = Vec::new();
+            // Some corner of a horizontal joint stands off its face.
+            let mut open = false;
             for (ci, c) in candidates.iter().enumerate() {
                 let live = |i: usize| !gone[i];
                 let involved_move = moves(c.point, &gone) || c.on.is_some_and(|f| moves(f, &gone));
@@ -535,6 +543,7 @@ impl MoreauWall {
                     impulses[ci] = Vector2::zeros();
                     continue;
                 };
+                open |= matches!(c.joint, JointRef::Horizontal(_)) && geometry.gap > SEATED_M;
                 let before = geometry.velocity(c, &v_start);
                 if geometry.gap + 0.5 * h * before.x > TOUCH_M {
                     impulses[ci] = Vector2::zeros();
@@ -578,17 +587,17 @@ impl MoreauWall {
                 match solved {
                     Solved::InVelocities => {}
                     Solved::InImpulses => {
-                        in_impulses += 1;
-                        first_in_impulses.get_or_insert(at(k));
+                        struggles.in_impulses += 1;
+                        struggles.first_in_impulses.get_or_insert(at(k));
                     }
                     Solved::ByInteriorPoint => {
-                        by_interior += 1;
-                        first_by_interior.get_or_insert(at(k));
+                        struggles.by_interior += 1;
+                        struggles.first_by_interior.get_or_insert(at(k));
                     }
-                    Solved::InteriorFirst => interior_first += 1,
+                    Solved::InteriorFirst => struggles.interior_first += 1,
                     Solved::Neither => {
-                        fell_back += 1;
-                        first_fell_back.get_or_insert(at(k));
+                        struggles.fell_back += 1;
+                        struggles.first_fell_back.get_or_insert(at(k));
                     }
                 }
                 solved != Solved::Neither
@@ -657,13 +666,13 @@ impl MoreauWall {
                     converged = change <= self.tolerance * scale;
                 }
                 if let (false, Some(block)) = (converged, changing) {
-                    fastest[block] += 1;
+                    struggles.fastest[block] += 1;
                 }
                 converged
             };
             if !converged {
-                unconverged += 1;
-                first_unconverged.get_or_insert(at(k));
+                struggles.unconverged += 1;
+                struggles.first_unconverged.get_or_insert(at(k));
             }
             // A vertical joint whose faces met approaching (one impact, however many of its
             // corners took part).
@@ -751,6 +760,35 @@ impl MoreauWall {
             if fell_now && settings.after_collapse == AfterCollapse::Stop {
                 break;
             }
+            if until_seated && t < settings.duration_s {
+                let all = !open && (0..n).all(|i| !moves(i, &gone) || still(bodies[i].half, &v[i]));
+                seated_steps = if all { seated_steps + 1 } else { 0 };
+                if seated_steps >= SEATED_STEPS {
+                    let live: Vec<bool> = (0..n).map(|i| moves(i, &gone)).collect();
+                    let (u, vx) = set_down(topo, &previous.0, &previous.1, &live);
+                    let kinetic_j: f64 = (0..n)
+                        .filter(|&i| live[i])
+                        .map(|i| 0.5 * bodies[i].mass * vx[i] * vx[i])
+                        .sum();
+                    // Setting down takes the rest of the rotation, the vertical motion and the
+                    // velocities made one: with the contacts' share, as at the end.
+                    let e = &mut rec.energy;
+                    e.friction_j =
+                        before.friction_j + (e.input_j - before.input_j) + before.mechanical_j
+                            - kinetic_j
+                            - (e.fallen_j - before.fallen_j);
+                    struggles.report(&mut rec, wall, self.max_sweeps);
+                    return Ok(Stepped::Seated(Box::new(HandOff {
+                        t_s: t,
+                        u_m: u,
+                        v_m_s: vx,
+                        fallen: gone,
+                        kinetic_j,
+                        rec,
+                        next_output,
+                    })));
+                }
+            }
         }
         if let (Some(p), None) = (&settings.progress, rec.interrupted_at_s) {
             // The end reached: a bar shows it full (nothing is left to stop).
@@ -775,46 +813,18 @@ impl MoreauWall {
                 - (e.fallen_j - before.fallen_j);
             before.friction_j + stepped
         };
-        rec.stats.unconverged_steps = unconverged;
-        if unconverged > 0 {
-            let mut blocks: Vec<(String, u64)> = (0..n)
-                .filter(|&i| fastest[i] > 0)
-                .map(|i| (wall.blocks[i].name.clone(), fastest[i]))
-                .collect();
-            // Most often first; a stable sort keeps the wall's order among equals.
-            blocks.sort_by_key(|b| std::cmp::Reverse(b.1));
-            blocks.truncate(FASTEST_LISTED);
-            rec.warnings.push(Warning::Unconverged {
-                steps: unconverged,
-                sweeps: self.max_sweeps,
-                first_s: first_unconverged,
-                blocks,
-            });
-        }
-        if let Some(first_s) = first_in_impulses {
-            rec.warnings.push(Warning::NewtonInImpulses {
-                steps: in_impulses,
-                first_s,
-            });
-        }
-        if let Some(first_s) = first_by_interior {
-            rec.warnings.push(Warning::NewtonByInteriorPoint {
-                steps: by_interior,
-                first_s,
-                given_first: interior_first,
-            });
-        }
-        if let Some(first_s) = first_fell_back {
-            rec.warnings.push(Warning::NewtonFellBack {
-                steps: fell_back,
-                first_s,
-            });
-        }
+        struggles.report(&mut rec, wall, self.max_sweeps);
         let (u, uv, _, _, _) = outputs(&q, &v);
         let motion = sc.motion.describe();
         let method = if handed { HANDED_OFF } else { "moreau" };
         let mut r = rec.finish(method, &wall.name, motion, t, &u, &uv);
-        r.summary.model = ModelUsed {
+        r.summary.model = self.model_used("asked for (--model slide-rock --method moreau)");
+        Ok(Stepped::Ended(Box::new(r)))
+    }
+
+    /// The model summary.json names for a run of this stepper, chosen for `why`.
+    pub(crate) fn model_used(&self, why: &str) -> ModelUsed {
+        ModelUsed {
             name: "slide-rock".into(),
             equations: Some(
                 match self.solver {
@@ -824,10 +834,138 @@ impl MoreauWall {
                 .into(),
             ),
             direction: "in-plane".into(),
-            why: "asked for (--model slide-rock --method moreau)".into(),
-        };
-        Ok(r)
+            why: why.into(),
+        }
     }
+}
+
+/// How a stretch of stepping ended.
+pub(crate) enum Stepped {
+    /// At the run's end (or where it stopped): the answer.
+    Ended(Box<Response>),
+    /// Every block seated again and set down, for the exact sliding engine to go on.
+    Seated(Box<HandOff>),
+}
+
+/// Where the contact solvers struggled: how many steps each way and when first, and which
+/// block each unconverged step left changing fastest (counted per block): what the warnings
+/// say of where.
+#[derive(Default)]
+struct Struggles {
+    unconverged: u64,
+    first_unconverged: Option<f64>,
+    fastest: Vec<u64>,
+    fell_back: u64,
+    first_fell_back: Option<f64>,
+    in_impulses: u64,
+    first_in_impulses: Option<f64>,
+    by_interior: u64,
+    first_by_interior: Option<f64>,
+    interior_first: u64,
+}
+
+impl Struggles {
+    /// Counts the unconverged steps and warns of each struggle, into the warnings of an
+    /// earlier stretch of the run where it left one of the kind (a run handed back and forth
+    /// between models steps in stretches).
+    fn report(self, rec: &mut Recorder, wall: &crate::wall::Wall, max_sweeps: usize) {
+        rec.stats.unconverged_steps += self.unconverged;
+        let mut warnings = Vec::new();
+        if let Some(first_s) = self.first_unconverged {
+            let blocks: Vec<(String, u64)> = (0..self.fastest.len())
+                .filter(|&i| self.fastest[i] > 0)
+                .map(|i| (wall.blocks[i].name.clone(), self.fastest[i]))
+                .collect();
+            warnings.push(Warning::Unconverged {
+                steps: self.unconverged,
+                sweeps: max_sweeps,
+                first_s: Some(first_s),
+                blocks,
+            });
+        }
+        if let Some(first_s) = self.first_in_impulses {
+            warnings.push(Warning::NewtonInImpulses {
+                steps: self.in_impulses,
+                first_s,
+            });
+        }
+        if let Some(first_s) = self.first_by_interior {
+            warnings.push(Warning::NewtonByInteriorPoint {
+                steps: self.by_interior,
+                first_s,
+                given_first: self.interior_first,
+            });
+        }
+        if let Some(first_s) = self.first_fell_back {
+            warnings.push(Warning::NewtonFellBack {
+                steps: self.fell_back,
+                first_s,
+            });
+        }
+        for w in warnings {
+            merge_warning(&mut rec.warnings, w);
+        }
+    }
+}
+
+/// Adds `w` to the warning of its kind in `warnings` (steps added, the first instant kept, the
+/// blocks most often fastest listed), or after them where there is none.
+fn merge_warning(warnings: &mut Vec<Warning>, mut w: Warning) {
+    for old in warnings.iter_mut() {
+        match (old, &mut w) {
+            (
+                Warning::Unconverged { steps, blocks, .. },
+                Warning::Unconverged {
+                    steps: more,
+                    blocks: others,
+                    ..
+                },
+            ) => {
+                *steps += *more;
+                for (name, count) in others.drain(..) {
+                    match blocks.iter_mut().find(|b| b.0 == name) {
+                        Some(b) => b.1 += count,
+                        None => blocks.push((name, count)),
+                    }
+                }
+                // Most often first; a stable sort keeps the wall's order among equals.
+                blocks.sort_by_key(|b| std::cmp::Reverse(b.1));
+                blocks.truncate(FASTEST_LISTED);
+                return;
+            }
+            (
+                Warning::NewtonInImpulses { steps, .. },
+                Warning::NewtonInImpulses { steps: more, .. },
+            )
+            | (
+                Warning::NewtonFellBack { steps, .. },
+                Warning::NewtonFellBack { steps: more, .. },
+            ) => {
+                *steps += *more;
+                return;
+            }
+            (
+                Warning::NewtonByInteriorPoint {
+                    steps, given_first, ..
+                },
+                Warning::NewtonByInteriorPoint {
+                    steps: more,
+                    given_first: given,
+                    ..
+                },
+            ) => {
+                *steps += *more;
+                *given_first += *given;
+                return;
+            }
+            _ => {}
+        }
+    }
+    if let Warning::Unconverged { blocks, .. } = &mut w {
+        blocks.sort_by_key(|b| std::cmp::Reverse(b.1));
+        blocks.truncate(FASTEST_LISTED);
+    }
+    warnings.push(w);
 }
 
 /// Energy terms where the steps start (J).

@@ -139,7 +139,7 @@ impl Integrator for EventDriven {
     }
 
     fn run(&self, scenario: &Scenario) -> Result<Response, SimulationError> {
-        let mut engine = Engine::new(scenario, &self.params)?;
+        let mut engine = Engine::new(scenario, &self.params, None)?;
         engine.run_loop()?;
         Ok(engine.finish())
     }
@@ -153,9 +153,11 @@ pub(crate) enum Ended {
     Lifted(Box<HandOff>),
 }
 
-/// The sliding run's state at its first uplift, with what it recorded up to then.
+/// The state where one model hands the run to the other, with what was recorded up to then:
+/// the sliding run's at an uplift, or the stepping's where it set the wall down (every block
+/// seated, unturned).
 pub(crate) struct HandOff {
-    /// The instant of the uplift (s).
+    /// The instant (s).
     pub t_s: f64,
     /// Every block's displacement (m) and velocity (m/s) relative to the ground.
     pub u_m: Vec<f64>,
@@ -166,6 +168,8 @@ pub(crate) struct HandOff {
     pub kinetic_j: f64,
     /// Extremes, history rows (with rotations at zero), events and energy terms so far.
     pub rec: Recorder,
+    /// The first history row still to write (its time: this times the output interval).
+    pub next_output: u64,
 }
 
 impl EventDriven {
@@ -173,12 +177,41 @@ impl EventDriven {
     /// state of that instant (the whole run where every block stays seated): the first part
     /// of a run that a model with rotations takes over.
     pub(crate) fn run_to_uplift(&self, scenario: &Scenario) -> Result<Ended, SimulationError> {
+        self.watched(scenario, None)
+    }
+
+    /// Goes on from the state a model with rotations handed back at `from.t_s`, every block
+    /// seated (unturned, touching faces closed), as [`EventDriven::run_to_uplift`] runs from
+    /// rest: to the end, or to the next uplift.
+    pub(crate) fn resume(
+        &self,
+        scenario: &Scenario,
+        from: HandOff,
+    ) -> Result<Ended, SimulationError> {
+        self.watched(scenario, Some(from))
+    }
+
+    fn watched(
+        &self,
+        scenario: &Scenario,
+        from: Option<HandOff>,
+    ) -> Result<Ended, SimulationError> {
         let params = Params {
             watch_uplift: true,
             ..self.params.clone()
         };
-        let mut engine = Engine::new(scenario, &params)?;
-        engine.rec.rows_with_rotations();
+        let mut engine = match from {
+            None => {
+                let mut engine = Engine::new(scenario, &params, None)?;
+                engine.rec.rows_with_rotations();
+                engine
+            }
+            Some(h) => {
+                let mut engine = Engine::new(scenario, &params, Some(h.rec))?;
+                engine.start_from(h.t_s, h.u_m, &h.v_m_s, h.fallen, h.next_output);
+                engine
+            }
+        };
         if let Some(w) = &mut engine.uplift {
             w.hand_off = true;
         }
@@ -297,10 +330,20 @@ pub(crate) struct Engine<'a> {
     rec: Recorder,
     /// The uplift watch, when asked for.
     uplift: Option<uplift::Watch>,
+    /// The velocities (m/s) the first decision starts from: none from rest.
+    start_vel: Vec<(usize, f64)>,
+    /// The run goes on from a model with rotations (`EventDriven::resume`).
+    resumed: bool,
 }
 
 impl<'a> Engine<'a> {
-    fn new(sc: &Scenario<'a>, params: &'a Params) -> Result<Engine<'a>, SimulationError> {
+    /// The engine at rest at t = 0, recording into `rec` where given (a run that goes on from
+    /// another model's), into a new recorder otherwise.
+    fn new(
+        sc: &Scenario<'a>,
+        params: &'a Params,
+        rec: Option<Recorder>,
+    ) -> Result<Engine<'a>, SimulationError> {
         let (wall, topo) = (sc.wall, sc.topology);
         let n = wall.blocks.len();
         let t_end = sc.settings.duration_s;
@@ -321,15 +364,21 @@ impl<'a> Engine<'a> {
             .map(|b| b.right().to_f64().abs().max(b.top().to_f64()))
             .fold(1.0, f64::max);
         let seg = sc.motion.segment_at(0.0);
-        let mut rec = Recorder::new(
-            wall,
-            topo,
-            sc.settings.history_to(),
-            sc.settings.events_to(),
-        );
-        if sc.settings.log_decisions {
-            rec.log_decisions(sc.settings.decisions_file.as_deref());
-        }
+        let rec = match rec {
+            Some(rec) => rec,
+            None => {
+                let mut rec = Recorder::new(
+                    wall,
+                    topo,
+                    sc.settings.history_to(),
+                    sc.settings.events_to(),
+                );
+                if sc.settings.log_decisions {
+                    rec.log_decisions(sc.settings.decisions_file.as_deref());
+                }
+                rec
+            }
+        };
         let movable = wall.blocks.iter().filter(|b| !b.fixed).count();
         let too_large = crate::limit::too_large_for_exact(crate::limit::seated::WHAT, movable);
         if let Some(why) = too_large.filter(|_| params.watch_uplift) {
@@ -391,7 +440,32 @@ impl<'a> Engine<'a> {
             count: Counter::default(),
             rec,
             uplift,
+            start_vel: Vec::new(),
+            resumed: false,
         })
+    }
+
+    /// Starts at `t` from the state a model with rotations handed back: blocks displaced by
+    /// `u` (m), seated, moving at `v` (m/s), faces touching where their gaps are closed to
+    /// round-off; friction's work counted from here.
+    fn start_from(&mut self, t: f64, u: Vec<f64>, v: &[f64], fallen: Vec<bool>, next_output: u64) {
+        self.t = t;
+        self.seg = self.given.motion.segment_at(t);
+        self.u_ref = u;
+        self.fallen = fallen;
+        self.output_k = next_output;
+        self.touching = (0..self.given.topo.vertical.len())
+            .map(|j| self.is_touching(j))
+            .collect();
+        for s in 0..self.given.topo.horizontal.len() {
+            self.d_last[s] = self.horizontal_d(s);
+            self.t_fric[s] = t;
+        }
+        self.start_vel = (0..self.given.n)
+            .filter(|&i| !self.given.fixed[i] && !self.fallen[i] && v[i] != 0.0)
+            .map(|i| (i, v[i]))
+            .collect();
+        self.resumed = true;
     }
 
     /// Runs to the end, or to the first uplift where the watch is to hand off there (true,
@@ -400,11 +474,13 @@ impl<'a> Engine<'a> {
         // The flow passes counted from here on are this run's (a failed run on this thread
         // may have left some).
         flow::take_pass_nodes();
-        // At rest at t = 0: every block is undecided against the ground.
+        // At the start every block standing is undecided against the ground (at rest, unless
+        // the run goes on from another model's state).
         let seeds: Vec<usize> = (0..self.given.n)
-            .filter(|&i| !self.given.fixed[i])
+            .filter(|&i| !self.given.fixed[i] && !self.fallen[i])
             .collect();
-        self.regroup(&seeds, &[], None, Cause::Start)?;
+        let start_vel = std::mem::take(&mut self.start_vel);
+        self.regroup(&seeds, &start_vel, None, Cause::Start)?;
         loop {
             let seg_end = self.seg.t1.min(self.given.t_end);
             match self.queue.pop_until(seg_end, &self.clusters) {
@@ -740,8 +816,9 @@ impl<'a> Engine<'a> {
             .filter(|&i| !self.fallen[i])
             .map(|i| 0.5 * self.given.mass[i] * v[i] * v[i])
             .sum();
-        self.rec.stats.root_evaluations = self.count.0;
-        self.rec.stats.flow_nodes = flow::take_pass_nodes();
+        // Added to: a run that went on from another model's state counted before.
+        self.rec.stats.root_evaluations += self.count.0;
+        self.rec.stats.flow_nodes += flow::take_pass_nodes();
         (u, v, kinetic)
     }
 
@@ -757,6 +834,7 @@ impl<'a> Engine<'a> {
             fallen: self.fallen,
             kinetic_j: kinetic,
             rec: self.rec,
+            next_output: self.output_k,
         }
     }
 
@@ -768,8 +846,9 @@ impl<'a> Engine<'a> {
         // After the uplift check's, if it found one. Where it watched the run and found every
         // block seated throughout, it has answered for the wall what these bound for blocks
         // standing free, and they would only contradict it.
+        // A run that went on from a model with rotations followed the rocking these warn of.
         let seated = (self.rec.uplift_check.as_ref()).is_some_and(|c| c.first_uplift.is_none());
-        if !seated {
+        if !seated && !self.resumed {
             let could_rock = crate::validity::rocking_warnings(
                 self.given.wall,
                 self.given.topo,
@@ -845,7 +924,7 @@ mod tests {
             motion: &motion,
             settings: &settings,
         };
-        let mut engine = Engine::new(&scenario, &params).unwrap();
+        let mut engine = Engine::new(&scenario, &params, None).unwrap();
         let all: Vec<usize> = (0..wall.blocks.len()).collect();
         engine.regroup(&all, &[], None, Cause::Start).unwrap();
         let k = engine.of[0];

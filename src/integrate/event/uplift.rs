@@ -122,6 +122,10 @@ impl Engine<'_> {
     /// Records the first uplift, at `t`, by `mechanism`; with `warn`, warns that the sliding
     /// answer leaves out the rocking from there.
     fn record_uplift(&mut self, t: f64, mechanism: &[Moves], warn: bool) {
+        if self.resumed {
+            // Not the first: the check keeps the first, and a model with rotations goes on.
+            return;
+        }
         // The blocks that turn; the others of the mechanism move with them.
         let names: Vec<String> = mechanism
             .iter()
@@ -146,7 +150,7 @@ impl Engine<'_> {
 
     /// The run's end: a watch that found no uplift says how far it looked.
     pub(super) fn uplift_watch_ends(&mut self) {
-        if self.uplift.as_ref().is_some_and(|w| !w.done) {
+        if self.uplift.as_ref().is_some_and(|w| !w.done) && !self.resumed {
             self.rec.uplift_check = Some(UpliftCheck {
                 checked_until_s: self.t,
                 first_uplift: None,

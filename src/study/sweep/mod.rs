@@ -73,8 +73,10 @@ pub struct SweepDescription {
     pub check_uplift: bool,
     /// What follows the first uplift of a case that slides, as `pirqa run --after-uplift`
     /// (default `Slide`; `Moreau(dt_s: S)`: Moreau-Jean with every block's rotation from there,
-    /// the case's `model` reading [`AFTER_UPLIFT_MODEL`] where it lifted). The method at Event
-    /// and the model Auto.
+    /// the case's `model` reading [`AFTER_UPLIFT_MODEL`] where it lifted;
+    /// `MoreauWhileRocking(dt_s: S)`: the same until every block is seated again, then exact
+    /// sliding again, the `model` reading [`WHILE_ROCKING_MODEL`]). The method at Event and the
+    /// model Auto.
     #[serde(default, skip_serializing_if = "is_slide_on")]
     pub after_uplift: AfterUplift,
 }
@@ -114,6 +116,10 @@ pub const FALLBACK_MODEL: &str = "slide-rock (moreau fallback)";
 /// The `model` of a case that slid exactly to its first uplift and was time stepped with
 /// rotations from there (`after_uplift: Moreau(...)`).
 pub const AFTER_UPLIFT_MODEL: &str = "slide, then slide-rock (moreau after the first uplift)";
+
+/// The `model` of a case that slid exactly while every block was seated and was time stepped
+/// with rotations while any rocked (`after_uplift: MoreauWhileRocking(...)`).
+pub const WHILE_ROCKING_MODEL: &str = "slide, slide-rock while rocking (moreau)";
 
 /// Why a run ended before its end where the model stops being valid (its warning), if it did:
 /// a held joint gave way, a body left the ground.
@@ -556,7 +562,7 @@ impl Sweep {
         let rotations_stepped = matches!(d.method, SweepMethod::Moreau { .. })
             && d.model == ModelChoice::SlideRock
             || matches!(d.fallback, Fallback::Moreau { .. })
-            || matches!(d.after_uplift, AfterUplift::Moreau { .. });
+            || d.after_uplift.step_s().is_some();
         if d.contact_solver != ContactSolver::GaussSeidel && !rotations_stepped {
             return Err(field(
                 origin,
@@ -576,7 +582,7 @@ impl Sweep {
                     .into(),
             ));
         }
-        if let AfterUplift::Moreau { dt_s } = d.after_uplift {
+        if let Some(dt_s) = d.after_uplift.step_s() {
             if !(dt_s.is_finite() && dt_s > 0.0) {
                 return Err(field(
                     origin,
@@ -787,7 +793,11 @@ impl Sweep {
         }
         let mut r = run_scenario(sc, &settings)?;
         if r.summary.method == HANDED_OFF {
-            r.summary.model.name = AFTER_UPLIFT_MODEL.into();
+            r.summary.model.name = match self.after_uplift {
+                AfterUplift::MoreauWhileRocking { .. } => WHILE_ROCKING_MODEL,
+                _ => AFTER_UPLIFT_MODEL,
+            }
+            .into();
         }
         let (Fallback::Moreau { dt_s }, Some(why)) = (self.fallback, beyond_model(&r.summary))
         else {
@@ -837,9 +847,10 @@ impl Sweep {
     /// `pirqa run`'s options of the model and method case `id` runs on.
     pub fn case_options(&self, id: usize) -> Result<String, SimulationError> {
         let model = self.case_model(id)?;
-        if let (AfterUplift::Moreau { dt_s }, "slide") = (self.after_uplift, model) {
+        if let (Some(dt_s), "slide") = (self.after_uplift.step_s(), model) {
             return Ok(format!(
-                "--after-uplift moreau --dt {dt_s}{}",
+                "--after-uplift {} --dt {dt_s}{}",
+                self.after_uplift.option(),
                 self.solver_option()
             ));
         }

@@ -1,0 +1,158 @@
+//! Setting a time-stepped wall down for the exact sliding engine (`--after-uplift
+//! moreau-while-rocking`): when every block is seated again and has stopped turning, its
+//! rotation and vertical motion are dropped, faces the stepper holds together are closed
+//! exactly, and blocks it moves together within its tolerance are given one velocity, so that
+//! the exact engine finds stuck and touching the joints that the stepper held so.
+
+use crate::sets::DisjointSets;
+use crate::topology::{Base, Topology};
+use nalgebra::{Vector2, Vector3};
+
+/// A block is seated when every corner of its horizontal joints is within this of the face it
+/// rests on (m), or inside it: Moreau-Jean projects no position back, so a block lands up to a
+/// step's travel inside its support and stays there, and a block on two supports that sank
+/// unequally stands off one of them (by 1e-5 m on the Ollantaytambo wall at dt = 1e-3 s). A
+/// tenth of a millimetre is above that drift and below any rocking that matters: what setting
+/// the wall down flat moves a corner by at most.
+pub const SEATED_M: f64 = 1e-4;
+
+/// ... and its corners move at most this fast (m/s); horizontal velocities closer than this are
+/// one (joints the stepper holds stuck differ by the round-off of its sweeps, near 1e-14 m/s).
+pub const SEATED_M_S: f64 = 1e-6;
+
+/// Steps in a row for which every block must be seated before the wall is set down: a block
+/// that rocks passes through its seat at speed, and one step can be a transient of the solver.
+pub const SEATED_STEPS: u32 = 10;
+
+/// A block `half`-sized moving at `v` (its centre's velocity and its rotation's) neither turns
+/// nor rises or sinks.
+pub fn still(half: Vector2<f64>, v: &Vector3<f64>) -> bool {
+    v.y.abs() + v.z.abs() * half.norm() <= SEATED_M_S
+}
+
+/// The horizontal displacements (m) and velocities (m/s) of the blocks set down flat from those
+/// of the middles of their bases, `u` and `v` (a block turns back about it: where it rests is
+/// kept, not where its centroid was; the others, `moves` false, are left where they are, at
+/// rest): faces of vertical joints
+/// within [`SEATED_M`] of touching closed exactly, moving the blocks of each group of touching
+/// blocks from its abutment or, where it has none, from its first block; blocks joined by
+/// joints that slip at most [`SEATED_M_S`] given their common velocity (momentum kept), zero
+/// where the group reaches the ground or an abutment.
+pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f64>, Vec<f64>) {
+    let n = u.len();
+    let mut u = u.to_vec();
+    let gap = |u: &[f64], j: usize| {
+        let jt = &topo.vertical[j];
+        jt.gap_m.to_f64() + u[jt.right.0] - u[jt.left.0]
+    };
+    let live = |j: usize| {
+        let jt = &topo.vertical[j];
+        moves[jt.left.0] || moves[jt.right.0]
+    };
+    let closed: Vec<usize> = (0..topo.vertical.len())
+        .filter(|&j| live(j) && gap(&u, j) <= SEATED_M)
+        .collect();
+    // Each group of touching blocks placed outward from its anchor: a block that does not move
+    // (an abutment, or one fallen) first, else the first block.
+    let mut placed: Vec<bool> = moves.iter().map(|m| !m).collect();
+    let mut touching = DisjointSets::new(n);
+    for &j in &closed {
+        touching.join(topo.vertical[j].left.0, topo.vertical[j].right.0);
+    }
+    let anchored: Vec<bool> = {
+        let mut a = vec![false; n];
+        for i in (0..n).filter(|&i| !moves[i]) {
+            a[touching.find(i)] = true;
+        }
+        a
+    };
+    for (i, placed) in placed.iter_mut().enumerate() {
+        let root = touching.find(i);
+        if !anchored[root] && root == i {
+            *placed = true;
+        }
+    }
+    let mut changed = true;
+    while changed {
+        changed = false;
+        for &j in &closed {
+            let jt = &topo.vertical[j];
+            let (l, r, gap0) = (jt.left.0, jt.right.0, jt.gap_m.to_f64());
+            match (placed[l], placed[r]) {
+                (true, false) => u[r] = u[l] - gap0,
+                (false, true) => u[l] = u[r] + gap0,
+                _ => continue,
+            }
+            placed[l] = true;
+            placed[r] = true;
+            changed = true;
+        }
+    }
+    // Velocities: the ground is element n.
+    let mut together = DisjointSets::new(n + 1);
+    let vx = |i: usize| if moves[i] { v[i] } else { 0.0 };
+    for j in &topo.horizontal {
+        let lower = match j.lower {
+            Base::Ground => n,
+            Base::Block(b) => b.0,
+        };
+        let v_lower = if lower == n { 0.0 } else { vx(lower) };
+        if (vx(j.upper.0) - v_lower).abs() <= SEATED_M_S {
+            together.join(j.upper.0, lower);
+        }
+    }
+    for &j in &closed {
+        let (l, r) = (topo.vertical[j].left.0, topo.vertical[j].right.0);
+        if (vx(l) - vx(r)).abs() <= SEATED_M_S {
+            together.join(l, r);
+        }
+    }
+    for i in (0..n).filter(|&i| !moves[i]) {
+        together.join(i, n);
+    }
+    let mass: Vec<f64> = topo.blocks.iter().map(|b| b.mass_kg.to_f64()).collect();
+    let mut momentum = vec![(0.0, 0.0); n + 1];
+    for (i, m) in mass.iter().enumerate() {
+        let root = together.find(i);
+        momentum[root].0 += m * vx(i);
+        momentum[root].1 += m;
+    }
+    let ground = together.find(n);
+    let vel = (0..n)
+        .map(|i| match together.find(i) {
+            root if root == ground => 0.0,
+            root => momentum[root].0 / momentum[root].1,
+        })
+        .collect();
+    (u, vel)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::wall::Wall;
+
+    /// Three blocks in a row on the ground, the middle 1e-6 m into the left and the right 3e-6 m
+    /// into the middle; the right one sliding at 0.1 m/s, the two others stuck but for round-off.
+    #[test]
+    fn touching_faces_close_and_stuck_blocks_stop() {
+        let wall = Wall::from_ron_str(
+            "(version: 1, name: \"row\", thickness_m: 1, density_kg_m3: 2000, friction: 0.5,
+              restitution: 1, rows: [(height_m: 1, blocks: [(width_m: 1), (width_m: 1),
+              (width_m: 1)])])",
+        )
+        .unwrap();
+        let topo = Topology::new(&wall).unwrap();
+        let (u, vel) = set_down(
+            &topo,
+            &[0.01, 0.01 - 1e-6, 0.01 - 4e-6],
+            &[1e-14, -1e-14, 0.1],
+            &[true; 3],
+        );
+        assert_eq!(u[0], 0.01);
+        // Closed to the bit from A: B's and C's left faces at A's right.
+        assert_eq!(u[1], u[0]);
+        assert_eq!(u[2], u[1]);
+        assert_eq!(vel, vec![0.0, 0.0, 0.1]);
+    }
+}

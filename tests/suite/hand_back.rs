@@ -1,0 +1,192 @@
+//! `--after-uplift moreau-while-rocking`, on the slab beside the block of `hand_off.rs`: the
+//! exact sliding run up to an uplift, Moreau-Jean with every block's rotation while anything
+//! rocks, and the exact sliding run again from where every block is seated and still, set down
+//! flat. The stepping is the same step for step as the stepping that runs to the end, until the
+//! wall is set down; from there nothing moves on still ground, every rotation is zero, and the
+//! stepping's answer is kept to round-off at a fraction of its steps; under a sine the wall is
+//! handed back and forth, and where its blocks end settles as the step falls.
+
+use super::hand_off::{history, pair, settings};
+use pirqa::motion::{Motion, Record, Sine};
+use pirqa::{AfterUplift, Response, RunSettings};
+
+const G: f64 = 9.81;
+
+/// The ground acceleration rising linearly to 3.5 m/s2 at 0.4 s, back to zero at 0.8 s, then
+/// still to 3 s: S lifts on the way up, at g/4 / 3.5 * 0.4 s.
+fn pulse() -> Motion {
+    let rise: Vec<f64> = (0..=40).map(|k| 3.5 * k as f64 / 40.0).collect();
+    let samples = rise
+        .iter()
+        .chain(rise.iter().rev().skip(1))
+        .copied()
+        .chain(std::iter::repeat_n(0.0, 220))
+        .collect();
+    Motion::Record(Record::new("pulse", 0.01, samples).unwrap())
+}
+
+/// The stretches `model.why` lists, as (from, to) in s; `to` is `None` for one that ran to the
+/// end.
+fn stretches(r: &Response) -> Vec<(f64, Option<f64>)> {
+    let why = &r.summary.model.why;
+    let list = why.split("): ").last().unwrap();
+    list.split(", ")
+        .filter(|s| !s.ends_with("more"))
+        .map(|s| {
+            let s = s.trim_end_matches(" s");
+            match s.split_once(" to ") {
+                Some((a, "the end")) | Some((a, "the end s")) => (a.parse().unwrap(), None),
+                Some((a, b)) => (a.parse().unwrap(), Some(b.parse().unwrap())),
+                None => panic!("{why}"),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn a_block_that_rocks_and_settles_gives_the_wall_back_to_the_exact_model() {
+    let dt = 1e-3;
+    let back = pirqa::run(
+        &pair(),
+        &pulse(),
+        &settings(3.0, AfterUplift::MoreauWhileRocking { dt_s: dt }),
+    )
+    .unwrap();
+    let on = pirqa::run(
+        &pair(),
+        &pulse(),
+        &settings(3.0, AfterUplift::Moreau { dt_s: dt }),
+    )
+    .unwrap();
+    assert_eq!(back.summary.method, "event+moreau");
+    assert_eq!(back.summary.model.name, "slide-rock");
+    // The first uplift is the check's, at g/4 on the rise; the stepping stops once S has
+    // landed and every block has been still for ten steps, well before the end.
+    let t_u = (G / 4.0) / 3.5 * 0.4;
+    let uplift = back.summary.uplift_check.as_ref().unwrap();
+    let first = uplift.first_uplift.as_ref().unwrap();
+    assert!((first.time_s - t_u).abs() <= 1e-12, "{}", first.time_s);
+    assert_eq!(Some(uplift), on.summary.uplift_check.as_ref());
+    let spans = stretches(&back);
+    assert_eq!(spans.len(), 1, "{}", back.summary.model.why);
+    let (from, to) = spans[0];
+    let to = to.expect("set down before the end");
+    assert_eq!(from, first.time_s);
+    assert!(to > 0.8 && to < 2.0, "{to}");
+    // Step for step the stepping that runs on, up to the set-down: its steps, and its rows.
+    let steps = ((to - from) / dt).round() as u64;
+    assert_eq!(back.summary.stats.steps, steps);
+    assert!(2 * steps < on.summary.stats.steps);
+    let (hb, ho) = (history(&back), history(&on));
+    let before = hb.time_s.iter().take_while(|&&t| t <= to).count();
+    assert_eq!(hb.time_s[..before], ho.time_s[..before]);
+    assert_eq!(hb.displacement_m[..before], ho.displacement_m[..before]);
+    assert_eq!(hb.velocity_m_s[..before], ho.velocity_m_s[..before]);
+    assert_eq!(hb.rotation_rad[..before], ho.rotation_rad[..before]);
+    assert!(hb.rotation_rad[..before]
+        .iter()
+        .flatten()
+        .any(|&x| x.abs() > 0.04));
+    // From there the exact sliding model: on still ground nothing moves, nothing turns.
+    let last = hb.displacement_m.last().unwrap().clone();
+    assert_eq!(*hb.time_s.last().unwrap(), 3.0);
+    for k in before..hb.time_s.len() {
+        assert_eq!(hb.displacement_m[k], last);
+        assert!(hb.velocity_m_s[k].iter().all(|&v| v == 0.0));
+        assert!(hb.rotation_rad[k].iter().all(|&x| x == 0.0));
+    }
+    // Set down where the stepping had the middles of the bases: it keeps them still to
+    // round-off, and ends where the set-down started.
+    for (i, b) in back.summary.blocks.iter().enumerate() {
+        let stepped = on.summary.blocks[i].final_displacement_m;
+        assert!(
+            (b.final_displacement_m - stepped).abs() <= 1e-15,
+            "{} {} {stepped}",
+            b.name,
+            b.final_displacement_m
+        );
+        assert_eq!(
+            b.max_abs_rotation_rad,
+            on.summary.blocks[i].max_abs_rotation_rad
+        );
+    }
+    // The energy: what the stepping and the set-down took are the contacts' share, so the
+    // balance closes as the exact parts close it, to round-off.
+    let e = &back.summary.energy;
+    assert!(e.residual_j.abs() <= 1e-12 * e.input_j.abs(), "{e:?}");
+    assert_eq!((e.kinetic_j, e.potential_j), (0.0, 0.0));
+}
+
+#[test]
+fn under_a_sine_the_wall_is_handed_back_and_forth_and_its_answer_settles_as_the_step_falls() {
+    let sine = Motion::sine(Sine {
+        amplitude_m_s2: 0.3 * G,
+        frequency_hz: 1.0,
+        duration_s: 6.0,
+        ..Sine::default()
+    })
+    .unwrap();
+    let run = |after_uplift| pirqa::run(&pair(), &sine, &settings(6.0, after_uplift)).unwrap();
+    let mut ends = Vec::new();
+    for dt_s in [2.5e-4, 1e-4, 5e-5] {
+        let back = run(AfterUplift::MoreauWhileRocking { dt_s });
+        // S lifts in every half cycle past g/4: stepped while it rocks, exact between.
+        let spans = stretches(&back);
+        assert!(spans.len() >= 4, "{}", back.summary.model.why);
+        let h = history(&back);
+        for w in spans.windows(2) {
+            let (Some(set_down), next) = (w[0].1, w[1].0) else {
+                panic!("{spans:?}");
+            };
+            assert!(set_down < next, "{spans:?}");
+            let rows = (h.time_s.iter().enumerate()).filter(|(_, &t)| t > set_down && t < next);
+            for (k, _) in rows {
+                assert!(h.rotation_rad[k].iter().all(|&x| x == 0.0), "{k}");
+            }
+        }
+        let e = &back.summary.energy;
+        assert!(e.residual_j.abs() <= 1e-12 * e.input_j.abs(), "{e:?}");
+        if dt_s == 1e-4 {
+            // The largest rocking is the first stretch's, stepped as the stepping that runs on
+            // steps it; the rest costs fewer steps.
+            let on = run(AfterUplift::Moreau { dt_s });
+            let (a, b) = (&back.summary.blocks[0], &on.summary.blocks[0]);
+            let rotation = a.max_abs_rotation_rad;
+            assert!(rotation > 0.012, "{rotation}");
+            assert!((rotation - b.max_abs_rotation_rad).abs() <= 1e-12 * rotation);
+            assert!(4 * back.summary.stats.steps < 3 * on.summary.stats.steps);
+        }
+        ends.push(back.summary.blocks[0].final_displacement_m);
+    }
+    // Where S ends: 4.956, 4.928 and 4.939 mm (set down each time, the stepping's drift does
+    // not build up from one stretch to the next; docs/rocking-walls.md).
+    let (lo, hi) = (
+        ends.iter().copied().fold(f64::MAX, f64::min),
+        ends.iter().copied().fold(0.0, f64::max),
+    );
+    assert!(lo > 4e-3 && hi - lo < 1e-2 * lo, "{ends:?}");
+}
+
+#[test]
+fn what_cannot_hand_back_is_refused_as_what_cannot_hand_off() {
+    let while_rocking = AfterUplift::MoreauWhileRocking { dt_s: 1e-3 };
+    let e = pirqa::run(
+        &pair(),
+        &pulse(),
+        &RunSettings {
+            method: pirqa::Method::Paper { dt_s: 1e-3 },
+            ..settings(1.0, while_rocking)
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("--method chooses another integrator"), "{e}");
+    let e = pirqa::run(
+        &pair(),
+        &pulse(),
+        &settings(1.0, AfterUplift::MoreauWhileRocking { dt_s: 0.0 }),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("time step"), "{e}");
+}
