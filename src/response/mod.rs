@@ -34,7 +34,8 @@ pub enum EventKind {
     Collapse,
     /// A sequence of impacts with e < 1 accumulates; the faces stay in contact from here.
     Zeno,
-    /// A seated block lifts off one corner and starts to rock.
+    /// A seated block lifts off one corner and starts to rock (where a sliding run hands over
+    /// to time stepping, the blocks the uplift check finds turning).
     Uplift,
     /// A rocking block lands on its other corner.
     RockingImpact,
@@ -42,7 +43,9 @@ pub enum EventKind {
     PivotStick,
     /// The corner a block rocks on starts to slip (slide-rock).
     PivotSlip,
-    /// A rocking block comes to rest seated on both corners (its impacts accumulated).
+    /// A rocking block comes to rest seated on both corners (its impacts accumulated); after
+    /// time stepping, the wall set down flat, with the blocks that rocked since the uplift
+    /// (`--after-uplift moreau-while-rocking`).
     Rest,
     /// A block overturns: it passed the point of no return, or lies on its face.
     Overturning,

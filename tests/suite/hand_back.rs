@@ -8,6 +8,7 @@
 
 use super::hand_off::{history, pair, settings};
 use pirqa::motion::{Motion, Record, Sine};
+use pirqa::response::EventKind;
 use pirqa::{AfterUplift, Response, RunSettings};
 
 const G: f64 = 9.81;
@@ -73,6 +74,19 @@ fn a_block_that_rocks_and_settles_gives_the_wall_back_to_the_exact_model() {
     let to = to.expect("set down before the end");
     assert_eq!(from, first.time_s);
     assert!(to > 0.8 && to < 2.0, "{to}");
+    // Both hand-overs in the event log: S lifting, and the wall set down with the blocks that
+    // rocked (W, struck by S, turned a little too under the stepping).
+    let handed: Vec<(EventKind, f64, Vec<String>)> = (back.events.iter())
+        .filter(|e| matches!(e.kind, EventKind::Uplift | EventKind::Rest))
+        .map(|e| (e.kind, e.time_s, e.blocks.clone()))
+        .collect();
+    assert_eq!(
+        handed,
+        [
+            (EventKind::Uplift, from, vec!["S".to_string()]),
+            (EventKind::Rest, to, vec!["S".to_string(), "W".to_string()]),
+        ]
+    );
     // Step for step the stepping that runs on, up to the set-down: its steps, and its rows.
     let steps = ((to - from) / dt).round() as u64;
     assert_eq!(back.summary.stats.steps, steps);

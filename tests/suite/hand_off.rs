@@ -92,6 +92,14 @@ fn before_the_uplift_the_answer_is_the_exact_sliding_runs_to_the_bit() {
     assert_eq!(handed.summary.duration_s, 2.0);
     assert_eq!(handed.summary.method, "event+moreau");
     assert_eq!(handed.summary.model.name, "slide-rock");
+    // The hand-over in the event log, with the block that turns.
+    let lifted = (handed.events.iter())
+        .find(|e| e.kind == pirqa::response::EventKind::Uplift)
+        .expect("an uplift event");
+    assert_eq!(
+        (lifted.time_s, &lifted.blocks[..]),
+        (uplift.time_s, &["S".to_string()][..])
+    );
     assert!(handed
         .summary
         .model

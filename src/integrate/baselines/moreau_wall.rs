@@ -20,7 +20,7 @@ use crate::error::SimulationError;
 use crate::integrate::event::HandOff;
 use crate::integrate::stepping::{lerp, outputs_in_step, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Scenario};
-use crate::response::{Collapse, CollapseCause, ModelUsed, Recorder, Response, Warning};
+use crate::response::{Collapse, CollapseCause, EventKind, ModelUsed, Recorder, Response, Warning};
 use crate::topology::{Base, JointRef, VerticalId};
 use nalgebra::{Matrix2, Vector2, Vector3};
 
@@ -488,8 +488,10 @@ impl MoreauWall {
             fastest: vec![0; n],
             ..Struggles::default()
         };
-        // Steps in a row with every block seated (`--after-uplift moreau-while-rocking`).
+        // Steps in a row with every block seated (`--after-uplift moreau-while-rocking`), and
+        // the blocks that rocked since the start.
         let mut seated_steps = 0;
+        let mut rocked = vec![false; n];
         let mut newton =
             (self.solver == ContactSolver::Newton).then(|| NewtonStep::new(&bodies, &candidates));
         let mut t = t0;
@@ -713,6 +715,7 @@ impl MoreauWall {
                 let b = &bodies[i];
                 if q[i].z.abs() * b.half.x.max(b.half.y) > UPLIFT_M {
                     rec.uplift(i, t - h);
+                    rocked[i] = true;
                 }
                 // Overturned, or dropped by half its height: it left what carried it.
                 if q[i].z.abs() >= std::f64::consts::FRAC_PI_2 || q[i].y < -b.half.y {
@@ -778,6 +781,8 @@ impl MoreauWall {
                             - kinetic_j
                             - (e.fallen_j - before.fallen_j);
                     struggles.report(&mut rec, wall, self.max_sweeps);
+                    let rested: Vec<usize> = (0..n).filter(|&i| rocked[i]).collect();
+                    rec.event(t, EventKind::Rest, &rested, None, None);
                     return Ok(Stepped::Seated(Box::new(HandOff {
                         t_s: t,
                         u_m: u,

@@ -14,7 +14,7 @@ use crate::exact::Q;
 use crate::integrate::Progress;
 use crate::limit::seated::{self, Interval, Moving, State};
 use crate::limit::Moves;
-use crate::response::{Uplift, UpliftCheck, Warning};
+use crate::response::{EventKind, Uplift, UpliftCheck, Warning};
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -120,18 +120,29 @@ impl Engine<'_> {
     }
 
     /// Records the first uplift, at `t`, by `mechanism`; with `warn`, warns that the sliding
-    /// answer leaves out the rocking from there.
+    /// answer leaves out the rocking from there; without, the run hands over there, and every
+    /// uplift it hands over at is logged with the blocks that turn.
     fn record_uplift(&mut self, t: f64, mechanism: &[Moves], warn: bool) {
+        // The blocks that turn; the others of the mechanism move with them.
+        let turning = mechanism.iter().filter(|m| m.omega_rad_s != 0.0);
+        if !warn {
+            let blocks: Vec<usize> = turning
+                .clone()
+                .filter_map(|m| {
+                    self.given
+                        .wall
+                        .blocks
+                        .iter()
+                        .position(|b| b.name == m.block)
+                })
+                .collect();
+            self.rec.event(t, EventKind::Uplift, &blocks, None, None);
+        }
         if self.resumed {
-            // Not the first: the check keeps the first, and a model with rotations goes on.
+            // Not the first: the check keeps the first.
             return;
         }
-        // The blocks that turn; the others of the mechanism move with them.
-        let names: Vec<String> = mechanism
-            .iter()
-            .filter(|m| m.omega_rad_s != 0.0)
-            .map(|m| format!("{} {}", m.block, m.how))
-            .collect();
+        let names: Vec<String> = turning.map(|m| format!("{} {}", m.block, m.how)).collect();
         self.rec.uplift_check = Some(UpliftCheck {
             checked_until_s: t,
             first_uplift: Some(Uplift {
