@@ -124,6 +124,14 @@ fn committed_studies_are_what_their_cases_draw() {
             "walls/studies/ollantaytambo-handed.ron",
             "docs/rocking/ollantaytambo-handed",
         ),
+        (
+            "walls/studies/slab-while-rocking.ron",
+            "docs/rocking/slab-while-rocking",
+        ),
+        (
+            "walls/studies/slab-rocking.ron",
+            "docs/rocking/slab-rocking",
+        ),
     ] {
         let sweep = Sweep::load(std::path::Path::new(file)).unwrap();
         let rows = Store::finished(std::path::Path::new(dir), &sweep).unwrap();

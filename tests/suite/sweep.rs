@@ -481,6 +481,8 @@ fn every_shipped_study_loads() {
         ("ollantaytambo-sliding.ron", 6),
         ("ollantaytambo-uplift.ron", 9 * 50),
         ("paper-fig3-4.ron", 3 * 4 * 100),
+        ("slab-rocking.ron", 10),
+        ("slab-while-rocking.ron", 10),
         ("trilith-fragility.ron", 11 * 20),
         ("trilith-moreau.ron", 11),
         ("trilith.ron", 11),
