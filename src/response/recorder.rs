@@ -64,9 +64,9 @@ pub struct Recorder {
     /// The largest share of a joint's overlap lost to sliding, noted at a sliding run's end
     /// ([`crate::validity::note_overlap_loss`]).
     pub overlap_loss: Option<f64>,
-    /// Rows without rotations are written with theta, omega and w at zero: a run that hands
-    /// off to a model with rotations writes one history of one shape.
-    rotating_rows: bool,
+    /// Rows without rotations are written with theta, omega and w at zero (these, one per
+    /// block): a run that hands off to a model with rotations writes one history of one shape.
+    rotating_rows: Option<Vec<f64>>,
 }
 
 /// A wall's horizontal joints as a recorder lists them: (upper block, lower block or `None`
@@ -161,13 +161,13 @@ impl Recorder {
             model: ModelUsed::default(),
             uplift_check: None,
             overlap_loss: None,
-            rotating_rows: false,
+            rotating_rows: None,
         }
     }
 
     /// From now on every history row carries rotations (zero where the integrator has none).
     pub(crate) fn rows_with_rotations(&mut self) {
-        self.rotating_rows = true;
+        self.rotating_rows = Some(vec![0.0; self.names.len()]);
     }
 
     /// Time of the last history row, if rows are kept and there is one.
@@ -294,9 +294,10 @@ impl Recorder {
 
     /// Adds a history row.
     pub fn sample(&mut self, t: f64, u: &[f64], v: &[f64]) {
-        if self.rotating_rows {
-            let zero = vec![0.0; u.len()];
-            return self.sample_rotating(t, [u, v, &zero, &zero, &zero]);
+        if let Some(zero) = self.rotating_rows.take() {
+            self.sample_rotating(t, [u, v, &zero, &zero, &zero]);
+            self.rotating_rows = Some(zero);
+            return;
         }
         if let Some((stream, last)) = &mut self.stream {
             stream.row(t, [u, v, &[], &[], &[]]);
