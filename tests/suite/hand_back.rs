@@ -204,3 +204,45 @@ fn what_cannot_hand_back_is_refused_as_what_cannot_hand_off() {
     .to_string();
     assert!(e.contains("time step"), "{e}");
 }
+
+#[test]
+fn a_block_that_falls_while_stepped_is_gone_and_the_rest_is_set_down_without_it() {
+    // A rectangular pulse of 0.35 g for 0.4 s overturns S; with --after-collapse continue W
+    // comes to rest and the exact model has it, alone, from there.
+    let pulse = Motion::pulse(pirqa::motion::Pulse {
+        amplitude_m_s2: 0.35 * G,
+        duration_s: 0.4,
+    })
+    .unwrap();
+    let r = pirqa::run(
+        &pair(),
+        &pulse,
+        &RunSettings {
+            after_collapse: pirqa::AfterCollapse::Continue,
+            ..settings(4.0, AfterUplift::MoreauWhileRocking { dt_s: 1e-3 })
+        },
+    )
+    .unwrap();
+    let collapse = r.summary.collapse.as_ref().expect("S falls");
+    assert_eq!(collapse.block, "S");
+    assert!(r.summary.blocks[0].fell && !r.summary.blocks[1].fell);
+    let spans = stretches(&r);
+    assert_eq!(spans.len(), 1, "{}", r.summary.model.why);
+    let to = spans[0].1.expect("W set down before the end");
+    assert!(to > collapse.time_s && to < 4.0, "{to}");
+    let rest = (r.events.iter())
+        .find(|e| e.kind == EventKind::Rest)
+        .expect("a set-down");
+    // The set-down lists the blocks still standing that rocked: S is gone, W never lifted.
+    assert_eq!((rest.time_s, rest.blocks.len()), (to, 0));
+    // From there W is the exact model's, at rest on still ground.
+    let h = history(&r);
+    let last = h.displacement_m.last().unwrap()[1];
+    for k in (0..h.time_s.len()).filter(|&k| h.time_s[k] > to) {
+        assert_eq!(h.displacement_m[k][1], last);
+        assert_eq!(h.rotation_rad[k][1], 0.0);
+    }
+    assert_eq!(*h.time_s.last().unwrap(), 4.0);
+    let e = &r.summary.energy;
+    assert!(e.residual_j.abs() <= 1e-12 * e.input_j.abs(), "{e:?}");
+}

@@ -781,7 +781,7 @@ impl MoreauWall {
                             - kinetic_j
                             - (e.fallen_j - before.fallen_j);
                     struggles.report(&mut rec, wall, self.max_sweeps);
-                    let rested: Vec<usize> = (0..n).filter(|&i| rocked[i]).collect();
+                    let rested: Vec<usize> = (0..n).filter(|&i| rocked[i] && !gone[i]).collect();
                     rec.event(t, EventKind::Rest, &rested, None, None);
                     return Ok(Stepped::Seated(Box::new(HandOff {
                         t_s: t,
