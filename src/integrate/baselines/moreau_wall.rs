@@ -914,7 +914,8 @@ impl Struggles {
 }
 
 /// Adds `w` to the warning of its kind in `warnings` (steps added, the first instant kept, the
-/// blocks most often fastest listed), or after them where there is none.
+/// blocks each stretch listed counted together and the most often fastest kept), or after them
+/// where there is none.
 fn merge_warning(warnings: &mut Vec<Warning>, mut w: Warning) {
     for old in warnings.iter_mut() {
         match (old, &mut w) {
@@ -1158,4 +1159,50 @@ enum Solved {
     InteriorFirst,
     /// By neither: Gauss-Seidel's turn.
     Neither,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two stretches' warnings of unconverged steps make one: steps added, the first instant
+    /// the first stretch's, blocks counted together; a kind met once is added as it comes.
+    #[test]
+    fn warnings_of_two_stretches_are_one() {
+        let unconverged = |steps, first_s, blocks: &[(&str, u64)]| Warning::Unconverged {
+            steps,
+            sweeps: 10,
+            first_s: Some(first_s),
+            blocks: blocks.iter().map(|(b, c)| (b.to_string(), *c)).collect(),
+        };
+        let mut warnings = Vec::new();
+        merge_warning(&mut warnings, unconverged(5, 1.0, &[("A", 3), ("B", 2)]));
+        merge_warning(
+            &mut warnings,
+            unconverged(7, 4.0, &[("B", 4), ("C", 2), ("D", 1)]),
+        );
+        merge_warning(
+            &mut warnings,
+            Warning::NewtonFellBack {
+                steps: 2,
+                first_s: 5.0,
+            },
+        );
+        let blocks = [("B", 6), ("A", 3), ("C", 2)].map(|(b, c)| (b.to_string(), c));
+        assert_eq!(
+            warnings,
+            [
+                Warning::Unconverged {
+                    steps: 12,
+                    sweeps: 10,
+                    first_s: Some(1.0),
+                    blocks: blocks.to_vec(),
+                },
+                Warning::NewtonFellBack {
+                    steps: 2,
+                    first_s: 5.0,
+                },
+            ]
+        );
+    }
 }
