@@ -33,11 +33,12 @@ pub fn still(half: Vector2<f64>, v: &Vector3<f64>) -> bool {
 /// The horizontal displacements (m) and velocities (m/s) of the blocks set down flat from those
 /// of the middles of their bases, `u` and `v` (a block turns back about it: where it rests is
 /// kept, not where its centroid was; the others, `moves` false, are left where they are, at
-/// rest): faces of vertical joints
-/// within [`SEATED_M`] of touching closed exactly, moving the blocks of each group of touching
-/// blocks from its abutment or, where it has none, from its first block; blocks joined by
-/// joints that slip at most [`SEATED_M_S`] given their common velocity (momentum kept), zero
-/// where the group reaches the ground or an abutment.
+/// rest): faces of vertical joints within [`SEATED_M`] of touching closed exactly, moving the
+/// blocks of each group of touching blocks from its abutment or, where it has none, from its
+/// first block (faces apart that approach faster than [`SEATED_M_S`] are left apart, for the
+/// exact engine to find their impact); blocks joined by joints that slip at most
+/// [`SEATED_M_S`] given their common velocity (momentum kept), zero where the group reaches the
+/// ground or an abutment.
 pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f64>, Vec<f64>) {
     let n = u.len();
     let mut u = u.to_vec();
@@ -49,8 +50,14 @@ pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f
         let jt = &topo.vertical[j];
         moves[jt.left.0] || moves[jt.right.0]
     };
+    let vx = |i: usize| if moves[i] { v[i] } else { 0.0 };
+    let closing = |j: usize| {
+        let jt = &topo.vertical[j];
+        let g = gap(&u, j);
+        g <= 0.0 || (g <= SEATED_M && vx(jt.left.0) - vx(jt.right.0) <= SEATED_M_S)
+    };
     let closed: Vec<usize> = (0..topo.vertical.len())
-        .filter(|&j| live(j) && gap(&u, j) <= SEATED_M)
+        .filter(|&j| live(j) && closing(j))
         .collect();
     // Each group of touching blocks placed outward from its anchor: a block that does not move
     // (an abutment, or one fallen) first, else the first block.
@@ -90,7 +97,6 @@ pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f
     }
     // Velocities: the ground is element n.
     let mut together = DisjointSets::new(n + 1);
-    let vx = |i: usize| if moves[i] { v[i] } else { 0.0 };
     for j in &topo.horizontal {
         let lower = match j.lower {
             Base::Ground => n,
@@ -154,5 +160,13 @@ mod tests {
         assert_eq!(u[1], u[0]);
         assert_eq!(u[2], u[1]);
         assert_eq!(vel, vec![0.0, 0.0, 0.1]);
+        // C 2e-6 m clear of B and closing on it at 0.1 m/s: left apart, its impact to come.
+        let (u, _) = set_down(
+            &topo,
+            &[0.01, 0.01, 0.01 + 2e-6],
+            &[0.0, 0.0, -0.1],
+            &[true; 3],
+        );
+        assert_eq!(u, vec![0.01, 0.01, 0.01 + 2e-6]);
     }
 }
