@@ -70,12 +70,13 @@ pub fn estimate(model: &Model, motion: &Motion, settings: &RunSettings) -> Estim
         0.0
     };
     let events = 2.0 * slip_episodes * joints_that_can_slip as f64;
-    let steps = match (settings.method.clone(), settings.after_uplift.step_s()) {
-        (Method::Paper { dt_s } | Method::Moreau { dt_s }, _) | (_, Some(dt_s)) => {
-            (duration_s / dt_s).ceil()
-        }
-        (Method::Event | Method::Regularized(_), None) => 0.0,
+    let own_step = match settings.method {
+        Method::Paper { dt_s } | Method::Moreau { dt_s } => Some(dt_s),
+        Method::Event | Method::Regularized(_) => None,
     };
+    let steps = own_step
+        .or(settings.after_uplift.step_s())
+        .map_or(0.0, |dt_s| (duration_s / dt_s).ceil());
     let after_uplift = settings.after_uplift != AfterUplift::Slide;
     let rotating = after_uplift
         || (matches!(settings.method, Method::Moreau { .. })

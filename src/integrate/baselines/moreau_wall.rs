@@ -775,11 +775,7 @@ impl MoreauWall {
                         .sum();
                     // Setting down takes the rest of the rotation, the vertical motion and the
                     // velocities made one: with the contacts' share, as at the end.
-                    let e = &mut rec.energy;
-                    e.friction_j =
-                        before.friction_j + (e.input_j - before.input_j) + before.mechanical_j
-                            - kinetic_j
-                            - (e.fallen_j - before.fallen_j);
+                    rec.energy.friction_j = before.friction_after(&rec.energy, kinetic_j, 0.0);
                     struggles.report(&mut rec, wall, self.max_sweeps);
                     let rested: Vec<usize> = (0..n).filter(|&i| rocked[i] && !gone[i]).collect();
                     rec.event(t, EventKind::Rest, &rested, None, None);
@@ -812,11 +808,7 @@ impl MoreauWall {
         e.friction_j = if !handed {
             e.initial_j + e.input_j - e.kinetic_j - e.potential_j - e.fallen_j
         } else {
-            let stepped = (e.input_j - before.input_j) + before.mechanical_j
-                - e.kinetic_j
-                - e.potential_j
-                - (e.fallen_j - before.fallen_j);
-            before.friction_j + stepped
+            before.friction_after(e, e.kinetic_j, e.potential_j)
         };
         struggles.report(&mut rec, wall, self.max_sweeps);
         let (u, uv, _, _, _) = outputs(&q, &v);
@@ -985,6 +977,19 @@ struct Before {
     fallen_j: f64,
     /// Friction's work (the sliding run's impacts keep their own term).
     friction_j: f64,
+}
+
+impl Before {
+    /// Friction's work by the end of the steps, where the blocks have `kinetic_j` and
+    /// `potential_j`: what the steps' contacts took (friction and landings, which time stepping
+    /// does not tell apart) added to what was lost before them.
+    fn friction_after(&self, e: &crate::response::Energy, kinetic_j: f64, potential_j: f64) -> f64 {
+        let stepped = (e.input_j - self.input_j) + self.mechanical_j
+            - kinetic_j
+            - potential_j
+            - (e.fallen_j - self.fallen_j);
+        self.friction_j + stepped
+    }
 }
 
 /// Newton's method on the whole wall, with what a run prepares once: the sparsity of the

@@ -128,13 +128,7 @@ impl Engine<'_> {
         if !warn {
             let blocks: Vec<usize> = turning
                 .clone()
-                .filter_map(|m| {
-                    self.given
-                        .wall
-                        .blocks
-                        .iter()
-                        .position(|b| b.name == m.block)
-                })
+                .filter_map(|m| self.given.wall.block_index(&m.block))
                 .collect();
             self.rec.event(t, EventKind::Uplift, &blocks, None, None);
         }
