@@ -490,6 +490,8 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             }
         },
     };
+    // Settings the run would refuse are refused before the estimate speaks of them.
+    settings.validate()?;
     let cost = pirqa::estimate(&model, &motion, &settings);
     if args.estimate {
         print_out(&cost.to_string());

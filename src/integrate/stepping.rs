@@ -9,11 +9,20 @@ use crate::motion::Motion;
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response};
 use crate::topology::{Base, VerticalId};
 
-/// A fixed time step `dt_s` for the scenario's run: positive, and few enough steps
-/// (`bounds::MAX_STEPS`) that the run ends; the run's own settings checked too.
+/// A fixed time step `dt_s` for the scenario's run: positive, no longer than the run, and few
+/// enough steps (`bounds::MAX_STEPS`) that the run ends; the run's own settings checked too.
 pub fn time_step(sc: &Scenario, dt_s: f64) -> Result<(), SimulationError> {
     sc.settings.validate(sc.wall.blocks.len())?;
     positive("time step", dt_s, " s")?;
+    if dt_s > sc.settings.duration_s {
+        return Err(SimulationError::Setting {
+            what: "time step".into(),
+            value: dt_s,
+            unit: " s",
+            rule: "it is longer than the run: one step would stand for the whole motion; take a \
+                   step of a small part of the motion's shortest period or sample interval",
+        });
+    }
     if sc.settings.duration_s / dt_s > crate::bounds::MAX_STEPS {
         return Err(SimulationError::Setting {
             what: "time step".into(),

@@ -500,6 +500,33 @@ fn a_run_estimates_its_work_and_says_when_it_is_large() {
     assert!(err.contains("more than 1e9 steps"), "{err}");
 }
 
+/// A time step that is no step is refused before anything is estimated or run: zero (the
+/// estimate would speak of infinitely many steps), and longer than the run (one step would
+/// stand for the whole motion: a wall that rocks under the sine came out at rest).
+#[test]
+fn a_time_step_that_is_no_step_is_refused_before_any_estimate() {
+    let (code, _, err) = pirqa(&strs(&sine(&[
+        "--after-uplift",
+        "moreau-while-rocking",
+        "--dt",
+        "0",
+    ])));
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("time step 0 s: it must be positive"), "{err}");
+    assert!(!err.contains("note:"), "{err}");
+    for extra in [
+        &["--method", "moreau", "--dt", "5"][..],
+        &["--method", "paper", "--dt", "2.5"],
+        &["--after-uplift", "moreau", "--dt", "5"],
+        &["--after-uplift", "moreau-while-rocking", "--dt", "5"],
+    ] {
+        refused(&strs(&sine(extra)), "it is longer than the run");
+    }
+    // A step of the whole run is a step.
+    let (code, _, err) = pirqa(&strs(&sine(&["--method", "moreau", "--dt", "2"])));
+    assert_eq!(code, 0, "{err}");
+}
+
 /// A history streamed to its file as the run goes is the history kept in memory, byte for byte,
 /// and so is the chart drawn from it: for a sliding wall and for a rocking stela (rotations
 /// in the columns). Memory then holds one row (docs/reliability.md: the RSS of a 422 MB history).
