@@ -501,8 +501,9 @@ fn a_run_estimates_its_work_and_says_when_it_is_large() {
 }
 
 /// A time step that is no step is refused before anything is estimated or run: zero (the
-/// estimate would speak of infinitely many steps), and longer than the run (one step would
-/// stand for the whole motion: a wall that rocks under the sine came out at rest).
+/// estimate spoke of infinitely many steps), and longer than the run (one step stood for the
+/// whole motion: walls/rocking/slab-beside-block.ron, whose slab rocks under a 0.3 g sine,
+/// came out at rest).
 #[test]
 fn a_time_step_that_is_no_step_is_refused_before_any_estimate() {
     let (code, _, err) = pirqa(&strs(&sine(&[
