@@ -70,11 +70,9 @@ pub fn estimate(model: &Model, motion: &Motion, settings: &RunSettings) -> Estim
         0.0
     };
     let events = 2.0 * slip_episodes * joints_that_can_slip as f64;
-    let own_step = match settings.method {
-        Method::Paper { dt_s } | Method::Moreau { dt_s } => Some(dt_s),
-        Method::Event | Method::Regularized(_) => None,
-    };
-    let steps = own_step
+    let steps = settings
+        .method
+        .step_s()
         .or(settings.after_uplift.step_s())
         .map_or(0.0, |dt_s| (duration_s / dt_s).ceil());
     let after_uplift = settings.after_uplift != AfterUplift::Slide;

@@ -34,6 +34,16 @@ pub enum Method {
     Regularized(Regularized),
 }
 
+impl Method {
+    /// Its fixed time step; `None` for the exact integrator and the adaptive one.
+    pub fn step_s(&self) -> Option<f64> {
+        match *self {
+            Method::Paper { dt_s } | Method::Moreau { dt_s } => Some(dt_s),
+            Method::Event | Method::Regularized(_) => None,
+        }
+    }
+}
+
 /// What a sliding run does at the first instant some block must start to turn (found by the
 /// uplift check, `limit::seated`); a sweep file's `after_uplift` (`Slide`, `Moreau(dt_s: S)`,
 /// `MoreauWhileRocking(dt_s: S)`).

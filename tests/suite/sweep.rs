@@ -92,6 +92,27 @@ fn bad_sweep_files_get_errors_that_say_what_to_fix() {
             .contains("pga \"0gal\": a target peak must be positive"),
         "{e}"
     );
+    // A time step longer than a case's run is refused with the file, before any case runs
+    // (the run refuses it too: one step would stand for the whole motion).
+    for (key, setting) in [
+        ("method", "method: Moreau(dt_s: 6.0)"),
+        ("method", "method: Paper(dt_s: 6.0)"),
+        ("fallback", "fallback: Moreau(dt_s: 6.0)"),
+        ("after_uplift", "after_uplift: Moreau(dt_s: 6.0)"),
+        (
+            "after_uplift",
+            "after_uplift: MoreauWhileRocking(dt_s: 6.0)",
+        ),
+    ] {
+        let text = SMALL.replace("friction: Random", &format!("{setting}, friction: Random"));
+        let e = sweep(&text).unwrap_err().to_string();
+        assert!(
+            e.contains(key) && e.contains("time step 6 s is longer than the run of motion"),
+            "{e}"
+        );
+        // The same step within the run is taken.
+        sweep(&text.replace("6.0", "5.0")).unwrap();
+    }
 }
 
 #[test]

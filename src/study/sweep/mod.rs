@@ -159,6 +159,16 @@ pub enum SweepMethod {
     },
 }
 
+impl Fallback {
+    /// The time step of the fallback's stepping; `None` where cases fail instead.
+    fn step_s(self) -> Option<f64> {
+        match self {
+            Fallback::Fail => None,
+            Fallback::Moreau { dt_s } => Some(dt_s),
+        }
+    }
+}
+
 impl SweepMethod {
     /// The integrator `pirqa run` takes for it.
     fn method(self) -> Method {
@@ -611,6 +621,27 @@ impl Sweep {
             return Err(field(origin, "walls", "empty: name at least one".into()));
         }
         let motions = resolve_motions(&d.motion, base, origin, &mut hash)?;
+        // A step longer than a case's run would take one step for its whole motion; the run
+        // refuses it (`stepping::time_step`), and the file is refused here, before any case.
+        let steps = [
+            ("method", d.method.method().step_s()),
+            ("fallback", d.fallback.step_s()),
+            ("after_uplift", d.after_uplift.step_s()),
+        ];
+        for (name, dt_s) in steps.iter().filter_map(|&(n, dt)| Some((n, dt?))) {
+            if let Some(m) = motions.iter().find(|m| dt_s > m.duration_s) {
+                return Err(field(
+                    origin,
+                    name,
+                    format!(
+                        "time step {dt_s} s is longer than the run of motion {} ({} s): one \
+                         step would stand for the whole motion; take a step of a small part \
+                         of the motion's shortest period or sample interval",
+                        m.label, m.duration_s
+                    ),
+                ));
+            }
+        }
         if let FrictionModel::Random { cov, samples, .. } = d.friction {
             if !(cov.is_finite() && cov > 0.0 && cov < 1.0) || samples == 0 {
                 return Err(field(
