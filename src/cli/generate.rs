@@ -10,20 +10,20 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug)]
 pub struct GenerateArgs {
     /// Courses (rows).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub courses: Option<usize>,
     /// Whole blocks per even course (odd courses add half blocks at both ends).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub blocks_per_course: Option<usize>,
     /// About this many blocks in the paper's proportions (as many courses as blocks per
     /// course), instead of --courses and --blocks-per-course.
-    #[arg(long, conflicts_with_all = ["courses", "blocks_per_course"], value_parser = about_blocks)]
+    #[arg(long, conflicts_with_all = ["courses", "blocks_per_course"], value_parser = about_blocks, allow_negative_numbers = true)]
     pub blocks: Option<usize>,
     /// Overall width (`2.4m`, `240cm`).
-    #[arg(long, default_value = "2.4m")]
+    #[arg(long, default_value = "2.4m", allow_hyphen_values = true)]
     pub width: String,
     /// Overall height.
-    #[arg(long, default_value = "1.2m")]
+    #[arg(long, default_value = "1.2m", allow_hyphen_values = true)]
     pub height: String,
     #[command(flatten)]
     pub material: Material,
@@ -36,16 +36,16 @@ pub struct GenerateArgs {
 #[derive(clap::Args, Debug)]
 pub struct Material {
     /// Out-of-plane thickness.
-    #[arg(long, default_value = "0.8m")]
+    #[arg(long, default_value = "0.8m", allow_hyphen_values = true)]
     pub thickness: String,
     /// Density (kg/m3) of every block without its own.
-    #[arg(long, default_value_t = 2650.0)]
+    #[arg(long, default_value_t = 2650.0, allow_negative_numbers = true)]
     pub density: f64,
     /// Friction coefficient of every horizontal joint without its own.
-    #[arg(long, default_value_t = 0.3)]
+    #[arg(long, default_value_t = 0.3, allow_negative_numbers = true)]
     pub friction: f64,
     /// Coefficient of restitution.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub restitution: f64,
 }
 

@@ -25,7 +25,7 @@ pub struct ImportArgs {
     #[arg(long, default_value = "m")]
     pub units: String,
     /// Edges closer than this are snapped together (`5mm`, `0.5cm`).
-    #[arg(long, default_value = "5mm")]
+    #[arg(long, default_value = "5mm", allow_hyphen_values = true)]
     pub snap: String,
     /// List every snapped edge.
     #[arg(long)]

@@ -83,7 +83,12 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         run: Option<PathBuf>,
         /// With --run: draw the state at this time (s), the last history sample at or before it.
-        #[arg(long, value_name = "T", requires = "run")]
+        #[arg(
+            long,
+            value_name = "T",
+            requires = "run",
+            allow_negative_numbers = true
+        )]
         at: Option<f64>,
     },
     /// Play a saved run back: one self-contained HTML page with the blocks moving (and

@@ -24,7 +24,12 @@ pub enum MotionCommand {
         #[arg(short, long, global = true)]
         output: Option<PathBuf>,
         /// Sample interval (s).
-        #[arg(long, default_value_t = 0.01, global = true)]
+        #[arg(
+            long,
+            default_value_t = 0.01,
+            global = true,
+            allow_negative_numbers = true
+        )]
         dt: f64,
     },
 }
@@ -41,10 +46,10 @@ pub struct InfoArgs {
     #[arg(long)]
     pub units: Option<String>,
     /// Sample interval of a one-column plain record (s).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Component (plain: column after time, 1-based; COSMOS: channel, 0-based).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub component: Option<usize>,
     /// Baseline correction before the measures.
     #[arg(long, value_enum, default_value_t = Baseline::None)]
@@ -64,91 +69,91 @@ pub enum GenerateKind {
     /// A sine with half-cosine ramp-in and taper.
     Sine {
         /// Amplitude: 400gal, 0.4g, 4m/s2.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         amp: String,
         /// Frequency (Hz).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         freq: f64,
         /// Length (s).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         duration: f64,
         /// Ramp-in (s).
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
         ramp: f64,
         /// Taper (s).
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
         taper: f64,
         /// Phase (degrees).
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
         phase: f64,
     },
     /// A linear frequency sweep.
     Chirp {
         /// Amplitude.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         amp: String,
         /// Start frequency (Hz).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         f0: f64,
         /// End frequency (Hz).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         f1: f64,
         /// Length (s).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         duration: f64,
         /// Ramp-in (s).
-        #[arg(long, default_value_t = 1.0)]
+        #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
         ramp: f64,
         /// Taper (s).
-        #[arg(long, default_value_t = 1.0)]
+        #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
         taper: f64,
     },
     /// A Ricker wavelet.
     Ricker {
         /// Peak acceleration.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         amp: String,
         /// Peak frequency (Hz).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         freq: f64,
         /// Time of the peak (s).
-        #[arg(long, default_value_t = 1.0)]
+        #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
         center: f64,
         /// Length (s).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         duration: f64,
     },
     /// One cycle of a sine.
     Pulse {
         /// Amplitude.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         amp: String,
         /// Frequency (Hz).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         freq: f64,
         /// Start of the pulse (s).
-        #[arg(long, default_value_t = 0.5)]
+        #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
         delay: f64,
         /// Length (s).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         duration: f64,
     },
     /// Kanai-Tajimi filtered white noise under an envelope.
     KanaiTajimi {
         /// Peak acceleration.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         pga: String,
         /// Ground frequency (Hz).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         fg: f64,
         /// Ground damping ratio.
-        #[arg(long, default_value_t = 0.6)]
+        #[arg(long, default_value_t = 0.6, allow_negative_numbers = true)]
         zeta: f64,
         /// Length (s).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         duration: f64,
         /// Random seed.
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
         seed: u64,
     },
     /// The stand-in for the paper's 1978 Miyagi-ken-oki record (Kanai-Tajimi, 258 gal).

@@ -17,17 +17,17 @@ pub struct OverturningArgs {
     #[arg(long, default_value = "docs/rocking")]
     pub out: PathBuf,
     /// Width of the block (m).
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
     pub width_m: f64,
     /// Height of the block (m).
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
     pub height_m: f64,
     /// Friction of the curve with a base that can slip (0.3 if not given; not with
     /// --lintel-ratios, whose joints hold).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub friction: Option<f64>,
     /// Pulse frequencies, log-spaced over omega_p / p from 1 to 10.
-    #[arg(long, default_value_t = 41)]
+    #[arg(long, default_value_t = 41, allow_negative_numbers = true)]
     pub points: usize,
     /// Instead, triliths whose columns are this block: one curve per lintel ratio gamma =
     /// M / 2m, comma-separated (0: the column alone), exact equations on joints that hold;

@@ -19,7 +19,7 @@ pub struct PaperArgs {
     #[arg(long, default_value = pirqa::motion::EL_CENTRO)]
     pub record: PathBuf,
     /// Sine duration (s); the paper does not give it.
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
     pub duration: f64,
 }
 

@@ -31,7 +31,7 @@ pub struct MotionArgs {
     )]
     pub sine: Option<String>,
     /// Sine frequency (Hz).
-    #[arg(long, value_name = "HZ")]
+    #[arg(long, value_name = "HZ", allow_negative_numbers = true)]
     pub freq: Option<f64>,
     /// Sine phase at t = 0 (degrees).
     #[arg(
@@ -43,7 +43,12 @@ pub struct MotionArgs {
     pub phase: f64,
     /// Only this many cycles of the sine, then the ground rests (a pulse: one cycle is the
     /// one-sine pulse of the rocking literature); --duration may run past them.
-    #[arg(long, value_name = "N", requires = "sine")]
+    #[arg(
+        long,
+        value_name = "N",
+        requires = "sine",
+        allow_negative_numbers = true
+    )]
     pub cycles: Option<f64>,
     /// A rectangular pulse of this amplitude with units (0.3g, 300gal), then the ground rests.
     #[arg(
@@ -55,7 +60,12 @@ pub struct MotionArgs {
     )]
     pub pulse: Option<String>,
     /// Duration of the rectangular pulse (s).
-    #[arg(long, value_name = "S", requires = "pulse")]
+    #[arg(
+        long,
+        value_name = "S",
+        requires = "pulse",
+        allow_negative_numbers = true
+    )]
     pub pulse_s: Option<f64>,
     /// Acceleration record: PEER AT2, K-NET/KiK-net, COSMOS V2, or plain text/CSV.
     #[arg(long, value_name = "FILE")]
@@ -65,25 +75,45 @@ pub struct MotionArgs {
     pub format: Option<String>,
     /// Component: the column after time in a plain multi-column file (1-based), the channel of
     /// a multi-channel COSMOS file (0-based).
-    #[arg(long, value_name = "N", conflicts_with = "sine")]
+    #[arg(
+        long,
+        value_name = "N",
+        conflicts_with = "sine",
+        allow_negative_numbers = true
+    )]
     pub component: Option<usize>,
     /// Units of a plain record whose header does not say: gal, g, m/s2.
     #[arg(long, value_name = "UNITS", conflicts_with = "sine")]
     pub units: Option<String>,
     /// Sample interval of a one-column plain record (s).
-    #[arg(long, value_name = "S", conflicts_with = "sine")]
+    #[arg(
+        long,
+        value_name = "S",
+        conflicts_with = "sine",
+        allow_negative_numbers = true
+    )]
     pub record_dt: Option<f64>,
     /// Keep the record from this time (s).
-    #[arg(long, value_name = "S", conflicts_with = "sine")]
+    #[arg(
+        long,
+        value_name = "S",
+        conflicts_with = "sine",
+        allow_negative_numbers = true
+    )]
     pub start: Option<f64>,
     /// Keep the record up to this time (s).
-    #[arg(long, value_name = "S", conflicts_with = "sine")]
+    #[arg(
+        long,
+        value_name = "S",
+        conflicts_with = "sine",
+        allow_negative_numbers = true
+    )]
     pub end: Option<f64>,
     /// Baseline correction of the record.
     #[arg(long, value_enum, default_value_t = Baseline::None, conflicts_with = "sine")]
     pub baseline: Baseline,
     /// Scale the record (or the sine) to this peak: 258gal, 0.3g.
-    #[arg(long, value_name = "PGA")]
+    #[arg(long, value_name = "PGA", allow_hyphen_values = true)]
     pub pga: Option<String>,
     /// Then multiply by this factor (the paper's "amplified by 5"; a negative one reverses the
     /// motion, 0 is refused).
@@ -96,7 +126,12 @@ pub struct MotionArgs {
     pub vertical: Option<PathBuf>,
     /// Component of the vertical record, as --component is of the horizontal one (a column of
     /// a plain file, a channel of a COSMOS file); --component does not apply to it.
-    #[arg(long, value_name = "N", requires = "vertical")]
+    #[arg(
+        long,
+        value_name = "N",
+        requires = "vertical",
+        allow_negative_numbers = true
+    )]
     pub vertical_component: Option<usize>,
 }
 
@@ -300,7 +335,7 @@ pub struct RunArgs {
     #[command(flatten)]
     pub motion: MotionArgs,
     /// Simulated time (s); default: the sine's duration is required, a record's length.
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub duration: Option<f64>,
     /// Directory for summary.json, history.csv, events.jsonl and wall.ron (the wall run).
     #[arg(long, value_name = "DIR")]
@@ -335,8 +370,14 @@ pub struct RunArgs {
     /// stop without running it; a run that is large says so on its own before it starts.
     #[arg(long)]
     pub estimate: bool,
-    /// History sampling interval (s); every event time is added.
-    #[arg(long, value_name = "S", default_value_t = 0.01)]
+    /// With --out, the history's sampling interval (s); every event time is added.
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 0.01,
+        requires = "out",
+        allow_negative_numbers = true
+    )]
     pub output_dt: f64,
     /// What to do when a block falls.
     #[arg(long, value_enum, default_value_t = AfterCollapse::Stop)]
@@ -346,16 +387,21 @@ pub struct RunArgs {
     pub method: Method,
     /// Time step of `paper` and `moreau`, and of `--after-uplift moreau` or
     /// `moreau-while-rocking` (s).
-    #[arg(long, value_name = "S", default_value_t = 1e-3)]
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 1e-3,
+        allow_negative_numbers = true
+    )]
     pub dt: f64,
     /// Relative tolerance of `regularized`.
-    #[arg(long, default_value_t = 1e-6)]
+    #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
     pub rtol: f64,
     /// Friction regularization velocity of `regularized` (m/s).
-    #[arg(long, default_value_t = 1e-4)]
+    #[arg(long, default_value_t = 1e-4, allow_negative_numbers = true)]
     pub eps: f64,
     /// Penalty contact stiffness of `regularized` (N/m).
-    #[arg(long, default_value_t = 1e9)]
+    #[arg(long, default_value_t = 1e9, allow_negative_numbers = true)]
     pub stiffness: f64,
     /// Model: blocks that only slide, blocks that may also lift, rock and overturn, or auto
     /// (sliding while no block can lift, rocking from the first uplift). Rocking runs walls of

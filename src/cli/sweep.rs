@@ -41,7 +41,7 @@ pub struct SweepArgs {
     /// Rerun only this case in full detail into OUT/case-N: its wall with the sampled friction
     /// written out (wall.ron), its motion, summary.json, history.csv, events.jsonl, and the
     /// `pirqa run` command that reproduces it.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub case: Option<usize>,
     /// With --case, leave history.csv out (a row of every block at every event: 2 GB for a
     /// 10,000-block case, and most of its time); `rerun.txt` then says --no-history too.

@@ -528,6 +528,59 @@ fn a_time_step_that_is_no_step_is_refused_before_any_estimate() {
     assert_eq!(code, 0, "{err}");
 }
 
+/// A negative number given to an option reaches the check that names what to change, instead
+/// of the command-line parser's "unexpected argument '-1' found" and its tip to write `-- -1`,
+/// which does not work for an option's value; and an option that would be ignored is refused.
+#[test]
+fn negative_numbers_reach_the_checks_that_name_them() {
+    refused(
+        &strs(&sine_of("400gal", "1", "-1", &[])),
+        "a positive duration",
+    );
+    refused(
+        &strs(&sine(&["--method", "moreau", "--dt", "-1"])),
+        "time step -1 s: it must be positive",
+    );
+    refused(
+        &[
+            "run",
+            WALL,
+            "--record",
+            "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+            "--pga",
+            "-1g",
+        ],
+        "peak -9.81 m/s2: cannot scale",
+    );
+    let dir = common::scratch("negative");
+    let wall = dir.join("g.ron");
+    refused(
+        &["generate", "--width", "-2m", "-o", wall.to_str().unwrap()],
+        "width_m = -2: must be positive",
+    );
+    let run = dir.join("run");
+    let (code, _, err) = pirqa(&strs(&sine(&["--out", run.to_str().unwrap()])));
+    assert_eq!(code, 0, "{err}");
+    let drawn = dir.join("d.svg");
+    refused(
+        &[
+            "draw",
+            WALL,
+            "--run",
+            run.to_str().unwrap(),
+            "--at",
+            "-1",
+            "-o",
+            drawn.to_str().unwrap(),
+        ],
+        "--at -1 s is outside the run",
+    );
+    // A history interval without a history to write: refused, not ignored.
+    let (code, _, err) = pirqa(&strs(&sine(&["--output-dt", "0.1"])));
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--out"), "{err}");
+}
+
 /// A history streamed to its file as the run goes is the history kept in memory, byte for byte,
 /// and so is the chart drawn from it: for a sliding wall and for a rocking stela (rotations
 /// in the columns). Memory then holds one row (docs/reliability.md: the RSS of a 422 MB history).
