@@ -14,21 +14,28 @@ use crate::topology::{Base, VerticalId};
 pub fn time_step(sc: &Scenario, dt_s: f64) -> Result<(), SimulationError> {
     sc.settings.validate(sc.wall.blocks.len())?;
     positive("time step", dt_s, " s")?;
-    if dt_s > sc.settings.duration_s {
-        return Err(SimulationError::Setting {
-            what: "time step".into(),
-            value: dt_s,
-            unit: " s",
-            rule: "it is longer than the run: one step would stand for the whole motion; take a \
-                   step of a small part of the motion's shortest period or sample interval",
-        });
-    }
+    within_run(dt_s, sc.settings.duration_s)?;
     if sc.settings.duration_s / dt_s > crate::bounds::MAX_STEPS {
         return Err(SimulationError::Setting {
             what: "time step".into(),
             value: dt_s,
             unit: " s",
             rule: "it would take more than 1e9 steps over the duration: take a larger step",
+        });
+    }
+    Ok(())
+}
+
+/// A time step `dt_s` no longer than a run of `duration_s`: a longer one would take one step for
+/// the whole motion.
+pub fn within_run(dt_s: f64, duration_s: f64) -> Result<(), SimulationError> {
+    if dt_s > duration_s {
+        return Err(SimulationError::Setting {
+            what: "time step".into(),
+            value: dt_s,
+            unit: " s",
+            rule: "it is longer than the run: one step would stand for the whole motion; take a \
+                   step of a small part of the motion's shortest period or sample interval",
         });
     }
     Ok(())

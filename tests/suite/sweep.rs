@@ -107,7 +107,9 @@ fn bad_sweep_files_get_errors_that_say_what_to_fix() {
         let text = SMALL.replace("friction: Random", &format!("{setting}, friction: Random"));
         let e = sweep(&text).unwrap_err().to_string();
         assert!(
-            e.contains(key) && e.contains("time step 6 s is longer than the run of motion"),
+            e.contains(key)
+                && e.contains("time step 6 s: it is longer than the run")
+                && e.contains("(motion "),
             "{e}"
         );
         // The same step within the run is taken.

@@ -14,6 +14,7 @@ use crate::error::{Error, MotionError, SimulationError, SweepError};
 use crate::exact::Q;
 use crate::integrate::baselines::{ContactSolver, HANDED_OFF};
 use crate::integrate::rocking::ModelChoice;
+use crate::integrate::stepping::within_run;
 use crate::integrate::{Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
@@ -621,25 +622,22 @@ impl Sweep {
             return Err(field(origin, "walls", "empty: name at least one".into()));
         }
         let motions = resolve_motions(&d.motion, base, origin, &mut hash)?;
-        // A step longer than a case's run would take one step for its whole motion; the run
-        // refuses it (`stepping::time_step`), and the file is refused here, before any case.
+        // The runs' own rule on a step (`stepping::within_run`), asked of the file before any
+        // case runs.
         let steps = [
             ("method", d.method.method().step_s()),
             ("fallback", d.fallback.step_s()),
             ("after_uplift", d.after_uplift.step_s()),
         ];
         for (name, dt_s) in steps.iter().filter_map(|&(n, dt)| Some((n, dt?))) {
-            if let Some(m) = motions.iter().find(|m| dt_s > m.duration_s) {
-                return Err(field(
-                    origin,
-                    name,
-                    format!(
-                        "time step {dt_s} s is longer than the run of motion {} ({} s): one \
-                         step would stand for the whole motion; take a step of a small part \
-                         of the motion's shortest period or sample interval",
-                        m.label, m.duration_s
-                    ),
-                ));
+            for m in &motions {
+                within_run(dt_s, m.duration_s).map_err(|e| {
+                    field(
+                        origin,
+                        name,
+                        format!("{e} (motion {}, a run of {} s)", m.label, m.duration_s),
+                    )
+                })?;
             }
         }
         if let FrictionModel::Random { cov, samples, .. } = d.friction {
