@@ -4,7 +4,7 @@
 
 use crate::error::{Error, SimulationError};
 use crate::integrate::baselines::{
-    ContactSolver, Moreau, MoreauWall, PaperNewmark, Regularized, Stepped, HANDED_OFF,
+    ContactSolver, KeepsSeated, Moreau, MoreauWall, PaperNewmark, Regularized, Stepped, HANDED_OFF,
 };
 use crate::integrate::event::{Ended, EventDriven, Params};
 use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
@@ -369,6 +369,9 @@ fn hand_off_at_uplift(
     // The step is checked before the sliding run, which may take long.
     time_step(sc, dt_s)?;
     let mut ended = sliding.run_to_uplift(sc)?;
+    // A wall set down where the exact model lifts a block within a step would come straight
+    // back.
+    let keeps_seated: KeepsSeated = &|from| Ok(!sliding.lifts_within(sc, from, dt_s)?);
     // The stretches time stepped: from an uplift to where the wall was set down.
     let mut stepped: Vec<(f64, f64)> = Vec::new();
     let mut turning = String::new();
@@ -401,7 +404,7 @@ fn hand_off_at_uplift(
                 if stepped.is_empty() {
                     turning = lifted_blocks(&h.rec);
                 }
-                match stepper.run_from(sc, *h, back)? {
+                match stepper.run_from(sc, *h, back.then_some(keeps_seated))? {
                     Stepped::Ended(r) => {
                         let mut r = *r;
                         r.summary.model.why = if back {
@@ -451,8 +454,8 @@ fn stretches(turning: &str, stepped: &[(f64, f64)], open_from: Option<f64>, dt_s
     format!(
         "auto with --after-uplift moreau-while-rocking: exact sliding while every block stayed \
          seated; from each uplift (the first at t = {first} s: {turning}) Moreau-Jean with every \
-         block's rotation, dt = {dt_s} s, until every block was seated and still again (set \
-         down flat, the exact sliding model went on); stretches stepped ({count}): {}",
+         block's rotation, dt = {dt_s} s, until every block was seated and calm again and the exact \
+         sliding model kept it so (set down flat, the exact sliding model went on); stretches stepped ({count}): {}",
         spans.join(", ")
     )
 }

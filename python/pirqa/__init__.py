@@ -97,7 +97,7 @@ def run(
     --check-uplift``. ``after_uplift``: what follows that instant on a wall the sliding model
     runs, "slide" (slide on), "moreau" (exact sliding up to it, then Moreau-Jean with every
     block's rotation, step ``dt_s``) or "moreau-while-rocking" (the same until every block is
-    seated and still again, then exact sliding again, to the next uplift), as ``pirqa run
+    seated and calm again, then exact sliding again, to the next uplift), as ``pirqa run
     --after-uplift``.
 
     Ctrl-C (or a notebook's interrupt) stops the run within about 50 ms of wall-clock time and

@@ -48,7 +48,7 @@ fn method(name: &str, dt_s: Option<f64>) -> PyResult<Method> {
 
 /// The integrator and what follows a first uplift: with "moreau" (or "moreau-while-rocking")
 /// after it, `dt_s` is the step of the time stepping that takes over, and the exact method runs
-/// up to the uplift (and again wherever every block is seated and still).
+/// up to the uplift (and again wherever every block is seated and calm).
 fn method_after_uplift(
     method: &str,
     after_uplift: &str,

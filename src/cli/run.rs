@@ -359,7 +359,7 @@ pub struct RunArgs {
     /// model runs: slide (slide on; with --check-uplift the run says when and which blocks), or
     /// moreau (exact sliding up to that instant, found by the uplift check, then Moreau-Jean
     /// with every block's rotation, step --dt; docs/rocking-walls.md), or moreau-while-rocking
-    /// (as moreau until every block is seated and still again, then exact sliding again, to
+    /// (as moreau until every block is seated and calm again, then exact sliding again, to
     /// the next uplift).
     #[arg(long, value_enum, value_name = "MODEL", default_value_t = AfterUplift::Slide)]
     pub after_uplift: AfterUplift,
@@ -456,7 +456,7 @@ pub enum AfterUplift {
     /// Moreau-Jean with rotations from there.
     Moreau,
     /// Moreau-Jean with rotations from there while any block rocks: exact sliding again once
-    /// every block is seated and still, until the next uplift.
+    /// every block is seated and calm, until the next uplift.
     MoreauWhileRocking,
 }
 

@@ -15,8 +15,8 @@ mod wall_dual;
 mod wall_newton;
 
 pub use moreau::Moreau;
-pub(crate) use moreau_wall::Stepped;
 pub use moreau_wall::{ContactSolver, MoreauWall, HANDED_OFF};
+pub(crate) use moreau_wall::{KeepsSeated, Stepped};
 pub use paper::PaperNewmark;
 pub use regularized::Regularized;
 pub use set_down::{SEATED_M, SEATED_M_S, SEATED_STEPS};

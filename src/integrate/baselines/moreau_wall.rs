@@ -13,7 +13,7 @@
 //! fallback for walls whose blocks may rock beyond it (docs/rocking-walls.md).
 
 use super::release::released;
-use super::set_down::{set_down, still, SEATED_M, SEATED_STEPS};
+use super::set_down::{calm, set_down, SEATED_M, SEATED_STEPS};
 use super::wall_dual::WallDual;
 use super::wall_newton::{Contact, Part, Stall, StepProblem, WallNewton, COMPLIANCE};
 use crate::error::SimulationError;
@@ -327,7 +327,7 @@ impl Integrator for MoreauWall {
     }
 
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
-        match self.stepped(sc, None, false)? {
+        match self.stepped(sc, None, None)? {
             Stepped::Ended(r) => Ok(*r),
             Stepped::Seated(_) => unreachable!("a stepper not asked to set the wall down did"),
         }
@@ -337,13 +337,14 @@ impl Integrator for MoreauWall {
 impl MoreauWall {
     /// Goes on from an uplift the exact sliding run found: its blocks where the sliding model
     /// had them, seated and unturned, with its velocities, recorder and energy terms; to the
-    /// end, or, `until_seated`, until every block is seated again and still
-    /// ([`set_down::SEATED_STEPS`] steps in a row), where it sets the wall down.
+    /// end, or, `until_seated`, until every block is seated again and calm
+    /// ([`set_down::SEATED_STEPS`] steps in a row) and the check given keeps the wall set down
+    /// there seated, where it sets the wall down.
     pub(crate) fn run_from(
         &self,
         sc: &Scenario,
         start: HandOff,
-        until_seated: bool,
+        until_seated: Option<KeepsSeated>,
     ) -> Result<Stepped, SimulationError> {
         self.stepped(sc, Some(start), until_seated)
     }
@@ -353,7 +354,7 @@ impl MoreauWall {
         &self,
         sc: &Scenario,
         start: Option<HandOff>,
-        until_seated: bool,
+        until_seated: Option<KeepsSeated>,
     ) -> Result<Stepped, SimulationError> {
         let dt = self.dt_s;
         time_step(sc, dt)?;
@@ -763,12 +764,29 @@ impl MoreauWall {
             if fell_now && settings.after_collapse == AfterCollapse::Stop {
                 break;
             }
-            if until_seated && t < settings.duration_s {
-                let all = !open && (0..n).all(|i| !moves(i, &gone) || still(bodies[i].half, &v[i]));
+            if let Some(keeps_seated) = until_seated.filter(|_| t < settings.duration_s) {
+                // The step's mean velocities, which its positions moved at: at a closed contact
+                // with e = 1 Moreau-Jean's velocities can flip sign at every step with the pose
+                // frozen, and the flips cancel in the mean.
+                let mean: Vec<Vector3<f64>> =
+                    v_start.iter().zip(&v).map(|(a, b)| 0.5 * (a + b)).collect();
+                let calm_now = |i: usize| {
+                    let b = &bodies[i];
+                    calm(b.half, b.inertia / b.mass, q[i].z, &mean[i], g)
+                };
+                let all = !open && (0..n).all(|i| !moves(i, &gone) || calm_now(i));
                 seated_steps = if all { seated_steps + 1 } else { 0 };
                 if seated_steps >= SEATED_STEPS {
                     let live: Vec<bool> = (0..n).map(|i| moves(i, &gone)).collect();
-                    let (u, vx) = set_down(topo, &previous.0, &previous.1, &live);
+                    let (_, mean_vx, ..) = outputs(&q, &mean);
+                    let (u, vx) = set_down(topo, &previous.0, &mean_vx, &live);
+                    // Where the exact model would lift a block again at once, the rocking
+                    // called calm is the ground's doing: stepping goes on, and asks again ten
+                    // steps on.
+                    if !keeps_seated((t, &u, &vx, &gone))? {
+                        seated_steps = 0;
+                        continue;
+                    }
                     let kinetic_j: f64 = (0..n)
                         .filter(|&i| live[i])
                         .map(|i| 0.5 * bodies[i].mass * vx[i] * vx[i])
@@ -835,6 +853,12 @@ impl MoreauWall {
         }
     }
 }
+
+/// Whether the exact sliding model, set going at an instant (s) from blocks seated at these
+/// displacements (m) with these velocities (m/s), the fallen ones gone, keeps every block seated
+/// there: what a stepper asks before it sets a wall down.
+pub(crate) type KeepsSeated<'a> =
+    &'a dyn Fn((f64, &[f64], &[f64], &[bool])) -> Result<bool, SimulationError>;
 
 /// How a stretch of stepping ended.
 pub(crate) enum Stepped {

@@ -1,6 +1,7 @@
 //! Setting a time-stepped wall down for the exact sliding engine (`--after-uplift
-//! moreau-while-rocking`): when every block is seated again and has stopped turning, its
-//! rotation and vertical motion are dropped, faces the stepper holds together are closed
+//! moreau-while-rocking`): when every block is seated again and calm (it has stopped turning,
+//! or turns with too little energy to lift a corner more than a micrometre), its rotation and
+//! vertical motion are dropped, faces the stepper holds together are closed
 //! exactly, and blocks it moves together within its tolerance are given one velocity, so that
 //! the exact engine finds stuck and touching the joints that the stepper held so.
 
@@ -20,14 +21,43 @@ pub const SEATED_M: f64 = 1e-4;
 /// one (joints the stepper holds stuck differ by the round-off of its sweeps, near 1e-14 m/s).
 pub const SEATED_M_S: f64 = 1e-6;
 
-/// Steps in a row for which every block must be seated before the wall is set down: a block
-/// that rocks passes through its seat at speed, and one step can be a transient of the solver.
+/// A block is calm when its energy above its seat could lift a corner of its base no higher
+/// than this (m), a hundredth of [`SEATED_M`]: rocking that small, handed to the sliding model
+/// as its seated state, changes where blocks end by micrometres (the slab beside a block under a
+/// sine, docs/rocking-walls.md), while a slab that rattles between two monoliths at a few
+/// micrometres, which the stepper never stills, is calm.
+pub const CALM_M: f64 = 1e-6;
+
+/// Steps in a row for which every block must be seated and calm before the wall is set down:
+/// a block that rocks passes through its seat at speed, and one step can be a transient of the
+/// solver.
 pub const SEATED_STEPS: u32 = 10;
 
-/// A block `half`-sized moving at `v` (its centre's velocity and its rotation's) neither turns
-/// nor rises or sinks.
-pub fn still(half: Vector2<f64>, v: &Vector3<f64>) -> bool {
-    v.y.abs() + v.z.abs() * half.norm() <= SEATED_M_S
+/// A block `half`-sized, of radius of gyration squared `gyration_m2` (its moment of inertia
+/// over its mass, m2), turned by `theta` (rad) and moving at `v` (its centre's velocity and its
+/// rotation's) under gravity `g_m_s2`, is calm: it neither turns nor rises or sinks faster than
+/// [`SEATED_M_S`] (a pose the stepper froze slightly turned, within [`SEATED_M`], is kept as
+/// seated), or its energy above its seat (of its turning, of its vertical motion and of its
+/// tilt: at the top of a rocking swing it hardly turns) could lift a corner of its base no
+/// higher than [`CALM_M`] on still ground.
+pub fn calm(
+    half: Vector2<f64>,
+    gyration_m2: f64,
+    theta: f64,
+    v: &Vector3<f64>,
+    g_m_s2: f64,
+) -> bool {
+    let still = v.y.abs() + v.z.abs() * half.norm() <= SEATED_M_S;
+    let energy_j_kg =
+        0.5 * (v.y * v.y + gyration_m2 * v.z * v.z) + g_m_s2 * rise_m(half, theta).max(0.0);
+    let bound_j_kg = g_m_s2 * rise_m(half, (CALM_M / (2.0 * half.x)).min(1.0).asin());
+    still || energy_j_kg <= bound_j_kg
+}
+
+/// How far the centre of a block `half`-sized rises when it turns by `theta` about a corner of
+/// its base (m); negative for a block so slender that it sinks first.
+pub fn rise_m(half: Vector2<f64>, theta: f64) -> f64 {
+    half.x * theta.abs().sin() - half.y * (1.0 - theta.cos())
 }
 
 /// The horizontal displacements (m) and velocities (m/s) of the blocks set down flat from those
@@ -137,6 +167,31 @@ pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f
 mod tests {
     use super::*;
     use crate::wall::Wall;
+
+    /// A block 0.3 m by 1.2 m: calm at rest; turning with the energy that lifts a corner
+    /// [`CALM_M`], calm below it and not above, by a part in a million; at the top of a rocking
+    /// swing (turned, hardly turning) calm only while its tilt lifts a corner less than that.
+    #[test]
+    fn a_block_is_calm_while_its_energy_lifts_a_corner_less_than_the_bound() {
+        let (half, g) = (Vector2::new(0.15, 0.6), 9.81);
+        let gyration = (0.3f64.powi(2) + 1.2f64.powi(2)) / 12.0;
+        assert!(calm(half, gyration, 0.0, &Vector3::zeros(), g));
+        // The tilt that lifts a corner CALM_M, and the rate of turning with that energy.
+        let tilt = (CALM_M / 0.3).asin();
+        let omega = (2.0 * g * rise_m(half, tilt) / gyration).sqrt();
+        for (scale, is_calm) in [(1.0 - 1e-6, true), (1.0 + 1e-6, false)] {
+            let turning = Vector3::new(0.0, 0.0, omega * scale);
+            assert_eq!(calm(half, gyration, 0.0, &turning, g), is_calm);
+        }
+        // Turning just faster than stillness allows: an energy a ten-millionth of the bound.
+        let barely = Vector3::new(0.0, 0.0, 2.0 * SEATED_M_S / half.norm());
+        for (scale, is_calm) in [(1.0 - 1e-3, true), (1.0 + 1e-3, false)] {
+            assert_eq!(calm(half, gyration, -tilt * scale, &barely, g), is_calm);
+        }
+        // A pose the stepper froze turned is still, so calm (whether it is seated is the
+        // position check's, SEATED_M).
+        assert!(calm(half, gyration, 1e-4, &Vector3::zeros(), g));
+    }
 
     /// Three blocks in a row on the ground, the middle 1e-6 m into the left and the right 3e-6 m
     /// into the middle; the right one sliding at 0.1 m/s, the two others stuck but for round-off.

@@ -468,19 +468,23 @@ impl<'a> Engine<'a> {
         self.resumed = true;
     }
 
+    /// The first decision: every block standing is undecided against the ground (at rest,
+    /// unless the run goes on from another model's state).
+    fn start(&mut self) -> Result<(), SimulationError> {
+        let seeds: Vec<usize> = (0..self.given.n)
+            .filter(|&i| !self.given.fixed[i] && !self.fallen[i])
+            .collect();
+        let start_vel = std::mem::take(&mut self.start_vel);
+        self.regroup(&seeds, &start_vel, None, Cause::Start)
+    }
+
     /// Runs to the end, or to the first uplift where the watch is to hand off there (true,
     /// the engine advanced to that instant).
     fn run_loop(&mut self) -> Result<bool, SimulationError> {
         // The flow passes counted from here on are this run's (a failed run on this thread
         // may have left some).
         flow::take_pass_nodes();
-        // At the start every block standing is undecided against the ground (at rest, unless
-        // the run goes on from another model's state).
-        let seeds: Vec<usize> = (0..self.given.n)
-            .filter(|&i| !self.given.fixed[i] && !self.fallen[i])
-            .collect();
-        let start_vel = std::mem::take(&mut self.start_vel);
-        self.regroup(&seeds, &start_vel, None, Cause::Start)?;
+        self.start()?;
         loop {
             let seg_end = self.seg.t1.min(self.given.t_end);
             match self.queue.pop_until(seg_end, &self.clusters) {

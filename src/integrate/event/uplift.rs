@@ -8,13 +8,14 @@
 use super::cluster::{ClusterId, Mode};
 use super::roots::Counter;
 use super::schedule::limit_passed;
-use super::Engine;
+use super::{Engine, EventDriven, Params};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::integrate::Progress;
+use crate::integrate::Scenario;
 use crate::limit::seated::{self, Interval, Moving, State};
 use crate::limit::Moves;
-use crate::response::{EventKind, Uplift, UpliftCheck, Warning};
+use crate::response::{EventKind, EventsTo, HistoryTo, Recorder, Uplift, UpliftCheck, Warning};
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -63,6 +64,36 @@ pub(super) enum Next {
 enum Together {
     Ground,
     Cluster(ClusterId),
+}
+
+impl EventDriven {
+    /// Whether the exact sliding model, set going at `t_s` from blocks seated at `u_m` (m)
+    /// moving at `v_m_s` (m/s), the `fallen` ones gone, lets some block turn by `t_s +
+    /// horizon_s`: a resumed run, watched as [`EventDriven::resume`] watches it, run that far
+    /// with nothing recorded and no progress shown (events at its first instant, a touch or a
+    /// stop, can change the state whose interval decides). A model with rotations asks before
+    /// it hands a wall back seated: where the answer is yes, the wall would be handed straight
+    /// back to it.
+    pub(crate) fn lifts_within(
+        &self,
+        sc: &Scenario,
+        (t_s, u_m, v_m_s, fallen): (f64, &[f64], &[f64], &[bool]),
+        horizon_s: f64,
+    ) -> Result<bool, SimulationError> {
+        let params = Params {
+            watch_uplift: true,
+            ..self.params.clone()
+        };
+        let rec = Recorder::new(sc.wall, sc.topology, HistoryTo::Nowhere, EventsTo::Nowhere);
+        let mut engine = Engine::new(sc, &params, Some(rec))?;
+        engine.given.progress = None;
+        engine.given.t_end = engine.given.t_end.min(t_s + horizon_s);
+        engine.start_from(t_s, u_m.to_vec(), v_m_s, fallen.to_vec(), 0);
+        if let Some(w) = &mut engine.uplift {
+            w.hand_off = true;
+        }
+        engine.run_loop()
+    }
 }
 
 impl Engine<'_> {
@@ -275,5 +306,56 @@ impl Engine<'_> {
                 })
                 .collect(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::Settings;
+    use crate::motion::{Motion, Sine};
+    use crate::topology::Topology;
+    use crate::wall::Wall;
+
+    /// A slab 0.3 m wide and 1.2 m tall (friction 0.6, so it lifts before it slides) under a
+    /// sine of 0.3 g: it turns once a_g passes g/4, at t* = asin(5/6) / (2 pi) s. A check set
+    /// going at rest from 0.15 s sees the uplift within a horizon that reaches t* and not within
+    /// one that stops short of it, by a nanosecond either way; one set going past t* sees it at
+    /// once.
+    #[test]
+    fn the_check_before_a_set_down_finds_the_uplift_where_the_watch_would() {
+        let wall = Wall::from_ron_str(
+            "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6,
+              rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\")])])",
+        )
+        .unwrap();
+        let topology = Topology::new(&wall).unwrap();
+        let g = wall.g_m_s2.to_f64();
+        let motion = Motion::sine(Sine {
+            amplitude_m_s2: 0.3 * g,
+            frequency_hz: 1.0,
+            phase_rad: 0.0,
+            duration_s: 1.0,
+        })
+        .unwrap();
+        let settings = Settings::summary_only(1.0);
+        let sc = Scenario {
+            wall: &wall,
+            topology: &topology,
+            motion: &motion,
+            settings: &settings,
+        };
+        let t_star = (5.0_f64 / 6.0).asin() / std::f64::consts::TAU;
+        let lifts = |t: f64, horizon: f64| {
+            EventDriven::default()
+                .lifts_within(&sc, (t, &[0.0], &[0.0], &[false]), horizon)
+                .unwrap()
+        };
+        assert!(!lifts(0.1, 0.01));
+        assert!(!lifts(0.15, t_star - 0.15 - 1e-9));
+        assert!(lifts(0.15, t_star - 0.15 + 1e-9));
+        assert!(lifts(t_star + 0.01, 1e-9));
+        // Past the uplift the ground falls back below g/4 at 0.5 s - t*: seated again there.
+        assert!(!lifts(0.5 - t_star + 0.01, 0.01));
     }
 }
