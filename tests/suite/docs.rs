@@ -125,6 +125,10 @@ fn committed_studies_are_what_their_cases_draw() {
             "docs/rocking/ollantaytambo-handed",
         ),
         (
+            "walls/studies/ollantaytambo-while-rocking.ron",
+            "docs/rocking/ollantaytambo-while-rocking",
+        ),
+        (
             "walls/studies/slab-while-rocking.ron",
             "docs/rocking/slab-while-rocking",
         ),

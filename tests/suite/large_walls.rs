@@ -5,25 +5,13 @@
 use crate::answers;
 use crate::engine;
 
-use engine::{constant, exact_on, impacts, load, run, sine};
+use engine::{constant, el_centro_first_s, exact_on, impacts, load, run, sine};
 use pirqa::integrate::event::{EventDriven, Params};
 use pirqa::integrate::{Integrator, Scenario, Settings};
-use pirqa::motion::{Motion, Record};
+use pirqa::motion::Motion;
 use pirqa::response::{EventKind, Response};
 use pirqa::samples;
 use pirqa::{SimulationError, Topology, Wall};
-
-fn el_centro_first_s(seconds: usize, pga_m_s2: f64) -> Motion {
-    let record = pirqa::motion::read_record(
-        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
-        None,
-        &pirqa::motion::ReadOptions::default(),
-    )
-    .unwrap();
-    let n = seconds * 100 + 1;
-    let first = Record::new("El Centro", 0.01, record.accel_m_s2()[..n].to_vec()).unwrap();
-    Motion::Record(first.scaled(pga_m_s2 / record.pga_m_s2()).unwrap())
-}
 
 /// The wall's topology with every joint's friction drawn uniformly from lowest / 10,000 to
 /// (lowest + span) / 10,000 (seed 5).

@@ -503,6 +503,7 @@ fn every_shipped_study_loads() {
         ("ollantaytambo-rocking.ron", 6),
         ("ollantaytambo-sliding.ron", 6),
         ("ollantaytambo-uplift.ron", 9 * 50),
+        ("ollantaytambo-while-rocking.ron", 6),
         ("paper-fig3-4.ron", 3 * 4 * 100),
         ("slab-rocking.ron", 10),
         ("slab-while-rocking.ron", 10),

@@ -6,6 +6,20 @@ use pirqa::motion::{Motion, Record, Sine};
 use pirqa::response::{EventKind, EventRecord, Response};
 use pirqa::{Topology, Wall};
 
+/// The first `seconds` of El Centro 1940 (the shipped PEER record), scaled to a PGA of
+/// `pga_m_s2` over the whole record.
+pub fn el_centro_first_s(seconds: usize, pga_m_s2: f64) -> Motion {
+    let record = pirqa::motion::read_record(
+        std::path::Path::new("records/elcentro1940_IELC180_peer_dt0p01_g.AT2"),
+        None,
+        &pirqa::motion::ReadOptions::default(),
+    )
+    .unwrap();
+    let n = seconds * 100 + 1;
+    let first = Record::new("El Centro", 0.01, record.accel_m_s2()[..n].to_vec()).unwrap();
+    Motion::Record(first.scaled(pga_m_s2 / record.pga_m_s2()).unwrap())
+}
+
 /// `wall` under `motion` with the exact integrator and `settings`, its graph built from it.
 pub fn exact(wall: &Wall, motion: &Motion, settings: &Settings) -> Response {
     exact_on(wall, &Topology::new(wall).unwrap(), motion, settings)
