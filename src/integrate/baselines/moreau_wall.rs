@@ -768,16 +768,16 @@ impl MoreauWall {
                 // The step's mean velocities, which its positions moved at: at a closed contact
                 // with e = 1 Moreau-Jean's velocities can flip sign at every step with the pose
                 // frozen, and the flips cancel in the mean.
-                let mean: Vec<Vector3<f64>> =
-                    v_start.iter().zip(&v).map(|(a, b)| 0.5 * (a + b)).collect();
+                let mean = |i: usize| 0.5 * (v_start[i] + v[i]);
                 let calm_now = |i: usize| {
                     let b = &bodies[i];
-                    calm(b.half, b.inertia / b.mass, q[i].z, &mean[i], g)
+                    calm(b.half, b.inertia / b.mass, q[i].z, &mean(i), g)
                 };
                 let all = !open && (0..n).all(|i| !moves(i, &gone) || calm_now(i));
                 seated_steps = if all { seated_steps + 1 } else { 0 };
                 if seated_steps >= SEATED_STEPS {
                     let live: Vec<bool> = (0..n).map(|i| moves(i, &gone)).collect();
+                    let mean: Vec<Vector3<f64>> = (0..n).map(mean).collect();
                     let (_, mean_vx, ..) = outputs(&q, &mean);
                     let (u, vx) = set_down(topo, &previous.0, &mean_vx, &live);
                     // Where the exact model would lift a block again at once, the rocking
