@@ -48,6 +48,32 @@ fn stretches(r: &Response) -> Vec<(f64, Option<f64>)> {
         .collect()
 }
 
+/// Every history row strictly between a set-down and the next uplift is unturned, and each
+/// stretch begins strictly after the set-down before it (a wall set down where the exact model
+/// lifts a block at once would begin it at the same instant).
+fn unturned_between(r: &Response, spans: &[(f64, Option<f64>)]) {
+    let h = history(r);
+    for w in spans.windows(2) {
+        let (Some(set_down), next) = (w[0].1, w[1].0) else {
+            panic!("{spans:?}");
+        };
+        assert!(set_down < next, "{spans:?}");
+        let rows = (h.time_s.iter().enumerate()).filter(|(_, &t)| t > set_down && t < next);
+        for (k, _) in rows {
+            assert!(h.rotation_rad[k].iter().all(|&x| x == 0.0), "{k}");
+        }
+    }
+}
+
+/// The Ollantaytambo wall under the first `seconds` of El Centro scaled to `pga_g` g, time
+/// stepped with step `dt_s` while its blocks rock.
+fn ollantaytambo(seconds: usize, pga_g: f64, dt_s: f64) -> Response {
+    let wall = pirqa::Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
+    let motion = el_centro_first_s(seconds, pga_g * G);
+    let after_uplift = AfterUplift::MoreauWhileRocking { dt_s };
+    pirqa::run(&wall, &motion, &settings(seconds as f64, after_uplift)).unwrap()
+}
+
 #[test]
 fn a_block_that_rocks_and_settles_gives_the_wall_back_to_the_exact_model() {
     let dt = 1e-3;
@@ -151,17 +177,7 @@ fn under_a_sine_the_wall_is_handed_back_and_forth_and_its_answer_settles_as_the_
         // S lifts in every half cycle past g/4: stepped while it rocks, exact between.
         let spans = stretches(&back);
         assert!(spans.len() >= 4, "{}", back.summary.model.why);
-        let h = history(&back);
-        for w in spans.windows(2) {
-            let (Some(set_down), next) = (w[0].1, w[1].0) else {
-                panic!("{spans:?}");
-            };
-            assert!(set_down < next, "{spans:?}");
-            let rows = (h.time_s.iter().enumerate()).filter(|(_, &t)| t > set_down && t < next);
-            for (k, _) in rows {
-                assert!(h.rotation_rad[k].iter().all(|&x| x == 0.0), "{k}");
-            }
-        }
+        unturned_between(&back, &spans);
         let e = &back.summary.energy;
         assert!(e.residual_j.abs() <= 1e-12 * e.input_j.abs(), "{e:?}");
         if dt_s == 1e-4 {
@@ -260,28 +276,11 @@ fn a_block_that_falls_while_stepped_is_gone_and_the_rest_is_set_down_without_it(
 /// the stepping that runs on (docs/rocking-walls.md).
 #[test]
 fn the_ollantaytambo_fillers_that_rattle_are_set_down_where_the_exact_model_keeps_them_seated() {
-    let motion = el_centro_first_s(12, 0.3 * G);
-    let wall = pirqa::Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
     let dt = 1e-3;
-    let r = pirqa::run(
-        &wall,
-        &motion,
-        &settings(12.0, AfterUplift::MoreauWhileRocking { dt_s: dt }),
-    )
-    .unwrap();
+    let r = ollantaytambo(12, 0.3, dt);
     let spans = stretches(&r);
     assert!(spans.len() >= 3, "{}", r.summary.model.why);
-    let h = history(&r);
-    for w in spans.windows(2) {
-        let (Some(set_down), next) = (w[0].1, w[1].0) else {
-            panic!("{spans:?}");
-        };
-        assert!(set_down < next, "{spans:?}");
-        let rows = (h.time_s.iter().enumerate()).filter(|(_, &t)| t > set_down && t < next);
-        for (k, _) in rows {
-            assert!(h.rotation_rad[k].iter().all(|&x| x == 0.0), "{k}");
-        }
-    }
+    unturned_between(&r, &spans);
     // The first uplift is the sliding run's, F5's at 2.13 s (the uplift check's test in cli.rs).
     let from = spans[0].0;
     assert!((from - 2.13).abs() < 0.01, "{from}");
@@ -303,14 +302,7 @@ fn the_ollantaytambo_fillers_that_rattle_are_set_down_where_the_exact_model_keep
 /// (docs/rocking-walls.md).
 #[test]
 fn a_set_down_the_exact_model_cannot_go_on_from_is_refused_and_said() {
-    let motion = el_centro_first_s(10, 0.4 * G);
-    let wall = pirqa::Model::from_file("walls/inca/ollantaytambo-monoliths.ron").unwrap();
-    let r = pirqa::run(
-        &wall,
-        &motion,
-        &settings(10.0, AfterUplift::MoreauWhileRocking { dt_s: 2.5e-4 }),
-    )
-    .unwrap();
+    let r = ollantaytambo(10, 0.4, 2.5e-4);
     let why = &r.summary.model.why;
     let said = "set-downs refused because the exact sliding model could not go on from the \
                 state set down, stepping on instead: ";
