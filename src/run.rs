@@ -13,7 +13,6 @@ use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario, Settings};
 use crate::model::Model;
 use crate::motion::Motion;
 use crate::response::Response;
-use std::cell::RefCell;
 
 /// The integrator.
 #[derive(Debug, Clone, Default)]
@@ -371,18 +370,8 @@ fn hand_off_at_uplift(
     time_step(sc, dt_s)?;
     let mut ended = sliding.run_to_uplift(sc)?;
     // A wall set down where the exact model lifts a block within a step would come straight
-    // back. Where the exact model cannot go on from the set-down state at all (a cycle at its
-    // first instant), stepping goes on too, and the run says how often and why.
-    let refused: RefCell<Refused> = RefCell::default();
-    let keeps_seated: KeepsSeated = &|from| match sliding.lifts_within(sc, from, dt_s) {
-        Ok(lifts) => Ok(!lifts),
-        Err(e) => {
-            let mut r = refused.borrow_mut();
-            r.count += 1;
-            r.first.get_or_insert_with(|| e.to_string());
-            Ok(false)
-        }
-    };
+    // back.
+    let keeps_seated: KeepsSeated = &|from| Ok(!sliding.lifts_within(sc, from, dt_s)?);
     // The stretches time stepped: from an uplift to where the wall was set down.
     let mut stepped: Vec<(f64, f64)> = Vec::new();
     let mut turning = String::new();
@@ -407,7 +396,7 @@ fn hand_off_at_uplift(
             Ended::Seated(r) => {
                 let mut r = *r;
                 r.summary.method = HANDED_OFF.into();
-                let why = stretches(&turning, &stepped, None, dt_s) + &refused.borrow().said();
+                let why = stretches(&turning, &stepped, None, dt_s);
                 r.summary.model = stepper.model_used(&why);
                 return Ok(r);
             }
@@ -420,7 +409,7 @@ fn hand_off_at_uplift(
                     Stepped::Ended(r) => {
                         let mut r = *r;
                         r.summary.model.why = if back {
-                            stretches(&turning, &stepped, Some(t), dt_s) + &refused.borrow().said()
+                            stretches(&turning, &stepped, Some(t), dt_s)
                         } else {
                             format!(
                                 "auto with --after-uplift moreau: exact sliding while every \
@@ -437,28 +426,6 @@ fn hand_off_at_uplift(
                     }
                 }
             }
-        }
-    }
-}
-
-/// Set-downs refused because the exact sliding model could not go on from the state set down.
-#[derive(Default)]
-struct Refused {
-    count: usize,
-    /// The first one's error.
-    first: Option<String>,
-}
-
-impl Refused {
-    /// What `model.why` adds: nothing where none was refused.
-    fn said(&self) -> String {
-        match &self.first {
-            None => String::new(),
-            Some(e) => format!(
-                "; set-downs refused because the exact sliding model could not go on from the \
-                 state set down, stepping on instead: {} (the first: {e})",
-                self.count
-            ),
         }
     }
 }

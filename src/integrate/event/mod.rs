@@ -208,7 +208,7 @@ impl EventDriven {
             }
             Some(h) => {
                 let mut engine = Engine::new(scenario, &params, Some(h.rec))?;
-                engine.start_from(h.t_s, h.u_m, &h.v_m_s, h.fallen, h.next_output);
+                engine.start_from(h.t_s, h.u_m, &h.v_m_s, h.fallen, h.next_output)?;
                 engine
             }
         };
@@ -447,8 +447,17 @@ impl<'a> Engine<'a> {
 
     /// Starts at `t` from the state a model with rotations handed back: blocks displaced by
     /// `u` (m), seated, moving at `v` (m/s), faces touching where their gaps are closed to
-    /// round-off; friction's work counted from here.
-    fn start_from(&mut self, t: f64, u: Vec<f64>, v: &[f64], fallen: Vec<bool>, next_output: u64) {
+    /// round-off; friction's work counted from here. Faces that overlap beyond round-off are
+    /// refused as the bug of whatever handed the state over: the engine would find them
+    /// closing at every event of its first instant and stop there for lack of progress.
+    fn start_from(
+        &mut self,
+        t: f64,
+        u: Vec<f64>,
+        v: &[f64],
+        fallen: Vec<bool>,
+        next_output: u64,
+    ) -> Result<(), SimulationError> {
         self.t = t;
         self.seg = self.given.motion.segment_at(t);
         self.u_ref = u;
@@ -457,6 +466,19 @@ impl<'a> Engine<'a> {
         self.touching = (0..self.given.topo.vertical.len())
             .map(|j| self.is_touching(j))
             .collect();
+        for j in 0..self.given.topo.vertical.len() {
+            if self.live_vertical(j) && !self.touching[j] && self.gap(j) < 0.0 {
+                let jt = &self.given.topo.vertical[j];
+                let name = |b: usize| &self.given.wall.blocks[b].name;
+                return Err(SimulationError::Bug(format!(
+                    "the state handed to the exact sliding model at t = {t} s has {} and {} \
+                     overlapping by {:e} m",
+                    name(jt.left.0),
+                    name(jt.right.0),
+                    -self.gap(j)
+                )));
+            }
+        }
         for s in 0..self.given.topo.horizontal.len() {
             self.d_last[s] = self.horizontal_d(s);
             self.t_fric[s] = t;
@@ -466,6 +488,7 @@ impl<'a> Engine<'a> {
             .map(|i| (i, v[i]))
             .collect();
         self.resumed = true;
+        Ok(())
     }
 
     /// The first decision: every block standing is undecided against the ground (at rest,

@@ -88,7 +88,7 @@ impl EventDriven {
         let mut engine = Engine::new(sc, &params, Some(rec))?;
         engine.given.progress = None;
         engine.given.t_end = engine.given.t_end.min(t_s + horizon_s);
-        engine.start_from(t_s, u_m.to_vec(), v_m_s, fallen.to_vec(), 0);
+        engine.start_from(t_s, u_m.to_vec(), v_m_s, fallen.to_vec(), 0)?;
         if let Some(w) = &mut engine.uplift {
             w.hand_off = true;
         }
