@@ -51,7 +51,7 @@ pub fn positive(what: &str, x: f64, unit: &'static str) -> Result<(), Simulation
         what: what.into(),
         value: x,
         unit,
-        rule: "it must be positive",
+        rule: "it must be positive and finite",
     })
 }
 

@@ -112,7 +112,7 @@ fn positive(what: &str, x: f64) -> Result<(), MotionError> {
     } else {
         Err(MotionError::Parameter {
             what: format!("{what} = {}", crate::units::Shown(x)),
-            rule: "it must be positive".into(),
+            rule: "it must be positive and finite".into(),
         })
     }
 }

@@ -75,7 +75,7 @@ impl RunningBond {
                 Err(WallError::Field {
                     field: field.into(),
                     value: x,
-                    rule: "must be positive",
+                    rule: "must be positive and finite",
                 })
             }
         };

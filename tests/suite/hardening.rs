@@ -523,6 +523,11 @@ fn a_time_step_that_is_no_step_is_refused_before_any_estimate() {
     ] {
         refused(&strs(&sine(extra)), "it is longer than the run");
     }
+    // Nor is an infinite one, which the message does not call positive.
+    refused(
+        &strs(&sine(&["--method", "moreau", "--dt", "inf"])),
+        "time step inf s: it must be positive and finite",
+    );
     // A step of the whole run is a step.
     let (code, _, err) = pirqa(&strs(&sine(&["--method", "moreau", "--dt", "2"])));
     assert_eq!(code, 0, "{err}");

@@ -58,7 +58,7 @@ fn npts_dt(line: &str, n: usize) -> Result<(usize, f64), MotionError> {
     if !(dt.is_finite() && dt > 0.0) {
         return Err(line_err(
             n,
-            format!("DT = {dt}: the time step must be positive"),
+            format!("DT = {dt}: the time step must be positive and finite"),
         ));
     }
     Ok((npts as usize, dt))

@@ -179,7 +179,7 @@ fn read_channel(name: &str, lines: &[&str], start: usize) -> Result<(Record, usi
     if !(dt_ms.is_finite() && dt_ms > 0.0) {
         return Err(line_err(
             real_line,
-            format!("real-header value 62 (sample interval) is {dt_ms} ms: it must be positive"),
+            format!("real-header value 62 (sample interval) is {dt_ms} ms: it must be positive and finite"),
         ));
     }
     if ints.get(1).is_some_and(|&kind| kind != 1.0) {

@@ -75,7 +75,7 @@ impl RecordFormat for Knet {
         if !(freq.is_finite() && freq > 0.0) {
             return Err(line_err(
                 11,
-                format!("sampling frequency {freq} Hz: it must be positive"),
+                format!("sampling frequency {freq} Hz: it must be positive and finite"),
             ));
         }
         let scale_text = value_of(lines[13]);

@@ -598,7 +598,7 @@ impl Sweep {
                 return Err(field(
                     origin,
                     "after_uplift",
-                    format!("time step {dt_s} s: it must be positive"),
+                    format!("time step {dt_s} s: it must be positive and finite"),
                 ));
             }
             if d.method != SweepMethod::Event || d.model != ModelChoice::Auto {
@@ -1159,7 +1159,7 @@ fn resolve_motions(
                     origin,
                     "frequencies_hz",
                     format!(
-                        "{frequencies_hz:?} gives {f} Hz: every frequency must be positive (a Log \
+                        "{frequencies_hz:?} gives {f} Hz: every frequency must be positive and finite (a Log \
                          range needs `from` and `to` above 0)"
                     ),
                 ));
@@ -1239,7 +1239,7 @@ fn resolve_motions(
                         return Err(field(
                             origin,
                             "scales",
-                            format!("factor {factor}: it must be positive"),
+                            format!("factor {factor}: it must be positive and finite"),
                         ));
                     }
                     let scaled = record.scaled(factor).map_err(|source| Error::Motion {
