@@ -329,7 +329,9 @@ impl Integrator for MoreauWall {
     fn run(&self, sc: &Scenario) -> Result<Response, SimulationError> {
         match self.stepped(sc, None, None)? {
             Stepped::Ended(r) => Ok(*r),
-            Stepped::Seated(_) => unreachable!("a stepper not asked to set the wall down did"),
+            Stepped::Seated(_) => Err(SimulationError::Bug(
+                "a stepper not asked to set the wall down did".into(),
+            )),
         }
     }
 }
