@@ -67,9 +67,8 @@ pub fn rise_m(half: Vector2<f64>, theta: f64) -> f64 {
 /// blocks of each group of touching blocks from its abutment or, where it has none, from its
 /// first block (faces apart that approach faster than [`SEATED_M_S`] are left apart, for the
 /// exact engine to find their impact, unless the placing pushed them into each other); blocks
-/// joined by joints that slip at most
-/// [`SEATED_M_S`] given their common velocity (momentum kept), zero where the group reaches the
-/// ground or an abutment.
+/// joined by joints that slip at most [`SEATED_M_S`] given their common velocity (momentum
+/// kept), zero where the group reaches the ground or an abutment.
 pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f64>, Vec<f64>) {
     let n = u.len();
     let gap = |u: &[f64], j: usize| {
@@ -91,8 +90,9 @@ pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f
         .collect();
     // Placing a group moves its blocks by the stepper's gaps along it (hundredths of a
     // millimetre over a course), which can push faces left apart into each other: those touch
-    // after all, and the groups they join are placed again as one: the exact engine refuses
-    // faces that overlap (it would find them closing at every event of its first instant).
+    // after all, and the groups they join are placed again as one. The exact engine refuses
+    // faces that overlap (it would find them closing at every event of its first instant); a
+    // course between two abutments is never pushed so, placed from either it fits the other.
     let (u, closed) = loop {
         let closed: Vec<usize> = (0..is_closed.len()).filter(|&j| is_closed[j]).collect();
         let placed = place(topo, u, moves, &closed);
