@@ -781,7 +781,8 @@ impl MoreauWall {
                     let live: Vec<bool> = (0..n).map(|i| moves(i, &gone)).collect();
                     let mean: Vec<Vector3<f64>> = (0..n).map(mean).collect();
                     let (_, mean_vx, ..) = outputs(&q, &mean);
-                    let (u, vx) = set_down(topo, &previous.0, &mean_vx, &live);
+                    let free: Vec<bool> = bodies.iter().map(|b| b.free).collect();
+                    let (u, vx) = set_down(topo, &previous.0, &mean_vx, &free, &gone);
                     // Where the exact model would lift a block again at once, the rocking
                     // called calm is the ground's doing: stepping goes on, and asks again ten
                     // steps on.

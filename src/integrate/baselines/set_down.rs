@@ -62,22 +62,29 @@ pub fn rise_m(half: Vector2<f64>, theta: f64) -> f64 {
 
 /// The horizontal displacements (m) and velocities (m/s) of the blocks set down flat from those
 /// of the middles of their bases, `u` and `v` (a block turns back about it: where it rests is
-/// kept, not where its centroid was; the others, `moves` false, are left where they are, at
-/// rest): faces of vertical joints within [`SEATED_M`] of touching closed exactly, moving the
+/// kept, not where its centroid was; abutments (`free` false) and blocks `gone` (fallen) are
+/// left where they are, at rest, and a block gone touches nothing, as in the exact engine): faces of vertical joints within [`SEATED_M`] of touching closed exactly, moving the
 /// blocks of each group of touching blocks from its abutment or, where it has none, from its
 /// first block (faces apart that approach faster than [`SEATED_M_S`] are left apart, for the
 /// exact engine to find their impact, unless the placing pushed them into each other); blocks
 /// joined by joints that slip at most [`SEATED_M_S`] given their common velocity (momentum
 /// kept), zero where the group reaches the ground or an abutment.
-pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f64>, Vec<f64>) {
+pub fn set_down(
+    topo: &Topology,
+    u: &[f64],
+    v: &[f64],
+    free: &[bool],
+    gone: &[bool],
+) -> (Vec<f64>, Vec<f64>) {
     let n = u.len();
+    let moves: Vec<bool> = (0..n).map(|i| free[i] && !gone[i]).collect();
     let gap = |u: &[f64], j: usize| {
         let jt = &topo.vertical[j];
         jt.gap_m.to_f64() + u[jt.right.0] - u[jt.left.0]
     };
     let live = |j: usize| {
-        let jt = &topo.vertical[j];
-        moves[jt.left.0] || moves[jt.right.0]
+        let (l, r) = (topo.vertical[j].left.0, topo.vertical[j].right.0);
+        !gone[l] && !gone[r] && (moves[l] || moves[r])
     };
     let vx = |i: usize| if moves[i] { v[i] } else { 0.0 };
     let closing = |j: usize| {
@@ -95,7 +102,7 @@ pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f
     // course between two abutments is never pushed so, placed from either it fits the other.
     let (u, closed) = loop {
         let closed: Vec<usize> = (0..is_closed.len()).filter(|&j| is_closed[j]).collect();
-        let placed = place(topo, u, moves, &closed);
+        let placed = place(topo, u, &moves, &closed);
         let mut pushed = false;
         for (j, closed) in is_closed.iter_mut().enumerate() {
             if !*closed && live(j) && gap(&placed, j) < 0.0 {
@@ -147,7 +154,7 @@ pub fn set_down(topo: &Topology, u: &[f64], v: &[f64], moves: &[bool]) -> (Vec<f
 
 /// The displacements `u` (m) with the faces of the `closed` vertical joints made to touch:
 /// each group of touching blocks placed outward from its anchor, a block that does not move
-/// (`moves` false: an abutment, or one fallen) or else its first block.
+/// (`moves` false: an abutment), or else from its first block.
 fn place(topo: &Topology, u: &[f64], moves: &[bool], closed: &[usize]) -> Vec<f64> {
     let n = u.len();
     let mut u = u.to_vec();
@@ -242,6 +249,7 @@ mod tests {
             &[0.01, 0.01 - 1e-6, 0.01 - 4e-6],
             &[1e-14, -1e-14, 0.1],
             &[true; 3],
+            &[false; 3],
         );
         assert_eq!(u[0], 0.01);
         // Closed to the bit from A: B's and C's left faces at A's right.
@@ -254,6 +262,7 @@ mod tests {
             &[0.01, 0.01, 0.01 + 2e-6],
             &[0.0, 0.0, -0.1],
             &[true; 3],
+            &[false; 3],
         );
         assert_eq!(u, vec![0.01, 0.01, 0.01 + 2e-6]);
     }
@@ -273,6 +282,7 @@ mod tests {
             &[0.01, 0.01 - 3e-6, 0.01 - 1e-6],
             &[0.1, 0.1, 0.0],
             &[true; 3],
+            &[false; 3],
         );
         assert_eq!(u, vec![0.01; 3]);
         assert_eq!(vel, vec![0.1, 0.1, 0.0]);
@@ -301,5 +311,22 @@ mod tests {
             ),
             other => panic!("{other:?}"),
         }
+    }
+
+    /// C fell, and lies where it went 1e-6 m into B's place: A and B are set down where they
+    /// are, as the exact engine sees them (a block gone touches nothing), not placed against C.
+    #[test]
+    fn a_block_gone_anchors_nothing() {
+        let topo = Topology::new(&row_of_three()).unwrap();
+        let u = [0.01, 0.01, 0.01 - 1e-6];
+        let (set, vel) = set_down(
+            &topo,
+            &u,
+            &[0.05, 0.05, 0.3],
+            &[true; 3],
+            &[false, false, true],
+        );
+        assert_eq!(set, u);
+        assert_eq!(vel, vec![0.05, 0.05, 0.0]);
     }
 }
