@@ -63,9 +63,10 @@ pub fn rise_m(half: Vector2<f64>, theta: f64) -> f64 {
 /// The horizontal displacements (m) and velocities (m/s) of the blocks set down flat from those
 /// of the middles of their bases, `u` and `v` (a block turns back about it: where it rests is
 /// kept, not where its centroid was; abutments (`free` false) and blocks `gone` (fallen) are
-/// left where they are, at rest, and a block gone touches nothing, as in the exact engine): faces of vertical joints within [`SEATED_M`] of touching closed exactly, moving the
-/// blocks of each group of touching blocks from its abutment or, where it has none, from its
-/// first block (faces apart that approach faster than [`SEATED_M_S`] are left apart, for the
+/// left where they are, at rest, and a block gone touches nothing, as in the exact engine):
+/// faces of vertical joints within [`SEATED_M`] of touching closed exactly, moving the blocks
+/// of each group of touching blocks from its abutment or, where it has none, from its first
+/// block (faces apart that approach faster than [`SEATED_M_S`] are left apart, for the
 /// exact engine to find their impact, unless the placing pushed them into each other); blocks
 /// joined by joints that slip at most [`SEATED_M_S`] given their common velocity (momentum
 /// kept), zero where the group reaches the ground or an abutment.
