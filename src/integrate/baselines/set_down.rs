@@ -155,7 +155,8 @@ pub fn set_down(
 
 /// The displacements `u` (m) with the faces of the `closed` vertical joints made to touch:
 /// each group of touching blocks placed outward from its anchor, a block that does not move
-/// (`moves` false: an abutment), or else from its first block.
+/// (`moves` false: an abutment; a block gone is in no closed joint, so anchors only itself), or
+/// else from its first block.
 fn place(topo: &Topology, u: &[f64], moves: &[bool], closed: &[usize]) -> Vec<f64> {
     let n = u.len();
     let mut u = u.to_vec();
