@@ -8,9 +8,7 @@
 set -euo pipefail
 source "$(dirname "$0")/scratch-tree.sh"
 work=${1:-/tmp/pirqa-limit-bound}
-scratch_tree "$work" bd68838 -c \
-    "sed -i 's/^pub const MAX_BLOCKS: usize = 600;\$/pub const MAX_BLOCKS: usize = 2000;/' src/limit/mod.rs &&
-     grep -q '^pub const MAX_BLOCKS: usize = 2000;\$' src/limit/mod.rs"
+scratch_tree "$work" bd68838 -c "$raise_limit_bound"
 walls=()
 for n in 203 250 297 320 360 400 450 500 550 600 700; do
     "$pirqa" generate --blocks "$n" -o "$work/bond-$n.ron"

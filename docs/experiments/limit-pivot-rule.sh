@@ -13,31 +13,22 @@
 #
 #   bash docs/experiments/limit-pivot-rule.sh [WORKDIR]
 set -euo pipefail
-root=$(git rev-parse --show-toplevel)
+source "$(dirname "$0")/scratch-tree.sh"
 work=${1:-/tmp/pirqa-limit-pivot-rule}
 base=3e7614a
-mkdir -p "$work"
-cd "$root"
-
-for rule in built bland; do
-    tree="$work/$rule"
-    if [ ! -d "$tree" ]; then
-        git worktree add --detach "$tree" "$base"
-        if [ "$rule" = bland ]; then
-            sed -i 's/^const STALL: usize = 5;$/const STALL: usize = 0;/' "$tree/src/limit/revised.rs"
-            grep -q '^const STALL: usize = 0;$' "$tree/src/limit/revised.rs"
-        fi
-    fi
-    # One target folder for both trees: only pirqa itself is built twice.
-    (cd "$tree" && CARGO_TARGET_DIR="$work/target" cargo build --release)
-    cp "$work/target/release/pirqa" "$work/pirqa-$rule"
-done
-pirqa="$work/pirqa-built"
+scratch_tree "$work/built" "$base"
+built=$pirqa
+scratch_tree "$work/bland" "$base" -c \
+    "sed -i 's/^const STALL: usize = 5;\$/const STALL: usize = 0;/' src/limit/revised.rs &&
+     grep -q '^const STALL: usize = 0;\$' src/limit/revised.rs"
+bland=$pirqa
+pirqa=$built
 "$pirqa" generate --courses 6 --blocks-per-course 24 -o "$work/slender-6.ron" >/dev/null
 "$pirqa" sweep walls/studies/block-count.ron --case 16 --out "$work/cases" --no-history >/dev/null
 seconds() { python3 -c "print(round($(date +%s.%N) - $1, 2))"; }
 for rule in built bland; do
-    bin="$work/pirqa-$rule"
+    bin=$built
+    [ "$rule" = bland ] && bin=$bland
     for wall in walls/inca/kancha-enclosure.ron "$work/slender-6.ron"; do
         start=$(date +%s.%N)
         "$bin" check "$wall" --limit >/dev/null
@@ -50,3 +41,4 @@ for rule in built bland; do
     echo "$rule: case 16 checked in $(seconds "$start") s:" \
         "$(grep -o '"checked_until_s": [0-9.e+-]*' "$work/run-$rule/summary.json")"
 done
+echo "remove the scratch trees with: git worktree remove --force $work/built/tree; git worktree remove --force $work/bland/tree"

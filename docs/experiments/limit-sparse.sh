@@ -10,9 +10,7 @@
 set -euo pipefail
 source "$(dirname "$0")/scratch-tree.sh"
 work=${1:-/tmp/pirqa-limit-sparse}
-scratch_tree "$work/dense" c8be491 -c \
-    "sed -i 's/^pub const MAX_BLOCKS: usize = 600;\$/pub const MAX_BLOCKS: usize = 2000;/' src/limit/mod.rs &&
-     grep -q '^pub const MAX_BLOCKS: usize = 2000;\$' src/limit/mod.rs"
+scratch_tree "$work/dense" c8be491 -c "$raise_limit_bound"
 dense=$pirqa
 scratch_tree "$work/sparse" 6afed1a
 sparse=$pirqa

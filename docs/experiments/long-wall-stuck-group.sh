@@ -11,6 +11,7 @@
 #
 #   bash docs/experiments/long-wall-stuck-group.sh [WORKDIR]     (about 15 minutes)
 set -euo pipefail
+source "$(dirname "$0")/scratch-tree.sh"
 root=$(git rev-parse --show-toplevel)
 work=${1:-/tmp/pirqa-long-wall-experiment}
 base=eb8b10813163e03313b70830e65275da87688078
@@ -28,10 +29,10 @@ case_dir="$work/cases/case-39"
 
 # The decision logs, by the unpatched build: case 24 whole, case 39's first 6 s (145 of its
 # 150 s), and what the decisions that take in 1,000 blocks or more cost.
-pirqa="$root/target/release/pirqa"
-"$pirqa" run "$work/cases/case-24/wall.ron" --record "$work/cases/case-24/motion.txt" \
+shipped="$root/target/release/pirqa"
+"$shipped" run "$work/cases/case-24/wall.ron" --record "$work/cases/case-24/motion.txt" \
     --duration 39.99 --out "$work/log-24" --no-history --decisions >/dev/null 2>&1
-"$pirqa" run "$case_dir/wall.ron" --record "$case_dir/motion.txt" --duration 6 \
+"$shipped" run "$case_dir/wall.ron" --record "$case_dir/motion.txt" --duration 6 \
     --out "$work/log-39" --no-history --decisions >/dev/null 2>&1
 python3 - "$work/log-24/decisions.jsonl" "$work/log-39/decisions.jsonl" <<'PY'
 import json, statistics, sys
@@ -66,12 +67,8 @@ for path in sys.argv[1:]:
               f" 0.1 m/s2 or more away: {len(far)}, {sum(x[1] for x in far):.1f} s")
 PY
 
-rm -rf "$work/tree"
-git worktree add --detach "$work/tree" "$base"
-trap 'git -C "$root" worktree remove --force "$work/tree"' EXIT
-(cd "$work/tree" && git apply "$root/docs/experiments/long-wall-stuck-group.patch" &&
-    cargo build --release)
-"$work/tree/target/release/pirqa" run "$case_dir/wall.ron" --record "$case_dir/motion.txt" \
+scratch_tree "$work" "$base" docs/experiments/long-wall-stuck-group.patch
+"$pirqa" run "$case_dir/wall.ron" --record "$case_dir/motion.txt" \
     --duration "$seconds" --out "$work/run" --no-history 2>"$work/counts.txt" >/dev/null
 
 # q FRACTION: that quantile of the numbers on stdin (the value at rank ceil(f n)).
@@ -105,3 +102,4 @@ for bin in "1000 1999" "2000 3999" "4000 6999" "7000 8999" "9000 10999"; do
     full=$(echo "$flows" | awk '{ split($3, g, "="); split($4, f, "="); print f[2] / g[2] }' | q 0.5)
     echo "  $1-$2 | $(echo "$flows" | wc -l) | $tight | $full"
 done
+echo "remove the scratch tree with: git worktree remove --force $tree"
