@@ -9,6 +9,7 @@
 use super::revised;
 use super::simplex::{self, Ending, Outcome, Program};
 use crate::exact::Q;
+use std::cmp::Ordering;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Solves the program: the floating-point run's basis certified exactly, or the exact run;
@@ -110,7 +111,6 @@ pub(super) fn basis(
             vec![(j - n, Q::one())]
         }
     };
-    let dot = |col: &[(usize, Q)], y: &[Q]| col.iter().map(|(i, a)| a * &y[*i]).sum::<Q>();
     let artificial = |k: usize| basis[k] >= n;
     // B's rows, factorised once for the systems in B and in B^T.
     let mut rows = vec![BTreeMap::new(); m];
@@ -120,7 +120,11 @@ pub(super) fn basis(
         }
     }
     let factors = Factors::of(rows)?;
-    let unflipped = |y: Vec<Q>| -> Vec<Q> { y.iter().zip(&sign).map(|(y, s)| y * s).collect() };
+    // Negated, not multiplied by -1: a product of big rationals reduces by their gcd.
+    let unflipped = |y: Vec<Q>| -> Vec<Q> {
+        let flip = |(y, s): (Q, &Q)| if s.is_negative() { -y } else { y };
+        y.into_iter().zip(&sign).map(flip).collect()
+    };
     match ending {
         Ending::Optimal => {
             let x_b = factors.solve(b);
@@ -141,9 +145,10 @@ pub(super) fn basis(
                 .collect();
             let y = factors.solve_transposed(c_b);
             // A basic column's reduced cost is zero: B^T y = c_B holds exactly.
+            let reduced = Reduced::new(&y);
             let dual_feasible = (0..n)
                 .filter(|j| !basis.contains(j))
-                .all(|j| !(&program.c[j] - &dot(&columns[j], &y)).is_negative());
+                .all(|j| reduced.sign(&program.c[j], &columns[j]) != Ordering::Less);
             if !dual_feasible {
                 return None;
             }
@@ -172,7 +177,8 @@ pub(super) fn basis(
                 })
                 .collect();
             let y = factors.solve_transposed(c_b);
-            let farkas = (0..n).all(|j| !dot(&columns[j], &y).is_positive())
+            let reduced = Reduced::new(&y);
+            let farkas = (0..n).all(|j| reduced.sign(&Q::zero(), &columns[j]) != Ordering::Less)
                 && b.iter()
                     .zip(&y)
                     .map(|(b, y)| b * y)
@@ -208,6 +214,65 @@ pub(super) fn basis(
             (ray && falls).then_some(Outcome::Unbounded)
         }
     }
+}
+
+/// Signs of reduced costs c_j - a_j . y for exact multipliers `y`, summed in floating point
+/// where that decides them and in rationals where it cannot. Why: y's entries run to thousands
+/// of bits on sampled friction, and every rational product and sum of them reduces by a gcd
+/// of that size, for each of the program's columns; most reduced costs are far from zero and
+/// a float sum with its error bound shows their sign.
+struct Reduced<'a> {
+    y: &'a [Q],
+    /// y in floating point, or `None` where some entry leaves the range in which rounding is
+    /// relative (the bound below would not hold).
+    near: Option<Vec<f64>>,
+}
+
+impl<'a> Reduced<'a> {
+    fn new(y: &'a [Q]) -> Reduced<'a> {
+        let near: Vec<f64> = y.iter().map(Q::to_f64).collect();
+        let normal = near
+            .iter()
+            .zip(y)
+            .all(|(f, q)| f.is_finite() && (q.is_zero() || (1e-200..=1e200).contains(&f.abs())));
+        Reduced {
+            y,
+            near: normal.then_some(near),
+        }
+    }
+
+    /// The sign of c - a . y, `a` a sparse column.
+    fn sign(&self, c: &Q, a: &[(usize, Q)]) -> Ordering {
+        if let Some(sum) = self.near.as_ref().and_then(|near| certain(c, a, near)) {
+            return sum;
+        }
+        let dot: Q = a.iter().map(|(i, a)| a * &self.y[*i]).sum();
+        (c - &dot).signum().cmp(&0)
+    }
+}
+
+/// The sign of c - a . y from the floating-point sum, where its error bound decides it. Each
+/// conversion to floating point is rounded once (exact numerators and denominators divided, or
+/// a big ratio rounded to nearest) and each product once, so a term is within 3 u of its value
+/// (u = 2^-53) and the sum of k + 1 terms within (k + 3) u times the sum of their sizes, while
+/// every number is of normal size: the factors are kept within 1e-100..1e100 and 1e-200..1e200
+/// (zeros aside), so no product under- or overflows. The bound taken, (4 k + 16) u, leaves room
+/// for the sizes' own sum rounded.
+fn certain(c: &Q, a: &[(usize, Q)], near: &[f64]) -> Option<Ordering> {
+    let normal =
+        |x: f64, range: std::ops::RangeInclusive<f64>| x == 0.0 || range.contains(&x.abs());
+    let c = c.to_f64();
+    normal(c, 1e-200..=1e200).then_some(())?;
+    let (mut sum, mut size) = (c, c.abs());
+    for (i, a) in a {
+        let a = a.to_f64();
+        normal(a, 1e-100..=1e100).then_some(())?;
+        let term = a * near[*i];
+        sum -= term;
+        size += term.abs();
+    }
+    let bound = (2 * a.len() + 8) as f64 * f64::EPSILON * size;
+    (sum.abs() > bound).then(|| sum.partial_cmp(&0.0).unwrap_or(Ordering::Equal))
 }
 
 /// B = E^-1 U exactly, B square and given by its sparse rows: Gaussian elimination that takes
@@ -535,6 +600,54 @@ pub(super) mod tests {
             solved += 1;
         }
         assert!(solved > 100, "{solved} of 200 nonsingular");
+    }
+
+    /// A reduced cost's sign is the exact one whether the float sum decides it or not: at a tie
+    /// (c = a . y exactly), a hair either side of it (1e-40 of the terms, past the float sum's
+    /// reach) and well clear of it, with multipliers of hundreds of bits.
+    #[test]
+    fn reduced_costs_take_the_exact_sign_also_at_ties() {
+        let mut rng = crate::rng::Rng::new(3);
+        let mut big = || {
+            let mut q = Q::frac(
+                (rng.next_u64() >> 1) as i128 + 1,
+                (rng.next_u64() >> 1) as i128 + 1,
+            );
+            for _ in 0..6 {
+                let f = Q::frac(
+                    (rng.next_u64() >> 2) as i128 - (1 << 61),
+                    (rng.next_u64() >> 1) as i128 + 1,
+                );
+                q = &(&q * &f) + &Q::frac(1, 3);
+            }
+            q
+        };
+        let y: Vec<Q> = (0..8).map(|_| big()).collect();
+        let reduced = Reduced::new(&y);
+        assert!(reduced.near.is_some());
+        let hair = Q::frac(1, 10_000_000_000_000_000_000_000_000_000_000_000_000);
+        let mut decided_in_floats = 0;
+        for j in 0..40 {
+            let a: Vec<(usize, Q)> = (0..1 + j % 5)
+                .map(|k| ((j + 3 * k) % 8, Q::frac(2 * j as i128 - 39, 7 + k as i128)))
+                .collect();
+            let dot: Q = a.iter().map(|(i, a)| a * &y[*i]).sum();
+            let size: Q = a.iter().map(|(i, a)| (a * &y[*i]).abs()).sum();
+            for c in [
+                dot.clone(),
+                &dot + &(&size * &hair),
+                &dot - &(&size * &hair),
+                &dot + &size,
+                &dot - &size,
+            ] {
+                let exact = (&c - &dot).signum().cmp(&0);
+                assert_eq!(reduced.sign(&c, &a), exact, "column {j}");
+                decided_in_floats +=
+                    usize::from(certain(&c, &a, reduced.near.as_ref().unwrap()).is_some());
+            }
+        }
+        // The clear cases (two of five) in floats, the ties and hairs in rationals.
+        assert_eq!(decided_in_floats, 80);
     }
 
     /// The rank of a dense rational matrix (its rows reduced in place).
