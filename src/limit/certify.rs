@@ -145,9 +145,11 @@ pub(super) fn basis(
                 .collect();
             let y = factors.solve_transposed(c_b);
             // A basic column's reduced cost is zero: B^T y = c_B holds exactly.
+            let mut basic = vec![false; n + m];
+            basis.iter().for_each(|&j| basic[j] = true);
             let reduced = Reduced::new(&y);
             let dual_feasible = (0..n)
-                .filter(|j| !basis.contains(j))
+                .filter(|&j| !basic[j])
                 .all(|j| reduced.sign(&program.c[j], &columns[j]) != Ordering::Less);
             if !dual_feasible {
                 return None;
