@@ -1516,7 +1516,8 @@ mod tests {
             .flat_map(|j| (col_ptr[j]..col_ptr[j + 1]).map(move |k| (j, k)))
             .collect();
         for _ in 0..2 {
-            // Unsymmetric, diagonally dominant, entries of several sizes.
+            // Unsymmetric: 10 on the diagonal, off it random entries up to 0.1, 1 or 10 in size
+            // by column.
             let values: Vec<f64> = columns
                 .iter()
                 .map(|&(j, k)| {
