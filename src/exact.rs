@@ -222,7 +222,8 @@ impl Q {
         Q(Repr::Small(div(n, g), div(d, g)))
     }
 
-    fn from_big(n: BigInt, d: BigInt) -> Q {
+    /// n / d for big integers, d nonzero.
+    pub(crate) fn from_big(n: BigInt, d: BigInt) -> Q {
         let (n, d) = if d.is_negative() { (-n, -d) } else { (n, d) };
         let (twos, odd) = gcd_big(&n, &d);
         let (n, d) = (n >> twos, d >> twos);
@@ -240,7 +241,7 @@ impl Q {
     /// Numerator and denominator as big integers, borrowed where they are big already: the
     /// numbers of a long lossy impact chain run to thousands of bits, and copying both operands
     /// of every operation cost a third of such a run.
-    fn parts(&self) -> (Cow<'_, BigInt>, Cow<'_, BigInt>) {
+    pub(crate) fn parts(&self) -> (Cow<'_, BigInt>, Cow<'_, BigInt>) {
         match &self.0 {
             Repr::Small(n, d) => (Cow::Owned(BigInt::from(*n)), Cow::Owned(BigInt::from(*d))),
             Repr::Big(b) => (Cow::Borrowed(&b.0), Cow::Borrowed(&b.1)),

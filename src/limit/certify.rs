@@ -2,15 +2,18 @@
 //! or the exact run where the proof fails. A basis (m columns of [A | I])
 //! determines everything the simplex method would report from it: the vertex B^-1 b, the
 //! multipliers B^-T c_B, and for an unbounded run the edge B^-1 A_j. Solving those few square
-//! systems in rationals and checking every constraint on the results proves the answer as
-//! firmly as an exact run, at the cost of one sparse elimination instead of every pivot of a
-//! dense tableau.
+//! systems exactly and checking every constraint on the results proves the answer as firmly as
+//! an exact run, at the cost of a few solves (p-adic, `padic`, or by one rational elimination,
+//! `factors`) instead of every pivot of a dense tableau.
 
+use super::factors::Factors;
+use super::padic::Lifting;
 use super::revised;
 use super::simplex::{self, Ending, Outcome, Program};
 use crate::exact::Q;
+use std::cell::OnceCell;
 use std::cmp::Ordering;
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 
 /// Solves the program: the floating-point run's basis certified exactly, or the exact run;
 /// `None` where `stop` asked them to stop (both look at it at every pivot: the exact run of a
@@ -112,14 +115,14 @@ pub(super) fn basis(
         }
     };
     let artificial = |k: usize| basis[k] >= n;
-    // B's rows, factorised once for the systems in B and in B^T.
+    // B's rows, for the systems in B and in B^T.
     let mut rows = vec![BTreeMap::new(); m];
     for (k, &j) in basis.iter().enumerate() {
         for (i, a) in column(j) {
             rows[i].insert(k, a);
         }
     }
-    let factors = Factors::of(rows)?;
+    let systems = Systems::new(rows);
     // Negated, not multiplied by -1: a product of big rationals reduces by their gcd.
     let unflipped = |y: Vec<Q>| -> Vec<Q> {
         let flip = |(y, s): (Q, &Q)| if s.is_negative() { -y } else { y };
@@ -127,7 +130,7 @@ pub(super) fn basis(
     };
     match ending {
         Ending::Optimal => {
-            let x_b = factors.solve(b);
+            let x_b = systems.solve(b)?;
             let feasible =
                 (0..m).all(|k| !x_b[k].is_negative() && (!artificial(k) || x_b[k].is_zero()));
             if !feasible {
@@ -143,7 +146,7 @@ pub(super) fn basis(
                     }
                 })
                 .collect();
-            let y = factors.solve_transposed(c_b);
+            let y = systems.solve_transposed(c_b)?;
             // A basic column's reduced cost is zero: B^T y = c_B holds exactly.
             let mut basic = vec![false; n + m];
             basis.iter().for_each(|&j| basic[j] = true);
@@ -178,7 +181,7 @@ pub(super) fn basis(
                     }
                 })
                 .collect();
-            let y = factors.solve_transposed(c_b);
+            let y = systems.solve_transposed(c_b)?;
             let reduced = Reduced::new(&y);
             let farkas = (0..n).all(|j| reduced.sign(&Q::zero(), &columns[j]) != Ordering::Less)
                 && b.iter()
@@ -197,7 +200,7 @@ pub(super) fn basis(
             for (i, a) in column(entering) {
                 a_j[i] = a;
             }
-            let (x_b, w) = (factors.solve(b), factors.solve(a_j));
+            let (x_b, w) = (systems.solve(b)?, systems.solve(a_j)?);
             let ray = (0..m).all(|k| {
                 !x_b[k].is_negative()
                     && if artificial(k) {
@@ -214,6 +217,47 @@ pub(super) fn basis(
                 .sum();
             let falls = (&program.c[entering] - &c_b_w).is_negative();
             (ray && falls).then_some(Outcome::Unbounded)
+        }
+    }
+}
+
+/// The systems in a basis B and in B^T, solved exactly: by p-adic lifting where B is
+/// nonsingular modulo its prime (`padic`), else by rational elimination, factorised only then
+/// and alone able to tell that B is singular.
+struct Systems {
+    rows: Vec<BTreeMap<usize, Q>>,
+    lifting: Option<Lifting>,
+    rational: OnceCell<Option<Factors<Q>>>,
+}
+
+impl Systems {
+    fn new(rows: Vec<BTreeMap<usize, Q>>) -> Systems {
+        Systems {
+            lifting: Lifting::of(&rows),
+            rows,
+            rational: OnceCell::new(),
+        }
+    }
+
+    /// B's rational factors, `None` where B is singular.
+    fn rational(&self) -> Option<&Factors<Q>> {
+        let factors = || Factors::of(self.rows.clone());
+        self.rational.get_or_init(factors).as_ref()
+    }
+
+    /// z with B z = r, `None` where B is singular.
+    fn solve(&self, r: Vec<Q>) -> Option<Vec<Q>> {
+        match self.lifting.as_ref().and_then(|l| l.solve(&r)) {
+            Some(z) => Some(z),
+            None => Some(self.rational()?.solve(r)),
+        }
+    }
+
+    /// y with B^T y = d, `None` where B is singular.
+    fn solve_transposed(&self, d: Vec<Q>) -> Option<Vec<Q>> {
+        match self.lifting.as_ref().and_then(|l| l.solve_transposed(&d)) {
+            Some(y) => Some(y),
+            None => Some(self.rational()?.solve_transposed(d)),
         }
     }
 }
@@ -275,106 +319,6 @@ fn certain(c: &Q, a: &[(usize, Q)], near: &[f64]) -> Option<Ordering> {
     }
     let bound = (2 * a.len() + 8) as f64 * f64::EPSILON * size;
     (sum.abs() > bound).then(|| sum.partial_cmp(&0.0).unwrap_or(Ordering::Equal))
-}
-
-/// B = E^-1 U exactly, B square and given by its sparse rows: Gaussian elimination that takes
-/// at each step the column held by the fewest rows and, in it, the shortest row (a
-/// Markowitz-like order that keeps a wall's block-by-joint structure from filling in). One
-/// factorisation serves the systems in B and in B^T (the vertex and the multipliers of a
-/// basis). On sampled friction the solves cost more than the elimination: their values reach
-/// thousands of bits, and each step through the factors reduces them by a gcd (about three
-/// quarters of an uplift check's exact work, docs/rocking-walls.md).
-struct Factors {
-    /// The elimination in order: row `i` less `f` times pivot row `p`.
-    steps: Vec<(usize, usize, Q)>,
-    /// The pivots in order: row `p` pivots on column `c`.
-    order: Vec<(usize, usize)>,
-    /// U: each pivot row as elimination left it (columns of its own pivot and later ones).
-    rows: Vec<BTreeMap<usize, Q>>,
-}
-
-impl Factors {
-    /// The factors of B, or `None` where B is singular.
-    fn of(mut rows: Vec<BTreeMap<usize, Q>>) -> Option<Factors> {
-        let size = rows.len();
-        // For each column, the rows not yet eliminated that hold it.
-        let mut holders: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); size];
-        for (i, row) in rows.iter().enumerate() {
-            for &k in row.keys() {
-                holders[k].insert(i);
-            }
-        }
-        let mut open = vec![true; size];
-        let mut order = Vec::with_capacity(size);
-        let mut steps = Vec::new();
-        for _ in 0..size {
-            let c = (0..size)
-                .filter(|&c| open[c])
-                .min_by_key(|&c| holders[c].len())?;
-            let p = *holders[c].iter().min_by_key(|&&i| rows[i].len())?;
-            open[c] = false;
-            for k in rows[p].keys() {
-                holders[*k].remove(&p);
-            }
-            let pivot_row = rows[p].clone();
-            let pivot = pivot_row[&c].clone();
-            for i in std::mem::take(&mut holders[c]) {
-                let f = &rows[i][&c] / &pivot;
-                for (k, v) in &pivot_row {
-                    let e = rows[i].entry(*k).or_insert_with(Q::zero);
-                    *e = &*e - &(&f * v);
-                    if e.is_zero() {
-                        rows[i].remove(k);
-                        holders[*k].remove(&i);
-                    } else {
-                        holders[*k].insert(i);
-                    }
-                }
-                steps.push((i, p, f));
-            }
-            order.push((p, c));
-        }
-        Some(Factors { steps, order, rows })
-    }
-
-    /// z with B z = r: E r, then U back to front.
-    fn solve(&self, mut r: Vec<Q>) -> Vec<Q> {
-        for (i, p, f) in &self.steps {
-            r[*i] = &r[*i] - &(f * &r[*p]);
-        }
-        let mut z = vec![Q::zero(); r.len()];
-        for &(p, c) in self.order.iter().rev() {
-            let mut v = r[p].clone();
-            for (k, a) in &self.rows[p] {
-                if *k != c {
-                    v = &v - &(a * &z[*k]);
-                }
-            }
-            z[c] = &v / &self.rows[p][&c];
-        }
-        z
-    }
-
-    /// y with B^T y = d: w with U^T w = d front to back (pivot row p's entries lie in its own
-    /// pivot's column and later ones), then y = E^T w, the elimination's steps transposed and
-    /// taken back to front.
-    fn solve_transposed(&self, mut d: Vec<Q>) -> Vec<Q> {
-        let mut w = vec![Q::zero(); d.len()];
-        for &(p, c) in &self.order {
-            let row = &self.rows[p];
-            let wp = &d[c] / &row[&c];
-            for (k, a) in row {
-                if *k != c {
-                    d[*k] = &d[*k] - &(a * &wp);
-                }
-            }
-            w[p] = wp;
-        }
-        for (i, p, f) in self.steps.iter().rev() {
-            w[*p] = &w[*p] - &(f * &w[*i]);
-        }
-        w
-    }
 }
 
 #[cfg(test)]
@@ -556,55 +500,6 @@ pub(super) mod tests {
         assert!(matches!(out, Outcome::Optimal { value, .. } if value == Q::frac(-1, 20)));
     }
 
-    /// One factorisation solves B z = r and B^T y = d exactly, on sparse random matrices whose
-    /// elimination fills in and whose entries are fractions; a singular B has none.
-    #[test]
-    fn one_factorisation_solves_a_basis_and_its_transpose() {
-        let mut rng = crate::rng::Rng::new(7);
-        let mut small = |span: u64| (rng.next_u64() % (2 * span + 1)) as i128 - span as i128;
-        let mut solved = 0;
-        for _ in 0..200 {
-            let m = 2 + small(3).unsigned_abs() as usize;
-            let b: Vec<Vec<Q>> = (0..m)
-                .map(|_| {
-                    (0..m)
-                        .map(|_| match small(2) {
-                            0 | 1 => Q::zero(),
-                            _ => Q::frac(small(9), 1 + small(4).abs()),
-                        })
-                        .collect()
-                })
-                .collect();
-            let rows = b
-                .iter()
-                .map(|row| {
-                    let entries = row.iter().enumerate().filter(|(_, a)| !a.is_zero());
-                    entries.map(|(k, a)| (k, a.clone())).collect()
-                })
-                .collect();
-            let r: Vec<Q> = (0..m)
-                .map(|_| Q::frac(small(7), 1 + small(3).abs()))
-                .collect();
-            let Some(factors) = Factors::of(rows) else {
-                // Refused only where dense elimination finds it singular too.
-                assert!(
-                    rank(&mut b.clone()) < m,
-                    "a nonsingular matrix refused: {b:?}"
-                );
-                continue;
-            };
-            let z = factors.solve(r.clone());
-            let y = factors.solve_transposed(r.clone());
-            for i in 0..m {
-                let bz: Q = (0..m).map(|k| &b[i][k] * &z[k]).sum();
-                let bty: Q = (0..m).map(|k| &b[k][i] * &y[k]).sum();
-                assert_eq!((bz, bty), (r[i].clone(), r[i].clone()), "{b:?}");
-            }
-            solved += 1;
-        }
-        assert!(solved > 100, "{solved} of 200 nonsingular");
-    }
-
     /// A reduced cost's sign is the exact one whether the float sum decides it or not: at a tie
     /// (c = a . y exactly), a hair either side of it (1e-40 of the terms, past the float sum's
     /// reach) and well clear of it, with multipliers of hundreds of bits.
@@ -651,25 +546,6 @@ pub(super) mod tests {
         }
         // The clear cases (two of five) in floats, the ties and hairs in rationals.
         assert_eq!(decided_in_floats, 80);
-    }
-
-    /// The rank of a dense rational matrix (its rows reduced in place).
-    fn rank(rows: &mut [Vec<Q>]) -> usize {
-        let mut rank = 0;
-        for c in 0..rows.first().map_or(0, Vec::len) {
-            let Some(p) = (rank..rows.len()).find(|&i| !rows[i][c].is_zero()) else {
-                continue;
-            };
-            rows.swap(rank, p);
-            for i in rank + 1..rows.len() {
-                let f = &rows[i][c] / &rows[rank][c];
-                for k in c..rows[i].len() {
-                    rows[i][k] = &rows[i][k] - &(&f * &rows[rank][k]);
-                }
-            }
-            rank += 1;
-        }
-        rank
     }
 
     #[test]

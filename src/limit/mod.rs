@@ -16,6 +16,8 @@
 //! others passes its weight however its balance needs, not by eq. (3)'s tributary split.
 
 mod certify;
+mod factors;
+mod padic;
 mod revised;
 pub mod seated;
 mod simplex;
