@@ -788,7 +788,7 @@ mod tests {
             .prop_map(|(n, d)| Q::frac(n, d))
     }
 
-    /// `rational()`'s values and fractions of up to 640 bits over up to 320 with a common
+    /// `rational()`'s values and fractions of up to 608 bits over up to 288 with a common
     /// factor taken out, of either sign, and their products with small ones.
     fn operand() -> impl Strategy<Value = Q> {
         let big = (
