@@ -34,3 +34,15 @@ scratch_tree() {
 # raised from 600 to 2000, so the trial build answers walls pirqa itself refuses.
 raise_limit_bound="sed -i 's/^pub const MAX_BLOCKS: usize = 600;\$/pub const MAX_BLOCKS: usize = 2000;/' src/limit/mod.rs &&
     grep -q '^pub const MAX_BLOCKS: usize = 2000;\$' src/limit/mod.rs"
+
+# Two scratch trees of plain commits, WORKDIR/before and WORKDIR/after, for the scripts that
+# time one build against another. Sets before and after (their binaries) besides what
+# scratch_tree sets.
+#
+#   scratch_builds WORKDIR BEFORE AFTER
+scratch_builds() {
+    scratch_tree "$1/before" "$2" || return 1
+    before=$pirqa
+    scratch_tree "$1/after" "$3" || return 1
+    after=$pirqa
+}

@@ -9,10 +9,7 @@
 set -euo pipefail
 source "$(dirname "$0")/scratch-tree.sh"
 work=${1:-/tmp/pirqa-uplift-big-products}
-scratch_tree "$work/before" a5474e2
-before=$pirqa
-scratch_tree "$work/after" b87df4a
-after=$pirqa
+scratch_builds "$work" a5474e2 b87df4a
 cd "$work"
 "$after" sweep "$root/walls/studies/block-count.ron" --case 18 --no-history --out bc-18 >/dev/null
 dir=bc-18/case-18

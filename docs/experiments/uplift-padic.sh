@@ -11,10 +11,7 @@ set -euo pipefail
 work=${1:-/tmp/pirqa-uplift-padic}
 bash "$(dirname "$0")/uplift-two-builds.sh" dbc8efd a5474e2 "$work"
 source "$(dirname "$0")/scratch-tree.sh"
-scratch_tree "$work/before" dbc8efd
-before=$pirqa
-scratch_tree "$work/after" a5474e2
-after=$pirqa
+scratch_builds "$work" dbc8efd a5474e2
 cd "$work"
 "$after" sweep "$root/walls/studies/block-count.ron" --case 24 --no-history --out bc-24 >/dev/null
 for build in before after; do

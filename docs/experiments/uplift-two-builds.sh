@@ -9,10 +9,7 @@
 set -euo pipefail
 source "$(dirname "$0")/scratch-tree.sh"
 first=$1 second=$2 work=$3
-scratch_tree "$work/before" "$first"
-before=$pirqa
-scratch_tree "$work/after" "$second"
-after=$pirqa
+scratch_builds "$work" "$first" "$second"
 cd "$work"
 for case in 16 17 18 19 20 21 22 23; do
     "$after" sweep "$root/walls/studies/block-count.ron" --case "$case" --no-history --out "bc-$case" >/dev/null

@@ -247,18 +247,14 @@ impl Systems {
 
     /// z with B z = r, `None` where B is singular.
     fn solve(&self, r: Vec<Q>) -> Option<Vec<Q>> {
-        match self.lifting.as_ref().and_then(|l| l.solve(&r)) {
-            Some(z) => Some(z),
-            None => Some(self.rational()?.solve(r)),
-        }
+        let lifted = self.lifting.as_ref().and_then(|l| l.solve(&r));
+        lifted.or_else(|| Some(self.rational()?.solve(r)))
     }
 
     /// y with B^T y = d, `None` where B is singular.
     fn solve_transposed(&self, d: Vec<Q>) -> Option<Vec<Q>> {
-        match self.lifting.as_ref().and_then(|l| l.solve_transposed(&d)) {
-            Some(y) => Some(y),
-            None => Some(self.rational()?.solve_transposed(d)),
-        }
+        let lifted = self.lifting.as_ref().and_then(|l| l.solve_transposed(&d));
+        lifted.or_else(|| Some(self.rational()?.solve_transposed(d)))
     }
 }
 

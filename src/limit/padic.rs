@@ -209,16 +209,9 @@ impl Lifting {
             }
             power *= PRIME;
             // residual = (residual - M digit) / p, exact: M digit = residual modulo p.
-            for (i, row) in self.rows.iter().enumerate() {
-                for (k, a) in row {
-                    match transposed {
-                        false => residual[i] -= a * digit[*k].0,
-                        true => residual[*k] -= a * digit[i].0,
-                    }
-                }
-            }
-            for r in &mut residual {
-                *r = std::mem::take(r) / &prime;
+            let product = self.times(transposed, |a, k| a * digit[k].0);
+            for (r, p) in residual.iter_mut().zip(product) {
+                *r = (std::mem::take(r) - p) / &prime;
             }
             let last = power.bits() > enough_bits;
             if digits == next_try || last {
@@ -261,17 +254,23 @@ impl Lifting {
             }
             numerators.push(guess);
         }
-        let mut product = vec![BigInt::zero(); value.len()];
+        let product = self.times(transposed, |a, k| a * &numerators[k]);
+        let exact = product.iter().zip(rhs).all(|(p, r)| *p == &denominator * r);
+        exact.then_some((numerators, denominator))
+    }
+
+    /// M x (M^T x where `transposed`), `term(a, k)` giving entry a of M times x_k.
+    fn times(&self, transposed: bool, term: impl Fn(&BigInt, usize) -> BigInt) -> Vec<BigInt> {
+        let mut product = vec![BigInt::zero(); self.rows.len()];
         for (i, row) in self.rows.iter().enumerate() {
             for (k, a) in row {
                 match transposed {
-                    false => product[i] += a * &numerators[*k],
-                    true => product[*k] += a * &numerators[i],
+                    false => product[i] += term(a, *k),
+                    true => product[*k] += term(a, i),
                 }
             }
         }
-        let exact = product.iter().zip(rhs).all(|(p, r)| *p == &denominator * r);
-        exact.then_some((numerators, denominator))
+        product
     }
 }
 
