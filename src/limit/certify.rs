@@ -62,6 +62,31 @@ fn watched(program: &Program, stop: &dyn Fn() -> bool) -> (Option<Outcome>, bool
     (outcome, stopped.get())
 }
 
+/// Whether `program` (its costs zero) has a solution that a floating-point phase 1 started
+/// from the crash basis of `groups` finds, its last basis proved exactly (B^-1 b at least zero,
+/// every artificial variable at zero). False where it finds none, gives up, `stop` says so, or
+/// its basis proves nothing: no program is shown infeasible here (the caller's full program
+/// does that, with its Farkas vector), so floating point still decides nothing.
+pub(crate) fn feasible(
+    program: &Program,
+    groups: &[revised::Group],
+    stop: &dyn Fn() -> bool,
+) -> bool {
+    // Asked before the run too: from a good crash it may take no pivot at which to ask.
+    if stop() {
+        return false;
+    }
+    let Some(last) = revised::feasible(program, groups, revised::RUNS[0], stop) else {
+        return false;
+    };
+    // Phase 1's weights matter only to an infeasible ending.
+    let weights = vec![Q::one(); program.b.len()];
+    matches!(
+        basis(program, &last, Ending::Optimal, &weights),
+        Some(Outcome::Optimal { .. })
+    )
+}
+
 /// The answer of the floating-point run under `rules`, where its last basis proves it.
 pub(super) fn certified_by(
     program: &Program,

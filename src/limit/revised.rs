@@ -44,6 +44,11 @@ const PRICING: f64 = 1e-12;
 /// must at -1e-13.
 const CAREFUL: f64 = 1e-15;
 
+/// Candidate columns (its base's corner forces and its rows' artificial variables) above which
+/// a group of the crash keeps its artificial variables: a block's three balances take every
+/// choice of three, 455 of 15.
+const CRASH_MOST: usize = 15;
+
 /// Degenerate pivots in a row after which the run moves bounds ([`Rules::shift`]) or Bland's
 /// rule picks until the next step that moves.
 const STALL: usize = 5;
@@ -106,39 +111,259 @@ pub(super) fn floating(
     rules: Rules,
     stop: &dyn Fn() -> bool,
 ) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
-    let (m, n) = (program.b.len(), program.c.len());
-    let rhs: Vec<f64> = program.b.iter().map(Q::to_f64).collect();
-    // Each row divided by its largest entry (b's included).
-    let mut scales: Vec<f64> = rhs.iter().map(|r| r.abs()).collect();
-    for (i, _, a) in program.entries() {
-        scales[i] = scales[i].max(a.to_f64().abs());
+    let scaled = Scaled::new(program);
+    let c: Vec<f64> = program.c.iter().map(Q::to_f64).collect();
+    let mut run = scaled.artificial_run(program, rules)?;
+    let ending = run.both_phases(&c, stop)?;
+    Some((ending, run.basis, scaled.scales))
+}
+
+/// Rows whose balance a few columns may carry, for a feasibility run's starting basis
+/// ([`feasible`]): a block's balances and the corner forces of its base.
+pub(crate) struct Group {
+    /// The rows.
+    pub(crate) rows: std::ops::Range<usize>,
+    /// The columns that may carry them.
+    pub(crate) columns: Vec<usize>,
+}
+
+/// A basis in which phase 1 of the program (its costs ignored) ends with every artificial
+/// variable at zero to the ratio test's tolerance, or `None` where it ends above zero, gives
+/// up, or `stop` says so. The run starts from a basis built group by group (a crash): the
+/// groups are listed so that the entries of a group's columns outside its rows lie in the rows
+/// of later groups (blocks top down: a block's base forces also load the blocks under it), so
+/// the basis is block-triangular and each group's part of it is solved alone, with what the
+/// groups before it pass down. Each group takes the columns that carry what is left of its
+/// rows with the fewest artificial variables and every column's value at least zero. Why:
+/// from the artificial basis phase 1 of the uplift check's 315-row programs takes about eight
+/// pivots a row; a wall's loads mostly go down block by block, which the crash takes in one
+/// pass, leaving to the pivots only the blocks where that path fails.
+pub(super) fn feasible(
+    program: &Program,
+    groups: &[Group],
+    rules: Rules,
+    stop: &dyn Fn() -> bool,
+) -> Option<Vec<usize>> {
+    let scaled = Scaled::new(program);
+    let (m, n) = (scaled.b.len(), scaled.columns.len());
+    let mut left = scaled.b.clone();
+    let mut basis: Vec<usize> = (n..n + m).collect();
+    for group in groups {
+        for ((j, x), row) in carry(&scaled.columns, group, &left).zip(group.rows.clone()) {
+            basis[row] = j;
+            if j < n {
+                for &(i, a) in &scaled.columns[j] {
+                    left[i] -= a * x;
+                }
+            }
+        }
     }
-    scales
-        .iter_mut()
-        .filter(|s| **s == 0.0)
-        .for_each(|s| *s = 1.0);
-    // Rows with b < 0 are negated, so the artificial basis starts feasible.
-    let sign: Vec<f64> = rhs
+    // An artificial variable starts at what is left of its row: negated where that is below
+    // zero, so that it starts at or above it.
+    let sign: Vec<f64> = left
         .iter()
         .map(|&r| if r < 0.0 { -1.0 } else { 1.0 })
         .collect();
-    let columns: Vec<Vec<(usize, f64)>> = (0..n)
-        .map(|j| {
-            let column = program.column(j).iter().map(|(i, a)| (*i, a.to_f64()));
-            column
-                .filter(|&(_, a)| a != 0.0)
-                .map(|(i, a)| (i, sign[i] * a / scales[i]))
-                .collect()
-        })
+    // Where the groups were not in that order, B may be singular or its vertex below zero:
+    // phase 1 then starts from the artificial basis instead.
+    let crash = scaled.run(program, basis, &sign, rules);
+    let mut run = match crash.filter(|run| run.x.iter().all(|&x| x >= -TOLERANCE)) {
+        Some(run) => run,
+        None => scaled.artificial_run(program, rules)?,
+    };
+    let phase1: Vec<f64> = (0..n + m).map(|j| if j < n { 0.0 } else { 1.0 }).collect();
+    match run.optimise(&phase1, |_| true, stop) {
+        Stop::Optimal => {}
+        Stop::Unbounded { .. } | Stop::GaveUp => return None,
+    }
+    if (0..m).any(|k| run.basis[k] >= n && run.x[k] > TOLERANCE) {
+        return None;
+    }
+    run.drive_out_artificials()?;
+    Some(run.basis)
+}
+
+/// The columns (artificial ones `n + row`) of `group`'s crash basis and their values: one
+/// column per row of the group, those of A at values of at least zero, carrying what is `left`
+/// of its rows, with the fewest artificial variables and, among those, the smallest largest
+/// value (a choice near singular carries its rows with huge opposing forces, which the blocks
+/// below must then take). A group of more candidates than
+/// [`CRASH_MOST`] keeps its artificial variables.
+fn carry(
+    columns: &[Vec<(usize, f64)>],
+    group: &Group,
+    left: &[f64],
+) -> impl Iterator<Item = (usize, f64)> {
+    let n = columns.len();
+    let k = group.rows.len();
+    let artificial: Vec<(usize, f64)> = group.rows.clone().map(|r| (n + r, left[r])).collect();
+    let candidates: Vec<usize> = (group.columns.iter().copied())
+        .chain(group.rows.clone().map(|r| n + r))
         .collect();
-    let b: Vec<f64> = (0..m).map(|i| sign[i] * rhs[i] / scales[i]).collect();
-    let c: Vec<f64> = program.c.iter().map(Q::to_f64).collect();
-    let largest = |v: &mut dyn Iterator<Item = &Q>| v.map(|q| q.to_f64().abs()).fold(0.0, f64::max);
-    let unit = largest(&mut program.b.iter()) / largest(&mut program.entries().map(|(.., a)| a));
-    let unit = if unit.is_normal() { unit } else { 1.0 };
-    let mut run = Run::new(columns, b, 50 * (m + n) + 1000, rules, unit)?;
-    let ending = run.both_phases(&c, stop)?;
-    Some((ending, run.basis, scales))
+    if candidates.len() > CRASH_MOST {
+        return artificial.into_iter();
+    }
+    // Each candidate restricted to the group's rows.
+    let local = |j: usize| -> Vec<f64> {
+        let mut v = vec![0.0; k];
+        if j < n {
+            for &(i, a) in &columns[j] {
+                if group.rows.contains(&i) {
+                    v[i - group.rows.start] = a;
+                }
+            }
+        } else {
+            v[j - n - group.rows.start] = 1.0;
+        }
+        v
+    };
+    let local: Vec<Vec<f64>> = candidates.iter().map(|&j| local(j)).collect();
+    let rhs: Vec<f64> = left[group.rows.clone()].to_vec();
+    // The best choice's artificial variables and largest value, and its columns with values.
+    let mut best_by: Option<(usize, f64)> = None;
+    let mut best = Vec::new();
+    let mut pick = Vec::with_capacity(k);
+    subsets(candidates.len(), k, &mut pick, &mut |pick: &[usize]| {
+        let artificial = pick.iter().filter(|&&p| candidates[p] >= n).count();
+        let Some(x) = solve_small(pick.iter().map(|&p| &local[p][..]), &rhs) else {
+            return;
+        };
+        let structural = pick.iter().zip(&x).filter(|(&p, _)| candidates[p] < n);
+        if structural.clone().any(|(_, &v)| v < 0.0) {
+            return;
+        }
+        let largest = x.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        let better =
+            best_by.is_none_or(|(a, l)| artificial < a || (artificial == a && largest < l));
+        if better {
+            best_by = Some((artificial, largest));
+            best = pick.iter().map(|&p| candidates[p]).zip(x).collect();
+        }
+    });
+    // The artificial variables alone always carry the rows.
+    match best_by {
+        Some(_) => best.into_iter(),
+        None => artificial.into_iter(),
+    }
+}
+
+/// Calls `each` with every increasing choice of `k` of `0..len`.
+fn subsets(len: usize, k: usize, pick: &mut Vec<usize>, each: &mut dyn FnMut(&[usize])) {
+    if pick.len() == k {
+        each(pick);
+        return;
+    }
+    let from = pick.last().map_or(0, |&p| p + 1);
+    for p in from..len {
+        if len - p < k - pick.len() {
+            break;
+        }
+        pick.push(p);
+        subsets(len, k, pick, each);
+        pick.pop();
+    }
+}
+
+/// x with sum_c x_c col_c = rhs for a few columns as many as the rows, by elimination with
+/// partial pivoting; `None` where a pivot is below [`PIVOT`] times its column's size (the
+/// choice is singular, or too close to it to start a basis from).
+fn solve_small<'a>(cols: impl Iterator<Item = &'a [f64]>, rhs: &[f64]) -> Option<Vec<f64>> {
+    let k = rhs.len();
+    // Rows of [M | rhs].
+    let mut a = vec![vec![0.0; k + 1]; k];
+    let mut sizes = vec![0.0f64; k];
+    for (c, col) in cols.enumerate() {
+        for (i, &v) in col.iter().enumerate() {
+            a[i][c] = v;
+            sizes[c] = sizes[c].max(v.abs());
+        }
+    }
+    for (row, &r) in a.iter_mut().zip(rhs) {
+        row[k] = r;
+    }
+    for c in 0..k {
+        let p = (c..k).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
+        if a[p][c].abs() <= PIVOT * sizes[c] {
+            return None;
+        }
+        a.swap(c, p);
+        let pivot = a[c].clone();
+        for row in &mut a[c + 1..] {
+            let f = row[c] / pivot[c];
+            if f != 0.0 {
+                for (v, p) in row[c..].iter_mut().zip(&pivot[c..]) {
+                    *v -= f * p;
+                }
+            }
+        }
+    }
+    let mut x = vec![0.0; k];
+    for c in (0..k).rev() {
+        let s: f64 = (c + 1..k).map(|j| a[c][j] * x[j]).sum();
+        x[c] = (a[c][k] - s) / a[c][c];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+/// A program's rows each divided by its largest entry (b's included): the scaling changes no
+/// x, and the basis is all a run keeps.
+struct Scaled {
+    columns: Vec<Vec<(usize, f64)>>,
+    b: Vec<f64>,
+    scales: Vec<f64>,
+}
+
+impl Scaled {
+    fn new(program: &Program) -> Scaled {
+        let n = program.c.len();
+        let rhs: Vec<f64> = program.b.iter().map(Q::to_f64).collect();
+        let mut scales: Vec<f64> = rhs.iter().map(|r| r.abs()).collect();
+        for (i, _, a) in program.entries() {
+            scales[i] = scales[i].max(a.to_f64().abs());
+        }
+        scales
+            .iter_mut()
+            .filter(|s| **s == 0.0)
+            .for_each(|s| *s = 1.0);
+        let columns = (0..n)
+            .map(|j| {
+                let column = program.column(j).iter().map(|(i, a)| (*i, a.to_f64()));
+                column
+                    .filter(|&(_, a)| a != 0.0)
+                    .map(|(i, a)| (i, a / scales[i]))
+                    .collect()
+            })
+            .collect();
+        let b = rhs.iter().zip(&scales).map(|(r, s)| r / s).collect();
+        Scaled { columns, b, scales }
+    }
+
+    /// A run from the artificial basis, the rows with b < 0 negated so that it starts feasible.
+    fn artificial_run(&self, program: &Program, rules: Rules) -> Option<Run> {
+        let (m, n) = (self.b.len(), self.columns.len());
+        let sign: Vec<f64> = (self.b.iter())
+            .map(|&r| if r < 0.0 { -1.0 } else { 1.0 })
+            .collect();
+        self.run(program, (n..n + m).collect(), &sign, rules)
+    }
+
+    /// A run of the rows negated where `sign` says so (each artificial variable is then the
+    /// unit column of its row as negated), from `basis`.
+    fn run(&self, program: &Program, basis: Vec<usize>, sign: &[f64], rules: Rules) -> Option<Run> {
+        let (m, n) = (self.b.len(), self.columns.len());
+        let columns = self
+            .columns
+            .iter()
+            .map(|c| c.iter().map(|&(i, a)| (i, sign[i] * a)).collect())
+            .collect();
+        let b = self.b.iter().zip(sign).map(|(b, s)| s * b).collect();
+        let largest =
+            |v: &mut dyn Iterator<Item = &Q>| v.map(|q| q.to_f64().abs()).fold(0.0, f64::max);
+        let unit =
+            largest(&mut program.b.iter()) / largest(&mut program.entries().map(|(.., a)| a));
+        let unit = if unit.is_normal() { unit } else { 1.0 };
+        Run::new(columns, b, basis, 50 * (m + n) + 1000, rules, unit)
+    }
 }
 
 /// An eta matrix: the identity with column `row` replaced by the entering column's solve.
@@ -176,16 +401,19 @@ impl Run {
     fn new(
         columns: Vec<Vec<(usize, f64)>>,
         b: Vec<f64>,
+        basis: Vec<usize>,
         budget: usize,
         rules: Rules,
         unit: f64,
     ) -> Option<Run> {
         let (m, n) = (b.len(), columns.len());
+        let mut row_of = vec![None; n + m];
+        for (k, &j) in basis.iter().enumerate() {
+            row_of[j] = Some(k);
+        }
         let mut run = Run {
-            basis: (n..n + m).collect(),
-            row_of: (0..n + m)
-                .map(|j| j.checked_sub(n).filter(|&k| k < m))
-                .collect(),
+            basis,
+            row_of,
             x: Vec::new(),
             lu: None,
             etas: Vec::new(),
@@ -497,19 +725,11 @@ impl Run {
         }
     }
 
-    /// Both phases; `c` the program's costs. `None` where the run gave up.
-    fn both_phases(&mut self, c: &[f64], stop: &dyn Fn() -> bool) -> Option<Ending> {
+    /// Swaps each artificial variable left in the basis at zero after phase 1 for a column of A
+    /// where its row of B^-1 A has one; a row with none is a combination of the others and
+    /// keeps it. `None` where a swap left the basis singular to the factorisation.
+    fn drive_out_artificials(&mut self) -> Option<()> {
         let (m, n) = (self.m(), self.n());
-        // Phase 1: the sum of the artificial variables to zero.
-        let phase1: Vec<f64> = (0..n + m).map(|j| if j < n { 0.0 } else { 1.0 }).collect();
-        if let Stop::GaveUp = self.optimise(&phase1, |_| true, stop) {
-            return None;
-        }
-        if (0..m).any(|i| self.basis[i] >= n && self.x[i] > TOLERANCE) {
-            return Some(Ending::Infeasible);
-        }
-        // Artificial variables left in the basis at zero: swap each for a column of A where its
-        // row of B^-1 A has one; a row with none is a combination of the others and stays.
         let mut rho = vec![0.0; m];
         let mut alpha = vec![0.0; m];
         for i in 0..m {
@@ -531,6 +751,21 @@ impl Run {
             self.ftran(&mut alpha);
             self.pivot(i, j, &alpha)?;
         }
+        Some(())
+    }
+
+    /// Both phases; `c` the program's costs. `None` where the run gave up.
+    fn both_phases(&mut self, c: &[f64], stop: &dyn Fn() -> bool) -> Option<Ending> {
+        let (m, n) = (self.m(), self.n());
+        // Phase 1: the sum of the artificial variables to zero.
+        let phase1: Vec<f64> = (0..n + m).map(|j| if j < n { 0.0 } else { 1.0 }).collect();
+        if let Stop::GaveUp = self.optimise(&phase1, |_| true, stop) {
+            return None;
+        }
+        if (0..m).any(|i| self.basis[i] >= n && self.x[i] > TOLERANCE) {
+            return Some(Ending::Infeasible);
+        }
+        self.drive_out_artificials()?;
         // Phase 2: the program's costs, artificial columns barred.
         let cost: Vec<f64> = c.iter().copied().chain((0..m).map(|_| 0.0)).collect();
         match self.optimise(&cost, |j| j < n, stop) {
@@ -625,6 +860,50 @@ mod tests {
         proved(include_str!(
             "../../tests/data/limit/uplift-small-pivot.txt"
         ));
+    }
+
+    #[test]
+    fn feasibility_from_any_crash_is_proved_and_never_claimed_for_an_infeasible_program() {
+        // The crash only chooses where phase 1 starts: from the artificial basis (no groups),
+        // or from groups of three rows each taking the columns whose first entry is in them,
+        // which are not block-triangular here, phase 1 must reach a basis that proves the
+        // program feasible exactly; with b pushed out of A's cone (a row of A's nonnegative
+        // entries only, its right-hand side negative) it must not.
+        for seed in 1..6 {
+            let p = sparse(30, 90, seed);
+            let columns = (0..p.c.len()).map(|j| p.column(j).to_vec()).collect();
+            let p = Program::new(columns, p.b, vec![Q::zero(); 90]);
+            let m = p.b.len();
+            let groups: Vec<Group> = (0..m / 3)
+                .map(|g| Group {
+                    rows: 3 * g..3 * g + 3,
+                    columns: (0..p.c.len())
+                        .filter(|&j| p.column(j).first().is_some_and(|(i, _)| i / 3 == g))
+                        .collect(),
+                })
+                .collect();
+            for groups in [&groups[..], &[]] {
+                assert!(
+                    crate::limit::certify::feasible(&p, groups, &|| false),
+                    "seed {seed}, {} groups",
+                    groups.len()
+                );
+            }
+        }
+        let p = from_rows(
+            &[
+                vec![Q::one(), Q::frac(2, 1), Q::zero()],
+                vec![Q::one(), Q::frac(-1, 1), Q::one()],
+            ],
+            vec![Q::frac(-1, 1), Q::one()],
+            vec![Q::zero(); 3],
+        );
+        let groups = [Group {
+            rows: 0..2,
+            columns: vec![0, 1, 2],
+        }];
+        assert!(!crate::limit::certify::feasible(&p, &groups, &|| false));
+        assert!(!crate::limit::certify::feasible(&p, &[], &|| false));
     }
 
     #[test]

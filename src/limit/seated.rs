@@ -13,9 +13,9 @@
 //! the blocks seated (eq. 3's tributary split is one of those tried). In a state with nothing
 //! sliding the interval is the limit at rest.
 
-use super::certify;
 use super::simplex::{Outcome, Program};
 use super::{centroid, entries, mechanism, overlap, pushes, Force, Moves};
+use super::{certify, revised};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::topology::{Base, BlockId, Topology};
@@ -89,12 +89,7 @@ pub fn interval(
     state: &State,
     stop: &dyn Fn() -> bool,
 ) -> Result<Option<Interval>, SimulationError> {
-    let movable: Vec<usize> = (0..wall.blocks.len())
-        .filter(|&i| state.moving[i].is_some())
-        .collect();
-    if let Some(why) = super::too_large_for_exact(WHAT, movable.len()) {
-        return Err(SimulationError::NotApplicable(why));
-    }
+    let movable = movable(wall, state)?;
     if movable.is_empty() {
         return Ok(Some(Interval::Between { lo: None, hi: None }));
     }
@@ -123,6 +118,44 @@ pub fn interval(
     Ok(Some(Interval::Between { lo, hi }))
 }
 
+/// Whether `state` is shown to keep every block seated at the ground acceleration `accel`
+/// (m/s2, in the interval's units: a_g / lambda with a vertical component): one program
+/// without an objective (phase 1 of the simplex alone, from a basis that passes each block's
+/// loads down through its base) where [`interval`] solves two to their optima. The watch asks
+/// it at a stuck cluster's stick limit, where a yes shows that the interval reaches past the
+/// limit that way, which is all the watch needs there. False where `stop` asked the program to
+/// stop or where the answer could not be shown (the program is infeasible, or round-off):
+/// [`interval`] answers then.
+pub fn seated_at(
+    wall: &Wall,
+    topo: &Topology,
+    state: &State,
+    accel: &Q,
+    stop: &dyn Fn() -> bool,
+) -> Result<bool, SimulationError> {
+    let movable = movable(wall, state)?;
+    if movable.is_empty() {
+        return Ok(true);
+    }
+    let builder = Builder::new(wall, topo, state, &movable);
+    Ok(certify::feasible(
+        &builder.program_at(accel),
+        &builder.groups,
+        stop,
+    ))
+}
+
+/// The blocks of `state` that can move, refused where they are too many for the programs.
+fn movable(wall: &Wall, state: &State) -> Result<Vec<usize>, SimulationError> {
+    let movable: Vec<usize> = (0..wall.blocks.len())
+        .filter(|&i| state.moving[i].is_some())
+        .collect();
+    match super::too_large_for_exact(WHAT, movable.len()) {
+        Some(why) => Err(SimulationError::NotApplicable(why)),
+        None => Ok(movable),
+    }
+}
+
 /// What the programs here are for, in refusals.
 pub(crate) const WHAT: &str = "the uplift check";
 
@@ -139,6 +172,9 @@ struct Builder<'a> {
     b: Vec<Q>,
     /// Column of a_g's positive part (its negative part follows).
     ag: usize,
+    /// Each block's balances and its base's corner forces, blocks top down: the crash basis
+    /// of [`seated_at`]'s program.
+    groups: Vec<revised::Group>,
 }
 
 impl<'a> Builder<'a> {
@@ -179,6 +215,18 @@ impl<'a> Builder<'a> {
                 }
             }
         }
+        // A base force loads its block and the one under it, whose base is lower.
+        let mut top_down: Vec<usize> = (0..movable.len()).collect();
+        top_down.sort_by(|&a, &b| wall.blocks[movable[b]].y.cmp(&wall.blocks[movable[a]].y));
+        let groups = top_down
+            .into_iter()
+            .map(|k| revised::Group {
+                rows: ROWS * k..ROWS * (k + 1),
+                columns: (0..columns.len())
+                    .filter(|&j| columns[j].on == movable[k])
+                    .collect(),
+            })
+            .collect();
         for (v, joint) in topo.vertical.iter().enumerate() {
             if state.pushes[v] {
                 columns.extend(pushes(wall, joint, alive));
@@ -221,6 +269,7 @@ impl<'a> Builder<'a> {
             columns: a,
             b,
             ag,
+            groups,
         }
     }
 
@@ -230,6 +279,17 @@ impl<'a> Builder<'a> {
         c[self.ag] = Q::frac(-s, 1);
         c[self.ag + 1] = Q::frac(s, 1);
         Program::new(self.columns.clone(), self.b.clone(), c)
+    }
+
+    /// The program of the balances with a_g fixed at `accel`, without an objective: its
+    /// columns moved to the right-hand side.
+    fn program_at(&self, accel: &Q) -> Program {
+        let mut b = self.b.clone();
+        for (row, a) in &self.columns[self.ag] {
+            b[*row] = &b[*row] - &(a * accel);
+        }
+        let columns = self.columns[..self.ag].to_vec();
+        Program::new(columns, b, vec![Q::zero(); self.ag])
     }
 
     /// The mechanism the multipliers of the balances give. A turn about a point that is no

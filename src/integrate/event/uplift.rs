@@ -22,12 +22,10 @@ use std::rc::Rc;
 /// What the watch keeps.
 #[derive(Default)]
 pub(super) struct Watch {
-    /// Intervals worked out, by state.
-    memo: HashMap<State, Rc<Interval>>,
-    /// The interval of the state since the last event, and which of its ends (towards -x,
-    /// towards +x) come before the stuck clusters' stick limits; `None` once an event may have
-    /// changed either.
-    current: Option<(Rc<Interval>, [bool; 2])>,
+    /// What is known of the states met.
+    memo: HashMap<State, Known>,
+    /// What decides the state since the last event; `None` once an event may have changed it.
+    current: Option<Current>,
     /// The first uplift was found (the sliding answer leaves rocking out from there on).
     done: bool,
     /// The run stops at the first uplift for a model with rotations to go on from there
@@ -37,6 +35,21 @@ pub(super) struct Watch {
     due: Option<f64>,
     /// Function evaluations of its crossings, kept out of the run's own count.
     count: Counter,
+}
+
+/// What decides a state for the watch: its interval, where some end of it comes before the
+/// stuck clusters' stick limits or the state keeps no block seated, and which ends (towards -x,
+/// towards +x) do.
+type Current = (Option<Rc<Interval>>, [bool; 2]);
+
+/// What the watch knows of a state's interval of seated ground accelerations.
+#[derive(Default)]
+struct Known {
+    /// The interval, once worked out.
+    interval: Option<Rc<Interval>>,
+    /// Per side (towards -x, towards +x), the furthest ground acceleration that way at which
+    /// the state was found to keep every block seated: the interval reaches at least that far.
+    seated_to: [Option<Q>; 2],
 }
 
 /// What the watch sees over a stretch of the run.
@@ -195,36 +208,17 @@ impl Engine<'_> {
     }
 
     fn first_uplift(&self, w: &mut Watch, t_next: f64) -> Result<Look, SimulationError> {
-        let (interval, watched) = match &w.current {
-            Some((i, watched)) => (i.clone(), *watched),
-            None => {
-                let state = self.seated_state();
-                let i = match w.memo.get(&state) {
-                    Some(i) => i.clone(),
-                    None => {
-                        let stop =
-                            || (self.given.progress.as_ref()).is_some_and(Progress::stop_requested);
-                        let g = &self.given;
-                        let Some(i) = seated::interval(g.wall, g.topo, &state, &stop)? else {
-                            return Ok(Look::Stopped);
-                        };
-                        let i = Rc::new(i);
-                        w.memo.insert(state, i.clone());
-                        i
-                    }
-                };
-                // The stick limits change only at events, so this holds until the next one.
-                let watched = match &*i {
-                    Interval::Empty { .. } => [false; 2],
-                    Interval::Between { lo, hi } => [(lo, -1.0), (hi, 1.0)].map(|(side, s)| {
-                        side.as_ref()
-                            .is_some_and(|d| self.before_stick_limit(&d.accel, s))
-                    }),
-                };
-                w.current = Some((i.clone(), watched));
-                (i, watched)
-            }
+        if w.current.is_none() {
+            // The stick limits change only at events, so this holds until the next one.
+            let Some(current) = self.decide_state(&mut w.memo)? else {
+                return Ok(Look::Stopped);
+            };
+            w.current = Some(current);
+        }
+        let Some((Some(interval), watched)) = &w.current else {
+            return Ok(Look::Clear);
         };
+        let (interval, watched) = (interval.clone(), *watched);
         let (lo, hi) = match &*interval {
             Interval::Empty { mechanism } => return Ok(Look::Lifts(self.t, mechanism.clone())),
             Interval::Between { lo, hi } => (lo, hi),
@@ -246,22 +240,95 @@ impl Engine<'_> {
         Ok(first.map_or(Look::Clear, |(t, m)| Look::Lifts(t, m)))
     }
 
-    /// The seated side `accel` (towards the side of `s`, +1: +x) comes strictly before every
-    /// stuck cluster's stick limit that way. Where it does not, the sliding model's own event
-    /// (a slip) ends the state first, or at the same instant, and the state has no uplift of
-    /// its own. A limit kept as a bound is at or inside the exact one: a seated side inside
-    /// the bound is inside the limit; one at or past it is met again after the bound's event
-    /// works the limit out.
-    fn before_stick_limit(&self, accel: &Q, s: f64) -> bool {
-        self.clusters.ids().all(|k| match &self.clusters[k].mode {
-            _ if self.clusters[k].blocks.is_empty() => true,
-            Mode::Sliding(_) => true,
-            Mode::Stuck { lo_q, hi_q, .. } => match (s > 0.0, hi_q, lo_q) {
-                (true, Some(hi), _) => *accel < *hi,
-                (false, _, Some(lo)) => *accel > *lo,
-                _ => true,
-            },
-        })
+    /// Which ends of the current state's seated interval the watch follows (see
+    /// [`Watch::current`]), and the interval where it needs it; `None` where the run was asked
+    /// to stop while the programs ran.
+    ///
+    /// A seated end matters only where it comes strictly before every stuck cluster's stick
+    /// limit that way; where it does not, the sliding model's own event (a slip) ends the state
+    /// first, or at the same instant, and the state has no uplift of its own. So where the
+    /// state keeps every block seated at the nearest stick limit, that side needs nothing more
+    /// (the interval is convex: it reaches the limit); only a side without a stick limit, or
+    /// one whose limit the state cannot hold seated, takes the interval, solved to its ends as
+    /// before, so every answer is the interval's. A limit kept as a bound is at or inside the
+    /// exact one: a seated side inside the bound is inside the limit; one at or past it is met
+    /// again after the bound's event works the limit out.
+    fn decide_state(
+        &self,
+        memo: &mut HashMap<State, Known>,
+    ) -> Result<Option<Current>, SimulationError> {
+        let stop = || (self.given.progress.as_ref()).is_some_and(Progress::stop_requested);
+        let g = &self.given;
+        let state = self.seated_state();
+        let limits = self.stick_limits();
+        let mut known = memo.remove(&state).unwrap_or_default();
+        let interval = match &known.interval {
+            Some(interval) => Some(interval.clone()),
+            None => {
+                let mut settled = [false; 2];
+                for (k, limit) in limits.iter().enumerate() {
+                    let Some(limit) = limit else { break };
+                    let reaches = |a: &Q| if k == 1 { a >= limit } else { a <= limit };
+                    if !known.seated_to[k].as_ref().is_some_and(reaches) {
+                        if !seated::seated_at(g.wall, g.topo, &state, limit, &stop)? {
+                            break;
+                        }
+                        known.seated_to[k] = Some(limit.clone());
+                    }
+                    settled[k] = true;
+                }
+                if settled == [true; 2] {
+                    None
+                } else {
+                    let interval = seated::interval(g.wall, g.topo, &state, &stop)?.map(Rc::new);
+                    known.interval.clone_from(&interval);
+                    if interval.is_none() {
+                        memo.insert(state, known);
+                        return Ok(None);
+                    }
+                    interval
+                }
+            }
+        };
+        memo.insert(state, known);
+        let Some(interval) = interval else {
+            return Ok(Some((None, [false; 2])));
+        };
+        let before = |accel: &Q, k: usize| match &limits[k] {
+            None => true,
+            Some(limit) if k == 1 => accel < limit,
+            Some(limit) => accel > limit,
+        };
+        let watched = match &*interval {
+            Interval::Empty { .. } => [false; 2],
+            Interval::Between { lo, hi } => [(lo, 0), (hi, 1)]
+                .map(|(side, k)| side.as_ref().is_some_and(|d| before(&d.accel, k))),
+        };
+        Ok(Some((Some(interval), watched)))
+    }
+
+    /// The nearest stuck cluster's stick limit each way (towards -x, towards +x): the state
+    /// ends where a_g (a_g / lambda) reaches either. `None` where no stuck cluster has one.
+    fn stick_limits(&self) -> [Option<Q>; 2] {
+        let mut limits: [Option<Q>; 2] = [None, None];
+        for k in self.clusters.ids() {
+            if self.clusters[k].blocks.is_empty() {
+                continue;
+            }
+            if let Mode::Stuck { lo_q, hi_q, .. } = &self.clusters[k].mode {
+                if let Some(lo) = lo_q {
+                    if limits[0].as_ref().is_none_or(|l| lo > l) {
+                        limits[0] = Some(lo.clone());
+                    }
+                }
+                if let Some(hi) = hi_q {
+                    if limits[1].as_ref().is_none_or(|l| hi < l) {
+                        limits[1] = Some(hi.clone());
+                    }
+                }
+            }
+        }
+        limits
     }
 
     /// The state of the wall as the sliding model has it now.

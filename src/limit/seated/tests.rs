@@ -217,3 +217,82 @@ fn with_nothing_sliding_the_interval_is_the_limit_at_rest() {
     }
     assert!(turned >= 4, "{turned} sides turn a block");
 }
+
+/// Whether the state is shown seated at `accel`, and the pivots its phase 1 took (the program
+/// asks `stop` once a pivot).
+fn seated_at_counted(m: &Model, state: &State, accel: &Q) -> (bool, usize) {
+    let pivots = std::cell::Cell::new(0);
+    let count = || {
+        pivots.set(pivots.get() + 1);
+        false
+    };
+    let seated = seated_at(m.wall(), m.topology(), state, accel, &count).unwrap();
+    (seated, pivots.get())
+}
+
+#[test]
+fn a_state_is_shown_seated_up_to_each_end_of_its_interval_and_not_past_it() {
+    // The question the watch asks at a stick limit, against the interval's exact ends: seated
+    // at each end and between them, not a millionth of a m/s2 past either. The walls of the
+    // tests above, at rest and (the dragged block) with a block sliding.
+    let mut cases: Vec<(Model, State)> = Vec::new();
+    for (rows, friction) in [(ALONE, "0.7"), (ALONE, "0.3")] {
+        let m = model(rows, friction);
+        let state = at_rest_state(&m);
+        cases.push((m, state));
+    }
+    for file in [
+        "walls/five-block-variable.ron",
+        "walls/inca/ollantaytambo-monoliths.ron",
+        "walls/rocking/dragged-block.ron",
+    ] {
+        let m = Model::from_file(file).unwrap();
+        let state = at_rest_state(&m);
+        cases.push((m, state));
+    }
+    let dragged = Model::from_file("walls/rocking/dragged-block.ron").unwrap();
+    let mut state = at_rest_state(&dragged);
+    let upper = (dragged.topology().horizontal.iter())
+        .position(|h| h.upper.0 == 1)
+        .unwrap();
+    state.slip[upper] = 1;
+    let g = dragged.wall().g_m_s2.clone();
+    let kinetic = &(&Q::frac(3, 10) * &g) * &Q::frac(-1, 1);
+    state.moving[1] = Some(Moving::At(kinetic));
+    cases.push((dragged, state));
+    let step = Q::frac(1, 1_000_000);
+    for (m, state) in &cases {
+        let name = &m.wall().name;
+        let (lo, hi) = sides(seated(m, state));
+        let middle = &(&lo.accel + &hi.accel) * &Q::frac(1, 2);
+        for (accel, seated) in [
+            (&lo.accel, true),
+            (&hi.accel, true),
+            (&middle, true),
+            (&(&hi.accel + &step), false),
+            (&(&lo.accel - &step), false),
+        ] {
+            assert_eq!(
+                seated_at_counted(m, state, accel).0,
+                seated,
+                "{name} at {accel:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_wall_at_rest_on_still_ground_needs_no_pivot_past_its_crash() {
+    // Each block's weight goes down through its base, block by block, which the crash basis
+    // takes in one pass: phase 1 has nothing left to do.
+    for file in [
+        "walls/five-block-variable.ron",
+        "walls/five-block-uniform.ron",
+        "walls/inca-coursed.ron",
+    ] {
+        let m = Model::from_file(file).unwrap();
+        let (seated, pivots) = seated_at_counted(&m, &at_rest_state(&m), &Q::zero());
+        assert!(seated, "{file}");
+        assert_eq!(pivots, 0, "{file}");
+    }
+}
