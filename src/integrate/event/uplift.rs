@@ -1,8 +1,9 @@
 //! Watching a sliding run for its first uplift (`Params::watch_uplift`): between two events the
 //! wall's state is fixed, and whether it keeps every block seated is an interval of a_g
-//! (`limit::seated`), worked out once per state met and remembered by state. Each stretch the
-//! run advances by is compared with it, and the crossing located as a stuck cluster's stick
-//! limit is (`schedule_segment`). The watch reads the engine and changes nothing in it: a run
+//! (`limit::seated`), remembered by state. Where the state holds every block seated at its stick
+//! limits the interval reaches past them and is not worked out; otherwise each stretch the run
+//! advances by is compared with it, and the crossing located as a stuck cluster's stick limit is
+//! (`schedule_segment`). The watch reads the engine and changes nothing in it: a run
 //! watched gives the same answer as one not watched, with the check added.
 
 use super::cluster::{ClusterId, Mode};
@@ -249,8 +250,8 @@ impl Engine<'_> {
     /// first, or at the same instant, and the state has no uplift of its own. So where the
     /// state keeps every block seated at the nearest stick limit, that side needs nothing more
     /// (the interval is convex: it reaches the limit); only a side without a stick limit, or
-    /// one whose limit the state cannot hold seated, takes the interval, solved to its ends as
-    /// before, so every answer is the interval's. A limit kept as a bound is at or inside the
+    /// one whose limit the state is not shown to hold seated, takes the interval solved to its
+    /// ends, so every answer is the interval's. A limit kept as a bound is at or inside the
     /// exact one: a seated side inside the bound is inside the limit; one at or past it is met
     /// again after the bound's event works the limit out.
     fn decide_state(
