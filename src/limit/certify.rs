@@ -6,6 +6,7 @@
 //! an exact run, at the cost of a few solves (p-adic, `padic`, or by one rational elimination,
 //! `factors`) instead of every pivot of a dense tableau.
 
+use super::crash;
 use super::factors::Factors;
 use super::padic::Lifting;
 use super::revised;
@@ -69,7 +70,7 @@ fn watched(program: &Program, stop: &dyn Fn() -> bool) -> (Option<Outcome>, bool
 /// does that, with its Farkas vector), so floating point still decides nothing.
 pub(crate) fn feasible(
     program: &Program,
-    groups: &[revised::Group],
+    groups: &[crash::Group],
     stop: &dyn Fn() -> bool,
 ) -> bool {
     // Asked before the run too: from a good crash it may take no pivot at which to ask.

@@ -16,6 +16,7 @@
 //! others passes its weight however its balance needs, not by eq. (3)'s tributary split.
 
 mod certify;
+mod crash;
 mod factors;
 mod padic;
 mod revised;

@@ -13,6 +13,7 @@
 //! for tens of thousands of pivots and, in floating point, can cycle until its budget runs out
 //! (docs/rocking-walls.md, the limit at rest's cost).
 
+use super::crash;
 use super::simplex::{Ending, Program, Stop};
 use crate::exact::Q;
 use faer::linalg::solvers::Solve;
@@ -29,7 +30,7 @@ const TOLERANCE: f64 = 1e-9;
 /// singular value near 1e-5 on the block-count study's 315-row programs, rows scaled to 1), so
 /// the entries of B^-1 a_j carry errors near 1e-11 and more as the basis worsens; a pivot on
 /// such an entry (1.5e-9 in case 17) made the next basis singular, and the run gave up.
-const PIVOT: f64 = 1e-7;
+pub(super) const PIVOT: f64 = 1e-7;
 
 /// A reduced cost below minus this enters. Far tighter than the ratio test's tolerance: a
 /// column left out at -1e-11 is a basis `certify` refuses, and the exact tableau then answers
@@ -43,11 +44,6 @@ const PRICING: f64 = 1e-12;
 /// programs it gives reduced costs that are exactly zero as 1e-20 or less, and finds those it
 /// must at -1e-13.
 const CAREFUL: f64 = 1e-15;
-
-/// Candidate columns (its base's corner forces and its rows' artificial variables) above which
-/// a group of the crash keeps its artificial variables: a block's three balances take every
-/// choice of three, 455 of 15.
-const CRASH_MOST: usize = 15;
 
 /// Degenerate pivots in a row after which the run moves bounds ([`Rules::shift`]) or Bland's
 /// rule picks until the next step that moves.
@@ -118,46 +114,21 @@ pub(super) fn floating(
     Some((ending, run.basis, scaled.scales))
 }
 
-/// Rows whose balance a few columns may carry, for a feasibility run's starting basis
-/// ([`feasible`]): a block's balances and the corner forces of its base.
-pub(crate) struct Group {
-    /// The rows.
-    pub(crate) rows: std::ops::Range<usize>,
-    /// The columns that may carry them.
-    pub(crate) columns: Vec<usize>,
-}
-
 /// A basis in which phase 1 of the program (its costs ignored) ends with every artificial
 /// variable at zero to the ratio test's tolerance, or `None` where it ends above zero, gives
-/// up, or `stop` says so. The run starts from a basis built group by group (a crash): the
-/// groups are listed so that the entries of a group's columns outside its rows lie in the rows
-/// of later groups (blocks top down: a block's base forces also load the blocks under it), so
-/// the basis is block-triangular and each group's part of it is solved alone, with what the
-/// groups before it pass down. Each group takes the columns that carry what is left of its
-/// rows with the fewest artificial variables and every column's value at least zero. Why:
+/// up, or `stop` says so. The run starts from the crash basis of `groups` ([`crash`]). Why:
 /// from the artificial basis phase 1 of the uplift check's 315-row programs takes about eight
 /// pivots a row; a wall's loads mostly go down block by block, which the crash takes in one
 /// pass, leaving to the pivots only the blocks where that path fails.
 pub(super) fn feasible(
     program: &Program,
-    groups: &[Group],
+    groups: &[crash::Group],
     rules: Rules,
     stop: &dyn Fn() -> bool,
 ) -> Option<Vec<usize>> {
     let scaled = Scaled::new(program);
     let (m, n) = (scaled.b.len(), scaled.columns.len());
-    let mut left = scaled.b.clone();
-    let mut basis: Vec<usize> = (n..n + m).collect();
-    for group in groups {
-        for ((j, x), row) in carry(&scaled.columns, group, &left).zip(group.rows.clone()) {
-            basis[row] = j;
-            if j < n {
-                for &(i, a) in &scaled.columns[j] {
-                    left[i] -= a * x;
-                }
-            }
-        }
-    }
+    let (basis, left) = crash::basis(&scaled.columns, &scaled.b, groups);
     // An artificial variable starts at what is left of its row: negated where that is below
     // zero, so that it starts at or above it.
     let sign: Vec<f64> = left
@@ -166,8 +137,8 @@ pub(super) fn feasible(
         .collect();
     // Where the groups were not in that order, B may be singular or its vertex below zero:
     // phase 1 then starts from the artificial basis instead.
-    let crash = scaled.run(program, basis, &sign, rules);
-    let mut run = match crash.filter(|run| run.x.iter().all(|&x| x >= -TOLERANCE)) {
+    let started = scaled.run(program, basis, &sign, rules);
+    let mut run = match started.filter(|run| run.x.iter().all(|&x| x >= -TOLERANCE)) {
         Some(run) => run,
         None => scaled.artificial_run(program, rules)?,
     };
@@ -181,128 +152,6 @@ pub(super) fn feasible(
     }
     run.drive_out_artificials()?;
     Some(run.basis)
-}
-
-/// The columns (artificial ones `n + row`) of `group`'s crash basis and their values: one
-/// column per row of the group, those of A at values of at least zero, carrying what is `left`
-/// of its rows, with the fewest artificial variables and, among those, the smallest largest
-/// value (a choice near singular carries its rows with huge opposing forces, which the blocks
-/// below must then take). A group of more candidates than
-/// [`CRASH_MOST`] keeps its artificial variables.
-fn carry(
-    columns: &[Vec<(usize, f64)>],
-    group: &Group,
-    left: &[f64],
-) -> impl Iterator<Item = (usize, f64)> {
-    let n = columns.len();
-    let k = group.rows.len();
-    let artificial: Vec<(usize, f64)> = group.rows.clone().map(|r| (n + r, left[r])).collect();
-    let candidates: Vec<usize> = (group.columns.iter().copied())
-        .chain(group.rows.clone().map(|r| n + r))
-        .collect();
-    if candidates.len() > CRASH_MOST {
-        return artificial.into_iter();
-    }
-    // Each candidate restricted to the group's rows.
-    let local = |j: usize| -> Vec<f64> {
-        let mut v = vec![0.0; k];
-        if j < n {
-            for &(i, a) in &columns[j] {
-                if group.rows.contains(&i) {
-                    v[i - group.rows.start] = a;
-                }
-            }
-        } else {
-            v[j - n - group.rows.start] = 1.0;
-        }
-        v
-    };
-    let local: Vec<Vec<f64>> = candidates.iter().map(|&j| local(j)).collect();
-    let rhs: Vec<f64> = left[group.rows.clone()].to_vec();
-    // The best choice's artificial variables and largest value, and its columns with values.
-    let mut best_by: Option<(usize, f64)> = None;
-    let mut best = Vec::new();
-    let mut pick = Vec::with_capacity(k);
-    subsets(candidates.len(), k, &mut pick, &mut |pick: &[usize]| {
-        let artificial = pick.iter().filter(|&&p| candidates[p] >= n).count();
-        let Some(x) = solve_small(pick.iter().map(|&p| &local[p][..]), &rhs) else {
-            return;
-        };
-        let structural = pick.iter().zip(&x).filter(|(&p, _)| candidates[p] < n);
-        if structural.clone().any(|(_, &v)| v < 0.0) {
-            return;
-        }
-        let largest = x.iter().map(|v| v.abs()).fold(0.0, f64::max);
-        let better =
-            best_by.is_none_or(|(a, l)| artificial < a || (artificial == a && largest < l));
-        if better {
-            best_by = Some((artificial, largest));
-            best = pick.iter().map(|&p| candidates[p]).zip(x).collect();
-        }
-    });
-    // The artificial variables alone always carry the rows.
-    match best_by {
-        Some(_) => best.into_iter(),
-        None => artificial.into_iter(),
-    }
-}
-
-/// Calls `each` with every increasing choice of `k` of `0..len`.
-fn subsets(len: usize, k: usize, pick: &mut Vec<usize>, each: &mut dyn FnMut(&[usize])) {
-    if pick.len() == k {
-        each(pick);
-        return;
-    }
-    let from = pick.last().map_or(0, |&p| p + 1);
-    for p in from..len {
-        if len - p < k - pick.len() {
-            break;
-        }
-        pick.push(p);
-        subsets(len, k, pick, each);
-        pick.pop();
-    }
-}
-
-/// x with sum_c x_c col_c = rhs for a few columns as many as the rows, by elimination with
-/// partial pivoting; `None` where a pivot is below [`PIVOT`] times its column's size (the
-/// choice is singular, or too close to it to start a basis from).
-fn solve_small<'a>(cols: impl Iterator<Item = &'a [f64]>, rhs: &[f64]) -> Option<Vec<f64>> {
-    let k = rhs.len();
-    // Rows of [M | rhs].
-    let mut a = vec![vec![0.0; k + 1]; k];
-    let mut sizes = vec![0.0f64; k];
-    for (c, col) in cols.enumerate() {
-        for (i, &v) in col.iter().enumerate() {
-            a[i][c] = v;
-            sizes[c] = sizes[c].max(v.abs());
-        }
-    }
-    for (row, &r) in a.iter_mut().zip(rhs) {
-        row[k] = r;
-    }
-    for c in 0..k {
-        let p = (c..k).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
-        if a[p][c].abs() <= PIVOT * sizes[c] {
-            return None;
-        }
-        a.swap(c, p);
-        let pivot = a[c].clone();
-        for row in &mut a[c + 1..] {
-            let f = row[c] / pivot[c];
-            if f != 0.0 {
-                for (v, p) in row[c..].iter_mut().zip(&pivot[c..]) {
-                    *v -= f * p;
-                }
-            }
-        }
-    }
-    let mut x = vec![0.0; k];
-    for c in (0..k).rev() {
-        let s: f64 = (c + 1..k).map(|j| a[c][j] * x[j]).sum();
-        x[c] = (a[c][k] - s) / a[c][c];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// A program's rows each divided by its largest entry (b's included): the scaling changes no
@@ -874,8 +723,8 @@ mod tests {
             let columns = (0..p.c.len()).map(|j| p.column(j).to_vec()).collect();
             let p = Program::new(columns, p.b, vec![Q::zero(); 90]);
             let m = p.b.len();
-            let groups: Vec<Group> = (0..m / 3)
-                .map(|g| Group {
+            let groups: Vec<crash::Group> = (0..m / 3)
+                .map(|g| crash::Group {
                     rows: 3 * g..3 * g + 3,
                     columns: (0..p.c.len())
                         .filter(|&j| p.column(j).first().is_some_and(|(i, _)| i / 3 == g))
@@ -898,7 +747,7 @@ mod tests {
             vec![Q::frac(-1, 1), Q::one()],
             vec![Q::zero(); 3],
         );
-        let groups = [Group {
+        let groups = [crash::Group {
             rows: 0..2,
             columns: vec![0, 1, 2],
         }];

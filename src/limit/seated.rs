@@ -15,7 +15,7 @@
 
 use super::simplex::{Outcome, Program};
 use super::{centroid, entries, mechanism, overlap, pushes, Force, Moves};
-use super::{certify, revised};
+use super::{certify, crash};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::topology::{Base, BlockId, Topology};
@@ -174,7 +174,7 @@ struct Builder<'a> {
     ag: usize,
     /// Each block's balances and its base's corner forces, blocks top down: the crash basis
     /// of [`seated_at`]'s program.
-    groups: Vec<revised::Group>,
+    groups: Vec<crash::Group>,
 }
 
 impl<'a> Builder<'a> {
@@ -220,7 +220,7 @@ impl<'a> Builder<'a> {
         top_down.sort_by(|&a, &b| wall.blocks[movable[b]].y.cmp(&wall.blocks[movable[a]].y));
         let groups = top_down
             .into_iter()
-            .map(|k| revised::Group {
+            .map(|k| crash::Group {
                 rows: ROWS * k..ROWS * (k + 1),
                 columns: (0..columns.len())
                     .filter(|&j| columns[j].on == movable[k])
