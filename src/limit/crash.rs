@@ -7,6 +7,7 @@
 //! on is proved exactly, and a start that is singular or below zero is not used.
 
 use super::revised::PIVOT;
+use nalgebra::{DMatrix, DVector};
 
 /// Candidate columns (its base's corner forces and its rows' artificial variables) above which
 /// a group keeps its artificial variables: a block's three balances take every
@@ -127,43 +128,21 @@ fn subsets(len: usize, k: usize, pick: &mut Vec<usize>, each: &mut dyn FnMut(&[u
     }
 }
 
-/// x with sum_c x_c col_c = rhs for a few columns as many as the rows, by elimination with
-/// partial pivoting; `None` where a pivot is below [`PIVOT`] times its column's size (the
-/// choice is singular, or too close to it to start a basis from).
+/// x with sum_c x_c col_c = rhs for a few columns as many as the rows (nalgebra's LU, partial
+/// pivoting); `None` where a pivot is below [`PIVOT`] times its column's size (the choice is
+/// singular, or too close to it to start a basis from).
 fn solve_small<'a>(cols: impl Iterator<Item = &'a [f64]>, rhs: &[f64]) -> Option<Vec<f64>> {
     let k = rhs.len();
-    // Rows of [M | rhs].
-    let mut a = vec![vec![0.0; k + 1]; k];
-    let mut sizes = vec![0.0f64; k];
-    for (c, col) in cols.enumerate() {
-        for (i, &v) in col.iter().enumerate() {
-            a[i][c] = v;
-            sizes[c] = sizes[c].max(v.abs());
-        }
+    let cols: Vec<&[f64]> = cols.collect();
+    let matrix = DMatrix::from_fn(k, k, |i, c| cols[c][i]);
+    let sizes: Vec<f64> = matrix.column_iter().map(|c| c.amax()).collect();
+    let lu = matrix.lu();
+    let u = lu.u();
+    if (0..k).any(|c| u[(c, c)].abs() <= PIVOT * sizes[c]) {
+        return None;
     }
-    for (row, &r) in a.iter_mut().zip(rhs) {
-        row[k] = r;
-    }
-    for c in 0..k {
-        let p = (c..k).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
-        if a[p][c].abs() <= PIVOT * sizes[c] {
-            return None;
-        }
-        a.swap(c, p);
-        let pivot = a[c].clone();
-        for row in &mut a[c + 1..] {
-            let f = row[c] / pivot[c];
-            if f != 0.0 {
-                for (v, p) in row[c..].iter_mut().zip(&pivot[c..]) {
-                    *v -= f * p;
-                }
-            }
-        }
-    }
-    let mut x = vec![0.0; k];
-    for c in (0..k).rev() {
-        let s: f64 = (c + 1..k).map(|j| a[c][j] * x[j]).sum();
-        x[c] = (a[c][k] - s) / a[c][c];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
+    let x = lu.solve(&DVector::from_column_slice(rhs))?;
+    x.iter()
+        .all(|v| v.is_finite())
+        .then(|| x.as_slice().to_vec())
 }

@@ -109,7 +109,7 @@ pub(super) fn floating(
 ) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
     let scaled = Scaled::new(program);
     let c: Vec<f64> = program.c.iter().map(Q::to_f64).collect();
-    let mut run = scaled.artificial_run(program, rules)?;
+    let mut run = scaled.artificial_run(rules)?;
     let ending = run.both_phases(&c, stop)?;
     Some((ending, run.basis, scaled.scales))
 }
@@ -137,10 +137,10 @@ pub(super) fn feasible(
         .collect();
     // Where the groups were not in that order, B may be singular or its vertex below zero:
     // phase 1 then starts from the artificial basis instead.
-    let started = scaled.run(program, basis, &sign, rules);
+    let started = scaled.run(basis, &sign, rules);
     let mut run = match started.filter(|run| run.x.iter().all(|&x| x >= -TOLERANCE)) {
         Some(run) => run,
-        None => scaled.artificial_run(program, rules)?,
+        None => scaled.artificial_run(rules)?,
     };
     let phase1: Vec<f64> = (0..n + m).map(|j| if j < n { 0.0 } else { 1.0 }).collect();
     match run.optimise(&phase1, |_| true, stop) {
@@ -160,6 +160,9 @@ struct Scaled {
     columns: Vec<Vec<(usize, f64)>>,
     b: Vec<f64>,
     scales: Vec<f64>,
+    /// The program's unit: its largest right-hand side over its largest entry (for
+    /// [`Rules::shift`]).
+    unit: f64,
 }
 
 impl Scaled {
@@ -184,21 +187,31 @@ impl Scaled {
             })
             .collect();
         let b = rhs.iter().zip(&scales).map(|(r, s)| r / s).collect();
-        Scaled { columns, b, scales }
+        let largest =
+            |v: &mut dyn Iterator<Item = &Q>| v.map(|q| q.to_f64().abs()).fold(0.0, f64::max);
+        let unit =
+            largest(&mut program.b.iter()) / largest(&mut program.entries().map(|(.., a)| a));
+        let unit = if unit.is_normal() { unit } else { 1.0 };
+        Scaled {
+            columns,
+            b,
+            scales,
+            unit,
+        }
     }
 
     /// A run from the artificial basis, the rows with b < 0 negated so that it starts feasible.
-    fn artificial_run(&self, program: &Program, rules: Rules) -> Option<Run> {
+    fn artificial_run(&self, rules: Rules) -> Option<Run> {
         let (m, n) = (self.b.len(), self.columns.len());
         let sign: Vec<f64> = (self.b.iter())
             .map(|&r| if r < 0.0 { -1.0 } else { 1.0 })
             .collect();
-        self.run(program, (n..n + m).collect(), &sign, rules)
+        self.run((n..n + m).collect(), &sign, rules)
     }
 
     /// A run of the rows negated where `sign` says so (each artificial variable is then the
     /// unit column of its row as negated), from `basis`.
-    fn run(&self, program: &Program, basis: Vec<usize>, sign: &[f64], rules: Rules) -> Option<Run> {
+    fn run(&self, basis: Vec<usize>, sign: &[f64], rules: Rules) -> Option<Run> {
         let (m, n) = (self.b.len(), self.columns.len());
         let columns = self
             .columns
@@ -206,12 +219,7 @@ impl Scaled {
             .map(|c| c.iter().map(|&(i, a)| (i, sign[i] * a)).collect())
             .collect();
         let b = self.b.iter().zip(sign).map(|(b, s)| s * b).collect();
-        let largest =
-            |v: &mut dyn Iterator<Item = &Q>| v.map(|q| q.to_f64().abs()).fold(0.0, f64::max);
-        let unit =
-            largest(&mut program.b.iter()) / largest(&mut program.entries().map(|(.., a)| a));
-        let unit = if unit.is_normal() { unit } else { 1.0 };
-        Run::new(columns, b, basis, 50 * (m + n) + 1000, rules, unit)
+        Run::new(columns, b, basis, 50 * (m + n) + 1000, rules, self.unit)
     }
 }
 
