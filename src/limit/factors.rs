@@ -11,8 +11,8 @@ pub(super) trait Field: Clone {
     fn is_zero(&self) -> bool;
     fn sub(&self, other: &Self) -> Self;
     fn mul(&self, other: &Self) -> Self;
-    /// `self / other`, `other` nonzero.
-    fn div(&self, other: &Self) -> Self;
+    /// `1 / self`, `self` nonzero.
+    fn recip(&self) -> Self;
 }
 
 impl Field for Q {
@@ -28,8 +28,8 @@ impl Field for Q {
     fn mul(&self, other: &Q) -> Q {
         self * other
     }
-    fn div(&self, other: &Q) -> Q {
-        self / other
+    fn recip(&self) -> Q {
+        Q::recip(self)
     }
 }
 
@@ -42,7 +42,9 @@ impl Field for Q {
 pub(super) struct Factors<F> {
     /// The elimination in order: row `i` less `f` times pivot row `p`.
     steps: Vec<(usize, usize, F)>,
-    /// The pivots in order: row `p` pivots on column `c` with value `pivot`.
+    /// The pivots in order: row `p` pivots on column `c`, with its value's reciprocal (a solve
+    /// multiplies by it: modulo a prime an inverse costs about 120 products, by Fermat, and a
+    /// p-adic solve takes each pivot's at every digit).
     order: Vec<(usize, usize, F)>,
     /// U: each pivot row as elimination left it, but its pivot (columns of later pivots).
     rows: Vec<Vec<(usize, F)>>,
@@ -73,9 +75,9 @@ impl<F: Field> Factors<F> {
                 holders[*k].remove(&p);
             }
             let pivot_row = rows[p].clone();
-            let pivot = pivot_row[&c].clone();
+            let reciprocal = pivot_row[&c].recip();
             for i in std::mem::take(&mut holders[c]) {
-                let f = rows[i][&c].div(&pivot);
+                let f = rows[i][&c].mul(&reciprocal);
                 for (k, v) in &pivot_row {
                     let e = rows[i].entry(*k).or_insert_with(F::zero);
                     *e = e.sub(&f.mul(v));
@@ -88,7 +90,7 @@ impl<F: Field> Factors<F> {
                 }
                 steps.push((i, p, f));
             }
-            order.push((p, c, pivot));
+            order.push((p, c, reciprocal));
         }
         let mut pivot_of = vec![0; size];
         order.iter().for_each(|(p, c, _)| pivot_of[*p] = *c);
@@ -106,12 +108,12 @@ impl<F: Field> Factors<F> {
             r[*i] = r[*i].sub(&f.mul(&r[*p]));
         }
         let mut z = vec![F::zero(); r.len()];
-        for (p, c, pivot) in self.order.iter().rev() {
+        for (p, c, reciprocal) in self.order.iter().rev() {
             let mut v = r[*p].clone();
             for (k, a) in &self.rows[*p] {
                 v = v.sub(&a.mul(&z[*k]));
             }
-            z[*c] = v.div(pivot);
+            z[*c] = v.mul(reciprocal);
         }
         z
     }
@@ -121,8 +123,8 @@ impl<F: Field> Factors<F> {
     /// taken back to front.
     pub(super) fn solve_transposed(&self, mut d: Vec<F>) -> Vec<F> {
         let mut w = vec![F::zero(); d.len()];
-        for (p, c, pivot) in &self.order {
-            let wp = d[*c].div(pivot);
+        for (p, c, reciprocal) in &self.order {
+            let wp = d[*c].mul(reciprocal);
             for (k, a) in &self.rows[*p] {
                 d[*k] = d[*k].sub(&a.mul(&wp));
             }

@@ -79,8 +79,8 @@ impl Field for Residue {
         let (low, high) = ((product as u64) & PRIME, (product >> 61) as u64);
         Residue::reduce(low + high)
     }
-    fn div(&self, other: &Residue) -> Residue {
-        self.mul(&other.inverse())
+    fn recip(&self) -> Residue {
+        self.inverse()
     }
 }
 
