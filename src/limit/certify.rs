@@ -80,12 +80,10 @@ pub(crate) fn feasible(
     let Some(last) = revised::feasible(program, groups, revised::RUNS[0], stop) else {
         return false;
     };
-    // Phase 1's weights matter only to an infeasible ending.
-    let weights = vec![Q::one(); program.b.len()];
-    matches!(
-        basis(program, &last, Ending::Optimal, &weights),
-        Some(Outcome::Optimal { .. })
-    )
+    // Its vertex's signs alone: with no costs every feasible basis is optimal.
+    let negated = Negated::new(program);
+    let signs = (negated.systems(&last)).and_then(|systems| systems.signs(negated.b.clone()));
+    signs.is_some_and(|signs| negated.feasible(&signs, &last))
 }
 
 /// The answer of the floating-point run under `rules`, where its last basis proves it.
@@ -117,51 +115,21 @@ pub(super) fn basis(
     weights: &[Q],
 ) -> Option<Outcome> {
     let (m, n) = (program.b.len(), program.c.len());
-    if basis.len() != m || weights.len() != m || basis.iter().any(|&j| j >= n + m) {
+    if weights.len() != m {
         return None;
     }
-    let sign: Vec<Q> = program
-        .b
-        .iter()
-        .map(|b| if b.is_negative() { -Q::one() } else { Q::one() })
-        .collect();
-    let b: Vec<Q> = program.b.iter().zip(&sign).map(|(b, s)| b * s).collect();
-    // The columns of A with the rows negated.
-    let columns: Vec<Vec<(usize, Q)>> = (0..n)
-        .map(|j| {
-            let column = program.column(j).iter();
-            column.map(|(i, a)| (*i, a * &sign[*i])).collect()
-        })
-        .collect();
-    let column = |j: usize| -> Vec<(usize, Q)> {
-        if j < n {
-            columns[j].clone()
-        } else {
-            vec![(j - n, Q::one())]
-        }
-    };
+    let negated = Negated::new(program);
+    let systems = negated.systems(basis)?;
     let artificial = |k: usize| basis[k] >= n;
-    // B's rows, for the systems in B and in B^T.
-    let mut rows = vec![BTreeMap::new(); m];
-    for (k, &j) in basis.iter().enumerate() {
-        for (i, a) in column(j) {
-            rows[i].insert(k, a);
-        }
-    }
-    let systems = Systems::new(rows);
+    let columns = &negated.columns;
     // Negated, not multiplied by -1: a product of big rationals reduces by their gcd.
     let unflipped = |y: Vec<Q>| -> Vec<Q> {
         let flip = |(y, s): (Q, &Q)| if s.is_negative() { -y } else { y };
-        y.into_iter().zip(&sign).map(flip).collect()
+        y.into_iter().zip(&negated.sign).map(flip).collect()
     };
     match ending {
         Ending::Optimal => {
-            let x_b = systems.solve(b)?;
-            let feasible =
-                (0..m).all(|k| !x_b[k].is_negative() && (!artificial(k) || x_b[k].is_zero()));
-            if !feasible {
-                return None;
-            }
+            let x_b = negated.vertex(&systems, basis)?;
             let c_b: Vec<Q> = basis
                 .iter()
                 .map(|&j| {
@@ -210,7 +178,7 @@ pub(super) fn basis(
             let y = systems.solve_transposed(c_b)?;
             let reduced = Reduced::new(&y);
             let farkas = (0..n).all(|j| reduced.sign(&Q::zero(), &columns[j]) != Ordering::Less)
-                && b.iter()
+                && (negated.b.iter())
                     .zip(&y)
                     .map(|(b, y)| b * y)
                     .sum::<Q>()
@@ -223,10 +191,10 @@ pub(super) fn basis(
             }
             // A feasible vertex, and the edge that leaves it along `entering`: x_B - t w.
             let mut a_j: Vec<Q> = vec![Q::zero(); m];
-            for (i, a) in column(entering) {
+            for (i, a) in negated.column(entering) {
                 a_j[i] = a;
             }
-            let (x_b, w) = (systems.solve(b)?, systems.solve(a_j)?);
+            let (x_b, w) = (systems.solve(negated.b.clone())?, systems.solve(a_j)?);
             let ray = (0..m).all(|k| {
                 !x_b[k].is_negative()
                     && if artificial(k) {
@@ -244,6 +212,72 @@ pub(super) fn basis(
             let falls = (&program.c[entering] - &c_b_w).is_negative();
             (ray && falls).then_some(Outcome::Unbounded)
         }
+    }
+}
+
+/// A program's rows negated where b < 0, as in the tableau, so that every artificial variable
+/// starts at b >= 0; column `n + k` is row k's artificial variable.
+struct Negated {
+    /// Each row's sign.
+    sign: Vec<Q>,
+    b: Vec<Q>,
+    /// The columns of A.
+    columns: Vec<Vec<(usize, Q)>>,
+}
+
+impl Negated {
+    fn new(program: &Program) -> Negated {
+        let sign: Vec<Q> = (program.b.iter())
+            .map(|b| if b.is_negative() { -Q::one() } else { Q::one() })
+            .collect();
+        let b = program.b.iter().zip(&sign).map(|(b, s)| b * s).collect();
+        let columns = (0..program.c.len())
+            .map(|j| {
+                let column = program.column(j).iter();
+                column.map(|(i, a)| (*i, a * &sign[*i])).collect()
+            })
+            .collect();
+        Negated { sign, b, columns }
+    }
+
+    /// Column j of [A | I].
+    fn column(&self, j: usize) -> Vec<(usize, Q)> {
+        match self.columns.get(j) {
+            Some(column) => column.clone(),
+            None => vec![(j - self.columns.len(), Q::one())],
+        }
+    }
+
+    /// The systems of `basis`, `None` where it is no basis (its length is not the rows' count,
+    /// or it names a column that is not there).
+    fn systems(&self, basis: &[usize]) -> Option<Systems> {
+        let (m, n) = (self.b.len(), self.columns.len());
+        if basis.len() != m || basis.iter().any(|&j| j >= n + m) {
+            return None;
+        }
+        let mut rows = vec![BTreeMap::new(); m];
+        for (k, &j) in basis.iter().enumerate() {
+            for (i, a) in self.column(j) {
+                rows[i].insert(k, a);
+            }
+        }
+        Some(Systems::new(rows))
+    }
+
+    /// The basis's vertex B^-1 b, where it is at least zero with every artificial variable at
+    /// zero.
+    fn vertex(&self, systems: &Systems, basis: &[usize]) -> Option<Vec<Q>> {
+        let x_b = systems.solve(self.b.clone())?;
+        let signs: Vec<Ordering> = x_b.iter().map(|x| x.signum().cmp(&0)).collect();
+        self.feasible(&signs, basis).then_some(x_b)
+    }
+
+    /// Whether the vertex whose entries have `signs` is at least zero with every artificial
+    /// variable of `basis` at zero.
+    fn feasible(&self, signs: &[Ordering], basis: &[usize]) -> bool {
+        let artificial = |k: usize| basis[k] >= self.columns.len();
+        (signs.iter().enumerate())
+            .all(|(k, &s)| s != Ordering::Less && (!artificial(k) || s == Ordering::Equal))
     }
 }
 
@@ -275,6 +309,13 @@ impl Systems {
     fn solve(&self, r: Vec<Q>) -> Option<Vec<Q>> {
         let lifted = self.lifting.as_ref().and_then(|l| l.solve(&r));
         lifted.or_else(|| Some(self.rational()?.solve(r)))
+    }
+
+    /// The signs of z with B z = r, `None` where B is singular.
+    fn signs(&self, r: Vec<Q>) -> Option<Vec<Ordering>> {
+        let lifted = self.lifting.as_ref().and_then(|l| l.signs(&r));
+        let sign = |z: Vec<Q>| z.iter().map(|z| z.signum().cmp(&0)).collect();
+        lifted.or_else(|| Some(sign(self.rational()?.solve(r))))
     }
 
     /// y with B^T y = d, `None` where B is singular.

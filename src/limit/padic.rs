@@ -13,6 +13,7 @@ use crate::exact::Q;
 use num_bigint::{BigInt, Sign};
 use num_integer::Integer;
 use num_traits::{One, Signed, Zero};
+use std::cmp::Ordering;
 use std::collections::BTreeMap;
 
 /// The Mersenne prime 2^61 - 1: a product of two residues reduces by a shift and an add.
@@ -152,6 +153,33 @@ impl Lifting {
     /// z with B z = r: M z = S r, solved over the common denominator of S r; `None` where the
     /// lifting gave up (it cannot, by the bound, but a caller falls back all the same).
     pub(super) fn solve(&self, r: &[Q]) -> Option<Vec<Q>> {
+        let (numerators, denominator) = self.solve_over(r)?;
+        Some(
+            numerators
+                .into_iter()
+                .map(|n| Q::from_big(n, denominator.clone()))
+                .collect(),
+        )
+    }
+
+    /// The signs of z with B z = r, without the gcd that would reduce each of its fractions
+    /// (thousands of bits on sampled friction): all a check of a vertex needs.
+    pub(super) fn signs(&self, r: &[Q]) -> Option<Vec<Ordering>> {
+        let (numerators, denominator) = self.solve_over(r)?;
+        let flip = denominator.is_negative();
+        let signs = numerators.iter().map(|n| {
+            let s = n.sign().cmp(&Sign::NoSign);
+            if flip {
+                s.reverse()
+            } else {
+                s
+            }
+        });
+        Some(signs.collect())
+    }
+
+    /// z with B z = r as integer numerators over one denominator, not reduced.
+    fn solve_over(&self, r: &[Q]) -> Option<(Vec<BigInt>, BigInt)> {
         let scaled: Vec<Q> = r
             .iter()
             .zip(&self.scales)
@@ -159,13 +187,7 @@ impl Lifting {
             .collect();
         let (rhs, common) = integers(&scaled);
         let (numerators, denominator) = self.lift(rhs, false)?;
-        let denominator = denominator * common;
-        Some(
-            numerators
-                .into_iter()
-                .map(|n| Q::from_big(n, denominator.clone()))
-                .collect(),
-        )
+        Some((numerators, denominator * common))
     }
 
     /// y with B^T y = d: M^T w = d and y = S w.
@@ -367,7 +389,7 @@ mod tests {
     /// sparse random matrices of entries with fifty-three-bit binary fractions (as sampled
     /// friction gives) and small decimals, whose solutions run to hundreds of bits.
     #[test]
-    fn lifted_solutions_equal_the_rational_elimination() {
+    fn lifted_solutions_and_their_signs_equal_the_rational_elimination() {
         let mut rng = crate::rng::Rng::new(11);
         let mut solved = 0;
         for trial in 0..60 {
@@ -390,7 +412,10 @@ mod tests {
                 continue;
             };
             let lifting = Lifting::of(&rows).expect("nonsingular modulo the prime");
-            assert_eq!(lifting.solve(&r), Some(rational.solve(r.clone())), "{b:?}");
+            let z = rational.solve(r.clone());
+            let signs: Vec<Ordering> = z.iter().map(|z| z.signum().cmp(&0)).collect();
+            assert_eq!(lifting.signs(&r), Some(signs), "{b:?}");
+            assert_eq!(lifting.solve(&r), Some(z), "{b:?}");
             let transposed = Some(rational.solve_transposed(r.clone()));
             assert_eq!(lifting.solve_transposed(&r), transposed, "{b:?}");
             solved += 1;
