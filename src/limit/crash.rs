@@ -12,7 +12,7 @@
 //! its base forces span) leaves the support to artificial variables. So each choice is also
 //! judged by the supports it leaves outside their cones, with what has reached them so far.
 
-use super::revised::PIVOT;
+use super::PIVOT;
 use nalgebra::{Matrix3, Vector3};
 
 /// A block's balances: horizontal, vertical, moment. A group of other rows keeps its

@@ -29,6 +29,14 @@ use crate::topology::{Base, BlockId, HorizontalJoint, Topology, VerticalJoint};
 use crate::wall::{Block, Wall};
 use simplex::{Outcome, Program};
 
+/// An entry of an entering column below this cannot be its pivot (`revised`), nor a pivot of
+/// the small solves that choose a crash basis (`crash`). Far above the ratio test's
+/// tolerance for values: the bases of long degenerate runs are ill-conditioned (smallest
+/// singular value near 1e-5 on the block-count study's 315-row programs, rows scaled to 1), so
+/// the entries of B^-1 a_j carry errors near 1e-11 and more as the basis worsens; a pivot on
+/// such an entry (1.5e-9 in case 17) made the next basis singular, and the run gave up.
+const PIVOT: f64 = 1e-7;
+
 /// The most movable blocks the limit at rest is computed for: the size up to which the
 /// revised simplex's bases were proved on every wall tried (generated running bonds up to 976
 /// blocks, the block-count study's 976-block wall with sampled friction; a few minutes at the

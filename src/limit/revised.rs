@@ -13,8 +13,8 @@
 //! for tens of thousands of pivots and, in floating point, can cycle until its budget runs out
 //! (docs/rocking-walls.md, the limit at rest's cost).
 
-use super::crash;
 use super::simplex::{Ending, Program, Stop};
+use super::{crash, PIVOT};
 use crate::exact::Q;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
@@ -24,13 +24,6 @@ use faer::ColMut;
 /// An entry of an entering column, or a basic value, below this (the rows are scaled to
 /// entries of at most 1) is zero to the ratio test.
 const TOLERANCE: f64 = 1e-9;
-
-/// An entry of an entering column below this cannot be its pivot. Far above the ratio test's
-/// tolerance for values: the bases of long degenerate runs are ill-conditioned (smallest
-/// singular value near 1e-5 on the block-count study's 315-row programs, rows scaled to 1), so
-/// the entries of B^-1 a_j carry errors near 1e-11 and more as the basis worsens; a pivot on
-/// such an entry (1.5e-9 in case 17) made the next basis singular, and the run gave up.
-pub(super) const PIVOT: f64 = 1e-7;
 
 /// A reduced cost below minus this enters. Far tighter than the ratio test's tolerance: a
 /// column left out at -1e-11 is a basis `certify` refuses, and the exact tableau then answers
