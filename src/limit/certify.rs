@@ -18,16 +18,25 @@ use std::collections::BTreeMap;
 
 /// Solves the program: the floating-point run's basis certified exactly, or the exact run;
 /// `None` where `stop` asked them to stop (both look at it at every pivot: the exact run of a
-/// large program with sampled friction can take hours).
-pub(crate) fn solve(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
-    certified(program, stop).or_else(|| simplex::exact(program, stop))
+/// large program with sampled friction can take hours). The floating-point runs start from the
+/// crash basis of `groups` ([`crash`]; none: from the artificial basis).
+pub(crate) fn solve(
+    program: &Program,
+    groups: &[crash::Group],
+    stop: &dyn Fn() -> bool,
+) -> Option<Outcome> {
+    certified(program, groups, stop).or_else(|| simplex::exact(program, stop))
 }
 
 /// The answer of a floating-point run whose last basis proves it exactly, the runs of
 /// [`revised::RUNS`] tried in turn; `None` where each gave up or its basis proves nothing, or
 /// where `stop` said so (no run is tried after that).
-pub(crate) fn certified(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcome> {
-    watched(program, stop).0
+pub(crate) fn certified(
+    program: &Program,
+    groups: &[crash::Group],
+    stop: &dyn Fn() -> bool,
+) -> Option<Outcome> {
+    watched(program, groups, stop).0
 }
 
 /// No floating-point run ended on a basis that proves its answer.
@@ -39,9 +48,10 @@ pub(crate) struct NotProved;
 /// exact run to follow).
 pub(crate) fn proved(
     program: &Program,
+    groups: &[crash::Group],
     stop: &dyn Fn() -> bool,
 ) -> Result<Option<Outcome>, NotProved> {
-    match watched(program, stop) {
+    match watched(program, groups, stop) {
         (Some(outcome), _) => Ok(Some(outcome)),
         (None, true) => Ok(None),
         (None, false) => Err(NotProved),
@@ -49,7 +59,11 @@ pub(crate) fn proved(
 }
 
 /// The certified runs' answer, and whether `stop` said to stop.
-fn watched(program: &Program, stop: &dyn Fn() -> bool) -> (Option<Outcome>, bool) {
+fn watched(
+    program: &Program,
+    groups: &[crash::Group],
+    stop: &dyn Fn() -> bool,
+) -> (Option<Outcome>, bool) {
     let stopped = std::cell::Cell::new(false);
     let ask = || {
         let asked = stop();
@@ -59,7 +73,7 @@ fn watched(program: &Program, stop: &dyn Fn() -> bool) -> (Option<Outcome>, bool
     let outcome = revised::RUNS
         .iter()
         .take_while(|_| !stopped.get())
-        .find_map(|&rules| certified_by(program, rules, &ask));
+        .find_map(|&rules| certified_by(program, groups, rules, &ask));
     (outcome, stopped.get())
 }
 
@@ -89,10 +103,11 @@ pub(crate) fn feasible(
 /// The answer of the floating-point run under `rules`, where its last basis proves it.
 pub(super) fn certified_by(
     program: &Program,
+    groups: &[crash::Group],
     rules: revised::Rules,
     stop: &dyn Fn() -> bool,
 ) -> Option<Outcome> {
-    let (ending, last, scales) = revised::floating(program, rules, stop)?;
+    let (ending, last, scales) = revised::floating(program, groups, rules, stop)?;
     // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
     let weights: Option<Vec<Q>> = scales
         .iter()
@@ -441,7 +456,8 @@ pub(super) mod tests {
     /// The floating-point run's basis is certified, and proves what the exact run finds: the
     /// same kind of outcome and the same optimal value (the vertex may differ where optima tie).
     fn agrees(p: &Program) -> Outcome {
-        let fast = certified(p, &|| false).expect("the floating-point basis proves the answer");
+        let fast =
+            certified(p, &[], &|| false).expect("the floating-point basis proves the answer");
         match (&fast, &exact(p)) {
             (Outcome::Optimal { value: a, .. }, Outcome::Optimal { value: b, .. }) => {
                 assert_eq!(a, b)
@@ -473,9 +489,9 @@ pub(super) mod tests {
             asked.set(asked.get() + 1);
             asked.get() > 1
         };
-        assert_eq!(solve(&p, &stop), None);
+        assert_eq!(solve(&p, &[], &stop), None);
         assert_eq!(asked.get(), 3);
-        assert!(solve(&p, &|| false).is_some());
+        assert!(solve(&p, &[], &|| false).is_some());
     }
 
     /// Rows that differ below the last bit of a float: every floating-point run sees the
@@ -489,10 +505,10 @@ pub(super) mod tests {
             vec![q(1), &q(1) + &(&e * &Q::frac(1, 2))],
             vec![q(1), q(1)],
         );
-        assert_eq!(proved(&p, &|| false), Err(NotProved));
-        assert_eq!(proved(&p, &|| true), Ok(None));
+        assert_eq!(proved(&p, &[], &|| false), Err(NotProved));
+        assert_eq!(proved(&p, &[], &|| true), Ok(None));
         let half = Q::frac(1, 2);
-        let Some(Outcome::Optimal { x, value, .. }) = solve(&p, &|| false) else {
+        let Some(Outcome::Optimal { x, value, .. }) = solve(&p, &[], &|| false) else {
             panic!("the exact run solves it");
         };
         assert_eq!((x, value), (vec![half.clone(), half], q(1)));

@@ -91,19 +91,27 @@ pub(super) const RUNS: [Rules; 3] = [
 ];
 
 /// Runs the program in floating point, each row divided by its largest entry (the scaling
-/// changes no x, and the basis is all that is kept), with its bounds moved and Bland's ties
-/// broken as `rules` say: how it ended, its last basis (columns `n..n + m` are the rows'
-/// artificial variables) and the rows' divisors, or `None` where it ran out of pivots, its
-/// basis could not be factorised, or `stop` said so.
+/// changes no x, and the basis is all that is kept), from the crash basis of `groups`
+/// ([`crash`]; none: the artificial basis), with its bounds moved and Bland's ties broken as
+/// `rules` say: how it ended, its last basis (columns `n..n + m` are the rows' artificial
+/// variables) and the rows' divisors, or `None` where it ran out of pivots, its basis could not
+/// be factorised, or `stop` said so. A run from a crash that negated some row otherwise than
+/// b's sign does and that ends infeasible is run again from the artificial basis: the proof of
+/// infeasibility reads phase 1's weights in the rows negated where b < 0 (`certify`).
 pub(super) fn floating(
     program: &Program,
+    groups: &[crash::Group],
     rules: Rules,
     stop: &dyn Fn() -> bool,
 ) -> Option<(Ending, Vec<usize>, Vec<f64>)> {
     let scaled = Scaled::new(program);
     let c: Vec<f64> = program.c.iter().map(Q::to_f64).collect();
-    let mut run = scaled.artificial_run(rules)?;
-    let ending = run.both_phases(&c, stop)?;
+    let (mut run, negated_otherwise) = scaled.crash_run(groups, rules)?;
+    let mut ending = run.both_phases(&c, stop)?;
+    if negated_otherwise && matches!(ending, Ending::Infeasible) {
+        run = scaled.artificial_run(rules)?;
+        ending = run.both_phases(&c, stop)?;
+    }
     Some((ending, run.basis, scaled.scales))
 }
 
@@ -121,20 +129,7 @@ pub(super) fn feasible(
 ) -> Option<Vec<usize>> {
     let scaled = Scaled::new(program);
     let (m, n) = (scaled.b.len(), scaled.columns.len());
-    let (basis, left) = crash::basis(&scaled.columns, &scaled.b, groups);
-    // An artificial variable starts at what is left of its row: negated where that is below
-    // zero, so that it starts at or above it.
-    let sign: Vec<f64> = left
-        .iter()
-        .map(|&r| if r < 0.0 { -1.0 } else { 1.0 })
-        .collect();
-    // Where the groups were not in that order, B may be singular or its vertex below zero:
-    // phase 1 then starts from the artificial basis instead.
-    let started = scaled.run(basis, &sign, rules);
-    let mut run = match started.filter(|run| run.x.iter().all(|&x| x >= -TOLERANCE)) {
-        Some(run) => run,
-        None => scaled.artificial_run(rules)?,
-    };
+    let (mut run, _) = scaled.crash_run(groups, rules)?;
     let phase1: Vec<f64> = (0..n + m).map(|j| if j < n { 0.0 } else { 1.0 }).collect();
     match run.optimise(&phase1, |_| true, stop) {
         Stop::Optimal => {}
@@ -196,10 +191,21 @@ impl Scaled {
     /// A run from the artificial basis, the rows with b < 0 negated so that it starts feasible.
     fn artificial_run(&self, rules: Rules) -> Option<Run> {
         let (m, n) = (self.b.len(), self.columns.len());
-        let sign: Vec<f64> = (self.b.iter())
-            .map(|&r| if r < 0.0 { -1.0 } else { 1.0 })
-            .collect();
-        self.run((n..n + m).collect(), &sign, rules)
+        self.run((n..n + m).collect(), &signs(&self.b), rules)
+    }
+
+    /// A run from the crash basis of `groups`, each row negated where what the crash leaves of
+    /// it is below zero (its artificial variable then starts at or above zero), and whether
+    /// some row is negated otherwise than b's sign would; from the artificial basis where the
+    /// crash's basis is singular or its vertex below zero (groups not in the crash's order).
+    fn crash_run(&self, groups: &[crash::Group], rules: Rules) -> Option<(Run, bool)> {
+        let (basis, left) = crash::basis(&self.columns, &self.b, groups);
+        let sign = signs(&left);
+        let started = self.run(basis, &sign, rules);
+        match started.filter(|run| run.x.iter().all(|&x| x >= -TOLERANCE)) {
+            Some(run) => Some((run, sign != signs(&self.b))),
+            None => Some((self.artificial_run(rules)?, false)),
+        }
     }
 
     /// A run of the rows negated where `sign` says so (each artificial variable is then the
@@ -214,6 +220,13 @@ impl Scaled {
         let b = self.b.iter().zip(sign).map(|(b, s)| s * b).collect();
         Run::new(columns, b, basis, 50 * (m + n) + 1000, rules, self.unit)
     }
+}
+
+/// -1 where a value is below zero, else 1.
+fn signs(values: &[f64]) -> Vec<f64> {
+    (values.iter())
+        .map(|&v| if v < 0.0 { -1.0 } else { 1.0 })
+        .collect()
 }
 
 /// An eta matrix: the identity with column `row` replaced by the entering column's solve.
@@ -691,7 +704,7 @@ mod tests {
 
     /// The program written in `text` (`read`) has an optimum its floating-point run proves.
     fn proved(text: &str) {
-        let out = certified(&read(text), &|| false).expect("the last basis proves the answer");
+        let out = certified(&read(text), &[], &|| false).expect("the last basis proves the answer");
         assert!(matches!(out, Outcome::Optimal { .. }), "{out:?}");
     }
 
@@ -757,6 +770,48 @@ mod tests {
     }
 
     #[test]
+    fn an_infeasible_program_is_proved_so_from_a_crash_that_negates_a_row_otherwise() {
+        // x0 = x1 = x2 = 1 (the first block's balances) and 2 x2 + x3 = 1, x4 = x5 = 1 (the
+        // second's): x3 = -1, no solution. The crash carries the first block by x0, x1, x2,
+        // which leaves -1 of row 3, so its artificial variable starts on that row negated,
+        // where b is above zero; phase 1 ends infeasible, and the proof stands.
+        let unit = |k: usize| {
+            (0..6)
+                .map(|i| Q::frac(i128::from(i == k), 1))
+                .collect::<Vec<Q>>()
+        };
+        let mut rows: Vec<Vec<Q>> = (0..6).map(unit).collect();
+        rows[3][2] = Q::frac(2, 1);
+        let p = from_rows(&rows, vec![Q::one(); 6], vec![Q::zero(); 6]);
+        let groups = [
+            crash::Group {
+                rows: 0..3,
+                columns: vec![0, 1, 2],
+            },
+            crash::Group {
+                rows: 3..6,
+                columns: vec![3, 4, 5],
+            },
+        ];
+        let columns: Vec<Vec<(usize, f64)>> = (0..6)
+            .map(|j| p.column(j).iter().map(|(i, a)| (*i, a.to_f64())).collect())
+            .collect();
+        let b = vec![1.0; 6];
+        let (_, left) = crash::basis(&columns, &b, &groups);
+        assert_eq!(left[3], -1.0);
+        for groups in [&groups[..], &[]] {
+            assert!(
+                matches!(
+                    certified(&p, groups, &|| false),
+                    Some(Outcome::Infeasible { .. })
+                ),
+                "{} groups",
+                groups.len()
+            );
+        }
+    }
+
+    #[test]
     fn a_run_through_many_refactorisations_ends_on_a_basis_that_proves_the_optimum() {
         // Hundreds of pivots, so the basis is refactorised several times and most solves go
         // through the eta file: its last basis must still prove the optimum exactly (`certify`
@@ -769,7 +824,7 @@ mod tests {
                 pivots.set(pivots.get() + 1);
                 false
             };
-            let fast = certified(&p, &counting).expect("the last basis proves the answer");
+            let fast = certified(&p, &[], &counting).expect("the last basis proves the answer");
             assert!(pivots.get() > 3 * REFACTOR_EVERY, "{} pivots", pivots.get());
             assert!(matches!(fast, Outcome::Optimal { .. }), "{fast:?}");
         }

@@ -96,7 +96,7 @@ pub fn interval(
     let program = Builder::new(wall, topo, state, &movable);
     let mut sides = Vec::with_capacity(2);
     for s in [-1, 1] {
-        let Some(out) = certify::solve(&program.program(s), stop) else {
+        let Some(out) = certify::solve(&program.program(s), &program.groups, stop) else {
             return Ok(None);
         };
         match out {
@@ -173,7 +173,7 @@ struct Builder<'a> {
     /// Column of a_g's positive part (its negative part follows).
     ag: usize,
     /// Each block's balances and its base's corner forces, blocks top down: the crash basis
-    /// of [`seated_at`]'s program.
+    /// of [`seated_at`]'s program and of [`interval`]'s.
     groups: Vec<crash::Group>,
 }
 

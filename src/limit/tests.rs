@@ -337,7 +337,7 @@ fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
         let m = Model::from_file(path).unwrap();
         for s in [1, -1] {
             let p = side_program(&m, s);
-            let fast = certify::certified(&p, &|| false)
+            let fast = certify::certified(&p, &[], &|| false)
                 .unwrap_or_else(|| panic!("{path}, side {s}: no certified basis"));
             if compare {
                 let value = |o: &Outcome| match o {
@@ -373,7 +373,7 @@ fn large_running_bonds_are_proved_from_their_floating_point_bases() {
         let m = Model::from_ron_str(&crate::wall::to_ron_string(&d)).unwrap();
         assert_eq!(m.wall().blocks.len(), blocks);
         let moving = super::revised::RUNS[1];
-        match certify::certified_by(&side_program(&m, 1), moving, &|| false) {
+        match certify::certified_by(&side_program(&m, 1), &[], moving, &|| false) {
             Some(Outcome::Optimal { value, .. }) => {
                 assert_eq!(
                     -value,
