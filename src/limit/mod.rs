@@ -260,7 +260,7 @@ fn direction(
     let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
     let program = program(wall, topo, movable, forces, &centroids, s);
     // From the artificial basis, not a crash one as the uplift check's programs: from the crash
-    // the generated running bonds' limits came 5 to 11 times faster and the same, but where
+    // the generated running bonds' limits came 5 to 12 times faster and the same, but where
     // several mechanisms hold at a limit (a uniform wall sliding on its bed) another one of
     // them came out (docs/rocking-walls.md, "The crash for the interval's programs too").
     let outcome = if movable.len() <= EXACT_BLOCKS {
