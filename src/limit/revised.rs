@@ -127,19 +127,8 @@ pub(super) fn feasible(
     rules: Rules,
     stop: &dyn Fn() -> bool,
 ) -> Option<Vec<usize>> {
-    let scaled = Scaled::new(program);
-    let (m, n) = (scaled.b.len(), scaled.columns.len());
-    let (mut run, _) = scaled.crash_run(groups, rules)?;
-    let phase1: Vec<f64> = (0..n + m).map(|j| if j < n { 0.0 } else { 1.0 }).collect();
-    match run.optimise(&phase1, |_| true, stop) {
-        Stop::Optimal => {}
-        Stop::Unbounded { .. } | Stop::GaveUp => return None,
-    }
-    if (0..m).any(|k| run.basis[k] >= n && run.x[k] > TOLERANCE) {
-        return None;
-    }
-    run.drive_out_artificials()?;
-    Some(run.basis)
+    let (mut run, _) = Scaled::new(program).crash_run(groups, rules)?;
+    run.phase_one(stop)?.then_some(run.basis)
 }
 
 /// A program's rows each divided by its largest entry (b's included): the scaling changes no
@@ -617,18 +606,28 @@ impl Run {
         Some(())
     }
 
-    /// Both phases; `c` the program's costs. `None` where the run gave up.
-    fn both_phases(&mut self, c: &[f64], stop: &dyn Fn() -> bool) -> Option<Ending> {
+    /// Phase 1: the sum of the artificial variables to zero, then those left at zero swapped
+    /// out where they can be. Whether every artificial variable reached zero; `None` where the
+    /// run gave up.
+    fn phase_one(&mut self, stop: &dyn Fn() -> bool) -> Option<bool> {
         let (m, n) = (self.m(), self.n());
-        // Phase 1: the sum of the artificial variables to zero.
         let phase1: Vec<f64> = (0..n + m).map(|j| if j < n { 0.0 } else { 1.0 }).collect();
         if let Stop::GaveUp = self.optimise(&phase1, |_| true, stop) {
             return None;
         }
         if (0..m).any(|i| self.basis[i] >= n && self.x[i] > TOLERANCE) {
-            return Some(Ending::Infeasible);
+            return Some(false);
         }
         self.drive_out_artificials()?;
+        Some(true)
+    }
+
+    /// Both phases; `c` the program's costs. `None` where the run gave up.
+    fn both_phases(&mut self, c: &[f64], stop: &dyn Fn() -> bool) -> Option<Ending> {
+        let (m, n) = (self.m(), self.n());
+        if !self.phase_one(stop)? {
+            return Some(Ending::Infeasible);
+        }
         // Phase 2: the program's costs, artificial columns barred.
         let cost: Vec<f64> = c.iter().copied().chain((0..m).map(|_| 0.0)).collect();
         match self.optimise(&cost, |j| j < n, stop) {

@@ -89,70 +89,79 @@ pub fn interval(
     state: &State,
     stop: &dyn Fn() -> bool,
 ) -> Result<Option<Interval>, SimulationError> {
-    let movable = movable(wall, state)?;
-    if movable.is_empty() {
-        return Ok(Some(Interval::Between { lo: None, hi: None }));
-    }
-    let program = Builder::new(wall, topo, state, &movable);
-    let mut sides = Vec::with_capacity(2);
-    for s in [-1, 1] {
-        let Some(out) = certify::solve(&program.program(s), &program.groups, stop) else {
-            return Ok(None);
-        };
-        match out {
-            // Infeasibility does not depend on the objective: the first side tells.
-            Outcome::Infeasible { y } => {
-                return Ok(Some(Interval::Empty {
-                    mechanism: program.mechanism(wall, topo, &y),
-                }))
-            }
-            Outcome::Unbounded => sides.push(None),
-            Outcome::Optimal { value, y, .. } => sides.push(Some(Side {
-                accel: -&value * &Q::frac(s, 1),
-                mechanism: program.mechanism(wall, topo, &y),
-            })),
+    Ok(Programs::new(wall, topo, state)?.interval(stop))
+}
+
+/// The programs of one state, built once for every question asked of it (the watch asks
+/// [`Programs::seated_at`] at each stick limit, then [`Programs::interval`] where those do not
+/// settle it).
+pub struct Programs<'w> {
+    wall: &'w Wall,
+    topo: &'w Topology,
+    /// `None` where no block can move.
+    builder: Option<Builder>,
+}
+
+impl<'w> Programs<'w> {
+    /// The programs of `state`, refused where it has too many movable blocks for them.
+    pub fn new(
+        wall: &'w Wall,
+        topo: &'w Topology,
+        state: &State,
+    ) -> Result<Programs<'w>, SimulationError> {
+        let movable: Vec<usize> = (0..wall.blocks.len())
+            .filter(|&i| state.moving[i].is_some())
+            .collect();
+        if let Some(why) = super::too_large_for_exact(WHAT, movable.len()) {
+            return Err(SimulationError::NotApplicable(why));
         }
+        let builder = (!movable.is_empty()).then(|| Builder::new(wall, topo, state, movable));
+        Ok(Programs {
+            wall,
+            topo,
+            builder,
+        })
     }
-    let hi = sides.pop().expect("two sides");
-    let lo = sides.pop().expect("two sides");
-    Ok(Some(Interval::Between { lo, hi }))
-}
 
-/// Whether `state` is shown to keep every block seated at the ground acceleration `accel`
-/// (m/s2, in the interval's units: a_g / lambda with a vertical component): one program
-/// without an objective (phase 1 of the simplex alone, from a basis that passes each block's
-/// loads down through its base) where [`interval`] solves two to their optima. The watch asks
-/// it at a stuck cluster's stick limit, where a yes shows that the interval reaches past the
-/// limit that way, which is all the watch needs there. False where `stop` asked the program to
-/// stop or where the answer could not be shown (the program is infeasible, or round-off):
-/// [`interval`] answers then.
-pub fn seated_at(
-    wall: &Wall,
-    topo: &Topology,
-    state: &State,
-    accel: &Q,
-    stop: &dyn Fn() -> bool,
-) -> Result<bool, SimulationError> {
-    let movable = movable(wall, state)?;
-    if movable.is_empty() {
-        return Ok(true);
+    /// The state's interval (see [`interval`]); `None` where `stop` said so.
+    pub fn interval(&self, stop: &dyn Fn() -> bool) -> Option<Interval> {
+        let Some(program) = &self.builder else {
+            return Some(Interval::Between { lo: None, hi: None });
+        };
+        let (wall, topo) = (self.wall, self.topo);
+        let mut sides = Vec::with_capacity(2);
+        for s in [-1, 1] {
+            match certify::solve(&program.program(s), &program.groups, stop)? {
+                // Infeasibility does not depend on the objective: the first side tells.
+                Outcome::Infeasible { y } => {
+                    return Some(Interval::Empty {
+                        mechanism: program.mechanism(wall, topo, &y),
+                    })
+                }
+                Outcome::Unbounded => sides.push(None),
+                Outcome::Optimal { value, y, .. } => sides.push(Some(Side {
+                    accel: -&value * &Q::frac(s, 1),
+                    mechanism: program.mechanism(wall, topo, &y),
+                })),
+            }
+        }
+        let hi = sides.pop().expect("two sides");
+        let lo = sides.pop().expect("two sides");
+        Some(Interval::Between { lo, hi })
     }
-    let builder = Builder::new(wall, topo, state, &movable);
-    Ok(certify::feasible(
-        &builder.program_at(accel),
-        &builder.groups,
-        stop,
-    ))
-}
 
-/// The blocks of `state` that can move, refused where they are too many for the programs.
-fn movable(wall: &Wall, state: &State) -> Result<Vec<usize>, SimulationError> {
-    let movable: Vec<usize> = (0..wall.blocks.len())
-        .filter(|&i| state.moving[i].is_some())
-        .collect();
-    match super::too_large_for_exact(WHAT, movable.len()) {
-        Some(why) => Err(SimulationError::NotApplicable(why)),
-        None => Ok(movable),
+    /// Whether the state is shown to keep every block seated at the ground acceleration
+    /// `accel` (m/s2, in the interval's units: a_g / lambda with a vertical component): one
+    /// program without an objective (phase 1 of the simplex alone, from a basis that passes
+    /// each block's loads down through its base) where [`Programs::interval`] solves two to
+    /// their optima. The watch asks it at a stuck cluster's stick limit, where a yes shows
+    /// that the interval reaches past the limit that way, which is all the watch needs there.
+    /// False where `stop` asked the program to stop or where the answer could not be shown
+    /// (the program is infeasible, or round-off): the interval answers then.
+    pub fn seated_at(&self, accel: &Q, stop: &dyn Fn() -> bool) -> bool {
+        self.builder.as_ref().is_none_or(|builder| {
+            certify::feasible(&builder.program_at(accel), &builder.groups, stop)
+        })
     }
 }
 
@@ -164,8 +173,8 @@ const ROWS: usize = 3;
 
 /// The program of a state: columns are unit contact forces (and a_g's two parts), rows each
 /// block's horizontal, vertical and moment balances (moments about its centroid).
-struct Builder<'a> {
-    movable: &'a [usize],
+struct Builder {
+    movable: Vec<usize>,
     centroids: Vec<[Q; 2]>,
     /// A's columns, a_g's two parts last.
     columns: Vec<Vec<(usize, Q)>>,
@@ -173,12 +182,12 @@ struct Builder<'a> {
     /// Column of a_g's positive part (its negative part follows).
     ag: usize,
     /// Each block's balances and its base's corner forces, blocks top down: the crash basis
-    /// of [`seated_at`]'s program and of [`interval`]'s.
+    /// of the state's programs.
     groups: Vec<crash::Group>,
 }
 
-impl<'a> Builder<'a> {
-    fn new(wall: &Wall, topo: &Topology, state: &State, movable: &'a [usize]) -> Builder<'a> {
+impl Builder {
+    fn new(wall: &Wall, topo: &Topology, state: &State, movable: Vec<usize>) -> Builder {
         let mut row_of = vec![None; wall.blocks.len()];
         for (k, &i) in movable.iter().enumerate() {
             row_of[i] = Some(ROWS * k);
@@ -218,13 +227,16 @@ impl<'a> Builder<'a> {
         // A base force loads its block and the one under it, whose base is lower.
         let mut top_down: Vec<usize> = (0..movable.len()).collect();
         top_down.sort_by(|&a, &b| wall.blocks[movable[b]].y.cmp(&wall.blocks[movable[a]].y));
+        let mut on: Vec<Vec<usize>> = vec![Vec::new(); wall.blocks.len()];
+        columns
+            .iter()
+            .enumerate()
+            .for_each(|(j, f)| on[f.on].push(j));
         let groups = top_down
             .into_iter()
             .map(|k| crash::Group {
                 rows: ROWS * k..ROWS * (k + 1),
-                columns: (0..columns.len())
-                    .filter(|&j| columns[j].on == movable[k])
-                    .collect(),
+                columns: std::mem::take(&mut on[movable[k]]),
             })
             .collect();
         for (v, joint) in topo.vertical.iter().enumerate() {
@@ -296,7 +308,7 @@ impl<'a> Builder<'a> {
     /// block's corner keeps only its sense: with blocks sliding the multipliers' field mixes
     /// the slip into the turn, and such a point is nowhere a user could find on the wall.
     fn mechanism(&self, wall: &Wall, topo: &Topology, y: &[Q]) -> Vec<Moves> {
-        let mut moves = mechanism(wall, topo, self.movable, &self.centroids, y);
+        let mut moves = mechanism(wall, topo, &self.movable, &self.centroids, y);
         for m in &mut moves {
             if let Some((sense, point)) = m.how.split_once(" about ") {
                 if !point.ends_with("corner") {

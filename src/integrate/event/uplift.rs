@@ -266,12 +266,13 @@ impl Engine<'_> {
         let interval = match &known.interval {
             Some(interval) => Some(interval.clone()),
             None => {
+                let programs = seated::Programs::new(g.wall, g.topo, &state)?;
                 let mut settled = [false; 2];
                 for (k, limit) in limits.iter().enumerate() {
                     let Some(limit) = limit else { break };
                     let reaches = |a: &Q| if k == 1 { a >= limit } else { a <= limit };
                     if !known.seated_to[k].as_ref().is_some_and(reaches) {
-                        if !seated::seated_at(g.wall, g.topo, &state, limit, &stop)? {
+                        if !programs.seated_at(limit, &stop) {
                             break;
                         }
                         known.seated_to[k] = Some(limit.clone());
@@ -281,7 +282,7 @@ impl Engine<'_> {
                 if settled == [true; 2] {
                     None
                 } else {
-                    let interval = seated::interval(g.wall, g.topo, &state, &stop)?.map(Rc::new);
+                    let interval = programs.interval(&stop).map(Rc::new);
                     known.interval.clone_from(&interval);
                     if interval.is_none() {
                         memo.insert(state, known);

@@ -226,7 +226,9 @@ fn seated_at_counted(m: &Model, state: &State, accel: &Q) -> (bool, usize) {
         asked.set(asked.get() + 1);
         false
     };
-    let seated = seated_at(m.wall(), m.topology(), state, accel, &count).unwrap();
+    let seated = Programs::new(m.wall(), m.topology(), state)
+        .unwrap()
+        .seated_at(accel, &count);
     (seated, asked.get().saturating_sub(1))
 }
 
