@@ -276,11 +276,11 @@ def test_an_interrupt_stops_a_run_and_keeps_what_it_reached(root, interruptible)
 
 
 def test_an_interrupt_stops_the_limit_at_rest_inside_its_programs(cli, tmp_path, interruptible):
-    """An interrupt a second into the limit at rest of a 495-block running bond (whose exact
+    """An interrupt a second into the limit at rest of a 976-block running bond (whose exact
     programs take many seconds): KeyboardInterrupt, raised from inside the call (the profiler
     sees the call end with an exception, not return and the signal handled after it)."""
     path = tmp_path / "bond.ron"
-    code, err = cli("generate", "--blocks", "500", "-o", str(path))
+    code, err = cli("generate", "--blocks", "1000", "-o", str(path))
     assert code == 0, err
     wall = pirqa.Wall.from_file(path)
     ends = []

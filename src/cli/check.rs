@@ -410,6 +410,7 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             accel_g,
             exact_g,
             mechanism,
+            mechanism_unique,
         } => {
             let _ = writeln!(
                 out,
@@ -418,6 +419,13 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             );
             for m in mechanism {
                 let _ = writeln!(out, "    {:<8} {}", m.block, m.how);
+            }
+            if !mechanism_unique {
+                let _ = writeln!(
+                    out,
+                    "    (one mechanism of those that may hold at this limit: the forces at it \
+                     do not rule others out)"
+                );
             }
         }
     }

@@ -42,8 +42,9 @@ enum Command {
         out_of_plane: bool,
         /// Also find the wall's limit at rest in its plane: the ground acceleration, each way,
         /// beyond which no contact forces hold every block seated, and the mechanism past it
-        /// (an exact linear program, walls of up to 1000 movable blocks; under a second on the
-        /// shipped walls, minutes at a thousand blocks; Ctrl-C stops it).
+        /// (an exact linear program, walls of up to 2000 movable blocks; under a second on the
+        /// shipped walls, seconds at a thousand blocks, a minute or two at two thousand;
+        /// Ctrl-C stops it).
         #[arg(long, conflicts_with = "out_of_plane")]
         limit: bool,
         /// With --limit: write the limits (limit.json) and a drawing of each mechanism

@@ -37,12 +37,13 @@ use simplex::{Outcome, Program};
 /// such an entry (1.5e-9 in case 17) made the next basis singular, and the run gave up.
 const PIVOT: f64 = 1e-7;
 
-/// The most movable blocks the limit at rest is computed for: the size up to which the
-/// revised simplex's bases were proved on every wall tried (generated running bonds up to 976
-/// blocks, the block-count study's 976-block wall with sampled friction; a few minutes at the
-/// largest, docs/rocking-walls.md "Raising the bound"). The programs are sparse, a few
-/// megabytes at this size; the time grows faster than the square of the wall.
-pub const MAX_BLOCKS: usize = 1000;
+/// The most movable blocks the limit at rest is computed for: where a user still waits for it
+/// (about a minute and a half on the largest walls tried below it), every wall tried proved
+/// (generated running bonds up to 1,958 blocks, slender ones up to 1,610, the block-count
+/// study's 976-block wall and a long wall of 1,005 with sampled friction; docs/rocking-walls.md
+/// "The limit at rest from the crash too"). The programs are sparse, tens of megabytes at this
+/// size; the time grows faster than the square of a wall cut finer.
+pub const MAX_BLOCKS: usize = 2000;
 
 /// The most movable blocks whose programs fall back to the exact tableau where no
 /// floating-point run's basis is proved, and so the most the uplift check takes (a run asks it
@@ -96,6 +97,11 @@ pub enum Limit {
         exact_g: String,
         /// How each block that moves moves.
         mechanism: Vec<Moves>,
+        /// No other mechanism holds at this limit: the forces at it are a vertex whose every
+        /// basic force is positive, which leaves the multipliers, and so the mechanism, one
+        /// choice. Where it is false others may (a uniform wall may slide on any of its bed
+        /// joints), and `mechanism` is the one the solver's basis gives.
+        mechanism_unique: bool,
     },
     /// Held at every acceleration: the abutments hold the wall whatever the ground does.
     Unlimited,
@@ -146,11 +152,13 @@ pub fn at_rest_until(
     if let Some(why) = too_large("the limit at rest", movable.len(), MAX_BLOCKS, why) {
         return Err(SimulationError::NotApplicable(why));
     }
-    let forces = forces(wall, topo);
-    let Some(towards_plus_x) = direction(wall, topo, &movable, &forces, 1, stop)? else {
+    let (forces, bases) = forces(wall, topo);
+    let groups = crash_groups(wall, &movable, &forces[..bases]);
+    let direction = |s| direction(wall, topo, &movable, &forces, &groups, s, stop);
+    let Some(towards_plus_x) = direction(1)? else {
         return Ok(None);
     };
-    let Some(towards_minus_x) = direction(wall, topo, &movable, &forces, -1, stop)? else {
+    let Some(towards_minus_x) = direction(-1)? else {
         return Ok(None);
     };
     Ok(Some(Limits {
@@ -161,8 +169,8 @@ pub fn at_rest_until(
 
 /// Every contact force of the wall as unit forces: at each end of each horizontal joint the two
 /// edges of the friction cone (one where friction is zero), at each end of each touching
-/// vertical joint a push.
-fn forces(wall: &Wall, topo: &Topology) -> Vec<Force> {
+/// vertical joint a push; and how many of them, first, are the horizontal joints' (the bases').
+fn forces(wall: &Wall, topo: &Topology) -> (Vec<Force>, usize) {
     let movable = |i: usize| (!wall.blocks[i].fixed).then_some(i);
     let mut out = Vec::new();
     for h in &topo.horizontal {
@@ -184,10 +192,28 @@ fn forces(wall: &Wall, topo: &Topology) -> Vec<Force> {
             }
         }
     }
+    let bases = out.len();
     for v in topo.vertical.iter().filter(|v| v.gap_m.is_zero()) {
         out.extend(pushes(wall, v, movable));
     }
-    out
+    (out, bases)
+}
+
+/// The crash's groups (`crash::Group`): each movable block's three balances (rows `3 k` on for
+/// the k-th of `movable`) with the forces of `base` on it, blocks top down, since a base force
+/// loads its block and the one under it, whose base is lower.
+fn crash_groups(wall: &Wall, movable: &[usize], base: &[Force]) -> Vec<crash::Group> {
+    let mut top_down: Vec<usize> = (0..movable.len()).collect();
+    top_down.sort_by(|&a, &b| wall.blocks[movable[b]].y.cmp(&wall.blocks[movable[a]].y));
+    let mut on: Vec<Vec<usize>> = vec![Vec::new(); wall.blocks.len()];
+    base.iter().enumerate().for_each(|(j, f)| on[f.on].push(j));
+    top_down
+        .into_iter()
+        .map(|k| crash::Group {
+            rows: 3 * k..3 * (k + 1),
+            columns: std::mem::take(&mut on[movable[k]]),
+        })
+        .collect()
 }
 
 /// The ends of a horizontal joint's contact (m): where its upper block meets its base.
@@ -254,19 +280,16 @@ fn direction(
     topo: &Topology,
     movable: &[usize],
     forces: &[Force],
+    groups: &[crash::Group],
     s: i128,
     stop: &dyn Fn() -> bool,
 ) -> Result<Option<Limit>, SimulationError> {
     let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
     let program = program(wall, topo, movable, forces, &centroids, s);
-    // From the artificial basis, not a crash one as the uplift check's programs: from the crash
-    // the generated running bonds' limits came 5 to 12 times faster and the same, but where
-    // several mechanisms hold at a limit (a uniform wall sliding on its bed) another one of
-    // them came out (docs/rocking-walls.md, "The crash for the interval's programs too").
     let outcome = if movable.len() <= EXACT_BLOCKS {
-        certify::solve(&program, &[], stop)
+        certify::solve(&program, groups, stop)
     } else {
-        certify::proved(&program, &[], stop).map_err(|certify::NotProved| {
+        certify::proved(&program, groups, stop).map_err(|certify::NotProved| {
             SimulationError::NotApplicable(format!(
                 "the limit at rest towards {} was not proved: no floating-point run of its \
                  program ended on a basis that checks exactly, and the exact tableau is run \
@@ -299,7 +322,7 @@ fn direction(
                 falls.join(", ")
             )))
         }
-        Outcome::Optimal { value, y, .. } => {
+        Outcome::Optimal { value, y, x } => {
             let accel = -value;
             let g = &accel / &wall.g_m_s2;
             Ok(Some(Limit::Holds {
@@ -307,9 +330,18 @@ fn direction(
                 accel_g: g.to_f64(),
                 exact_g: format!("{g:?}"),
                 mechanism: mechanism(wall, topo, movable, &centroids, &y),
+                mechanism_unique: nondegenerate(&x, program.b.len()),
             }))
         }
     }
+}
+
+/// Whether the vertex `x` of a program of `rows` rows has as many positive entries as rows: its
+/// basis's forces all carry load, so every optimal multiplier meets each basic column's
+/// constraint with equality (complementary slackness) and is the basis's one. With fewer,
+/// some basic force is zero and other multipliers may be optimal too.
+fn nondegenerate(x: &[Q], rows: usize) -> bool {
+    x.iter().filter(|v| v.is_positive()).count() == rows
 }
 
 /// The program of the limit towards the side of `s`: columns are the unit contact forces and

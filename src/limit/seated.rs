@@ -14,7 +14,7 @@
 //! sliding the interval is the limit at rest.
 
 use super::simplex::{Outcome, Program};
-use super::{centroid, entries, mechanism, overlap, pushes, Force, Moves};
+use super::{centroid, crash_groups, entries, mechanism, overlap, pushes, Force, Moves};
 use super::{certify, crash};
 use crate::error::SimulationError;
 use crate::exact::Q;
@@ -224,21 +224,7 @@ impl Builder {
                 }
             }
         }
-        // A base force loads its block and the one under it, whose base is lower.
-        let mut top_down: Vec<usize> = (0..movable.len()).collect();
-        top_down.sort_by(|&a, &b| wall.blocks[movable[b]].y.cmp(&wall.blocks[movable[a]].y));
-        let mut on: Vec<Vec<usize>> = vec![Vec::new(); wall.blocks.len()];
-        columns
-            .iter()
-            .enumerate()
-            .for_each(|(j, f)| on[f.on].push(j));
-        let groups = top_down
-            .into_iter()
-            .map(|k| crash::Group {
-                rows: ROWS * k..ROWS * (k + 1),
-                columns: std::mem::take(&mut on[movable[k]]),
-            })
-            .collect();
+        let groups = crash_groups(wall, &movable, &columns);
         for (v, joint) in topo.vertical.iter().enumerate() {
             if state.pushes[v] {
                 columns.extend(pushes(wall, joint, alive));

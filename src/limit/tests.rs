@@ -23,6 +23,7 @@ fn holds(l: &Limit) -> (Q, &[Moves]) {
         accel_g,
         accel_m_s2,
         mechanism,
+        ..
     } = l
     else {
         panic!("unlimited: {l:?}");
@@ -172,6 +173,32 @@ fn the_papers_uniform_wall_slides_at_its_friction() {
     assert_eq!(holds(&l.towards_minus_x).0, Q::frac(3, 10));
 }
 
+/// Where one mechanism alone holds at the limit it is said to be unique; where several do, it
+/// is not: a block alone slides (friction 0.3) or tips (0.7, about its corner, at b/h = 0.5)
+/// by one mechanism, at the tie (0.5) by either; the paper's uniform wall slides at its
+/// friction on its bed or with its upper course alone, on the bottom blocks.
+#[test]
+fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
+    let unique = |l: &Limit| match l {
+        Limit::Holds {
+            mechanism_unique, ..
+        } => *mechanism_unique,
+        Limit::Unlimited => panic!("unlimited"),
+    };
+    let rows = "(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\")])";
+    for (friction, one) in [("0.3", true), ("0.7", true), ("0.5", false)] {
+        let l = limits(&model(rows, friction));
+        for side in [&l.towards_plus_x, &l.towards_minus_x] {
+            assert_eq!(unique(side), one, "friction {friction}: {side:?}");
+        }
+    }
+    let l = limits(&Model::from_file("walls/five-block-uniform.ron").unwrap());
+    assert!(
+        !unique(&l.towards_plus_x) && !unique(&l.towards_minus_x),
+        "{l:?}"
+    );
+}
+
 #[test]
 fn a_trilith_lifts_where_its_columns_would_alone() {
     // A lintel on two equal columns moves as a parallelogram whose columns turn on their
@@ -234,7 +261,9 @@ fn a_stack_leaning_past_its_base_cannot_stand() {
     let err = at_rest(m.wall(), m.topology()).unwrap_err().to_string();
     assert!(err.contains("cannot stand even on still ground"), "{err}");
     let (w, t) = (m.wall(), m.topology());
-    let plus = direction(w, t, &[0, 1, 2], &forces(w, t), 1, &|| false).unwrap();
+    let (forces, bases) = forces(w, t);
+    let groups = crash_groups(w, &[0, 1, 2], &forces[..bases]);
+    let plus = direction(w, t, &[0, 1, 2], &forces, &groups, 1, &|| false).unwrap();
     assert!(holds(&plus.expect("not stopped")).0.is_positive());
 }
 
@@ -307,14 +336,18 @@ fn a_mechanism_is_drawn_turning_about_its_point_at_rest() {
     assert!((w[0] - 0.3 * phi.sin()).abs() < 1e-15, "{w:?}");
 }
 
-/// The limit program of the wall towards the side of `s`, as `direction` builds it.
-fn side_program(m: &Model, s: i128) -> Program {
+/// The limit program of the wall towards the side of `s` and its crash's groups, as
+/// `at_rest` builds them.
+fn side_program(m: &Model, s: i128) -> (Program, Vec<crash::Group>) {
     let (wall, topo) = (m.wall(), m.topology());
     let movable: Vec<usize> = (0..wall.blocks.len())
         .filter(|&i| !wall.blocks[i].fixed)
         .collect();
     let centroids: Vec<[Q; 2]> = wall.blocks.iter().map(centroid).collect();
-    program(wall, topo, &movable, &forces(wall, topo), &centroids, s)
+    let (forces, bases) = forces(wall, topo);
+    let groups = crash_groups(wall, &movable, &forces[..bases]);
+    let program = program(wall, topo, &movable, &forces, &centroids, s);
+    (program, groups)
 }
 
 #[test]
@@ -336,8 +369,8 @@ fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
     for (path, compare) in walls {
         let m = Model::from_file(path).unwrap();
         for s in [1, -1] {
-            let p = side_program(&m, s);
-            let fast = certify::certified(&p, &[], &|| false)
+            let (p, groups) = side_program(&m, s);
+            let fast = certify::certified(&p, &groups, &|| false)
                 .unwrap_or_else(|| panic!("{path}, side {s}: no certified basis"));
             if compare {
                 let value = |o: &Outcome| match o {
@@ -352,6 +385,43 @@ fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
             }
         }
     }
+}
+
+/// The claim behind `mechanism_unique`: a vertex whose basic forces all carry load leaves one
+/// optimal multiplier, so a run from another start (the artificial basis instead of the crash)
+/// must end on the same mechanism, exactly; where the flag is false, the uniform wall shows
+/// that another start can end on another one.
+#[test]
+fn a_unique_mechanism_is_the_one_every_start_ends_on() {
+    let mut differ = Vec::new();
+    for path in [
+        "walls/five-block-uniform.ron",
+        "walls/five-block-variable.ron",
+        "walls/inca/ollantaytambo-monoliths.ron",
+        "walls/inca/ollantaytambo-filler.ron",
+        "walls/inca/stela.ron",
+        "walls/rocking/trilith.ron",
+        "walls/rocking/two-block-column.ron",
+    ] {
+        let m = Model::from_file(path).unwrap();
+        for s in [1, -1] {
+            let (p, groups) = side_program(&m, s);
+            let solve = |groups: &[crash::Group]| match certify::solve(&p, groups, &|| false) {
+                Some(Outcome::Optimal { x, y, .. }) => (nondegenerate(&x, p.b.len()), y),
+                other => panic!("{path}, side {s}: {other:?}"),
+            };
+            let ((one, y), (other_one, other_y)) = (solve(&groups), solve(&[]));
+            if one || other_one {
+                assert_eq!(y, other_y, "{path}, side {s}");
+            } else if y != other_y {
+                differ.push((path, s));
+            }
+        }
+    }
+    assert!(
+        differ.contains(&("walls/five-block-uniform.ron", -1)),
+        "{differ:?}"
+    );
 }
 
 /// Running bonds beyond the old bound of 300 blocks whose programs each needed a change to the
@@ -373,15 +443,20 @@ fn large_running_bonds_are_proved_from_their_floating_point_bases() {
         let m = Model::from_ron_str(&crate::wall::to_ron_string(&d)).unwrap();
         assert_eq!(m.wall().blocks.len(), blocks);
         let moving = super::revised::RUNS[1];
-        match certify::certified_by(&side_program(&m, 1), &[], moving, &|| false) {
-            Some(Outcome::Optimal { value, .. }) => {
-                assert_eq!(
-                    -value,
-                    &Q::frac(3, 10) * &m.wall().g_m_s2,
-                    "{blocks} blocks"
-                )
+        let (p, groups) = side_program(&m, 1);
+        // From the artificial basis (where a crash run's infeasible end goes again) and from
+        // the crash, as the limit at rest starts.
+        for groups in [&[][..], &groups] {
+            match certify::certified_by(&p, groups, moving, &|| false) {
+                Some(Outcome::Optimal { value, .. }) => {
+                    assert_eq!(
+                        -value,
+                        &Q::frac(3, 10) * &m.wall().g_m_s2,
+                        "{blocks} blocks"
+                    )
+                }
+                other => panic!("{blocks} blocks: {other:?}"),
             }
-            other => panic!("{blocks} blocks: {other:?}"),
         }
     }
 }

@@ -152,7 +152,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     }
     // A wall beyond the exact program's size: the report says why; drawings asked for are an
     // error that says it too.
-    let blocks = vec!["(width_m: 1.0)"; 1001].join(", ");
+    let blocks = vec!["(width_m: 1.0)"; 2001].join(", ");
     let big = common::file(
         "long.ron",
         &format!(
@@ -162,7 +162,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     );
     let (ok, out, err) = pirqa(&["check", big.to_str().unwrap(), "--limit"]);
     assert!(ok, "{err}");
-    assert!(out.contains("not computed: the limit at rest is computed for walls of up to 1000"));
+    assert!(out.contains("not computed: the limit at rest is computed for walls of up to 2000"));
     let (ok, _, err) = pirqa(&[
         "check",
         big.to_str().unwrap(),
@@ -170,7 +170,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
         "--mechanism",
         dir.to_str().unwrap(),
     ]);
-    assert!(!ok && err.contains("up to 1000 movable blocks"), "{err}");
+    assert!(!ok && err.contains("up to 2000 movable blocks"), "{err}");
     // Asked for only: a plain check stays a table of the graph.
     let (_, out, _) = pirqa(&["check", "walls/five-block-variable.ron"]);
     assert!(!out.contains("limit at rest"), "{out}");

@@ -383,14 +383,14 @@ fn ctrl_c_stops_a_run_and_writes_what_it_has() {
 }
 
 /// Ctrl-C stops `check --limit` on a wall whose exact programs take many seconds (a generated
-/// running bond of 495 blocks): exit code 130, the report whole but for the limit, which it
+/// running bond of 976 blocks): exit code 130, the report whole but for the limit, which it
 /// says was stopped, and no mechanism drawn.
 #[test]
 #[cfg(unix)]
 fn ctrl_c_stops_the_limit_at_rest_and_says_so() {
     let dir = common::scratch("ctrl-c-limit");
     let wall = dir.join("bond.ron");
-    let (code, _, err) = pirqa(&["generate", "--blocks", "500", "-o", wall.to_str().unwrap()]);
+    let (code, _, err) = pirqa(&["generate", "--blocks", "1000", "-o", wall.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let drawings = dir.join("mechanism");
     let (wall, drawings_arg) = (wall.to_str().unwrap(), drawings.to_str().unwrap());
@@ -405,7 +405,7 @@ fn ctrl_c_stops_the_limit_at_rest_and_says_so() {
     let (code, stdout) = interrupted_after(&args, 1500);
     assert_eq!(code, Some(130), "{stdout}");
     let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-    assert_eq!(report["blocks"].as_array().unwrap().len(), 495);
+    assert_eq!(report["blocks"].as_array().unwrap().len(), 976);
     assert!(report.get("limit_at_rest").is_none(), "{stdout}");
     let why = report["limit_at_rest_not_computed"].as_str().unwrap();
     assert!(
