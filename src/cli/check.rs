@@ -410,7 +410,7 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             accel_g,
             exact_g,
             mechanism,
-            mechanism_unique,
+            mechanism_proved_unique,
         } => {
             let _ = writeln!(
                 out,
@@ -420,7 +420,7 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             for m in mechanism {
                 let _ = writeln!(out, "    {:<8} {}", m.block, m.how);
             }
-            if !mechanism_unique {
+            if !mechanism_proved_unique {
                 let _ = writeln!(
                     out,
                     "    (one mechanism of those that may hold at this limit: the forces at it \

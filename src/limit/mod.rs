@@ -97,11 +97,12 @@ pub enum Limit {
         exact_g: String,
         /// How each block that moves moves.
         mechanism: Vec<Moves>,
-        /// No other mechanism holds at this limit: the forces at it are a vertex whose every
-        /// basic force is positive, which leaves the multipliers, and so the mechanism, one
-        /// choice. Where it is false others may (a uniform wall may slide on any of its bed
-        /// joints), and `mechanism` is the one the solver's basis gives.
-        mechanism_unique: bool,
+        /// Shown that no other mechanism holds at this limit: the forces at it are a vertex
+        /// whose every basic force is positive, which leaves the multipliers, and so the
+        /// mechanism, one choice. False where some basic force is zero: others may hold then (a
+        /// uniform wall's do: it slides on any of its bed joints), not shown either way, and
+        /// `mechanism` is the one the solver's basis gives.
+        mechanism_proved_unique: bool,
     },
     /// Held at every acceleration: the abutments hold the wall whatever the ground does.
     Unlimited,
@@ -330,7 +331,7 @@ fn direction(
                 accel_g: g.to_f64(),
                 exact_g: format!("{g:?}"),
                 mechanism: mechanism(wall, topo, movable, &centroids, &y),
-                mechanism_unique: nondegenerate(&x, program.b.len()),
+                mechanism_proved_unique: nondegenerate(&x, program.b.len()),
             }))
         }
     }

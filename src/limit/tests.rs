@@ -175,14 +175,16 @@ fn the_papers_uniform_wall_slides_at_its_friction() {
 
 /// Where one mechanism alone holds at the limit it is said to be unique; where several do, it
 /// is not: a block alone slides (friction 0.3) or tips (0.7, about its corner, at b/h = 0.5)
-/// by one mechanism, at the tie (0.5) by either; the paper's uniform wall slides at its
-/// friction on its bed or with its upper course alone, on the bottom blocks.
+/// by one mechanism, at the tie (0.5) by either; the paper's uniform wall, one friction
+/// everywhere, slides at it with both bottom blocks or with one of them and what it carries
+/// (the next test has both).
 #[test]
 fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
     let unique = |l: &Limit| match l {
         Limit::Holds {
-            mechanism_unique, ..
-        } => *mechanism_unique,
+            mechanism_proved_unique,
+            ..
+        } => *mechanism_proved_unique,
         Limit::Unlimited => panic!("unlimited"),
     };
     let rows = "(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\")])";
@@ -387,7 +389,7 @@ fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
     }
 }
 
-/// The claim behind `mechanism_unique`: a vertex whose basic forces all carry load leaves one
+/// The claim behind `mechanism_proved_unique`: a vertex whose basic forces all carry load leaves one
 /// optimal multiplier, so a run from another start (the artificial basis instead of the crash)
 /// must end on the same mechanism, exactly; where the flag is false, the uniform wall shows
 /// that another start can end on another one.
