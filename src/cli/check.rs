@@ -368,12 +368,18 @@ fn write_mechanisms(
             accel_g,
             exact_g,
             mechanism,
+            mechanism_proved_unique,
             ..
         } = l
         else {
             continue;
         };
         let (u, theta, w) = pirqa::plot::mechanism_pose(wall, mechanism);
+        let which = if *mechanism_proved_unique {
+            "the mechanism"
+        } else {
+            "one mechanism of those that may hold at this limit"
+        };
         let drawing = WallDrawing {
             title: format!(
                 "{}: past its limit at rest towards {side}, {accel_g:.4} g ({exact_g} g)",
@@ -381,11 +387,10 @@ fn write_mechanisms(
             ),
             displacement_m: Some(u),
             pose: Some((theta, w)),
-            note: Some(
-                "the mechanism, exaggerated (pirqa check --limit; a slipping joint dilates at the \
+            note: Some(format!(
+                "{which}, exaggerated (pirqa check --limit; a slipping joint dilates at the \
                  friction angle: the associative mechanism)"
-                    .into(),
-            ),
+            )),
             ..WallDrawing::default()
         };
         write_file(

@@ -143,13 +143,29 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     let saved: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("limit.json")).unwrap()).unwrap();
     assert_eq!(saved, v["limit_at_rest"]);
+    assert_eq!(plus["mechanism_proved_unique"], true);
     for side in ["plus-x", "minus-x"] {
         let svg = std::fs::read_to_string(dir.join(format!("mechanism-{side}.svg"))).unwrap();
         assert!(
-            svg.contains("past its limit at rest") && svg.contains("Drum2"),
+            svg.contains("past its limit at rest")
+                && svg.contains("Drum2")
+                && svg.contains("the mechanism, exaggerated"),
             "{svg}"
         );
     }
+    // Where the forces at the limit do not show the mechanism to be the only one (the uniform
+    // wall: any part sliding on its bed reaches 0.3 g), the report and the drawings say so.
+    let may = "one mechanism of those that may hold at this limit";
+    let (ok, out, err) = pirqa(&[
+        "check",
+        "walls/five-block-uniform.ron",
+        "--limit",
+        "--mechanism",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(ok && out.matches(may).count() == 2, "{out}{err}");
+    let svg = std::fs::read_to_string(dir.join("mechanism-minus-x.svg")).unwrap();
+    assert!(svg.contains(&format!("{may}, exaggerated")), "{svg}");
     // A wall beyond the exact program's size: the report says why; drawings asked for are an
     // error that says it too.
     let blocks = vec!["(width_m: 1.0)"; 2001].join(", ");
