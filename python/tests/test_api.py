@@ -382,20 +382,22 @@ def test_releases_and_runs_across_the_plane_are_the_command_lines(root, cli, tmp
 
 def test_a_walls_limit_at_rest_is_exact_with_its_mechanism(root):
     """The paper's variable wall leaves rest at 7/25 g each way (B3 slides on B1 towards -x,
-    B5 on B2 towards +x), as `pirqa check --limit --json` says, with whether each mechanism is
-    proved the only one (towards -x it is; towards +x the forces are degenerate); a wall too
-    large for the exact program raises with the reason."""
+    B5 on B2 towards +x, each the only mechanism there, while the uniform wall's is one of
+    several), as `pirqa check --limit --json` says; a wall too large for the exact program
+    raises with the reason."""
     wall = pirqa.Wall.from_file(root / "walls/five-block-variable.ron")
     limits = wall.limit_at_rest()
-    for side, block, how, proved in [
-        ("towards_plus_x", "B3", "slides towards -x", False),
-        ("towards_minus_x", "B5", "slides towards +x", True),
+    for side, block, how in [
+        ("towards_plus_x", "B3", "slides towards -x"),
+        ("towards_minus_x", "B5", "slides towards +x"),
     ]:
         limit = limits[side]
         assert limit["kind"] == "holds" and limit["exact_g"] == "7/25"
         assert limit["accel_g"] == 0.28
         assert [(m["block"], m["how"]) for m in limit["mechanism"]] == [(block, how)]
-        assert limit["mechanism_proved_unique"] is proved
+        assert limit["mechanism_uniqueness"] == "unique"
+    uniform = pirqa.Wall.from_file(root / "walls/five-block-uniform.ron").limit_at_rest()
+    assert uniform["towards_minus_x"]["mechanism_uniqueness"] == "one_of_several"
     x = np.arange(2001, dtype=float)
     big = pirqa.Wall.from_rectangles(
         x, np.zeros(2001), np.ones(2001), np.full(2001, 0.5),

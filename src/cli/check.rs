@@ -368,18 +368,14 @@ fn write_mechanisms(
             accel_g,
             exact_g,
             mechanism,
-            mechanism_proved_unique,
+            mechanism_uniqueness,
             ..
         } = l
         else {
             continue;
         };
         let (u, theta, w) = pirqa::plot::mechanism_pose(wall, mechanism);
-        let which = if *mechanism_proved_unique {
-            "the mechanism"
-        } else {
-            "one mechanism of those that may hold at this limit"
-        };
+        let which = mechanism_uniqueness.which();
         let drawing = WallDrawing {
             title: format!(
                 "{}: past its limit at rest towards {side}, {accel_g:.4} g ({exact_g} g)",
@@ -415,7 +411,7 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             accel_g,
             exact_g,
             mechanism,
-            mechanism_proved_unique,
+            mechanism_uniqueness,
         } => {
             let _ = writeln!(
                 out,
@@ -425,12 +421,8 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             for m in mechanism {
                 let _ = writeln!(out, "    {:<8} {}", m.block, m.how);
             }
-            if !mechanism_proved_unique {
-                let _ = writeln!(
-                    out,
-                    "    (one mechanism of those that may hold at this limit: the forces at it \
-                     do not rule others out)"
-                );
+            if *mechanism_uniqueness != pirqa::limit::Uniqueness::Unique {
+                let _ = writeln!(out, "    ({})", mechanism_uniqueness.which());
             }
         }
     }

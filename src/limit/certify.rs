@@ -177,6 +177,7 @@ pub(super) fn basis(
                 x,
                 value,
                 y: unflipped(y),
+                basis: basis.to_vec(),
             })
         }
         Ending::Infeasible => {
@@ -435,7 +436,7 @@ pub(super) mod tests {
     /// Checks an optimum's certificate: A x = b, x >= 0, c - A^T y >= 0 with complementary
     /// slackness, and b y equal to c x (strong duality).
     fn optimal(p: &Program, out: &Outcome) {
-        let Outcome::Optimal { x, value, y } = out else {
+        let Outcome::Optimal { x, value, y, .. } = out else {
             panic!("not optimal: {out:?}");
         };
         let mut ax = vec![Q::zero(); p.b.len()];

@@ -97,16 +97,48 @@ pub enum Limit {
         exact_g: String,
         /// How each block that moves moves.
         mechanism: Vec<Moves>,
-        /// Shown that no other mechanism holds at this limit: the forces at it are a vertex
-        /// whose every basic force is positive, which leaves the multipliers, and so the
-        /// mechanism, one choice. False where some basic force is zero: others may hold then (a
-        /// uniform wall's do: it slides on any of its bed joints), not shown either way, and
-        /// `mechanism` is the one the solver's basis gives.
-        mechanism_proved_unique: bool,
+        /// Whether `mechanism` is the only one that holds at this limit (where it is not, it
+        /// is the one the solver's basis gives).
+        mechanism_uniqueness: Uniqueness,
     },
     /// Held at every acceleration: the abutments hold the wall whatever the ground does.
     Unlimited,
 }
+
+/// Whether a limit's mechanism is the only one that holds there ([`uniqueness`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Uniqueness {
+    /// No other mechanism holds at the limit.
+    Unique,
+    /// Others hold at the same limit too (a uniform wall slides on any of its bed joints).
+    OneOfSeveral,
+    /// Not decided: the forces at the limit are degenerate, and the wall has more movable
+    /// blocks than the deciding program is run for ([`DECIDED_BLOCKS`]) or its basis kept an
+    /// artificial variable.
+    Undecided,
+}
+
+impl Uniqueness {
+    /// What the mechanism named is, in words.
+    pub fn which(self) -> &'static str {
+        match self {
+            Uniqueness::Unique => "the mechanism",
+            Uniqueness::OneOfSeveral => "one of several mechanisms that hold at this limit",
+            Uniqueness::Undecided => {
+                "one mechanism of those that may hold at this limit (whether others do is not \
+                 decided)"
+            }
+        }
+    }
+}
+
+/// The most movable blocks for which a degenerate limit's mechanism is decided unique or not:
+/// the deciding program is about as large as the limit's own and harder (it starts from the
+/// artificial basis): the shipped walls' take milliseconds, generated bonds of 105, 150 and
+/// 175 blocks (degenerate, one friction everywhere) 0.2, 0.9 and 1.3 s with it where the
+/// limit alone takes about 0.2 s at 200 blocks; the large walls' would take minutes more.
+pub const DECIDED_BLOCKS: usize = 200;
 
 /// How a block moves in a mechanism, relative to the ground.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -323,26 +355,73 @@ fn direction(
                 falls.join(", ")
             )))
         }
-        Outcome::Optimal { value, y, x } => {
+        Outcome::Optimal { value, y, x, basis } => {
             let accel = -value;
             let g = &accel / &wall.g_m_s2;
+            let decide = movable.len() <= DECIDED_BLOCKS;
+            let Some(mechanism_uniqueness) = uniqueness(&program, &x, &y, &basis, decide, stop)
+            else {
+                return Ok(None);
+            };
             Ok(Some(Limit::Holds {
                 accel_m_s2: accel.to_f64(),
                 accel_g: g.to_f64(),
                 exact_g: format!("{g:?}"),
                 mechanism: mechanism(wall, topo, movable, &centroids, &y),
-                mechanism_proved_unique: nondegenerate(&x, program.b.len()),
+                mechanism_uniqueness,
             }))
         }
     }
 }
 
-/// Whether the vertex `x` of a program of `rows` rows has as many positive entries as rows: its
-/// basis's forces all carry load, so every optimal multiplier meets each basic column's
-/// constraint with equality (complementary slackness) and is the basis's one. With fewer,
-/// some basic force is zero and other multipliers may be optimal too.
-fn nondegenerate(x: &[Q], rows: usize) -> bool {
-    x.iter().filter(|v| v.is_positive()).count() == rows
+/// Whether the multipliers `y` of the optimal vertex `x` (read from `basis`) are the program's
+/// only optimal ones; `None` where `stop` said so. Another optimal y + d meets complementary
+/// slackness with x: a_j d = 0 where x_j > 0 (the set P) and a_j d <= 0 where x_j = 0 and c_j -
+/// a_j y = 0 (the set T; elsewhere a small d keeps the constraint). Where x has as many
+/// positive entries as rows (nondegenerate) P alone spans the rows and d = 0. Otherwise d = 0 is
+/// the only such direction exactly when lin(A_P) + cone(A_T), the cone polar to theirs, is the
+/// whole space; a basis of the program's own columns lies in P and T, so they span it, and then
+/// it is the whole space exactly when A_T l + A_P mu = 0 for some l with every entry >= 1
+/// (Gordan's theorem): a program of feasibility, answered exactly, if `decide`.
+fn uniqueness(
+    program: &Program,
+    x: &[Q],
+    y: &[Q],
+    basis: &[usize],
+    decide: bool,
+    stop: &dyn Fn() -> bool,
+) -> Option<Uniqueness> {
+    let (m, n) = (program.b.len(), program.c.len());
+    if x.iter().filter(|v| v.is_positive()).count() == m {
+        return Some(Uniqueness::Unique);
+    }
+    if !decide || basis.iter().any(|&j| j >= n) {
+        return Some(Uniqueness::Undecided);
+    }
+    let column = |j: usize| program.column(j).iter();
+    let tight = |j: usize| {
+        let ay: Q = column(j).map(|(i, a)| a * &y[*i]).sum();
+        program.c[j] == ay
+    };
+    let mut columns: Vec<Vec<(usize, Q)>> = Vec::new();
+    let mut b = vec![Q::zero(); m];
+    for (j, x_j) in x.iter().enumerate() {
+        if x_j.is_positive() {
+            columns.push(column(j).cloned().collect());
+            columns.push(column(j).map(|(i, a)| (*i, -a)).collect());
+        } else if tight(j) {
+            // l_j = 1 + l'_j with l'_j >= 0: its column's unit share moves to the right.
+            columns.push(column(j).cloned().collect());
+            column(j).for_each(|(i, a)| b[*i] = &b[*i] - a);
+        }
+    }
+    let costs = vec![Q::zero(); columns.len()];
+    Some(
+        match certify::solve(&Program::new(columns, b, costs), &[], stop)? {
+            Outcome::Infeasible { .. } => Uniqueness::OneOfSeveral,
+            Outcome::Optimal { .. } | Outcome::Unbounded => Uniqueness::Unique,
+        },
+    )
 }
 
 /// The program of the limit towards the side of `s`: columns are the unit contact forces and

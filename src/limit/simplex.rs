@@ -69,9 +69,15 @@ impl Program {
 /// What a program has.
 #[derive(Debug, PartialEq)]
 pub(crate) enum Outcome {
-    /// An optimal vertex `x`, its value, and the multipliers `y` of the rows (c - A^T y >= 0,
-    /// zero where x > 0; b y is the value).
-    Optimal { x: Vec<Q>, value: Q, y: Vec<Q> },
+    /// An optimal vertex `x`, its value, the multipliers `y` of the rows (c - A^T y >= 0, zero
+    /// where x > 0; b y is the value), and the basis they were read from (column `n + k`: row
+    /// k's artificial variable).
+    Optimal {
+        x: Vec<Q>,
+        value: Q,
+        y: Vec<Q>,
+        basis: Vec<usize>,
+    },
     /// No x satisfies the constraints: `y` with A^T y <= 0 and b y > 0 shows it (Farkas).
     Infeasible { y: Vec<Q> },
     /// The cost falls without bound.
@@ -299,6 +305,7 @@ pub(super) fn exact(program: &Program, stop: &dyn Fn() -> bool) -> Option<Outcom
                 y: t.multipliers(&cost),
                 x,
                 value,
+                basis: t.basis.clone(),
             }
         }
     })

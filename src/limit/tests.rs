@@ -174,31 +174,46 @@ fn the_papers_uniform_wall_slides_at_its_friction() {
 }
 
 /// Where one mechanism alone holds at the limit it is said to be unique; where several do, it
-/// is not: a block alone slides (friction 0.3) or tips (0.7, about its corner, at b/h = 0.5)
-/// by one mechanism, at the tie (0.5) by either; the paper's uniform wall, one friction
-/// everywhere, slides at it with both bottom blocks or with one of them and what it carries
-/// (the next test has both).
+/// is one of several: a block alone slides (friction 0.3) or tips (0.7, about its corner, at
+/// b/h = 0.5) by one mechanism, at the tie (0.5) by either; the paper's uniform wall, one
+/// friction everywhere, slides at it with both bottom blocks or with one of them and what it
+/// carries (the next test has both). Not asked to decide, a degenerate limit is undecided.
 #[test]
 fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
-    let unique = |l: &Limit| match l {
+    let uniqueness = |l: &Limit| match l {
         Limit::Holds {
-            mechanism_proved_unique,
+            mechanism_uniqueness,
             ..
-        } => *mechanism_proved_unique,
+        } => *mechanism_uniqueness,
         Limit::Unlimited => panic!("unlimited"),
     };
     let rows = "(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\")])";
-    for (friction, one) in [("0.3", true), ("0.7", true), ("0.5", false)] {
+    for (friction, expected) in [
+        ("0.3", Uniqueness::Unique),
+        ("0.7", Uniqueness::Unique),
+        ("0.5", Uniqueness::OneOfSeveral),
+    ] {
         let l = limits(&model(rows, friction));
         for side in [&l.towards_plus_x, &l.towards_minus_x] {
-            assert_eq!(unique(side), one, "friction {friction}: {side:?}");
+            assert_eq!(uniqueness(side), expected, "friction {friction}: {side:?}");
         }
     }
-    let l = limits(&Model::from_file("walls/five-block-uniform.ron").unwrap());
-    assert!(
-        !unique(&l.towards_plus_x) && !unique(&l.towards_minus_x),
-        "{l:?}"
-    );
+    let uniform = Model::from_file("walls/five-block-uniform.ron").unwrap();
+    let l = limits(&uniform);
+    for side in [&l.towards_plus_x, &l.towards_minus_x] {
+        assert_eq!(uniqueness(side), Uniqueness::OneOfSeveral, "{side:?}");
+    }
+    let (p, groups) = side_program(&uniform, -1);
+    let Some(Outcome::Optimal { x, y, basis, .. }) = certify::solve(&p, &groups, &|| false) else {
+        panic!("the uniform wall's limit");
+    };
+    let undecided = uniqueness_of(&p, &x, &y, &basis, false);
+    assert_eq!(undecided, Uniqueness::Undecided);
+}
+
+/// [`uniqueness`] never stopped.
+fn uniqueness_of(p: &Program, x: &[Q], y: &[Q], basis: &[usize], decide: bool) -> Uniqueness {
+    uniqueness(p, x, y, basis, decide, &|| false).expect("not stopped")
 }
 
 #[test]
@@ -389,10 +404,10 @@ fn the_shipped_walls_limits_are_proved_from_their_floating_point_bases() {
     }
 }
 
-/// The claim behind `mechanism_proved_unique`: a vertex whose basic forces all carry load leaves one
-/// optimal multiplier, so a run from another start (the artificial basis instead of the crash)
-/// must end on the same mechanism, exactly; where the flag is false, the uniform wall shows
-/// that another start can end on another one.
+/// Uniqueness is the program's, not the vertex's: runs from two starts (the crash and the
+/// artificial basis) decide it alike on seven walls, both sides; where it is unique they end
+/// on the same multipliers to the last digit, and the uniform wall's -x side, one of several,
+/// shows two starts ending on two mechanisms.
 #[test]
 fn a_unique_mechanism_is_the_one_every_start_ends_on() {
     let mut differ = Vec::new();
@@ -409,11 +424,15 @@ fn a_unique_mechanism_is_the_one_every_start_ends_on() {
         for s in [1, -1] {
             let (p, groups) = side_program(&m, s);
             let solve = |groups: &[crash::Group]| match certify::solve(&p, groups, &|| false) {
-                Some(Outcome::Optimal { x, y, .. }) => (nondegenerate(&x, p.b.len()), y),
+                Some(Outcome::Optimal { x, y, basis, .. }) => {
+                    (uniqueness_of(&p, &x, &y, &basis, true), y)
+                }
                 other => panic!("{path}, side {s}: {other:?}"),
             };
-            let ((one, y), (other_one, other_y)) = (solve(&groups), solve(&[]));
-            if one || other_one {
+            let ((one, y), (other, other_y)) = (solve(&groups), solve(&[]));
+            assert_eq!(one, other, "{path}, side {s}");
+            assert_ne!(one, Uniqueness::Undecided, "{path}, side {s}");
+            if one == Uniqueness::Unique {
                 assert_eq!(y, other_y, "{path}, side {s}");
             } else if y != other_y {
                 differ.push((path, s));
