@@ -105,7 +105,8 @@ pub enum Limit {
     Unlimited,
 }
 
-/// Whether a limit's mechanism is the only one that holds there ([`uniqueness`]).
+/// Whether a limit's mechanism is the only one that holds there (docs/rocking-walls.md, "What
+/// it says and what it does not").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Uniqueness {
@@ -126,8 +127,8 @@ impl Uniqueness {
             Uniqueness::Unique => "the mechanism",
             Uniqueness::OneOfSeveral => "one of several mechanisms that hold at this limit",
             Uniqueness::Undecided => {
-                "one mechanism of those that may hold at this limit (whether others do is not \
-                 decided)"
+                "one mechanism of those that may hold at this limit; whether others do is not \
+                 decided"
             }
         }
     }

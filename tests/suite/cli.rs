@@ -155,7 +155,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     }
     // Where others hold at the limit too (the uniform wall: any part sliding on its bed reaches
     // 0.3 g), the report and the drawings say so.
-    let may = "one of several mechanisms that hold at this limit";
+    let several = "one of several mechanisms that hold at this limit";
     let (ok, out, err) = pirqa(&[
         "check",
         "walls/five-block-uniform.ron",
@@ -163,9 +163,16 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
         "--mechanism",
         dir.to_str().unwrap(),
     ]);
-    assert!(ok && out.matches(may).count() == 2, "{out}{err}");
+    assert!(ok && out.matches(several).count() == 2, "{out}{err}");
     let svg = std::fs::read_to_string(dir.join("mechanism-minus-x.svg")).unwrap();
-    assert!(svg.contains(&format!("{may}, exaggerated")), "{svg}");
+    assert!(svg.contains(&format!("{several}, exaggerated")), "{svg}");
+    // Degenerate too, but beyond the blocks it is decided for (203 > 200): not decided.
+    let bond = dir.join("bond.ron");
+    let (ok, _, err) = pirqa(&["generate", "--blocks", "190", "-o", bond.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let (ok, out, err) = pirqa(&["check", bond.to_str().unwrap(), "--limit"]);
+    let undecided = "may hold at this limit; whether others do is not decided";
+    assert!(ok && out.matches(undecided).count() == 2, "{out}{err}");
     // A wall beyond the exact program's size: the report says why; drawings asked for are an
     // error that says it too.
     let blocks = vec!["(width_m: 1.0)"; 2001].join(", ");
