@@ -2,7 +2,8 @@
 # Reproduces the times of "The limit at rest from the crash too" (docs/rocking-walls.md): the
 # build before (6904433: the limit at rest from the artificial basis, up to 1000 blocks) against
 # d315d36 (from the crash), `pirqa check W --limit --json` timed on walls up to 976 blocks, each
-# pair side by side on the two cores, outputs compared but for `mechanism_unique`; then walls
+# pair side by side on the two cores, outputs compared but for `mechanism_unique` (the field
+# d315d36 added; `mechanism_uniqueness`, decided exactly, since b8e7ae7); then walls
 # beyond the old bound on d315d36 alone, one after the other, and on a third build of it with
 # the bound raised to 8000 a long wall of 3,165 blocks and a bond of 4,000. About 40 minutes
 # with the three builds (the 4,000-block bond alone takes about 9).
