@@ -12,12 +12,8 @@
 //! its base forces span) leaves the support to artificial variables. So each choice is also
 //! judged by the supports it leaves outside their cones, with what has reached them so far.
 
-use super::PIVOT;
+use super::{PIVOT, ROWS};
 use nalgebra::{Matrix3, Vector3};
-
-/// A block's balances: horizontal, vertical, moment. A group of other rows keeps its
-/// artificial variables.
-const ROWS: usize = 3;
 
 /// Candidate columns (its base's corner forces and its rows' artificial variables) above which
 /// a group keeps its artificial variables: a block's three balances take every choice of

@@ -29,6 +29,9 @@ use crate::topology::{Base, BlockId, HorizontalJoint, Topology, VerticalJoint};
 use crate::wall::{Block, Wall};
 use simplex::{Outcome, Program};
 
+/// Balances per movable block, its rows in every program here: horizontal, vertical, moment.
+const ROWS: usize = 3;
+
 /// An entry of an entering column below this cannot be its pivot (`revised`), nor a pivot of
 /// the small solves that choose a crash basis (`crash`). Far above the ratio test's
 /// tolerance for values: the bases of long degenerate runs are ill-conditioned (smallest
@@ -233,7 +236,7 @@ fn forces(wall: &Wall, topo: &Topology) -> (Vec<Force>, usize) {
     (out, bases)
 }
 
-/// The crash's groups (`crash::Group`): each movable block's three balances (rows `3 k` on for
+/// The crash's groups (`crash::Group`): each movable block's three balances (rows `ROWS k` on for
 /// the k-th of `movable`) with the forces of `base` on it, blocks top down, since a base force
 /// loads its block and the one under it, whose base is lower.
 fn crash_groups(wall: &Wall, movable: &[usize], base: &[Force]) -> Vec<crash::Group> {
@@ -244,7 +247,7 @@ fn crash_groups(wall: &Wall, movable: &[usize], base: &[Force]) -> Vec<crash::Gr
     top_down
         .into_iter()
         .map(|k| crash::Group {
-            rows: 3 * k..3 * (k + 1),
+            rows: ROWS * k..ROWS * (k + 1),
             columns: std::mem::take(&mut on[movable[k]]),
         })
         .collect()
@@ -439,9 +442,9 @@ fn program(
     let row_of: std::collections::HashMap<usize, usize> = movable
         .iter()
         .enumerate()
-        .map(|(k, &i)| (i, 3 * k))
+        .map(|(k, &i)| (i, ROWS * k))
         .collect();
-    let m = 3 * movable.len();
+    let m = ROWS * movable.len();
     let mut columns: Vec<Vec<(usize, Q)>> = forces
         .iter()
         .map(|f| {
@@ -461,8 +464,8 @@ fn program(
     let mut accel = Vec::with_capacity(movable.len());
     for (k, &i) in movable.iter().enumerate() {
         let mass = &topo.blocks[i].mass_kg;
-        accel.push((3 * k, -(mass * &Q::frac(s, 1))));
-        b[3 * k + 1] = mass * &wall.g_m_s2;
+        accel.push((ROWS * k, -(mass * &Q::frac(s, 1))));
+        b[ROWS * k + 1] = mass * &wall.g_m_s2;
     }
     columns.push(accel);
     let mut c = vec![Q::zero(); columns.len()];
@@ -481,7 +484,7 @@ fn mechanism(
 ) -> Vec<Moves> {
     let mut speeds = vec![[Q::zero(), Q::zero(), Q::zero()]; wall.blocks.len()];
     for (k, &i) in movable.iter().enumerate() {
-        speeds[i] = [-&y[3 * k], -&y[3 * k + 1], -&y[3 * k + 2]];
+        speeds[i] = [-&y[ROWS * k], -&y[ROWS * k + 1], -&y[ROWS * k + 2]];
     }
     let scale = speeds
         .iter()

@@ -14,7 +14,7 @@
 //! sliding the interval is the limit at rest.
 
 use super::simplex::{Outcome, Program};
-use super::{centroid, crash_groups, entries, mechanism, overlap, pushes, Force, Moves};
+use super::{centroid, crash_groups, entries, mechanism, overlap, pushes, Force, Moves, ROWS};
 use super::{certify, crash};
 use crate::error::SimulationError;
 use crate::exact::Q;
@@ -167,9 +167,6 @@ impl<'w> Programs<'w> {
 
 /// What the programs here are for, in refusals.
 pub(crate) const WHAT: &str = "the uplift check";
-
-/// Balances per block: horizontal, vertical, moment.
-const ROWS: usize = 3;
 
 /// The program of a state: columns are unit contact forces (and a_g's two parts), rows each
 /// block's horizontal, vertical and moment balances (moments about its centroid).

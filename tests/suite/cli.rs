@@ -132,13 +132,16 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     assert!(v.get("limit_at_rest_not_computed").is_none());
     // The mechanisms drawn, beside the limits they were drawn from.
     let dir = temp_dir("limit-mechanism");
-    let (ok, _, err) = pirqa(&[
-        "check",
-        "walls/rocking/two-block-column.ron",
-        "--limit",
-        "--mechanism",
-        dir.to_str().unwrap(),
-    ]);
+    let drawn = |wall: &str| {
+        pirqa(&[
+            "check",
+            wall,
+            "--limit",
+            "--mechanism",
+            dir.to_str().unwrap(),
+        ])
+    };
+    let (ok, _, err) = drawn("walls/rocking/two-block-column.ron");
     assert!(ok, "{err}");
     let saved: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("limit.json")).unwrap()).unwrap();
@@ -156,13 +159,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     // Where others hold at the limit too (the uniform wall: any part sliding on its bed reaches
     // 0.3 g), the report and the drawings say so.
     let several = "one of several mechanisms that hold at this limit";
-    let (ok, out, err) = pirqa(&[
-        "check",
-        "walls/five-block-uniform.ron",
-        "--limit",
-        "--mechanism",
-        dir.to_str().unwrap(),
-    ]);
+    let (ok, out, err) = drawn("walls/five-block-uniform.ron");
     assert!(ok && out.matches(several).count() == 2, "{out}{err}");
     let svg = std::fs::read_to_string(dir.join("mechanism-minus-x.svg")).unwrap();
     assert!(svg.contains(&format!("{several}, exaggerated")), "{svg}");
@@ -186,13 +183,7 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     let (ok, out, err) = pirqa(&["check", big.to_str().unwrap(), "--limit"]);
     assert!(ok, "{err}");
     assert!(out.contains("not computed: the limit at rest is computed for walls of up to 2000"));
-    let (ok, _, err) = pirqa(&[
-        "check",
-        big.to_str().unwrap(),
-        "--limit",
-        "--mechanism",
-        dir.to_str().unwrap(),
-    ]);
+    let (ok, _, err) = drawn(big.to_str().unwrap());
     assert!(!ok && err.contains("up to 2000 movable blocks"), "{err}");
     // Asked for only: a plain check stays a table of the graph.
     let (_, out, _) = pirqa(&["check", "walls/five-block-variable.ron"]);
