@@ -116,7 +116,8 @@ def test_a_history_is_handed_over_without_a_copy(root):
 
 def test_the_uplift_check_says_when_a_block_would_start_to_turn(root):
     """As ``pirqa run --check-uplift``: the Ollantaytambo wall under a 1 Hz sine of 0.3 g leaves
-    rest where its limit at rest says, an end filler turning; unasked, no check is reported."""
+    rest where its limit at rest says, an end filler turning, by a mechanism decided the only one
+    as the limit's is; unasked, no check is reported."""
     wall = pirqa.Wall.from_file(root / "walls/inca/ollantaytambo-monoliths.ron")
     motion = pirqa.Motion.sine("0.3g", frequency_hz=1.0, duration_s=1.0)
     r = pirqa.run(wall, motion, model="slide", check_uplift=True)
@@ -124,6 +125,9 @@ def test_the_uplift_check_says_when_a_block_would_start_to_turn(root):
     limit = wall.limit_at_rest()["towards_plus_x"]["accel_m_s2"]
     assert abs(first["ground_accel_m_s2"] - limit) <= 1e-12 * limit
     assert first["turning"] == ["F1 turns counterclockwise about its bottom-left corner"]
+    assert first["mechanism_uniqueness"] == wall.limit_at_rest()["towards_plus_x"][
+        "mechanism_uniqueness"
+    ]
     assert "uplift_check" not in pirqa.run(wall, motion, model="slide").summary
 
 

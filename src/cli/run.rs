@@ -783,10 +783,14 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
             Some(u) => writeln!(
                 t,
                 "  uplift check: at t = {:.6} s (a_g = {:.4} m/s2) no contact forces keep every \
-                 block seated: {}",
+                 block seated: {}{}",
                 u.time_s,
                 u.ground_accel_m_s2,
-                u.turning.join(", ")
+                u.turning.join(", "),
+                match u.mechanism_uniqueness {
+                    pirqa::limit::Uniqueness::Unique => String::new(),
+                    other => format!(" ({})", other.which()),
+                }
             ),
         };
     }

@@ -100,6 +100,41 @@ pub(crate) fn feasible(
     signs.is_some_and(|signs| negated.feasible(&signs, &last))
 }
 
+/// Whether the columns of the program that `within` admits span all its columns, shown from
+/// `basis` (of [A | I], its columns of A among those admitted): each artificial variable left
+/// in it either sits on a row the others determine (row k of B^-1 vanishes on every column),
+/// or is replaced by an admitted column on which that row does not vanish; where only columns
+/// not admitted have such an entry, they leave the admitted columns' span. `None` where
+/// `basis` is no basis.
+pub(crate) fn spanned(
+    program: &Program,
+    basis: &[usize],
+    within: impl Fn(usize) -> bool,
+) -> Option<bool> {
+    let n = program.c.len();
+    let negated = Negated::new(program);
+    let mut basis = basis.to_vec();
+    // Each pass puts one more admitted column in an artificial variable's place, or ends.
+    'passes: loop {
+        let systems = negated.systems(&basis)?;
+        for k in (0..basis.len()).filter(|&k| basis[k] >= n) {
+            let mut e = vec![Q::zero(); basis.len()];
+            e[k] = Q::one();
+            let w = systems.solve_transposed(e)?;
+            let row = Reduced::new(&w);
+            let off = |j: &usize| row.sign(&Q::zero(), &negated.columns[*j]) != Ordering::Equal;
+            if let Some(j) = (0..n).filter(|&j| within(j)).find(off) {
+                basis[k] = j;
+                continue 'passes;
+            }
+            if (0..n).any(|j| off(&j)) {
+                return Some(false);
+            }
+        }
+        return Some(true);
+    }
+}
+
 /// The answer of the floating-point run under `rules`, where its last basis proves it.
 pub(super) fn certified_by(
     program: &Program,
@@ -645,6 +680,31 @@ pub(super) mod tests {
         // A singular basis (x1 twice) and one of the wrong size prove nothing either.
         assert_eq!(basis(&p, &[0, 0, 4], Ending::Optimal, &ones), None);
         assert_eq!(basis(&p, &[2, 3], Ending::Optimal, &ones), None);
+    }
+
+    #[test]
+    fn admitted_columns_span_where_each_artificial_sits_on_a_dependent_row_or_gives_way() {
+        let all = |_: usize| true;
+        // Rows x1 + x2 + x3 and twice that: the second is the first's, so x1 with row 1's
+        // artificial shows that x1 alone spans every column.
+        let dependent = program(&[&[1, 1, 1], &[2, 2, 2]], &[1, 2], &[0, 0, 0]);
+        assert_eq!(spanned(&dependent, &[0, 4], |j| j == 0), Some(true));
+        assert_eq!(
+            spanned(&dependent, &[3, 3], all),
+            None,
+            "singular: no basis"
+        );
+        // Rows x1 + x2 and x2 + x3: x1 alone does not span (x2 and x3 leave its span); x1 and
+        // x3 do, reached from row 1's artificial replaced by x3, or by x2 where it is admitted.
+        let independent = program(&[&[1, 1, 0], &[0, 1, 1]], &[1, 1], &[0, 0, 0]);
+        assert_eq!(spanned(&independent, &[0, 4], |j| j == 0), Some(false));
+        assert_eq!(spanned(&independent, &[0, 4], |j| j != 1), Some(true));
+        assert_eq!(spanned(&independent, &[3, 4], all), Some(true));
+        assert_eq!(
+            spanned(&independent, &[0, 2], |j| j != 1),
+            Some(true),
+            "no artificial"
+        );
     }
 
     #[test]

@@ -113,13 +113,16 @@ pub enum Limit {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Uniqueness {
-    /// No other mechanism holds at the limit.
+    /// No other mechanism holds at the limit (but for motions that no contact force does work
+    /// on, which the program cannot tell apart: a block that slides on a joint moved along the
+    /// normal of the friction cone's edge it slides on; blocks' rotations are never among them).
     Unique,
     /// Others hold at the same limit too (a uniform wall slides on any of its bed joints).
     OneOfSeveral,
     /// Not decided: the forces at the limit are degenerate, and the wall has more movable
-    /// blocks than the deciding program is run for ([`DECIDED_BLOCKS`]) or its basis kept an
-    /// artificial variable.
+    /// blocks than the deciding program is run for ([`DECIDED_BLOCKS`]); or (the uplift check)
+    /// the mechanism is a certificate that a state keeps no block seated whatever the ground
+    /// does, or the run was stopped while deciding.
     Undecided,
 }
 
@@ -381,12 +384,16 @@ fn direction(
 /// Whether the multipliers `y` of the optimal vertex `x` (read from `basis`) are the program's
 /// only optimal ones; `None` where `stop` said so. Another optimal y + d meets complementary
 /// slackness with x: a_j d = 0 where x_j > 0 (the set P) and a_j d <= 0 where x_j = 0 and c_j -
-/// a_j y = 0 (the set T; elsewhere a small d keeps the constraint). Where x has as many
-/// positive entries as rows (nondegenerate) P alone spans the rows and d = 0. Otherwise d = 0 is
-/// the only such direction exactly when lin(A_P) + cone(A_T), the cone polar to theirs, is the
-/// whole space; a basis of the program's own columns lies in P and T, so they span it, and then
-/// it is the whole space exactly when A_T l + A_P mu = 0 for some l with every entry >= 1
-/// (Gordan's theorem): a program of feasibility, answered exactly, if `decide`.
+/// a_j y = 0 (the set T; elsewhere a small d keeps the constraint). A d with A^T d = 0 is a
+/// motion no contact force does work on (a block sliding on a joint has one: moved along the
+/// normal of the cone's edge it slides on), which the multipliers cannot tell apart: the
+/// question is whether every such d is one of those. Where x has as many positive entries as
+/// rows (nondegenerate) P alone spans the rows and d = 0. Otherwise the answer is yes exactly
+/// when lin(A_P) + cone(A_T), the cone polar to theirs, is the span of A's columns. Where P and
+/// T do not span A's columns (`certify::spanned`, from the basis, whose own columns lie in P
+/// and T) some d in that span is orthogonal to all of them: no. Where they do, their cone is
+/// that span exactly when A_T l + A_P mu = 0 for some l with every entry >= 1 (Gordan's
+/// theorem): a program of feasibility, answered exactly. Both only if `decide`.
 fn uniqueness(
     program: &Program,
     x: &[Q],
@@ -395,25 +402,35 @@ fn uniqueness(
     decide: bool,
     stop: &dyn Fn() -> bool,
 ) -> Option<Uniqueness> {
-    let (m, n) = (program.b.len(), program.c.len());
-    if x.iter().filter(|v| v.is_positive()).count() == m {
+    if !degenerate(program, x) {
         return Some(Uniqueness::Unique);
     }
-    if !decide || basis.iter().any(|&j| j >= n) {
+    if !decide {
         return Some(Uniqueness::Undecided);
     }
+    let m = program.b.len();
     let column = |j: usize| program.column(j).iter();
     let tight = |j: usize| {
         let ay: Q = column(j).map(|(i, a)| a * &y[*i]).sum();
         program.c[j] == ay
     };
+    // P and T: the columns the directions d must keep (a_j d = 0 on P, <= 0 on T).
+    let kept: Vec<bool> = (x.iter().enumerate())
+        .map(|(j, x_j)| x_j.is_positive() || tight(j))
+        .collect();
+    match certify::spanned(program, basis, |j| kept[j]) {
+        None => return Some(Uniqueness::Undecided),
+        // Some d in the columns' span is orthogonal to all of P and T: y + d holds too.
+        Some(false) => return Some(Uniqueness::OneOfSeveral),
+        Some(true) => {}
+    }
     let mut columns: Vec<Vec<(usize, Q)>> = Vec::new();
     let mut b = vec![Q::zero(); m];
-    for (j, x_j) in x.iter().enumerate() {
+    for (j, x_j) in x.iter().enumerate().filter(|&(j, _)| kept[j]) {
         if x_j.is_positive() {
             columns.push(column(j).cloned().collect());
             columns.push(column(j).map(|(i, a)| (*i, -a)).collect());
-        } else if tight(j) {
+        } else {
             // l_j = 1 + l'_j with l'_j >= 0: its column's unit share moves to the right.
             columns.push(column(j).cloned().collect());
             column(j).for_each(|(i, a)| b[*i] = &b[*i] - a);
@@ -426,6 +443,13 @@ fn uniqueness(
             Outcome::Optimal { .. } | Outcome::Unbounded => Uniqueness::Unique,
         },
     )
+}
+
+/// Whether the optimal vertex `x` has fewer positive entries than the program has rows: only
+/// then can another mechanism hold at the same optimum ([`uniqueness`]'s first step, which the
+/// uplift check takes when it solves a side, to decide the rest only for the side it reports).
+fn degenerate(program: &Program, x: &[Q]) -> bool {
+    x.iter().filter(|v| v.is_positive()).count() < program.b.len()
 }
 
 /// The program of the limit towards the side of `s`: columns are the unit contact forces and

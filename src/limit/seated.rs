@@ -15,7 +15,7 @@
 
 use super::simplex::{Outcome, Program};
 use super::{centroid, crash_groups, entries, mechanism, overlap, pushes, Force, Moves, ROWS};
-use super::{certify, crash};
+use super::{certify, crash, degenerate, uniqueness, Uniqueness, DECIDED_BLOCKS};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::topology::{Base, BlockId, Topology};
@@ -53,6 +53,9 @@ pub struct Side {
     /// How the blocks move past it, from the program's multipliers (the mechanism, as the
     /// limit at rest gives it).
     pub mechanism: Vec<Moves>,
+    /// The program's forces at this side are degenerate: another mechanism may hold here too
+    /// ([`Programs::uniqueness`] decides).
+    pub degenerate: bool,
 }
 
 impl Side {
@@ -131,7 +134,8 @@ impl<'w> Programs<'w> {
         let (wall, topo) = (self.wall, self.topo);
         let mut sides = Vec::with_capacity(2);
         for s in [-1, 1] {
-            match certify::solve(&program.program(s), &program.groups, stop)? {
+            let p = program.program(s);
+            match certify::solve(&p, &program.groups, stop)? {
                 // Infeasibility does not depend on the objective: the first side tells.
                 Outcome::Infeasible { y } => {
                     return Some(Interval::Empty {
@@ -139,15 +143,41 @@ impl<'w> Programs<'w> {
                     })
                 }
                 Outcome::Unbounded => sides.push(None),
-                Outcome::Optimal { value, y, .. } => sides.push(Some(Side {
+                Outcome::Optimal { value, y, x, .. } => sides.push(Some(Side {
                     accel: -&value * &Q::frac(s, 1),
                     mechanism: program.mechanism(wall, topo, &y),
+                    degenerate: degenerate(&p, &x),
                 })),
             }
         }
         let hi = sides.pop().expect("two sides");
         let lo = sides.pop().expect("two sides");
         Some(Interval::Between { lo, hi })
+    }
+
+    /// Whether `side`, the end of [`Programs::interval`] towards the side of `s` (+1: +x), has
+    /// the only mechanism that holds there, decided as the limit at rest's is (docs/rocking-
+    /// walls.md, "What it says and what it does not"): a side whose forces are degenerate is
+    /// solved again for its basis, and decided where the state has at most [`DECIDED_BLOCKS`]
+    /// movable blocks. `None` where `stop` said so.
+    pub fn uniqueness(&self, side: &Side, s: i128, stop: &dyn Fn() -> bool) -> Option<Uniqueness> {
+        let builder = (self.builder.as_ref())
+            .filter(|b| side.degenerate && b.movable.len() <= DECIDED_BLOCKS);
+        let Some(builder) = builder else {
+            return Some(if side.degenerate {
+                Uniqueness::Undecided
+            } else {
+                Uniqueness::Unique
+            });
+        };
+        let program = builder.program(s);
+        match certify::solve(&program, &builder.groups, stop)? {
+            Outcome::Optimal { x, y, basis, .. } => {
+                uniqueness(&program, &x, &y, &basis, true, stop)
+            }
+            // The side was solved from this program: the same solve ends the same way.
+            Outcome::Infeasible { .. } | Outcome::Unbounded => Some(Uniqueness::Undecided),
+        }
     }
 
     /// Whether the state is shown to keep every block seated at the ground acceleration

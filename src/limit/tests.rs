@@ -211,6 +211,34 @@ fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
     assert_eq!(undecided, Uniqueness::Undecided);
 }
 
+/// Multipliers that differ by a d with A^T d = 0 (dependent rows) are one mechanism: the
+/// program max x1 over x1 + x2 = 1 and twice that row has every (y1, y2) with y1 + 2 y2 = -1
+/// optimal, and its basis keeps an artificial variable on the dependent row, which no longer
+/// leaves the answer undecided. With a third column x3 along x1 + x2 = 1 alone (cost -1 too),
+/// x1 and x3 both optimal, another multiplier holds as well: one of several.
+#[test]
+fn multipliers_that_differ_where_the_rows_depend_on_one_another_are_one_mechanism() {
+    let q = |v: i128| Q::frac(v, 1);
+    let column = |a: &[i128]| a.iter().map(|&v| q(v)).enumerate().collect::<Vec<_>>();
+    let solved = |columns: Vec<Vec<(usize, Q)>>, c: Vec<Q>| {
+        let p = Program::new(columns, vec![q(1), q(2), q(0)], c);
+        let Some(Outcome::Optimal { x, y, basis, .. }) = certify::solve(&p, &[], &|| false) else {
+            panic!("optimal");
+        };
+        assert!(
+            basis.iter().any(|&j| j >= p.c.len()),
+            "an artificial left: {basis:?}"
+        );
+        uniqueness_of(&p, &x, &y, &basis, true)
+    };
+    let (x1, x2) = (column(&[1, 2, 0]), column(&[1, 2, 0]));
+    let one = solved(vec![x1.clone(), x2.clone()], vec![q(-1), q(0)]);
+    assert_eq!(one, Uniqueness::Unique);
+    let x3 = column(&[1, 2, 1]);
+    let several = solved(vec![x1, x2, x3], vec![q(-1), q(0), q(-1)]);
+    assert_eq!(several, Uniqueness::OneOfSeveral);
+}
+
 /// [`uniqueness`] never stopped.
 fn uniqueness_of(p: &Program, x: &[Q], y: &[Q], basis: &[usize], decide: bool) -> Uniqueness {
     uniqueness(p, x, y, basis, decide, &|| false).expect("not stopped")

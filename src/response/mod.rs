@@ -390,6 +390,9 @@ pub struct Uplift {
     /// The blocks that start to turn, each with how (`F1 turns counterclockwise about its
     /// bottom-left corner`), from the mechanism of the seated program's multipliers.
     pub turning: Vec<String>,
+    /// Whether the mechanism `turning` comes from is the only one past that instant, decided
+    /// as the limit at rest's is.
+    pub mechanism_uniqueness: crate::limit::Uniqueness,
 }
 
 /// The body of a run nearest to overturning: the first to overturn, or the one whose largest

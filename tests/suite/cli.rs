@@ -700,6 +700,34 @@ fn run_checks_uplift_when_asked_and_refuses_walls_too_large_for_it() {
         "F5 turns clockwise about its bottom-right corner"
     );
     assert!((first["ground_accel_m_s2"].as_f64().unwrap() + 0.2834 * 9.81).abs() < 0.001);
+    assert_eq!(first["mechanism_uniqueness"], "unique");
+    assert!(!out.contains("one of several"), "{out}");
+    // Twin slabs standing apart lift at one instant, either or both: the report says so.
+    let twins = dir.join("twins.ron");
+    std::fs::write(
+        &twins,
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6, rows: [(height_m: \
+         1.2, blocks: [(width_m: 0.6), (width_m: 0.6, gap_m: 0.2)])])",
+    )
+    .unwrap();
+    let (ok, out, err) = pirqa(&[
+        "run",
+        twins.to_str().unwrap(),
+        "--model",
+        "slide",
+        "--check-uplift",
+        "--sine",
+        "0.55g",
+        "--freq",
+        "1",
+        "--duration",
+        "1",
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("(one of several mechanisms that hold at this limit)"),
+        "{out}"
+    );
     // 25 courses of 25 (637 blocks): more movable blocks than the exact program takes.
     let wall = dir.join("large.ron");
     let (ok, _, err) = pirqa(&[

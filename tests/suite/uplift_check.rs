@@ -5,7 +5,7 @@
 //! rest on the Ollantaytambo wall under El Centro; a watched run's answer otherwise the same to
 //! the bit as an unwatched one; refused where the sliding engine does not run.
 
-use pirqa::limit::{at_rest, Limit};
+use pirqa::limit::{at_rest, Limit, Uniqueness};
 use pirqa::motion::{Motion, Sine};
 use pirqa::response::{Uplift, UpliftCheck};
 use pirqa::{Direction, Method, Model, ModelChoice, Response, RunSettings, Warning};
@@ -83,6 +83,34 @@ fn a_slender_block_lifts_where_a_sine_reaches_g_b_over_h() {
         u.turning,
         ["A turns counterclockwise about its bottom-left corner"]
     );
+    assert_eq!(u.mechanism_uniqueness, Uniqueness::Unique);
+}
+
+/// Two slabs of one size standing apart reach g b/h at one instant, and either may turn (or
+/// both): the mechanism named is one of several. With the second slab stouter, the first
+/// turns alone, and its mechanism is the only one.
+#[test]
+fn where_twin_slabs_lift_at_one_instant_the_mechanism_is_one_of_several() {
+    let pair = |second_width_m: f64| {
+        Model::from_ron_str(&format!(
+            "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6,
+              rows: [(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\"),
+                     (width_m: {second_width_m}, gap_m: 0.2, name: \"B\")])])"
+        ))
+        .unwrap()
+    };
+    let twins = watched(&pair(0.6), &sine(0.55, 2.0), true);
+    let u = first_uplift(&twins);
+    assert!((u.time_s - first_reach(0.5, 0.55)).abs() <= 1e-13);
+    assert_eq!(u.mechanism_uniqueness, Uniqueness::OneOfSeveral);
+    let stout = watched(&pair(0.66), &sine(0.55, 2.0), true);
+    let u = first_uplift(&stout);
+    assert!((u.time_s - first_reach(0.5, 0.55)).abs() <= 1e-13);
+    assert_eq!(
+        u.turning,
+        ["A turns counterclockwise about its bottom-left corner"]
+    );
+    assert_eq!(u.mechanism_uniqueness, Uniqueness::Unique);
 }
 
 #[test]
@@ -128,6 +156,10 @@ fn a_block_dragged_by_a_sliding_one_lifts_where_its_moments_say() {
         u.turning[0],
         "L turns counterclockwise about its bottom-left corner"
     );
+    // U, sliding on one joint, leaves its balances dependent (its two corner forces lie on one
+    // edge of the cone): the multipliers may move U along that edge's normal, and nothing
+    // else, so the mechanism is decided the only one.
+    assert_eq!(u.mechanism_uniqueness, Uniqueness::Unique);
 }
 
 #[test]
@@ -142,6 +174,7 @@ fn at_rest_the_check_meets_the_limit_at_rest_on_the_ollantaytambo_wall() {
     let Limit::Holds {
         accel_m_s2,
         mechanism,
+        mechanism_uniqueness,
         ..
     } = limits.towards_minus_x
     else {
@@ -154,6 +187,7 @@ fn at_rest_the_check_meets_the_limit_at_rest_on_the_ollantaytambo_wall() {
         .map(|b| format!("{} {}", b.block, b.how))
         .collect();
     assert_eq!(u.turning, turning);
+    assert_eq!(u.mechanism_uniqueness, mechanism_uniqueness);
     assert!(
         r.events.iter().all(|e| e.time_s >= u.time_s),
         "still at rest"
@@ -369,4 +403,5 @@ fn after_a_fall_the_check_goes_on_without_the_fallen_block() {
         u.turning,
         ["A turns counterclockwise about its bottom-left corner"]
     );
+    assert_eq!(u.mechanism_uniqueness, Uniqueness::Unique);
 }

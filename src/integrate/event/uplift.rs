@@ -14,8 +14,8 @@ use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::integrate::Progress;
 use crate::integrate::Scenario;
-use crate::limit::seated::{self, Interval, Moving, State};
-use crate::limit::Moves;
+use crate::limit::seated::{self, Interval, Moving, Side, State};
+use crate::limit::{Moves, Uniqueness};
 use crate::response::{EventKind, EventsTo, HistoryTo, Recorder, Uplift, UpliftCheck, Warning};
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -57,10 +57,27 @@ struct Known {
 enum Look {
     /// Every block stays seated.
     Clear,
-    /// The first uplift, at this time, by this mechanism.
-    Lifts(f64, Vec<Moves>),
+    /// The first uplift, at this time, so.
+    Lifts(f64, Cause),
     /// The run was asked to stop while the programs ran.
     Stopped,
+}
+
+/// How the first uplift comes.
+enum Cause {
+    /// The state keeps no block seated whatever the ground does; the mechanism is the
+    /// program's certificate of that.
+    Always(Vec<Moves>),
+    /// a_g passes this end of the state's interval (towards +x where the sign is +1).
+    Passes(i128, Side),
+}
+
+impl Cause {
+    fn mechanism(&self) -> &[Moves] {
+        match self {
+            Cause::Always(mechanism) | Cause::Passes(_, Side { mechanism, .. }) => mechanism,
+        }
+    }
 }
 
 /// What the run does after the watch has looked at a stretch.
@@ -134,8 +151,8 @@ impl Engine<'_> {
         let mut go_on = true;
         match look {
             Look::Clear => {}
-            Look::Lifts(t, mechanism) => {
-                self.record_uplift(t, &mechanism, !w.hand_off);
+            Look::Lifts(t, cause) => {
+                self.record_uplift(t, &cause, !w.hand_off)?;
                 w.done = true;
                 w.due = w.hand_off.then_some(t);
             }
@@ -164,12 +181,12 @@ impl Engine<'_> {
         Next::HandOff
     }
 
-    /// Records the first uplift, at `t`, by `mechanism`; with `warn`, warns that the sliding
+    /// Records the first uplift, at `t`, as `cause` has it; with `warn`, warns that the sliding
     /// answer leaves out the rocking from there; without, the run hands over there, and every
     /// uplift it hands over at is logged with the blocks that turn.
-    fn record_uplift(&mut self, t: f64, mechanism: &[Moves], warn: bool) {
+    fn record_uplift(&mut self, t: f64, cause: &Cause, warn: bool) -> Result<(), SimulationError> {
         // The blocks that turn; the others of the mechanism move with them.
-        let turning = mechanism.iter().filter(|m| m.omega_rad_s != 0.0);
+        let turning = cause.mechanism().iter().filter(|m| m.omega_rad_s != 0.0);
         if !warn {
             let blocks: Vec<usize> = turning
                 .clone()
@@ -179,8 +196,19 @@ impl Engine<'_> {
         }
         if self.resumed {
             // Not the first: the check keeps the first.
-            return;
+            return Ok(());
         }
+        let mechanism_uniqueness = match cause {
+            // Its certificates are another question than a side's multipliers: left open.
+            Cause::Always(_) => Uniqueness::Undecided,
+            Cause::Passes(s, side) => {
+                let g = &self.given;
+                let stop = || (g.progress.as_ref()).is_some_and(Progress::stop_requested);
+                let programs = seated::Programs::new(g.wall, g.topo, &self.seated_state())?;
+                // Stopped while deciding: the uplift stands, its uniqueness not decided.
+                (programs.uniqueness(side, *s, &stop)).unwrap_or(Uniqueness::Undecided)
+            }
+        };
         let names: Vec<String> = turning.map(|m| format!("{} {}", m.block, m.how)).collect();
         self.rec.uplift_check = Some(UpliftCheck {
             checked_until_s: t,
@@ -188,6 +216,7 @@ impl Engine<'_> {
                 time_s: t,
                 ground_accel_m_s2: self.seg.accel(t - self.seg.t0),
                 turning: names.clone(),
+                mechanism_uniqueness,
             }),
         });
         if warn {
@@ -196,6 +225,7 @@ impl Engine<'_> {
                 turning: names,
             });
         }
+        Ok(())
     }
 
     /// The run's end: a watch that found no uplift says how far it looked.
@@ -221,24 +251,26 @@ impl Engine<'_> {
         };
         let (interval, watched) = (interval.clone(), *watched);
         let (lo, hi) = match &*interval {
-            Interval::Empty { mechanism } => return Ok(Look::Lifts(self.t, mechanism.clone())),
+            Interval::Empty { mechanism } => {
+                return Ok(Look::Lifts(self.t, Cause::Always(mechanism.clone())))
+            }
             Interval::Between { lo, hi } => (lo, hi),
         };
-        let mut first: Option<(f64, Vec<Moves>)> = None;
-        for (side, s, watch) in [(hi, 1.0, watched[1]), (lo, -1.0, watched[0])] {
+        let mut first: Option<(f64, Cause)> = None;
+        for (side, s, watch) in [(hi, 1, watched[1]), (lo, -1, watched[0])] {
             let Some(side) = side.as_ref().filter(|_| watch) else {
                 continue;
             };
             // a_g / lambda passes the side: as a stuck cluster's limit is found.
             let limit = side.accel.to_f64();
-            let hit = limit_passed(&self.seg, limit, s, (self.t, t_next), &mut w.count);
+            let hit = limit_passed(&self.seg, limit, s as f64, (self.t, t_next), &mut w.count);
             if let Some(t) = hit {
                 if first.as_ref().is_none_or(|(f, _)| t < *f) {
-                    first = Some((t, side.mechanism.clone()));
+                    first = Some((t, Cause::Passes(s, side.clone())));
                 }
             }
         }
-        Ok(first.map_or(Look::Clear, |(t, m)| Look::Lifts(t, m)))
+        Ok(first.map_or(Look::Clear, |(t, cause)| Look::Lifts(t, cause)))
     }
 
     /// Which ends of the current state's seated interval the watch follows (see
