@@ -135,6 +135,51 @@ pub(crate) fn spanned(
     }
 }
 
+/// The most degenerate rows [`moves_off`] tries: on the generated running bonds (one friction
+/// everywhere, 105 to 976 blocks, a third of their rows degenerate) and the shipped walls whose
+/// limit is one of several, the first row that shows a direction came within the first 30
+/// tried, each an exact solve in B^T (about 5 ms at 976 blocks); a wall whose mechanism is
+/// unique would try every degenerate row before it, a thousand at that size.
+const ROWS_TRIED: usize = 64;
+
+/// Whether the optimal multipliers y of `basis` (its vertex `x`, per column of A) move off
+/// along a direction that keeps them optimal, shown one degenerate row at a time (the first
+/// [`ROWS_TRIED`]): for a basic column r at zero, d = -B^-T e_r keeps a_k d = 0 on the other
+/// basic columns and a_r d = -1, and b d = -x_r = 0, so y + t d stays optimal for small t > 0
+/// exactly where a_j d <= 0 on every nonbasic column that `tight` admits (zero reduced cost;
+/// the others have room). Such a d is no motion that no force does work on (a_r d is not
+/// zero). False where no row tried shows one, which proves nothing; `None` where `basis` is no
+/// basis.
+pub(crate) fn moves_off(
+    program: &Program,
+    basis: &[usize],
+    x: &[Q],
+    tight: impl Fn(usize) -> bool,
+) -> Option<bool> {
+    let n = program.c.len();
+    let negated = Negated::new(program);
+    let systems = negated.systems(basis)?;
+    let mut basic = vec![false; n];
+    basis
+        .iter()
+        .filter(|&&j| j < n)
+        .for_each(|&j| basic[j] = true);
+    let others: Vec<usize> = (0..n).filter(|&j| !basic[j] && tight(j)).collect();
+    let degenerate = (0..basis.len()).filter(|&k| basis[k] < n && x[basis[k]].is_zero());
+    for k in degenerate.take(ROWS_TRIED) {
+        let mut e = vec![Q::zero(); basis.len()];
+        e[k] = Q::one();
+        let w = systems.solve_transposed(e)?;
+        let row = Reduced::new(&w);
+        // a_j d = -a_j w <= 0: the sign of 0 - a_j w is not above zero.
+        let off = |j: &usize| row.sign(&Q::zero(), &negated.columns[*j]) == Ordering::Greater;
+        if !others.iter().any(off) {
+            return Some(true);
+        }
+    }
+    Some(false)
+}
+
 /// The answer of the floating-point run under `rules`, where its last basis proves it.
 pub(super) fn certified_by(
     program: &Program,
@@ -705,6 +750,27 @@ pub(super) mod tests {
             Some(true),
             "no artificial"
         );
+    }
+
+    #[test]
+    fn a_degenerate_row_shows_another_optimum_where_no_tight_column_blocks_it() {
+        // min -x1 + x3 over x1 + x2 = 1 and x2 + x3 = 0: x = (1, 0, 0), in the basis {x1, x2}
+        // with x2 at zero; y = (-1, 1), and x3 is tight. Along row 1, d = (0, -1): y + t d
+        // keeps x1 tight, x2 and x3 within their costs, and b y: another optimum.
+        let p = program(&[&[1, 1, 0], &[0, 1, 1]], &[1, 0], &[-1, 0, 1]);
+        assert_eq!(
+            moves_off(&p, &[0, 1], &[q(1), q(0), q(0)], |_| true),
+            Some(true)
+        );
+        // A fourth column -x4 in row 1 at cost -1, tight too, holds y1 at 1: y is unique, and
+        // the row shows nothing; left out of the tight ones, it blocks nothing.
+        let p = program(&[&[1, 1, 0, 0], &[0, 1, 1, -1]], &[1, 0], &[-1, 0, 1, -1]);
+        let x = [q(1), q(0), q(0), q(0)];
+        assert_eq!(moves_off(&p, &[0, 1], &x, |_| true), Some(false));
+        assert_eq!(moves_off(&p, &[0, 1], &x, |j| j != 3), Some(true));
+        // Nondegenerate: no row to try.
+        let p = program(&[&[1, 0], &[0, 1]], &[1, 1], &[-1, -1]);
+        assert_eq!(moves_off(&p, &[0, 1], &[q(1), q(1)], |_| true), Some(false));
     }
 
     #[test]

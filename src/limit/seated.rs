@@ -158,22 +158,18 @@ impl<'w> Programs<'w> {
     /// Whether `side`, the end of [`Programs::interval`] towards the side of `s` (+1: +x), has
     /// the only mechanism that holds there, decided as the limit at rest's is (docs/rocking-
     /// walls.md, "What it says and what it does not"): a side whose forces are degenerate is
-    /// solved again for its basis, and decided where the state has at most [`DECIDED_BLOCKS`]
-    /// movable blocks. `None` where `stop` said so.
+    /// solved again for its basis, and decided in full where the state has at most
+    /// [`DECIDED_BLOCKS`] movable blocks. `None` where `stop` said so.
     pub fn uniqueness(&self, side: &Side, s: i128, stop: &dyn Fn() -> bool) -> Option<Uniqueness> {
-        let builder = (self.builder.as_ref())
-            .filter(|b| side.degenerate && b.movable.len() <= DECIDED_BLOCKS);
+        let builder = self.builder.as_ref().filter(|_| side.degenerate);
         let Some(builder) = builder else {
-            return Some(if side.degenerate {
-                Uniqueness::Undecided
-            } else {
-                Uniqueness::Unique
-            });
+            return Some(Uniqueness::Unique);
         };
         let program = builder.program(s);
         match certify::solve(&program, &builder.groups, stop)? {
             Outcome::Optimal { x, y, basis, .. } => {
-                uniqueness(&program, &x, &y, &basis, true, stop)
+                let decide = builder.movable.len() <= DECIDED_BLOCKS;
+                uniqueness(&program, &x, &y, &basis, decide, stop)
             }
             // The side was solved from this program: the same solve ends the same way.
             Outcome::Infeasible { .. } | Outcome::Unbounded => Some(Uniqueness::Undecided),

@@ -177,7 +177,9 @@ fn the_papers_uniform_wall_slides_at_its_friction() {
 /// is one of several: a block alone slides (friction 0.3) or tips (0.7, about its corner, at
 /// b/h = 0.5) by one mechanism, at the tie (0.5) by either; the paper's uniform wall, one
 /// friction everywhere, slides at it with both bottom blocks or with one of them and what it
-/// carries (the next test has both). Not asked to decide, a degenerate limit is undecided.
+/// carries (the next test has both), and its basis shows another at once, so it is one of
+/// several even where the full decision is not asked for; the paper's variable wall's
+/// degenerate side shows none there, and is unique decided in full, undecided otherwise.
 #[test]
 fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
     let uniqueness = |l: &Limit| match l {
@@ -207,8 +209,29 @@ fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
     let Some(Outcome::Optimal { x, y, basis, .. }) = certify::solve(&p, &groups, &|| false) else {
         panic!("the uniform wall's limit");
     };
-    let undecided = uniqueness_of(&p, &x, &y, &basis, false);
-    assert_eq!(undecided, Uniqueness::Undecided);
+    let kept = |j: usize| x[j].is_positive() || p.c[j] == p.dot(j, &y);
+    assert_eq!(certify::moves_off(&p, &basis, &x, kept), Some(true));
+    let shown = uniqueness_of(&p, &x, &y, &basis, false);
+    assert_eq!(shown, Uniqueness::OneOfSeveral);
+    let variable = Model::from_file("walls/five-block-variable.ron").unwrap();
+    let mut degenerate_sides = 0;
+    for s in [1, -1] {
+        let (p, groups) = side_program(&variable, s);
+        let Some(Outcome::Optimal { x, y, basis, .. }) = certify::solve(&p, &groups, &|| false)
+        else {
+            panic!("the variable wall's limit");
+        };
+        if !degenerate(&p, &x) {
+            continue;
+        }
+        degenerate_sides += 1;
+        let kept = |j: usize| x[j].is_positive() || p.c[j] == p.dot(j, &y);
+        assert_eq!(certify::moves_off(&p, &basis, &x, kept), Some(false));
+        let undecided = uniqueness_of(&p, &x, &y, &basis, false);
+        assert_eq!(undecided, Uniqueness::Undecided);
+        assert_eq!(uniqueness_of(&p, &x, &y, &basis, true), Uniqueness::Unique);
+    }
+    assert_eq!(degenerate_sides, 1);
 }
 
 /// Multipliers that differ by a d with A^T d = 0 (dependent rows) are one mechanism: the
