@@ -115,7 +115,8 @@ pub enum Limit {
 pub enum Uniqueness {
     /// No other mechanism holds at the limit (but for motions that no contact force does work
     /// on, which the program cannot tell apart: a block that slides on a joint moved along the
-    /// normal of the friction cone's edge it slides on; blocks' rotations are never among them).
+    /// normal of the friction cone's edge it slides on; they turn no block, since each rests on
+    /// a joint with forces at two corners).
     Unique,
     /// Others hold at the same limit too (a uniform wall slides on any of its bed joints).
     OneOfSeveral,

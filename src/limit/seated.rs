@@ -161,6 +161,7 @@ impl<'w> Programs<'w> {
     /// solved again for its basis, and decided in full where the state has at most
     /// [`DECIDED_BLOCKS`] movable blocks. `None` where `stop` said so.
     pub fn uniqueness(&self, side: &Side, s: i128, stop: &dyn Fn() -> bool) -> Option<Uniqueness> {
+        // A side comes from a program, so without one there is none to ask about.
         let builder = self.builder.as_ref().filter(|_| side.degenerate);
         let Some(builder) = builder else {
             return Some(Uniqueness::Unique);
