@@ -100,17 +100,28 @@ pub(crate) fn feasible(
     signs.is_some_and(|signs| negated.feasible(&signs, &last))
 }
 
+/// What [`spanned`] shows.
+#[derive(Debug, PartialEq)]
+pub(crate) enum Span {
+    /// The admitted columns span every column: shown by this basis, the one given with some
+    /// artificial variables replaced by admitted columns (degenerate pivots: the vertex and the
+    /// multipliers are the same), those left each on a row the others determine.
+    All(Vec<usize>),
+    /// Some column lies outside the admitted columns' span.
+    Short,
+}
+
 /// Whether the columns of the program that `within` admits span all its columns, shown from
-/// `basis` (of [A | I], its columns of A among those admitted): each artificial variable left
-/// in it either sits on a row the others determine (row k of B^-1 vanishes on every column),
-/// or is replaced by an admitted column on which that row does not vanish; where only columns
-/// not admitted have such an entry, they leave the admitted columns' span. `None` where
-/// `basis` is no basis.
+/// `basis` (of [A | I], its columns of A among those admitted, at a vertex whose artificial
+/// variables are zero): each artificial variable left in it either sits on a row the others
+/// determine (row k of B^-1 vanishes on every column), or is replaced by an admitted column on
+/// which that row does not vanish; where only columns not admitted have such an entry, they
+/// leave the admitted columns' span. `None` where `basis` is no basis.
 pub(crate) fn spanned(
     program: &Program,
     basis: &[usize],
     within: impl Fn(usize) -> bool,
-) -> Option<bool> {
+) -> Option<Span> {
     let n = program.c.len();
     let negated = Negated::new(program);
     let mut basis = basis.to_vec();
@@ -118,9 +129,7 @@ pub(crate) fn spanned(
     'passes: loop {
         let systems = negated.systems(&basis)?;
         for k in (0..basis.len()).filter(|&k| basis[k] >= n) {
-            let mut e = vec![Q::zero(); basis.len()];
-            e[k] = Q::one();
-            let w = systems.solve_transposed(e)?;
+            let w = systems.solve_transposed(unit(basis.len(), k))?;
             let row = Reduced::new(&w);
             let off = |j: &usize| row.sign(&Q::zero(), &negated.columns[*j]) != Ordering::Equal;
             if let Some(j) = (0..n).filter(|&j| within(j)).find(off) {
@@ -128,11 +137,108 @@ pub(crate) fn spanned(
                 continue 'passes;
             }
             if (0..n).any(|j| off(&j)) {
-                return Some(false);
+                return Some(Span::Short);
             }
         }
-        return Some(true);
+        return Some(Span::All(basis));
     }
+}
+
+/// What the questions about a degenerate optimum read from its basis.
+struct Degenerate {
+    negated: Negated,
+    systems: Systems,
+    /// The degenerate rows: the places of the basic columns of A at zero.
+    rows: Vec<usize>,
+    /// The nonbasic columns that the question's `tight` admits.
+    others: Vec<usize>,
+}
+
+impl Degenerate {
+    /// Those of `basis` at the vertex `x` (per column of A); `None` where it is no basis.
+    fn of(
+        program: &Program,
+        basis: &[usize],
+        x: &[Q],
+        tight: impl Fn(usize) -> bool,
+    ) -> Option<Degenerate> {
+        let n = program.c.len();
+        let negated = Negated::new(program);
+        let systems = negated.systems(basis)?;
+        let mut basic = vec![false; n];
+        basis
+            .iter()
+            .filter(|&&j| j < n)
+            .for_each(|&j| basic[j] = true);
+        let rows = (0..basis.len())
+            .filter(|&k| basis[k] < n && x[basis[k]].is_zero())
+            .collect();
+        let others = (0..n).filter(|&j| !basic[j] && tight(j)).collect();
+        Some(Degenerate {
+            negated,
+            systems,
+            rows,
+            others,
+        })
+    }
+}
+
+/// e_k of length m.
+fn unit(m: usize, k: usize) -> Vec<Q> {
+    let mut e = vec![Q::zero(); m];
+    e[k] = Q::one();
+    e
+}
+
+/// The program of the directions in which the optimal multipliers y of `basis` (its vertex
+/// `x`, per column of A; its artificial variables, if any, on rows the others determine, as
+/// [`spanned`] leaves them) can move and stay optimal, in the coordinates v = -B^T d: v = 0 on
+/// the basic columns above zero (a_k d = 0), v >= 0 on those at zero (the degenerate rows D:
+/// a_k d <= 0), and a_j d = -(B^-1 a_j)_D v <= 0 on every nonbasic column that `tight` admits
+/// (zero reduced cost; the others have room); v on an artificial variable's row moves y along
+/// a motion no force does work on, and is left out. Normalised by the sum of v: a feasibility
+/// program, feasible exactly where another optimal y (not by such a motion alone) exists. `None`
+/// where `basis` is no basis or has more than `most` degenerate rows (a solve in B^T each).
+pub(crate) fn directions(
+    program: &Program,
+    basis: &[usize],
+    x: &[Q],
+    tight: impl Fn(usize) -> bool,
+    most: usize,
+) -> Option<Program> {
+    let Degenerate {
+        negated,
+        systems,
+        rows,
+        others,
+    } = Degenerate::of(program, basis, x, tight)?;
+    if rows.len() > most {
+        return None;
+    }
+    // Rows: (B^-1 a_j)_D v - s_j = 0 for each of `others`, then the sum of v = 1.
+    let mut columns: Vec<Vec<(usize, Q)>> = Vec::new();
+    for &k in &rows {
+        let w = systems.solve_transposed(unit(basis.len(), k))?;
+        let mut column: Vec<(usize, Q)> = (others.iter().enumerate())
+            .map(|(i, &j)| {
+                (
+                    i,
+                    negated.columns[j]
+                        .iter()
+                        .map(|(r, a)| a * &w[*r])
+                        .sum::<Q>(),
+                )
+            })
+            .filter(|(_, a)| !a.is_zero())
+            .collect();
+        column.push((others.len(), Q::one()));
+        columns.push(column);
+    }
+    columns.extend((0..others.len()).map(|i| vec![(i, -Q::one())]));
+    let mut b = vec![Q::zero(); others.len() + 1];
+    b[others.len()] = Q::one();
+    let costs = vec![Q::zero(); columns.len()];
+    Some(Program::new(columns, b, costs))
 }
 
 /// The most degenerate rows [`moves_off`] tries: on the generated running bonds (one friction
@@ -156,24 +262,14 @@ pub(crate) fn moves_off(
     x: &[Q],
     tight: impl Fn(usize) -> bool,
 ) -> Option<bool> {
-    let n = program.c.len();
-    let negated = Negated::new(program);
-    let systems = negated.systems(basis)?;
-    let mut basic = vec![false; n];
-    basis
-        .iter()
-        .filter(|&&j| j < n)
-        .for_each(|&j| basic[j] = true);
-    let others: Vec<usize> = (0..n).filter(|&j| !basic[j] && tight(j)).collect();
-    let degenerate = (0..basis.len()).filter(|&k| basis[k] < n && x[basis[k]].is_zero());
-    for k in degenerate.take(ROWS_TRIED) {
-        let mut e = vec![Q::zero(); basis.len()];
-        e[k] = Q::one();
-        let w = systems.solve_transposed(e)?;
+    let of = Degenerate::of(program, basis, x, tight)?;
+    for &k in of.rows.iter().take(ROWS_TRIED) {
+        let w = of.systems.solve_transposed(unit(basis.len(), k))?;
         let row = Reduced::new(&w);
         // a_j d = -a_j w <= 0: the sign of 0 - a_j w is not above zero.
-        let off = |j: &usize| row.sign(&Q::zero(), &negated.columns[*j]) == Ordering::Greater;
-        if !others.iter().any(off) {
+        let column = |j: &usize| &of.negated.columns[*j];
+        let off = |j: &usize| row.sign(&Q::zero(), column(j)) == Ordering::Greater;
+        if !of.others.iter().any(off) {
             return Some(true);
         }
     }
@@ -733,7 +829,10 @@ pub(super) mod tests {
         // Rows x1 + x2 + x3 and twice that: the second is the first's, so x1 with row 1's
         // artificial shows that x1 alone spans every column.
         let dependent = program(&[&[1, 1, 1], &[2, 2, 2]], &[1, 2], &[0, 0, 0]);
-        assert_eq!(spanned(&dependent, &[0, 4], |j| j == 0), Some(true));
+        assert_eq!(
+            spanned(&dependent, &[0, 4], |j| j == 0),
+            Some(Span::All(vec![0, 4]))
+        );
         assert_eq!(
             spanned(&dependent, &[3, 3], all),
             None,
@@ -742,12 +841,20 @@ pub(super) mod tests {
         // Rows x1 + x2 and x2 + x3: x1 alone does not span (x2 and x3 leave its span); x1 and
         // x3 do, reached from row 1's artificial replaced by x3, or by x2 where it is admitted.
         let independent = program(&[&[1, 1, 0], &[0, 1, 1]], &[1, 1], &[0, 0, 0]);
-        assert_eq!(spanned(&independent, &[0, 4], |j| j == 0), Some(false));
-        assert_eq!(spanned(&independent, &[0, 4], |j| j != 1), Some(true));
-        assert_eq!(spanned(&independent, &[3, 4], all), Some(true));
+        assert_eq!(
+            spanned(&independent, &[0, 4], |j| j == 0),
+            Some(Span::Short)
+        );
+        assert_eq!(
+            spanned(&independent, &[0, 4], |j| j != 1),
+            Some(Span::All(vec![0, 2]))
+        );
+        assert!(
+            matches!(spanned(&independent, &[3, 4], all), Some(Span::All(b)) if b.iter().all(|&j| j < 3))
+        );
         assert_eq!(
             spanned(&independent, &[0, 2], |j| j != 1),
-            Some(true),
+            Some(Span::All(vec![0, 2])),
             "no artificial"
         );
     }
@@ -771,6 +878,35 @@ pub(super) mod tests {
         // Nondegenerate: no row to try.
         let p = program(&[&[1, 0], &[0, 1]], &[1, 1], &[-1, -1]);
         assert_eq!(moves_off(&p, &[0, 1], &[q(1), q(1)], |_| true), Some(false));
+    }
+
+    #[test]
+    fn the_program_of_directions_is_feasible_exactly_where_another_optimum_exists() {
+        let feasible = |p: &Program| !matches!(exact(p), Outcome::Infeasible { .. });
+        // The first program of the test above: its degenerate row shows another optimum.
+        let p = program(&[&[1, 1, 0], &[0, 1, 1]], &[1, 0], &[-1, 0, 1]);
+        let x = [q(1), q(0), q(0)];
+        let d = directions(&p, &[0, 1], &x, |_| true, 8).unwrap();
+        assert!(feasible(&d));
+        // With -x4 tight in row 1, y is unique: no direction.
+        let p = program(&[&[1, 1, 0, 0], &[0, 1, 1, -1]], &[1, 0], &[-1, 0, 1, -1]);
+        let x = [q(1), q(0), q(0), q(0)];
+        let d = directions(&p, &[0, 1], &x, |_| true, 8).unwrap();
+        assert!(!feasible(&d));
+        let not_asked = directions(&p, &[0, 1], &x, |_| true, 0);
+        assert!(not_asked.is_none(), "more rows than asked");
+        // Two degenerate rows (x2, x3 basic at zero), each blocked alone by a tight column (x4
+        // by row 1, x5 by row 2) but not together: v = (1, 1) keeps both. The rows tried one
+        // at a time show nothing; the program of directions shows another optimum.
+        let p = program(
+            &[&[1, 0, 0, 0, 0], &[0, 1, 0, -1, 2], &[0, 0, 1, 2, -1]],
+            &[1, 0, 0],
+            &[-1, 0, 0, 0, 0],
+        );
+        let x = [q(1), q(0), q(0), q(0), q(0)];
+        assert_eq!(moves_off(&p, &[0, 1, 2], &x, |_| true), Some(false));
+        let d = directions(&p, &[0, 1, 2], &x, |_| true, 8).unwrap();
+        assert!(feasible(&d));
     }
 
     #[test]

@@ -120,10 +120,10 @@ pub enum Uniqueness {
     Unique,
     /// Others hold at the same limit too (a uniform wall slides on any of its bed joints).
     OneOfSeveral,
-    /// Not decided: the forces at the limit are degenerate, and the wall has more movable
-    /// blocks than the deciding program is run for ([`DECIDED_BLOCKS`]); or (the uplift check)
-    /// the mechanism is a certificate that a state keeps no block seated whatever the ground
-    /// does, or the run was stopped while deciding.
+    /// Not decided: the forces at the limit are degenerate in more rows than the deciding
+    /// program is run for ([`DECIDED_ROWS`]) and the basis shows no other mechanism at once;
+    /// or (the uplift check) the mechanism is a certificate that a state keeps no block seated
+    /// whatever the ground does, or the run was stopped while deciding.
     Undecided,
 }
 
@@ -141,13 +141,12 @@ impl Uniqueness {
     }
 }
 
-/// The most movable blocks for which a degenerate limit's mechanism is decided unique or not
-/// where its basis shows no other at once (`limit::uniqueness`): the deciding program is about
-/// as large as the limit's own and harder (it starts from the artificial basis). The shipped
-/// walls' take milliseconds; generated slender bonds of 244 and 405 blocks (degenerate, their
-/// mechanisms unique) take 2.9 and 12.6 s with it against 0.72 and 3.7 s without. Beyond it a
-/// mechanism is still shown to be one of several where the basis shows another.
-pub const DECIDED_BLOCKS: usize = 200;
+/// The most degenerate rows (basic columns at zero) for which a degenerate limit's mechanism is
+/// decided in full where its basis shows no other at once (`limit::uniqueness`): the deciding
+/// program takes an exact solve in B^T per such row. Walls of up to 200 movable blocks have
+/// at most 600 rows in all, so each is decided; larger ones where their limit is degenerate in
+/// few rows (a slender running bond of 405 blocks: 10 and 7, decided in milliseconds).
+pub const DECIDED_ROWS: usize = 600;
 
 /// How a block moves in a mechanism, relative to the ground.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -367,9 +366,8 @@ fn direction(
         Outcome::Optimal { value, y, x, basis } => {
             let accel = -value;
             let g = &accel / &wall.g_m_s2;
-            let decide = movable.len() <= DECIDED_BLOCKS;
-            let Some(mechanism_uniqueness) = uniqueness(&program, &x, &y, &basis, decide, stop)
-            else {
+            let found = uniqueness(&program, &x, &y, &basis, DECIDED_ROWS, stop);
+            let Some(mechanism_uniqueness) = found else {
                 return Ok(None);
             };
             Ok(Some(Limit::Holds {
@@ -390,29 +388,26 @@ fn direction(
 /// motion no contact force does work on (a block sliding on a joint has one: moved along the
 /// normal of the cone's edge it slides on), which the multipliers cannot tell apart: the
 /// question is whether every such d is one of those. Where x has as many positive entries as
-/// rows (nondegenerate) P alone spans the rows and d = 0. Otherwise the answer is yes exactly
-/// when lin(A_P) + cone(A_T), the cone polar to theirs, is the span of A's columns. Where P and
-/// T do not span A's columns (`certify::spanned`, from the basis, whose own columns lie in P
-/// and T) some d in that span is orthogonal to all of them: no. Where they do, their cone is
-/// that span exactly when A_T l + A_P mu = 0 for some l with every entry >= 1 (Gordan's
-/// theorem): a program of feasibility, answered exactly, only if `decide`. Before them, at
-/// any size, a few degenerate rows of the basis are tried for such a d directly
-/// (`certify::moves_off`, an exact solve each): one found is a no for milliseconds.
+/// rows (nondegenerate) P alone spans the rows and d = 0. Otherwise: a few degenerate rows of
+/// the basis are tried for such a d directly (`certify::moves_off`, an exact solve each; one
+/// found is a no for milliseconds); where P and T do not span A's columns (`certify::spanned`,
+/// from the basis, whose own columns lie in P and T) some d in that span is orthogonal to all
+/// of them: no; where they do, every d is -B^-T v for a basis of P and T's columns, and the
+/// program of such v (`certify::directions`, at most `most_rows` degenerate rows) is
+/// feasible exactly where another optimal y exists.
 fn uniqueness(
     program: &Program,
     x: &[Q],
     y: &[Q],
     basis: &[usize],
-    decide: bool,
+    most_rows: usize,
     stop: &dyn Fn() -> bool,
 ) -> Option<Uniqueness> {
     if !degenerate(program, x) {
         return Some(Uniqueness::Unique);
     }
-    let m = program.b.len();
-    let column = |j: usize| program.column(j).iter();
     let tight = |j: usize| {
-        let ay: Q = column(j).map(|(i, a)| a * &y[*i]).sum();
+        let ay: Q = program.column(j).iter().map(|(i, a)| a * &y[*i]).sum();
         program.c[j] == ay
     };
     // P and T: the columns the directions d must keep (a_j d = 0 on P, <= 0 on T).
@@ -422,34 +417,19 @@ fn uniqueness(
     if certify::moves_off(program, basis, x, |j| kept[j]) == Some(true) {
         return Some(Uniqueness::OneOfSeveral);
     }
-    match certify::spanned(program, basis, |j| kept[j]) {
+    let basis = match certify::spanned(program, basis, |j| kept[j]) {
         None => return Some(Uniqueness::Undecided),
         // Some d in the columns' span is orthogonal to all of P and T: y + d holds too.
-        Some(false) => return Some(Uniqueness::OneOfSeveral),
-        Some(true) => {}
-    }
-    if !decide {
+        Some(certify::Span::Short) => return Some(Uniqueness::OneOfSeveral),
+        Some(certify::Span::All(basis)) => basis,
+    };
+    let Some(directions) = certify::directions(program, &basis, x, |j| kept[j], most_rows) else {
         return Some(Uniqueness::Undecided);
-    }
-    let mut columns: Vec<Vec<(usize, Q)>> = Vec::new();
-    let mut b = vec![Q::zero(); m];
-    for (j, x_j) in x.iter().enumerate().filter(|&(j, _)| kept[j]) {
-        if x_j.is_positive() {
-            columns.push(column(j).cloned().collect());
-            columns.push(column(j).map(|(i, a)| (*i, -a)).collect());
-        } else {
-            // l_j = 1 + l'_j with l'_j >= 0: its column's unit share moves to the right.
-            columns.push(column(j).cloned().collect());
-            column(j).for_each(|(i, a)| b[*i] = &b[*i] - a);
-        }
-    }
-    let costs = vec![Q::zero(); columns.len()];
-    Some(
-        match certify::solve(&Program::new(columns, b, costs), &[], stop)? {
-            Outcome::Infeasible { .. } => Uniqueness::OneOfSeveral,
-            Outcome::Optimal { .. } | Outcome::Unbounded => Uniqueness::Unique,
-        },
-    )
+    };
+    Some(match certify::solve(&directions, &[], stop)? {
+        Outcome::Infeasible { .. } => Uniqueness::Unique,
+        Outcome::Optimal { .. } | Outcome::Unbounded => Uniqueness::OneOfSeveral,
+    })
 }
 
 /// Whether the optimal vertex `x` has fewer positive entries than the program has rows: only

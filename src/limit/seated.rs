@@ -15,7 +15,7 @@
 
 use super::simplex::{Outcome, Program};
 use super::{centroid, crash_groups, entries, mechanism, overlap, pushes, Force, Moves, ROWS};
-use super::{certify, crash, degenerate, uniqueness, Uniqueness, DECIDED_BLOCKS};
+use super::{certify, crash, degenerate, uniqueness, Uniqueness, DECIDED_ROWS};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::topology::{Base, BlockId, Topology};
@@ -158,8 +158,8 @@ impl<'w> Programs<'w> {
     /// Whether `side`, the end of [`Programs::interval`] towards the side of `s` (+1: +x), has
     /// the only mechanism that holds there, decided as the limit at rest's is (docs/rocking-
     /// walls.md, "What it says and what it does not"): a side whose forces are degenerate is
-    /// solved again for its basis, and decided in full where the state has at most
-    /// [`DECIDED_BLOCKS`] movable blocks. `None` where `stop` said so.
+    /// solved again for its basis, and decided in full where it is degenerate in at most
+    /// [`DECIDED_ROWS`] rows. `None` where `stop` said so.
     pub fn uniqueness(&self, side: &Side, s: i128, stop: &dyn Fn() -> bool) -> Option<Uniqueness> {
         // A side comes from a program, so without one there is none to ask about.
         let builder = self.builder.as_ref().filter(|_| side.degenerate);
@@ -169,8 +169,7 @@ impl<'w> Programs<'w> {
         let program = builder.program(s);
         match certify::solve(&program, &builder.groups, stop)? {
             Outcome::Optimal { x, y, basis, .. } => {
-                let decide = builder.movable.len() <= DECIDED_BLOCKS;
-                uniqueness(&program, &x, &y, &basis, decide, stop)
+                uniqueness(&program, &x, &y, &basis, DECIDED_ROWS, stop)
             }
             // The side was solved from this program: the same solve ends the same way.
             Outcome::Infeasible { .. } | Outcome::Unbounded => Some(Uniqueness::Undecided),

@@ -264,7 +264,8 @@ fn multipliers_that_differ_where_the_rows_depend_on_one_another_are_one_mechanis
 
 /// [`uniqueness`] never stopped.
 fn uniqueness_of(p: &Program, x: &[Q], y: &[Q], basis: &[usize], decide: bool) -> Uniqueness {
-    uniqueness(p, x, y, basis, decide, &|| false).expect("not stopped")
+    let most_rows = if decide { DECIDED_ROWS } else { 0 };
+    uniqueness(p, x, y, basis, most_rows, &|| false).expect("not stopped")
 }
 
 #[test]
