@@ -123,6 +123,10 @@ pub(crate) fn spanned(
     within: impl Fn(usize) -> bool,
 ) -> Option<Span> {
     let n = program.c.len();
+    if basis.iter().all(|&j| j < n) {
+        // A basis of columns of A alone spans them all: no factorisation needed to show it.
+        return Some(Span::All(basis.to_vec()));
+    }
     let negated = Negated::new(program);
     let mut basis = basis.to_vec();
     // Each pass puts one more admitted column in an artificial variable's place, or ends.

@@ -732,19 +732,13 @@ fn run_checks_uplift_when_asked_and_refuses_walls_too_large_for_it() {
          1.2, blocks: [(width_m: 0.6), (width_m: 0.6, gap_m: 0.2)])])",
     )
     .unwrap();
-    let (ok, out, err) = pirqa(&[
-        "run",
-        twins.to_str().unwrap(),
-        "--model",
-        "slide",
-        "--check-uplift",
-        "--sine",
-        "0.55g",
-        "--freq",
-        "1",
-        "--duration",
-        "1",
-    ]);
+    // A second of a 1 Hz sine, watched.
+    let watched = |wall: &std::path::Path, amplitude: &str, model: &[&str]| {
+        let sine = ["--sine", amplitude, "--freq", "1", "--duration", "1"];
+        let run = ["run", wall.to_str().unwrap(), "--check-uplift"];
+        pirqa(&[&run[..], model, &sine].concat())
+    };
+    let (ok, out, err) = watched(&twins, "0.55g", &["--model", "slide"]);
     assert!(ok, "{err}");
     assert!(
         out.contains("(one of several mechanisms that hold at this limit)"),
@@ -762,17 +756,7 @@ fn run_checks_uplift_when_asked_and_refuses_walls_too_large_for_it() {
         wall.to_str().unwrap(),
     ]);
     assert!(ok, "{err}");
-    let (ok, _, err) = pirqa(&[
-        "run",
-        wall.to_str().unwrap(),
-        "--check-uplift",
-        "--sine",
-        "0.3g",
-        "--freq",
-        "1",
-        "--duration",
-        "1",
-    ]);
+    let (ok, _, err) = watched(&wall, "0.3g", &[]);
     assert!(!ok && err.contains("up to 600 movable blocks"), "{err}");
 }
 
