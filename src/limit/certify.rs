@@ -148,19 +148,32 @@ pub(crate) fn spanned(
     }
 }
 
-/// What the questions about a degenerate optimum read from its basis.
-struct Degenerate {
+/// The most degenerate rows [`Degenerate::moves_off`] tries: on the generated running bonds (one
+/// friction everywhere, 105 to 976 blocks, a third of their rows degenerate) and the shipped
+/// walls whose limit is one of several, the first row that shows a direction came within the
+/// first 30 tried, each an exact solve in B^T (about 5 ms at 976 blocks); a wall whose
+/// mechanism is unique would try every degenerate row before it, a thousand at that size.
+const ROWS_TRIED: usize = 64;
+
+/// What the questions about a degenerate optimum read from its basis: asked one after the
+/// other of one basis ([`Degenerate::moves_off`], then [`Degenerate::directions`]), they share
+/// its factorisation and the solves in B^T of the rows both take.
+pub(crate) struct Degenerate {
     negated: Negated,
     systems: Systems,
+    /// The basis's size: the program's rows.
+    m: usize,
     /// The degenerate rows: the places of the basic columns of A at zero.
     rows: Vec<usize>,
     /// The nonbasic columns that the question's `tight` admits.
     others: Vec<usize>,
+    /// B^-T e_k for the first of `rows`, as far as they were solved.
+    solved: Vec<Vec<Q>>,
 }
 
 impl Degenerate {
     /// Those of `basis` at the vertex `x` (per column of A); `None` where it is no basis.
-    fn of(
+    pub(crate) fn of(
         program: &Program,
         basis: &[usize],
         x: &[Q],
@@ -181,9 +194,79 @@ impl Degenerate {
         Some(Degenerate {
             negated,
             systems,
+            m: basis.len(),
             rows,
             others,
+            solved: Vec::new(),
         })
+    }
+
+    /// B^-T e_k for the `i`-th degenerate row k, solved once.
+    fn row(&mut self, i: usize) -> Option<&[Q]> {
+        while self.solved.len() <= i {
+            let k = self.rows[self.solved.len()];
+            let w = self.systems.solve_transposed(unit(self.m, k))?;
+            self.solved.push(w);
+        }
+        Some(&self.solved[i])
+    }
+
+    /// Whether the optimal multipliers y of the basis move off along a direction that keeps
+    /// them optimal, shown one degenerate row at a time (the first [`ROWS_TRIED`]): for a
+    /// basic column r at zero, d = -B^-T e_r keeps a_k d = 0 on the other basic columns and
+    /// a_r d = -1, and b d = -x_r = 0, so y + t d stays optimal for small t > 0 exactly where
+    /// a_j d <= 0 on every nonbasic column that `tight` admits (zero reduced cost; the others
+    /// have room). Such a d is no motion that no force does work on (a_r d is not zero). False
+    /// where no row tried shows one, which proves nothing; `None` where a solve fails.
+    pub(crate) fn moves_off(&mut self) -> Option<bool> {
+        for i in 0..self.rows.len().min(ROWS_TRIED) {
+            self.row(i)?;
+            let row = Reduced::new(&self.solved[i]);
+            // a_j d = -a_j w <= 0: the sign of 0 - a_j w is not above zero.
+            let column = |j: &usize| &self.negated.columns[*j];
+            let off = |j: &usize| row.sign(&Q::zero(), column(j)) == Ordering::Greater;
+            if !self.others.iter().any(off) {
+                return Some(true);
+            }
+        }
+        Some(false)
+    }
+
+    /// The program of the directions in which the optimal multipliers y of the basis (its
+    /// artificial variables, if any, on rows the others determine, as [`spanned`] leaves
+    /// them) can move and stay optimal, in the coordinates v = -B^T d: v = 0 on the basic
+    /// columns above zero (a_k d = 0), v >= 0 on those at zero (the degenerate rows D: a_k d
+    /// <= 0), and a_j d = -(B^-1 a_j)_D v <= 0 on every nonbasic column that `tight` admits
+    /// (zero reduced cost; the others have room); v on an artificial variable's row moves y
+    /// along a motion no force does work on, and is left out. Normalised by the sum of v: a
+    /// feasibility program, feasible exactly where another optimal y (not by such a motion
+    /// alone) exists. `None` where a solve fails or the basis has more than `most` degenerate
+    /// rows (a solve in B^T each).
+    pub(crate) fn directions(&mut self, most: usize) -> Option<Program> {
+        if self.rows.len() > most {
+            return None;
+        }
+        let n_others = self.others.len();
+        // Rows: (B^-1 a_j)_D v - s_j = 0 for each of `others`, then the sum of v = 1.
+        let mut columns: Vec<Vec<(usize, Q)>> = Vec::new();
+        for i in 0..self.rows.len() {
+            self.row(i)?;
+            let w = &self.solved[i];
+            let mut column: Vec<(usize, Q)> = (self.others.iter().enumerate())
+                .map(|(r, &j)| {
+                    let a = &self.negated.columns[j];
+                    (r, a.iter().map(|(t, a)| a * &w[*t]).sum::<Q>())
+                })
+                .filter(|(_, a)| !a.is_zero())
+                .collect();
+            column.push((n_others, Q::one()));
+            columns.push(column);
+        }
+        columns.extend((0..n_others).map(|r| vec![(r, -Q::one())]));
+        let mut b = vec![Q::zero(); n_others + 1];
+        b[n_others] = Q::one();
+        let costs = vec![Q::zero(); columns.len()];
+        Some(Program::new(columns, b, costs))
     }
 }
 
@@ -192,92 +275,6 @@ fn unit(m: usize, k: usize) -> Vec<Q> {
     let mut e = vec![Q::zero(); m];
     e[k] = Q::one();
     e
-}
-
-/// The program of the directions in which the optimal multipliers y of `basis` (its vertex
-/// `x`, per column of A; its artificial variables, if any, on rows the others determine, as
-/// [`spanned`] leaves them) can move and stay optimal, in the coordinates v = -B^T d: v = 0 on
-/// the basic columns above zero (a_k d = 0), v >= 0 on those at zero (the degenerate rows D:
-/// a_k d <= 0), and a_j d = -(B^-1 a_j)_D v <= 0 on every nonbasic column that `tight` admits
-/// (zero reduced cost; the others have room); v on an artificial variable's row moves y along
-/// a motion no force does work on, and is left out. Normalised by the sum of v: a feasibility
-/// program, feasible exactly where another optimal y (not by such a motion alone) exists. `None`
-/// where `basis` is no basis or has more than `most` degenerate rows (a solve in B^T each).
-pub(crate) fn directions(
-    program: &Program,
-    basis: &[usize],
-    x: &[Q],
-    tight: impl Fn(usize) -> bool,
-    most: usize,
-) -> Option<Program> {
-    let Degenerate {
-        negated,
-        systems,
-        rows,
-        others,
-    } = Degenerate::of(program, basis, x, tight)?;
-    if rows.len() > most {
-        return None;
-    }
-    // Rows: (B^-1 a_j)_D v - s_j = 0 for each of `others`, then the sum of v = 1.
-    let mut columns: Vec<Vec<(usize, Q)>> = Vec::new();
-    for &k in &rows {
-        let w = systems.solve_transposed(unit(basis.len(), k))?;
-        let mut column: Vec<(usize, Q)> = (others.iter().enumerate())
-            .map(|(i, &j)| {
-                (
-                    i,
-                    negated.columns[j]
-                        .iter()
-                        .map(|(r, a)| a * &w[*r])
-                        .sum::<Q>(),
-                )
-            })
-            .filter(|(_, a)| !a.is_zero())
-            .collect();
-        column.push((others.len(), Q::one()));
-        columns.push(column);
-    }
-    columns.extend((0..others.len()).map(|i| vec![(i, -Q::one())]));
-    let mut b = vec![Q::zero(); others.len() + 1];
-    b[others.len()] = Q::one();
-    let costs = vec![Q::zero(); columns.len()];
-    Some(Program::new(columns, b, costs))
-}
-
-/// The most degenerate rows [`moves_off`] tries: on the generated running bonds (one friction
-/// everywhere, 105 to 976 blocks, a third of their rows degenerate) and the shipped walls whose
-/// limit is one of several, the first row that shows a direction came within the first 30
-/// tried, each an exact solve in B^T (about 5 ms at 976 blocks); a wall whose mechanism is
-/// unique would try every degenerate row before it, a thousand at that size.
-const ROWS_TRIED: usize = 64;
-
-/// Whether the optimal multipliers y of `basis` (its vertex `x`, per column of A) move off
-/// along a direction that keeps them optimal, shown one degenerate row at a time (the first
-/// [`ROWS_TRIED`]): for a basic column r at zero, d = -B^-T e_r keeps a_k d = 0 on the other
-/// basic columns and a_r d = -1, and b d = -x_r = 0, so y + t d stays optimal for small t > 0
-/// exactly where a_j d <= 0 on every nonbasic column that `tight` admits (zero reduced cost;
-/// the others have room). Such a d is no motion that no force does work on (a_r d is not
-/// zero). False where no row tried shows one, which proves nothing; `None` where `basis` is no
-/// basis.
-pub(crate) fn moves_off(
-    program: &Program,
-    basis: &[usize],
-    x: &[Q],
-    tight: impl Fn(usize) -> bool,
-) -> Option<bool> {
-    let of = Degenerate::of(program, basis, x, tight)?;
-    for &k in of.rows.iter().take(ROWS_TRIED) {
-        let w = of.systems.solve_transposed(unit(basis.len(), k))?;
-        let row = Reduced::new(&w);
-        // a_j d = -a_j w <= 0: the sign of 0 - a_j w is not above zero.
-        let column = |j: &usize| &of.negated.columns[*j];
-        let off = |j: &usize| row.sign(&Q::zero(), column(j)) == Ordering::Greater;
-        if !of.others.iter().any(off) {
-            return Some(true);
-        }
-    }
-    Some(false)
 }
 
 /// The answer of the floating-point run under `rules`, where its last basis proves it.
@@ -593,6 +590,16 @@ pub(super) mod tests {
         Q::frac(n, 1)
     }
 
+    /// [`Degenerate::moves_off`] of a fresh basis's questions.
+    fn moves_off(p: &Program, basis: &[usize], x: &[Q], tight: fn(usize) -> bool) -> Option<bool> {
+        Degenerate::of(p, basis, x, tight)?.moves_off()
+    }
+
+    /// [`Degenerate::directions`] of a fresh basis's questions.
+    fn directions(p: &Program, basis: &[usize], x: &[Q], most: usize) -> Option<Program> {
+        Degenerate::of(p, basis, x, |_| true)?.directions(most)
+    }
+
     fn program(a: &[&[i128]], b: &[i128], c: &[i128]) -> Program {
         let rows: Vec<Vec<Q>> = a
             .iter()
@@ -890,14 +897,14 @@ pub(super) mod tests {
         // The first program of the test above: its degenerate row shows another optimum.
         let p = program(&[&[1, 1, 0], &[0, 1, 1]], &[1, 0], &[-1, 0, 1]);
         let x = [q(1), q(0), q(0)];
-        let d = directions(&p, &[0, 1], &x, |_| true, 8).unwrap();
+        let d = directions(&p, &[0, 1], &x, 8).unwrap();
         assert!(feasible(&d));
         // With -x4 tight in row 1, y is unique: no direction.
         let p = program(&[&[1, 1, 0, 0], &[0, 1, 1, -1]], &[1, 0], &[-1, 0, 1, -1]);
         let x = [q(1), q(0), q(0), q(0)];
-        let d = directions(&p, &[0, 1], &x, |_| true, 8).unwrap();
+        let d = directions(&p, &[0, 1], &x, 8).unwrap();
         assert!(!feasible(&d));
-        let not_asked = directions(&p, &[0, 1], &x, |_| true, 0);
+        let not_asked = directions(&p, &[0, 1], &x, 0);
         assert!(not_asked.is_none(), "more rows than asked");
         // Two degenerate rows (x2, x3 basic at zero), each blocked alone by a tight column (x4
         // by row 1, x5 by row 2) but not together: v = (1, 1) keeps both. The rows tried one
@@ -909,7 +916,7 @@ pub(super) mod tests {
         );
         let x = [q(1), q(0), q(0), q(0), q(0)];
         assert_eq!(moves_off(&p, &[0, 1, 2], &x, |_| true), Some(false));
-        let d = directions(&p, &[0, 1, 2], &x, |_| true, 8).unwrap();
+        let d = directions(&p, &[0, 1, 2], &x, 8).unwrap();
         assert!(feasible(&d));
     }
 

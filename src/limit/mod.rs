@@ -389,12 +389,12 @@ fn direction(
 /// normal of the cone's edge it slides on), which the multipliers cannot tell apart: the
 /// question is whether every such d is one of those. Where x has as many positive entries as
 /// rows (nondegenerate) P alone spans the rows and d = 0. Otherwise: a few degenerate rows of
-/// the basis are tried for such a d directly (`certify::moves_off`, an exact solve each; one
-/// found is a no for milliseconds); where P and T do not span A's columns (`certify::spanned`,
-/// from the basis, whose own columns lie in P and T) some d in that span is orthogonal to all
-/// of them: no; where they do, every d is -B^-T v for a basis of P and T's columns, and the
-/// program of such v (`certify::directions`, at most `most_rows` degenerate rows) is
-/// feasible exactly where another optimal y exists.
+/// the basis are tried for such a d directly (`certify::Degenerate::moves_off`, an exact solve
+/// each; one found is a no for milliseconds); where P and T do not span A's columns
+/// (`certify::spanned`, from the basis, whose own columns lie in P and T) some d in that span
+/// is orthogonal to all of them: no; where they do, every d is -B^-T v for a basis of P and T's
+/// columns, and the program of such v (`certify::Degenerate::directions`, at most `most_rows`
+/// degenerate rows) is feasible exactly where another optimal y exists.
 fn uniqueness(
     program: &Program,
     x: &[Q],
@@ -414,16 +414,29 @@ fn uniqueness(
     let kept: Vec<bool> = (x.iter().enumerate())
         .map(|(j, x_j)| x_j.is_positive() || tight(j))
         .collect();
-    if certify::moves_off(program, basis, x, |j| kept[j]) == Some(true) {
-        return Some(Uniqueness::OneOfSeveral);
+    let Some(mut questions) = certify::Degenerate::of(program, basis, x, |j| kept[j]) else {
+        return Some(Uniqueness::Undecided);
+    };
+    match questions.moves_off() {
+        Some(true) => return Some(Uniqueness::OneOfSeveral),
+        Some(false) => {}
+        None => return Some(Uniqueness::Undecided),
     }
-    let basis = match certify::spanned(program, basis, |j| kept[j]) {
+    let mut questions = match certify::spanned(program, basis, |j| kept[j]) {
         None => return Some(Uniqueness::Undecided),
         // Some d in the columns' span is orthogonal to all of P and T: y + d holds too.
         Some(certify::Span::Short) => return Some(Uniqueness::OneOfSeveral),
-        Some(certify::Span::All(basis)) => basis,
+        // The usual case: the basis had no artificial variable to replace, and its rows
+        // already solved serve the program of directions.
+        Some(certify::Span::All(spanning)) if spanning == basis => questions,
+        Some(certify::Span::All(spanning)) => {
+            match certify::Degenerate::of(program, &spanning, x, |j| kept[j]) {
+                Some(questions) => questions,
+                None => return Some(Uniqueness::Undecided),
+            }
+        }
     };
-    let Some(directions) = certify::directions(program, &basis, x, |j| kept[j], most_rows) else {
+    let Some(directions) = questions.directions(most_rows) else {
         return Some(Uniqueness::Undecided);
     };
     Some(match certify::solve(&directions, &[], stop)? {

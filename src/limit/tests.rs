@@ -210,7 +210,10 @@ fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
         panic!("the uniform wall's limit");
     };
     let kept = |j: usize| x[j].is_positive() || p.c[j] == p.dot(j, &y);
-    assert_eq!(certify::moves_off(&p, &basis, &x, kept), Some(true));
+    assert_eq!(
+        certify::Degenerate::of(&p, &basis, &x, kept).and_then(|mut q| q.moves_off()),
+        Some(true)
+    );
     let shown = uniqueness_of(&p, &x, &y, &basis, false);
     assert_eq!(shown, Uniqueness::OneOfSeveral);
     let variable = Model::from_file("walls/five-block-variable.ron").unwrap();
@@ -226,7 +229,10 @@ fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
         }
         degenerate_sides += 1;
         let kept = |j: usize| x[j].is_positive() || p.c[j] == p.dot(j, &y);
-        assert_eq!(certify::moves_off(&p, &basis, &x, kept), Some(false));
+        assert_eq!(
+            certify::Degenerate::of(&p, &basis, &x, kept).and_then(|mut q| q.moves_off()),
+            Some(false)
+        );
         let undecided = uniqueness_of(&p, &x, &y, &basis, false);
         assert_eq!(undecided, Uniqueness::Undecided);
         assert_eq!(uniqueness_of(&p, &x, &y, &basis, true), Uniqueness::Unique);
