@@ -143,8 +143,9 @@ impl Wall {
     /// The wall's limit at rest in its plane (`pirqa check --limit`, docs/rocking-walls.md): a
     /// dict with `towards_plus_x` and `towards_minus_x`, each `{"kind": "holds", "accel_g",
     /// "accel_m_s2", "exact_g" (a fraction), "mechanism": [{"block", "how", "u", "v",
-    /// "omega_rad_s"}, ...], "mechanism_uniqueness": "unique", "one_of_several" or "undecided"}`
-    /// or `{"kind": "unlimited"}`. The exact programs run without the
+    /// "omega_rad_s"}, ...], "mechanism_uniqueness": "unique", "one_of_several" or "undecided",
+    /// "moving_in_every_mechanism" and "turning_in_every_mechanism": block names, or None where
+    /// not decided}` or `{"kind": "unlimited"}`. The exact programs run without the
     /// GIL; Ctrl-C (a notebook's interrupt) stops them, raising `KeyboardInterrupt` (a large
     /// wall's take minutes).
     fn limit_at_rest<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {

@@ -400,8 +400,13 @@ def test_a_walls_limit_at_rest_is_exact_with_its_mechanism(root):
         assert limit["accel_g"] == 0.28
         assert [(m["block"], m["how"]) for m in limit["mechanism"]] == [(block, how)]
         assert limit["mechanism_uniqueness"] == "unique"
+        assert limit["moving_in_every_mechanism"] == [block]
+        assert limit["turning_in_every_mechanism"] == []
     uniform = pirqa.Wall.from_file(root / "walls/five-block-uniform.ron").limit_at_rest()
     assert uniform["towards_minus_x"]["mechanism_uniqueness"] == "one_of_several"
+    # Of its several mechanisms, every one moves the top end block the blocks slide towards.
+    assert uniform["towards_minus_x"]["moving_in_every_mechanism"] == ["B5"]
+    assert uniform["towards_minus_x"]["turning_in_every_mechanism"] == []
     x = np.arange(2001, dtype=float)
     big = pirqa.Wall.from_rectangles(
         x, np.zeros(2001), np.ones(2001), np.full(2001, 0.5),

@@ -412,6 +412,8 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             exact_g,
             mechanism,
             mechanism_uniqueness,
+            moving_in_every_mechanism,
+            turning_in_every_mechanism,
         } => {
             let _ = writeln!(
                 out,
@@ -423,6 +425,27 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             }
             if *mechanism_uniqueness != pirqa::limit::Uniqueness::Unique {
                 let _ = writeln!(out, "    ({})", mechanism_uniqueness.which());
+                let list = |names: &[String]| match names {
+                    [] => "none".to_string(),
+                    _ => names.join(", "),
+                };
+                match (moving_in_every_mechanism, turning_in_every_mechanism) {
+                    (Some(moving), Some(turning)) => {
+                        let _ = writeln!(
+                            out,
+                            "    in every mechanism that holds here: moving {}; turning {}",
+                            list(moving),
+                            list(turning)
+                        );
+                    }
+                    _ => {
+                        let _ = writeln!(
+                            out,
+                            "    (which blocks move in every mechanism that holds here is not \
+                             decided)"
+                        );
+                    }
+                }
             }
         }
     }

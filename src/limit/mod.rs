@@ -17,6 +17,7 @@
 
 mod certify;
 mod crash;
+mod every;
 mod factors;
 mod padic;
 mod revised;
@@ -103,6 +104,13 @@ pub enum Limit {
         /// Whether `mechanism` is the only one that holds at this limit (where it is not, it
         /// is the one the solver's basis gives).
         mechanism_uniqueness: Uniqueness,
+        /// The blocks that move in every mechanism that holds at this limit (those of
+        /// `mechanism` where it is the only one); `None` where not decided (uniqueness
+        /// undecided, or more than [`EVERY_BLOCKS`] movable blocks).
+        moving_in_every_mechanism: Option<Vec<String>>,
+        /// The blocks that turn in every mechanism that holds at this limit, each always the
+        /// same way (as `mechanism` turns it); `None` where not decided.
+        turning_in_every_mechanism: Option<Vec<String>>,
     },
     /// Held at every acceleration: the abutments hold the wall whatever the ground does.
     Unlimited,
@@ -147,6 +155,11 @@ impl Uniqueness {
 /// at most 600 rows in all, so each is decided; larger ones where their limit is degenerate in
 /// few rows (a slender running bond of 405 blocks: 10 and 7, decided in milliseconds).
 pub const DECIDED_ROWS: usize = 600;
+
+/// The most movable blocks for which the blocks moving and turning in every mechanism are
+/// decided where the mechanism is one of several: a program as large as the limit's for each
+/// block that no mechanism found before holds still (`every`).
+pub const EVERY_BLOCKS: usize = 200;
 
 /// How a block moves in a mechanism, relative to the ground.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -364,11 +377,39 @@ fn direction(
             )))
         }
         Outcome::Optimal { value, y, x, basis } => {
-            let accel = -value;
+            let accel = -&value;
             let g = &accel / &wall.g_m_s2;
             let found = uniqueness(&program, &x, &y, &basis, DECIDED_ROWS, stop);
             let Some(mechanism_uniqueness) = found else {
                 return Ok(None);
+            };
+            let nonzero = |rows: std::ops::Range<usize>| rows.into_iter().any(|r| !y[r].is_zero());
+            let every = match mechanism_uniqueness {
+                Uniqueness::Unique => Some(every::Every {
+                    moving: (0..movable.len())
+                        .filter(|&k| nonzero(ROWS * k..ROWS * (k + 1)))
+                        .collect(),
+                    turning: (0..movable.len())
+                        .filter(|&k| nonzero(ROWS * k + 2..ROWS * (k + 1)))
+                        .collect(),
+                }),
+                Uniqueness::OneOfSeveral if movable.len() <= EVERY_BLOCKS => {
+                    let found = every::in_every_mechanism(&program, groups, &value, &y, stop)?;
+                    let Some(every) = found else {
+                        return Ok(None);
+                    };
+                    Some(every)
+                }
+                _ => None,
+            };
+            let names = |places: Vec<usize>| {
+                (places.into_iter())
+                    .map(|k| wall.blocks[movable[k]].name.clone())
+                    .collect()
+            };
+            let (moving, turning) = match every {
+                Some(e) => (Some(names(e.moving)), Some(names(e.turning))),
+                None => (None, None),
             };
             Ok(Some(Limit::Holds {
                 accel_m_s2: accel.to_f64(),
@@ -376,6 +417,8 @@ fn direction(
                 exact_g: format!("{g:?}"),
                 mechanism: mechanism(wall, topo, movable, &centroids, &y),
                 mechanism_uniqueness,
+                moving_in_every_mechanism: moving,
+                turning_in_every_mechanism: turning,
             }))
         }
     }

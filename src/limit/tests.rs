@@ -539,3 +539,64 @@ fn large_running_bonds_are_proved_from_their_floating_point_bases() {
         }
     }
 }
+
+fn in_every(l: &Limit) -> (Uniqueness, Vec<String>, Vec<String>) {
+    let Limit::Holds {
+        mechanism_uniqueness,
+        moving_in_every_mechanism,
+        turning_in_every_mechanism,
+        ..
+    } = l
+    else {
+        panic!("unlimited: {l:?}");
+    };
+    (
+        *mechanism_uniqueness,
+        moving_in_every_mechanism.clone().expect("decided"),
+        turning_in_every_mechanism.clone().expect("decided"),
+    )
+}
+
+/// The blocks that move, and those that turn, in every mechanism that holds at a limit: all of
+/// a unique mechanism's; for a block alone at the tie of its friction and b/h (0.5), it moves
+/// in both (sliding, tipping) and turns in one; of two slabs standing touching (b/h 0.1), the
+/// one on the side the ground leaves behind tips alone or pushed by the other, so it alone
+/// turns in every one; the paper's uniform wall slides on either bed joint, by a top end block
+/// alone or with what pushes it, and only that end block (B3 on the left, B5 on the right)
+/// moves in every mechanism.
+#[test]
+fn the_blocks_in_every_mechanism_are_those_whose_holding_raises_the_limit() {
+    let rows = "(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\")])";
+    let a = || vec!["A".to_string()];
+    let tips = limits(&model(rows, "0.7"));
+    assert_eq!(
+        in_every(&tips.towards_plus_x),
+        (Uniqueness::Unique, a(), a())
+    );
+    let tie = limits(&model(rows, "0.5"));
+    assert_eq!(
+        in_every(&tie.towards_minus_x),
+        (Uniqueness::OneOfSeveral, a(), vec![])
+    );
+    let slabs = limits(&model(
+        "(height_m: 2.0, blocks: [(width_m: 0.2, name: \"L\"), (width_m: 0.2, name: \"R\")])",
+        "0.7",
+    ));
+    for (side, slab) in [(&slabs.towards_plus_x, "L"), (&slabs.towards_minus_x, "R")] {
+        let (g, _) = holds(side);
+        assert_eq!(g, Q::frac(1, 10));
+        let one = vec![slab.to_string()];
+        assert_eq!(in_every(side), (Uniqueness::OneOfSeveral, one.clone(), one));
+    }
+    let uniform = limits(&Model::from_file("walls/five-block-uniform.ron").unwrap());
+    for (side, end) in [
+        (&uniform.towards_plus_x, "B3"),
+        (&uniform.towards_minus_x, "B5"),
+    ] {
+        let found = in_every(side);
+        assert_eq!(
+            found,
+            (Uniqueness::OneOfSeveral, vec![end.to_string()], vec![])
+        );
+    }
+}

@@ -161,6 +161,11 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     let several = "one of several mechanisms that hold at this limit";
     let (ok, out, err) = drawn("walls/five-block-uniform.ron");
     assert!(ok && out.matches(several).count() == 2, "{out}{err}");
+    // Every one of them moves the top end block the blocks slide towards, and no other.
+    for end in ["B3", "B5"] {
+        let every = format!("in every mechanism that holds here: moving {end}; turning none");
+        assert!(out.contains(&every), "{out}");
+    }
     let svg = std::fs::read_to_string(dir.join("mechanism-minus-x.svg")).unwrap();
     assert!(svg.contains(&format!("{several}, exaggerated")), "{svg}");
     // Beyond 200 blocks: a bond of one friction (203 blocks) is one of several, its basis
@@ -174,6 +179,8 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     };
     let (ok, out, err) = generated("bond.ron", &["--blocks", "190"]);
     assert!(ok && out.matches(several).count() == 2, "{out}{err}");
+    let undecided = "(which blocks move in every mechanism that holds here is not decided)";
+    assert_eq!(out.matches(undecided).count(), 2, "{out}");
     let slender = [
         "--courses",
         "8",

@@ -1,0 +1,110 @@
+//! Which blocks move, and which turn, in every mechanism that holds at a limit: where the
+//! mechanism named is one of several, the blocks that cannot stay still (or cannot stop
+//! turning) whichever of them the wall takes.
+//!
+//! The mechanisms at a limit are the optimal multipliers of its program, the face F = {y :
+//! A^T y <= c, b y = z*} of the dual (z* the limit's value; the velocities are -y). A block k
+//! moves in every mechanism exactly where F holds no y with its three multipliers zero, and
+//! turns in every one exactly where F holds none with its rotation's zero (F is convex, so
+//! where the named mechanism turns it and none holds it still, every one turns it the same
+//! way). Multipliers held at zero are the dual of the same program with a free reaction on
+//! those balances (a pair of unit columns at no cost each): the block held to the ground, or
+//! held from turning. So block k moves in every mechanism exactly where holding it raises the
+//! limit, and turns in every one exactly where stopping it turning does; where the limit stays,
+//! the held program's multipliers are a mechanism of F that keeps the block still, which
+//! answers the same question for every other block it keeps still: one program settles many
+//! blocks of a wall whose mechanisms are layers (a uniform wall slides on any bed joint: the
+//! blocks under the highest joint are still in one of them). Each held program is the limit's
+//! with a few columns more, answered as the limit is.
+
+use super::certify;
+use super::crash::Group;
+use super::simplex::{Outcome, Program};
+use super::ROWS;
+use crate::error::SimulationError;
+use crate::exact::Q;
+
+/// The blocks (places among the movable ones) that move, and those that turn, in every
+/// mechanism that holds at the limit of `program`, whose value is `value` and one of whose
+/// optimal multipliers is `y` (the mechanism named); `None` where `stop` said so.
+pub(super) fn in_every_mechanism(
+    program: &Program,
+    groups: &[Group],
+    value: &Q,
+    y: &[Q],
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<Every>, SimulationError> {
+    let mut found = vec![y.to_vec()];
+    let mut every = Every::default();
+    for k in 0..y.len() / ROWS {
+        let whole: Vec<usize> = (ROWS * k..ROWS * (k + 1)).collect();
+        let Some(moving) = always(program, groups, value, &whole, &mut found, stop)? else {
+            return Ok(None);
+        };
+        let rotation = [ROWS * k + 2];
+        let Some(turning) = always(program, groups, value, &rotation, &mut found, stop)? else {
+            return Ok(None);
+        };
+        if moving {
+            every.moving.push(k);
+        }
+        if turning {
+            every.turning.push(k);
+        }
+    }
+    Ok(Some(every))
+}
+
+/// Whether every mechanism at the limit (of value `value`) moves the multipliers of `rows`:
+/// none of the mechanisms `found` so far holds them at zero, and the program holding them
+/// reaches a higher limit; where it does not, its multipliers join `found`. `None` where
+/// `stop` said so.
+fn always(
+    program: &Program,
+    groups: &[Group],
+    value: &Q,
+    rows: &[usize],
+    found: &mut Vec<Vec<Q>>,
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<bool>, SimulationError> {
+    if (found.iter()).any(|y| rows.iter().all(|&r| y[r].is_zero())) {
+        return Ok(Some(false));
+    }
+    let Some(outcome) = certify::solve(&held(program, rows), groups, stop) else {
+        return Ok(None);
+    };
+    match outcome {
+        Outcome::Optimal { value: v, y, .. } if v == *value => {
+            found.push(y);
+            Ok(Some(false))
+        }
+        // Held, the wall stands to a higher limit, or at any acceleration.
+        Outcome::Optimal { .. } | Outcome::Unbounded => Ok(Some(true)),
+        // The limit's own forces, the new reactions at zero, balance the held program: an
+        // exact answer cannot say otherwise.
+        Outcome::Infeasible { .. } => Err(SimulationError::Bug(
+            "a limit's program with reactions added came out infeasible".into(),
+        )),
+    }
+}
+
+/// The blocks that move and those that turn in every mechanism (places among the movable
+/// blocks, in order).
+#[derive(Debug, Default, PartialEq)]
+pub(super) struct Every {
+    pub(super) moving: Vec<usize>,
+    pub(super) turning: Vec<usize>,
+}
+
+/// The program with a free reaction on the balances of `rows` (the module's comment).
+fn held(program: &Program, rows: &[usize]) -> Program {
+    let n = program.c.len();
+    let mut columns: Vec<Vec<(usize, Q)>> = (0..n).map(|j| program.column(j).to_vec()).collect();
+    for &r in rows {
+        columns.push(vec![(r, Q::one())]);
+        columns.push(vec![(r, -Q::one())]);
+    }
+    let mut c = program.c.clone();
+    c.resize(columns.len(), Q::zero());
+    Program::new(columns, program.b.clone(), c)
+}
