@@ -118,7 +118,7 @@ pub enum Limit {
 
 /// Whether a limit's mechanism is the only one that holds there (docs/rocking-walls.md, "What
 /// it says and what it does not").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Uniqueness {
     /// No other mechanism holds at the limit (but for motions that no contact force does work

@@ -4,6 +4,7 @@
 use crate::common;
 
 use common::scratch as temp_dir;
+use pirqa::limit::Uniqueness;
 use pirqa::study::sweep::store::{read_table, CaseRow, Existing, Store, CASES_HEADER};
 use pirqa::study::sweep::{parse_description, Sweep, SweepDescription, FRICTION_STEP};
 use std::collections::HashSet;
@@ -881,21 +882,36 @@ fn a_sweep_asked_to_check_uplift_gives_each_cases_first_uplift() {
     assert_eq!(first.time_s, t);
     assert!(first.turning[0].starts_with("L turns counterclockwise about its bottom-left"));
     assert_eq!(rows[1].uplift_turning, Some(first.turning.join("; ")));
+    // The dragged block's first uplift starts by the only mechanism that holds then.
+    assert_eq!(first.mechanism_uniqueness, Uniqueness::Unique);
+    assert_eq!(
+        (
+            rows[0].uplift_mechanism_uniqueness,
+            rows[1].uplift_mechanism_uniqueness
+        ),
+        (None, Some(Uniqueness::Unique))
+    );
     for id in 0..2 {
         assert!(s.case_options(id).unwrap().ends_with("--check-uplift"));
     }
     // results.json counts them per wall and motion.
     let results = pirqa::study::sweep::analysis::analyse(&s, &rows).results;
-    let found: Vec<(u64, u64, Option<f64>)> = results["uplift"]
+    let found: Vec<(u64, u64, Option<f64>, [u64; 3])> = results["uplift"]
         .as_array()
         .unwrap()
         .iter()
         .map(|u| {
             let n = |k: &str| u[k].as_u64().unwrap();
-            (n("checked"), n("lifted"), u["first_uplift_s"].as_f64())
+            let by = [
+                "lifted_by_unique_mechanism",
+                "lifted_by_one_of_several",
+                "lifted_undecided",
+            ]
+            .map(n);
+            (n("checked"), n("lifted"), u["first_uplift_s"].as_f64(), by)
         })
         .collect();
-    assert_eq!(found, [(1, 0, None), (1, 1, Some(t))]);
+    assert_eq!(found, [(1, 0, None, [0, 0, 0]), (1, 1, Some(t), [1, 0, 0])]);
     // The check watches the sliding engine: a case that rocks under Auto is left unchecked,
     // and a sweep no case of which slides exactly is refused, naming the field.
     let stack = |extra: &str| {

@@ -443,8 +443,10 @@ fn probability_series(
 }
 
 /// Per wall and motion, what the uplift check found: the cases it watched, those in which some
-/// block had to start to turn, and the earliest such instant.
+/// block had to start to turn, the earliest such instant, and how many of those first uplifts
+/// start by the only mechanism that holds then (the rest by one of several, or undecided).
 fn uplift(cells: &BTreeMap<(usize, usize), Cell>, sweep: &Sweep) -> Value {
+    use crate::limit::Uniqueness;
     let rows: Vec<Value> = cells
         .values()
         .map(|c| {
@@ -453,6 +455,11 @@ fn uplift(cells: &BTreeMap<(usize, usize), Cell>, sweep: &Sweep) -> Value {
                 .ok()
                 .filter_map(|r| r.uplift_time_s)
                 .min_by(f64::total_cmp);
+            let by = |u: Uniqueness| {
+                c.ok()
+                    .filter(|r| r.uplift_mechanism_uniqueness == Some(u))
+                    .count()
+            };
             json!({
                 "wall": sweep.walls[c.wall].label,
                 "motion": c.first().motion,
@@ -460,6 +467,9 @@ fn uplift(cells: &BTreeMap<(usize, usize), Cell>, sweep: &Sweep) -> Value {
                 "checked": checked,
                 "lifted": lifted,
                 "first_uplift_s": first,
+                "lifted_by_unique_mechanism": by(Uniqueness::Unique),
+                "lifted_by_one_of_several": by(Uniqueness::OneOfSeveral),
+                "lifted_undecided": by(Uniqueness::Undecided),
             })
         })
         .collect();

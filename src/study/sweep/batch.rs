@@ -118,6 +118,7 @@ mod tests {
             amplitude_gal: Some(0.1 + 0.2),
             max_abs_u_m: 1.0 / 3.0,
             collapse_time_s: None,
+            uplift_mechanism_uniqueness: Some(crate::limit::Uniqueness::OneOfSeveral),
             cpu_s: 1.234_567_890_123e-4,
             error: Some("it failed, twice".into()),
             ..CaseRow::default()

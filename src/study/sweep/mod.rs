@@ -1339,6 +1339,7 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
         if let Some(first) = &check.first_uplift {
             row.uplift_time_s = Some(first.time_s);
             row.uplift_turning = Some(first.turning.join("; "));
+            row.uplift_mechanism_uniqueness = Some(first.mechanism_uniqueness);
         }
     }
     // A run the model stopped before its end (a held joint gave way, a body left the ground)
