@@ -128,6 +128,7 @@ def test_the_uplift_check_says_when_a_block_would_start_to_turn(root):
     assert first["mechanism_uniqueness"] == wall.limit_at_rest()["towards_plus_x"][
         "mechanism_uniqueness"
     ]
+    assert first["turning_in_every_mechanism"] == ["F1"]
     assert "uplift_check" not in pirqa.run(wall, motion, model="slide").summary
 
 

@@ -787,9 +787,18 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
                 u.time_s,
                 u.ground_accel_m_s2,
                 u.turning.join(", "),
-                match u.mechanism_uniqueness {
-                    pirqa::limit::Uniqueness::Unique => String::new(),
-                    other => format!(" ({})", other.which()),
+                match (u.mechanism_uniqueness, &u.turning_in_every_mechanism) {
+                    (pirqa::limit::Uniqueness::Unique, _) => String::new(),
+                    (other, None) => format!(" ({})", other.which()),
+                    (other, Some(every)) => format!(
+                        " ({}; turning in every one: {})",
+                        other.which(),
+                        if every.is_empty() {
+                            "none".to_string()
+                        } else {
+                            every.join(", ")
+                        }
+                    ),
                 }
             ),
         };

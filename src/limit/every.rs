@@ -24,45 +24,48 @@ use super::ROWS;
 use crate::error::SimulationError;
 use crate::exact::Q;
 
-/// The blocks (places among the movable ones) that move, and those that turn, in every
-/// mechanism that holds at the limit of `program`, whose value is `value` and one of whose
-/// optimal multipliers is `y` (the mechanism named); `None` where `stop` said so.
+/// The blocks (places among the movable ones) that move (where `moving` asks), and those that
+/// turn, in every mechanism that holds at the limit of `program`: with `value` its value and
+/// `y` one of its optimal multipliers (the mechanism named), or, where the program is
+/// infeasible (`value` none), in every certificate of that (`y` one of them: A^T y <= 0, b y >
+/// 0; they too are convex, and a block holding which makes the program feasible moves in every
+/// one). `None` where `stop` said so.
 pub(super) fn in_every_mechanism(
     program: &Program,
     groups: &[Group],
-    value: &Q,
+    value: Option<&Q>,
     y: &[Q],
+    moving: bool,
     stop: &dyn Fn() -> bool,
 ) -> Result<Option<Every>, SimulationError> {
     let mut found = vec![y.to_vec()];
     let mut every = Every::default();
     for k in 0..y.len() / ROWS {
         let whole: Vec<usize> = (ROWS * k..ROWS * (k + 1)).collect();
-        let Some(moving) = always(program, groups, value, &whole, &mut found, stop)? else {
-            return Ok(None);
-        };
-        let rotation = [ROWS * k + 2];
-        let Some(turning) = always(program, groups, value, &rotation, &mut found, stop)? else {
-            return Ok(None);
-        };
-        if moving {
-            every.moving.push(k);
-        }
-        if turning {
-            every.turning.push(k);
+        let asked = [(moving, whole), (true, vec![ROWS * k + 2])];
+        for (i, (ask, rows)) in asked.into_iter().enumerate() {
+            if !ask {
+                continue;
+            }
+            let Some(always) = always(program, groups, value, &rows, &mut found, stop)? else {
+                return Ok(None);
+            };
+            if always {
+                [&mut every.moving, &mut every.turning][i].push(k);
+            }
         }
     }
     Ok(Some(every))
 }
 
-/// Whether every mechanism at the limit (of value `value`) moves the multipliers of `rows`:
-/// none of the mechanisms `found` so far holds them at zero, and the program holding them
-/// reaches a higher limit; where it does not, its multipliers join `found`. `None` where
-/// `stop` said so.
+/// Whether every mechanism (of the limit of value `value`, or every certificate where none)
+/// moves the multipliers of `rows`: none of the mechanisms `found` so far holds them at zero,
+/// and the program holding them reaches a higher limit, or becomes feasible; where it does
+/// not, its multipliers join `found`. `None` where `stop` said so.
 fn always(
     program: &Program,
     groups: &[Group],
-    value: &Q,
+    value: Option<&Q>,
     rows: &[usize],
     found: &mut Vec<Vec<Q>>,
     stop: &dyn Fn() -> bool,
@@ -73,16 +76,20 @@ fn always(
     let Some(outcome) = certify::solve(&held(program, rows), groups, stop) else {
         return Ok(None);
     };
-    match outcome {
-        Outcome::Optimal { value: v, y, .. } if v == *value => {
+    match (outcome, value) {
+        (Outcome::Optimal { value: v, y, .. }, Some(value)) if v == *value => {
             found.push(y);
             Ok(Some(false))
         }
-        // Held, the wall stands to a higher limit, or at any acceleration.
-        Outcome::Optimal { .. } | Outcome::Unbounded => Ok(Some(true)),
+        (Outcome::Infeasible { y }, None) => {
+            found.push(y);
+            Ok(Some(false))
+        }
+        // Held, the wall stands to a higher limit, at any acceleration, or at all.
+        (Outcome::Optimal { .. } | Outcome::Unbounded, _) => Ok(Some(true)),
         // The limit's own forces, the new reactions at zero, balance the held program: an
         // exact answer cannot say otherwise.
-        Outcome::Infeasible { .. } => Err(SimulationError::Bug(
+        (Outcome::Infeasible { .. }, Some(_)) => Err(SimulationError::Bug(
             "a limit's program with reactions added came out infeasible".into(),
         )),
     }

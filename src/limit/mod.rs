@@ -394,7 +394,8 @@ fn direction(
                         .collect(),
                 }),
                 Uniqueness::OneOfSeveral if movable.len() <= EVERY_BLOCKS => {
-                    let found = every::in_every_mechanism(&program, groups, &value, &y, stop)?;
+                    let found =
+                        every::in_every_mechanism(&program, groups, Some(&value), &y, true, stop)?;
                     let Some(every) = found else {
                         return Ok(None);
                     };

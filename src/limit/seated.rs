@@ -15,7 +15,9 @@
 
 use super::simplex::{Outcome, Program};
 use super::{centroid, crash_groups, entries, mechanism, overlap, pushes, Force, Moves, ROWS};
-use super::{certify, crash, degenerate, uniqueness, Uniqueness, DECIDED_ROWS};
+use super::{
+    certify, crash, degenerate, every, uniqueness, Uniqueness, DECIDED_ROWS, EVERY_BLOCKS,
+};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::topology::{Base, BlockId, Topology};
@@ -62,6 +64,24 @@ impl Side {
     /// Some block of the mechanism turns.
     pub fn turns(&self) -> bool {
         self.mechanism.iter().any(|m| m.omega_rad_s != 0.0)
+    }
+}
+
+/// What [`Programs::uniqueness`] decides of a side.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Decided {
+    /// Whether the side's mechanism is the only one that holds there.
+    pub uniqueness: Uniqueness,
+    /// The blocks that turn in every mechanism that holds there; `None` where not decided.
+    pub turning_in_every_mechanism: Option<Vec<String>>,
+}
+
+impl Decided {
+    fn new(uniqueness: Uniqueness, turning_in_every_mechanism: Option<Vec<String>>) -> Decided {
+        Decided {
+            uniqueness,
+            turning_in_every_mechanism,
+        }
     }
 }
 
@@ -159,20 +179,62 @@ impl<'w> Programs<'w> {
     /// the only mechanism that holds there, decided as the limit at rest's is (docs/rocking-
     /// walls.md, "What it says and what it does not"): a side whose forces are degenerate is
     /// solved again for its basis, and decided in full where it is degenerate in at most
-    /// [`DECIDED_ROWS`] rows. `None` where `stop` said so.
-    pub fn uniqueness(&self, side: &Side, s: i128, stop: &dyn Fn() -> bool) -> Option<Uniqueness> {
+    /// [`DECIDED_ROWS`] rows; with the blocks that turn in every mechanism that holds there
+    /// (`None` where not decided: uniqueness undecided, more than [`EVERY_BLOCKS`] movable
+    /// blocks). `None` where `stop` said so.
+    pub fn uniqueness(
+        &self,
+        side: &Side,
+        s: i128,
+        stop: &dyn Fn() -> bool,
+    ) -> Result<Option<Decided>, SimulationError> {
+        let own = || {
+            let turning = side.mechanism.iter().filter(|m| m.omega_rad_s != 0.0);
+            Some(turning.map(|m| m.block.clone()).collect())
+        };
         // A side comes from a program, so without one there is none to ask about.
         let builder = self.builder.as_ref().filter(|_| side.degenerate);
         let Some(builder) = builder else {
-            return Some(Uniqueness::Unique);
+            return Ok(Some(Decided::new(Uniqueness::Unique, own())));
         };
         let program = builder.program(s);
-        match certify::solve(&program, &builder.groups, stop)? {
-            Outcome::Optimal { x, y, basis, .. } => {
-                uniqueness(&program, &x, &y, &basis, DECIDED_ROWS, stop)
-            }
+        let Some(outcome) = certify::solve(&program, &builder.groups, stop) else {
+            return Ok(None);
+        };
+        let Outcome::Optimal { x, y, basis, value } = outcome else {
             // The side was solved from this program: the same solve ends the same way.
-            Outcome::Infeasible { .. } | Outcome::Unbounded => Some(Uniqueness::Undecided),
+            return Ok(Some(Decided::new(Uniqueness::Undecided, None)));
+        };
+        let Some(found) = uniqueness(&program, &x, &y, &basis, DECIDED_ROWS, stop) else {
+            return Ok(None);
+        };
+        let turning = match found {
+            Uniqueness::Unique => own(),
+            Uniqueness::OneOfSeveral => {
+                builder.turning(self.wall, &program, Some(&value), &y, stop)?
+            }
+            Uniqueness::Undecided => None,
+        };
+        Ok(Some(Decided::new(found, turning)))
+    }
+
+    /// The blocks that turn in every certificate that the state keeps no block seated whatever
+    /// the ground does (where [`Programs::interval`] is [`Interval::Empty`]; each such
+    /// certificate is a mechanism, and they are convex as a limit's are): those whose turning,
+    /// held by a reaction, lets some ground acceleration keep every block seated. `None` where
+    /// not decided (more than [`EVERY_BLOCKS`] movable blocks, `stop` said so) or where the
+    /// state keeps the blocks seated after all.
+    pub fn turning_whatever_the_ground(
+        &self,
+        stop: &dyn Fn() -> bool,
+    ) -> Result<Option<Vec<String>>, SimulationError> {
+        let Some(builder) = &self.builder else {
+            return Ok(None);
+        };
+        let program = builder.program(1);
+        match certify::solve(&program, &builder.groups, stop) {
+            Some(Outcome::Infeasible { y }) => builder.turning(self.wall, &program, None, &y, stop),
+            _ => Ok(None),
         }
     }
 
@@ -311,6 +373,28 @@ impl Builder {
         }
         let columns = self.columns[..self.ag].to_vec();
         Program::new(columns, b, vec![Q::zero(); self.ag])
+    }
+
+    /// The blocks that turn in every mechanism of `program` ([`every`]: `value` and `y` its
+    /// value and optimal multipliers, or `y` its certificate of infeasibility); `None` where
+    /// the state has more than [`EVERY_BLOCKS`] movable blocks or `stop` said so.
+    fn turning(
+        &self,
+        wall: &Wall,
+        program: &Program,
+        value: Option<&Q>,
+        y: &[Q],
+        stop: &dyn Fn() -> bool,
+    ) -> Result<Option<Vec<String>>, SimulationError> {
+        if self.movable.len() > EVERY_BLOCKS {
+            return Ok(None);
+        }
+        let found = every::in_every_mechanism(program, &self.groups, value, y, false, stop)?;
+        Ok(found.map(|e| {
+            (e.turning.into_iter())
+                .map(|k| wall.blocks[self.movable[k]].name.clone())
+                .collect()
+        }))
     }
 
     /// The mechanism the multipliers of the balances give. A turn about a point that is no

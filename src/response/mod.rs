@@ -393,6 +393,10 @@ pub struct Uplift {
     /// Whether the mechanism `turning` comes from is the only one past that instant, decided
     /// as the limit at rest's is.
     pub mechanism_uniqueness: crate::limit::Uniqueness,
+    /// The blocks that turn in every mechanism that holds then (every block of `turning` where
+    /// the mechanism is unique; where the state keeps no block seated whatever the ground does,
+    /// in every certificate of that); `None` where not decided.
+    pub turning_in_every_mechanism: Option<Vec<String>>,
 }
 
 /// The body of a run nearest to overturning: the first to overturn, or the one whose largest

@@ -748,7 +748,9 @@ fn run_checks_uplift_when_asked_and_refuses_walls_too_large_for_it() {
     let (ok, out, err) = watched(&twins, "0.55g", &["--model", "slide"]);
     assert!(ok, "{err}");
     assert!(
-        out.contains("(one of several mechanisms that hold at this limit)"),
+        out.contains(
+            "(one of several mechanisms that hold at this limit; turning in every one: none)"
+        ),
         "{out}"
     );
     // 25 courses of 25 (637 blocks): more movable blocks than the exact program takes.

@@ -84,6 +84,7 @@ fn a_slender_block_lifts_where_a_sine_reaches_g_b_over_h() {
         ["A turns counterclockwise about its bottom-left corner"]
     );
     assert_eq!(u.mechanism_uniqueness, Uniqueness::Unique);
+    assert_eq!(u.turning_in_every_mechanism, Some(vec!["A".to_string()]));
 }
 
 /// Two slabs of one size standing apart reach g b/h at one instant, and either may turn (or
@@ -103,6 +104,8 @@ fn where_twin_slabs_lift_at_one_instant_the_mechanism_is_one_of_several() {
     let u = first_uplift(&twins);
     assert!((u.time_s - first_reach(0.5, 0.55)).abs() <= 1e-13);
     assert_eq!(u.mechanism_uniqueness, Uniqueness::OneOfSeveral);
+    // Either may turn alone: neither turns in every mechanism.
+    assert_eq!(u.turning_in_every_mechanism, Some(vec![]));
     let stout = watched(&pair(0.66), &sine(0.55, 2.0), true);
     let u = first_uplift(&stout);
     assert!((u.time_s - first_reach(0.5, 0.55)).abs() <= 1e-13);
@@ -111,6 +114,7 @@ fn where_twin_slabs_lift_at_one_instant_the_mechanism_is_one_of_several() {
         ["A turns counterclockwise about its bottom-left corner"]
     );
     assert_eq!(u.mechanism_uniqueness, Uniqueness::Unique);
+    assert_eq!(u.turning_in_every_mechanism, Some(vec!["A".to_string()]));
 }
 
 #[test]
@@ -175,6 +179,7 @@ fn at_rest_the_check_meets_the_limit_at_rest_on_the_ollantaytambo_wall() {
         accel_m_s2,
         mechanism,
         mechanism_uniqueness,
+        turning_in_every_mechanism,
         ..
     } = limits.towards_minus_x
     else {
@@ -188,6 +193,7 @@ fn at_rest_the_check_meets_the_limit_at_rest_on_the_ollantaytambo_wall() {
         .collect();
     assert_eq!(u.turning, turning);
     assert_eq!(u.mechanism_uniqueness, mechanism_uniqueness);
+    assert_eq!(u.turning_in_every_mechanism, turning_in_every_mechanism);
     assert!(
         r.events.iter().all(|e| e.time_s >= u.time_s),
         "still at rest"
@@ -404,4 +410,5 @@ fn after_a_fall_the_check_goes_on_without_the_fallen_block() {
         ["A turns counterclockwise about its bottom-left corner"]
     );
     assert_eq!(u.mechanism_uniqueness, Uniqueness::Unique);
+    assert_eq!(u.turning_in_every_mechanism, Some(vec!["A".to_string()]));
 }

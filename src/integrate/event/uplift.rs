@@ -198,16 +198,21 @@ impl Engine<'_> {
             // Not the first: the check keeps the first.
             return Ok(());
         }
-        let mechanism_uniqueness = match cause {
-            // Its certificates are another question than a side's multipliers: left open.
-            Cause::Always(_) => Uniqueness::Undecided,
-            Cause::Passes(s, side) => {
-                let g = &self.given;
-                let stop = || (g.progress.as_ref()).is_some_and(Progress::stop_requested);
-                let programs = seated::Programs::new(g.wall, g.topo, &self.seated_state())?;
-                // Stopped while deciding: the uplift stands, its uniqueness not decided.
-                (programs.uniqueness(side, *s, &stop)).unwrap_or(Uniqueness::Undecided)
-            }
+        let g = &self.given;
+        let stop = || (g.progress.as_ref()).is_some_and(Progress::stop_requested);
+        let programs = seated::Programs::new(g.wall, g.topo, &self.seated_state())?;
+        let (mechanism_uniqueness, turning_in_every_mechanism) = match cause {
+            // Its certificates are another question than a side's multipliers: which is the
+            // only one is left open, which blocks turn in all of them is not.
+            Cause::Always(_) => (
+                Uniqueness::Undecided,
+                programs.turning_whatever_the_ground(&stop)?,
+            ),
+            // Stopped while deciding: the uplift stands, the rest not decided.
+            Cause::Passes(s, side) => match programs.uniqueness(side, *s, &stop)? {
+                Some(d) => (d.uniqueness, d.turning_in_every_mechanism),
+                None => (Uniqueness::Undecided, None),
+            },
         };
         let names: Vec<String> = turning.map(|m| format!("{} {}", m.block, m.how)).collect();
         self.rec.uplift_check = Some(UpliftCheck {
@@ -217,6 +222,7 @@ impl Engine<'_> {
                 ground_accel_m_s2: self.seg.accel(t - self.seg.t0),
                 turning: names.clone(),
                 mechanism_uniqueness,
+                turning_in_every_mechanism,
             }),
         });
         if warn {

@@ -115,6 +115,38 @@ fn a_sliding_block_tips_whatever_the_ground_does_once_its_friction_passes_b_over
     }
 }
 
+/// Where a state keeps no block seated whatever the ground does, the blocks that turn in every
+/// certificate of that: a block alone sliding past its b/h turns in each; of two such blocks
+/// standing apart, either turning alone is one, so neither turns in all; beside a block that
+/// slides within its b/h, the one past it turns in all.
+#[test]
+fn the_blocks_turning_whatever_the_ground_does_are_those_of_every_certificate() {
+    let turning = |rows: &str, friction: &str, sliding: &[usize]| {
+        let m = model(rows, friction);
+        let mut state = at_rest_state(&m);
+        for &i in sliding {
+            let mu = &m.topology().horizontal[i].friction;
+            state.slip[i] = 1;
+            state.moving[i] = Some(Moving::At(-(mu * &m.wall().g_m_s2)));
+        }
+        // Standing apart: nothing pushes.
+        let programs = Programs::new(m.wall(), m.topology(), &state).unwrap();
+        assert!(matches!(
+            programs.interval(&|| false),
+            Some(Interval::Empty { .. })
+        ));
+        programs.turning_whatever_the_ground(&|| false).unwrap()
+    };
+    let a = || Some(vec!["A".to_string()]);
+    assert_eq!(turning(ALONE, "0.55", &[0]), a());
+    let two = "(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\"), (width_m: 0.6, gap_m: 0.2, \
+               name: \"B\")])";
+    assert_eq!(turning(two, "0.55", &[0, 1]), Some(vec![]));
+    let stout = "(height_m: 1.2, blocks: [(width_m: 0.6, name: \"A\"), (width_m: 1.2, gap_m: \
+                 0.2, name: \"B\")])";
+    assert_eq!(turning(stout, "0.55", &[0, 1]), a());
+}
+
 #[test]
 fn a_block_dragged_by_one_sliding_on_it_lifts_where_its_moments_say() {
     // Lower block L (0.5 x 1.0 m) stuck to the ground, friction 0.8; upper block U (0.25 x
