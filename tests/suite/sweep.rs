@@ -891,6 +891,8 @@ fn a_sweep_asked_to_check_uplift_gives_each_cases_first_uplift() {
         ),
         (None, Some(Uniqueness::Unique))
     );
+    // Its own turning blocks, then: L, and U turning with it as it slides on it.
+    assert_eq!(rows[1].uplift_turning_in_every.as_deref(), Some("L; U"));
     for id in 0..2 {
         assert!(s.case_options(id).unwrap().ends_with("--check-uplift"));
     }

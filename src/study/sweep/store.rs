@@ -124,6 +124,10 @@ pub struct CaseRow {
     /// `one_of_several` or `undecided`, as the run's summary.json says): where it is not,
     /// `uplift_turning` names one of several ways the wall can start to rock.
     pub uplift_mechanism_uniqueness: Option<crate::limit::Uniqueness>,
+    /// The blocks that turn in every mechanism that holds then (`; ` between them; `none`
+    /// where no block does, as for twin slabs either of which may turn): the run's
+    /// summary.json `turning_in_every_mechanism`. Empty where not decided or no uplift.
+    pub uplift_turning_in_every: Option<String>,
     /// CPU time of the run (s): a measurement, kept in timing.csv, not in cases.csv.
     #[serde(skip)]
     pub cpu_s: f64,
@@ -162,7 +166,7 @@ pub struct TimingRow {
 }
 
 /// Columns of `cases.csv`.
-pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,max_accel_over_tipping,max_overlap_loss,uplift_checked_until_s,uplift_time_s,uplift_turning,uplift_mechanism_uniqueness,error";
+pub const CASES_HEADER: &str = "case,wall,motion,amplitude_gal,frequency_hz,record,scale,pga_gal,sample,blocks,max_abs_u_m,max_abs_u_block,residual_u_m,max_rel_u_m,max_opening_m,open_joints,impacts,events,transitions,decision_blocks,flow_nodes,energy_input_j,energy_residual_j,collapsed,collapse_time_s,collapse_block,model,max_abs_rotation_rad,max_accel_over_tipping,max_overlap_loss,uplift_checked_until_s,uplift_time_s,uplift_turning,uplift_mechanism_uniqueness,uplift_turning_in_every,error";
 
 /// Columns of `timing.csv`.
 pub const TIMING_HEADER: &str = "case,cpu_s";
