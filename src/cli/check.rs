@@ -425,10 +425,7 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             }
             if *mechanism_uniqueness != pirqa::limit::Uniqueness::Unique {
                 let _ = writeln!(out, "    ({})", mechanism_uniqueness.which());
-                let list = |names: &[String]| match names {
-                    [] => "none".to_string(),
-                    _ => names.join(", "),
-                };
+                let list = |names: &[String]| pirqa::limit::in_every_listed(names, ", ");
                 match (moving_in_every_mechanism, turning_in_every_mechanism) {
                     (Some(moving), Some(turning)) => {
                         let _ = writeln!(

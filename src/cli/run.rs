@@ -793,11 +793,7 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
                     (other, Some(every)) => format!(
                         " ({}; turning in every one: {})",
                         other.which(),
-                        if every.is_empty() {
-                            "none".to_string()
-                        } else {
-                            every.join(", ")
-                        }
+                        pirqa::limit::in_every_listed(every, ", ")
                     ),
                 }
             ),

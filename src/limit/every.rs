@@ -103,6 +103,22 @@ pub(super) struct Every {
     pub(super) turning: Vec<usize>,
 }
 
+impl Every {
+    /// Those of the one mechanism of multipliers `y`: its blocks and its turning ones.
+    pub(super) fn of(y: &[Q]) -> Every {
+        let nonzero = |rows: std::ops::Range<usize>| rows.into_iter().any(|r| !y[r].is_zero());
+        let blocks = 0..y.len() / ROWS;
+        Every {
+            moving: (blocks.clone())
+                .filter(|&k| nonzero(ROWS * k..ROWS * (k + 1)))
+                .collect(),
+            turning: blocks
+                .filter(|&k| nonzero(ROWS * k + 2..ROWS * (k + 1)))
+                .collect(),
+        }
+    }
+}
+
 /// The program with a free reaction on the balances of `rows` (the module's comment).
 fn held(program: &Program, rows: &[usize]) -> Program {
     let n = program.c.len();

@@ -149,6 +149,15 @@ impl Uniqueness {
     }
 }
 
+/// Blocks in every mechanism (`moving_in_every_mechanism`, `turning_in_every_mechanism`), as
+/// reports write them: their names between `separator`s, or `none`.
+pub fn in_every_listed(names: &[String], separator: &str) -> String {
+    match names {
+        [] => "none".to_string(),
+        _ => names.join(separator),
+    }
+}
+
 /// The most degenerate rows (basic columns at zero) for which a degenerate limit's mechanism is
 /// decided in full where its basis shows no other at once (`limit::uniqueness`): the deciding
 /// program takes an exact solve in B^T per such row. Walls of up to 200 movable blocks have
@@ -383,16 +392,8 @@ fn direction(
             let Some(mechanism_uniqueness) = found else {
                 return Ok(None);
             };
-            let nonzero = |rows: std::ops::Range<usize>| rows.into_iter().any(|r| !y[r].is_zero());
             let every = match mechanism_uniqueness {
-                Uniqueness::Unique => Some(every::Every {
-                    moving: (0..movable.len())
-                        .filter(|&k| nonzero(ROWS * k..ROWS * (k + 1)))
-                        .collect(),
-                    turning: (0..movable.len())
-                        .filter(|&k| nonzero(ROWS * k + 2..ROWS * (k + 1)))
-                        .collect(),
-                }),
+                Uniqueness::Unique => Some(every::Every::of(&y)),
                 Uniqueness::OneOfSeveral if movable.len() <= EVERY_BLOCKS => {
                     let found =
                         every::in_every_mechanism(&program, groups, Some(&value), &y, true, stop)?;

@@ -56,7 +56,7 @@ pub struct Side {
     /// limit at rest gives it).
     pub mechanism: Vec<Moves>,
     /// The program's forces at this side are degenerate: another mechanism may hold here too
-    /// ([`Programs::uniqueness`] decides).
+    /// ([`Programs::decide`] decides).
     pub degenerate: bool,
 }
 
@@ -67,7 +67,7 @@ impl Side {
     }
 }
 
-/// What [`Programs::uniqueness`] decides of a side.
+/// What [`Programs::decide`] decides of a side.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Decided {
     /// Whether the side's mechanism is the only one that holds there.
@@ -182,7 +182,7 @@ impl<'w> Programs<'w> {
     /// [`DECIDED_ROWS`] rows; with the blocks that turn in every mechanism that holds there
     /// (`None` where not decided: uniqueness undecided, more than [`EVERY_BLOCKS`] movable
     /// blocks). `None` where `stop` said so.
-    pub fn uniqueness(
+    pub fn decide(
         &self,
         side: &Side,
         s: i128,

@@ -209,7 +209,7 @@ impl Engine<'_> {
                 programs.turning_whatever_the_ground(&stop)?,
             ),
             // Stopped while deciding: the uplift stands, the rest not decided.
-            Cause::Passes(s, side) => match programs.uniqueness(side, *s, &stop)? {
+            Cause::Passes(s, side) => match programs.decide(side, *s, &stop)? {
                 Some(d) => (d.uniqueness, d.turning_in_every_mechanism),
                 None => (Uniqueness::Undecided, None),
             },

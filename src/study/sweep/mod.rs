@@ -1340,11 +1340,8 @@ fn fill(row: &mut CaseRow, s: &Summary, wall: &Wall, topo: &Topology) {
             row.uplift_time_s = Some(first.time_s);
             row.uplift_turning = Some(first.turning.join("; "));
             row.uplift_mechanism_uniqueness = Some(first.mechanism_uniqueness);
-            row.uplift_turning_in_every =
-                (first.turning_in_every_mechanism.as_ref()).map(|names| match names.as_slice() {
-                    [] => "none".to_string(),
-                    _ => names.join("; "),
-                });
+            row.uplift_turning_in_every = (first.turning_in_every_mechanism.as_deref())
+                .map(|names| crate::limit::in_every_listed(names, "; "));
         }
     }
     // A run the model stopped before its end (a held joint gave way, a body left the ground)
