@@ -58,6 +58,59 @@ pub(crate) fn proved(
     }
 }
 
+/// What [`solve_below`] shows.
+#[derive(Debug, PartialEq)]
+pub(crate) enum Against {
+    /// A feasible vertex that costs less than the value asked about: the program's optimum is
+    /// lower, or it is unbounded (not solved for).
+    Below,
+    /// The program's outcome.
+    Solved(Outcome),
+}
+
+/// Whether `program` has a feasible point that costs less than `value`, or else its outcome:
+/// [`solve`], its first floating-point run started from `start` (a basis of `program`, column
+/// `n + k` row k's artificial variable) and stopped at the first vertex below `value` (see
+/// [`revised::floating_from`]), that vertex shown feasible and below exactly; where the start
+/// is not feasible, or where what the run ends on proves nothing, [`solve`] answers from the
+/// crash. `None` where `stop` said so.
+pub(crate) fn solve_below(
+    program: &Program,
+    start: Vec<usize>,
+    value: &Q,
+    groups: &[crash::Group],
+    stop: &dyn Fn() -> bool,
+) -> Option<Against> {
+    // Stopped a little below `value` in floating point, so that the exact check rarely finds
+    // the vertex at `value` after all.
+    let v = value.to_f64();
+    let below = v - 1e-9 * (1.0 + v.abs());
+    let shown = match revised::floating_from(program, start, below, revised::RUNS[0], stop) {
+        Some(revised::Warm::Below(basis)) => {
+            below_vertex(program, &basis, value).then_some(Against::Below)
+        }
+        Some(revised::Warm::Ended(ending, last, scales)) => {
+            proved_run(program, (ending, last, scales)).map(Against::Solved)
+        }
+        None => None,
+    };
+    shown.or_else(|| solve(program, groups, stop).map(Against::Solved))
+}
+
+/// Whether the vertex of `basis` is feasible and costs less than `value`, exactly.
+fn below_vertex(program: &Program, basis: &[usize], value: &Q) -> bool {
+    let n = program.c.len();
+    let negated = Negated::new(program);
+    let Some(x_b) = (negated.systems(basis)).and_then(|s| negated.vertex(&s, basis)) else {
+        return false;
+    };
+    let cost: Q = (basis.iter().zip(&x_b))
+        .filter(|(&j, _)| j < n)
+        .map(|(&j, x)| &program.c[j] * x)
+        .sum();
+    cost < *value
+}
+
 /// The certified runs' answer, and whether `stop` said to stop.
 fn watched(
     program: &Program,
@@ -284,7 +337,15 @@ pub(super) fn certified_by(
     rules: revised::Rules,
     stop: &dyn Fn() -> bool,
 ) -> Option<Outcome> {
-    let (ending, last, scales) = revised::floating(program, groups, rules, stop)?;
+    proved_run(program, revised::floating(program, groups, rules, stop)?)
+}
+
+/// The outcome that a floating-point run's last basis proves (its ending, that basis and the
+/// divisors of its rows), if it proves one.
+fn proved_run(
+    program: &Program,
+    (ending, last, scales): (Ending, Vec<usize>, Vec<f64>),
+) -> Option<Outcome> {
     // Phase 1 of the scaled rows costs each artificial variable 1 / scale in the rows as given.
     let weights: Option<Vec<Q>> = scales
         .iter()

@@ -115,6 +115,49 @@ pub(super) fn floating(
     Some((ending, run.basis, scaled.scales))
 }
 
+/// How a run from a start ([`floating_from`]) ended.
+pub(super) enum Warm {
+    /// As [`floating`]'s runs end: how, the last basis and the rows' divisors.
+    Ended(Ending, Vec<usize>, Vec<f64>),
+    /// At a basis whose vertex costs less than the bound the run was given: phase 2 stopped
+    /// there.
+    Below(Vec<usize>),
+}
+
+/// [`floating`] from `start`, a basis of `program` as [`floating`] returns them (columns `n..n +
+/// m` the rows' artificial variables), the rows negated where b < 0, phase 2 stopping at the
+/// first vertex that costs less than `below`; `None` where the start's vertex is not feasible
+/// to the ratio test's tolerance, or as [`floating`]. Why: a program that is a solved one with
+/// columns added (`every`'s held programs) is feasible at the solved one's optimal basis; from
+/// there it reaches its optimum in a few pivots where that is the solved one's value, and
+/// where it is lower, the first step down shows so (the optimum itself, thousands of pivots
+/// away on a wall of hundreds of blocks, is not asked for).
+pub(super) fn floating_from(
+    program: &Program,
+    start: Vec<usize>,
+    below: f64,
+    rules: Rules,
+    stop: &dyn Fn() -> bool,
+) -> Option<Warm> {
+    let scaled = Scaled::new(program);
+    let c: Vec<f64> = program.c.iter().map(Q::to_f64).collect();
+    let mut run = scaled.run(start, &signs(&scaled.b), rules)?;
+    if run.x.iter().any(|&x| x < -TOLERANCE) {
+        return None;
+    }
+    Some(match run.phases(&c, below, stop)? {
+        Phase::Below => Warm::Below(run.basis),
+        Phase::Ended(ending) => Warm::Ended(ending, run.basis, scaled.scales),
+    })
+}
+
+/// How both phases of a run ended.
+enum Phase {
+    Ended(Ending),
+    /// At a vertex that costs less than the bound given.
+    Below,
+}
+
 /// A basis in which phase 1 of the program (its costs ignored) ends with every artificial
 /// variable at zero to the ratio test's tolerance, or `None` where it ends above zero, gives
 /// up, or `stop` says so. The run starts from the crash basis of `groups` ([`crash`]). Why:
@@ -474,11 +517,13 @@ impl Run {
     /// are at zero, Bland's rule picks (the first column negative to the careful pricing enters,
     /// a tie leaves by the least basic column among the pivots above the run's floor,
     /// [`Rules::bland_floor`]), which cannot cycle in exact arithmetic, until a step moves the
-    /// vertex again.
+    /// vertex again. It stops ([`Stop::Below`]) after a pivot to a vertex that costs less than
+    /// `below`.
     fn optimise(
         &mut self,
         cost: &[f64],
         allowed: impl Fn(usize) -> bool,
+        below: f64,
         stop: &dyn Fn() -> bool,
     ) -> Stop {
         let m = self.m();
@@ -574,6 +619,14 @@ impl Run {
             if self.pivot(p, j, &alpha).is_none() {
                 return Stop::GaveUp;
             }
+            if below > f64::NEG_INFINITY {
+                let value: f64 = (self.basis.iter().zip(&self.x))
+                    .map(|(&j, x)| cost[j] * x)
+                    .sum();
+                if value < below {
+                    return Stop::Below;
+                }
+            }
         }
     }
 
@@ -612,7 +665,7 @@ impl Run {
     fn phase_one(&mut self, stop: &dyn Fn() -> bool) -> Option<bool> {
         let (m, n) = (self.m(), self.n());
         let phase1: Vec<f64> = (0..n + m).map(|j| if j < n { 0.0 } else { 1.0 }).collect();
-        if let Stop::GaveUp = self.optimise(&phase1, |_| true, stop) {
+        if let Stop::GaveUp = self.optimise(&phase1, |_| true, f64::NEG_INFINITY, stop) {
             return None;
         }
         if (0..m).any(|i| self.basis[i] >= n && self.x[i] > TOLERANCE) {
@@ -624,17 +677,28 @@ impl Run {
 
     /// Both phases; `c` the program's costs. `None` where the run gave up.
     fn both_phases(&mut self, c: &[f64], stop: &dyn Fn() -> bool) -> Option<Ending> {
+        match self.phases(c, f64::NEG_INFINITY, stop)? {
+            Phase::Ended(ending) => Some(ending),
+            // No vertex costs less than minus infinity.
+            Phase::Below => None,
+        }
+    }
+
+    /// Both phases, phase 2 stopping at a vertex that costs less than `below`. `None` where the
+    /// run gave up.
+    fn phases(&mut self, c: &[f64], below: f64, stop: &dyn Fn() -> bool) -> Option<Phase> {
         let (m, n) = (self.m(), self.n());
         if !self.phase_one(stop)? {
-            return Some(Ending::Infeasible);
+            return Some(Phase::Ended(Ending::Infeasible));
         }
         // Phase 2: the program's costs, artificial columns barred.
         let cost: Vec<f64> = c.iter().copied().chain((0..m).map(|_| 0.0)).collect();
-        match self.optimise(&cost, |j| j < n, stop) {
-            Stop::GaveUp => None,
-            Stop::Unbounded { entering } => Some(Ending::Unbounded { entering }),
-            Stop::Optimal => Some(Ending::Optimal),
-        }
+        Some(match self.optimise(&cost, |j| j < n, below, stop) {
+            Stop::GaveUp => return None,
+            Stop::Below => Phase::Below,
+            Stop::Unbounded { entering } => Phase::Ended(Ending::Unbounded { entering }),
+            Stop::Optimal => Phase::Ended(Ending::Optimal),
+        })
     }
 }
 
@@ -766,6 +830,66 @@ mod tests {
         }];
         assert!(!crate::limit::certify::feasible(&p, &groups, &|| false));
         assert!(!crate::limit::certify::feasible(&p, &[], &|| false));
+    }
+
+    #[test]
+    fn a_program_with_columns_added_is_answered_from_the_solved_ones_basis() {
+        // Each program solved, then a free reaction (a pair of unit columns) added on one row, as
+        // `every` holds a balance: at no cost (the optimum falls where the row's multiplier
+        // y_r is not zero), or at costs y_r and -y_r (reduced costs zero: it stays, and the
+        // start is degenerate in them). From the solved basis the run must start (its vertex
+        // is feasible) and show the answer the crash's run gives: a vertex below the solved
+        // value (or a ray) exactly where the optimum falls, the same value otherwise.
+        use crate::limit::certify::{solve, solve_below, Against};
+        let (mut below, mut stayed) = (0, 0);
+        for seed in 1..9 {
+            let p = sparse(30, 90, seed);
+            let Some(Outcome::Optimal {
+                value, basis, y, ..
+            }) = solve(&p, &[], &|| false)
+            else {
+                panic!("seed {seed}: the program has an optimum");
+            };
+            for (r, priced) in (0..30).map(|r| (r, r % 2 == 1)) {
+                let mut columns: Vec<_> = (0..90).map(|j| p.column(j).to_vec()).collect();
+                columns.push(vec![(r, Q::one())]);
+                columns.push(vec![(r, -Q::one())]);
+                let mut c = p.c.clone();
+                if priced {
+                    c.extend([y[r].clone(), -&y[r]]);
+                } else {
+                    c.resize(92, Q::zero());
+                }
+                let held = Program::new(columns, p.b.clone(), c);
+                let start: Vec<usize> = (basis.iter())
+                    .map(|&j| if j < 90 { j } else { j + 2 })
+                    .collect();
+                let warm =
+                    floating_from(&held, start.clone(), f64::NEG_INFINITY, RUNS[0], &|| false);
+                assert!(
+                    warm.is_some(),
+                    "seed {seed}, row {r}: the start is feasible"
+                );
+                let lower = match solve(&held, &[], &|| false) {
+                    Some(Outcome::Optimal { value: v, .. }) => v < value,
+                    Some(Outcome::Unbounded) => true,
+                    other => panic!("seed {seed}, row {r}: {other:?}"),
+                };
+                match solve_below(&held, start, &value, &[], &|| false) {
+                    // A ray from the start shows the fall at once.
+                    Some(Against::Below | Against::Solved(Outcome::Unbounded)) if lower => {
+                        below += 1
+                    }
+                    Some(Against::Solved(Outcome::Optimal { value: v, .. }))
+                        if !lower && v == value =>
+                    {
+                        stayed += 1
+                    }
+                    other => panic!("seed {seed}, row {r}: lower {lower}, {other:?}"),
+                }
+            }
+        }
+        assert!(below > 0 && stayed > 0, "{below} fell, {stayed} stayed");
     }
 
     #[test]

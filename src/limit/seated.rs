@@ -211,7 +211,7 @@ impl<'w> Programs<'w> {
         let turning = match found {
             Uniqueness::Unique => own(),
             Uniqueness::OneOfSeveral => {
-                builder.turning(self.wall, &program, Some(&value), &y, stop)?
+                builder.turning(self.wall, &program, Some((&value, &basis)), &y, stop)?
             }
             Uniqueness::Undecided => None,
         };
@@ -375,21 +375,21 @@ impl Builder {
         Program::new(columns, b, vec![Q::zero(); self.ag])
     }
 
-    /// The blocks that turn in every mechanism of `program` ([`every`]: `value` and `y` its
-    /// value and optimal multipliers, or `y` its certificate of infeasibility); `None` where
+    /// The blocks that turn in every mechanism of `program` ([`every`]: `optimum` its value and
+    /// optimal basis and `y` its multipliers, or `y` its certificate of infeasibility); `None` where
     /// the state has more than [`EVERY_BLOCKS`] movable blocks or `stop` said so.
     fn turning(
         &self,
         wall: &Wall,
         program: &Program,
-        value: Option<&Q>,
+        optimum: Option<(&Q, &[usize])>,
         y: &[Q],
         stop: &dyn Fn() -> bool,
     ) -> Result<Option<Vec<String>>, SimulationError> {
         if self.movable.len() > EVERY_BLOCKS {
             return Ok(None);
         }
-        let found = every::in_every_mechanism(program, &self.groups, value, y, false, stop)?;
+        let found = every::in_every_mechanism(program, &self.groups, optimum, y, false, stop)?;
         Ok(found.map(|e| {
             (e.turning.into_iter())
                 .map(|k| wall.blocks[self.movable[k]].name.clone())

@@ -118,6 +118,8 @@ pub(super) enum Stop {
     },
     /// Asked to stop, or (in floating point) out of pivots or of a factorisable basis.
     GaveUp,
+    /// (In floating point, given a bound) at a vertex that costs less than the bound.
+    Below,
 }
 
 impl Tableau {
@@ -276,7 +278,8 @@ impl Tableau {
         let cost: Vec<Q> = c.into_iter().chain((0..m).map(|_| Q::zero())).collect();
         self.price(&cost);
         match self.optimise(|j| j < n, stop) {
-            Stop::GaveUp => None,
+            // The tableau is given no bound to pass.
+            Stop::GaveUp | Stop::Below => None,
             Stop::Unbounded { entering } => Some((Ending::Unbounded { entering }, cost)),
             Stop::Optimal => Some((Ending::Optimal, cost)),
         }

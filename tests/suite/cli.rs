@@ -169,8 +169,11 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     let svg = std::fs::read_to_string(dir.join("mechanism-minus-x.svg")).unwrap();
     assert!(svg.contains(&format!("{several}, exaggerated")), "{svg}");
     // Beyond 200 blocks: a bond of one friction (203 blocks) is one of several, its basis
-    // showing another at once; slender blocks tipping at 4/75 g (244 blocks, degenerate in a
-    // few rows, their basis showing no other) are decided unique by the program of directions.
+    // showing another at once, and its top end blocks move in every mechanism; slender blocks
+    // tipping at 4/75 g (244 blocks, degenerate in a few rows, their basis showing no other)
+    // are decided unique by the program of directions; beyond 500 blocks (a course of 510
+    // slender ones, any run of them from an end tipping) the report says up to where the
+    // blocks in every mechanism are decided.
     let generated = |name: &str, spec: &[&str]| {
         let wall = dir.join(name);
         let (ok, _, err) = pirqa(&[&["generate"], spec, &["-o", wall.to_str().unwrap()]].concat());
@@ -179,8 +182,16 @@ fn check_gives_the_limit_at_rest_and_its_mechanism() {
     };
     let (ok, out, err) = generated("bond.ron", &["--blocks", "190"]);
     assert!(ok && out.matches(several).count() == 2, "{out}{err}");
-    let undecided = "(which blocks move in every mechanism that holds here is not decided)";
-    assert_eq!(out.matches(undecided).count(), 2, "{out}");
+    for end in ["B189", "B203"] {
+        let every = format!("in every mechanism that holds here: moving {end}; turning none");
+        assert!(out.contains(&every), "{out}");
+    }
+    let row = ["--courses", "1", "--blocks-per-course", "510"];
+    let (ok, out, err) = generated("row.ron", &row);
+    assert!(ok && out.matches(several).count() == 2, "{out}{err}");
+    let beyond = "(which blocks move in every mechanism that holds here is decided for walls of \
+                  up to 500 movable blocks)";
+    assert_eq!(out.matches(beyond).count(), 2, "{out}");
     let slender = [
         "--courses",
         "8",
