@@ -59,7 +59,7 @@ pub(crate) fn proved(
 }
 
 /// What [`solve_below`] shows.
-#[derive(Debug, PartialEq)]
+#[derive(Debug)]
 pub(crate) enum Against {
     /// A feasible vertex that costs less than the value asked about: the program's optimum is
     /// lower, or it is unbounded (not solved for).
@@ -99,16 +99,9 @@ pub(crate) fn solve_below(
 
 /// Whether the vertex of `basis` is feasible and costs less than `value`, exactly.
 fn below_vertex(program: &Program, basis: &[usize], value: &Q) -> bool {
-    let n = program.c.len();
     let negated = Negated::new(program);
-    let Some(x_b) = (negated.systems(basis)).and_then(|s| negated.vertex(&s, basis)) else {
-        return false;
-    };
-    let cost: Q = (basis.iter().zip(&x_b))
-        .filter(|(&j, _)| j < n)
-        .map(|(&j, x)| &program.c[j] * x)
-        .sum();
-    cost < *value
+    let vertex = (negated.systems(basis)).and_then(|s| negated.costed(program, &s, basis));
+    vertex.is_some_and(|(_, cost)| cost < *value)
 }
 
 /// The certified runs' answer, and whether `stop` said to stop.
@@ -382,7 +375,7 @@ pub(super) fn basis(
     };
     match ending {
         Ending::Optimal => {
-            let x_b = negated.vertex(&systems, basis)?;
+            let (x, value) = negated.costed(program, &systems, basis)?;
             let c_b: Vec<Q> = basis
                 .iter()
                 .map(|&j| {
@@ -404,13 +397,6 @@ pub(super) fn basis(
             if !dual_feasible {
                 return None;
             }
-            let mut x = vec![Q::zero(); n];
-            for (k, &j) in basis.iter().enumerate() {
-                if j < n {
-                    x[j] = x_b[k].clone();
-                }
-            }
-            let value = (0..n).map(|j| &program.c[j] * &x[j]).sum::<Q>();
             Some(Outcome::Optimal {
                 x,
                 value,
@@ -524,6 +510,21 @@ impl Negated {
         let x_b = systems.solve(self.b.clone())?;
         let signs: Vec<Ordering> = x_b.iter().map(|x| x.signum().cmp(&0)).collect();
         self.feasible(&signs, basis).then_some(x_b)
+    }
+
+    /// The basis's vertex as the program's x (per column of A) and its cost, where it is at
+    /// least zero with every artificial variable at zero.
+    fn costed(&self, program: &Program, systems: &Systems, basis: &[usize]) -> Option<(Vec<Q>, Q)> {
+        let x_b = self.vertex(systems, basis)?;
+        let n = program.c.len();
+        let mut x = vec![Q::zero(); n];
+        for (k, &j) in basis.iter().enumerate() {
+            if j < n {
+                x[j] = x_b[k].clone();
+            }
+        }
+        let value = (0..n).map(|j| &program.c[j] * &x[j]).sum::<Q>();
+        Some((x, value))
     }
 
     /// Whether the vertex whose entries have `signs` is at least zero with every artificial
