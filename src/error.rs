@@ -73,6 +73,17 @@ pub enum Error {
     /// The simulation could not continue.
     #[error(transparent)]
     Simulation(#[from] SimulationError),
+    /// The wall where a saved run left it cannot stand as a wall.
+    #[error("{}: the wall where this run left it, at t = {time_s} s: {source}", dir.display())]
+    Moved {
+        /// The run's directory.
+        dir: PathBuf,
+        /// The instant (s).
+        time_s: f64,
+        /// What is wrong with the moved wall (boxed, as a sweep's error is).
+        #[source]
+        source: Box<WallError>,
+    },
     /// The simulation could not continue after it had written part of its results as it went
     /// (the history and the event log, under their partial names): they are kept.
     #[error(

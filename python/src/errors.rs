@@ -8,7 +8,9 @@ use pyo3::prelude::*;
 /// The exception class of `pirqa.errors` that stands for `e`.
 fn class_name(e: &Error) -> &'static str {
     match e {
-        Error::Wall { .. } | Error::InvalidWall(_) | Error::Survey { .. } => "WallError",
+        Error::Wall { .. } | Error::InvalidWall(_) | Error::Survey { .. } | Error::Moved { .. } => {
+            "WallError"
+        }
         Error::Motion { .. } | Error::InvalidMotion(_) | Error::Unit(_) => "MotionError",
         Error::Sweep { .. } => "SweepError",
         Error::Option { .. } => "OptionError",

@@ -145,20 +145,82 @@ impl Wall {
     /// "accel_m_s2", "exact_g" (a fraction), "mechanism": [{"block", "how", "u", "v",
     /// "omega_rad_s"}, ...], "mechanism_uniqueness": "unique", "one_of_several" or "undecided",
     /// "moving_in_every_mechanism" and "turning_in_every_mechanism": block names, or None where
-    /// not decided}` or `{"kind": "unlimited"}`. The exact programs run without the
+    /// not decided}` or `{"kind": "unlimited"}`. With `displacement_m` (one per block, in the
+    /// order of `blocks`: a run's final displacements or a history row), the limit of the wall
+    /// with its blocks so moved, the `fallen` ones (booleans) taken out, as `pirqa check --run`
+    /// gives it, and `moved` saying what moving it changed. The exact programs run without the
     /// GIL; Ctrl-C (a notebook's interrupt) stops them, raising `KeyboardInterrupt` (a large
     /// wall's take minutes).
-    fn limit_at_rest<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+    #[pyo3(signature = (*, displacement_m = None, fallen = None))]
+    fn limit_at_rest<'py>(
+        &self,
+        py: Python<'py>,
+        displacement_m: Option<Vec<f64>>,
+        fallen: Option<Vec<bool>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = self.model.wall().blocks.len();
+        let moved = match (displacement_m, fallen) {
+            (None, None) => None,
+            (None, Some(_)) => {
+                return Err(option(
+                    "fallen",
+                    "give it with displacement_m: the blocks that fell of a moved wall",
+                ))
+            }
+            (Some(u), fallen) => {
+                let fallen = fallen.unwrap_or_else(|| vec![false; n]);
+                for (name, len) in [("displacement_m", u.len()), ("fallen", fallen.len())] {
+                    if len != n {
+                        return Err(option(
+                            name,
+                            format!(
+                                "{len} values for {n} blocks: one per block, in the order of \
+                                 Wall.blocks"
+                            ),
+                        ));
+                    }
+                }
+                let state = pirqa::response::saved::SavedState {
+                    time_s: 0.0,
+                    displacement_m: u,
+                    fallen,
+                    pose: None,
+                };
+                let model = &self.model;
+                let moved = pirqa::response::moved::moved(model.wall(), model.topology(), &state)
+                    .map_err(pirqa::Error::InvalidWall)
+                    .py()?;
+                Some(moved)
+            }
+        };
         let model = Arc::clone(&self.model);
         let interrupt = Interrupt::new(py)?;
         let stop = interrupt.check();
-        let limits = py
-            .detach(move || pirqa::limit::at_rest_until(model.wall(), model.topology(), &stop))
-            .map_err(pirqa::Error::from)
-            .py()?;
+        let (limits, moves) = py.detach(move || {
+            let limits = match &moved {
+                Some((wall, topo, _)) => pirqa::limit::at_rest_until(wall, topo, &stop),
+                None => pirqa::limit::at_rest_until(model.wall(), model.topology(), &stop),
+            };
+            (limits, moved.map(|(_, _, moves)| moves))
+        });
+        let limits = limits.map_err(pirqa::Error::from).py()?;
+        /// The limits, and what moving the wall changed where it was moved.
+        #[derive(serde::Serialize)]
+        struct Report {
+            #[serde(flatten)]
+            limits: pirqa::limit::Limits,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            moved: Option<pirqa::response::moved::Moves>,
+        }
         match (limits, interrupt.raised()) {
             (_, Some(signal)) => Err(signal),
-            (Some(limits), None) => crate::to_python::to_python(py, &limits),
+            (Some(limits), None) => crate::to_python::to_python(
+                py,
+                &Report {
+                    limits,
+                    moved: moves,
+                },
+            ),
             // The stop is set only where a signal's handler raised, so this is not met.
             (None, None) => Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
                 "the limit at rest was stopped",

@@ -142,24 +142,48 @@ pub fn check(
     json: bool,
     limit: bool,
     mechanism: Option<&Path>,
+    run: Option<(&Path, Option<f64>)>,
 ) -> Result<(), pirqa::Error> {
-    let (wall, topo) = topology::load(path)?;
-    let r = topo.report(&wall);
+    let (built, built_topo) = topology::load(path)?;
+    // Where a run left the wall, the rest of the check is that wall's, and the limit as built
+    // stands beside its own.
+    let moved = match run {
+        Some((dir, at_s)) => {
+            let state = state_at(dir, &built, at_s)?;
+            let (wall, topo, moves) = pirqa::response::moved::moved(&built, &built_topo, &state)
+                .map_err(|source| pirqa::Error::Moved {
+                    dir: dir.to_path_buf(),
+                    time_s: state.time_s,
+                    source: Box::new(source),
+                })?;
+            Some((wall, topo, moves, dir, state.time_s))
+        }
+        None => None,
+    };
+    let (wall, topo) = match &moved {
+        Some((wall, topo, ..)) => (wall, topo),
+        None => (&built, &built_topo),
+    };
+    let as_built = (limit && moved.is_some()).then(|| limit_at_rest(&built, &built_topo));
+    let r = topo.report(wall);
     // A wall made of columns: where each joint gives way, and which the column moves on.
     let columns = (wall.blocks.len() > 1)
-        .then(|| pirqa::integrate::rocking::columns(&wall, &topo).ok())
+        .then(|| pirqa::integrate::rocking::columns(wall, topo).ok())
         .flatten();
     // Where the wall at rest stops being held, when asked (a wall too large for the exact
     // program says why instead).
-    let limit = limit.then(|| limit_at_rest(&wall, &topo));
+    let limit = limit.then(|| limit_at_rest(wall, topo));
     // Stopped by Ctrl-C, the report says so and the command ends with 130, drawing nothing.
     if let (Some(dir), Some(l), false) = (mechanism, &limit, super::interrupted()) {
         // Drawings asked for and not made are an error, not a line of the report.
         let l = l
             .as_ref()
             .map_err(|why| pirqa::SimulationError::NotApplicable(why.clone()))?;
-        write_mechanisms(dir, &wall, &topo, l)?;
+        write_mechanisms(dir, wall, topo, l)?;
     }
+    let moves = moved
+        .as_ref()
+        .map(|(_, _, moves, dir, time_s)| (moves, *dir, *time_s));
     if json {
         /// The graph's report, a wall of columns' joint limits and the limits at rest after it.
         #[derive(serde::Serialize)]
@@ -172,6 +196,20 @@ pub fn check(
             limit_at_rest: Option<&'a pirqa::limit::Limits>,
             #[serde(skip_serializing_if = "Option::is_none")]
             limit_at_rest_not_computed: Option<&'a str>,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            moved_by_run: Option<MovedByRun<'a>>,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            limit_at_rest_as_built: Option<&'a pirqa::limit::Limits>,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            limit_at_rest_as_built_not_computed: Option<&'a str>,
+        }
+        /// Where the blocks are: the run and what moving the wall changed.
+        #[derive(serde::Serialize)]
+        struct MovedByRun<'a> {
+            run: String,
+            time_s: f64,
+            #[serde(flatten)]
+            moves: &'a pirqa::response::moved::Moves,
         }
         let report = Report {
             graph: &r,
@@ -183,12 +221,25 @@ pub fn check(
                 .as_ref()
                 .and_then(|l| l.as_ref().err())
                 .map(String::as_str),
+            moved_by_run: moves.map(|(moves, dir, time_s)| MovedByRun {
+                run: dir.display().to_string(),
+                time_s,
+                moves,
+            }),
+            limit_at_rest_as_built: as_built.as_ref().and_then(|l| l.as_ref().ok()),
+            limit_at_rest_as_built_not_computed: as_built
+                .as_ref()
+                .and_then(|l| l.as_ref().err())
+                .map(String::as_str),
         };
         print_out(&(serde_json::to_string_pretty(&report).expect("report serialises") + "\n"));
         return Ok(());
     }
     let mut out = String::new();
     let _ = writeln!(out, "{} ({})", r.name, path.display());
+    if let Some((m, dir, time_s)) = moves {
+        write_moves(&mut out, m, dir, time_s);
+    }
     let _ = writeln!(
         out,
         "  {} blocks, thickness {} m, density {} kg/m3, g = {} m/s2, restitution {}",
@@ -296,6 +347,9 @@ pub fn check(
         "\nlimit at rest (every block seated and moving with the ground; rigid blocks, joints \
          without tension, Coulomb's cone at each end of each joint)"
     );
+    if moves.is_some() {
+        let _ = writeln!(out, "  of the wall where the run left it:");
+    }
     match &limit {
         Ok(l) => {
             for (side, l) in [("+x", &l.towards_plus_x), ("-x", &l.towards_minus_x)] {
@@ -306,8 +360,57 @@ pub fn check(
             let _ = writeln!(out, "  not computed: {why}");
         }
     }
+    match &as_built {
+        Some(Ok(l)) => {
+            let side = |l: &pirqa::limit::Limit| match l {
+                pirqa::limit::Limit::Unlimited => "held at any acceleration".to_string(),
+                pirqa::limit::Limit::Holds {
+                    accel_g, exact_g, ..
+                } => format!("{accel_g:.4} g ({exact_g} g)"),
+            };
+            let _ = writeln!(
+                out,
+                "  of the wall as built: towards +x {}; towards -x {}",
+                side(&l.towards_plus_x),
+                side(&l.towards_minus_x)
+            );
+        }
+        Some(Err(why)) => {
+            let _ = writeln!(out, "  of the wall as built: not computed: {why}");
+        }
+        None => {}
+    }
     print_out(&out);
     Ok(())
+}
+
+/// What the run did to the wall the report describes.
+fn write_moves(out: &mut String, m: &pirqa::response::moved::Moves, dir: &Path, time_s: f64) {
+    let list = |names: &[String]| {
+        if names.is_empty() {
+            "none".to_string()
+        } else {
+            names.join(", ")
+        }
+    };
+    let _ = writeln!(
+        out,
+        "  where the run in {} left it at t = {} s: every block moved by its displacement (the \
+         largest {:.4} m)",
+        dir.display(),
+        time_s,
+        m.largest_displacement_m,
+    );
+    let _ = writeln!(
+        out,
+        "  fallen, taken out: {}; joints slid apart: {}; joints slid onto: {} (friction: the \
+         wall's default); vertical joints the run left touching (within {:e} m), set touching: {}",
+        list(&m.fallen),
+        list(&m.joints_lost),
+        list(&m.joints_new),
+        pirqa::response::moved::TOUCHING_M,
+        m.faces_set_touching
+    );
 }
 
 /// The wall's limit at rest, a spinner on the terminal while the exact program runs; a wall

@@ -26,6 +26,30 @@ pub struct Cli {
     command: Command,
 }
 
+/// Where a saved run left the wall: `--run DIR`, and `--at T`.
+#[derive(clap::Args, Debug)]
+struct SavedRun {
+    /// The output directory of `pirqa run` on this wall: every block where the run left it (at
+    /// its end, from the exact final displacements), fallen blocks apart.
+    #[arg(long, value_name = "DIR")]
+    run: Option<PathBuf>,
+    /// With --run: the state at this time (s), the last history sample at or before it.
+    #[arg(
+        long,
+        value_name = "T",
+        requires = "run",
+        allow_negative_numbers = true
+    )]
+    at: Option<f64>,
+}
+
+impl SavedRun {
+    /// The directory and the time asked, where a run was given.
+    fn asked(&self) -> Option<(&std::path::Path, Option<f64>)> {
+        self.run.as_deref().map(|dir| (dir, self.at))
+    }
+}
+
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Check a wall file and print its topology: blocks, supports with loads and friction
@@ -38,13 +62,14 @@ enum Command {
         json: bool,
         /// Check the wall across its plane instead: for the part above every bed joint, the
         /// ground acceleration that starts it rocking and its capacity curve lambda(theta).
-        #[arg(long)]
+        #[arg(long, conflicts_with = "run")]
         out_of_plane: bool,
         /// Also find the wall's limit at rest in its plane: the ground acceleration, each way,
         /// beyond which no contact forces hold every block seated, and the mechanism past it
         /// (an exact linear program, walls of up to 2000 movable blocks; under a second on the
         /// shipped walls, seconds at a thousand blocks, a minute or two at two thousand;
-        /// Ctrl-C stops it).
+        /// Ctrl-C stops it). With --run, of the wall where the run left it, beside the wall's
+        /// as built.
         #[arg(long, conflicts_with = "out_of_plane")]
         limit: bool,
         /// With --limit: write the limits (limit.json) and a drawing of each mechanism
@@ -68,6 +93,9 @@ enum Command {
         /// CSV).
         #[arg(long, value_name = "FILE", requires = "out_of_plane")]
         plot: Option<PathBuf>,
+        /// The wall where a run left it.
+        #[command(flatten)]
+        moved: SavedRun,
     },
     /// Draw a wall's elevation as SVG with block names and joint friction.
     Draw {
@@ -79,18 +107,9 @@ enum Command {
         /// Also draw the support graph (block to support) and the vertical joints.
         #[arg(long)]
         graph: bool,
-        /// Draw the blocks where a run left them: the output directory of `pirqa run` on this
-        /// wall (final state, fallen blocks marked).
-        #[arg(long, value_name = "DIR")]
-        run: Option<PathBuf>,
-        /// With --run: draw the state at this time (s), the last history sample at or before it.
-        #[arg(
-            long,
-            value_name = "T",
-            requires = "run",
-            allow_negative_numbers = true
-        )]
-        at: Option<f64>,
+        /// Draw the blocks where a run left them (fallen blocks marked).
+        #[command(flatten)]
+        moved: SavedRun,
     },
     /// Play a saved run back: one self-contained HTML page with the blocks moving (and
     /// rotating), a time slider, play/pause, a magnification, and the ground acceleration with
@@ -146,15 +165,15 @@ pub fn run() -> Result<(), pirqa::Error> {
             json,
             limit,
             mechanism,
+            moved,
             ..
-        } => check::check(&wall, json, limit, mechanism.as_deref()),
+        } => check::check(&wall, json, limit, mechanism.as_deref(), moved.asked()),
         Command::Draw {
             wall,
             output,
             graph,
-            run,
-            at,
-        } => check::draw(&wall, &output, graph, run.as_deref().map(|d| (d, at))),
+            moved,
+        } => check::draw(&wall, &output, graph, moved.asked()),
         Command::Animate { dir, output, wall } => check::animate(&dir, &output, wall.as_deref()),
         Command::Run(args) => {
             if args.decisions && args.method != run::Method::Event {

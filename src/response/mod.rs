@@ -7,6 +7,7 @@ mod history_file;
 pub use history_file::{each_row, RowVisitor, Stream};
 mod partial;
 pub use partial::partial_name;
+pub mod moved;
 mod recorder;
 pub mod saved;
 

@@ -50,7 +50,8 @@ pub fn state_at(dir: &Path, wall: &Wall, at_s: Option<f64>) -> Result<SavedState
             &summary_path,
             1,
             format!(
-                "this is a run of the wall \"{ran}\", not of \"{}\": draw it on the wall file it ran",
+                "this is a run of the wall \"{ran}\", not of \"{}\": give the wall file it ran \
+                 (the wall.ron beside its summary)",
                 wall.name
             ),
         ));
@@ -219,13 +220,15 @@ fn each_row(
         })?;
         let line = record.position().map_or(0, |p| p.line() as usize);
         let num = |i: usize| -> Result<f64, Error> {
-            record.get(i).and_then(|f| f.parse().ok()).ok_or_else(|| {
-                table(
-                    path,
-                    line,
-                    format!("column `{}` is not a number", &header[i]),
-                )
-            })
+            (record.get(i).and_then(|f| f.parse().ok()))
+                .filter(|v: &f64| v.is_finite())
+                .ok_or_else(|| {
+                    table(
+                        path,
+                        line,
+                        format!("column `{}` is not a finite number", &header[i]),
+                    )
+                })
         };
         let time = num(0)?;
         let u = columns.iter().map(|&c| num(c)).collect::<Result<_, _>>()?;
@@ -325,4 +328,43 @@ pub fn ground_acceleration(dir: &Path) -> Result<Vec<(f64, f64)>, Error> {
         .filter(|p| p.chart == "ground acceleration")
         .map(|p| (p.x, p.y))
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A run's final displacements come back as the doubles it wrote: serde_json's default
+    /// parser rounds some 17-digit decimals to the neighbouring double, which moved a block of
+    /// `pirqa check --run` by an ulp from where the run left it.
+    #[test]
+    fn final_displacements_read_back_to_the_bit() {
+        let dir = std::env::temp_dir().join(format!("pirqa-saved-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let wall = Wall::from_ron_str(
+            r#"(version: 1, name: "one", thickness_m: 0.5, density_kg_m3: 2500, friction: 0.6,
+                rows: [(height_m: 1.0, blocks: [(width_m: 1.0, name: "A")])])"#,
+        )
+        .unwrap();
+        for written in [
+            -0.22352064980702174_f64,
+            0.1 + 0.2,
+            1e-300,
+            -7.450580596923828e-9,
+        ] {
+            let summary = serde_json::json!({
+                "wall": "one",
+                "duration_s": 0.5,
+                "blocks": [{"name": "A", "final_displacement_m": written, "fell": false}],
+            });
+            std::fs::write(dir.join("summary.json"), summary.to_string()).unwrap();
+            let state = state_at(&dir, &wall, None).unwrap();
+            assert_eq!(
+                state.displacement_m[0].to_bits(),
+                written.to_bits(),
+                "{written}"
+            );
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -404,7 +404,7 @@ pub fn to_ron_string(d: &WallDescription) -> String {
 /// already stopped), and the only one a new block can overlap is the one starting last below
 /// its top. A lookup per block instead of a comparison with every block the line crosses
 /// (one per course): large walls load in n log n.
-fn check_overlaps(blocks: &[Block]) -> Result<(), WallError> {
+pub(crate) fn check_overlaps(blocks: &[Block]) -> Result<(), WallError> {
     let rights: Vec<Q> = blocks.iter().map(Block::right).collect();
     let tops: Vec<Q> = blocks.iter().map(Block::top).collect();
     let mut order: Vec<usize> = (0..blocks.len()).collect();

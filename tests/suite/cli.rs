@@ -2150,3 +2150,87 @@ fn while_blocks_rock_time_stepping_takes_over_and_gives_the_wall_back() {
     ]);
     assert!(!ok && err.contains("--model chooses one model"), "{err}");
 }
+
+/// `check --run DIR --limit`: the wall where a run left it. A slender block on a fixed ledge
+/// slides off its edge under a half cycle of a 0.5 g sine; where it stands then, it tips about
+/// the edge at its centroid's distance from it over its height above it (Shenton's lone block
+/// on the moved geometry), below the friction at which the wall as built gives way. A NaN in
+/// the history is refused by line, not read.
+#[test]
+fn check_gives_the_limit_at_rest_where_a_run_left_the_wall() {
+    use pirqa::exact::Q;
+    let dir = temp_dir("moved-check");
+    std::fs::create_dir_all(&dir).unwrap();
+    let wall = std::path::Path::new("walls/rocking/block-on-ledge.ron");
+    let (wall, run) = (wall.to_str().unwrap(), dir.join("run"));
+    let run = run.to_str().unwrap();
+    let (ok, _, err) = pirqa(&[
+        "run",
+        wall,
+        "--sine",
+        "0.5g",
+        "--freq",
+        "1",
+        "--duration",
+        "0.5",
+        "--model",
+        "slide",
+        "--out",
+        run,
+    ]);
+    assert!(ok, "{err}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("run/summary.json")).unwrap())
+            .unwrap();
+    let u = summary["blocks"][1]["final_displacement_m"]
+        .as_f64()
+        .unwrap();
+    assert!(u < -0.1, "the block slid past the ledge's edge: u = {u}");
+    let q = |x: f64| Q::from_decimal(x).unwrap();
+    // Resting on 0 .. 0.4 + u of the ledge, centroid at 0.25 + u, 0.6 m above the joint.
+    let expected = ((q(0.25) + q(u)) / q(0.6)).min(q(0.15));
+    let (ok, out, err) = pirqa(&["check", wall, "--run", run, "--limit", "--json"]);
+    assert!(ok, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let side = |key: &str, side: &str| report[key][side]["exact_g"].as_str().unwrap().to_string();
+    assert_eq!(
+        side("limit_at_rest", "towards_plus_x"),
+        format!("{expected:?}")
+    );
+    assert_eq!(side("limit_at_rest", "towards_minus_x"), "3/20");
+    assert_eq!(side("limit_at_rest_as_built", "towards_plus_x"), "3/20");
+    assert_eq!(report["moved_by_run"]["time_s"], 0.5);
+    assert_eq!(report["moved_by_run"]["largest_displacement_m"], -u);
+    assert_eq!(report["supports"][0]["overlap_m"], (q(0.4) + q(u)).to_f64());
+
+    let (ok, out, err) = pirqa(&["check", wall, "--run", run, "--limit"]);
+    assert!(ok, "{err}");
+    for text in [
+        "where the run in",
+        "of the wall where the run left it:",
+        "U        turns",
+        "of the wall as built: towards +x 0.1500 g (3/20 g); towards -x 0.1500 g (3/20 g)",
+    ] {
+        assert!(out.contains(text), "missing {text:?} in\n{out}");
+    }
+    // At an instant of the history: its last sample at or before it.
+    let (ok, out, err) = pirqa(&["check", wall, "--run", run, "--at", "0.25", "--json"]);
+    assert!(ok, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let t = report["moved_by_run"]["time_s"].as_f64().unwrap();
+    assert!(t <= 0.25 && t > 0.2, "{t}");
+
+    let history = dir.join("run/history.csv");
+    let text = std::fs::read_to_string(&history).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let last = lines.len() - 1;
+    let mut fields: Vec<String> = lines[last].split(',').map(String::from).collect();
+    fields[1] = "NaN".into();
+    lines[last] = fields.join(",");
+    std::fs::write(&history, lines.join("\n") + "\n").unwrap();
+    let (ok, _, err) = pirqa(&["check", wall, "--run", run, "--at", "0.5"]);
+    assert!(
+        !ok && err.contains("history.csv") && err.contains("not a finite number"),
+        "{err}"
+    );
+}
