@@ -764,6 +764,29 @@ fn run_checks_uplift_when_asked_and_refuses_walls_too_large_for_it() {
         ),
         "{out}"
     );
+    // A course of 510 slender blocks, any run of them from an end turning: beyond the 500
+    // movable blocks up to which the blocks turning in every mechanism are decided, the report
+    // says so.
+    let row = dir.join("row.ron");
+    let spec = [
+        "--courses",
+        "1",
+        "--blocks-per-course",
+        "510",
+        "--width",
+        "51m",
+    ];
+    let (ok, _, err) = pirqa(&[&["generate"], &spec[..], &["-o", row.to_str().unwrap()]].concat());
+    assert!(ok, "{err}");
+    let (ok, out, err) = watched(&row, "0.3g", &["--model", "slide"]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains(
+            "(one of several mechanisms that hold at this limit; which blocks turn in every one \
+             is decided for walls of up to 500 movable blocks)"
+        ),
+        "{out}"
+    );
     // 25 courses of 25 (637 blocks): more movable blocks than the exact program takes.
     let wall = dir.join("large.ron");
     let (ok, _, err) = pirqa(&[
