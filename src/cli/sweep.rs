@@ -6,6 +6,7 @@ use super::write_file;
 use indicatif::{ProgressBar, ProgressStyle};
 use pirqa::study::sweep::analysis::{analyse, Report};
 use pirqa::study::sweep::merge;
+use pirqa::study::sweep::residual;
 use pirqa::study::sweep::shard::{self, Shard};
 use pirqa::study::sweep::store::{Existing, Store};
 use pirqa::study::sweep::Sweep;
@@ -35,6 +36,12 @@ pub struct SweepArgs {
     /// (blocks.csv is not needed, and not touched).
     #[arg(long, conflicts_with_all = ["resume", "fresh", "case"])]
     pub redraw: bool,
+    /// Run nothing: for every case of a finished sweep, the limit at rest of its wall where its
+    /// run left it (blocks.csv's final displacements; fallen blocks taken out) beside the
+    /// wall's as built, into residual.csv, and the share left against the peak acceleration
+    /// (capacity-left.svg).
+    #[arg(long, conflicts_with_all = ["resume", "fresh", "case", "redraw", "shard"])]
+    pub residual: bool,
     /// Worker threads (default: every core).
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
     pub threads: Option<u16>,
@@ -242,6 +249,38 @@ pub fn run(args: &SweepArgs) -> Result<(), Error> {
             "{}: charts and results.json redrawn in {}",
             sweep.name,
             args.out.display()
+        );
+        return Ok(());
+    }
+    if args.residual {
+        let rows = Store::finished(&args.out, &sweep)?;
+        let bar = progress_bar(rows.len() as u64, 0, "the limit left by each case");
+        let stop = super::stop_flag();
+        let stop = || stop.load(std::sync::atomic::Ordering::Relaxed);
+        let found = in_pool(args.threads, || {
+            residual::write(&sweep, &rows, &args.out, &|| bar.inc(1), &stop)
+        })?;
+        bar.finish_and_clear();
+        let failed = found.iter().filter(|r| r.error.is_some()).count();
+        eprintln!(
+            "{}: the limit at rest left by {} of {} cases in {}{}{}",
+            sweep.name,
+            found.len(),
+            rows.len(),
+            args.out.join("residual.csv").display(),
+            if found.len() == rows.len() {
+                format!(
+                    ", charted in {}",
+                    args.out.join("capacity-left.svg").display()
+                )
+            } else {
+                " (stopped: the rest not computed, and not charted)".into()
+            },
+            if failed > 0 {
+                format!("; {failed} not computed (residual.csv's error column says why)")
+            } else {
+                String::new()
+            }
         );
         return Ok(());
     }

@@ -2257,3 +2257,76 @@ fn check_gives_the_limit_at_rest_where_a_run_left_the_wall() {
         "{err}"
     );
 }
+
+/// `sweep FILE --residual`: each case's limit at rest where its run left the wall, from a
+/// finished sweep's blocks.csv. The block on a ledge under half a cycle of 0.3, 0.5 and 0.6 g:
+/// left on the ledge it keeps its friction, 3/20 g (all of its capacity); slid past the end it
+/// tips about it at (0.25 + u) / 0.6 g, u its final displacement in blocks.csv; fallen, what is
+/// left (the ledge) holds at any acceleration. The chart is drawn from the rows.
+#[test]
+fn sweep_residual_gives_each_cases_limit_where_its_run_left_the_wall() {
+    use pirqa::exact::Q;
+    let dir = temp_dir("residual-sweep");
+    std::fs::create_dir_all(&dir).unwrap();
+    let ledge = std::fs::canonicalize("walls/rocking/block-on-ledge.ron").unwrap();
+    let file = dir.join("ledge.ron");
+    std::fs::write(
+        &file,
+        format!(
+            r#"(version: 1, name: "ledge", walls: [File(path: "{}")],
+                motion: Sine(amplitudes: ["0.3g", "0.5g", "0.6g"], frequencies_hz: List([1.0]),
+                             duration_s: 0.5),
+                model: Slide)"#,
+            ledge.display()
+        ),
+    )
+    .unwrap();
+    let (file, out) = (file.to_str().unwrap(), dir.join("out"));
+    let out = out.to_str().unwrap();
+    let (ok, _, err) = pirqa(&["sweep", file, "--out", out, "--residual"]);
+    assert!(
+        !ok && err.contains("manifest.json"),
+        "a sweep not run yet: {err}"
+    );
+    let (ok, _, err) = pirqa(&["sweep", file, "--out", out]);
+    assert!(ok, "{err}");
+    let (ok, _, err) = pirqa(&["sweep", file, "--out", out, "--residual"]);
+    assert!(
+        ok && err.contains("the limit at rest left by 3 of 3 cases"),
+        "{err}"
+    );
+    let read = |name: &str| -> Vec<std::collections::HashMap<String, String>> {
+        let mut r = csv::Reader::from_path(dir.join("out").join(name)).unwrap();
+        r.deserialize().map(Result::unwrap).collect()
+    };
+    let (residual, blocks) = (read("residual.csv"), read("blocks.csv"));
+    let u: Vec<f64> = (blocks.iter())
+        .filter(|b| b["block"] == "U")
+        .map(|b| b["final_u_m"].parse().unwrap())
+        .collect();
+    assert!(u[0] > -0.1 && u[1] < -0.1, "{u:?}");
+    let q = |x: f64| Q::from_decimal(x).unwrap();
+    let tips = (q(0.25) + q(u[1])) / q(0.6);
+    let expected = [
+        ("3/20", "3/20", "1e0", ""),
+        (&*format!("{tips:?}"), "3/20", "", ""),
+        ("unlimited", "unlimited", "", "U"),
+    ];
+    for (row, (plus, minus, left, fallen)) in residual.iter().zip(expected) {
+        assert_eq!(row["plus_x_exact_g"], plus, "{row:?}");
+        assert_eq!(row["minus_x_exact_g"], minus, "{row:?}");
+        assert_eq!(row["as_built_plus_x_g"], "1.5e-1", "{row:?}");
+        assert_eq!(row["fallen"], fallen, "{row:?}");
+        if !left.is_empty() {
+            assert_eq!(row["capacity_left"], left, "{row:?}");
+        }
+        assert_eq!(row["error"], "", "{row:?}");
+    }
+    let share: f64 = residual[1]["capacity_left"].parse().unwrap();
+    assert_eq!(share, (tips / q(0.15)).to_f64());
+    let chart = read("capacity-left.csv");
+    let points: Vec<(f64, f64)> = (chart.iter())
+        .map(|r| (r["x"].parse().unwrap(), r["y"].parse().unwrap()))
+        .collect();
+    assert_eq!(points, [(294.3, 1.0), (490.5, share)]);
+}

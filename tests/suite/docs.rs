@@ -294,3 +294,31 @@ fn committed_limits_at_rest_are_what_the_program_gives() {
         committed
     );
 }
+
+/// The residual limits committed in docs/rocking/residual-fragility are what the program gives
+/// now: the fragility study run, then `pirqa sweep ... --residual` (docs/rocking-walls.md, the
+/// limit where a run left the wall); a change to either must write them again.
+#[test]
+fn committed_residual_limits_are_what_the_program_gives() {
+    let dir = crate::common::scratch("residual-fragility");
+    let out = dir.to_str().unwrap();
+    let sweep = |extra: &[&str]| {
+        let args = [
+            &["sweep", "walls/studies/fragility.ron", "--out", out][..],
+            extra,
+        ]
+        .concat();
+        let (code, _, err) = crate::common::pirqa(&args, &[]);
+        assert_eq!(code, 0, "{err}");
+    };
+    sweep(&[]);
+    sweep(&["--residual"]);
+    for name in ["residual.csv", "capacity-left.csv", "capacity-left.svg"] {
+        let committed = std::fs::read_to_string(format!("docs/rocking/residual-fragility/{name}"));
+        let made = std::fs::read_to_string(dir.join(name)).unwrap();
+        assert!(
+            committed.unwrap() == made,
+            "docs/rocking/residual-fragility/{name} differs"
+        );
+    }
+}

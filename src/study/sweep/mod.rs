@@ -6,6 +6,7 @@
 pub mod analysis;
 pub mod batch;
 pub mod merge;
+pub mod residual;
 pub mod shard;
 pub mod store;
 
