@@ -26,7 +26,7 @@ import numpy as np
 from . import errors
 from ._pirqa import Motion, Wall, __version__
 from ._pirqa import run as _run
-from ._sweep import read_sweep, sweep
+from ._sweep import read_sweep, residual, sweep
 from .errors import (
     FileError,
     MotionError,
@@ -144,6 +144,7 @@ __all__ = [
     "History",
     "sweep",
     "read_sweep",
+    "residual",
     "errors",
     "PirqaError",
     "WallError",

@@ -47,21 +47,37 @@ def _run_batch(path: str, fingerprint: str, ids: list[int]) -> tuple[str, str, s
     return _pirqa.run_batch(path, fingerprint, ids)
 
 
-def read_sweep(out: str | os.PathLike):
-    """The cases of a finished sweep folder (the command line's or Python's) as a pandas
-    DataFrame keyed by case id, every number as written (to the bit)."""
+def _read_table(path: Path, text: tuple[str, ...] = ()):
+    """A table a sweep wrote, as a pandas DataFrame keyed by case id, every number as written
+    (to the bit), the columns ``text`` as text."""
     import pandas as pd
 
     # pandas 3 reads every float to the bit by default and deprecates the option that pandas 2
     # needs for it.
     exact = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
     return pd.read_csv(
-        Path(out) / "cases.csv",
+        path,
         index_col="case",
         keep_default_na=False,
         na_values=[""],
+        dtype={column: str for column in text},
         **exact,
     )
+
+
+def read_sweep(out: str | os.PathLike):
+    """The cases of a finished sweep folder (the command line's or Python's) as a pandas
+    DataFrame keyed by case id, every number as written (to the bit)."""
+    return _read_table(Path(out) / "cases.csv")
+
+
+def residual(spec: str | os.PathLike, out: str | os.PathLike):
+    """For every case of the sweep ``spec`` finished in ``out``, the limit at rest of its wall
+    where its run left it, beside its wall's as built (``pirqa sweep FILE --out DIR
+    --residual``, docs/sweeps.md): writes residual.csv and capacity-left.svg into ``out`` and
+    returns residual.csv as a pandas DataFrame keyed by case id (the exact limits as text)."""
+    _pirqa.sweep_residual(os.fspath(spec), os.fspath(out))
+    return _read_table(Path(out) / "residual.csv", ("plus_x_exact_g", "minus_x_exact_g"))
 
 
 def _report(progress: Callable[[int, int], None] | None, total: int):

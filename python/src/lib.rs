@@ -22,6 +22,7 @@ fn _pirqa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::_time_runs, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_info, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::run_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_residual, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

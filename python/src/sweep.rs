@@ -42,6 +42,26 @@ fn load(path: &Path, fingerprint: Option<&str>) -> Result<Arc<Sweep>, pirqa::Err
     Ok(sweep)
 }
 
+/// For every case of the sweep finished in `out`, the limit at rest of its wall where its run
+/// left it, beside the wall's as built (`pirqa sweep FILE --out DIR --residual`): residual.csv
+/// and capacity-left.svg written into `out`. Runs without the GIL; an interrupt stops it,
+/// keeping the rows done, and raises `KeyboardInterrupt`.
+#[pyfunction]
+pub fn sweep_residual(py: Python<'_>, path: PathBuf, out: PathBuf) -> PyResult<()> {
+    let interrupt = Interrupt::new(py)?;
+    let stop = interrupt.check();
+    py.detach(|| {
+        let sweep = load(&path, None)?;
+        let rows = Store::finished(&out, &sweep)?;
+        pirqa::study::sweep::residual::write(&sweep, &rows, &out, &|| {}, &stop)
+    })
+    .py()?;
+    match interrupt.raised() {
+        Some(signal) => Err(signal),
+        None => Ok(()),
+    }
+}
+
 /// What a sweep file holds: its name, number of cases, fingerprint and largest wall.
 #[pyfunction]
 pub fn sweep_info<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {

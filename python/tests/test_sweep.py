@@ -213,3 +213,22 @@ def test_ray_gives_the_serial_results(spec, serial):
         assert pirqa.sweep(spec, RayExecutor()).equals(serial[1])
     finally:
         ray.shutdown()
+
+
+def test_the_residual_limits_are_the_command_lines(spec, serial, cli, tmp_path):
+    """pirqa.residual writes what `pirqa sweep --residual` writes into a copy of the same
+    finished sweep, and returns residual.csv with its exact limits as text."""
+    out, _ = serial
+    ours, theirs = tmp_path / "python", tmp_path / "cli"
+    shutil.copytree(out, ours)
+    shutil.copytree(out, theirs)
+    frame = pirqa.residual(spec, ours)
+    code, err = cli("sweep", str(spec), "--out", str(theirs), "--residual")
+    assert code == 0, err
+    for name in ("residual.csv", "capacity-left.csv", "capacity-left.svg"):
+        assert (ours / name).read_bytes() == (theirs / name).read_bytes(), name
+    assert len(frame) == 60 and frame.index.name == "case"
+    built = frame["as_built_plus_x_g"].notna()
+    assert built.all() and frame["plus_x_exact_g"].map(type).eq(str).all()
+    with pytest.raises(pirqa.PirqaError, match="manifest.json"):
+        pirqa.residual(spec, tmp_path / "nothing")
