@@ -7,9 +7,10 @@
 use super::saved::SavedState;
 use crate::error::WallError;
 use crate::exact::Q;
-use crate::topology::{Base, Topology};
+use crate::topology::Topology;
 use crate::wall::{FrictionOverride, Wall};
 use serde::Serialize;
+use std::collections::HashSet;
 
 /// Faces of a vertical joint closer than this (m) are touching in the moved wall. The run
 /// computes displacements in floats: faces it brought together stand apart or overlap by its
@@ -48,6 +49,15 @@ pub fn moved(
     state: &SavedState,
 ) -> Result<(Wall, Topology, Moves), WallError> {
     let n = wall.blocks.len();
+    let lengths = [state.displacement_m.len(), state.fallen.len()];
+    let poses = (state.pose.iter()).flat_map(|(theta, w)| [theta.len(), w.len()]);
+    if let Some(len) = lengths.into_iter().chain(poses).find(|&len| len != n) {
+        return Err(WallError::Field {
+            field: "displacement_m".into(),
+            value: len as f64,
+            rule: "a state of the wall gives one value per block of the wall, in its order",
+        });
+    }
     // A turned block is not a rectangle on the wall's courses: its wall is the time stepper's.
     if let Some((theta, w)) = &state.pose {
         let turned = (0..n).find(|&i| !state.fallen[i] && (theta[i] != 0.0 || w[i] != 0.0));
@@ -72,15 +82,15 @@ pub fn moved(
         blocks.push(b);
     }
     crate::wall::check_overlaps(&blocks)?;
-    let name = |b: Base| match b {
-        Base::Ground => "ground".to_string(),
-        Base::Block(j) => wall.blocks[j.0].name.clone(),
+    let key = |wall: &Wall, topo: &Topology, s: &crate::topology::HorizontalJoint| {
+        format!(
+            "{}/{}",
+            wall.blocks[s.upper.0].name,
+            topo.base_name(wall, s.lower)
+        )
     };
     let built: Vec<(String, &Q)> = (topo.horizontal.iter())
-        .map(|s| {
-            let key = format!("{}/{}", wall.blocks[s.upper.0].name, name(s.lower));
-            (key, &s.friction)
-        })
+        .map(|s| (key(wall, topo, s), &s.friction))
         .collect();
     // Found by their names once the graph of the moved wall is built; every joint that stays
     // keeps its friction (an override, or a sample's), so the overrides are given again for
@@ -91,21 +101,15 @@ pub fn moved(
         ..wall.clone()
     };
     let bare = Topology::new(&moved_wall)?;
-    let moved_name = |b: Base| match b {
-        Base::Ground => "ground".to_string(),
-        Base::Block(j) => moved_wall.blocks[j.0].name.clone(),
-    };
     let now: Vec<String> = (bare.horizontal.iter())
-        .map(|s| {
-            format!(
-                "{}/{}",
-                moved_wall.blocks[s.upper.0].name,
-                moved_name(s.lower)
-            )
-        })
+        .map(|s| key(&moved_wall, &bare, s))
         .collect();
+    let (in_built, in_now): (HashSet<&str>, HashSet<&str>) = (
+        built.iter().map(|(k, _)| k.as_str()).collect(),
+        now.iter().map(String::as_str).collect(),
+    );
     let overrides: Vec<FrictionOverride> = (built.iter())
-        .filter(|(key, mu)| **mu != wall.friction && now.contains(key))
+        .filter(|(key, mu)| **mu != wall.friction && in_now.contains(key.as_str()))
         .map(|(key, mu)| FrictionOverride {
             key: key.clone(),
             value: (*mu).clone(),
@@ -115,6 +119,7 @@ pub fn moved(
         .filter(|&i| state.fallen[i])
         .map(|i| wall.blocks[i].name.clone())
         .collect();
+    let gone: HashSet<&str> = fallen.iter().map(String::as_str).collect();
     let moves = Moves {
         largest_displacement_m: standing
             .iter()
@@ -122,12 +127,13 @@ pub fn moved(
         joints_lost: (built.iter())
             .map(|(key, _)| key)
             .filter(|key| {
-                !now.contains(key) && !fallen.iter().any(|f| key.split('/').any(|p| p == f))
+                let gone = |p: &str| gone.contains(p);
+                !in_now.contains(key.as_str()) && !key.split('/').any(gone)
             })
             .cloned()
             .collect(),
         joints_new: (now.iter())
-            .filter(|key| !built.iter().any(|(k, _)| k == *key))
+            .filter(|key| !in_built.contains(key.as_str()))
             .cloned()
             .collect(),
         faces_set_touching: touching,
@@ -326,7 +332,10 @@ mod tests {
         assert_eq!(moves.joints_new, ["U/L3"]);
         let friction = |lower: usize| {
             let s = (moved_topo.horizontal.iter())
-                .find(|s| s.upper.0 == 3 && s.lower == Base::Block(crate::topology::BlockId(lower)))
+                .find(|s| {
+                    s.upper.0 == 3
+                        && s.lower == crate::topology::Base::Block(crate::topology::BlockId(lower))
+                })
                 .unwrap();
             (s.friction.clone(), s.overlap_m.clone())
         };
@@ -343,6 +352,9 @@ mod tests {
         assert_eq!(moved_wall.blocks.len(), 3);
         assert_eq!(moves.fallen, ["U"]);
         assert!(moves.joints_lost.is_empty(), "{:?}", moves.joints_lost);
+
+        let short = moved(&wall, &topo, &state(vec![0.0; 3], vec![false; 4])).unwrap_err();
+        assert!(short.to_string().contains("one value per block"), "{short}");
 
         let mut turned = state(vec![0.0; 4], vec![false; 4]);
         turned.pose = Some((vec![0.0, 0.0, 0.0, 1e-3], vec![0.0; 4]));

@@ -66,8 +66,12 @@ pub fn state_at(dir: &Path, wall: &Wall, at_s: Option<f64>) -> Result<SavedState
         )
     })?;
     let blocks = summary["blocks"].as_array().cloned().unwrap_or_default();
+    // Looked up by name once each: a wall of 10,000 blocks searched block by block took seconds.
+    let by_name: std::collections::HashMap<&str, &serde_json::Value> = (blocks.iter())
+        .filter_map(|b| Some((b["name"].as_str()?, b)))
+        .collect();
     let summary_block = |name: &str| {
-        blocks.iter().find(|b| b["name"] == name).ok_or_else(|| {
+        by_name.get(name).copied().ok_or_else(|| {
             table(
                 &summary_path,
                 1,
@@ -195,7 +199,10 @@ fn each_row(
     if header.get(0) != Some("time_s") {
         return Err(table(path, 1, "the header must start with time_s".into()));
     }
-    let column = |name: String| header.iter().position(|h| h == name);
+    // Each name looked up in a table of the header, not searched for along it.
+    let at: std::collections::HashMap<&str, usize> =
+        header.iter().enumerate().map(|(i, h)| (h, i)).collect();
+    let column = |name: String| at.get(name.as_str()).copied();
     let columns = names
         .iter()
         .map(|n| {
