@@ -12,6 +12,7 @@ use crate::limit::{self, Limit, Limits};
 use crate::plot::chart::{self, Chart, Series};
 use crate::response::moved;
 use crate::response::saved::SavedState;
+use crate::study::stats::quantile;
 use crate::table;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -262,20 +263,49 @@ pub fn write(
     Ok(found)
 }
 
-/// The share of its capacity each case left, against the motion's peak, a series per wall.
+/// The share of its capacity each case left, against the motion's peak, a series per wall,
+/// with its median and 5 % quantile at each peak (lines) over the cases (points).
 fn capacity_chart(sweep: &Sweep, rows: &[ResidualRow]) -> Chart {
-    let series = (sweep.walls.iter().enumerate())
-        .map(|(k, w)| Series {
-            label: w.label.clone(),
-            points: (rows.iter())
-                .filter(|r| r.wall == w.label)
-                .filter_map(|r| Some((r.pga_gal, r.capacity_left?)))
-                .collect(),
+    let mut series = Vec::new();
+    for (k, w) in sweep.walls.iter().enumerate() {
+        let points: Vec<(f64, f64)> = (rows.iter())
+            .filter(|r| r.wall == w.label)
+            .filter_map(|r| Some((r.pga_gal, r.capacity_left?)))
+            .collect();
+        let mut levels: Vec<f64> = points.iter().map(|p| p.0).collect();
+        levels.sort_by(f64::total_cmp);
+        levels.dedup();
+        let at = |p: f64| -> Vec<(f64, f64)> {
+            (levels.iter())
+                .filter_map(|&x| {
+                    let mut ys: Vec<f64> =
+                        (points.iter()).filter(|q| q.0 == x).map(|q| q.1).collect();
+                    ys.sort_by(f64::total_cmp);
+                    Some((x, quantile(&ys, p)?))
+                })
+                .collect()
+        };
+        series.push(Series {
+            label: format!("{}: median", w.label),
+            points: at(0.5),
+            color: k,
+            ..Series::default()
+        });
+        series.push(Series {
+            label: format!("{}: 5 % quantile", w.label),
+            points: at(0.05),
+            color: k,
+            dashed: true,
+            ..Series::default()
+        });
+        series.push(Series {
+            label: format!("{}: each case", w.label),
+            points,
             color: k,
             scatter: true,
             ..Series::default()
-        })
-        .collect();
+        });
+    }
     Chart {
         title: format!(
             "{}: the limit at rest left where each case's run left the wall",
@@ -284,6 +314,7 @@ fn capacity_chart(sweep: &Sweep, rows: &[ResidualRow]) -> Chart {
         x_label: "peak ground acceleration (gal)".into(),
         y_label: "limit left / limit as built".into(),
         series,
+        legend: chart::Corner::LowerLeft,
         ..Chart::default()
     }
 }
