@@ -179,7 +179,15 @@ pub fn check(
         let l = l
             .as_ref()
             .map_err(|why| pirqa::SimulationError::NotApplicable(why.clone()))?;
-        write_mechanisms(dir, wall, topo, l)?;
+        let title = match &moved {
+            Some((.., run, time_s)) => format!(
+                "{} where the run in {} left it (t = {time_s} s)",
+                wall.name,
+                run.display()
+            ),
+            None => wall.name.clone(),
+        };
+        write_mechanisms(dir, &title, wall, topo, l)?;
     }
     let moves = moved
         .as_ref()
@@ -453,6 +461,7 @@ fn limit_at_rest(
 /// The limits as JSON and each direction's mechanism drawn, into `dir`.
 fn write_mechanisms(
     dir: &Path,
+    title: &str,
     wall: &pirqa::wall::Wall,
     topo: &topology::Topology,
     limits: &pirqa::limit::Limits,
@@ -481,8 +490,7 @@ fn write_mechanisms(
         let which = mechanism_uniqueness.which();
         let drawing = WallDrawing {
             title: format!(
-                "{}: past its limit at rest towards {side}, {accel_g:.4} g ({exact_g} g)",
-                wall.name
+                "{title}: past its limit at rest towards {side}, {accel_g:.4} g ({exact_g} g)"
             ),
             displacement_m: Some(u),
             pose: Some((theta, w)),

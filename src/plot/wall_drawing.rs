@@ -78,7 +78,11 @@ pub fn draw_wall(wall: &Wall, topo: &Topology, d: &WallDrawing) -> String {
     let scale = (MAX_W_PX / span).min(MAX_H_PX / top.max(1e-9));
     let header = if d.title.is_empty() { 0.0 } else { 28.0 };
     let footer = if d.note.is_some() { 26.0 } else { 0.0 };
-    let width = span * scale + 2.0 * MARGIN_PX;
+    // Wide enough for the title and the note on a narrow wall (a column, a block on a ledge):
+    // sans-serif text is about 0.55 of its size wide per character.
+    let text_px = |text: &str, size: f64| text.chars().count() as f64 * 0.55 * size;
+    let words = text_px(&d.title, 16.0).max(d.note.as_deref().map_or(0.0, |n| text_px(n, 12.0)));
+    let width = (span * scale).max(words) + 2.0 * MARGIN_PX;
     let height = top * scale + 2.0 * MARGIN_PX + header + footer;
     let px = |x: f64| MARGIN_PX + (x - x0) * scale;
     let py = |y: f64| MARGIN_PX + header + (top - y) * scale;
