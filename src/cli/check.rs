@@ -525,6 +525,7 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
             mechanism_uniqueness,
             moving_in_every_mechanism,
             turning_in_every_mechanism,
+            ..
         } => {
             let _ = writeln!(
                 out,

@@ -99,6 +99,9 @@ pub enum Limit {
         accel_g: f64,
         /// The same, exact, as a fraction of g (`p/q`).
         exact_g: String,
+        /// The same as the rational it is, for arithmetic on it (not written out: `exact_g`).
+        #[serde(skip)]
+        exact: Q,
         /// How each block that moves moves.
         mechanism: Vec<Moves>,
         /// Whether `mechanism` is the only one that holds at this limit (where it is not, it
@@ -114,6 +117,16 @@ pub enum Limit {
     },
     /// Held at every acceleration: the abutments hold the wall whatever the ground does.
     Unlimited,
+}
+
+impl Limit {
+    /// The limit exactly, as a fraction of g; `None` where the wall holds at any acceleration.
+    pub fn in_g(&self) -> Option<&Q> {
+        match self {
+            Limit::Holds { exact, .. } => Some(exact),
+            Limit::Unlimited => None,
+        }
+    }
 }
 
 /// Whether a limit's mechanism is the only one that holds there (docs/rocking-walls.md, "What
@@ -425,6 +438,7 @@ fn direction(
                 accel_m_s2: accel.to_f64(),
                 accel_g: g.to_f64(),
                 exact_g: format!("{g:?}"),
+                exact: g,
                 mechanism: mechanism(wall, topo, movable, &centroids, &y),
                 mechanism_uniqueness,
                 moving_in_every_mechanism: moving,

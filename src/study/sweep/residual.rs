@@ -80,15 +80,12 @@ fn sides(l: &Limits) -> [(Option<f64>, String); 2] {
 
 /// The smaller side of a limit exactly (g), `None` where either side holds at any acceleration.
 fn least(l: &Limits) -> Option<Q> {
-    let exact = |l: &Limit| match l {
-        Limit::Unlimited => None,
-        // The fraction the program proved, read back from its text (`p/q`, integers of any size).
-        Limit::Holds { exact_g, .. } => match exact_g.split_once('/') {
-            Some((p, q)) => Some(Q::parse_decimal(p)? / Q::parse_decimal(q)?),
-            None => Q::parse_decimal(exact_g),
-        },
-    };
-    Some(exact(&l.towards_plus_x)?.min(exact(&l.towards_minus_x)?))
+    Some(
+        l.towards_plus_x
+            .in_g()?
+            .clone()
+            .min(l.towards_minus_x.in_g()?.clone()),
+    )
 }
 
 /// The limit at rest of a wall, `stop` asked before every pivot; the reason where there is none.
