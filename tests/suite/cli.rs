@@ -2285,7 +2285,7 @@ fn sweep_residual_gives_each_cases_limit_where_its_run_left_the_wall() {
     let out = out.to_str().unwrap();
     let (ok, _, err) = pirqa(&["sweep", file, "--out", out, "--residual"]);
     assert!(
-        !ok && err.contains("manifest.json"),
+        !ok && err.contains("holds no sweep (no manifest.json): run it there first"),
         "a sweep not run yet: {err}"
     );
     let (ok, _, err) = pirqa(&["sweep", file, "--out", out]);

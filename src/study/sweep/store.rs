@@ -309,6 +309,18 @@ impl Store {
     /// `blocks.csv`.
     pub fn finished(dir: &Path, sweep: &Sweep) -> Result<Vec<CaseRow>, Error> {
         let paths = Paths::of(dir);
+        if !paths.manifest.exists() {
+            return Err(Error::Option {
+                option: "--out".into(),
+                rule: format!(
+                    "{} holds no sweep (no manifest.json): run it there first, `pirqa sweep FILE \
+                     --out {}`; charts are drawn again and residual limits found from a \
+                     finished one",
+                    dir.display(),
+                    dir.display()
+                ),
+            });
+        }
         check_manifest(&paths.manifest, sweep, None)?;
         let rows = read_cases(&paths)?;
         check_complete(&paths.cases, rows, sweep, None, "--resume")
