@@ -102,13 +102,16 @@ fn limit_until(
     }
 }
 
+/// A case's wall as built: its graph with the case's friction sample, and its limit.
+type Built = (crate::topology::Topology, Result<Limits, String>);
+
 /// The residual limit of case `row`: its blocks' rows `blocks` (every block of its wall, by
-/// name), `as_built` the limit of its wall as built.
+/// name), `built` its wall's graph and limit as built.
 fn of_case(
     sweep: &Sweep,
     row: &CaseRow,
     blocks: &[&BlockRow],
-    as_built: &Result<Limits, String>,
+    (topo, as_built): &Built,
     stop: &(dyn Fn() -> bool + Sync),
 ) -> ResidualRow {
     let built = as_built.as_ref().ok().map(sides);
@@ -130,8 +133,7 @@ fn of_case(
         joints_new: String::new(),
         error: None,
     };
-    let (w, _, s) = sweep.case(row.case);
-    let sw = &sweep.walls[w];
+    let sw = &sweep.walls[sweep.case(row.case).0];
     let limits = || -> Result<(Limits, moved::Moves), String> {
         if row.error.is_some() {
             return Err("the case's run failed (cases.csv says why)".into());
@@ -157,8 +159,7 @@ fn of_case(
             state.displacement_m.push(r.final_u_m);
             state.fallen.push(r.fell);
         }
-        let topo = sw.topology.with_frictions(sweep.frictions(w, s));
-        let (wall, topo, moves) = moved::moved(&sw.wall, &topo, &state)
+        let (wall, topo, moves) = moved::moved(&sw.wall, topo, &state)
             .map_err(|e| format!("the wall where the run left it: {e}"))?;
         Ok((limit_until(&wall, &topo, stop)?, moves))
     };
@@ -209,12 +210,13 @@ pub fn write(
         .collect();
     walls.sort_unstable();
     walls.dedup();
-    let as_built: HashMap<(usize, usize), Result<Limits, String>> = walls
+    let as_built: HashMap<(usize, usize), Built> = walls
         .par_iter()
         .map(|&(w, s)| {
             let sw = &sweep.walls[w];
             let topo = sw.topology.with_frictions(sweep.frictions(w, s));
-            ((w, s), limit_until(&sw.wall, &topo, stop))
+            let limit = limit_until(&sw.wall, &topo, stop);
+            ((w, s), (topo, limit))
         })
         .collect();
     let path = dir.join("residual.csv");
