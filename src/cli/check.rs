@@ -547,21 +547,13 @@ fn write_limit(out: &mut String, side: &str, l: &pirqa::limit::Limit) {
                             list(turning)
                         );
                     }
-                    // One of several: not decided for its size alone (the line above says
-                    // where uniqueness itself is undecided).
-                    _ if *mechanism_uniqueness == pirqa::limit::Uniqueness::OneOfSeveral => {
+                    // Not decided for the wall's size alone, whatever its uniqueness.
+                    _ => {
                         let _ = writeln!(
                             out,
                             "    (which blocks move in every mechanism that holds here is \
                              decided for walls of up to {} movable blocks)",
                             pirqa::limit::EVERY_BLOCKS
-                        );
-                    }
-                    _ => {
-                        let _ = writeln!(
-                            out,
-                            "    (which blocks move in every mechanism that holds here is not \
-                             decided)"
                         );
                     }
                 }

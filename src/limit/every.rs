@@ -60,7 +60,17 @@ pub(super) fn in_every_mechanism(
             }
         }
     }
+    every.another = optimum.is_some() && found[1..].iter().any(|z| differs(program, y, z));
     Ok(Some(every))
+}
+
+/// Whether multipliers `y` and `z` are two mechanisms, not one seen twice: some contact force
+/// does work on their difference d (a_j d != 0 for some column j). A d with A^T d = 0 moves a
+/// block along the normal of the cone's edge it slides on, which the multipliers cannot tell
+/// apart (`Uniqueness::Unique`).
+fn differs(program: &Program, y: &[Q], z: &[Q]) -> bool {
+    let d: Vec<Q> = z.iter().zip(y).map(|(a, b)| a - b).collect();
+    (0..program.c.len()).any(|j| !program.dot(j, &d).is_zero())
 }
 
 /// Whether every mechanism (of the limit `optimum`, or every certificate where none)
@@ -113,11 +123,13 @@ fn always(
 }
 
 /// The blocks that move and those that turn in every mechanism (places among the movable
-/// blocks, in order).
+/// blocks, in order), and whether the programs that asked met a mechanism other than the one
+/// named (then it is one of several, whatever the deciding program could be run for).
 #[derive(Debug, Default, PartialEq)]
 pub(super) struct Every {
     pub(super) moving: Vec<usize>,
     pub(super) turning: Vec<usize>,
+    pub(super) another: bool,
 }
 
 impl Every {
@@ -132,6 +144,7 @@ impl Every {
             turning: blocks
                 .filter(|&k| nonzero(ROWS * k + 2..ROWS * (k + 1)))
                 .collect(),
+            another: false,
         }
     }
 }

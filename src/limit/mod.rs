@@ -108,8 +108,8 @@ pub enum Limit {
         /// is the one the solver's basis gives).
         mechanism_uniqueness: Uniqueness,
         /// The blocks that move in every mechanism that holds at this limit (those of
-        /// `mechanism` where it is the only one); `None` where not decided (uniqueness
-        /// undecided, or more than [`EVERY_BLOCKS`] movable blocks).
+        /// `mechanism` where it is the only one), decided whether or not uniqueness is; `None`
+        /// beyond [`EVERY_BLOCKS`] movable blocks.
         moving_in_every_mechanism: Option<Vec<String>>,
         /// The blocks that turn in every mechanism that holds at this limit, each always the
         /// same way (as `mechanism` turns it); `None` where not decided.
@@ -142,7 +142,8 @@ pub enum Uniqueness {
     /// Others hold at the same limit too (a uniform wall slides on any of its bed joints).
     OneOfSeveral,
     /// Not decided: the forces at the limit are degenerate in more rows than the deciding
-    /// program is run for ([`DECIDED_ROWS`]) and the basis shows no other mechanism at once;
+    /// program is run for ([`DECIDED_ROWS`]), the basis shows no other mechanism at once, and
+    /// neither do the programs asking which blocks move in every one (where they are run);
     /// or (the uplift check) the mechanism is a certificate that a state keeps no block seated
     /// whatever the ground does, or the run was stopped while deciding.
     Undecided,
@@ -403,27 +404,13 @@ fn direction(
         Outcome::Optimal { value, y, x, basis } => {
             let accel = -&value;
             let g = &accel / &wall.g_m_s2;
-            let found = uniqueness(&program, &x, &y, &basis, DECIDED_ROWS, stop);
-            let Some(mechanism_uniqueness) = found else {
+            let Some(found) = uniqueness(&program, &x, &y, &basis, DECIDED_ROWS, stop) else {
                 return Ok(None);
             };
-            let every = match mechanism_uniqueness {
-                Uniqueness::Unique => Some(every::Every::of(&y)),
-                Uniqueness::OneOfSeveral if movable.len() <= EVERY_BLOCKS => {
-                    let found = every::in_every_mechanism(
-                        &program,
-                        groups,
-                        Some((&value, &basis)),
-                        &y,
-                        true,
-                        stop,
-                    )?;
-                    let Some(every) = found else {
-                        return Ok(None);
-                    };
-                    Some(every)
-                }
-                _ => None,
+            let optimum = (&value, &y[..], &basis[..]);
+            let asked = every_at_optimum(found, &program, groups, optimum, movable.len(), stop)?;
+            let Some((mechanism_uniqueness, every)) = asked else {
+                return Ok(None);
             };
             let names = |places: Vec<usize>| {
                 (places.into_iter())
@@ -446,6 +433,37 @@ fn direction(
             }))
         }
     }
+}
+
+/// The blocks that move and turn in every mechanism that holds at a limit's optimum (its value,
+/// multipliers y and their basis), whose uniqueness `found` says ([`uniqueness`]): a unique
+/// mechanism's own; otherwise asked by programs ([`every`]) for at most [`EVERY_BLOCKS`] movable
+/// blocks, whether or not uniqueness was decided, since it is its own question. Where it was
+/// not and those programs meet another mechanism, the mechanism is one of several: the
+/// uniqueness comes back with that. `None` where `stop` said so.
+fn every_at_optimum(
+    found: Uniqueness,
+    program: &Program,
+    groups: &[crash::Group],
+    (value, y, basis): (&Q, &[Q], &[usize]),
+    blocks: usize,
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<(Uniqueness, Option<every::Every>)>, SimulationError> {
+    if found == Uniqueness::Unique {
+        return Ok(Some((found, Some(every::Every::of(y)))));
+    }
+    if blocks > EVERY_BLOCKS {
+        return Ok(Some((found, None)));
+    }
+    let optimum = Some((value, basis));
+    let Some(every) = every::in_every_mechanism(program, groups, optimum, y, true, stop)? else {
+        return Ok(None);
+    };
+    let found = match found {
+        Uniqueness::Undecided if every.another => Uniqueness::OneOfSeveral,
+        other => other,
+    };
+    Ok(Some((found, Some(every))))
 }
 
 /// Whether the multipliers `y` of the optimal vertex `x` (read from `basis`) are the program's
@@ -473,10 +491,7 @@ fn uniqueness(
     if !degenerate(program, x) {
         return Some(Uniqueness::Unique);
     }
-    let tight = |j: usize| {
-        let ay: Q = program.column(j).iter().map(|(i, a)| a * &y[*i]).sum();
-        program.c[j] == ay
-    };
+    let tight = |j: usize| program.c[j] == program.dot(j, y);
     // P and T: the columns the directions d must keep (a_j d = 0 on P, <= 0 on T).
     let kept: Vec<bool> = (x.iter().enumerate())
         .map(|(j, x_j)| x_j.is_positive() || tight(j))

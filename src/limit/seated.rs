@@ -179,9 +179,9 @@ impl<'w> Programs<'w> {
     /// the only mechanism that holds there, decided as the limit at rest's is (docs/rocking-
     /// walls.md, "What it says and what it does not"): a side whose forces are degenerate is
     /// solved again for its basis, and decided in full where it is degenerate in at most
-    /// [`DECIDED_ROWS`] rows; with the blocks that turn in every mechanism that holds there
-    /// (`None` where not decided: uniqueness undecided, more than [`EVERY_BLOCKS`] movable
-    /// blocks). `None` where `stop` said so.
+    /// [`DECIDED_ROWS`] rows; with the blocks that turn in every mechanism that holds there,
+    /// decided whether or not uniqueness is (`None` beyond [`EVERY_BLOCKS`] movable blocks).
+    /// `None` where `stop` said so.
     pub fn decide(
         &self,
         side: &Side,
@@ -208,14 +208,18 @@ impl<'w> Programs<'w> {
         let Some(found) = uniqueness(&program, &x, &y, &basis, DECIDED_ROWS, stop) else {
             return Ok(None);
         };
-        let turning = match found {
-            Uniqueness::Unique => own(),
-            Uniqueness::OneOfSeveral => {
-                builder.turning(self.wall, &program, Some((&value, &basis)), &y, stop)?
-            }
-            Uniqueness::Undecided => None,
+        if found == Uniqueness::Unique {
+            return Ok(Some(Decided::new(found, own())));
+        }
+        // Which blocks turn in every mechanism is its own question, answered exactly whether
+        // or not the mechanism's uniqueness was decided; where it was not and the programs
+        // asking meet another mechanism, it is one of several.
+        let asked = builder.turning(self.wall, &program, Some((&value, &basis)), &y, stop)?;
+        let found = match (found, &asked) {
+            (Uniqueness::Undecided, Some((_, true))) => Uniqueness::OneOfSeveral,
+            (found, _) => found,
         };
-        Ok(Some(Decided::new(found, turning)))
+        Ok(Some(Decided::new(found, asked.map(|(turning, _)| turning))))
     }
 
     /// The blocks that turn in every certificate that the state keeps no block seated whatever
@@ -233,7 +237,10 @@ impl<'w> Programs<'w> {
         };
         let program = builder.program(1);
         match certify::solve(&program, &builder.groups, stop) {
-            Some(Outcome::Infeasible { y }) => builder.turning(self.wall, &program, None, &y, stop),
+            Some(Outcome::Infeasible { y }) => {
+                let asked = builder.turning(self.wall, &program, None, &y, stop)?;
+                Ok(asked.map(|(turning, _)| turning))
+            }
             _ => Ok(None),
         }
     }
@@ -376,8 +383,9 @@ impl Builder {
     }
 
     /// The blocks that turn in every mechanism of `program` ([`every`]: `optimum` its value and
-    /// optimal basis and `y` its multipliers, or `y` its certificate of infeasibility); `None` where
-    /// the state has more than [`EVERY_BLOCKS`] movable blocks or `stop` said so.
+    /// optimal basis and `y` its multipliers, or `y` its certificate of infeasibility), and
+    /// whether the programs asking met a mechanism other than `y`'s; `None` where the state has
+    /// more than [`EVERY_BLOCKS`] movable blocks or `stop` said so.
     fn turning(
         &self,
         wall: &Wall,
@@ -385,15 +393,16 @@ impl Builder {
         optimum: Option<(&Q, &[usize])>,
         y: &[Q],
         stop: &dyn Fn() -> bool,
-    ) -> Result<Option<Vec<String>>, SimulationError> {
+    ) -> Result<Option<(Vec<String>, bool)>, SimulationError> {
         if self.movable.len() > EVERY_BLOCKS {
             return Ok(None);
         }
         let found = every::in_every_mechanism(program, &self.groups, optimum, y, false, stop)?;
         Ok(found.map(|e| {
-            (e.turning.into_iter())
+            let names = (e.turning.into_iter())
                 .map(|k| wall.blocks[self.movable[k]].name.clone())
-                .collect()
+                .collect();
+            (names, e.another)
         }))
     }
 

@@ -60,7 +60,6 @@ impl Program {
     }
 
     /// The product A^T y of column j with the row multipliers `y`.
-    #[cfg(test)]
     pub(crate) fn dot(&self, j: usize, y: &[Q]) -> Q {
         self.columns[j].iter().map(|(i, a)| a * &y[*i]).sum()
     }

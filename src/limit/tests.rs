@@ -240,6 +240,77 @@ fn a_mechanism_is_unique_where_no_other_holds_at_its_limit() {
     assert_eq!(degenerate_sides, 1);
 }
 
+/// Which blocks move and turn in every mechanism is its own question, asked whether or not
+/// uniqueness was decided: on the paper's variable wall's degenerate side, left undecided (no
+/// degenerate row decided), the programs give the mechanism's own blocks, as the unique
+/// mechanism it is decided in full; on the uniform wall they meet another mechanism, so an
+/// undecided answer there becomes one of several, with the blocks its limit reports.
+#[test]
+fn in_every_mechanism_is_decided_where_uniqueness_is_not() {
+    let optimum = |m: &Model, s: i128| {
+        let (p, groups) = side_program(m, s);
+        let Some(Outcome::Optimal { value, x, y, basis }) = certify::solve(&p, &groups, &|| false)
+        else {
+            panic!("a limit");
+        };
+        (p, groups, value, x, y, basis)
+    };
+    let variable = Model::from_file("walls/five-block-variable.ron").unwrap();
+    let mut undecided = 0;
+    for s in [1, -1] {
+        let (p, groups, value, x, y, basis) = optimum(&variable, s);
+        let found = uniqueness_of(&p, &x, &y, &basis, false);
+        if found != Uniqueness::Undecided {
+            continue;
+        }
+        undecided += 1;
+        let asked = every_at_optimum(found, &p, &groups, (&value, &y, &basis), 5, &|| false);
+        let (still, every) = asked.unwrap().expect("not stopped");
+        assert_eq!(still, Uniqueness::Undecided);
+        let (every, own) = (every.expect("five blocks"), every::Every::of(&y));
+        assert!(!every.another);
+        assert!(!own.moving.is_empty());
+        assert_eq!((every.moving, every.turning), (own.moving, own.turning));
+    }
+    assert_eq!(undecided, 1);
+    let uniform = Model::from_file("walls/five-block-uniform.ron").unwrap();
+    let l = limits(&uniform);
+    for (s, side) in [(1, &l.towards_plus_x), (-1, &l.towards_minus_x)] {
+        let Limit::Holds {
+            moving_in_every_mechanism: Some(moving),
+            turning_in_every_mechanism: Some(turning),
+            ..
+        } = side
+        else {
+            panic!("the uniform wall's limit: {side:?}");
+        };
+        let (p, groups, value, _, y, basis) = optimum(&uniform, s);
+        let asked = every_at_optimum(
+            Uniqueness::Undecided,
+            &p,
+            &groups,
+            (&value, &y, &basis),
+            5,
+            &|| false,
+        );
+        let (found, every) = asked.unwrap().expect("not stopped");
+        assert_eq!(found, Uniqueness::OneOfSeveral);
+        let every = every.expect("five blocks");
+        let names = |places: &[usize]| -> Vec<String> {
+            let wall = uniform.wall();
+            places
+                .iter()
+                .map(|&k| wall.blocks[k].name.clone())
+                .collect()
+        };
+        assert_eq!(
+            (&names(&every.moving), &names(&every.turning)),
+            (moving, turning)
+        );
+        assert!(!moving.is_empty());
+    }
+}
+
 /// Multipliers that differ by a d with A^T d = 0 (dependent rows) are one mechanism: the
 /// program max x1 over x1 + x2 = 1 and twice that row has every (y1, y2) with y1 + 2 y2 = -1
 /// optimal, and its basis keeps an artificial variable on the dependent row, which no longer
