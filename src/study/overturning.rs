@@ -195,7 +195,8 @@ fn overturns(body: &RockingBody, eq: Equations, ratio: f64, amplitude: f64) -> O
     })
     .ok()?;
     if !r.summary.warnings.is_empty() {
-        // Free flight: beyond the model.
+        // A frame's free flight, or a landing from flight beyond Housner's law: beyond the
+        // model (a free block's flight is followed to its landing).
         return None;
     }
     Some(

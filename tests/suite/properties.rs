@@ -411,9 +411,9 @@ proptest! {
 
     /// Random walls shaken across their plane (the part above each bed joint rocks on it as one
     /// body), under a strong sine and a vertical sine that can throw a section off its joint:
-    /// every run ends, in free flight where the model stops, and balances its energy to 1e-11
-    /// of the energies at the instant it ends. (A run ending in free flight lost the flying
-    /// section's energies, `rocking::a_run_ending_in_free_flight_balances_its_energy_there`.)
+    /// every run ends, its sections followed through free flight and their landings from it
+    /// (until 2026-12-01 a flight ended the run there), and balances its energy to 1e-11 of the
+    /// energies at the instant it ends.
     #[test]
     fn sections_across_the_plane_balance_their_energy(
         d in wall_strategy(),

@@ -74,7 +74,7 @@ fn one_open_joint_moves_as_the_body_alone() {
                     theta,
                     omega,
                     u: 0.013,
-                    v: 0.0,
+                    ..State::default()
                 },
                 &inputs,
             );

@@ -61,8 +61,7 @@ fn the_watch_balances_the_bodys_own_contact_forces() {
         let rocking = State {
             theta: 0.04,
             omega: -0.3,
-            u: 0.0,
-            v: 0.0,
+            ..State::default()
         };
         let sliding = State { v: 0.05, ..rocking };
         let cases = [

@@ -47,7 +47,7 @@ fn step_regimes_match_an_enumeration_of_both_corners_and_shenton() {
                 Mode::Slide(_) => "slide",
                 Mode::Rock(_) => "rock",
                 Mode::SlideRock(..) => "slide-rock",
-                Mode::Flight => "flight",
+                Mode::Flight(_) => "flight",
             };
             assert_eq!(regime, enumerated[0], "mu {mu}, A {a}");
             assert_eq!(regime, shenton(b, h, mu, a), "mu {mu}, A {a}");

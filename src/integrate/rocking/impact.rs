@@ -5,7 +5,8 @@
 //! sticks and the body rocks on it with theta' multiplied by Housner's r = 1 - 2 m b^2 / I_O
 //! (times the wall's factor); if not, the corner slips through the impact with the friction
 //! impulse at its limit (Routh's construction with a plastic normal impulse). A body whose
-//! rotation would reverse lands flat on both corners.
+//! rotation would reverse lands flat on both corners. A body in free flight lands by the same
+//! law at whatever angle and velocity it comes down with (`land_from_flight`).
 
 use super::body::RockingBody;
 use super::modes::{Corner, Equations, State};
@@ -106,12 +107,103 @@ pub fn land(
     let after = kinetic(body, -s, w, vq);
     Ok(Landing {
         state: State {
-            theta: 0.0,
             omega: w,
-            u: 0.0,
             v: vq,
+            ..State::default()
         },
         pivot: Some(next),
+        slipped,
+        loss_j: before - after,
+    })
+}
+
+/// The landing of a body in free flight on its corner `corner`, turned by `theta`, with its
+/// centroid's velocity (`xg0`, `yg0`, m/s) and angular velocity `omega` (clockwise, rad/s):
+/// the law of [`land`] at any angle and any velocity (Housner's assumption, the impulse at the
+/// landing corner alone, plastic in its normal). Where friction holds the corner, the angular
+/// momentum about it is kept and the body rocks on it; where not, the corner slips through the
+/// impact with the friction impulse at its limit (Routh). At theta = 0 both corners land:
+/// [`land_flat`]. The wall's restitution factor multiplies the velocities after, as it does
+/// Housner's. (The landing at theta = 0 from rocking keeps [`land`], whose arithmetic every
+/// earlier run's outputs were computed with.)
+pub fn land_from_flight(
+    body: &RockingBody,
+    theta: f64,
+    corner: Corner,
+    (xg0, yg0, omega): (f64, f64, f64),
+    time_s: f64,
+) -> Result<Landing, SimulationError> {
+    let (m, b, h, mu) = (
+        body.mass_kg,
+        body.half_base_m,
+        body.centroid_height_m,
+        body.friction,
+    );
+    let (ig, io) = (body.inertia_kg_m2, body.corner_inertia_kg_m2());
+    let before = 0.5 * m * (xg0 * xg0 + yg0 * yg0) + 0.5 * ig * omega * omega;
+    if theta == 0.0 {
+        return land_flat(body, xg0, yg0, omega, before, time_s);
+    }
+    // The centroid G_y above the corner and dx = dG_y/dtheta; turning about the corner, the
+    // centroid moves at theta' (G_y, dx).
+    let s = corner.sign();
+    let (sin, cos) = theta.sin_cos();
+    let (gy, dx) = (s * b * sin + h * cos, s * b * cos - h * sin);
+    let stick = (ig * omega + m * (gy * xg0 + dx * yg0)) / io;
+    let (pt, pn) = (m * (gy * stick - xg0), m * (dx * stick - yg0));
+    let (mut w, mut vq, mut slipped) = (stick, 0.0, false);
+    if pt.abs() > mu * pn {
+        // Friction cannot hold the corner (or holding it would pull): it slips through the
+        // impact, friction at its limit against its slip before (the sticking impulse's sense
+        // where it had none). Its normal velocity after, yg + P_n / m - dx w, is zero, with w
+        // changed by the impulse's moment about the centroid, -(G_y P_t + dx P_n).
+        let slip = xg0 - gy * omega;
+        let dir = if slip != 0.0 {
+            -slip.signum()
+        } else {
+            pt.signum()
+        };
+        let inv_mass = 1.0 / m + (dx * dx + dir * mu * gy * dx) / ig;
+        let pn = (dx * omega - yg0) / inv_mass;
+        let at = format!("{} at t = {time_s} s", body.name);
+        if inv_mass <= 0.0 {
+            return Err(SimulationError::RigidModel {
+                at,
+                why: format!(
+                    "landing from free flight on its {} corner with friction {mu}, the \
+                     corner's effective mass is not positive (Painleve's paradox in impact): \
+                     the rigid model with Coulomb friction cannot go on",
+                    corner.name()
+                ),
+            });
+        }
+        let pt = dir * mu * pn;
+        w = omega - (gy * pt + dx * pn) / ig;
+        vq = xg0 + pt / m - gy * w;
+        slipped = true;
+        if pn <= 0.0 || vq * dir > 0.0 {
+            return Err(SimulationError::RigidModel {
+                at,
+                why: format!(
+                    "landing from free flight on its {} corner, its slip would stop and turn \
+                     within the impact (normal impulse {pn} N s, slip after {vq} m/s): Routh's \
+                     construction for a plastic landing goes on where this model does not",
+                    corner.name()
+                ),
+            });
+        }
+    }
+    let (w, vq) = (body.restitution_factor * w, body.restitution_factor * vq);
+    let (xg, yg) = (vq + gy * w, dx * w);
+    let after = 0.5 * m * (xg * xg + yg * yg) + 0.5 * ig * w * w;
+    Ok(Landing {
+        state: State {
+            theta,
+            omega: w,
+            v: vq,
+            ..State::default()
+        },
+        pivot: Some(corner),
         slipped,
         loss_j: before - after,
     })
@@ -170,6 +262,69 @@ fn land_flat(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Landings from free flight, over turned bodies and velocities that bring a corner down:
+    /// the body rocks on the landing corner after; where that corner sticks, it is at rest and
+    /// the angular momentum about it is kept; where it slips, its normal velocity is zero, the
+    /// friction impulse is mu times the normal one and opposes its slip before, and the impulse
+    /// accounts for the change of momentum and of angular momentum about the centroid; energy
+    /// is lost either way. Both kinds come up.
+    #[test]
+    fn a_landing_from_flight_keeps_its_momenta_within_coulombs_cone() {
+        let body = RockingBody::rectangle("B", 0.6, 1.2, 900.0, 0.5, 9.81);
+        let (m, b, h, ig) = (
+            body.mass_kg,
+            body.half_base_m,
+            body.centroid_height_m,
+            body.inertia_kg_m2,
+        );
+        let io = body.corner_inertia_kg_m2();
+        let mut kinds = [0, 0];
+        for theta in [-0.3, -0.05, 0.02, 0.2, 0.45] {
+            let corner = Corner::of_sign(theta);
+            let s = corner.sign();
+            let (gy, dx) = (
+                s * b * theta.sin() + h * theta.cos(),
+                s * b * theta.cos() - h * theta.sin(),
+            );
+            for omega in [-2.0, -0.4, 0.0, 0.7, 1.5] {
+                for xg in [-1.2, -0.1, 0.0, 0.3, 2.0] {
+                    for yg in [-1.5, -0.6, -0.2] {
+                        // The corner's velocity before: its fall, and its slip.
+                        let (slip, fall) = (xg - gy * omega, yg - dx * omega);
+                        if fall >= 0.0 {
+                            continue;
+                        }
+                        let l =
+                            land_from_flight(&body, theta, corner, (xg, yg, omega), 0.0).unwrap();
+                        assert_eq!(l.pivot, Some(corner));
+                        let w = l.state.omega;
+                        let (xa, ya) = (l.state.v + gy * w, dx * w);
+                        let (pt, pn) = (m * (xa - xg), m * (ya - yg));
+                        // Moment of the impulse at the corner about the centroid.
+                        assert!((ig * (w - omega) + gy * pt + dx * pn).abs() < 1e-9);
+                        assert!(pn > 0.0 && l.loss_j >= -1e-9, "{pn} {}", l.loss_j);
+                        if l.slipped {
+                            kinds[1] += 1;
+                            assert!((pt.abs() - body.friction * pn).abs() < 1e-9 * pn);
+                            assert!(pt * slip < 0.0, "against the slip: {pt} {slip}");
+                            assert!(l.state.v * slip >= 0.0, "the slip keeps its sense");
+                        } else {
+                            kinds[0] += 1;
+                            assert_eq!(l.state.v, 0.0);
+                            let before = ig * omega + m * (gy * xg + dx * yg);
+                            assert!((io * w - before).abs() < 1e-12 * (1.0 + before.abs()));
+                            assert!(pt.abs() <= body.friction * pn * (1.0 + 1e-12));
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            kinds.iter().all(|&k| k > 20),
+            "stuck and slipped landings: {kinds:?}"
+        );
+    }
 
     /// A pure rocking landing with friction to spare is Housner's: theta' times r, the
     /// corner stuck, the energy falling by r^2.

@@ -127,11 +127,11 @@ impl Layout {
 }
 
 /// The horizontal displacement of the middle of a base of half width `bp` that turns with the
-/// body, as a series: the pivot's u while seated, u + s bp (1 - cos theta) while rocking on the
-/// corner of sign s (cos theta from the body's arms: h_c G_y + s b dx = R^2 cos theta). A
+/// body, as a series: the pivot's u while seated, u + s bp (1 - cos theta) while rocking on (or
+/// flying from) the corner of sign s (cos theta from the body's arms: h_c G_y + s b dx = R^2 cos theta). A
 /// column's body turns on its own base (bp = b); a trilith's on its columns' feet.
 fn base_series(body: &RockingBody, t: &Trajectory, bp: f64) -> Coeffs {
-    let Some(c) = t.mode.pivot() else {
+    let Some(c) = t.mode.corner() else {
         return t.u;
     };
     let s = c.sign();
@@ -158,7 +158,7 @@ fn block_series(
     turns: bool,
 ) -> Coeffs {
     let mut out = base_series(body, t, bp);
-    let Some(c) = t.mode.pivot().filter(|_| x0 != 0.0 || y0 != 0.0) else {
+    let Some(c) = t.mode.corner().filter(|_| x0 != 0.0 || y0 != 0.0) else {
         return out;
     };
     let s = c.sign();

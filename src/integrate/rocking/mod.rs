@@ -13,6 +13,7 @@
 //! |---|---|---|
 //! | stick limit, uplift, stop, pivot slip or stick, flight | a `modes::Constraint` falls | `modes::decide` |
 //! | landing (theta = 0) | the `Impact` constraint | `impact::land`, then `decide` |
+//! | landing from free flight (a corner reaches the ground) | a `Land` constraint | `impact::land_from_flight`, then `decide` |
 //! | overturning | theta reaches pi/2, or alpha with the ground at rest from then on | `Engine::overturn` |
 //! | a column's held joint opens under the rocking body | its watch's condition falls | `chain`: the column's blocks rock on each other until it is one body again |
 //! | extremes of theta, u, u' | roots of their derivatives | recorded, nothing decided |
@@ -179,6 +180,7 @@ fn transition(old: Mode, new: Mode, start: bool) -> Option<EventKind> {
         (Rest | Slide(_), Rock(_) | SlideRock(..)) => Some(EventKind::Uplift),
         (Rock(_), SlideRock(..)) => Some(EventKind::PivotSlip),
         (SlideRock(..), Rock(_) | SlideRock(..)) => Some(EventKind::PivotStick),
+        (_, Flight(_)) => Some(EventKind::Flight),
         (Rest, Slide(_)) => Some(EventKind::Slip),
         (Slide(_), Rest | Slide(_)) => Some(EventKind::Stick),
         (Rock(_) | SlideRock(..), Rest | Slide(_)) => Some(EventKind::Rest),
@@ -256,6 +258,11 @@ impl<'a> Engine<'a> {
     /// Decides body i's mode now, from its state and the pivot it rocks on, and logs the
     /// change (`start`: the first decision of the run).
     fn decide(&mut self, i: usize, inputs: &Inputs, start: bool) -> Result<(), SimulationError> {
+        if let Mode::Flight(_) = self.tracks[i].mode {
+            // Nothing touches a body in flight: a jump of the ground changes its motion only
+            // through its trajectory, and it leaves flight by landing.
+            return Ok(());
+        }
         let body = self.body(i);
         let st = self.tracks[i].state;
         let tie = series::TIE * body.slenderness_rad() * body.frequency_parameter_rad_s();
@@ -279,7 +286,9 @@ impl<'a> Engine<'a> {
         let next = modes::decide(body, self.scene.equations, &tr.state, pivot, inputs, self.t)?;
         self.rec.stats.mode_decisions += 1;
         let new = next.mode;
-        if new == Mode::Flight {
+        if let (Mode::Flight(_), Some(_)) = (new, self.scene.watches.get(i)) {
+            // A column's body leaving its held base, or a trilith's frame its feet: what the
+            // watch holds no longer holds, and the exact model of those ends.
             self.rec.rocking_event(
                 self.t,
                 EventKind::Flight,
@@ -394,6 +403,10 @@ impl<'a> Engine<'a> {
                 st.omega = series::eval(&traj.omega, tau);
                 st.u = series::eval(&traj.u, tau);
                 st.v = series::eval(&traj.v, tau);
+                if let Mode::Flight(_) = traj.mode {
+                    st.lift = series::eval(&traj.lift, tau);
+                    st.lift_v = series::eval(&traj.lift_v, tau);
+                }
             }
             self.t = t_new;
             let (_, now) = self.inputs_at(self.t);
@@ -545,6 +558,7 @@ impl<'a> Engine<'a> {
         match guard {
             Guard::Overturn => self.overturn(i, traj, tau),
             Guard::Impact => self.land(i, now),
+            Guard::Land(corner) => self.land_from_flight(i, corner, now),
             Guard::Stop | Guard::PivotStick => {
                 self.tracks[i].state.v = 0.0;
                 self.decide(i, now, false)
@@ -598,13 +612,21 @@ impl<'a> Engine<'a> {
         let at_rest = State {
             omega: 0.0,
             v: 0.0,
+            lift: 0.0,
+            lift_v: 0.0,
             ..self.tracks[i].state
         };
         let tr = &mut self.tracks[i];
+        // A body that turns to a face in flight lies where it would land, on the corner it
+        // left (drawn on the ground).
+        let lying = match tr.mode {
+            Mode::Flight(c) => Mode::Rock(c),
+            other => other,
+        };
         tr.fallen = Some(modes::trajectory(
             body,
             self.scene.equations,
-            tr.mode,
+            lying,
             &at_rest,
             &now,
         ));
@@ -648,18 +670,8 @@ impl<'a> Engine<'a> {
         // is then seated at theta = 0: what potential energy it had there (m g b theta, up to
         // 5e-9 J for a 0.4 m block) goes with the landing's loss, or the balance would lose it.
         let dropped = modes::potential_j(body, &self.trajectory(i, now), 0.0);
-        self.rec.energy.impact_loss_j += landing.loss_j + dropped;
-        for k in self.layout.outputs(i) {
-            self.rec.rocking_impact(k);
-        }
-        self.rec.impacts += 1;
-        let tr = &mut self.tracks[i];
-        tr.state = State { u, ..landing.state };
-        tr.mode = match landing.pivot {
-            Some(c) => Mode::Rock(c),
-            None => Mode::Rest,
-        };
-        let after = tr.state.omega;
+        self.install(i, &landing, u, dropped);
+        let after = self.tracks[i].state.omega;
         let mut what = landing
             .pivot
             .map_or("seated".into(), |c| format!("on the {} corner", c.name()));
@@ -709,6 +721,80 @@ impl<'a> Engine<'a> {
                 return self.decide(i, &at, false);
             }
         }
+        self.decide(i, now, false)
+    }
+
+    /// Body i after `landing`, its pivot (or base) at `u`: the landing's loss booked with
+    /// `dropped` (the potential energy of what the landing found at a tie), the impact counted.
+    fn install(&mut self, i: usize, landing: &impact::Landing, u: f64, dropped: f64) {
+        self.rec.energy.impact_loss_j += landing.loss_j + dropped;
+        for k in self.layout.outputs(i) {
+            self.rec.rocking_impact(k);
+        }
+        self.rec.impacts += 1;
+        let tr = &mut self.tracks[i];
+        tr.state = State { u, ..landing.state };
+        tr.mode = match landing.pivot {
+            Some(c) => Mode::Rock(c),
+            None => Mode::Rest,
+        };
+    }
+
+    /// A body in free flight lands on `corner` ([`impact::land_from_flight`]), then the mode
+    /// after it.
+    fn land_from_flight(
+        &mut self,
+        i: usize,
+        corner: Corner,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
+        let body = self.body(i);
+        let traj = self.trajectory(i, now);
+        let Mode::Flight(followed) = traj.mode else {
+            return Err(SimulationError::Bug(
+                "only a body in flight lands from it".into(),
+            ));
+        };
+        let st = self.tracks[i].state;
+        let (xg, yg) = (
+            st.v + traj.gy[0] * st.omega,
+            st.lift_v + traj.dx[0] * st.omega,
+        );
+        let landing = impact::land_from_flight(body, st.theta, corner, (xg, yg, st.omega), self.t)?;
+        // The landing corner's displacement: the other corner lies 2 s b cos theta from the
+        // one followed, 2 s b apart at rest (2 s b (1 - cos) = 4 s b sin^2(theta / 2)).
+        let u = if corner == followed {
+            st.u
+        } else {
+            let half = (0.5 * st.theta).sin();
+            st.u + 4.0 * followed.sign() * body.half_base_m * half * half
+        };
+        // Its height, zero to a tie where the landing was found, goes with the landing's loss
+        // as a landing from rocking's tilt does.
+        let dropped = modes::potential_j(body, &traj, 0.0)
+            - modes::potential_j(
+                body,
+                &modes::trajectory(
+                    body,
+                    self.scene.equations,
+                    Mode::Rock(corner),
+                    &State { u, ..landing.state },
+                    now,
+                ),
+                0.0,
+            );
+        self.install(i, &landing, u, dropped);
+        let what = match landing.pivot {
+            Some(c) => format!("from free flight on the {} corner", c.name()),
+            None => "from free flight, flat on both corners".into(),
+        };
+        self.rec.rocking_event(
+            self.t,
+            EventKind::RockingImpact,
+            &self.layout.outputs(i),
+            Some((st.omega, landing.state.omega)),
+            what,
+        );
         self.decide(i, now, false)
     }
 
@@ -778,9 +864,14 @@ impl<'a> Engine<'a> {
                     .then(|| a_g + series::eval(&series::derivative(&base_v), at));
             }
             if row {
-                let pivot = traj.mode.pivot();
-                for (k, lift) in self.layout.lifts(i, pivot, series::eval(&traj.theta, at)) {
-                    w[k] = lift;
+                let pivot = traj.mode.corner();
+                let theta = series::eval(&traj.theta, at);
+                let flying = match traj.mode {
+                    Mode::Flight(_) => Some(series::eval(&traj.lift, at)),
+                    _ => None,
+                };
+                for (k, lift) in self.layout.lifts(i, pivot, theta) {
+                    w[k] = flying.map_or(lift, |corner| lift + corner);
                 }
             }
         }

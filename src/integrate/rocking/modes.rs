@@ -1,5 +1,6 @@
 //! The modes of one rocking body and how the next one is decided. A body rests, slides, rocks
-//! about a base corner whose contact sticks, or rocks while that corner slips (slide-rock). In a
+//! about a base corner whose contact sticks, rocks while that corner slips (slide-rock), or
+//! flies with both corners off the ground. In a
 //! mode its motion is a Taylor series ([`Trajectory`]); the contact conditions of the mode are
 //! series too ([`Constraint`]): each must stay non-negative, and the first to fall is the next
 //! event. Deciding a mode is checking every mode the contacts allow against all of its
@@ -118,8 +119,10 @@ pub enum Mode {
     Rock(Corner),
     /// Rocking about a corner that slips (slide-rock).
     SlideRock(Corner, Slip),
-    /// Both corners off the ground (free flight): beyond this model, so never integrated.
-    Flight,
+    /// Both corners off the ground (free flight): the centroid falls under gravity and the
+    /// ground's inertial force, the rotation keeps its rate. The corner is the one the state's
+    /// u and lift follow (the pivot it left, or the right corner when it left seated).
+    Flight(Corner),
 }
 
 impl Mode {
@@ -128,6 +131,15 @@ impl Mode {
         match self {
             Mode::Rock(c) | Mode::SlideRock(c, _) => Some(c),
             _ => None,
+        }
+    }
+
+    /// The corner the state's u (and in flight its lift) follows: the pivot while rocking, the
+    /// corner it left in flight; none while seated.
+    pub fn corner(self) -> Option<Corner> {
+        match self {
+            Mode::Flight(c) => Some(c),
+            other => other.pivot(),
         }
     }
 
@@ -144,7 +156,7 @@ impl Mode {
                     slip_name(s)
                 )
             }
-            Mode::Flight => "free flight".into(),
+            Mode::Flight(_) => "free flight".into(),
         }
     }
 }
@@ -161,7 +173,7 @@ fn slip_name(s: Slip) -> &'static str {
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Equations {
-    /// The exact nonlinear equations, with sliding, slide-rock and free flight checked.
+    /// The exact nonlinear equations, with sliding, slide-rock and free flight.
     #[default]
     Exact,
     /// Housner's slender-block linearisation on a base that never slips (the classical model,
@@ -171,7 +183,9 @@ pub enum Equations {
 }
 
 /// The state of a body: rotation (rad), angular velocity (rad/s), and the horizontal
-/// displacement (m) and velocity (m/s) of its pivot (or base), relative to the ground.
+/// displacement (m) and velocity (m/s) of its pivot (or base), relative to the ground; in free
+/// flight also the height of that corner above the ground (m) and its rate (m/s), zero
+/// otherwise.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct State {
     /// theta (rad).
@@ -182,6 +196,10 @@ pub struct State {
     pub u: f64,
     /// u' (m/s).
     pub v: f64,
+    /// The corner's height in flight (m).
+    pub lift: f64,
+    /// Its rate (m/s).
+    pub lift_v: f64,
 }
 
 /// The ground motion over a step as series: horizontal acceleration a_g (m/s2) and the vertical
@@ -209,6 +227,10 @@ pub struct Trajectory {
     pub u: Coeffs,
     /// u'.
     pub v: Coeffs,
+    /// The height of the corner u follows (zero but in flight).
+    pub lift: Coeffs,
+    /// Its rate.
+    pub lift_v: Coeffs,
     /// Horizontal force of the ground on the body, summed over its contacts (N).
     pub tangential: Coeffs,
     /// Vertical force of the ground on the body, summed (N).
@@ -252,6 +274,8 @@ pub fn trajectory(
         omega: ZERO,
         u: ZERO,
         v: ZERO,
+        lift: ZERO,
+        lift_v: ZERO,
         tangential: ZERO,
         normal: ZERO,
         corners: None,
@@ -263,16 +287,28 @@ pub fn trajectory(
     t.omega[0] = state.omega;
     t.u[0] = state.u;
     t.v[0] = state.v;
+    t.lift[0] = state.lift;
+    t.lift_v[0] = state.lift_v;
     let (mut sin, mut cos, mut w) = (ZERO, ZERO, ZERO);
-    let (mut acc_theta, mut acc_u) = (ZERO, ZERO);
+    let (mut acc_theta, mut acc_u, mut acc_lift) = (ZERO, ZERO, ZERO);
     // Slide-rock: theta'' = num / den with num = m X e, X = mu sigma G_y - dx,
     // e = g lambda - G_y w, den = I_G - m dx X.
     let (mut x, mut e, mut num, mut den) = (ZERO, ZERO, ZERO, ZERO);
     let mut lin = ZERO; // linearised: alpha s - theta
     for k in 0..=ORDER {
         match mode {
-            Mode::Rest | Mode::Flight => {
+            Mode::Rest => {
                 t.gy[k] = if k == 0 { h } else { 0.0 };
+            }
+            Mode::Flight(c) => {
+                // The centroid at (x_c - s b cos + h sin, lift + G_y) from the corner's place:
+                // G_x'' = -a_g, G_y'' = -g lambda and theta'' = 0 give the corner's
+                // u'' = -a_g - dx w and lift'' = -g lambda + G_y w (w = theta'^2).
+                sin_cos_at(&t.theta, &mut sin, &mut cos, k);
+                (t.gy[k], t.dx[k]) = arms(body, c.sign(), &sin, &cos, k);
+                w[k] = mul_at(&t.omega, &t.omega, k);
+                acc_u[k] = -a[k] - mul_at(&t.dx, &w, k);
+                acc_lift[k] = -g * lam[k] + mul_at(&t.gy, &w, k);
             }
             Mode::Slide(sl) => {
                 t.gy[k] = if k == 0 { h } else { 0.0 };
@@ -327,6 +363,8 @@ pub fn trajectory(
             t.omega[k + 1] = acc_theta[k] / kk;
             t.u[k + 1] = t.v[k] / kk;
             t.v[k + 1] = acc_u[k] / kk;
+            t.lift[k + 1] = t.lift_v[k] / kk;
+            t.lift_v[k + 1] = acc_lift[k] / kk;
         }
     }
     if let Mode::SlideRock(..) = mode {
@@ -370,6 +408,8 @@ pub enum Guard {
     PivotStick,
     /// The pivot's normal force falls to zero: the body would leave the ground.
     Flight,
+    /// In flight, this corner reaches the ground.
+    Land(Corner),
     /// The body reaches pi/2 (lies on its face), or, with the ground at rest from now on,
     /// passes alpha with energy to spare (it can only fall).
     Overturn,
@@ -478,7 +518,27 @@ pub fn constraints(body: &RockingBody, equations: Equations, t: &Trajectory) -> 
                 }
             }
         }
-        Mode::Flight => {}
+        Mode::Flight(c) => {
+            // Each corner's height: the corner followed, and the other, 2 s b sin theta above
+            // it; and the body lying on a face.
+            let s = c.sign();
+            let b = body.half_base_m;
+            let (mut sin, mut cos) = (ZERO, ZERO);
+            for k in 0..=ORDER {
+                sin_cos_at(&t.theta, &mut sin, &mut cos, k);
+            }
+            let other = add(&t.lift, &sin, 2.0 * s * b);
+            push(t.lift, body.size_m(), Guard::Land(c), false);
+            push(other, body.size_m(), Guard::Land(c.other()), false);
+            let half_pi = std::f64::consts::FRAC_PI_2;
+            push(plus(&t.theta, half_pi), 1.0, Guard::Overturn, false);
+            push(
+                plus(&scaled(&t.theta, -1.0), half_pi),
+                1.0,
+                Guard::Overturn,
+                false,
+            );
+        }
     }
     out
 }
@@ -515,14 +575,14 @@ fn candidates(equations: Equations, state: &State, pivot: Option<Corner>) -> Vec
             for c in corners {
                 out.extend(slips.iter().map(|&s| Mode::SlideRock(c, s)));
             }
-            out.push(Mode::Flight);
+            out.push(Mode::Flight(Corner::Right));
         }
         (Equations::Exact, false, Some(c)) => {
             if state.v == 0.0 {
                 out.push(Mode::Rock(c));
             }
             out.extend(slips.iter().map(|&s| Mode::SlideRock(c, s)));
-            out.push(Mode::Flight);
+            out.push(Mode::Flight(c));
         }
         (_, false, None) => {}
     }
@@ -578,9 +638,9 @@ pub fn decide(
     let mut holding: Vec<Trajectory> = Vec::new();
     let mut paradox = Vec::new();
     for mode in candidates(equations, state, pivot) {
-        if mode == Mode::Flight {
+        if let Mode::Flight(_) = mode {
             if flight_lifts(body, state, pivot, inputs) {
-                holding.push(trajectory(body, equations, Mode::Flight, state, inputs));
+                holding.push(trajectory(body, equations, mode, state, inputs));
             }
             continue;
         }
@@ -696,7 +756,10 @@ pub fn kinetic_j(body: &RockingBody, t: &Trajectory, tau: f64) -> f64 {
     let v = series::eval(&t.v, tau);
     let gy = series::eval(&t.gy, tau);
     let dx = series::eval(&t.dx, tau);
-    let (xg, yg) = (v + gy * omega, dx * omega);
+    let (xg, mut yg) = (v + gy * omega, dx * omega);
+    if let Mode::Flight(_) = t.mode {
+        yg += series::eval(&t.lift_v, tau);
+    }
     0.5 * body.mass_kg * (xg * xg + yg * yg) + 0.5 * body.inertia_kg_m2 * omega * omega
 }
 
@@ -713,12 +776,17 @@ pub fn potential_j(body: &RockingBody, t: &Trajectory, tau: f64) -> f64 {
             * body.size_m()
             * (body.slenderness_rad() * theta.abs() - 0.5 * theta * theta);
     }
-    let Some(pivot) = t.mode.pivot() else {
+    let Some(pivot) = t.mode.corner() else {
         return body.mass_kg * body.g_m_s2 * (series::eval(&t.gy, tau) - body.centroid_height_m);
     };
     let (b, h) = (body.half_base_m, body.centroid_height_m);
     let half = (0.5 * theta).sin();
-    body.mass_kg * body.g_m_s2 * (pivot.sign() * b * theta.sin() - 2.0 * h * half * half)
+    let rise = pivot.sign() * b * theta.sin() - 2.0 * h * half * half;
+    let rise = match t.mode {
+        Mode::Flight(_) => rise + series::eval(&t.lift, tau),
+        _ => rise,
+    };
+    body.mass_kg * body.g_m_s2 * rise
 }
 
 /// Power series of the work rates: input (the inertial forces -m a_g on the centroid's
@@ -737,7 +805,10 @@ pub fn power_series(body: &RockingBody, t: &Trajectory, inputs: &Inputs) -> (Coe
         return (input, ZERO);
     }
     let xg = add(&t.v, &series::product(&t.gy, &t.omega), 1.0);
-    let yg = series::product(&t.dx, &t.omega);
+    let mut yg = series::product(&t.dx, &t.omega);
+    if let Mode::Flight(_) = t.mode {
+        yg = add(&yg, &t.lift_v, 1.0);
+    }
     let extra = plus(&inputs.lambda, -1.0);
     let input = add(
         &scaled(&series::product(&inputs.accel, &xg), -m),
