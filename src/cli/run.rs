@@ -789,14 +789,14 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
                 u.turning.join(", "),
                 match (u.mechanism_uniqueness, &u.turning_in_every_mechanism) {
                     (pirqa::limit::Uniqueness::Unique, _) => String::new(),
-                    // One of several: not decided for its size alone (a stopped run says so).
-                    (other @ pirqa::limit::Uniqueness::OneOfSeveral, None) => format!(
+                    // Not decided for the wall's size alone, whatever its uniqueness (a stopped
+                    // run says so).
+                    (other, None) => format!(
                         " ({}; which blocks turn in every one is decided for walls of up to {} \
                          movable blocks)",
                         other.which(),
                         pirqa::limit::EVERY_BLOCKS
                     ),
-                    (other, None) => format!(" ({})", other.which()),
                     (other, Some(every)) => format!(
                         " ({}; turning in every one: {})",
                         other.which(),
