@@ -122,7 +122,8 @@ pub fn land(
 /// the law of [`land`] at any angle and any velocity (Housner's assumption, the impulse at the
 /// landing corner alone, plastic in its normal). Where friction holds the corner, the angular
 /// momentum about it is kept and the body rocks on it; where not, the corner slips through the
-/// impact with the friction impulse at its limit (Routh). At theta = 0 both corners land:
+/// impact with the friction impulse at its limit (Routh), turning its slip within the impact
+/// where it stops there ([`slip_turning`]). At theta = 0 both corners land:
 /// [`land_flat`]. The wall's restitution factor multiplies the velocities after, as it does
 /// Housner's. (The landing at theta = 0 from rocking keeps [`land`], whose arithmetic every
 /// earlier run's outputs were computed with.)
@@ -181,16 +182,16 @@ pub fn land_from_flight(
         w = omega - (gy * pt + dx * pn) / ig;
         vq = xg0 + pt / m - gy * w;
         slipped = true;
-        if pn <= 0.0 || vq * dir > 0.0 {
-            return Err(SimulationError::RigidModel {
-                at,
-                why: format!(
-                    "landing from free flight on its {} corner, its slip would stop and turn \
-                     within the impact (normal impulse {pn} N s, slip after {vq} m/s): Routh's \
-                     construction for a plastic landing goes on where this model does not",
-                    corner.name()
-                ),
-            });
+        if pn <= 0.0 {
+            return Err(SimulationError::Bug(format!(
+                "{at}: a landing from free flight whose corner does not come down (normal \
+                 impulse {pn} N s)"
+            )));
+        }
+        if vq * dir > 0.0 {
+            // The slip stops within the impact and turns (Routh's construction goes on from
+            // there): friction cannot hold it, as the sticking impulse outside the cone says.
+            (w, vq) = slip_turning((body, gy, dx), (slip, yg0 - dx * omega, omega), dir, &at)?;
         }
     }
     let (w, vq) = (body.restitution_factor * w, body.restitution_factor * vq);
@@ -207,6 +208,50 @@ pub fn land_from_flight(
         slipped,
         loss_j: before - after,
     })
+}
+
+/// Routh's construction where a landing corner's slip stops within a plastic impact and turns:
+/// the normal impulse P_n grows from zero, the corner's velocity changing by W P (W the
+/// Delassus matrix of the corner: its tangential and normal velocity per unit impulse), the
+/// friction impulse at the limit against the slip, `dir` mu dP_n, until the slip is zero;
+/// friction cannot hold it there (|W_tn| > mu W_tt, else the sticking impulse lies in the cone
+/// and the landing sticks), so it slips the other way, friction reversed, until the corner's
+/// normal velocity is zero. `(slip, fall)`: the corner's velocity before; returns the angular
+/// velocity and the slip after (before the restitution factor).
+fn slip_turning(
+    (body, gy, dx): (&RockingBody, f64, f64),
+    (slip, fall, omega): (f64, f64, f64),
+    dir: f64,
+    at: &str,
+) -> Result<(f64, f64), SimulationError> {
+    let (m, ig, mu) = (body.mass_kg, body.inertia_kg_m2, body.friction);
+    let (wtt, wtn, wnn) = (1.0 / m + gy * gy / ig, gy * dx / ig, 1.0 / m + dx * dx / ig);
+    // The slip's phase: the slip and the fall per unit normal impulse.
+    let pn1 = -slip / (wtn + dir * mu * wtt);
+    let fall1 = fall + (wnn + dir * mu * wtn) * pn1;
+    let back = -dir;
+    let inv_mass = wnn + back * mu * wtn;
+    if wtn.abs() <= mu * wtt || inv_mass <= 0.0 || !(pn1 > 0.0 && fall1 < 0.0) {
+        return Err(SimulationError::RigidModel {
+            at: at.into(),
+            why: format!(
+                "landing from free flight, its slip stops within the impact (after {pn1} N s of \
+                 normal impulse) where {}: Routh's construction for a plastic landing has no \
+                 next phase here",
+                if inv_mass <= 0.0 {
+                    "the corner's effective mass slipping back is not positive (Painleve's \
+                     paradox in impact)"
+                } else {
+                    "friction could hold it or the impact ends, though the sticking impulse lies \
+                     outside the cone (a tie within round-off)"
+                }
+            ),
+        });
+    }
+    let pn2 = -fall1 / inv_mass;
+    let (pt, pn) = (mu * (dir * pn1 + back * pn2), pn1 + pn2);
+    let w = omega - (gy * pt + dx * pn) / ig;
+    Ok((w, slip + pt / m + gy * (omega - w)))
 }
 
 /// A landing that leaves the body seated: both corners share the normal impulse, the rotation
@@ -324,6 +369,63 @@ mod tests {
             kinds.iter().all(|&k| k > 20),
             "stuck and slipped landings: {kinds:?}"
         );
+    }
+
+    /// Landings from free flight on little friction, where a corner's slip stops within the
+    /// impact and turns: the impulse is Routh's two legs on the cone's edges, P1 (dir mu, 1)
+    /// and P2 (-dir mu, 1), both positive, with the slip zero where the first ends (from the
+    /// momenta after that leg alone), the slip after against the slip before and the second
+    /// leg's friction against it; momentum about the centroid is balanced, energy is lost.
+    #[test]
+    fn a_slip_that_stops_within_a_landing_turns_the_other_way() {
+        let body = RockingBody::rectangle("B", 0.6, 1.2, 900.0, 0.1, 9.81);
+        let (m, b, h, ig, mu) = (
+            body.mass_kg,
+            body.half_base_m,
+            body.centroid_height_m,
+            body.inertia_kg_m2,
+            body.friction,
+        );
+        let mut turned = 0;
+        for theta in [-0.45, -0.3, -0.2, 0.2, 0.3, 0.45] {
+            let corner = Corner::of_sign(theta);
+            let s = corner.sign();
+            let (gy, dx) = (
+                s * b * theta.sin() + h * theta.cos(),
+                s * b * theta.cos() - h * theta.sin(),
+            );
+            for omega in [-2.0, -0.7, -0.2, 0.0, 0.3, 0.9, 1.8] {
+                for xg in [-1.5, -0.4, -0.05, 0.1, 0.6, 1.4] {
+                    for yg in [-1.5, -0.6, -0.1] {
+                        let (slip, fall) = (xg - gy * omega, yg - dx * omega);
+                        if fall >= 0.0 {
+                            continue;
+                        }
+                        let l =
+                            land_from_flight(&body, theta, corner, (xg, yg, omega), 0.0).unwrap();
+                        let w = l.state.omega;
+                        let (pt, pn) = (m * (l.state.v + gy * w - xg), m * (dx * w - yg));
+                        let scale = m * (xg.abs() + yg.abs() + omega.abs());
+                        assert!((ig * (w - omega) + gy * pt + dx * pn).abs() < 1e-12 * scale);
+                        assert!(pn > 0.0 && l.loss_j >= 0.0, "{pn} {}", l.loss_j);
+                        if !(l.slipped && l.state.v * slip < 0.0) {
+                            continue;
+                        }
+                        turned += 1;
+                        let dir = -slip.signum();
+                        let pn1 = 0.5 * (pn + pt / (dir * mu));
+                        let pn2 = pn - pn1;
+                        assert!(pn1 > 0.0 && pn2 > 0.0, "{pn1} {pn2}");
+                        // The corner's slip after the first leg alone.
+                        let w1 = omega - (gy * dir * mu * pn1 + dx * pn1) / ig;
+                        let slip1 = xg + dir * mu * pn1 / m - gy * w1;
+                        assert!(slip1.abs() < 1e-12 * scale / m, "{slip1}");
+                        assert!(-dir * l.state.v < 0.0, "the second leg's friction opposes");
+                    }
+                }
+            }
+        }
+        assert!(turned > 20, "landings whose slip turns: {turned}");
     }
 
     /// A pure rocking landing with friction to spare is Housner's: theta' times r, the
