@@ -62,6 +62,6 @@ pub use integrate::AfterCollapse;
 pub use model::Model;
 pub use motion::{Motion, Pulse, Record, Sine};
 pub use response::{Response, Summary, Warning};
-pub use run::{run, AfterUplift, Direction, Method, RunSettings};
+pub use run::{run, AfterStop, AfterUplift, Direction, Method, RunSettings};
 pub use topology::{Base, BlockId, HorizontalId, JointRef, Topology, VerticalId};
 pub use wall::Wall;

@@ -7,7 +7,7 @@ use crate::integrate::baselines::{
     ContactSolver, KeepsSeated, Moreau, MoreauWall, PaperNewmark, Regularized, Stepped, HANDED_OFF,
 };
 use crate::integrate::event::{Ended, EventDriven, Params};
-use crate::integrate::rocking::{self, Equations, ModelChoice, Rocking};
+use crate::integrate::rocking::{self, Equations, Finished, ModelChoice, Rocking};
 use crate::integrate::stepping::{positive, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario, Settings};
 use crate::model::Model;
@@ -89,6 +89,22 @@ impl AfterUplift {
     }
 }
 
+/// What a run of the exact rocking model does where it stops following the wall before the end
+/// (a held joint of a column gives way, a column's body or a trilith's frame would fly:
+/// docs/rocking-walls.md); a sweep's `fallback: MoreauFromStop(dt_s: S)` asks for `Moreau`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum AfterStop {
+    /// The run ends there, its warning saying where and why.
+    #[default]
+    End,
+    /// Moreau-Jean with every block's rotation, step `dt_s`, from every block's state there
+    /// (turned, moving) to the end: the run exact up to the stop, time stepped only beyond it.
+    Moreau {
+        /// Time step (s).
+        dt_s: f64,
+    },
+}
+
 /// The direction of the ground motion relative to the wall.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
@@ -143,6 +159,8 @@ pub struct RunSettings {
     pub check_uplift: bool,
     /// What follows that instant (the watch is on whenever this is not `Slide`).
     pub after_uplift: AfterUplift,
+    /// What follows where the exact rocking model stops before the end.
+    pub after_stop: AfterStop,
 }
 
 fn incompatible(asked: &'static str, fix: &'static str) -> SimulationError {
@@ -175,11 +193,45 @@ impl RunSettings {
         if self.contact_solver != ContactSolver::GaussSeidel
             && !matches!(self.method, Method::Moreau { .. })
             && self.after_uplift == AfterUplift::Slide
+            && self.after_stop == AfterStop::End
         {
             return Err(Error::Simulation(incompatible(
                 "--contact-solver chooses how Moreau-Jean solves a step's contacts",
                 "add --method moreau --dt S, or leave --contact-solver out",
             )));
+        }
+        if let AfterStop::Moreau { dt_s } = self.after_stop {
+            positive("time step", dt_s, " s")?;
+            let refused = |asked| {
+                Err(Error::Simulation(incompatible(
+                    asked,
+                    "leave --after-stop out, or the option it names",
+                )))
+            };
+            if !matches!(self.method, Method::Event) {
+                return refused(
+                    "--after-stop hands the exact rocking model's run over where it stops, and \
+                     --method chooses another integrator for the whole run",
+                );
+            }
+            if self.after_uplift != AfterUplift::Slide {
+                return refused(
+                    "--after-stop follows the exact rocking model, and --after-uplift the exact \
+                     sliding model: a wall runs on one of them",
+                );
+            }
+            if self.direction == Direction::OutOfPlane {
+                return refused(
+                    "--after-stop follows a wall's columns in its plane, and across the plane \
+                     each section rocks on its own to the end",
+                );
+            }
+            if self.rocking == Some(Equations::Linearised) {
+                return refused(
+                    "--after-stop hands the state of the rigid blocks to Moreau-Jean, and \
+                     --rocking linearised follows other equations",
+                );
+            }
         }
         if let Some(dt_s) = self.after_uplift.step_s() {
             positive("time step", dt_s, " s")?;
@@ -319,11 +371,22 @@ pub fn run_scenario(sc: &Scenario, settings: &RunSettings) -> Result<Response, S
         .run(sc)?,
         (_, true) => {
             exact_only("the rocking model (or --method moreau)")?;
-            Rocking {
+            let rocking = Rocking {
                 equations,
                 initial_rotation_rad: initial,
+            };
+            match settings.after_stop {
+                AfterStop::End => rocking.run(sc)?,
+                AfterStop::Moreau { dt_s } => {
+                    return hand_off_at_stop(sc, settings, &rocking, dt_s, why)
+                }
             }
-            .run(sc)?
+        }
+        (_, false) if settings.after_stop != AfterStop::End => {
+            return Err(SimulationError::NotApplicable(format!(
+                "--after-stop follows the exact rocking model where it stops, and this wall runs \
+                 on the sliding model ({why}): leave --after-stop out"
+            )))
         }
         (Method::Event, false) => EventDriven {
             params: Params {
@@ -426,6 +489,47 @@ fn hand_off_at_uplift(
                     }
                 }
             }
+        }
+    }
+}
+
+/// The exact rocking model up to where it stops following the wall, Moreau-Jean with every
+/// block's rotation from the state there to the end (`why`: why the wall rocks).
+fn hand_off_at_stop(
+    sc: &Scenario,
+    settings: &RunSettings,
+    rocking: &Rocking,
+    dt_s: f64,
+    why: String,
+) -> Result<Response, SimulationError> {
+    let stepper = MoreauWall {
+        solver: settings.contact_solver,
+        ..MoreauWall::new(dt_s)
+    };
+    // The step is checked before the exact run.
+    time_step(sc, dt_s)?;
+    match rocking.run_to_stop(sc)? {
+        Finished::Ended(r) => {
+            let mut r = *r;
+            r.summary.model.why = format!(
+                "{why}; with --after-stop moreau: the exact model followed the wall to the end \
+                 of the run, so its answer is the answer"
+            );
+            Ok(r)
+        }
+        Finished::Stopped(h, stop) => {
+            let t = h.t_s;
+            let Stepped::Ended(r) = stepper.run_from(sc, *h, None)? else {
+                return Err(SimulationError::Bug(
+                    "a stepper not asked to set the wall down did".into(),
+                ));
+            };
+            let mut r = *r;
+            r.summary.model.why = format!(
+                "{why}; with --after-stop moreau: the exact model to t = {t} s, where {stop}; \
+                 from there Moreau-Jean with every block's rotation, dt = {dt_s} s"
+            );
+            Ok(r)
         }
     }
 }

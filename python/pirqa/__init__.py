@@ -79,6 +79,7 @@ def run(
     log_events: bool = False,
     check_uplift: bool = False,
     after_uplift: str = "slide",
+    after_stop: str = "end",
 ) -> Result:
     """Runs ``wall`` under ``motion`` (the GIL is released while it runs).
 
@@ -98,7 +99,11 @@ def run(
     runs, "slide" (slide on), "moreau" (exact sliding up to it, then Moreau-Jean with every
     block's rotation, step ``dt_s``) or "moreau-while-rocking" (the same until every block is
     seated and calm again, then exact sliding again, to the next uplift), as ``pirqa run
-    --after-uplift``.
+    --after-uplift``. ``after_stop``: what follows where the exact rocking model stops following
+    a wall of columns or a trilith before the end (a held joint gives way, a body would fly),
+    "end" (the run ends there, its warning says why) or "moreau" (Moreau-Jean with every
+    block's rotation, step ``dt_s``, from every block's state there), as ``pirqa run
+    --after-stop``.
 
     Ctrl-C (or a notebook's interrupt) stops the run within about 50 ms of wall-clock time and
     raises ``KeyboardInterrupt``; what the run reached is the exception's ``result``, its
@@ -119,6 +124,7 @@ def run(
             log_events=log_events,
             check_uplift=check_uplift,
             after_uplift=after_uplift,
+            after_stop=after_stop,
         )
     except BaseException as signal:
         partial = getattr(signal, "partial", None)

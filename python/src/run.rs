@@ -11,7 +11,7 @@ use crate::wall::Wall;
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
 use pirqa::integrate::Progress;
-use pirqa::{AfterUplift, ContactSolver, Direction, Method, ModelChoice, RunSettings};
+use pirqa::{AfterStop, AfterUplift, ContactSolver, Direction, Method, ModelChoice, RunSettings};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -46,39 +46,62 @@ fn method(name: &str, dt_s: Option<f64>) -> PyResult<Method> {
     }
 }
 
-/// The integrator and what follows a first uplift: with "moreau" (or "moreau-while-rocking")
-/// after it, `dt_s` is the step of the time stepping that takes over, and the exact method runs
-/// up to the uplift (and again wherever every block is seated and calm).
-fn method_after_uplift(
+/// The integrator, what follows a first uplift and what follows where the exact rocking model
+/// stops: with "moreau" (or "moreau-while-rocking") after either, `dt_s` is the step of the time
+/// stepping that takes over, and the exact method runs up to there (and again, after an
+/// uplift, wherever every block is seated and calm).
+fn method_after(
     method: &str,
     after_uplift: &str,
+    after_stop: &str,
     dt_s: Option<f64>,
-) -> PyResult<(Method, AfterUplift)> {
-    match after_uplift {
-        "slide" => Ok((self::method(method, dt_s)?, AfterUplift::Slide)),
-        "moreau" | "moreau-while-rocking" => {
-            let dt_s = dt_s.ok_or_else(|| {
-                option(
-                    "dt_s",
-                    format!(
-                        "after_uplift \"{after_uplift}\" needs the time step dt_s of the \
-                         stepping that takes over"
-                    ),
-                )
-            })?;
-            let own = (method != "event").then_some(dt_s);
-            let after = if after_uplift == "moreau" {
-                AfterUplift::Moreau { dt_s }
-            } else {
-                AfterUplift::MoreauWhileRocking { dt_s }
-            };
-            Ok((self::method(method, own)?, after))
+) -> PyResult<(Method, AfterUplift, AfterStop)> {
+    let handed = |option_name: &str, asked: &str| {
+        dt_s.ok_or_else(|| {
+            option(
+                "dt_s",
+                format!(
+                    "{option_name} \"{asked}\" needs the time step dt_s of the stepping that \
+                     takes over"
+                ),
+            )
+        })
+    };
+    let after_uplift = match after_uplift {
+        "slide" => AfterUplift::Slide,
+        "moreau" => AfterUplift::Moreau {
+            dt_s: handed("after_uplift", after_uplift)?,
+        },
+        "moreau-while-rocking" => AfterUplift::MoreauWhileRocking {
+            dt_s: handed("after_uplift", after_uplift)?,
+        },
+        _ => {
+            return Err(option(
+                "after_uplift",
+                format!("\"{after_uplift}\": give slide, moreau or moreau-while-rocking"),
+            ))
         }
-        _ => Err(option(
-            "after_uplift",
-            format!("\"{after_uplift}\": give slide, moreau or moreau-while-rocking"),
-        )),
-    }
+    };
+    let after_stop = match after_stop {
+        "end" => AfterStop::End,
+        "moreau" => AfterStop::Moreau {
+            dt_s: handed("after_stop", after_stop)?,
+        },
+        _ => {
+            return Err(option(
+                "after_stop",
+                format!("\"{after_stop}\": give end or moreau"),
+            ))
+        }
+    };
+    // The step belongs to the stepping that takes over; the exact method takes none.
+    let taken = after_uplift != AfterUplift::Slide || after_stop != AfterStop::End;
+    let own = if taken && method == "event" {
+        None
+    } else {
+        dt_s
+    };
+    Ok((self::method(method, own)?, after_uplift, after_stop))
 }
 
 fn model(name: &str) -> PyResult<ModelChoice> {
@@ -142,7 +165,8 @@ fn releases(given: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, f64)>> {
 #[pyfunction]
 #[pyo3(signature = (wall, motion, *, duration_s = None, output_dt_s = None, method = "event",
     dt_s = None, model = "auto", contact_solver = "gauss-seidel", direction = "in-plane",
-    initial_rotation = None, log_events = false, check_uplift = false, after_uplift = "slide"))]
+    initial_rotation = None, log_events = false, check_uplift = false, after_uplift = "slide",
+    after_stop = "end"))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -159,6 +183,7 @@ pub fn run<'py>(
     log_events: bool,
     check_uplift: bool,
     after_uplift: &str,
+    after_stop: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     if motion.is_rest() && duration_s.is_none() {
         return Err(option(
@@ -167,13 +192,14 @@ pub fn run<'py>(
         ));
     }
     let interrupt = Interrupt::new(py)?;
-    let (method, after_uplift) = method_after_uplift(method, after_uplift, dt_s)?;
+    let (method, after_uplift, after_stop) = method_after(method, after_uplift, after_stop, dt_s)?;
     let settings = RunSettings {
         duration_s,
         output_dt_s,
         log_events,
         method,
         after_uplift,
+        after_stop,
         model: self::model(model)?,
         contact_solver: self::contact_solver(contact_solver)?,
         direction: self::direction(direction)?,

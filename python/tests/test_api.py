@@ -155,6 +155,28 @@ def test_after_the_first_uplift_moreau_jean_takes_over():
         pirqa.run(wall, ramp, after_uplift="rock", dt_s=1e-3)
 
 
+def test_where_the_exact_rocking_model_stops_moreau_jean_goes_on(root):
+    """The two-block column under a 0.4 g, 0.7 Hz sine: the exact model follows it until the
+    upper drum would lift off the lower one's corner (2.36 s), then every block steps with its
+    rotation from there; the rows up to the stop are the exact run's own."""
+    wall = pirqa.Wall.from_file(root / "walls/rocking/two-block-column.ron")
+    sine = pirqa.Motion.sine("0.4g", frequency_hz=0.7, duration_s=4.0)
+    exact = pirqa.run(wall, sine, output_dt_s=0.01)
+    assert "stops there" in " ".join(exact.summary["warnings"])
+    r = pirqa.run(wall, sine, output_dt_s=0.01, after_stop="moreau", dt_s=5e-4)
+    s = r.summary
+    assert s["method"] == "event+moreau"
+    assert "the exact model to t = 2.36" in s["model"]["why"]
+    assert not any("stops there" in w for w in s["warnings"])
+    n = len(exact.history.time_s)
+    assert len(r.history.time_s) > n
+    assert np.array_equal(r.history.rotation_rad[:n], exact.history.rotation_rad)
+    with pytest.raises(pirqa.OptionError, match="dt_s"):
+        pirqa.run(wall, sine, after_stop="moreau")
+    with pytest.raises(pirqa.OptionError, match="give end or moreau"):
+        pirqa.run(wall, sine, after_stop="rock", dt_s=1e-3)
+
+
 def test_while_blocks_rock_moreau_jean_steps_them_and_then_gives_the_wall_back():
     """The slender block under a pulse to 3.5 m/s2 and back: it lifts at g/4 on the way up,
     rocks, lands and settles; from there the exact sliding model has the wall again, every

@@ -363,6 +363,12 @@ pub struct RunArgs {
     /// the next uplift).
     #[arg(long, value_enum, value_name = "MODEL", default_value_t = AfterUplift::Slide)]
     pub after_uplift: AfterUplift,
+    /// What follows where the exact rocking model stops following a wall of columns or a
+    /// trilith before the end (a held joint gives way, a body would fly): end (the run ends
+    /// there, its warning says where and why), or moreau (Moreau-Jean with every block's
+    /// rotation, step --dt, from every block's state there to the end; docs/rocking-walls.md).
+    #[arg(long, value_enum, value_name = "MODEL", default_value_t = AfterStop::End)]
+    pub after_stop: AfterStop,
     /// Write only the summary, to this file.
     #[arg(long, value_name = "FILE")]
     pub summary: Option<PathBuf>,
@@ -386,7 +392,7 @@ pub struct RunArgs {
     #[arg(long, value_enum, default_value_t = Method::Event)]
     pub method: Method,
     /// Time step of `paper` and `moreau`, and of `--after-uplift moreau` or
-    /// `moreau-while-rocking` (s).
+    /// `moreau-while-rocking` and `--after-stop moreau` (s).
     #[arg(
         long,
         value_name = "S",
@@ -458,6 +464,15 @@ pub enum AfterUplift {
     /// Moreau-Jean with rotations from there while any block rocks: exact sliding again once
     /// every block is seated and calm, until the next uplift.
     MoreauWhileRocking,
+}
+
+/// What follows where the exact rocking model stops.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum AfterStop {
+    /// The run ends there.
+    End,
+    /// Moreau-Jean with rotations from there.
+    Moreau,
 }
 
 /// Integrators.
@@ -534,6 +549,10 @@ pub fn run(args: &RunArgs) -> Result<(), Error> {
             AfterUplift::MoreauWhileRocking => {
                 pirqa::AfterUplift::MoreauWhileRocking { dt_s: args.dt }
             }
+        },
+        after_stop: match args.after_stop {
+            AfterStop::End => pirqa::AfterStop::End,
+            AfterStop::Moreau => pirqa::AfterStop::Moreau { dt_s: args.dt },
         },
     };
     // Settings the run would refuse are refused before the estimate speaks of them.

@@ -2123,6 +2123,80 @@ fn after_the_first_uplift_time_stepping_with_rotations_takes_over() {
     );
 }
 
+/// `--after-stop moreau`: the two-block column under El Centro at 0.5 g runs exactly until its
+/// upper drum would lift off the lower one's corner (6.22 s), then every block steps with its
+/// rotation from there: one history whose rows up to the stop are the exact run's own, to the
+/// last digit, and go on past it; the summary names both methods and where the exact model
+/// stopped, and carries no warning that the run ended there. A run the exact model finishes is
+/// its own answer; a sliding wall and other integrators are refused with the reason.
+#[test]
+fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
+    let dir = temp_dir("after-stop");
+    let run = |wall: &str, pga: &str, more: &[&str]| {
+        let mut args = vec![
+            "run",
+            wall,
+            "--record",
+            "records/elcentro1940_IELC180_peer_dt0p01_g.AT2",
+            "--pga",
+            pga,
+            "--duration",
+            "8",
+        ];
+        args.extend(more);
+        pirqa(&args)
+    };
+    let column = "walls/rocking/two-block-column.ron";
+    let out_dir = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let (exact, handed) = (out_dir("exact"), out_dir("handed"));
+    let (ok, out, err) = run(column, "0.5g", &["--out", &exact]);
+    assert!(ok && out.contains("stops there"), "{out}{err}");
+    let more = ["--after-stop", "moreau", "--dt", "5e-4", "--out", &handed];
+    let (ok, out, err) = run(column, "0.5g", &more);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("| event+moreau |")
+            && out.contains("with --after-stop moreau: the exact model to t = 6.22")
+            && out.contains("would lift off the corner it turns on")
+            && out.contains("Drum2 fell")
+            && !out.contains("stops there"),
+        "{out}"
+    );
+    let rows = |name: &str| -> Vec<String> {
+        let text = std::fs::read_to_string(dir.join(name).join("history.csv")).unwrap();
+        text.lines().map(str::to_string).collect()
+    };
+    let (a, b) = (rows("exact"), rows("handed"));
+    // The exact run's rows, its last (the stop) included, then the stepper's.
+    assert!(b.len() > a.len(), "{} {}", a.len(), b.len());
+    assert_eq!(a[..], b[..a.len()]);
+    let (ok, out, err) = run(column, "0.3g", &["--after-stop", "moreau"]);
+    assert!(
+        ok && out.contains("| event |") && out.contains("followed the wall to the end"),
+        "{out}{err}"
+    );
+    for (wall, more, says) in [
+        (
+            column,
+            &["--after-stop", "moreau", "--method", "paper"][..],
+            "--method chooses another integrator",
+        ),
+        (
+            "walls/five-block-variable.ron",
+            &["--after-stop", "moreau"][..],
+            "runs on the sliding model",
+        ),
+        (
+            column,
+            &["--after-stop", "moreau", "--dt", "0"][..],
+            "time step",
+        ),
+    ] {
+        let (ok, _, err) = run(wall, "0.5g", more);
+        assert!(!ok && err.contains(says), "{wall} {more:?}: {err}");
+    }
+}
+
 #[test]
 fn while_blocks_rock_time_stepping_takes_over_and_gives_the_wall_back() {
     let dir = temp_dir("while-rocking");

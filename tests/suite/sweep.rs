@@ -769,6 +769,75 @@ fn a_case_beyond_the_exact_model_is_answered_by_the_fallback_the_sweep_names() {
     }
 }
 
+/// `fallback: MoreauFromStop(dt_s)`: a case the exact model stops before its end goes on from
+/// the state there with Moreau-Jean time stepping of every block with its rotation, and its row
+/// is that of `pirqa run --after-stop moreau --dt`, its model saying so, its rerun options
+/// those; a case the exact model finishes keeps the exact answer and the exact row. The same
+/// checks as the whole-case fallback's refuse a step that is not positive, a time-stepping
+/// method, and a model that rocks nothing.
+#[test]
+fn a_case_the_exact_model_stops_goes_on_from_there_with_the_fallback_from_stop() {
+    let text = |extra: &str| {
+        format!(
+            r#"(
+    version: 1,
+    name: "from stop",
+    walls: [File(path: "walls/rocking/two-block-column.ron")],
+    motion: Records(files: ["records/elcentro1940_IELC180_peer_dt0p01_g.AT2"], pga: ["0.2g", "0.5g"]),
+    {extra}
+)"#
+        )
+    };
+    let plain = sweep(&text("")).unwrap();
+    let from = sweep(&text("fallback: MoreauFromStop(dt_s: 0.0005),")).unwrap();
+    assert_ne!(plain.fingerprint, from.fingerprint);
+    let (low, low_again) = (plain.run_case(0).0, from.run_case(0).0);
+    assert_eq!(
+        (
+            low_again.model.as_str(),
+            low_again.max_abs_u_m,
+            low_again.max_abs_rotation_rad
+        ),
+        ("slide-rock", low.max_abs_u_m, low.max_abs_rotation_rad)
+    );
+    let answered = from.run_case(1).0;
+    assert_eq!(answered.model, pirqa::study::sweep::FROM_STOP_MODEL);
+    assert!(
+        answered.error.is_none() && answered.collapsed,
+        "{answered:?}"
+    );
+    let model = pirqa::Model::from_file("walls/rocking/two-block-column.ron").unwrap();
+    let settings = pirqa::RunSettings {
+        after_stop: pirqa::AfterStop::Moreau { dt_s: 0.0005 },
+        ..pirqa::RunSettings::default()
+    };
+    let run = pirqa::run(&model, &from.motions[1].motion, &settings)
+        .unwrap()
+        .summary;
+    assert_eq!(run.method, "event+moreau");
+    assert_eq!(answered.collapse_time_s, run.collapse.map(|c| c.time_s));
+    let turned = run.blocks.iter().map(|b| b.max_abs_rotation_rad);
+    assert_eq!(answered.max_abs_rotation_rad, turned.fold(0.0, f64::max));
+    assert_eq!(
+        from.case_options(1).unwrap(),
+        "--model slide-rock --after-stop moreau --dt 0.0005"
+    );
+    for (extra, says) in [
+        ("fallback: MoreauFromStop(dt_s: -1.0),", "positive step"),
+        (
+            "method: Moreau(dt_s: 0.001), fallback: MoreauFromStop(dt_s: 0.001),",
+            "leave fallback out",
+        ),
+        (
+            "model: Slide, fallback: MoreauFromStop(dt_s: 0.001),",
+            "model Slide rocks none",
+        ),
+    ] {
+        let e = sweep(&text(extra)).unwrap_err().to_string();
+        assert!(e.contains("fallback") && e.contains(says), "{extra}: {e}");
+    }
+}
+
 /// `max_accel_over_tipping` is the largest peak absolute acceleration of a block over the one
 /// at which it would tip standing free, g b/h: the stack of walls/rocking/ held to the ground
 /// moves with it, so the slender top (b/h = 0.25) reaches a_g, and the ratio is the sine's

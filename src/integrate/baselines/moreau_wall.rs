@@ -391,15 +391,19 @@ impl MoreauWall {
         let mut next_output = 1;
         let mut rec = match start {
             Some(h) => {
-                // The sliding run wrote the rows up to the hand-off and one at it.
+                // The model before wrote the rows up to the hand-off and one at it.
                 next_output = h.next_output;
                 for i in 0..n {
                     q[i].x = h.u_m[i];
                     v[i].x = h.v_m_s[i];
                 }
+                for (i, t) in h.turned.iter().enumerate() {
+                    (q[i].y, q[i].z) = (t.rise_m, t.phi_rad);
+                    (v[i].y, v[i].z) = (t.rise_m_s, t.omega_rad_s);
+                }
                 gone = h.fallen;
                 before = Before {
-                    mechanical_j: h.kinetic_j,
+                    mechanical_j: h.mechanical_j,
                     input_j: h.rec.energy.input_j,
                     fallen_j: h.rec.energy.fallen_j,
                     friction_j: h.rec.energy.friction_j,
@@ -804,8 +808,9 @@ impl MoreauWall {
                         t_s: t,
                         u_m: u,
                         v_m_s: vx,
+                        turned: Vec::new(),
                         fallen: gone,
-                        kinetic_j,
+                        mechanical_j: kinetic_j,
                         rec,
                         next_output,
                     })));

@@ -154,22 +154,36 @@ pub(crate) enum Ended {
 }
 
 /// The state where one model hands the run to the other, with what was recorded up to then:
-/// the sliding run's at an uplift, or the stepping's where it set the wall down (every block
-/// seated, unturned).
+/// the sliding run's at an uplift, the stepping's where it set the wall down (every block
+/// seated, unturned), or the exact rocking model's where it stopped (blocks turned).
 pub(crate) struct HandOff {
     /// The instant (s).
     pub t_s: f64,
-    /// Every block's displacement (m) and velocity (m/s) relative to the ground.
+    /// Every block's horizontal displacement (m) and velocity (m/s) relative to the ground: its
+    /// centroid's (for a seated block, any of its points').
     pub u_m: Vec<f64>,
     pub v_m_s: Vec<f64>,
+    /// Every block's rise and rotation with their rates, where some are turned (empty: every
+    /// block seated and unturned).
+    pub turned: Vec<Turned>,
     /// Blocks fallen before it (`--after-collapse continue`).
     pub fallen: Vec<bool>,
-    /// Kinetic energy at the instant (J), for the balance of what follows.
-    pub kinetic_j: f64,
+    /// Kinetic and potential energy at the instant (J), for the balance of what follows.
+    pub mechanical_j: f64,
     /// Extremes, history rows (with rotations at zero), events and energy terms so far.
     pub rec: Recorder,
     /// The first history row still to write (its time: this times the output interval).
     pub next_output: u64,
+}
+
+/// A block's centroid above where it rests (m) and its rotation (counter-clockwise, rad), with
+/// their rates (m/s, rad/s).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Turned {
+    pub rise_m: f64,
+    pub phi_rad: f64,
+    pub rise_m_s: f64,
+    pub omega_rad_s: f64,
 }
 
 impl EventDriven {
@@ -858,8 +872,9 @@ impl<'a> Engine<'a> {
             t_s: self.t,
             u_m: u,
             v_m_s: v,
+            turned: Vec::new(),
             fallen: self.fallen,
-            kinetic_j: kinetic,
+            mechanical_j: kinetic,
             rec: self.rec,
             next_output: self.output_k,
         }

@@ -24,6 +24,7 @@ use super::series::{
 };
 use super::{Engine, ZENO_ROTATION};
 use crate::error::SimulationError;
+use crate::integrate::event::Turned;
 use crate::response::{Collapse, CollapseCause, EventKind, Warning};
 
 /// An open joint: the block on it (index in the column, bottom first) and the sign of the end
@@ -844,7 +845,7 @@ impl Engine<'_> {
         let blocks = self.chain_outputs(j, links.blocks());
         self.rec
             .rocking_event(self.t, EventKind::HeldJointGives, &blocks, None, how.into());
-        self.rec.warnings.push(Warning::HeldJointGives {
+        self.stops(Warning::HeldJointGives {
             body: self.scene.bodies[0].name.clone(),
             joint: links.joints[j].name.clone(),
             how: how.into(),
@@ -871,17 +872,35 @@ impl Engine<'_> {
         }
         let n = self.layout.len();
         let (mut u, mut v) = (vec![0.0; n], vec![0.0; n]);
+        let mut placed = vec![(0.0, 0.0, Turned::default()); n];
         for p in 0..links.blocks() {
             let o = self.layout.column_output(0, p);
             let x = &path.base[p][0];
             u[o] = eval(x, tau) - links.watch.outputs[p].x0;
             v[o] = eval(&derivative(x), tau);
+            // The centroid, from its place at rest (not shifted with the body's slip); the
+            // rotation counter-clockwise.
+            let (rest, [gx, gy]) = (&links.watch.pieces[p], &path.centroid[p]);
+            let (phi, omega) = path.body[p].map_or((0.0, 0.0), |c| {
+                (eval(&path.phi[c], tau), eval(&path.omega[c], tau))
+            });
+            placed[o] = (
+                eval(gx, tau) - rest.x0,
+                eval(&derivative(gx), tau),
+                Turned {
+                    rise_m: eval(gy, tau) - rest.y0,
+                    phi_rad: -phi,
+                    rise_m_s: eval(&derivative(gy), tau),
+                    omega_rad_s: -omega,
+                },
+            );
         }
         self.chain_end = Some(super::ChainEnd {
             u,
             v,
             kinetic_j: kinetic,
             potential_j: potential,
+            placed,
         });
     }
 

@@ -4,9 +4,10 @@
 //! the map from bodies to outputs and each output block's motion as a series.
 
 use super::body::RockingBody;
-use super::modes::{Corner, Trajectory};
+use super::modes::{Corner, Mode, State, Trajectory};
 use super::series::Coeffs;
 use super::Watch;
+use crate::integrate::event::Turned;
 use crate::response::horizontal_joints;
 use crate::topology::Topology;
 use crate::wall::Wall;
@@ -111,6 +112,67 @@ impl Layout {
             .map(|&(k, x0, y0)| {
                 let x0 = if self.turns[k] { x0 } else { -s * bp };
                 (k, -(x0 - s * bp) * sin + y0 * (cos - 1.0))
+            })
+            .collect()
+    }
+
+    /// Where each of body i's blocks is when the body is in `mode` and state `st`, with its
+    /// output: its centroid's horizontal displacement and velocity and the
+    /// rest of its motion (`half_height` of each output's block, m). A turning block's
+    /// centroid, at (x0, y0 + half height) from the base's middle at rest, turns about the
+    /// corner at (s bp, 0), which has moved by (u, lift) at (u', lift'): a point r from it goes
+    /// to R r, R the clockwise rotation by theta, at theta' dR/dtheta r; a block that does not
+    /// turn moves with the top corner it rests on (x0 = -s bp).
+    pub fn placed(
+        &self,
+        i: usize,
+        mode: Mode,
+        st: &State,
+        half_height: &dyn Fn(usize) -> f64,
+    ) -> Vec<(usize, (f64, f64, Turned))> {
+        let bp = self.pivot_half_base[i];
+        let Some(c) = mode.corner() else {
+            return self.moving[i]
+                .iter()
+                .map(|m| (m.0, (st.u, st.v, Turned::default())))
+                .collect();
+        };
+        let s = c.sign();
+        let (sin, cos) = st.theta.sin_cos();
+        let (lift, lift_v) = match mode {
+            Mode::Flight(_) => (st.lift, st.lift_v),
+            _ => (0.0, 0.0),
+        };
+        self.moving[i]
+            .iter()
+            .map(|&(k, x0, y0)| {
+                let turns = self.turns[k];
+                let (x, y) = if turns {
+                    (x0, y0 + half_height(k))
+                } else {
+                    (-s * bp, y0)
+                };
+                let (rx, ry) = (x - s * bp, y);
+                let moved = (
+                    st.u + rx * (cos - 1.0) + ry * sin,
+                    lift - rx * sin + ry * (cos - 1.0),
+                );
+                let rate = (
+                    st.v + st.omega * (-rx * sin + ry * cos),
+                    lift_v - st.omega * (rx * cos + ry * sin),
+                );
+                let (phi, omega) = if turns {
+                    (-st.theta, -st.omega)
+                } else {
+                    (0.0, 0.0)
+                };
+                let turned = Turned {
+                    rise_m: moved.1,
+                    phi_rad: phi,
+                    rise_m_s: rate.1,
+                    omega_rad_s: omega,
+                };
+                (k, (moved.0, rate.0, turned))
             })
             .collect()
     }

@@ -25,6 +25,8 @@ mod column;
 #[cfg(test)]
 mod enumeration;
 mod frame;
+#[cfg(test)]
+mod handoff_tests;
 mod impact;
 mod layout;
 mod modes;
@@ -41,6 +43,7 @@ pub use scenes::{
 };
 
 use crate::error::SimulationError;
+use crate::integrate::event::{HandOff, Turned};
 use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
@@ -98,6 +101,17 @@ pub struct Scene<'a> {
 
 /// Runs the bodies of a scene under its ground motion.
 pub fn run(scene: &Scene) -> Result<Response, SimulationError> {
+    check(scene)?;
+    match Engine::new(scene, false).run()? {
+        Finished::Ended(r) => Ok(*r),
+        Finished::Stopped(..) => Err(SimulationError::Bug(
+            "a rocking run not asked to hand over did".into(),
+        )),
+    }
+}
+
+/// The scene's settings, bodies and choices, as a run takes them.
+fn check(scene: &Scene) -> Result<(), SimulationError> {
     scene.settings.validate(scene.bodies.len())?;
     for b in scene.bodies {
         b.validate()?;
@@ -118,7 +132,27 @@ pub fn run(scene: &Scene) -> Result<Response, SimulationError> {
             fix: "use --rocking exact",
         });
     }
-    Engine::new(scene).run()
+    Ok(())
+}
+
+/// How a run of the exact model ended where it was asked to hand over ([`run_to_stop`]).
+pub(crate) enum Finished {
+    /// At its end (or where it was told to stop, or where a body fell and the run stops there):
+    /// the answer.
+    Ended(Box<Response>),
+    /// Where the exact model stopped following the wall (a held joint gives way, a column's
+    /// body or a trilith's frame would fly): every block's state there, with what was
+    /// recorded up to then, for a model that follows every block; and why it stopped, in a few
+    /// words (the run no longer carries its warning: it goes on).
+    Stopped(Box<HandOff>, String),
+}
+
+/// Runs a scene as [`run`] does, but where the exact model stops before the end (only a
+/// wall's columns or trilith can: what their watches hold gives way), hands over the state of
+/// that instant instead of ending the run.
+pub(crate) fn run_to_stop(scene: &Scene) -> Result<Finished, SimulationError> {
+    check(scene)?;
+    Engine::new(scene, true).run()
 }
 
 struct Engine<'a> {
@@ -133,7 +167,14 @@ struct Engine<'a> {
     next_out: f64,
     /// Where a run that ended in a chain of open joints left its blocks.
     chain_end: Option<ChainEnd>,
+    /// Hand over where the exact model stops ([`run_to_stop`]), and why it stopped, once it has.
+    hand_off: bool,
+    stop: Option<String>,
 }
+
+/// Where a block is at a hand-over: its centroid's horizontal displacement (m) and velocity
+/// (m/s), its rise and rotation.
+type Placed = (f64, f64, Turned);
 
 /// Every output's state at one instant: u (m), u' (m/s), theta (rad), theta' (rad/s), the
 /// rise w (m) and the absolute acceleration (m/s2; none for a body that lies fallen).
@@ -168,6 +209,7 @@ struct ChainEnd {
     v: Vec<f64>,
     kinetic_j: f64,
     potential_j: f64,
+    placed: Vec<Placed>,
 }
 
 /// The event a change of mode is logged as (`start`: the first mode of the run, logged only
@@ -200,7 +242,7 @@ fn quiet(seg: &Segment) -> bool {
 }
 
 impl<'a> Engine<'a> {
-    fn new(scene: &'a Scene<'a>) -> Engine<'a> {
+    fn new(scene: &'a Scene<'a>, hand_off: bool) -> Engine<'a> {
         let layout = Layout::new(scene.bodies, scene.watches, scene.wall);
         let s = scene.settings;
         let rec = Recorder::for_bodies(
@@ -231,7 +273,21 @@ impl<'a> Engine<'a> {
             outputs: 0,
             next_out: s.output_dt_s.unwrap_or(f64::INFINITY),
             chain_end: None,
+            hand_off,
+            stop: None,
         }
+    }
+
+    /// The exact model stops following the scene here, for the reason `w` says: the run ends,
+    /// or is handed over.
+    fn stops(&mut self, w: Warning) {
+        self.stop = Some(match &w {
+            Warning::HeldJointGives { joint, how, .. } => format!("the joint {joint} {how}"),
+            Warning::Flight { body, .. } => format!("{body} would leave what it stands on"),
+            other => other.to_string(),
+        });
+        self.rec.warnings.push(w);
+        self.t_end = self.t;
     }
 
     fn body(&self, i: usize) -> &'a RockingBody {
@@ -296,13 +352,12 @@ impl<'a> Engine<'a> {
                 None,
                 new.name(),
             );
-            self.rec.warnings.push(Warning::Flight {
+            // The run ends here; the body keeps the mode it had, whose trajectory gives the
+            // energies and the pose of its state now (a flight's would seat it).
+            self.stops(Warning::Flight {
                 body: body.name.clone(),
                 time_s: self.t,
             });
-            // The run ends here; the body keeps the mode it had, whose trajectory gives the
-            // energies and the pose of its state now (a flight's would seat it).
-            self.t_end = self.t;
             return Ok(());
         }
         if let Some(k) = self.scene.watches.get(i).and_then(|w| w.forbids(new)) {
@@ -332,7 +387,7 @@ impl<'a> Engine<'a> {
         Ok(())
     }
 
-    fn run(mut self) -> Result<Response, SimulationError> {
+    fn run(mut self) -> Result<Finished, SimulationError> {
         let (_, inputs) = self.inputs_at(0.0);
         for i in 0..self.tracks.len() {
             self.decide(i, &inputs, true)?;
@@ -589,13 +644,12 @@ impl<'a> Engine<'a> {
             None,
             how.to_string(),
         );
-        self.rec.warnings.push(Warning::HeldJointGives {
+        self.stops(Warning::HeldJointGives {
             body: self.body(i).name.clone(),
             joint,
             how: how.into(),
             time_s: self.t,
         });
-        self.t_end = self.t;
     }
 
     fn overturn(&mut self, i: usize, traj: &Trajectory, tau: f64) -> Result<(), SimulationError> {
@@ -896,12 +950,13 @@ impl<'a> Engine<'a> {
     }
 
     /// The end of the run: the last extremes and history row (`row`: the last stop was an
-    /// event or an output time; the end is a row in any case), the energy left, the summary.
-    fn finish(mut self, row: bool) -> Result<Response, SimulationError> {
+    /// event or an output time; the end is a row in any case), the energy left, the summary;
+    /// or, where the exact model stopped and the run is to be handed over, the state there.
+    fn finish(mut self, row: bool) -> Result<Finished, SimulationError> {
         if let Some(end) = self.chain_end.take() {
             self.rec.energy.kinetic_j += end.kinetic_j;
             self.rec.energy.potential_j += end.potential_j;
-            return Ok(self.summary(&end.u, &end.v));
+            return Ok(self.summary(&end.u, &end.v, end.placed));
         }
         let (_, now) = self.inputs_at(self.t);
         let n = self.tracks.len();
@@ -923,6 +978,7 @@ impl<'a> Engine<'a> {
         );
         let mut u = vec![0.0; self.layout.len()];
         let mut v = u.clone();
+        let mut placed = vec![(0.0, 0.0, Turned::default()); self.layout.len()];
         for (i, plan) in plans.iter().enumerate() {
             let body = self.body(i);
             let traj = match (plan, &self.tracks[i].fallen) {
@@ -937,13 +993,51 @@ impl<'a> Engine<'a> {
             if plan.is_some() {
                 self.rec.energy.kinetic_j += modes::kinetic_j(body, traj, 0.0);
                 self.rec.energy.potential_j += modes::potential_j(body, traj, 0.0);
+                if let (true, Some((wall, _))) = (self.hand_off, self.scene.wall) {
+                    let tr = &self.tracks[i];
+                    let half_height = |k: usize| 0.5 * wall.blocks[k].height.to_f64();
+                    for (k, p) in self.layout.placed(i, tr.mode, &tr.state, &half_height) {
+                        placed[k] = p;
+                    }
+                }
             }
         }
-        Ok(self.summary(&u, &v))
+        Ok(self.summary(&u, &v, placed))
     }
 
-    /// The run's response, every output's final u (m) and u' (m/s) given.
-    fn summary(self, u: &[f64], v: &[f64]) -> Response {
+    /// The run's response, every output's final u (m) and u' (m/s) given; or, where the exact
+    /// model stopped before the end and is to hand over, the state there, every output
+    /// `placed` (the last row and the energies are written: the energies go to the balance of
+    /// what follows, which counts the blocks' own again at its end).
+    fn summary(mut self, u: &[f64], v: &[f64], placed: Vec<Placed>) -> Finished {
+        if let (true, Some(why)) = (self.hand_off, self.stop.take()) {
+            let e = &mut self.rec.energy;
+            let mechanical_j = e.kinetic_j + e.potential_j;
+            (e.kinetic_j, e.potential_j) = (0.0, 0.0);
+            // The run goes on: the stop is an event, not a warning of where the run ended.
+            self.rec
+                .warnings
+                .retain(|w| !matches!(w, Warning::HeldJointGives { .. } | Warning::Flight { .. }));
+            let mut fallen = vec![false; self.layout.len()];
+            for i in (0..self.tracks.len()).filter(|&i| self.tracks[i].fallen.is_some()) {
+                for k in self.layout.outputs(i) {
+                    fallen[k] = true;
+                }
+            }
+            return Finished::Stopped(
+                Box::new(HandOff {
+                    t_s: self.t,
+                    u_m: placed.iter().map(|p| p.0).collect(),
+                    v_m_s: placed.iter().map(|p| p.1).collect(),
+                    turned: placed.iter().map(|p| p.2).collect(),
+                    fallen,
+                    mechanical_j,
+                    rec: self.rec,
+                    next_output: self.outputs + 1,
+                }),
+                why,
+            );
+        }
         let motion = self.scene.motion.describe();
         let t = self.t;
         let name = self
@@ -953,6 +1047,6 @@ impl<'a> Engine<'a> {
             .map(|b| b.name.as_str())
             .collect::<Vec<_>>()
             .join(", ");
-        self.rec.finish("event", &name, motion, t, u, v)
+        Finished::Ended(Box::new(self.rec.finish("event", &name, motion, t, u, v)))
     }
 }

@@ -2,7 +2,7 @@
 //! made of free columns or a trilith ([`Rocking`]), whether a run rocks ([`rocks_in_plane`], [`can_lift`]),
 //! and the sections of a wall across its plane run as rocking bodies ([`out_of_plane`]).
 
-use super::{columns, run, Column, Equations, RockingBody, Scene};
+use super::{columns, run, Column, Equations, Finished, RockingBody, Scene};
 use crate::error::SimulationError;
 use crate::integrate::Settings;
 use crate::motion::Motion;
@@ -27,6 +27,31 @@ impl crate::integrate::Integrator for Rocking {
     }
 
     fn run(&self, sc: &crate::integrate::Scenario) -> Result<Response, SimulationError> {
+        let response = self.with_scene(sc, super::run)?;
+        Ok(self.named(sc, response))
+    }
+}
+
+impl Rocking {
+    /// As [`Rocking::run`] (the `Integrator`'s), but where the exact model stops before the
+    /// end (a held joint gives way, a column's body or a trilith's frame would fly), the state
+    /// of every block there instead of the end of the run.
+    pub(crate) fn run_to_stop(
+        &self,
+        sc: &crate::integrate::Scenario,
+    ) -> Result<Finished, SimulationError> {
+        Ok(match self.with_scene(sc, super::run_to_stop)? {
+            Finished::Ended(r) => Finished::Ended(Box::new(self.named(sc, *r))),
+            stopped => stopped,
+        })
+    }
+
+    /// `f` on the scene of the wall: its one free-standing block, or its columns.
+    fn with_scene<T>(
+        &self,
+        sc: &crate::integrate::Scenario,
+        f: impl FnOnce(&Scene) -> Result<T, SimulationError>,
+    ) -> Result<T, SimulationError> {
         let (bodies, watches) = if sc.wall.blocks.len() == 1 {
             (vec![free_standing(sc.wall, sc.topology)?], Vec::new())
         } else {
@@ -39,7 +64,7 @@ impl crate::integrate::Integrator for Rocking {
             }
             columns.into_iter().map(|c| (c.body, c.watch)).unzip()
         };
-        let mut response = run(&Scene {
+        f(&Scene {
             initial_rotation_rad: &vec![self.initial_rotation_rad; bodies.len()],
             bodies: &bodies,
             watches: &watches,
@@ -47,7 +72,11 @@ impl crate::integrate::Integrator for Rocking {
             equations: self.equations,
             motion: sc.motion,
             settings: sc.settings,
-        })?;
+        })
+    }
+
+    /// The response of a run of the wall: the wall's name and the model, asked for.
+    fn named(&self, sc: &crate::integrate::Scenario, mut response: Response) -> Response {
         response.summary.wall = sc.wall.name.clone();
         response.summary.model = crate::response::ModelUsed {
             name: "slide-rock".into(),
@@ -55,7 +84,7 @@ impl crate::integrate::Integrator for Rocking {
             direction: "in-plane".into(),
             why: "asked for (--model slide-rock)".into(),
         };
-        Ok(response)
+        response
     }
 }
 

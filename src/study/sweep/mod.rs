@@ -21,7 +21,7 @@ use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
 use crate::response::{Summary, Warning};
 use crate::rng::Rng;
-use crate::run::{in_plane_model, run_scenario, AfterUplift, Method, RunSettings};
+use crate::run::{in_plane_model, run_scenario, AfterStop, AfterUplift, Method, RunSettings};
 use crate::topology::Topology;
 use crate::units::parse_acceleration;
 use crate::wall::{RunningBond, Wall, WallDescription};
@@ -110,10 +110,22 @@ pub enum Fallback {
         /// Time step (s).
         dt_s: f64,
     },
+    /// The case runs on the exact model up to where it stops, and Moreau-Jean time stepping of
+    /// every block with its rotation goes on from the state there (`pirqa run --after-stop
+    /// moreau --dt DT_S`): exact as far as the exact model goes, time stepped beyond; its
+    /// `model` column reads [`FROM_STOP_MODEL`].
+    MoreauFromStop {
+        /// Time step (s).
+        dt_s: f64,
+    },
 }
 
 /// The `model` of a case the fallback answered.
 pub const FALLBACK_MODEL: &str = "slide-rock (moreau fallback)";
+
+/// The `model` of a case the exact rocking model followed to where it stops, and Moreau-Jean
+/// from there (`fallback: MoreauFromStop(...)`).
+pub const FROM_STOP_MODEL: &str = "slide-rock, then moreau from where the exact model stopped";
 
 /// The `model` of a case that slid exactly to its first uplift and was time stepped with
 /// rotations from there (`after_uplift: Moreau(...)`).
@@ -166,7 +178,7 @@ impl Fallback {
     fn step_s(self) -> Option<f64> {
         match self {
             Fallback::Fail => None,
-            Fallback::Moreau { dt_s } => Some(dt_s),
+            Fallback::Moreau { dt_s } | Fallback::MoreauFromStop { dt_s } => Some(dt_s),
         }
     }
 }
@@ -543,37 +555,34 @@ impl Sweep {
             }
             _ => {}
         }
-        match (d.fallback, d.method) {
-            (Fallback::Moreau { dt_s }, _) if !(dt_s.is_finite() && dt_s > 0.0) => {
-                return Err(field(
-                    origin,
-                    "fallback",
-                    format!("time step dt_s = {dt_s} s: give a positive step, e.g. 0.0005"),
+        if let Some(dt_s) = d.fallback.step_s() {
+            let refused = |why: String| Err(field(origin, "fallback", why));
+            if !(dt_s.is_finite() && dt_s > 0.0) {
+                return refused(format!(
+                    "time step dt_s = {dt_s} s: give a positive step, e.g. 0.0005"
                 ));
             }
-            (Fallback::Moreau { .. }, SweepMethod::Moreau { .. } | SweepMethod::Paper { .. }) => {
-                return Err(field(
-                    origin,
-                    "fallback",
+            if matches!(
+                d.method,
+                SweepMethod::Moreau { .. } | SweepMethod::Paper { .. }
+            ) {
+                return refused(
                     "answers cases the exact integrator stops, and the method is a time \
                      stepper: leave fallback out, or method at Event"
                         .into(),
-                ));
+                );
             }
-            (Fallback::Moreau { .. }, _) if d.model == ModelChoice::Slide => {
-                return Err(field(
-                    origin,
-                    "fallback",
+            if d.model == ModelChoice::Slide {
+                return refused(
                     "answers cases the exact rocking model stops, and model Slide rocks none: \
                      leave fallback out, or model at Auto or SlideRock"
                         .into(),
-                ));
+                );
             }
-            _ => {}
         }
         let rotations_stepped = matches!(d.method, SweepMethod::Moreau { .. })
             && d.model == ModelChoice::SlideRock
-            || matches!(d.fallback, Fallback::Moreau { .. })
+            || d.fallback.step_s().is_some()
             || d.after_uplift.step_s().is_some();
         if d.contact_solver != ContactSolver::GaussSeidel && !rotations_stepped {
             return Err(field(
@@ -821,9 +830,14 @@ impl Sweep {
             settings.after_uplift = self.after_uplift;
             settings.contact_solver = self.contact_solver;
         }
+        if let (false, Fallback::MoreauFromStop { dt_s }) = (slides, self.fallback) {
+            settings.after_stop = AfterStop::Moreau { dt_s };
+            settings.contact_solver = self.contact_solver;
+        }
         let mut r = run_scenario(sc, &settings)?;
         if r.summary.method == HANDED_OFF {
             r.summary.model.name = match self.after_uplift {
+                _ if !slides => FROM_STOP_MODEL,
                 AfterUplift::MoreauWhileRocking { .. } => WHILE_ROCKING_MODEL,
                 _ => AFTER_UPLIFT_MODEL,
             }
@@ -889,8 +903,14 @@ impl Sweep {
         } else {
             ""
         };
+        let after_stop = match (self.fallback, model) {
+            (Fallback::MoreauFromStop { dt_s }, "slide-rock") => {
+                format!(" --after-stop moreau --dt {dt_s}{}", self.solver_option())
+            }
+            _ => String::new(),
+        };
         Ok(format!(
-            "--model {model}{}{check}",
+            "--model {model}{}{check}{after_stop}",
             self.method_options(self.method)
         ))
     }
