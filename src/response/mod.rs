@@ -591,7 +591,8 @@ impl std::fmt::Display for Warning {
             Warning::Flight { body, time_s } => write!(
                 f,
                 "{body} leaves the ground on both corners at t = {time_s} s (free flight): the \
-                 model stops there, and the run with it"
+                 model stops there, and the run with it (run the wall with --after-stop moreau \
+                 --dt S to go on from there by time stepping every block)"
             ),
             Warning::HeldJointGives {
                 body,
@@ -603,8 +604,9 @@ impl std::fmt::Display for Warning {
                 "at t = {time_s} s the joint {joint} {how} under {body}'s motion: the exact \
                  model follows {body} only while its joints hold as the model has them (a \
                  column's held joints, a trilith's mechanism), so it stops there, and the run \
-                 with it (run the wall with --model slide-rock --method moreau --dt S to follow \
-                 it further)"
+                 with it (run the wall with --after-stop moreau --dt S to go on from there by \
+                 time stepping every block, or with --model slide-rock --method moreau --dt S to \
+                 time step it whole)"
             ),
             Warning::LevelSkipped { level_m, why } => {
                 write!(f, "level {level_m} m not checked across the plane: {why}")

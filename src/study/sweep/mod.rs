@@ -817,9 +817,11 @@ impl Sweep {
         }
     }
 
-    /// Runs a case's scenario on the model the sweep asks for, and again with the fallback
-    /// where the exact model stops before the end; the fallback's run says so (its model is
-    /// [`FALLBACK_MODEL`], and why names where the exact run stopped).
+    /// Runs a case's scenario on the model the sweep asks for: with the fallback from the stop,
+    /// handed over to time stepping where the exact model stops (its model
+    /// [`FROM_STOP_MODEL`]); with the whole-case fallback, again where the exact model stops
+    /// before the end (its model [`FALLBACK_MODEL`], its why naming where the exact run
+    /// stopped).
     fn integrate(&self, sc: &Scenario) -> Result<Response, SimulationError> {
         let mut settings = self.run_settings();
         // The check watches the sliding engine: a case that rocks is not checked, nor handed
