@@ -780,7 +780,7 @@ impl Engine<'_> {
                     self.opened(links, j);
                 }
                 cut => {
-                    self.chain_stops(links, &pose, &path, cut, 0.0);
+                    self.chain_stops(links, (&pose, &path, 0.0), cut, (&path, 0.0));
                     return Ok(Next::End);
                 }
             }
@@ -820,9 +820,16 @@ impl Engine<'_> {
         self.decide(0, &now, false)
     }
 
-    /// The chain's condition `cut` falls at tau on `path`: the exact model ends there. The
-    /// event and warning name the joint and how it gives way.
-    fn chain_stops(&mut self, links: &Links, pose: &Pose, path: &Path, cut: Cut, tau: f64) {
+    /// The chain's condition `cut` of `pose` falls at tau on `path`: the exact model ends
+    /// there, its blocks as `end` (a path and the time into it) has them. The event and warning
+    /// name the joint and how it gives way.
+    fn chain_stops(
+        &mut self,
+        links: &Links,
+        (pose, path, tau): (&Pose, &Path, f64),
+        cut: Cut,
+        end: (&Path, f64),
+    ) {
         let j = match cut {
             Cut::Land(c) | Cut::Pivot(c, _) | Cut::Overturn(c) => pose.open[c].joint,
             Cut::Closed(j, _) => j,
@@ -851,7 +858,7 @@ impl Engine<'_> {
             how: how.into(),
             time_s: self.t,
         });
-        self.end_chain(links, path, tau, &[]);
+        self.end_chain(links, end.0, end.1, &[]);
     }
 
     /// The run ends in the chain at tau on `path`: its last row, and the energies left, minus
@@ -1085,7 +1092,7 @@ impl Engine<'_> {
                 Ok(Next::End)
             }
             cut => {
-                self.chain_stops(links, &pose, path, cut, tau);
+                self.chain_stops(links, (&pose, path, tau), cut, (path, tau));
                 Ok(Next::End)
             }
         }
@@ -1181,6 +1188,14 @@ impl Engine<'_> {
             .collect();
         let scale: f64 = gain.iter().map(|g| g[0].abs() + g[1].abs()).sum::<f64>()
             + spin_gain.iter().map(|x| x.abs()).sum::<f64>() / links.height();
+        let breaks = links.impulse_breaks(&next, &at, &gain, &spin_gain, scale);
+        let new_path = links.path(&next, now)?;
+        if let (Some(cut), false, true) = (breaks, accumulates, self.hand_off) {
+            // The landing's impulses would break a joint, so the impact is not the one the
+            // model has: the time stepping taking over resolves it, from the instant before.
+            self.chain_stops(links, (&next, &new_path, 0.0), cut, (path, tau));
+            return Ok(Next::End);
+        }
         let j = o.joint;
         let blocks = self.chain_outputs(j, nb);
         for &b in &blocks {
@@ -1209,7 +1224,6 @@ impl Engine<'_> {
                 format!("{} lands seated", links.joints[j].name)
             },
         );
-        let new_path = links.path(&next, now)?;
         let energy_after: f64 = links
             .energies(&new_path, 0.0)
             .iter()
@@ -1222,8 +1236,8 @@ impl Engine<'_> {
             self.rec.zeno += 1;
             return self.settle(links, next, now);
         }
-        if let Some(cut) = links.impulse_breaks(&next, &at, &gain, &spin_gain, scale) {
-            self.chain_stops(links, &next, &new_path, cut, 0.0);
+        if let Some(cut) = breaks {
+            self.chain_stops(links, (&next, &new_path, 0.0), cut, (&new_path, 0.0));
             return Ok(Next::End);
         }
         self.settle(links, next, now)
