@@ -780,7 +780,7 @@ impl Engine<'_> {
                     self.opened(links, j);
                 }
                 cut => {
-                    self.chain_stops(links, (&pose, &path, 0.0), cut, (&path, 0.0));
+                    self.chain_stops(links, (&pose, &path, 0.0), cut, None);
                     return Ok(Next::End);
                 }
             }
@@ -821,14 +821,15 @@ impl Engine<'_> {
     }
 
     /// The chain's condition `cut` of `pose` falls at tau on `path`: the exact model ends
-    /// there, its blocks as `end` (a path and the time into it) has them. The event and warning
-    /// name the joint and how it gives way.
+    /// there, its blocks where `path` has them, or, where the condition is a landing's
+    /// impulse, where `landing` (the path and the time into it just before the impact) has
+    /// them. The event and warning name the joint and how it gives way.
     fn chain_stops(
         &mut self,
         links: &Links,
         (pose, path, tau): (&Pose, &Path, f64),
         cut: Cut,
-        end: (&Path, f64),
+        landing: Option<(&Path, f64)>,
     ) {
         let j = match cut {
             Cut::Land(c) | Cut::Pivot(c, _) | Cut::Overturn(c) => pose.open[c].joint,
@@ -849,16 +850,23 @@ impl Engine<'_> {
             }
             _ => how(cut, pressed),
         };
+        let how = super::giving(how, landing.is_some());
         let blocks = self.chain_outputs(j, links.blocks());
-        self.rec
-            .rocking_event(self.t, EventKind::HeldJointGives, &blocks, None, how.into());
+        self.rec.rocking_event(
+            self.t,
+            EventKind::HeldJointGives,
+            &blocks,
+            None,
+            how.clone(),
+        );
         self.stops(Warning::HeldJointGives {
             body: self.scene.bodies[0].name.clone(),
             joint: links.joints[j].name.clone(),
-            how: how.into(),
+            how,
             time_s: self.t,
         });
-        self.end_chain(links, end.0, end.1, &[]);
+        let (end, at) = landing.unwrap_or((path, tau));
+        self.end_chain(links, end, at, &[]);
     }
 
     /// The run ends in the chain at tau on `path`: its last row, and the energies left, minus
@@ -1092,7 +1100,7 @@ impl Engine<'_> {
                 Ok(Next::End)
             }
             cut => {
-                self.chain_stops(links, (&pose, path, tau), cut, (path, tau));
+                self.chain_stops(links, (&pose, path, tau), cut, None);
                 Ok(Next::End)
             }
         }
@@ -1190,10 +1198,11 @@ impl Engine<'_> {
             + spin_gain.iter().map(|x| x.abs()).sum::<f64>() / links.height();
         let breaks = links.impulse_breaks(&next, &at, &gain, &spin_gain, scale);
         let new_path = links.path(&next, now)?;
-        if let (Some(cut), false, true) = (breaks, accumulates, self.hand_off) {
+        if let (Some(cut), false) = (breaks, accumulates) {
             // The landing's impulses would break a joint, so the impact is not the one the
-            // model has: the time stepping taking over resolves it, from the instant before.
-            self.chain_stops(links, (&next, &new_path, 0.0), cut, (path, tau));
+            // model has: the run stops at the instant before it (where a hand-off's time
+            // stepping resolves it), not after an impact it does not believe.
+            self.chain_stops(links, (&next, &new_path, 0.0), cut, Some((path, tau)));
             return Ok(Next::End);
         }
         let j = o.joint;
@@ -1235,10 +1244,6 @@ impl Engine<'_> {
             // the seat they end in is their limit, not one impulse.
             self.rec.zeno += 1;
             return self.settle(links, next, now);
-        }
-        if let Some(cut) = breaks {
-            self.chain_stops(links, (&next, &new_path, 0.0), cut, (&new_path, 0.0));
-            return Ok(Next::End);
         }
         self.settle(links, next, now)
     }

@@ -212,6 +212,19 @@ struct ChainEnd {
     placed: Vec<Placed>,
 }
 
+/// How a held joint gives way, as its event and warning say it: under a landing's impulse, the
+/// run's last state is the one just before the impact, which the exact model cannot resolve.
+fn giving(how: &str, at_landing: bool) -> String {
+    if at_landing {
+        format!(
+            "{how}, under the impulse of the landing at this instant (the state given is the \
+             one just before it)"
+        )
+    } else {
+        how.to_string()
+    }
+}
+
 /// The event a change of mode is logged as (`start`: the first mode of the run, logged only
 /// when the body starts on a corner).
 fn transition(old: Mode, new: Mode, start: bool) -> Option<EventKind> {
@@ -361,7 +374,7 @@ impl<'a> Engine<'a> {
             return Ok(());
         }
         if let Some(k) = self.scene.watches.get(i).and_then(|w| w.forbids(new)) {
-            self.gives(i, k);
+            self.gives(i, k, false);
             return Ok(());
         }
         let kind = transition(old, new, start);
@@ -623,16 +636,18 @@ impl<'a> Engine<'a> {
             }
             Guard::Held(k) if self.chain_can_follow(i, k) => self.open_chain(k),
             Guard::Held(k) => {
-                self.gives(i, k);
+                self.gives(i, k, false);
                 Ok(())
             }
         }
     }
 
-    /// Condition k of body i's watch falls: a held joint of its column gives way, which the
-    /// exact model does not follow; the run ends here and says so.
-    fn gives(&mut self, i: usize, k: usize) {
+    /// Condition k of body i's watch falls (`at_landing`: under a landing's impulse): a held
+    /// joint of its column gives way, which the exact model does not follow; the run ends here
+    /// and says so.
+    fn gives(&mut self, i: usize, k: usize, at_landing: bool) {
         let (joint, how, upper) = self.scene.watches[i].describe(k);
+        let how = giving(how, at_landing);
         // The block on the joint first (the event names its joint), then the body's.
         let on = self.layout.column_output(i, upper);
         let mut blocks = vec![on];
@@ -642,12 +657,12 @@ impl<'a> Engine<'a> {
             EventKind::HeldJointGives,
             &blocks,
             None,
-            how.to_string(),
+            how.clone(),
         );
         self.stops(Warning::HeldJointGives {
             body: self.body(i).name.clone(),
             joint,
-            how: how.into(),
+            how,
             time_s: self.t,
         });
     }
@@ -728,10 +743,11 @@ impl<'a> Engine<'a> {
                 (landing.pivot, after, landing.state.v),
             )
         });
-        if let (Some(k), true) = (breaks, self.hand_off) {
+        if let Some(k) = breaks {
             // The landing's impulse would break a held joint, so the impact is not the one the
-            // model has: the time stepping taking over resolves it, from the instant before.
-            self.gives(i, k);
+            // model has: the run stops at the instant before it (where a hand-off's time
+            // stepping resolves it), not after an impact it does not believe.
+            self.gives(i, k, true);
             return Ok(());
         }
         // A landing is found where theta is zero to a tie (series::TIE of alpha), and the body
@@ -752,10 +768,6 @@ impl<'a> Engine<'a> {
             Some((omega, after)),
             what,
         );
-        if let Some(k) = breaks {
-            self.gives(i, k);
-            return Ok(());
-        }
         if let (Some(c), false) = (landing.pivot, landing.slipped) {
             if let Some(tail) = self.zeno_tail(i, c, omega, after, now) {
                 let kinetic = {
