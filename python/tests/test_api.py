@@ -156,21 +156,34 @@ def test_after_the_first_uplift_moreau_jean_takes_over():
 
 
 def test_where_the_exact_rocking_model_stops_moreau_jean_goes_on(root):
-    """The two-block column under a 0.4 g, 0.7 Hz sine: the exact model follows it until the
-    upper drum would lift off the lower one's corner (2.36 s), then every block steps with its
-    rotation from there; the rows up to the stop are the exact run's own."""
-    wall = pirqa.Wall.from_file(root / "walls/rocking/two-block-column.ron")
-    sine = pirqa.Motion.sine("0.4g", frequency_hz=0.7, duration_s=4.0)
-    exact = pirqa.run(wall, sine, output_dt_s=0.01)
+    """The trilith under El Centro at 0.5 g: the exact model follows it until the lintel would
+    slip on its left column (5.887 s), then every block steps with its rotation from there until
+    the lintel slides off; the rows up to the stop are the exact run's own. The two-block column
+    under a 0.4 g, 0.7 Hz sine stops where its upper drum would lift off the lower one's corner
+    (2.36 s), leaning so far that the stepper counts it fallen there: the run ends at the stop."""
+    trilith = pirqa.Wall.from_file(root / "walls/rocking/trilith.ron")
+    record = pirqa.Motion.from_file(
+        root / "records/elcentro1940_IELC180_peer_dt0p01_g.AT2", pga="0.5g"
+    )
+    exact = pirqa.run(trilith, record, output_dt_s=0.01)
     assert "stops there" in " ".join(exact.summary["warnings"])
-    r = pirqa.run(wall, sine, output_dt_s=0.01, after_stop="moreau", dt_s=5e-4)
+    r = pirqa.run(trilith, record, output_dt_s=0.01, after_stop="moreau", dt_s=1e-4)
     s = r.summary
     assert s["method"] == "event+moreau"
-    assert "the exact model to t = 2.36" in s["model"]["why"]
+    assert "the exact model to t = 5.887" in s["model"]["why"]
     assert not any("stops there" in w for w in s["warnings"])
+    assert s["collapse"]["block"] == "Lintel"
+    assert s["collapse"]["time_s"] > exact.summary["duration_s"]
     n = len(exact.history.time_s)
     assert len(r.history.time_s) > n
     assert np.array_equal(r.history.rotation_rad[:n], exact.history.rotation_rad)
+    wall = pirqa.Wall.from_file(root / "walls/rocking/two-block-column.ron")
+    sine = pirqa.Motion.sine("0.4g", frequency_hz=0.7, duration_s=4.0)
+    exact = pirqa.run(wall, sine, output_dt_s=0.01)
+    r = pirqa.run(wall, sine, output_dt_s=0.01, after_stop="moreau", dt_s=5e-4)
+    assert "the exact model to t = 2.36" in r.summary["model"]["why"]
+    assert r.summary["collapse"]["time_s"] == exact.summary["duration_s"]
+    assert np.array_equal(r.history.rotation_rad, exact.history.rotation_rad)
     with pytest.raises(pirqa.OptionError, match="dt_s"):
         pirqa.run(wall, sine, after_stop="moreau")
     with pytest.raises(pirqa.OptionError, match="give end or moreau"):

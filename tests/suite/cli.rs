@@ -2127,7 +2127,10 @@ fn after_the_first_uplift_time_stepping_with_rotations_takes_over() {
 /// upper drum would lift off the lower one's corner (6.22 s), then every block steps with its
 /// rotation from there: one history whose rows up to the stop are the exact run's own, to the
 /// last digit, and go on past it; the summary names both methods and where the exact model
-/// stopped, and carries no warning that the run ended there. A run the exact model finishes is
+/// stopped, and carries no warning that the run ended there. The upper drum, leaning by 1 rad
+/// with its centroid dropped by more than half its height, has fallen by the stepper's
+/// criterion at the stop itself: it falls there, and the lower one steps on
+/// (`--after-collapse continue`). A run the exact model finishes is
 /// its own answer; a sliding wall and other integrators are refused with the reason.
 #[test]
 fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
@@ -2151,7 +2154,16 @@ fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
     let (exact, handed) = (out_dir("exact"), out_dir("handed"));
     let (ok, out, err) = run(column, "0.5g", &["--out", &exact]);
     assert!(ok && out.contains("stops there"), "{out}{err}");
-    let more = ["--after-stop", "moreau", "--dt", "5e-4", "--out", &handed];
+    let more = [
+        "--after-stop",
+        "moreau",
+        "--dt",
+        "5e-4",
+        "--after-collapse",
+        "continue",
+        "--out",
+        &handed,
+    ];
     let (ok, out, err) = run(column, "0.5g", &more);
     assert!(ok, "{err}");
     assert!(
@@ -2170,6 +2182,17 @@ fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
     // The exact run's rows, its last (the stop) included, then the stepper's.
     assert!(b.len() > a.len(), "{} {}", a.len(), b.len());
     assert_eq!(a[..], b[..a.len()]);
+    let summary = |name: &str| -> serde_json::Value {
+        let text = std::fs::read_to_string(dir.join(name).join("summary.json")).unwrap();
+        serde_json::from_str(&text).unwrap()
+    };
+    let (stop, fell) = (summary("exact"), summary("handed"));
+    assert_eq!(
+        fell["collapse"]["time_s"], stop["duration_s"],
+        "{}",
+        fell["collapse"]
+    );
+    assert_eq!(fell["collapse"]["block"], "Drum2");
     let (ok, out, err) = run(column, "0.3g", &["--after-stop", "moreau"]);
     assert!(
         ok && out.contains("| event |") && out.contains("followed the wall to the end"),

@@ -473,13 +473,55 @@ impl MoreauWall {
             }
             rec.joint_extremes(u);
         };
+        // Overturned, or dropped by half its height: block i left what carried it at t (the
+        // first to fall is the collapse).
+        let falls = |rec: &mut Recorder,
+                     gone: &mut [bool],
+                     i: usize,
+                     t: f64,
+                     q: &[Vector3<f64>],
+                     v: &[Vector3<f64>]| {
+            let b = &bodies[i];
+            if q[i].z.abs() < std::f64::consts::FRAC_PI_2 && q[i].y >= -b.half.y {
+                return false;
+            }
+            let tipped = q[i].z.abs() >= b.half.x.atan2(b.half.y);
+            rec.fell(i);
+            rec.energy.fallen_j += energy_of(i, q, v);
+            gone[i] = true;
+            if rec.collapse.is_none() {
+                rec.collapse = Some(Collapse {
+                    time_s: t,
+                    block: wall.blocks[i].name.clone(),
+                    cause: if tipped {
+                        CollapseCause::Overturning
+                    } else {
+                        CollapseCause::SlidingOff
+                    },
+                });
+            }
+            true
+        };
         let mut previous = outputs(&q, &v);
         extremes(&mut rec, &previous);
         if !handed {
             let (u0, uv0, theta0, omega0, w0) = &previous;
             rec.sample_rotating(0.0, [u0, uv0, theta0, omega0, w0]);
         }
-        let steps = ((settings.duration_s - t0) / dt).ceil() as u64;
+        // A state handed over may have left what carried it by this criterion already (the
+        // model before has its own, a body turned to a right angle): it falls at the hand-off,
+        // whatever the step, not at the end of the first.
+        let mut fell_at_start = false;
+        for i in 0..n {
+            if handed && moves(i, &gone) {
+                fell_at_start |= falls(&mut rec, &mut gone, i, t0, &q, &v);
+            }
+        }
+        let steps = if fell_at_start && settings.after_collapse == AfterCollapse::Stop {
+            0
+        } else {
+            ((settings.duration_s - t0) / dt).ceil() as u64
+        };
         let at = |k: u64| t0 + k as f64 * dt;
         let scale = g * dt;
         let inv = |i: usize| {
@@ -724,25 +766,7 @@ impl MoreauWall {
                     rec.uplift(i, t - h);
                     rocked[i] = true;
                 }
-                // Overturned, or dropped by half its height: it left what carried it.
-                if q[i].z.abs() >= std::f64::consts::FRAC_PI_2 || q[i].y < -b.half.y {
-                    let tipped = q[i].z.abs() >= b.half.x.atan2(b.half.y);
-                    rec.fell(i);
-                    rec.energy.fallen_j += energy_of(i, &q, &v);
-                    gone[i] = true;
-                    fell_now = true;
-                    if rec.collapse.is_none() {
-                        rec.collapse = Some(Collapse {
-                            time_s: t,
-                            block: wall.blocks[i].name.clone(),
-                            cause: if tipped {
-                                CollapseCause::Overturning
-                            } else {
-                                CollapseCause::SlidingOff
-                            },
-                        });
-                    }
-                }
+                fell_now |= falls(&mut rec, &mut gone, i, t, &q, &v);
             }
             let now = outputs(&q, &v);
             extremes(&mut rec, &now);
