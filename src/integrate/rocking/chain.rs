@@ -25,7 +25,7 @@ use super::series::{
 use super::{Engine, ZENO_ROTATION};
 use crate::error::SimulationError;
 use crate::integrate::event::Turned;
-use crate::response::{Collapse, CollapseCause, EventKind, Warning};
+use crate::response::{Collapse, CollapseCause, EventKind};
 
 /// An open joint: the block on it (index in the column, bottom first) and the sign of the end
 /// the part above turns on (+1: its right end, the part turning clockwise).
@@ -850,21 +850,9 @@ impl Engine<'_> {
             }
             _ => how(cut, pressed),
         };
-        let how = super::giving(how, landing.is_some());
         let blocks = self.chain_outputs(j, links.blocks());
-        self.rec.rocking_event(
-            self.t,
-            EventKind::HeldJointGives,
-            &blocks,
-            None,
-            how.clone(),
-        );
-        self.stops(Warning::HeldJointGives {
-            body: self.scene.bodies[0].name.clone(),
-            joint: links.joints[j].name.clone(),
-            how,
-            time_s: self.t,
-        });
+        let joint = links.joints[j].name.clone();
+        self.held_joint_gives(0, &blocks, joint, how, landing.is_some());
         let (end, at) = landing.unwrap_or((path, tau));
         self.end_chain(links, end, at, &[]);
     }

@@ -212,19 +212,6 @@ struct ChainEnd {
     placed: Vec<Placed>,
 }
 
-/// How a held joint gives way, as its event and warning say it: under a landing's impulse, the
-/// run's last state is the one just before the impact, which the exact model cannot resolve.
-fn giving(how: &str, at_landing: bool) -> String {
-    if at_landing {
-        format!(
-            "{how}, under the impulse of the landing at this instant (the state given is the \
-             one just before it)"
-        )
-    } else {
-        how.to_string()
-    }
-}
-
 /// The event a change of mode is logged as (`start`: the first mode of the run, logged only
 /// when the body starts on a corner).
 fn transition(old: Mode, new: Mode, start: bool) -> Option<EventKind> {
@@ -647,18 +634,34 @@ impl<'a> Engine<'a> {
     /// and says so.
     fn gives(&mut self, i: usize, k: usize, at_landing: bool) {
         let (joint, how, upper) = self.scene.watches[i].describe(k);
-        let how = giving(how, at_landing);
         // The block on the joint first (the event names its joint), then the body's.
         let on = self.layout.column_output(i, upper);
         let mut blocks = vec![on];
         blocks.extend(self.layout.outputs(i).into_iter().filter(|&b| b != on));
-        self.rec.rocking_event(
-            self.t,
-            EventKind::HeldJointGives,
-            &blocks,
-            None,
-            how.clone(),
-        );
+        self.held_joint_gives(i, &blocks, joint, how, at_landing);
+    }
+
+    /// The joint named `joint` under body i gives way as `how` says (`at_landing`: under a
+    /// landing's impulse, the state given being the one just before the impact, which the exact
+    /// model cannot resolve): the event, on `blocks`, and the warning that the run stops here.
+    fn held_joint_gives(
+        &mut self,
+        i: usize,
+        blocks: &[usize],
+        joint: String,
+        how: &str,
+        at_landing: bool,
+    ) {
+        let how = if at_landing {
+            format!(
+                "{how}, under the impulse of the landing at this instant (the state given is \
+                 the one just before it)"
+            )
+        } else {
+            how.to_string()
+        };
+        self.rec
+            .rocking_event(self.t, EventKind::HeldJointGives, blocks, None, how.clone());
         self.stops(Warning::HeldJointGives {
             body: self.body(i).name.clone(),
             joint,
