@@ -55,6 +55,9 @@ pub enum EventKind {
     /// A joint a column's rocking model holds would slip or open: beyond the model, the run
     /// stops.
     HeldJointGives,
+    /// Blocks of two columns (or a column's and a fixed one) that stood apart meet: beyond the
+    /// model, the run stops.
+    BlocksMeet,
 }
 
 /// One logged event.
@@ -478,6 +481,16 @@ pub enum Warning {
         /// When (s).
         time_s: f64,
     },
+    /// Blocks of two columns (or a column's block and a fixed one) that the rocking model
+    /// follows apart met: the run stopped there.
+    BlocksMeet {
+        /// One block.
+        first: String,
+        /// The other.
+        second: String,
+        /// When (s).
+        time_s: f64,
+    },
     /// A level of the wall was not checked across its plane.
     LevelSkipped {
         /// Its height (m).
@@ -539,6 +552,17 @@ pub enum Warning {
     },
 }
 
+impl Warning {
+    /// Whether the exact model stopped following the wall here (the run ends, or a hand-off
+    /// goes on from here).
+    pub fn stops_exact_model(&self) -> bool {
+        matches!(
+            self,
+            Warning::HeldJointGives { .. } | Warning::Flight { .. } | Warning::BlocksMeet { .. }
+        )
+    }
+}
+
 impl std::fmt::Display for Warning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -593,6 +617,17 @@ impl std::fmt::Display for Warning {
                 "{body} leaves the ground on both corners at t = {time_s} s (free flight): the \
                  model stops there, and the run with it (run the wall with --after-stop moreau \
                  --dt S to go on from there by time stepping every block)"
+            ),
+            Warning::BlocksMeet {
+                first,
+                second,
+                time_s,
+            } => write!(
+                f,
+                "{first} meets {second} at t = {time_s} s: the exact model follows blocks of \
+                 different columns while they stand apart and stops where they meet, and the \
+                 run with it (run the wall with --after-stop moreau --dt S to go on from there by \
+                 time stepping every block)"
             ),
             Warning::HeldJointGives {
                 body,

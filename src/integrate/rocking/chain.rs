@@ -666,9 +666,11 @@ fn how(cut: Cut, n_positive: bool) -> &'static str {
 
 impl Engine<'_> {
     /// Whether condition k of the watch, falling under body i, opens a joint the chain can
-    /// follow: the body rocks on a sticking pivot, alone in the scene, on exact equations.
+    /// follow: the body rocks on a sticking pivot, alone in the scene with nothing standing
+    /// apart from it, on exact equations.
     pub(super) fn chain_can_follow(&self, i: usize, k: usize) -> bool {
         self.tracks.len() == 1
+            && self.clearance.is_empty()
             && k % 4 >= 2
             && matches!(self.tracks[i].mode, Mode::Rock(_))
             && self.scene.equations == super::Equations::Exact

@@ -1,5 +1,6 @@
 //! Columns: walls whose movable blocks stand in stacks, each block on one block (or the ground
-//! or an abutment) with nothing beside it. In a column the joint that gives way first under a
+//! or an abutment) touching nothing beside it (what stands apart is watched by `clearance`
+//! until it meets). In a column the joint that gives way first under a
 //! ground acceleration that grows from zero (the smallest of its friction coefficient and its
 //! two tipping ratios, the part above taken as rigid) is the one the column moves on: the part
 //! above it is one rocking body ([`RockingBody`]) on a base held to the ground, and the exact
@@ -435,7 +436,8 @@ struct Stacked {
 }
 
 /// The columns of a wall, or why it is not made of columns: every movable block rests on one
-/// block (or the ground) and carries at most one, with no vertical joint; the body of each
+/// block (or the ground) and carries at most one, touching no block beside it (blocks that
+/// stand apart are watched until they meet: `clearance`); the body of each
 /// column must have its centroid over the middle of the contact it moves on (the rocking
 /// body's equations take it there). A trilith is one column whose body is its frame
 /// ([`Trilith`](super::Trilith)).
@@ -443,7 +445,8 @@ pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationEr
     let not = |why: String| {
         SimulationError::NotApplicable(format!(
             "{why}: the exact rocking model runs walls whose movable blocks stand in free \
-             columns (each on one block, carrying at most one, nothing beside it); run this \
+             columns (each on one block, carrying at most one, nothing touching it beside it); \
+             run this \
              wall's blocks with rotations on time stepping (--model slide-rock --method moreau \
              --dt S), sliding exactly (--model slide), or across its plane (--direction \
              out-of-plane)"
@@ -456,8 +459,16 @@ pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationEr
     let mut bottoms = Vec::new();
     for b in (0..wall.blocks.len()).filter(|&b| movable(b)) {
         let name = &wall.blocks[b].name;
-        if !topo.sides[b].is_empty() {
-            return Err(not(format!("{name} has a block beside it")));
+        if let Some(j) = topo.sides[b]
+            .iter()
+            .map(|v| &topo.vertical[v.0])
+            .find(|j| j.gap_m.is_zero())
+        {
+            let other = if j.left.0 == b { j.right.0 } else { j.left.0 };
+            return Err(not(format!(
+                "{name} touches {} beside it",
+                wall.blocks[other].name
+            )));
         }
         let [below] = topo.below[b] else {
             return Err(not(format!(

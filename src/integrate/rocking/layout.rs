@@ -5,7 +5,7 @@
 
 use super::body::RockingBody;
 use super::modes::{Corner, Mode, State, Trajectory};
-use super::series::Coeffs;
+use super::series::{self, Coeffs, ORDER, ZERO};
 use super::Watch;
 use crate::integrate::event::Turned;
 use crate::response::horizontal_joints;
@@ -188,29 +188,41 @@ impl Layout {
     }
 }
 
+/// sin theta and cos theta of a body rocking on (or flying from) the corner of sign s, as
+/// series, from the body's arms: h_c G_y + s b dx = R^2 cos theta, s b G_y - h_c dx = R^2 sin
+/// theta.
+fn turn_series(body: &RockingBody, t: &Trajectory, s: f64) -> (Coeffs, Coeffs) {
+    let (b, h) = (body.half_base_m, body.centroid_height_m);
+    let r2 = b * b + h * h;
+    let (mut sin, mut cos) = (ZERO, ZERO);
+    for (k, (gy, dx)) in t.gy.iter().zip(&t.dx).enumerate() {
+        cos[k] = (h * gy + s * b * dx) / r2;
+        sin[k] = (s * b * gy - h * dx) / r2;
+    }
+    (sin, cos)
+}
+
 /// The horizontal displacement of the middle of a base of half width `bp` that turns with the
 /// body, as a series: the pivot's u while seated, u + s bp (1 - cos theta) while rocking on (or
-/// flying from) the corner of sign s (cos theta from the body's arms: h_c G_y + s b dx = R^2 cos theta). A
-/// column's body turns on its own base (bp = b); a trilith's on its columns' feet.
+/// flying from) the corner of sign s. A column's body turns on its own base (bp = b); a
+/// trilith's on its columns' feet.
 fn base_series(body: &RockingBody, t: &Trajectory, bp: f64) -> Coeffs {
     let Some(c) = t.mode.corner() else {
         return t.u;
     };
     let s = c.sign();
-    let (b, h) = (body.half_base_m, body.centroid_height_m);
-    let r2 = b * b + h * h;
+    let (_, cos) = turn_series(body, t, s);
     let mut out = t.u;
-    for (k, (x, (gy, dx))) in out.iter_mut().zip(t.gy.iter().zip(&t.dx)).enumerate() {
-        let cos = (h * gy + s * b * dx) / r2;
+    for (k, (x, cos)) in out.iter_mut().zip(cos).enumerate() {
         *x += s * bp * (if k == 0 { 1.0 } else { 0.0 } - cos);
     }
     out
 }
 
 /// The same for a point that lies at (x0, y0) of the base middle at rest: the base's
-/// displacement plus x0 (cos theta - 1) + y0 sin theta (sin theta from the arms too:
-/// s b G_y - h_c dx = R^2 sin theta). A block that does not turn (a trilith's lintel) moves
-/// with the point it rests on, the top corner opposite the pivot: x0 = -s bp.
+/// displacement plus x0 (cos theta - 1) + y0 sin theta. A block that does not turn (a
+/// trilith's lintel) moves with the point it rests on, the top corner opposite the pivot:
+/// x0 = -s bp.
 fn block_series(
     body: &RockingBody,
     t: &Trajectory,
@@ -225,12 +237,41 @@ fn block_series(
     };
     let s = c.sign();
     let x0 = if turns { x0 } else { -s * bp };
-    let (b, h) = (body.half_base_m, body.centroid_height_m);
-    let r2 = b * b + h * h;
-    for (k, (x, (gy, dx))) in out.iter_mut().zip(t.gy.iter().zip(&t.dx)).enumerate() {
-        let cos = (h * gy + s * b * dx) / r2;
-        let sin = (s * b * gy - h * dx) / r2;
+    let (sin, cos) = turn_series(body, t, s);
+    for (k, (x, (sin, cos))) in out.iter_mut().zip(sin.iter().zip(cos)).enumerate() {
         *x += x0 * (cos - if k == 0 { 1.0 } else { 0.0 }) + y0 * sin;
     }
     out
+}
+
+/// How a point of a body that turns moves, as series along `t`: its horizontal and vertical
+/// displacement from rest, the point at (x, y) from the middle of the body's base at rest, the
+/// body turning on a base of half width `bp`. It turns with the corner at (s bp, 0), moved by
+/// (u, lift): r = (x - s bp, y) goes to R r, R the clockwise rotation by theta. With it, the
+/// rotation's sine and cosine (0 and 1 while seated).
+pub(super) fn point_series(
+    body: &RockingBody,
+    t: &Trajectory,
+    bp: f64,
+    x: f64,
+    y: f64,
+) -> ([Coeffs; 2], (Coeffs, Coeffs)) {
+    let Some(c) = t.mode.corner() else {
+        return ([t.u, ZERO], (ZERO, series::constant(1.0)));
+    };
+    let s = c.sign();
+    let (sin, cos) = turn_series(body, t, s);
+    let rx = x - s * bp;
+    let lift = if matches!(t.mode, Mode::Flight(_)) {
+        t.lift
+    } else {
+        ZERO
+    };
+    let (mut dx, mut dy) = (t.u, lift);
+    for k in 0..=ORDER {
+        let one = if k == 0 { 1.0 } else { 0.0 };
+        dx[k] += rx * (cos[k] - one) + y * sin[k];
+        dy[k] += -rx * sin[k] + y * (cos[k] - one);
+    }
+    ([dx, dy], (sin, cos))
 }

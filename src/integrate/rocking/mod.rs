@@ -21,6 +21,9 @@
 
 mod body;
 mod chain;
+mod clearance;
+#[cfg(test)]
+mod clearance_tests;
 mod column;
 #[cfg(test)]
 mod enumeration;
@@ -47,6 +50,7 @@ use crate::integrate::event::{HandOff, Turned};
 use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
+use clearance::Clearance;
 use layout::Layout;
 use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
 use series::Coeffs;
@@ -76,6 +80,10 @@ struct Track {
     state: State,
     /// Where it lies once it has overturned (its trajectory at rest there); it moves no more.
     fallen: Option<Trajectory>,
+    /// In a scene of several bodies, the end of the series of landings it is in (its time,
+    /// the angular velocity after the landing that started it and the series' duration): it
+    /// is taken as seated until then, when it comes to rest.
+    settles: Option<(f64, f64, f64)>,
 }
 
 /// Bodies to run side by side, and how.
@@ -170,6 +178,8 @@ struct Engine<'a> {
     /// Hand over where the exact model stops ([`run_to_stop`]), and why it stopped, once it has.
     hand_off: bool,
     stop: Option<String>,
+    /// The blocks of different columns (or a column's and a fixed one) that stand apart.
+    clearance: Clearance,
 }
 
 /// Where a block is at a hand-over: its centroid's horizontal displacement (m) and velocity
@@ -245,12 +255,18 @@ impl<'a> Engine<'a> {
     fn new(scene: &'a Scene<'a>, hand_off: bool) -> Engine<'a> {
         let layout = Layout::new(scene.bodies, scene.watches, scene.wall);
         let s = scene.settings;
-        let rec = Recorder::for_bodies(
-            layout.names.clone(),
-            layout.horizontal.clone(),
-            s.history_to(),
-            s.events_to(),
-        );
+        // A wall's columns report its every block and joint, the vertical joints between
+        // blocks that stand apart too (where time stepping goes on after they meet, it logs
+        // their impacts).
+        let rec = match scene.wall.filter(|_| !scene.watches.is_empty()) {
+            Some((wall, topo)) => Recorder::new(wall, topo, s.history_to(), s.events_to()),
+            None => Recorder::for_bodies(
+                layout.names.clone(),
+                layout.horizontal.clone(),
+                s.history_to(),
+                s.events_to(),
+            ),
+        };
         let tracks = scene
             .initial_rotation_rad
             .iter()
@@ -261,6 +277,7 @@ impl<'a> Engine<'a> {
                     ..State::default()
                 },
                 fallen: None,
+                settles: None,
             })
             .collect();
         Engine {
@@ -275,6 +292,10 @@ impl<'a> Engine<'a> {
             chain_end: None,
             hand_off,
             stop: None,
+            clearance: scene
+                .wall
+                .map(|(wall, topo)| Clearance::of(wall, topo, scene.watches))
+                .unwrap_or_default(),
         }
     }
 
@@ -284,6 +305,7 @@ impl<'a> Engine<'a> {
         self.stop = Some(match &w {
             Warning::HeldJointGives { joint, how, .. } => format!("the joint {joint} {how}"),
             Warning::Flight { body, .. } => format!("{body} would leave what it stands on"),
+            Warning::BlocksMeet { first, second, .. } => format!("{first} meets {second}"),
             other => other.to_string(),
         });
         self.rec.warnings.push(w);
@@ -396,6 +418,14 @@ impl<'a> Engine<'a> {
             self.rec.energy.initial_j +=
                 modes::kinetic_j(body, &traj, 0.0) + modes::potential_j(body, &traj, 0.0);
         }
+        if !self.clearance.is_empty() {
+            let trajs: Vec<Trajectory> = (0..self.tracks.len())
+                .map(|i| self.trajectory(i, &inputs))
+                .collect();
+            let trajs: Vec<Option<&Trajectory>> = trajs.iter().map(Some).collect();
+            let names = &self.layout.names;
+            self.clearance.start(self.scene.bodies, &trajs, names)?;
+        }
         let dt = self.scene.settings.output_dt_s;
         // A history row at each stop that is an event or an output time (and at the start).
         let mut row = true;
@@ -414,9 +444,28 @@ impl<'a> Engine<'a> {
                     continue;
                 }
                 let traj = self.trajectory(i, &inputs);
+                if let Some((until, ..)) = self.tracks[i].settles {
+                    // Seated through the rest of its series of landings.
+                    let x = until - self.t;
+                    tau = tau.min(x);
+                    plans.push(Some((traj, Some((x, Some(Guard::Settled))))));
+                    continue;
+                }
                 let (h, event) = self.first_event(i, &traj, &inputs, span, is_quiet);
                 tau = tau.min(event.map_or(h, |(x, _)| x));
                 plans.push(Some((traj, event)));
+            }
+            // Where two blocks kept apart first meet within the step.
+            let mut meet = None;
+            if !self.clearance.is_empty() {
+                let trajs: Vec<Option<&Trajectory>> =
+                    plans.iter().map(|p| p.as_ref().map(|(t, _)| t)).collect();
+                meet = self
+                    .clearance
+                    .follow(self.scene.bodies, &trajs, self.t, tau)?;
+                if let Some((x, _)) = meet {
+                    tau = x;
+                }
             }
             self.note(&plans, 0.0, self.t, inputs.accel[0], row);
             self.rec.stats.steps += 1;
@@ -479,6 +528,13 @@ impl<'a> Engine<'a> {
                     row = true;
                 }
                 self.handle(i, guard, &traj, tau, &now)?;
+            }
+            if let Some((_, outputs)) = meet {
+                if self.t < self.t_end {
+                    self.rec.stats.events += 1;
+                    row = true;
+                    self.meet(outputs);
+                }
             }
             if self.t >= self.next_out {
                 row = true;
@@ -626,7 +682,31 @@ impl<'a> Engine<'a> {
                 self.gives(i, k, false);
                 Ok(())
             }
+            Guard::Settled => {
+                let (_, after, tail) = self.tracks[i].settles.take().expect("a series of landings");
+                self.settled(i, after, tail);
+                self.decide(i, now, false)
+            }
         }
+    }
+
+    /// Blocks of two columns (or a column's and a fixed one) meet: a corner of one reaches a
+    /// face of the other, an impact between bodies that the exact model does not follow; the
+    /// run ends here and says so.
+    fn meet(&mut self, (a, b): (usize, usize)) {
+        let (first, second) = (self.layout.names[a].clone(), self.layout.names[b].clone());
+        self.rec.rocking_event(
+            self.t,
+            EventKind::BlocksMeet,
+            &[a, b],
+            None,
+            format!("{first} meets {second} (a corner of one reaches the other)"),
+        );
+        self.stops(Warning::BlocksMeet {
+            first,
+            second,
+            time_s: self.t,
+        });
     }
 
     /// Condition k of body i's watch falls (`at_landing`: under a landing's impulse): a held
@@ -779,25 +859,39 @@ impl<'a> Engine<'a> {
                 };
                 self.rec.energy.impact_loss_j += kinetic;
                 self.rec.zeno += 1;
-                self.t += tail;
                 let tr = &mut self.tracks[i];
                 tr.state = State {
                     u,
                     ..State::default()
                 };
                 tr.mode = Mode::Rest;
-                self.rec.rocking_event(
-                    self.t,
-                    EventKind::Rest,
-                    &self.layout.outputs(i),
-                    Some((after, 0.0)),
-                    format!("its landings accumulate after {tail:e} s"),
-                );
+                if self.tracks.len() > 1 {
+                    // The other bodies go on through the series' duration: this one is seated
+                    // through it (what the series leaves is below 1e-9 alpha) and comes to
+                    // rest at its end, an event of its own.
+                    self.tracks[i].settles = Some((self.t + tail, after, tail));
+                    return Ok(());
+                }
+                // A body alone: nothing else moves meanwhile, so the clock jumps to the end.
+                self.t += tail;
+                self.settled(i, after, tail);
                 let (_, at) = self.inputs_at(self.t);
                 return self.decide(i, &at, false);
             }
         }
         self.decide(i, now, false)
+    }
+
+    /// Body i comes to rest, now, at the end of the series of landings a landing at `after`
+    /// rad/s started, `tail` s long.
+    fn settled(&mut self, i: usize, after: f64, tail: f64) {
+        self.rec.rocking_event(
+            self.t,
+            EventKind::Rest,
+            &self.layout.outputs(i),
+            Some((after, 0.0)),
+            format!("its landings accumulate after {tail:e} s"),
+        );
     }
 
     /// Body i after `landing`, its pivot (or base) at `u`: the landing's loss booked with
@@ -1037,9 +1131,7 @@ impl<'a> Engine<'a> {
             let mechanical_j = e.kinetic_j + e.potential_j;
             (e.kinetic_j, e.potential_j) = (0.0, 0.0);
             // The run goes on: the stop is an event, not a warning of where the run ended.
-            self.rec
-                .warnings
-                .retain(|w| !matches!(w, Warning::HeldJointGives { .. } | Warning::Flight { .. }));
+            self.rec.warnings.retain(|w| !w.stops_exact_model());
             let mut fallen = vec![false; self.layout.len()];
             for i in (0..self.tracks.len()).filter(|&i| self.tracks[i].fallen.is_some()) {
                 for k in self.layout.outputs(i) {

@@ -415,6 +415,9 @@ pub enum Guard {
     Overturn,
     /// A held joint of a column gives way: condition k of its `column::Watch`.
     Held(usize),
+    /// The series of landings a body's last landing started has summed to its end: it is
+    /// seated from here (in a scene of several bodies, which go on meanwhile).
+    Settled,
 }
 
 /// One condition of a mode: a series that must stay non-negative (positive just after the

@@ -322,7 +322,7 @@ pub fn rocks_in_plane(
                 true,
                 format!(
                     "{asked}: {body} starts from a rotation; {}",
-                    moving_parts(&columns)
+                    moving_parts(wall, topo, &columns)
                 ),
             ))
         }
@@ -330,7 +330,10 @@ pub fn rocks_in_plane(
             let columns = columns(wall, topo)?;
             Ok((
                 true,
-                format!("asked for (--model slide-rock): {}", moving_parts(&columns)),
+                format!(
+                    "asked for (--model slide-rock): {}",
+                    moving_parts(wall, topo, &columns)
+                ),
             ))
         }
         ModelChoice::SlideRock => {
@@ -365,7 +368,11 @@ pub fn rocks_in_plane(
             Ok((
                 lifts,
                 if lifts {
-                    format!("auto: {}; {}", why.join("; "), moving_parts(&columns))
+                    format!(
+                        "auto: {}; {}",
+                        why.join("; "),
+                        moving_parts(wall, topo, &columns)
+                    )
                 } else {
                     format!("auto: {}", why.join("; "))
                 },
@@ -386,8 +393,19 @@ pub fn rocks_in_plane(
 }
 
 /// What moves in each column and what is held, for the summary's word on the model.
-fn moving_parts(columns: &[Column]) -> String {
-    columns
+fn moving_parts(
+    wall: &crate::wall::Wall,
+    topo: &crate::topology::Topology,
+    columns: &[Column],
+) -> String {
+    let watches = columns.iter().map(|c| &c.watch);
+    let apart = if super::clearance::Clearance::of(wall, topo, watches).is_empty() {
+        ""
+    } else {
+        "; blocks of different columns, and fixed blocks, watched while they stand apart (the \
+         exact model stops where two meet)"
+    };
+    let parts = columns
         .iter()
         .map(|c| {
             if c.watch.is_frame() {
@@ -408,7 +426,8 @@ fn moving_parts(columns: &[Column]) -> String {
             )
         })
         .collect::<Vec<_>>()
-        .join("; ")
+        .join("; ");
+    format!("{parts}{apart}")
 }
 
 /// The body that an initial rotation of a wall of columns releases, or why it cannot: the wall

@@ -54,6 +54,18 @@ pub fn eval(c: &[f64], tau: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, &x| acc * tau + x)
 }
 
+/// The series re-centred at x: the coefficients of c(x + s) in s (repeated synthetic
+/// division; its constant term is Horner's value at x).
+pub fn shifted(c: &Coeffs, x: f64) -> Coeffs {
+    let mut b = *c;
+    for i in 0..ORDER {
+        for j in (i..ORDER).rev() {
+            b[j] += x * b[j + 1];
+        }
+    }
+    b
+}
+
 /// The series' derivative in tau.
 pub fn derivative(c: &Coeffs) -> Coeffs {
     let mut d = ZERO;
@@ -306,6 +318,21 @@ mod tests {
 
     /// The first root of (tau - 0.3)(tau - 0.31)(tau - 2), to the last bits, and none where
     /// a function only comes near zero.
+    #[test]
+    fn a_shifted_series_is_the_same_function_from_there() {
+        let mut c = ZERO;
+        for (k, x) in c.iter_mut().enumerate().take(6) {
+            *x = [2.0, -3.0, 0.5, 4.0, -1.0, 0.25][k];
+        }
+        let x = 0.3;
+        let b = shifted(&c, x);
+        for s in [0.0, 0.1, 0.7] {
+            assert!((eval(&b, s) - eval(&c, x + s)).abs() < 1e-14, "at {s}");
+        }
+        assert_eq!(b[0], eval(&c, x));
+        assert_eq!(b[5], 0.25);
+    }
+
     #[test]
     fn first_root_is_the_first_and_exact() {
         let mut c = ZERO;

@@ -19,7 +19,7 @@ use crate::integrate::stepping::within_run;
 use crate::integrate::{Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
-use crate::response::{Summary, Warning};
+use crate::response::Summary;
 use crate::rng::Rng;
 use crate::run::{in_plane_model, run_scenario, AfterStop, AfterUplift, Method, RunSettings};
 use crate::topology::Topology;
@@ -138,10 +138,10 @@ pub const WHILE_ROCKING_MODEL: &str = "slide, slide-rock while rocking (moreau)"
 /// Why a run ended before its end where the model stops being valid (its warning), if it did:
 /// a held joint gave way, a body left the ground.
 pub fn beyond_model(s: &Summary) -> Option<String> {
-    s.warnings.iter().find_map(|w| match w {
-        Warning::HeldJointGives { .. } | Warning::Flight { .. } => Some(w.to_string()),
-        _ => None,
-    })
+    s.warnings
+        .iter()
+        .find(|w| w.stops_exact_model())
+        .map(ToString::to_string)
 }
 
 fn is_auto(m: &ModelChoice) -> bool {

@@ -1,0 +1,374 @@
+//! Blocks of different columns, or a column's block and a fixed one, that stand apart: the
+//! exact model follows the columns while every such pair stays apart and stops where two meet.
+//! This module owns those pairs and the instant they meet.
+//!
+//! Two rectangles are apart exactly when an edge of one has every corner of the other strictly
+//! outside it (the separating axis theorem: for convex polygons an edge's normal separates them
+//! whenever anything does). Each pair keeps the edge that separated it last; the signed
+//! distances of the other block's four corners from that edge, moved and turned with their
+//! bodies, are series along each step like every contact condition, and the first to come down
+//! to zero is an event located to round-off. There the pair either has another edge with every
+//! corner of the other block outside it by more than the tie tolerance, which it keeps from
+//! then on, or none: the blocks meet (a corner on a face, or two corners on each other), and
+//! what follows, an impact between bodies, is beyond the exact model.
+
+use super::layout::point_series;
+use super::modes::Trajectory;
+use super::series::{self, Coeffs, TIE, ZERO};
+use super::{RockingBody, Watch};
+use crate::error::SimulationError;
+use crate::topology::{Base, BlockId, Topology};
+use crate::wall::Wall;
+
+/// Changes of a pair's separating edge within one step before the run is declared stuck: each
+/// needs a corner to cross another block's edge line beside it, a few per pair at most.
+const PASSES: usize = 64;
+
+/// Outward normals of a rectangle's edges at rest, edge e running from corner e to corner e + 1
+/// (corners counter-clockwise from the bottom left).
+const NORMALS: [[f64; 2]; 4] = [[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]];
+
+/// A block a pair watches.
+struct Piece {
+    /// Its output (its place in the wall).
+    output: usize,
+    /// The body that moves it, with its corners at rest from the middle of that body's base
+    /// (m); none: it stays with the ground (held in its column, or fixed).
+    body: Option<(usize, [[f64; 2]; 4])>,
+    /// Its corners at rest (m), counter-clockwise from the bottom left.
+    corners: [[f64; 2]; 4],
+    /// Its diagonal (m): the size its distances are measured against.
+    size_m: f64,
+}
+
+/// Two blocks that must stay apart, and the edge that separates them: (true: of `b`, its index).
+struct Pair {
+    a: usize,
+    b: usize,
+    edge: (bool, usize),
+}
+
+/// Where two blocks meet: the instant within the step and their outputs.
+pub(super) type Meet = (f64, (usize, usize));
+
+/// The pairs of blocks of a scene that stand apart, and the edge that keeps each apart.
+#[derive(Default)]
+pub(super) struct Clearance {
+    pieces: Vec<Piece>,
+    pairs: Vec<Pair>,
+    /// Per body, half the width of the base it turns on (m).
+    half_bases: Vec<f64>,
+}
+
+/// A block's place over a step: its corners and its rotation's sine and cosine, as series.
+struct Placed {
+    corners: [[Coeffs; 2]; 4],
+    sin: Coeffs,
+    cos: Coeffs,
+}
+
+/// The same at one instant.
+struct At {
+    corners: [[f64; 2]; 4],
+    sin: f64,
+    cos: f64,
+}
+
+impl Placed {
+    fn at(&self, tau: f64) -> At {
+        At {
+            corners: self.corners.map(|c| c.map(|x| series::eval(&x, tau))),
+            sin: series::eval(&self.sin, tau),
+            cos: series::eval(&self.cos, tau),
+        }
+    }
+}
+
+/// The distances of `other`'s corners from edge e of `own`, outward positive: each corner's
+/// offset from the edge's first corner projected on the edge's normal, turned with `own`
+/// (a point r goes to R r, R the clockwise rotation by theta).
+fn distances(own: &Placed, e: usize, other: &Placed) -> [Coeffs; 4] {
+    let [n0x, n0y] = NORMALS[e];
+    let nx = series::add(&series::scaled(&own.cos, n0x), &own.sin, n0y);
+    let ny = series::add(&series::scaled(&own.sin, -n0x), &own.cos, n0y);
+    let c = &own.corners[e];
+    other.corners.map(|p| {
+        let rx = series::add(&p[0], &c[0], -1.0);
+        let ry = series::add(&p[1], &c[1], -1.0);
+        series::add(&series::product(&rx, &nx), &series::product(&ry, &ny), 1.0)
+    })
+}
+
+/// The least distance of `other`'s corners outside edge e of `own`, at one instant.
+fn least_outside(own: &At, e: usize, other: &At) -> f64 {
+    let [n0x, n0y] = NORMALS[e];
+    let n = [
+        own.cos * n0x + own.sin * n0y,
+        -own.sin * n0x + own.cos * n0y,
+    ];
+    let c = own.corners[e];
+    other
+        .corners
+        .iter()
+        .map(|p| (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1])
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The edge of either block that keeps them apart by most, with that margin (m).
+fn widest(a: &At, b: &At) -> ((bool, usize), f64) {
+    (0..8)
+        .map(|k| {
+            let of_b = k >= 4;
+            let d = if of_b {
+                least_outside(b, k % 4, a)
+            } else {
+                least_outside(a, k % 4, b)
+            };
+            ((of_b, k % 4), d)
+        })
+        .fold(((false, 0), f64::NEG_INFINITY), |best, x| {
+            if x.1 > best.1 {
+                x
+            } else {
+                best
+            }
+        })
+}
+
+impl Clearance {
+    /// The pairs of a wall's columns (one watch each): every block a body moves against every
+    /// block of another column and every fixed block. Blocks of one column, and a column's
+    /// blocks and the fixed blocks it stands on (its plinth), are the column model's own.
+    pub(super) fn of<'w>(
+        wall: &Wall,
+        topo: &Topology,
+        watches: impl IntoIterator<Item = &'w Watch>,
+    ) -> Clearance {
+        let watches: Vec<&Watch> = watches.into_iter().collect();
+        let n = wall.blocks.len();
+        let mut column = vec![None; n];
+        let mut body = vec![None; n];
+        for (i, w) in watches.iter().enumerate() {
+            for o in &w.outputs {
+                column[o.block] = Some(i);
+                if o.moving {
+                    body[o.block] = Some((i, o.x0, o.y0));
+                }
+            }
+        }
+        let pieces: Vec<Piece> = (0..n)
+            .filter(|&k| column[k].is_some() || wall.blocks[k].fixed)
+            .map(|k| {
+                let b = &wall.blocks[k];
+                let (x, y) = (b.x.to_f64(), b.y.to_f64());
+                let (w, h) = (b.width.to_f64(), b.height.to_f64());
+                let box_of =
+                    |x0: f64, y0: f64| [[x0, y0], [x0 + w, y0], [x0 + w, y0 + h], [x0, y0 + h]];
+                Piece {
+                    output: k,
+                    body: body[k].map(|(i, x0, y0)| (i, box_of(x0 - w / 2.0, y0))),
+                    corners: box_of(x, y),
+                    size_m: w.hypot(h),
+                }
+            })
+            .collect();
+        // (column, fixed block it stands on)
+        let plinths: Vec<(usize, usize)> = topo
+            .horizontal
+            .iter()
+            .filter_map(|j| match (column[j.upper.0], j.lower) {
+                (Some(i), Base::Block(BlockId(l))) if wall.blocks[l].fixed => Some((i, l)),
+                _ => None,
+            })
+            .collect();
+        let mut pairs = Vec::new();
+        for a in 0..pieces.len() {
+            for b in a + 1..pieces.len() {
+                let (pa, pb) = (&pieces[a], &pieces[b]);
+                let same = column[pa.output].is_some() && column[pa.output] == column[pb.output];
+                let on_plinth = [(pa.output, pb.output), (pb.output, pa.output)]
+                    .iter()
+                    .any(|&(k, l)| column[k].is_some_and(|i| plinths.contains(&(i, l))));
+                if !same && !on_plinth && (pa.body.is_some() || pb.body.is_some()) {
+                    pairs.push(Pair {
+                        a,
+                        b,
+                        edge: (false, 0),
+                    });
+                }
+            }
+        }
+        Clearance {
+            pieces,
+            pairs,
+            half_bases: watches.iter().map(|w| w.pivot_half_base_m()).collect(),
+        }
+    }
+
+    /// No pair to watch.
+    pub(super) fn is_empty(&self) -> bool {
+        self.pairs.is_empty()
+    }
+
+    /// Piece p over the step, its body on `trajs` (none where its body lies fallen).
+    fn placed(
+        &self,
+        p: usize,
+        bodies: &[RockingBody],
+        trajs: &[Option<&Trajectory>],
+    ) -> Option<Placed> {
+        let piece = &self.pieces[p];
+        let Some((i, frame)) = piece.body else {
+            return Some(Placed {
+                corners: piece.corners.map(|c| c.map(series::constant)),
+                sin: ZERO,
+                cos: series::constant(1.0),
+            });
+        };
+        let traj = trajs[i]?;
+        let mut turn = (ZERO, ZERO);
+        let mut corners = [[ZERO; 2]; 4];
+        for (j, corner) in corners.iter_mut().enumerate() {
+            let (d, t) = point_series(
+                &bodies[i],
+                traj,
+                self.half_bases[i],
+                frame[j][0],
+                frame[j][1],
+            );
+            *corner = [
+                series::plus(&d[0], piece.corners[j][0]),
+                series::plus(&d[1], piece.corners[j][1]),
+            ];
+            turn = t;
+        }
+        Some(Placed {
+            corners,
+            sin: turn.0,
+            cos: turn.1,
+        })
+    }
+
+    /// The shortest time scale of the bodies that move pair k's blocks (s).
+    fn time_scale_s(&self, k: usize, bodies: &[RockingBody]) -> f64 {
+        let pair = &self.pairs[k];
+        [pair.a, pair.b]
+            .iter()
+            .filter_map(|&p| self.pieces[p].body.map(|(i, _)| bodies[i].time_scale_s()))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The tie tolerance of pair k's distances (m).
+    fn tie_m(&self, k: usize) -> f64 {
+        let pair = &self.pairs[k];
+        TIE * self.pieces[pair.a].size_m.max(self.pieces[pair.b].size_m)
+    }
+
+    /// Each pair's edge from where the bodies start: the one that keeps it apart by most; an
+    /// error names two blocks that no edge keeps apart by more than the tie tolerance (they
+    /// touch, or lie inside one another).
+    pub(super) fn start(
+        &mut self,
+        bodies: &[RockingBody],
+        trajs: &[Option<&Trajectory>],
+        names: &[String],
+    ) -> Result<(), SimulationError> {
+        for k in 0..self.pairs.len() {
+            let (a, b) = (self.pairs[k].a, self.pairs[k].b);
+            let (Some(pa), Some(pb)) =
+                (self.placed(a, bodies, trajs), self.placed(b, bodies, trajs))
+            else {
+                continue;
+            };
+            let (edge, margin) = widest(&pa.at(0.0), &pb.at(0.0));
+            if margin <= self.tie_m(k) {
+                return Err(SimulationError::NotApplicable(format!(
+                    "{} and {} touch (or lie inside one another) where the run starts: the exact \
+                     rocking model follows blocks of different columns only while they stand \
+                     apart; run this wall sliding exactly (--model slide) or on time stepping \
+                     (--model slide-rock --method moreau --dt S)",
+                    names[self.pieces[a].output], names[self.pieces[b].output]
+                )));
+            }
+            self.pairs[k].edge = edge;
+        }
+        Ok(())
+    }
+
+    /// The first instant within (from, h] at which a corner reaches the edge that keeps its
+    /// pair apart, and the pair.
+    fn first(
+        &self,
+        placed: &[Option<Placed>],
+        bodies: &[RockingBody],
+        from: f64,
+        h: f64,
+    ) -> Option<(f64, usize)> {
+        let mut best: Option<(f64, usize)> = None;
+        for (k, pair) in self.pairs.iter().enumerate() {
+            let (Some(pa), Some(pb)) = (&placed[pair.a], &placed[pair.b]) else {
+                continue;
+            };
+            let (of_b, e) = pair.edge;
+            let gaps = if of_b {
+                distances(pb, e, pa)
+            } else {
+                distances(pa, e, pb)
+            };
+            let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
+            for g in &gaps {
+                let g = if from > 0.0 {
+                    series::shifted(g, from)
+                } else {
+                    *g
+                };
+                if let Some(x) = series::first_fall(&g, scale, ts, h - from) {
+                    if best.is_none_or(|(b, _)| from + x < b) {
+                        best = Some((from + x, k));
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    /// Follows every pair over a step of the bodies on `trajs` from t0 up to h: where a corner reaches
+    /// the edge that kept its pair apart, the pair takes another edge that keeps it apart by
+    /// more than the tie tolerance, and the search goes on from there within the same step
+    /// (no step is cut for it: a run whose blocks never meet is the run without them, to the
+    /// bit); where no edge does, the blocks meet: the instant and the pair's two outputs.
+    pub(super) fn follow(
+        &mut self,
+        bodies: &[RockingBody],
+        trajs: &[Option<&Trajectory>],
+        t0: f64,
+        h: f64,
+    ) -> Result<Option<Meet>, SimulationError> {
+        let placed: Vec<Option<Placed>> = (0..self.pieces.len())
+            .map(|p| self.placed(p, bodies, trajs))
+            .collect();
+        let mut from = 0.0;
+        for _ in 0..=PASSES {
+            let Some((x, k)) = self.first(&placed, bodies, from, h) else {
+                return Ok(None);
+            };
+            let (a, b) = (self.pairs[k].a, self.pairs[k].b);
+            let (Some(pa), Some(pb)) = (&placed[a], &placed[b]) else {
+                return Ok(None);
+            };
+            let (edge, margin) = widest(&pa.at(x), &pb.at(x));
+            if margin <= self.tie_m(k) {
+                return Ok(Some((x, (self.pieces[a].output, self.pieces[b].output))));
+            }
+            self.pairs[k].edge = edge;
+            from = x;
+        }
+        Err(SimulationError::TooManyEvents {
+            time_s: t0 + from,
+            count: PASSES,
+            detail: "changes of the edge that keeps two blocks apart within one step".into(),
+            limit: "blocks that graze each other this often without meeting are beyond the \
+                    rocking model; please report the wall and the motion",
+        })
+    }
+}

@@ -1,0 +1,201 @@
+//! Columns that stand apart from each other and from fixed blocks: followed as if alone while
+//! they stay apart, stopped where two meet, at the instant a corner reaches the other's face.
+
+use super::{columns, Equations, Rocking};
+use crate::integrate::{Integrator, Scenario, Settings};
+use crate::model::Model;
+use crate::motion::{Motion, Sine};
+use crate::response::{EventKind, Response, Warning};
+
+/// A slab 0.3 m wide and 1.2 m high (friction 0.8: it rocks, it does not slide) and `rest`,
+/// the blocks of its row after it.
+fn wall(rest: &str) -> Model {
+    Model::from_ron_str(&format!(
+        "(version: 1, name: \"slab\", thickness_m: 0.5, density_kg_m3: 2500, friction: 0.8,
+          rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"){rest}])])"
+    ))
+    .unwrap()
+}
+
+fn sine(amplitude_g: f64, phase_deg: f64) -> Motion {
+    Motion::Sine(Sine {
+        amplitude_m_s2: amplitude_g * 9.81,
+        frequency_hz: 1.0,
+        phase_rad: phase_deg.to_radians(),
+        duration_s: 5.0,
+    })
+}
+
+fn run(model: &Model, motion: &Motion, duration_s: f64, initial: f64) -> Response {
+    let settings = Settings {
+        output_dt_s: Some(1e-2),
+        log_events: true,
+        ..Settings::summary_only(duration_s)
+    };
+    Rocking {
+        equations: Equations::Exact,
+        initial_rotation_rad: initial,
+    }
+    .run(&Scenario {
+        wall: model.wall(),
+        topology: model.topology(),
+        motion,
+        settings: &settings,
+    })
+    .unwrap()
+}
+
+/// Block k's rows: u, v, theta, theta', w.
+fn rows(r: &Response, k: usize) -> Vec<[f64; 6]> {
+    let h = r.history.as_ref().unwrap();
+    (0..h.time_s.len())
+        .map(|i| {
+            [
+                h.time_s[i],
+                h.displacement_m[i][k],
+                h.velocity_m_s[i][k],
+                h.rotation_rad[i][k],
+                h.angular_velocity_rad_s[i][k],
+                h.lift_m[i][k],
+            ]
+        })
+        .collect()
+}
+
+fn met(r: &Response) -> Option<(f64, Vec<String>)> {
+    r.events
+        .iter()
+        .find(|e| e.kind == EventKind::BlocksMeet)
+        .map(|e| (e.time_s, e.blocks.clone()))
+}
+
+/// Two slabs 2 m apart under sines that rock them a little, or overturn them both the same
+/// way, one falling away from the other (its face that kept the pair apart turns to face up:
+/// the pair keeps apart by another edge from then on), the other towards it, short of it:
+/// each moves as the slab alone does, every row equal to the bit; nothing meets.
+#[test]
+fn columns_standing_apart_move_each_as_alone_to_the_bit() {
+    let apart = wall(", (width_m: 0.3, gap_m: 2.0, name: \"T\")");
+    assert_eq!(columns(apart.wall(), apart.topology()).unwrap().len(), 2);
+    let alone = wall("");
+    for (amplitude_g, phase_deg, fall) in [(0.3, 0.0, -1.0), (0.3, 180.0, 1.0), (0.26, 0.0, 0.0)] {
+        let motion = sine(amplitude_g, phase_deg);
+        let (two, one) = (
+            run(&apart, &motion, 5.0, 0.0),
+            run(&alone, &motion, 5.0, 0.0),
+        );
+        assert_eq!(met(&two), None);
+        if fall != 0.0 {
+            let theta = rows(&two, 0).last().unwrap()[3];
+            assert_eq!(theta, fall * std::f64::consts::FRAC_PI_2, "{amplitude_g} g");
+        }
+        assert!(two.summary.blocks[0].max_abs_rotation_rad > 1e-4);
+        // A body alone whose landings accumulate jumps the clock to their end, leaving out
+        // the row of the landing that started them, which a scene of several bodies keeps.
+        let landings: Vec<f64> = one
+            .events
+            .iter()
+            .filter(|e| e.kind == EventKind::RockingImpact)
+            .map(|e| e.time_s)
+            .collect();
+        let alone = rows(&one, 0);
+        for k in 0..2 {
+            let each: Vec<[f64; 6]> = rows(&two, k)
+                .into_iter()
+                .filter(|r| alone.iter().any(|a| a[0] == r[0]) || !landings.contains(&r[0]))
+                .collect();
+            assert_eq!(each.len(), alone.len(), "{amplitude_g} g, block {k}");
+            for (a, b) in each.iter().zip(&alone) {
+                assert_eq!(a, b, "{amplitude_g} g, block {k}");
+            }
+        }
+    }
+}
+
+/// The slab 2 cm from an abutment on its right rocks towards it: it meets the abutment where
+/// its top right corner reaches the face, h sin theta = 0.02 m (its pivot sticks: its base's
+/// middle has moved by b (1 - cos theta)), and the run stops there, saying so; the slab alone,
+/// run to that instant, is where the run left it.
+#[test]
+fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
+    let niche = wall(", (width_m: 0.5, gap_m: 0.02, fixed: true, name: \"A\")");
+    let motion = sine(0.3, 0.0);
+    let r = run(&niche, &motion, 5.0, 0.0);
+    let (t, blocks) = met(&r).expect("meets");
+    assert_eq!(blocks, ["S", "A"]);
+    assert_eq!(r.summary.duration_s, t);
+    assert!(r.summary.warnings.iter().any(|w| matches!(
+        w,
+        Warning::BlocksMeet { first, second, time_s } if first == "S" && second == "A" && *time_s == t
+    )));
+    let last = *rows(&r, 0).last().unwrap();
+    let (u, theta) = (last[1], last[3]);
+    assert_eq!(last[0], t);
+    assert!((1.2 * theta.sin() - 0.02).abs() < 1e-16, "{theta}");
+    assert!((u - 0.15 * (1.0 - theta.cos())).abs() < 1e-16, "{u}");
+    // Alone, to that instant (reached from the last step's start by the same step, to
+    // round-off: t0 + (t - t0) need not be t).
+    let alone = *rows(&run(&wall(""), &motion, t, 0.0), 0).last().unwrap();
+    for (a, b) in alone.iter().zip(&last) {
+        assert!(
+            (a - b).abs() <= 1e-15 * (1.0 + b.abs()),
+            "{alone:?} {last:?}"
+        );
+    }
+}
+
+/// A slender slab (0.2 by 2 m) 5 cm from a low fixed block (0.5 by 0.3 m) on its left leans
+/// towards it: its top left corner passes over the block's face line (the pair then keeps
+/// apart by the slab's own face), and the block's top right corner meets the slab's left face,
+/// at tan theta = 0.05 / 0.3.
+#[test]
+fn a_slab_leaning_over_a_low_block_meets_its_corner() {
+    let model = Model::from_ron_str(
+        "(version: 1, name: \"over\", thickness_m: 0.5, density_kg_m3: 2500, friction: 0.8,
+          rows: [(height_m: 2.0, blocks: [(width_m: 0.5, height_m: 0.3, fixed: true, name: \"B\"),
+                                          (width_m: 0.2, gap_m: 0.05, name: \"A\")])])",
+    )
+    .unwrap();
+    let r = run(&model, &sine(0.15, 180.0), 5.0, 0.0);
+    let (_, blocks) = met(&r).expect("meets");
+    assert_eq!(blocks, ["B", "A"]);
+    let last = *rows(&r, 1).last().unwrap();
+    let (u, phi) = (last[1], -last[3]);
+    assert!(phi > 0.0, "leans left: {phi}");
+    assert!((phi - (0.05f64 / 0.3).atan()).abs() < 1e-15, "{phi}");
+    // Its pivot, the bottom left corner at x = 0.55 at rest, from its base's middle.
+    let pivot = 0.65 + u - 0.1 * phi.cos();
+    let (sin, cos) = phi.sin_cos();
+    let distance = (pivot - 0.5) * cos - 0.3 * sin;
+    assert!(distance.abs() < 1e-15, "{distance}");
+    assert!(
+        pivot - 2.0 * sin < 0.5,
+        "its top corner passed the block's face line"
+    );
+}
+
+/// Blocks that touch a column beside it are not columns standing apart; a release that puts
+/// the slab into the abutment is refused by name, as is one that starts it touching.
+#[test]
+fn touching_blocks_are_refused_by_name() {
+    let touching = wall(", (width_m: 1.2, name: \"W\")");
+    let e = columns(touching.wall(), touching.topology()).unwrap_err();
+    assert!(e.to_string().contains("S touches W beside it"), "{e}");
+    let niche = wall(", (width_m: 0.5, gap_m: 0.02, fixed: true, name: \"A\")");
+    let settings = Settings::summary_only(1.0);
+    let sc = Scenario {
+        wall: niche.wall(),
+        topology: niche.topology(),
+        motion: &sine(0.1, 0.0),
+        settings: &settings,
+    };
+    for theta in [0.05, (0.02f64 / 1.2).asin()] {
+        let e = Rocking {
+            equations: Equations::Exact,
+            initial_rotation_rad: theta,
+        }
+        .run(&sc)
+        .unwrap_err();
+        assert!(e.to_string().contains("S and A touch"), "{theta}: {e}");
+    }
+}
