@@ -174,6 +174,25 @@ fn a_slab_leaning_over_a_low_block_meets_its_corner() {
     );
 }
 
+/// A column of two drums (0.5 by 1.5 m) rocking as one body, 5 cm from a fixed wall higher than
+/// it: the upper drum's top corner, carried by the body, meets the wall's face, at 3 sin theta =
+/// 0.05 m.
+#[test]
+fn a_column_of_two_drums_meets_a_wall_with_its_upper_drum() {
+    let model = Model::from_ron_str(
+        "(version: 1, name: \"drums\", thickness_m: 0.5, density_kg_m3: 2600, friction: 0.7,
+          rows: [(height_m: 1.5, blocks: [(width_m: 0.5, name: \"D1\"),
+                    (width_m: 0.5, height_m: 3.5, gap_m: 0.05, fixed: true, name: \"W\")]),
+                 (height_m: 1.5, blocks: [(width_m: 0.5, name: \"D2\")])])",
+    )
+    .unwrap();
+    let r = run(&model, &sine(0.3, 0.0), 5.0, 0.0);
+    let (_, blocks) = met(&r).expect("meets");
+    assert_eq!(blocks, ["W", "D2"]);
+    let theta = rows(&r, 2).last().unwrap()[3];
+    assert!((3.0 * theta.sin() - 0.05).abs() < 1e-15, "{theta}");
+}
+
 /// Blocks that touch a column beside it are not columns standing apart; a release that puts
 /// the slab into the abutment is refused by name, as is one that starts it touching.
 #[test]
