@@ -55,9 +55,13 @@ pub enum EventKind {
     /// A joint a column's rocking model holds would slip or open: beyond the model, the run
     /// stops.
     HeldJointGives,
-    /// Blocks of two columns (or a column's and a fixed one) that stood apart meet: beyond the
-    /// model, the run stops.
+    /// Blocks of two columns (or a column's and a fixed one) that stood apart meet where the
+    /// model does not follow them (two corners, a body that does not rock on a pivot, blocks
+    /// that stay in contact): the run stops.
     BlocksMeet,
+    /// A corner of one block strikes a face of another (of another column, or fixed): the
+    /// impact is resolved and the run goes on.
+    BlocksImpact,
 }
 
 /// One logged event.
@@ -488,6 +492,8 @@ pub enum Warning {
         first: String,
         /// The other.
         second: String,
+        /// Why the meeting is not followed.
+        why: String,
         /// When (s).
         time_s: f64,
     },
@@ -621,13 +627,16 @@ impl std::fmt::Display for Warning {
             Warning::BlocksMeet {
                 first,
                 second,
+                why,
                 time_s,
             } => write!(
                 f,
-                "{first} meets {second} at t = {time_s} s: the exact model follows blocks of \
-                 different columns while they stand apart and stops where they meet, and the \
-                 run with it (run the wall with --after-stop moreau --dt S to go on from there by \
-                 time stepping every block)"
+                "{first} meets {second} at t = {time_s} s, and {why}: the exact model follows \
+                 blocks of different columns while they stand apart, and through the impact \
+                 where a corner of one strikes a face of the other, each block fixed or rocking \
+                 alone on a pivot; it stops at any other meeting, and the run with it (run the \
+                 wall with --after-stop moreau --dt S to go on from there by time stepping \
+                 every block)"
             ),
             Warning::HeldJointGives {
                 body,

@@ -1,5 +1,5 @@
 //! Blocks of different columns, or a column's block and a fixed one, that stand apart: the
-//! exact model follows the columns while every such pair stays apart and stops where two meet.
+//! exact model follows the columns while every such pair stays apart, and finds where two meet.
 //! This module owns those pairs and the instant they meet.
 //!
 //! Two rectangles are apart exactly when an edge of one has every corner of the other strictly
@@ -10,7 +10,7 @@
 //! to zero is an event located to round-off. There the pair either has another edge with every
 //! corner of the other block outside it by more than the tie tolerance, which it keeps from
 //! then on, or none: the blocks meet (a corner on a face, or two corners on each other), and
-//! what follows, an impact between bodies, is beyond the exact model.
+//! the pair says where: the corner, the face and its normal (`collision` has the impact).
 
 use super::layout::point_series;
 use super::modes::Trajectory;
@@ -39,6 +39,8 @@ struct Piece {
     corners: [[f64; 2]; 4],
     /// Its diagonal (m): the size its distances are measured against.
     size_m: f64,
+    /// Whether it is a fixed block (else, without a body, it is held in its column).
+    fixed: bool,
 }
 
 /// Two blocks that must stay apart, and the edge that separates them: (true: of `b`, its index).
@@ -46,10 +48,45 @@ struct Pair {
     a: usize,
     b: usize,
     edge: (bool, usize),
+    /// Struck at an impact, and not parted since by more than the tie tolerance.
+    struck: bool,
 }
 
-/// Where two blocks meet: the instant within the step and their outputs.
-pub(super) type Meet = (f64, (usize, usize));
+/// Where two blocks meet: the instant within the step, their outputs and, where a corner of
+/// one lies on a face of the other (not two corners on each other, nor a face on a face), the
+/// contact.
+pub(super) type Meet = (f64, (usize, usize), Option<Touch>);
+
+/// A block of a contact: what moves it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Side {
+    /// A body, the middle of its base at rest where its frame starts (m, in the wall's frame).
+    Body(usize, [f64; 2]),
+    /// A fixed block.
+    Fixed,
+    /// A block held in its column (a joint above it opened).
+    Held,
+}
+
+/// A corner of one block on a face of another, where they meet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Touch {
+    /// The block whose corner touches, then the block whose face it touches (outputs).
+    pub blocks: [usize; 2],
+    pub sides: [Side; 2],
+    /// The corner (m, in the wall's frame).
+    pub point: [f64; 2],
+    /// The face's outward normal, pointing into the corner's block.
+    pub normal: [f64; 2],
+    /// The speed along the normal (m/s) the pair tells from round-off: the tie tolerance over
+    /// the bodies' shortest time scale.
+    pub tie_m_s: f64,
+    /// The pair, for [`Clearance::strike`].
+    pub pair: usize,
+    /// The pair was struck and has not parted since by more than the tie tolerance: the blocks
+    /// stay in contact (the gap an elastic impact opens closes again within round-off).
+    pub stays: bool,
+}
 
 /// The pairs of blocks of a scene that stand apart, and the edge that keeps each apart.
 #[derive(Default)]
@@ -169,6 +206,7 @@ impl Clearance {
                     body: body[k].map(|(i, x0, y0)| (i, box_of(x0 - w / 2.0, y0))),
                     corners: box_of(x, y),
                     size_m: w.hypot(h),
+                    fixed: b.fixed,
                 }
             })
             .collect();
@@ -194,6 +232,7 @@ impl Clearance {
                         a,
                         b,
                         edge: (false, 0),
+                        struck: false,
                     });
                 }
             }
@@ -332,6 +371,95 @@ impl Clearance {
         best
     }
 
+    /// Where pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on
+    /// the edge that kept them apart, strictly inside that edge; none if two corners lie on
+    /// it (a face on a face) or the corner lies at an end of the edge (on a corner).
+    fn touch(&self, k: usize, at_a: &At, at_b: &At, bodies: &[RockingBody]) -> Option<Touch> {
+        let pair = &self.pairs[k];
+        let tie = self.tie_m(k);
+        let ((of_b, e), [own, other]) = (
+            pair.edge,
+            if pair.edge.0 {
+                [pair.b, pair.a]
+            } else {
+                [pair.a, pair.b]
+            },
+        );
+        let (face, corner) = if of_b { (at_b, at_a) } else { (at_a, at_b) };
+        let [n0x, n0y] = NORMALS[e];
+        let n = [
+            face.cos * n0x + face.sin * n0y,
+            -face.sin * n0x + face.cos * n0y,
+        ];
+        let (c0, c1) = (face.corners[e], face.corners[(e + 1) % 4]);
+        let along = [c1[0] - c0[0], c1[1] - c0[1]];
+        let length = along[0].hypot(along[1]);
+        let on: Vec<&[f64; 2]> = corner
+            .corners
+            .iter()
+            .filter(|p| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1] <= tie)
+            .collect();
+        let [point] = on.as_slice() else {
+            return None;
+        };
+        let x = ((point[0] - c0[0]) * along[0] + (point[1] - c0[1]) * along[1]) / length;
+        if x <= tie || x >= length - tie {
+            return None;
+        }
+        let side = |p: usize| {
+            let piece = &self.pieces[p];
+            match piece.body {
+                Some((i, frame)) => Side::Body(
+                    i,
+                    [
+                        piece.corners[0][0] - frame[0][0],
+                        piece.corners[0][1] - frame[0][1],
+                    ],
+                ),
+                None if piece.fixed => Side::Fixed,
+                None => Side::Held,
+            }
+        };
+        Some(Touch {
+            pair: k,
+            stays: false,
+            blocks: [self.pieces[other].output, self.pieces[own].output],
+            sides: [side(other), side(own)],
+            point: **point,
+            normal: n,
+            tie_m_s: tie / self.time_scale_s(k, bodies),
+        })
+    }
+
+    /// The least distance of pair k's blocks outside the edge that keeps them apart, at tau.
+    fn gap(&self, k: usize, pa: &Placed, pb: &Placed, tau: f64) -> f64 {
+        let (of_b, e) = self.pairs[k].edge;
+        let (at_a, at_b) = (pa.at(tau), pb.at(tau));
+        if of_b {
+            least_outside(&at_b, e, &at_a)
+        } else {
+            least_outside(&at_a, e, &at_b)
+        }
+    }
+
+    /// Pairs struck at an impact that stand apart by more than the tie tolerance at the end
+    /// of a step (h) have parted.
+    fn part(&mut self, placed: &[Option<Placed>], h: f64) {
+        for k in 0..self.pairs.len() {
+            let pair = &self.pairs[k];
+            if let (true, Some(pa), Some(pb)) = (pair.struck, &placed[pair.a], &placed[pair.b]) {
+                if h.is_finite() && self.gap(k, pa, pb, h) > self.tie_m(k) {
+                    self.pairs[k].struck = false;
+                }
+            }
+        }
+    }
+
+    /// The blocks of `pair` took an impact: they must part before they may strike again.
+    pub(super) fn strike(&mut self, pair: usize) {
+        self.pairs[pair].struck = true;
+    }
+
     /// Follows every pair over a step of the bodies on `trajs` from t0 up to h: where a corner reaches
     /// the edge that kept its pair apart, the pair takes another edge that keeps it apart by
     /// more than the tie tolerance, and the search goes on from there within the same step
@@ -350,15 +478,24 @@ impl Clearance {
         let mut from = 0.0;
         for _ in 0..=PASSES {
             let Some((x, k)) = self.first(&placed, bodies, from, h) else {
+                self.part(&placed, h);
                 return Ok(None);
             };
             let (a, b) = (self.pairs[k].a, self.pairs[k].b);
             let (Some(pa), Some(pb)) = (&placed[a], &placed[b]) else {
                 return Ok(None);
             };
-            let (edge, margin) = widest(&pa.at(x), &pb.at(x));
+            let (at_a, at_b) = (pa.at(x), pb.at(x));
+            let (edge, margin) = widest(&at_a, &at_b);
             if margin <= self.tie_m(k) {
-                return Ok(Some((x, (self.pieces[a].output, self.pieces[b].output))));
+                let outputs = (self.pieces[a].output, self.pieces[b].output);
+                // Where a pair meets again after an impact, the gap between is an arc whose
+                // top lies near its middle.
+                let stays = self.pairs[k].struck && self.gap(k, pa, pb, 0.5 * x) <= self.tie_m(k);
+                let touch = self
+                    .touch(k, &at_a, &at_b, bodies)
+                    .map(|t| Touch { stays, ..t });
+                return Ok(Some((x, outputs, touch)));
             }
             self.pairs[k].edge = edge;
             from = x;

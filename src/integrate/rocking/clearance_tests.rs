@@ -1,5 +1,6 @@
 //! Columns that stand apart from each other and from fixed blocks: followed as if alone while
-//! they stay apart, stopped where two meet, at the instant a corner reaches the other's face.
+//! they stay apart, and from the instant a corner reaches the other's face through the impact,
+//! or stopped there.
 
 use super::{columns, Equations, Rocking};
 use crate::integrate::{Integrator, Scenario, Settings};
@@ -10,8 +11,14 @@ use crate::response::{EventKind, Response, Warning};
 /// A slab 0.3 m wide and 1.2 m high (friction 0.8: it rocks, it does not slide) and `rest`,
 /// the blocks of its row after it.
 fn wall(rest: &str) -> Model {
+    wall_with(rest, 1.0)
+}
+
+/// The same with a coefficient of restitution.
+fn wall_with(rest: &str, restitution: f64) -> Model {
     Model::from_ron_str(&format!(
         "(version: 1, name: \"slab\", thickness_m: 0.5, density_kg_m3: 2500, friction: 0.8,
+          restitution: {restitution:?},
           rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"){rest}])])"
     ))
     .unwrap()
@@ -62,11 +69,21 @@ fn rows(r: &Response, k: usize) -> Vec<[f64; 6]> {
         .collect()
 }
 
+/// Where two blocks first meet, and which: the run's first impact between blocks, or its stop
+/// where they meet.
 fn met(r: &Response) -> Option<(f64, Vec<String>)> {
     r.events
         .iter()
-        .find(|e| e.kind == EventKind::BlocksMeet)
+        .find(|e| matches!(e.kind, EventKind::BlocksMeet | EventKind::BlocksImpact))
         .map(|e| (e.time_s, e.blocks.clone()))
+}
+
+/// Block k's first row at t.
+fn row_at(r: &Response, k: usize, t: f64) -> [f64; 6] {
+    *rows(r, k)
+        .iter()
+        .find(|x| x[0] == t)
+        .expect("a row at the event")
 }
 
 /// Two slabs 2 m apart under sines that rock them a little, or overturn them both the same
@@ -114,11 +131,15 @@ fn columns_standing_apart_move_each_as_alone_to_the_bit() {
 
 /// The slab 2 cm from an abutment on its right rocks towards it: it meets the abutment where
 /// its top right corner reaches the face, h sin theta = 0.02 m (its pivot sticks: its base's
-/// middle has moved by b (1 - cos theta)), and the run stops there, saying so; the slab alone,
-/// run to that instant, is where the run left it.
+/// middle has moved by b (1 - cos theta)); without restitution it would stay against the face,
+/// which the model does not follow: the run stops there, saying so; the slab alone, run to
+/// that instant, is where the run left it.
 #[test]
 fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
-    let niche = wall(", (width_m: 0.5, gap_m: 0.02, fixed: true, name: \"A\")");
+    let niche = wall_with(
+        ", (width_m: 0.5, gap_m: 0.02, fixed: true, name: \"A\")",
+        0.0,
+    );
     let motion = sine(0.3, 0.0);
     let r = run(&niche, &motion, 5.0, 0.0);
     let (t, blocks) = met(&r).expect("meets");
@@ -126,7 +147,8 @@ fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
     assert_eq!(r.summary.duration_s, t);
     assert!(r.summary.warnings.iter().any(|w| matches!(
         w,
-        Warning::BlocksMeet { first, second, time_s } if first == "S" && second == "A" && *time_s == t
+        Warning::BlocksMeet { first, second, time_s, why }
+            if first == "S" && second == "A" && *time_s == t && why.contains("stay in contact")
     )));
     let last = *rows(&r, 0).last().unwrap();
     let (u, theta) = (last[1], last[3]);
@@ -157,9 +179,9 @@ fn a_slab_leaning_over_a_low_block_meets_its_corner() {
     )
     .unwrap();
     let r = run(&model, &sine(0.15, 180.0), 5.0, 0.0);
-    let (_, blocks) = met(&r).expect("meets");
+    let (t, blocks) = met(&r).expect("meets");
     assert_eq!(blocks, ["B", "A"]);
-    let last = *rows(&r, 1).last().unwrap();
+    let last = row_at(&r, 1, t);
     let (u, phi) = (last[1], -last[3]);
     assert!(phi > 0.0, "leans left: {phi}");
     assert!((phi - (0.05f64 / 0.3).atan()).abs() < 1e-15, "{phi}");
@@ -191,6 +213,12 @@ fn a_column_of_two_drums_meets_a_wall_with_its_upper_drum() {
     assert_eq!(blocks, ["W", "D2"]);
     let theta = rows(&r, 2).last().unwrap()[3];
     assert!((3.0 * theta.sin() - 0.05).abs() < 1e-15, "{theta}");
+    // The joint between the drums would pass the impulse, which the model does not check.
+    let why = r.summary.warnings.iter().find_map(|w| match w {
+        Warning::BlocksMeet { why, .. } => Some(why.clone()),
+        _ => None,
+    });
+    assert!(why.is_some_and(|w| w.contains("holds joints")));
 }
 
 /// Blocks that touch a column beside it are not columns standing apart; a release that puts
@@ -216,5 +244,112 @@ fn touching_blocks_are_refused_by_name() {
         .run(&sc)
         .unwrap_err();
         assert!(e.to_string().contains("S and A touch"), "{theta}: {e}");
+    }
+}
+
+/// The slab beside the abutment with elastic faces (e = 1, the default): it strikes the
+/// abutment at the instant it met it above, swinging out with its centroid rising, which a
+/// frictionless face and a base that only pushes cannot turn back: its pivot leaves the ground
+/// (`collision.rs`), and it flies, lands and rocks on. Up to the impact the run is the one
+/// that stopped there, to the bit; the energy balance closes through it; and from it, time
+/// stepping with every block's rotation (Moreau-Jean) converges on the exact rotation as its
+/// step falls.
+#[test]
+fn a_slab_that_strikes_an_abutment_flies_off_as_time_stepping_converges_to() {
+    let gap = ", (width_m: 0.5, gap_m: 0.02, fixed: true, name: \"A\")";
+    let motion = sine(0.3, 0.0);
+    let stops = run(&wall_with(gap, 0.0), &motion, 5.0, 0.0);
+    let elastic = wall(gap);
+    let r = run(&elastic, &motion, 0.9, 0.0);
+    let impact = r
+        .events
+        .iter()
+        .find(|e| e.kind == EventKind::BlocksImpact)
+        .expect("an impact");
+    let t = stops.summary.duration_s;
+    assert_eq!(impact.time_s, t);
+    let before = rows(&stops, 0).last().unwrap()[4];
+    assert_eq!(impact.angular_velocity_before_rad_s, Some(before));
+    let what = impact.mode.as_deref().unwrap_or_default();
+    assert!(what.contains("leaves the ground"), "{what}");
+    assert_eq!(r.summary.duration_s, 0.9);
+    let e = &r.summary.energy;
+    assert!(e.residual_j.abs() <= 1e-13 * e.input_j, "{e:?}");
+    converges(&elastic, &motion, &r, t, 0);
+}
+
+/// The largest difference in block k's rotation between the exact run `r` (rows every 1e-2
+/// s) and Moreau-Jean with every block's rotation, after t, must fall with the step: at dt =
+/// 1e-5 s under a quarter of that at 1e-4 s and 1 % of the largest rotation.
+fn converges(model: &Model, motion: &Motion, r: &Response, t: f64, k: usize) {
+    let exact = rows(r, k);
+    let error = |dt: f64| {
+        let settings = Settings {
+            output_dt_s: Some(1e-2),
+            ..Settings::summary_only(r.summary.duration_s)
+        };
+        let stepped = crate::integrate::baselines::MoreauWall::new(dt)
+            .run(&Scenario {
+                wall: model.wall(),
+                topology: model.topology(),
+                motion,
+                settings: &settings,
+            })
+            .unwrap();
+        let h = stepped.history.unwrap();
+        exact
+            .iter()
+            .filter(|x| x[0] > t)
+            .filter_map(|x| {
+                let i = h.time_s.iter().position(|&s| (s - x[0]).abs() < 1e-9)?;
+                Some((h.rotation_rad[i][k] - x[3]).abs())
+            })
+            .fold(0.0, f64::max)
+    };
+    let (coarse, fine) = (error(1e-4), error(1e-5));
+    let largest = exact.iter().map(|x| x[3].abs()).fold(0.0, f64::max);
+    assert!(largest > 0.01, "{largest}");
+    assert!(
+        fine < 0.25 * coarse && fine < 1e-2 * largest,
+        "block {k}: {coarse} {fine} of {largest}"
+    );
+}
+
+/// Two slabs 2 cm apart (0.3 m wide, 1.2 and 1.6 m high) under a 0.3 g, 1 Hz sine strike each
+/// other twice in 0.8 s, the shorter one's corner on the taller one's face: the shorter one's
+/// pivot slips through each impact and the taller one's leaves the ground. The energy balance
+/// closes through both, and Moreau-Jean converges on both slabs' rotations after them.
+#[test]
+fn two_rocking_slabs_strike_each_other_as_time_stepping_converges_to() {
+    let model = Model::from_ron_str(
+        "(version: 1, name: \"two slabs\", thickness_m: 0.5, density_kg_m3: 2500, friction: 0.8,
+          rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"),
+                    (width_m: 0.3, height_m: 1.6, gap_m: 0.02, name: \"T\")])])",
+    )
+    .unwrap();
+    let motion = sine(0.3, 0.0);
+    let r = run(&model, &motion, 0.8, 0.0);
+    let impacts: Vec<_> = r
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::BlocksImpact)
+        .collect();
+    assert_eq!(impacts.len(), 2);
+    for e in &impacts {
+        assert_eq!(e.blocks, ["S", "T"]);
+        let what = e.mode.as_deref().unwrap_or_default();
+        assert!(
+            what.contains("S: theta'") && what.contains("slips at"),
+            "{what}"
+        );
+        assert!(
+            what.contains("T: theta'") && what.contains("leaves the ground"),
+            "{what}"
+        );
+    }
+    let e = &r.summary.energy;
+    assert!(e.residual_j.abs() <= 1e-13 * e.input_j, "{e:?}");
+    for k in 0..2 {
+        converges(&model, &motion, &r, impacts[0].time_s, k);
     }
 }

@@ -215,6 +215,13 @@ impl Watch {
         self.frame.as_ref().and_then(|f| f.forbids(mode))
     }
 
+    /// Whether the column holds no joint (its body stands alone on the ground or a fixed
+    /// block): nothing but the body's own base takes its impulses, and it may leave that base
+    /// as a body standing alone does.
+    pub(crate) fn holds_nothing(&self) -> bool {
+        self.frame.is_none() && self.joints.is_empty()
+    }
+
     /// The contacts a landing strikes at once, when more than the body's own corner (a
     /// trilith's feet and lintel).
     pub(crate) fn landing_contacts(&self) -> Option<String> {
@@ -437,7 +444,7 @@ struct Stacked {
 
 /// The columns of a wall, or why it is not made of columns: every movable block rests on one
 /// block (or the ground) and carries at most one, touching no block beside it (blocks that
-/// stand apart are watched until they meet: `clearance`); the body of each
+/// stand apart are watched, and their impacts resolved, by `clearance` and `collision`); the body of each
 /// column must have its centroid over the middle of the contact it moves on (the rocking
 /// body's equations take it there). A trilith is one column whose body is its frame
 /// ([`Trilith`](super::Trilith)).

@@ -236,7 +236,7 @@ fn handed_over(
 /// The ways the exact model stops, each on its wall under El Centro at 0.5 g: a chain's pivot
 /// lifting off (the two-block column), a trilith's lintel slipping on its columns, a held joint
 /// slipping under a rocking body (the standing stone, its plinth on little friction), a slab
-/// meeting the low block beside it.
+/// meeting the low block beside it and staying against it (no restitution).
 #[test]
 fn a_hand_off_places_every_block_where_the_exact_run_leaves_it() {
     let stone = Model::from_ron_str(
@@ -258,7 +258,7 @@ fn a_hand_off_places_every_block_where_the_exact_run_leaves_it() {
     let trilith = Model::from_file("walls/rocking/trilith.ron").unwrap();
     let beside = Model::from_ron_str(
         "(version: 1, name: \"slab beside a low block\", thickness_m: 0.5, density_kg_m3: 2500,
-          friction: 0.8, rows: [(height_m: 2.0, blocks: [
+          friction: 0.8, restitution: 0.0, rows: [(height_m: 2.0, blocks: [
             (width_m: 0.5, height_m: 0.3, fixed: true, name: \"B\"),
             (width_m: 0.2, gap_m: 0.05, name: \"A\")])])",
     )

@@ -86,6 +86,11 @@ impl Layout {
         self.moving[i].iter().map(|m| m.0).collect()
     }
 
+    /// Half the width of the base body i turns on (m).
+    pub fn pivot_half_base_m(&self, i: usize) -> f64 {
+        self.pivot_half_base[i]
+    }
+
     /// Whether output k turns with its body.
     pub fn turns(&self, k: usize) -> bool {
         self.turns[k]

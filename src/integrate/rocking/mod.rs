@@ -24,6 +24,7 @@ mod chain;
 mod clearance;
 #[cfg(test)]
 mod clearance_tests;
+mod collision;
 mod column;
 #[cfg(test)]
 mod enumeration;
@@ -50,7 +51,7 @@ use crate::integrate::event::{HandOff, Turned};
 use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
-use clearance::Clearance;
+use clearance::{Clearance, Side, Touch};
 use layout::Layout;
 use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
 use series::Coeffs;
@@ -364,9 +365,11 @@ impl<'a> Engine<'a> {
         let next = modes::decide(body, self.scene.equations, &tr.state, pivot, inputs, self.t)?;
         self.rec.stats.mode_decisions += 1;
         let new = next.mode;
-        if let (Mode::Flight(_), Some(_)) = (new, self.scene.watches.get(i)) {
+        let watched = self.scene.watches.get(i);
+        if let (Mode::Flight(_), Some(false)) = (new, watched.map(Watch::holds_nothing)) {
             // A column's body leaving its held base, or a trilith's frame its feet: what the
-            // watch holds no longer holds, and the exact model of those ends.
+            // watch holds no longer holds, and the exact model of those ends. A column that
+            // holds nothing flies as a body standing alone does.
             self.rec.rocking_event(
                 self.t,
                 EventKind::Flight,
@@ -463,7 +466,7 @@ impl<'a> Engine<'a> {
                 meet = self
                     .clearance
                     .follow(self.scene.bodies, &trajs, self.t, tau)?;
-                if let Some((x, _)) = meet {
+                if let Some((x, ..)) = meet {
                     tau = x;
                 }
             }
@@ -529,11 +532,11 @@ impl<'a> Engine<'a> {
                 }
                 self.handle(i, guard, &traj, tau, &now)?;
             }
-            if let Some((_, outputs)) = meet {
+            if let Some((_, outputs, touch)) = meet {
                 if self.t < self.t_end {
                     self.rec.stats.events += 1;
                     row = true;
-                    self.meet(outputs);
+                    self.meet(outputs, touch, &now)?;
                 }
             }
             if self.t >= self.next_out {
@@ -690,23 +693,166 @@ impl<'a> Engine<'a> {
         }
     }
 
-    /// Blocks of two columns (or a column's and a fixed one) meet: a corner of one reaches a
-    /// face of the other, an impact between bodies that the exact model does not follow; the
-    /// run ends here and says so.
-    fn meet(&mut self, (a, b): (usize, usize)) {
+    /// Blocks of two columns (or a column's and a fixed one) meet. Where a corner strikes a
+    /// face, each block fixed or moved by a body that rocks alone on a pivot of its base (its
+    /// column holding no joint), the impact is resolved ([`collision`]) and the run goes on;
+    /// at any other meeting the run ends here, the state the one just before, and says why.
+    fn meet(
+        &mut self,
+        (a, b): (usize, usize),
+        touch: Option<Touch>,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
+        let why = match touch {
+            Some(t) => match self.strike(&t, now)? {
+                None => return Ok(()),
+                Some(why) => why,
+            },
+            None => "two corners meet, or a face comes down flat on a face".into(),
+        };
         let (first, second) = (self.layout.names[a].clone(), self.layout.names[b].clone());
         self.rec.rocking_event(
             self.t,
             EventKind::BlocksMeet,
             &[a, b],
             None,
-            format!("{first} meets {second} (a corner of one reaches the other)"),
+            format!("{first} meets {second}: {why}"),
         );
         self.stops(Warning::BlocksMeet {
             first,
             second,
+            why,
             time_s: self.t,
         });
+        Ok(())
+    }
+
+    /// The impact where a corner strikes a face (`t`), then the modes after it; or why it is
+    /// not followed (nothing changed then).
+    fn strike(&mut self, t: &Touch, now: &Inputs) -> Result<Option<String>, SimulationError> {
+        if t.stays {
+            return Ok(Some(
+                "they stay in contact (since their last impact they have not parted by more \
+                 than round-off), and their contact is not followed"
+                    .into(),
+            ));
+        }
+        let mut turning = [None; 2];
+        for (k, turns) in turning.iter_mut().enumerate() {
+            let name = &self.layout.names[t.blocks[k]];
+            let (i, origin) = match t.sides[k] {
+                Side::Fixed => continue,
+                Side::Held => {
+                    return Ok(Some(format!(
+                        "{name} stands held in its column under a joint that opened, and an \
+                         impulse on it is not followed"
+                    )))
+                }
+                Side::Body(i, origin) => (i, origin),
+            };
+            let (tr, body) = (&self.tracks[i], self.body(i));
+            let Some(c) = tr.mode.corner() else {
+                return Ok(Some(format!(
+                    "{name} is seated, in the mode '{}' (only blocks fixed, rocking or in \
+                     flight are followed through an impact)",
+                    tr.mode.name()
+                )));
+            };
+            if !self.scene.watches.get(i).is_none_or(Watch::holds_nothing) {
+                return Ok(Some(format!(
+                    "{name}'s column holds joints the impulse would pass through"
+                )));
+            }
+            let (s, bp) = (c.sign(), self.layout.pivot_half_base_m(i));
+            let flying = matches!(tr.mode, Mode::Flight(_));
+            let lift = if flying { tr.state.lift } else { 0.0 };
+            let pivot = [origin[0] + s * bp + tr.state.u, origin[1] + lift];
+            // The centroid, at (0, h_c) from the base's middle, turned clockwise about the pivot.
+            let (sin, cos) = tr.state.theta.sin_cos();
+            let (rx, ry) = (-s * bp, body.centroid_height_m);
+            *turns = Some(collision::Turning {
+                mass_kg: body.mass_kg,
+                inertia_kg_m2: body.inertia_kg_m2,
+                friction: body.friction,
+                pivot,
+                centroid: [
+                    pivot[0] + rx * cos + ry * sin,
+                    pivot[1] - rx * sin + ry * cos,
+                ],
+                omega: tr.state.omega,
+                v: tr.state.v,
+                w: if flying { tr.state.lift_v } else { 0.0 },
+                flying,
+            });
+        }
+        let restitution = self.scene.wall.map_or(1.0, |(w, _)| w.restitution.to_f64());
+        let contact = collision::Contact {
+            point: t.point,
+            normal: t.normal,
+            restitution,
+        };
+        let out = match collision::resolve([turning[0].as_ref(), turning[1].as_ref()], &contact) {
+            Ok(out) => out,
+            Err(refusal) => return Ok(Some(refusal.to_string())),
+        };
+        if out.normal_m_s.1 <= t.tie_m_s {
+            return Ok(Some(format!(
+                "they stay in contact after the impact (coefficient of restitution \
+                 {restitution}), and their contact is not followed"
+            )));
+        }
+        self.clearance.strike(t.pair);
+        self.rec.energy.impact_loss_j += out.loss_j;
+        self.rec.impacts += 1;
+        let [corner, face] = t.blocks.map(|k| self.layout.names[k].clone());
+        let mut what = format!(
+            "{corner}'s corner strikes {face}'s face at {:.6e} m/s, parting at {:.6e} m/s \
+             (impulse {:.6e} N s)",
+            -out.normal_m_s.0, out.normal_m_s.1, out.impulse_n_s
+        );
+        let mut omega = None;
+        let mut decide = Vec::new();
+        for k in 0..2 {
+            let (Side::Body(i, _), Some(after)) = (t.sides[k], out.after[k]) else {
+                continue;
+            };
+            self.rec.rocking_impact(t.blocks[k]);
+            let tr = &mut self.tracks[i];
+            let c = tr.mode.corner().expect("a body rocking or in flight");
+            omega.get_or_insert((tr.state.omega, after.omega));
+            what += &format!(
+                "; {}: theta' {:.6e} -> {:.6e} rad/s, its pivot {}",
+                self.layout.names[t.blocks[k]],
+                tr.state.omega,
+                after.omega,
+                match after.pivot {
+                    collision::Pivot::Sticks => "sticks".to_string(),
+                    collision::Pivot::Slips(_) => format!("slips at {:.6e} m/s", after.v),
+                    collision::Pivot::Lifts => {
+                        format!("leaves the ground at {:.6e} m/s", after.lift_v)
+                    }
+                    collision::Pivot::Flies => "flies on".to_string(),
+                }
+            );
+            tr.state.omega = after.omega;
+            tr.state.v = after.v;
+            match after.pivot {
+                collision::Pivot::Lifts | collision::Pivot::Flies => {
+                    if after.pivot == collision::Pivot::Lifts {
+                        tr.state.lift = 0.0;
+                    }
+                    tr.state.lift_v = after.lift_v;
+                    tr.mode = Mode::Flight(c);
+                }
+                _ => decide.push(i),
+            }
+        }
+        self.rec
+            .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
+        for i in decide {
+            self.decide(i, now, false)?;
+        }
+        Ok(None)
     }
 
     /// Condition k of body i's watch falls (`at_landing`: under a landing's impulse): a held

@@ -402,8 +402,9 @@ fn moving_parts(
     let apart = if super::clearance::Clearance::of(wall, topo, watches).is_empty() {
         ""
     } else {
-        "; blocks of different columns, and fixed blocks, watched while they stand apart (the \
-         exact model stops where two meet)"
+        "; blocks of different columns, and fixed blocks, watched while they stand apart, \
+         through the impact where a corner of one strikes a face of the other (the exact model \
+         stops at any other meeting)"
     };
     let parts = columns
         .iter()
