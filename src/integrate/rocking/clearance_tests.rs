@@ -78,6 +78,14 @@ fn met(r: &Response) -> Option<(f64, Vec<String>)> {
         .map(|e| (e.time_s, e.blocks.clone()))
 }
 
+/// The run's impacts between blocks.
+fn impacts(r: &Response) -> Vec<&crate::response::EventRecord> {
+    r.events
+        .iter()
+        .filter(|e| e.kind == EventKind::BlocksImpact)
+        .collect()
+}
+
 /// Block k's first row at t.
 fn row_at(r: &Response, k: usize, t: f64) -> [f64; 6] {
     *rows(r, k)
@@ -261,11 +269,7 @@ fn a_slab_that_strikes_an_abutment_flies_off_as_time_stepping_converges_to() {
     let stops = run(&wall_with(gap, 0.0), &motion, 5.0, 0.0);
     let elastic = wall(gap);
     let r = run(&elastic, &motion, 0.9, 0.0);
-    let impact = r
-        .events
-        .iter()
-        .find(|e| e.kind == EventKind::BlocksImpact)
-        .expect("an impact");
+    let impact = impacts(&r)[0];
     let t = stops.summary.duration_s;
     assert_eq!(impact.time_s, t);
     let before = rows(&stops, 0).last().unwrap()[4];
@@ -308,7 +312,7 @@ fn converges(model: &Model, motion: &Motion, r: &Response, t: f64, k: usize) {
     };
     let (coarse, fine) = (error(1e-4), error(1e-5));
     let largest = exact.iter().map(|x| x[3].abs()).fold(0.0, f64::max);
-    assert!(largest > 0.01, "{largest}");
+    assert!(largest > 1e-3, "{largest}");
     assert!(
         fine < 0.25 * coarse && fine < 1e-2 * largest,
         "block {k}: {coarse} {fine} of {largest}"
@@ -329,17 +333,13 @@ fn two_rocking_slabs_strike_each_other_as_time_stepping_converges_to() {
     .unwrap();
     let motion = sine(0.3, 0.0);
     let r = run(&model, &motion, 0.8, 0.0);
-    let impacts: Vec<_> = r
-        .events
-        .iter()
-        .filter(|e| e.kind == EventKind::BlocksImpact)
-        .collect();
+    let impacts = impacts(&r);
     assert_eq!(impacts.len(), 2);
     for e in &impacts {
         assert_eq!(e.blocks, ["S", "T"]);
         let what = e.mode.as_deref().unwrap_or_default();
         assert!(
-            what.contains("S: theta'") && what.contains("slips at"),
+            what.contains("S: theta'") && what.contains("slipping at"),
             "{what}"
         );
         assert!(
@@ -351,5 +351,28 @@ fn two_rocking_slabs_strike_each_other_as_time_stepping_converges_to() {
     assert!(e.residual_j.abs() <= 1e-13 * e.input_j, "{e:?}");
     for k in 0..2 {
         converges(&model, &motion, &r, impacts[0].time_s, k);
+    }
+}
+
+/// The slab (it lifts at 0.25 g) 2 cm from a squat column (0.6 by 1.6 m: it would lift at
+/// 0.375 g) under 0.3 g at 1 Hz: the slab strikes the seated column at 0.6297 s, as it struck
+/// the abutment, flying off it, and the column, struck above its centroid, turns on its far
+/// corner, rocks and comes to rest. Moreau-Jean converges on both rotations from the strike.
+#[test]
+fn a_slab_strikes_a_seated_column_which_rocks_as_time_stepping_converges_to() {
+    let model = wall(", (width_m: 0.6, height_m: 1.6, gap_m: 0.02, name: \"T\")");
+    let motion = sine(0.3, 0.0);
+    let r = run(&model, &motion, 1.0, 0.0);
+    let impact = impacts(&r)[0];
+    let what = impact.mode.as_deref().unwrap_or_default();
+    assert!(
+        what.contains("T: theta' 0.000000e0") && what.contains("rocks on its right corner"),
+        "{what}"
+    );
+    assert!(r.summary.blocks[1].max_abs_rotation_rad > 1e-3);
+    let e = &r.summary.energy;
+    assert!(e.residual_j.abs() <= 1e-13 * e.input_j, "{e:?}");
+    for k in 0..2 {
+        converges(&model, &motion, &r, impact.time_s, k);
     }
 }

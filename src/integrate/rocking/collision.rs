@@ -1,38 +1,45 @@
 //! The impact where two blocks meet, a corner of one on a face of the other, each block fixed
-//! or turning with a body that rocks on a pivot of its base. This module owns that impact law.
+//! or moved by a body standing on the ground on one corner, on both, or on none (rocking,
+//! seated, in flight). This module owns that impact law.
 //!
 //! The law is the one the sliding model uses at its vertical joints and the time-stepped model
 //! at every face between blocks: Newton's, frictionless at the contact, the normal velocity
 //! reversed and scaled by the wall's coefficient of restitution e, v_n+ = -e v_n-. Each body
-//! has three velocities through the impact: its pivot's slip v and rise w, and its rotation's
-//! rate theta'. Its pivot either stays on the ground and passes the impulse the body needs, a
-//! normal impulse that presses and a tangential one in Coulomb's cone (sticking: v+ = 0; or
-//! slipping, the tangential impulse at mu times the normal one against v+, as Moreau's impact
-//! law puts friction on the velocities after), or leaves it with no impulse (w+ >= 0: a body
-//! swinging out whose centroid rises as it strikes cannot have that rise reversed by a
-//! frictionless face and a base that only pushes). Every combination of the pivots' laws is a
-//! linear system; exactly one must be consistent: none (Painleve-type: no impulse obeys the
-//! law) or two that differ is reported, never chosen between.
+//! has three velocities through the impact: a base corner's slip v and rise w, and its
+//! rotation's rate theta'. Each corner of its base on the ground either stays on it, passing a
+//! normal impulse that presses, or leaves it with none (its rise after >= 0); the base's
+//! friction, while a corner stays, either sticks (v+ = 0, the tangential impulse in Coulomb's
+//! cone) or slips (the tangential impulse at mu times the normal ones, against v+, as
+//! Moreau's impact law puts friction on the velocities after). A body swinging out whose
+//! centroid rises as it strikes cannot have that rise reversed by a frictionless face and a
+//! base that only pushes: its pivot leaves the ground. A seated body struck on its side turns
+//! on the corner away from the blow, slides, or leaves the ground, as the law says. Every
+//! combination of the corners' and the friction's laws is a linear system; exactly one must be
+//! consistent: none (Painleve-type: no impulse obeys the law) or two that differ is reported,
+//! never chosen between.
 
+use super::modes::Corner;
 use nalgebra::{DMatrix, DVector};
 
-/// A body that turns through the impact: what the law needs of it at the instant of the
+/// A body that moves through the impact: what the law needs of it at the instant of the
 /// impact, positions in the wall's frame (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Turning {
     pub mass_kg: f64,
     /// About its centroid (kg m2).
     pub inertia_kg_m2: f64,
-    /// Of its base under the pivot.
+    /// Of its base.
     pub friction: f64,
+    /// A corner of its base: the point whose velocity (v, w) the law uses.
     pub pivot: [f64; 2],
     pub centroid: [f64; 2],
     /// theta' (rad/s, clockwise positive) and the pivot's velocity (v, w) (m/s) before.
     pub omega: f64,
     pub v: f64,
     pub w: f64,
-    /// Whether the body is in free flight (its pivot, the corner it left, off the ground).
-    pub flying: bool,
+    /// The corners of its base on the ground, with their horizontal offsets from the pivot (m):
+    /// the pivot alone while rocking, both corners while seated, none in flight.
+    pub ground: [Option<(Corner, f64)>; 2],
 }
 
 /// The contact: where the corner touches the face (m), the face's normal pointing into the
@@ -44,16 +51,24 @@ pub struct Contact {
     pub restitution: f64,
 }
 
-/// How a pivot goes through the impact.
+/// How the base's friction goes through the impact, while a corner stays on the ground.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Pivot {
-    /// It stays where it is: its slip velocity after the impact is zero.
+enum Friction {
     Sticks,
-    /// It slips after the impact towards the given sign of x, friction at its limit.
+    /// It slips after the impact towards the given sign of x.
     Slips(f64),
-    /// It leaves the ground: the body is in free flight after the impact.
-    Lifts,
-    /// The body was in free flight and stays so: nothing acts on it but the contact.
+    /// No corner stays on the ground.
+    Free,
+}
+
+/// Where a body stands after the impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Base {
+    /// On both corners, its base slipping or not.
+    Seated { slips: bool },
+    /// On one corner, slipping or not.
+    Pivot { corner: Corner, slips: bool },
+    /// On none: in free flight.
     Flies,
 }
 
@@ -64,13 +79,13 @@ pub struct After {
     pub omega: f64,
     pub v: f64,
     pub lift_v: f64,
-    pub pivot: Pivot,
+    pub base: Base,
 }
 
 /// What the impact does. Sides in the order given: the corner's block, then the face's.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outcome {
-    /// Per side that turns, its velocities after.
+    /// Per side that moves, its velocities after.
     pub after: [Option<After>; 2],
     /// The normal impulse at the contact (N s).
     pub impulse_n_s: f64,
@@ -87,7 +102,7 @@ pub enum Refusal {
     /// The corner does not approach the face faster than round-off: the blocks touch and stay
     /// in contact, which the exact model does not follow.
     Grazing,
-    /// No combination of sticking, slipping and lifting pivots obeys the law.
+    /// No combination of the laws obeys the impact law.
     Inconsistent,
     /// Two combinations obey it with different outcomes.
     Indeterminate,
@@ -128,16 +143,28 @@ fn kinetic_j(b: &Turning, omega: f64, v: f64, w: f64) -> f64 {
     0.5 * b.mass_kg * (vg[0] * vg[0] + vg[1] * vg[1]) + 0.5 * b.inertia_kg_m2 * omega * omega
 }
 
-/// The impact of the corner of side 0 on the face of side 1 (`None`: a fixed block). A body
-/// in flight has no pivot law: only the contact acts on it.
+/// One side's laws in one combination: which of its ground corners stay on (bit k: corner k)
+/// and its friction.
+type Laws = (usize, Friction);
+
+/// Every combination of laws of a body with `n` corners on the ground.
+fn laws(n: usize) -> Vec<Laws> {
+    let mut out = vec![(0, Friction::Free)];
+    for mask in 1..1usize << n {
+        for f in [
+            Friction::Sticks,
+            Friction::Slips(1.0),
+            Friction::Slips(-1.0),
+        ] {
+            out.push((mask, f));
+        }
+    }
+    out
+}
+
+/// The impact of the corner of side 0 on the face of side 1 (`None`: a fixed block).
 pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Refusal> {
     const SIGN: [f64; 2] = [1.0, -1.0];
-    const CHOICES: [Pivot; 4] = [
-        Pivot::Sticks,
-        Pivot::Slips(1.0),
-        Pivot::Slips(-1.0),
-        Pivot::Lifts,
-    ];
     let n = c.normal;
     // theta', v and w of a side enter the normal velocity at the contact with these weights.
     let arms = |b: &Turning| {
@@ -158,31 +185,40 @@ pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Ref
     if approach >= -tie * speed {
         return Err(Refusal::Grazing);
     }
-    let moving: Vec<usize> = (0..2).filter(|&k| sides[k].is_some()).collect();
-    // Per side that turns: the changes of v, theta' and w, the pivot's tangential and normal
-    // impulses; then the contact's normal impulse.
-    let p = 5 * moving.len();
+    let moving: Vec<(usize, &Turning)> = (0..2).filter_map(|k| Some((k, sides[k]?))).collect();
+    let corners =
+        |b: &Turning| -> Vec<(Corner, f64)> { b.ground.iter().flatten().copied().collect() };
+    // Per side that moves, from its offset: the changes of v, theta' and w, the base's
+    // tangential impulse, each ground corner's normal impulse; then the contact's.
+    let mut offsets = Vec::new();
+    let mut p = 0;
+    for (_, b) in &moving {
+        offsets.push(p);
+        p += 4 + corners(b).len();
+    }
+    let choices: Vec<Vec<Laws>> = moving.iter().map(|(_, b)| laws(corners(b).len())).collect();
+    let combos: usize = choices.iter().map(Vec::len).product();
     let mut found: Vec<Outcome> = Vec::new();
-    for combo in 0..CHOICES.len().pow(moving.len() as u32) {
-        let pivots: Vec<Pivot> = (0..moving.len())
-            .map(|j| match sides[moving[j]] {
-                Some(b) if b.flying => Pivot::Flies,
-                _ => CHOICES[combo / CHOICES.len().pow(j as u32) % CHOICES.len()],
+    for combo in 0..combos {
+        let mut rest = combo;
+        let picked: Vec<Laws> = choices
+            .iter()
+            .map(|ch| {
+                let l = ch[rest % ch.len()];
+                rest /= ch.len();
+                l
             })
             .collect();
-        if combo > 0 && pivots.iter().all(|&p| p == Pivot::Flies) {
-            break;
-        }
         let mut a = DMatrix::<f64>::zeros(p + 1, p + 1);
         let mut rhs = DVector::<f64>::zeros(p + 1);
-        for (j, &k) in moving.iter().enumerate() {
-            let b = sides[k].expect("a side that turns");
-            let (m, s) = (b.mass_kg, SIGN[k]);
+        for (j, &(k, b)) in moving.iter().enumerate() {
+            let (m, s, r) = (b.mass_kg, SIGN[k], offsets[j]);
             let g = [b.centroid[0] - b.pivot[0], b.centroid[1] - b.pivot[1]];
-            let r = 5 * j;
-            let (pt, pn) = (r + 3, r + 4);
+            let ground = corners(b);
+            let (mask, friction) = picked[j];
             // Momentum in the velocities q = (v, theta', w), whose centroid moves at
-            // (v + theta' g_y, w - theta' g_x): M dq = (P_T, 0, P_N) + s P J^T n.
+            // (v + theta' g_y, w - theta' g_x): M dq = (P_T, -sum N_k d_k, sum N_k) + s P J^T n
+            // (the ground corners lie on the pivot's level: no moment from P_T).
             let mass = [
                 [m, m * g[1], 0.0],
                 [
@@ -201,25 +237,31 @@ pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Ref
                 // Newton's law at the contact, summed over the sides.
                 a[(p, r + row)] = s * arm[row];
             }
-            a[(r, pt)] = -1.0;
-            a[(r + 2, pn)] = -1.0;
-            // The pivot's law: on the ground (w stays 0) sticking or slipping, or off it
-            // (no impulse).
-            match pivots[j] {
-                Pivot::Sticks => {
-                    a[(pt, r)] = 1.0;
-                    rhs[pt] = -b.v;
-                    a[(pn, r + 2)] = 1.0;
+            a[(r, r + 3)] = -1.0;
+            for (q, &(_, dx)) in ground.iter().enumerate() {
+                a[(r + 1, r + 4 + q)] = dx;
+                a[(r + 2, r + 4 + q)] = -1.0;
+                if mask & 1 << q != 0 {
+                    // On the ground: its rise after, w - theta' d, is zero.
+                    a[(r + 4 + q, r + 2)] = 1.0;
+                    a[(r + 4 + q, r + 1)] = -dx;
+                    rhs[r + 4 + q] = -(b.w - b.omega * dx);
+                } else {
+                    a[(r + 4 + q, r + 4 + q)] = 1.0;
                 }
-                Pivot::Slips(dir) => {
-                    a[(pt, pt)] = 1.0;
-                    a[(pt, pn)] = b.friction * dir;
-                    a[(pn, r + 2)] = 1.0;
+            }
+            match friction {
+                Friction::Sticks => {
+                    a[(r + 3, r)] = 1.0;
+                    rhs[r + 3] = -b.v;
                 }
-                Pivot::Lifts | Pivot::Flies => {
-                    a[(pt, pt)] = 1.0;
-                    a[(pn, pn)] = 1.0;
+                Friction::Slips(dir) => {
+                    a[(r + 3, r + 3)] = 1.0;
+                    for q in 0..ground.len() {
+                        a[(r + 3, r + 4 + q)] = b.friction * dir;
+                    }
                 }
+                Friction::Free => a[(r + 3, r + 3)] = 1.0,
             }
         }
         rhs[p] = -(1.0 + c.restitution) * approach;
@@ -235,32 +277,56 @@ pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Ref
             normal_m_s: (approach, -c.restitution * approach),
             loss_j: 0.0,
         };
-        for (j, &k) in moving.iter().enumerate() {
-            let b = sides[k].expect("a side that turns");
-            let r = 5 * j;
-            let (pt, pn) = (x[r + 3], x[r + 4]);
-            // A pivot on the ground does not rise, and one that sticks does not slip, to the
-            // bit (the solve leaves round-off there).
+        for (j, &(k, b)) in moving.iter().enumerate() {
+            let r = offsets[j];
+            let ground = corners(b);
+            let (mask, friction) = picked[j];
+            let omega = b.omega + x[r + 1];
+            let (v, w) = (b.v + x[r], b.w + x[r + 2]);
+            let mut pressed = 0.0;
+            for (q, &(_, dx)) in ground.iter().enumerate() {
+                if mask & 1 << q != 0 {
+                    consistent &= x[r + 4 + q] >= -impulse_tol;
+                    pressed += x[r + 4 + q].max(0.0);
+                } else {
+                    consistent &= w - omega * dx >= -tie * speed;
+                }
+            }
+            consistent &= match friction {
+                Friction::Sticks => x[r + 3].abs() <= b.friction * pressed + impulse_tol,
+                Friction::Slips(dir) => dir * v >= -tie * speed,
+                Friction::Free => true,
+            };
+            let on: Vec<Corner> = (0..ground.len())
+                .filter(|q| mask & 1 << q != 0)
+                .map(|q| ground[q].0)
+                .collect();
+            let slips = matches!(friction, Friction::Slips(_));
+            let base = match on.as_slice() {
+                [] => Base::Flies,
+                [corner] => Base::Pivot {
+                    corner: *corner,
+                    slips,
+                },
+                _ => Base::Seated { slips },
+            };
+            // What the law holds is held to the bit (the solve leaves round-off there): a
+            // base that sticks does not slip, a pivot on the ground does not rise, a seated
+            // body does not turn.
+            let pivot_on = ground.first().is_some_and(|_| mask & 1 != 0);
             let after = After {
-                omega: b.omega + x[r + 1],
-                v: if pivots[j] == Pivot::Sticks {
+                omega: if matches!(base, Base::Seated { .. }) {
                     0.0
                 } else {
-                    b.v + x[r]
+                    omega
                 },
-                lift_v: match pivots[j] {
-                    Pivot::Lifts | Pivot::Flies => b.w + x[r + 2],
-                    _ => 0.0,
+                v: if friction == Friction::Sticks { 0.0 } else { v },
+                lift_v: if pivot_on && ground[0].1 == 0.0 {
+                    0.0
+                } else {
+                    w
                 },
-                pivot: pivots[j],
-            };
-            consistent &= match pivots[j] {
-                Pivot::Sticks => {
-                    pn >= -impulse_tol && pt.abs() <= b.friction * pn.max(0.0) + impulse_tol
-                }
-                Pivot::Slips(dir) => pn >= -impulse_tol && dir * after.v >= -tie * speed,
-                Pivot::Lifts => after.lift_v >= -tie * speed,
-                Pivot::Flies => true,
+                base,
             };
             outcome.loss_j +=
                 kinetic_j(b, b.omega, b.v, b.w) - kinetic_j(b, after.omega, after.v, after.lift_v);
@@ -270,7 +336,7 @@ pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Ref
             found.push(outcome);
         }
     }
-    // A pivot at the tie between two laws obeys both with one outcome: outcomes that agree to
+    // A base at the tie between two laws obeys both with one outcome: outcomes that agree to
     // 1e-9 of the speeds are one.
     let same = |x: &Outcome, y: &Outcome| {
         let apart: f64 = (0..2)

@@ -1,6 +1,16 @@
 use super::*;
 use approx::assert_relative_eq;
 
+/// The corners on the ground of a body rocking on the corner of sign s (its pivot), or of a
+/// seated one `width` wide (s = 0: its pivot the right corner).
+fn standing(s: f64, width: f64) -> [Option<(Corner, f64)>; 2] {
+    if s == 0.0 {
+        [Some((Corner::Right, 0.0)), Some((Corner::Left, -width))]
+    } else {
+        [Some((Corner::of_sign(s), 0.0)), None]
+    }
+}
+
 /// A slab 0.3 m wide and 1.2 m high, 900 kg, rocking on its corner of sign `s` (at the
 /// origin) by `theta` (clockwise) at `omega`, its pivot slipping at `v`.
 fn slab(s: f64, theta: f64, omega: f64, v: f64, friction: f64) -> Turning {
@@ -14,7 +24,7 @@ fn slab(s: f64, theta: f64, omega: f64, v: f64, friction: f64) -> Turning {
         omega,
         v,
         w: 0.0,
-        flying: false,
+        ground: standing(s, 0.3),
     }
 }
 
@@ -71,32 +81,56 @@ fn obeys(sides: [Option<&Turning>; 2], c: &Contact, out: &Outcome) {
             sign[k] * out.impulse_n_s * n[0],
             sign[k] * out.impulse_n_s * n[1],
         ];
-        let scale = b.mass_kg * (b.v.abs() + b.omega.abs() * reach(b));
+        // Impulses are measured against the momenta before and after, moments against those
+        // over twice the centroid's reach (the contact lies up to there).
+        let speeds = b.v.abs() + a.v.abs() + (b.omega.abs() + a.omega.abs()) * reach(b);
+        let tol = 1e-14 * b.mass_kg * (speeds + a.lift_v.abs());
+        let moment_tol = 2.0 * reach(b) * tol;
+        // Angular momentum about the pivot: besides the contact's impulse, only a seated
+        // body's other corner has a moment there (its normal impulse at its offset).
         let d = [c.point[0] - b.pivot[0], c.point[1] - b.pivot[1]];
         let dh = momentum_about(b, b.pivot, a.omega, a.v, a.lift_v)
             - momentum_about(b, b.pivot, b.omega, b.v, b.w);
-        assert_relative_eq!(dh, d[0] * p[1] - d[1] * p[0], epsilon = 1e-14 * scale);
+        let other = dh - (d[0] * p[1] - d[1] * p[0]);
         let (g1, g0) = (
             point_velocity(b, b.centroid, a.omega, a.v, a.lift_v),
             point_velocity(b, b.centroid, b.omega, b.v, b.w),
         );
         let pt = b.mass_kg * (g1[0] - g0[0]) - p[0];
         let pn = b.mass_kg * (g1[1] - g0[1]) - p[1];
-        let tol = 1e-14 * scale;
-        match a.pivot {
-            Pivot::Sticks => {
-                assert_eq!((a.v, a.lift_v), (0.0, 0.0));
-                assert!(pn > 0.0 && pt.abs() <= b.friction * pn, "{pt} {pn}");
+        let cone = |slips: bool| {
+            if slips {
+                assert!(a.v != 0.0);
+                assert_relative_eq!(pt, -b.friction * pn * a.v.signum(), epsilon = tol);
+            } else {
+                assert_eq!(a.v, 0.0);
+                assert!(pt.abs() <= b.friction * pn + tol, "{pt} {pn}");
             }
-            Pivot::Slips(dir) => {
-                assert_eq!(a.lift_v, 0.0);
-                assert!(pn > 0.0 && dir * a.v > 0.0);
-                assert_relative_eq!(pt, -b.friction * pn * dir, epsilon = tol);
+        };
+        match a.base {
+            Base::Pivot { slips, .. } => {
+                assert!(other.abs() <= moment_tol, "{other}");
+                assert!(pn > 0.0, "{pn}");
+                cone(slips);
             }
-            Pivot::Lifts | Pivot::Flies => {
-                assert!(a.pivot == Pivot::Flies || a.lift_v > 0.0);
+            Base::Seated { slips } => {
+                assert_eq!((a.omega, a.lift_v), (0.0, 0.0));
+                let (_, dx) = b.ground[1].unwrap();
+                let left = other / dx;
+                assert!(
+                    left >= -moment_tol && pn - left >= -moment_tol,
+                    "{left} {pn}"
+                );
+                cone(slips);
+            }
+            Base::Flies => {
+                assert!(other.abs() <= moment_tol, "{other}");
                 assert!(pt.abs() <= tol && pn.abs() <= tol, "{pt} {pn}");
             }
+        }
+        // Every corner on the ground before does not sink.
+        for (_, dx) in b.ground.iter().flatten() {
+            assert!(a.lift_v - a.omega * dx >= -tol, "corner at {dx} sinks");
         }
     }
 }
@@ -123,7 +157,7 @@ fn a_slab_swinging_back_rebounds_from_a_face_with_its_rate_times_e() {
         let a = out.after[0].unwrap();
         // One degree of freedom: the corner's normal velocity is theta' times its arm.
         assert_relative_eq!(a.omega, -e * body.omega, epsilon = 1e-15);
-        assert_eq!(a.pivot, Pivot::Sticks);
+        assert!(matches!(a.base, Base::Pivot { slips: false, .. }));
         let before = kinetic_j(&body, body.omega, 0.0, 0.0);
         assert_relative_eq!(out.loss_j, (1.0 - e * e) * before, epsilon = 1e-14 * before);
         obeys([Some(&body), None], &contact, &out);
@@ -135,7 +169,10 @@ fn a_slab_slips_on_its_pivot_when_its_base_cannot_hold_the_impulse() {
     // The pivot's impulse leans by 0.175 / 0.15 of the vertical: past mu 0.8.
     let (body, contact) = against_a_face(-1.0, 0.8, 1.0);
     let out = resolve([Some(&body), None], &contact).unwrap();
-    assert!(matches!(out.after[0].unwrap().pivot, Pivot::Slips(_)));
+    assert!(matches!(
+        out.after[0].unwrap().base,
+        Base::Pivot { slips: true, .. }
+    ));
     obeys([Some(&body), None], &contact, &out);
     // Friction at the pivot takes energy even though the contact is elastic.
     assert!(out.loss_j > 0.0);
@@ -147,7 +184,7 @@ fn a_slab_swinging_out_into_a_face_leaves_the_ground() {
     for friction in [0.8, 10.0] {
         let (body, contact) = against_a_face(1.0, friction, 1.0);
         let out = resolve([Some(&body), None], &contact).unwrap();
-        assert_eq!(out.after[0].unwrap().pivot, Pivot::Lifts);
+        assert_eq!(out.after[0].unwrap().base, Base::Flies);
         obeys([Some(&body), None], &contact, &out);
         // Nothing but the elastic contact acts: the energy is kept.
         let before = kinetic_j(&body, body.omega, 0.0, 0.0);
@@ -158,10 +195,10 @@ fn a_slab_swinging_out_into_a_face_leaves_the_ground() {
 #[test]
 fn a_slab_in_flight_takes_the_contact_impulse_alone() {
     let (mut body, contact) = against_a_face(1.0, 0.8, 1.0);
-    (body.flying, body.w, body.v) = (true, 0.05, 0.1);
+    (body.ground, body.w, body.v) = ([None, None], 0.05, 0.1);
     for (b, c) in [(body, contact), (Turning { w: -0.05, ..body }, contact)] {
         let out = resolve([Some(&b), None], &c).unwrap();
-        assert_eq!(out.after[0].unwrap().pivot, Pivot::Flies);
+        assert_eq!(out.after[0].unwrap().base, Base::Flies);
         obeys([Some(&b), None], &c, &out);
         let before = kinetic_j(&b, b.omega, b.v, b.w);
         assert!(out.loss_j.abs() <= 1e-14 * before, "{}", out.loss_j);
@@ -176,9 +213,10 @@ fn two_slabs(sa: f64, sb: f64, omega_b: f64, friction: f64, e: f64) -> (Turning,
     let a = slab(sa, ta, 0.5, 0.0, friction);
     let point = turned([0.0, 0.0], ta, [0.15 - sa * 0.15, 1.2]);
     let (b, h, m) = (0.2, 0.9, 1440.0);
-    // B's left face from its bottom left corner, (-b - sb b, 0) from its pivot: the point lies
-    // lambda up that face.
-    let x0 = -b - sb * b;
+    // B's left face from its bottom left corner, (-b - sr b, 0) from its pivot (a seated B's
+    // the right corner): the point lies lambda up that face.
+    let sr = if sb == 0.0 { 1.0 } else { sb };
+    let x0 = -b - sr * b;
     let lambda = (point[1] + x0 * tb.sin()) / tb.cos();
     let rel = turned([0.0, 0.0], tb, [x0, lambda]);
     let origin = [point[0] - rel[0], 0.0];
@@ -187,11 +225,11 @@ fn two_slabs(sa: f64, sb: f64, omega_b: f64, friction: f64, e: f64) -> (Turning,
         inertia_kg_m2: m * (4.0 * b * b + 4.0 * h * h) / 12.0,
         friction,
         pivot: origin,
-        centroid: turned(origin, tb, [-sb * b, h]),
+        centroid: turned(origin, tb, [-sr * b, h]),
         omega: omega_b,
         v: 0.0,
         w: 0.0,
-        flying: false,
+        ground: standing(sb, 2.0 * b),
     };
     let contact = Contact {
         point,
@@ -207,7 +245,9 @@ fn two_slabs_swinging_back_into_each_other_keep_their_energy_when_elastic() {
     let (a, b, c) = two_slabs(-1.0, 1.0, -0.3, 10.0, 1.0);
     let out = resolve([Some(&a), Some(&b)], &c).unwrap();
     let (xa, xb) = (out.after[0].unwrap(), out.after[1].unwrap());
-    assert_eq!((xa.pivot, xb.pivot), (Pivot::Sticks, Pivot::Sticks));
+    for x in [xa, xb] {
+        assert!(matches!(x.base, Base::Pivot { slips: false, .. }));
+    }
     let before = kinetic_j(&a, a.omega, 0.0, 0.0) + kinetic_j(&b, b.omega, 0.0, 0.0);
     assert!(out.loss_j.abs() <= 1e-14 * before, "{}", out.loss_j);
     assert!(xa.omega < 0.0 && xb.omega > 0.0, "both turn back");
@@ -219,22 +259,57 @@ fn two_slabs_swinging_back_into_each_other_keep_their_energy_when_elastic() {
 }
 
 #[test]
-fn two_slabs_obey_the_law_whatever_their_pivots_do() {
-    // Every pair of pivots and two frictions: each outcome, sticking, slipping or lifting,
-    // obeys Newton's law, momentum and Coulomb.
+fn two_slabs_obey_the_law_whatever_their_bases_do() {
+    // Every pair of pivots, B seated too, and three frictions: each outcome, sticking,
+    // slipping, lifting or seated, obeys Newton's law, momentum and Coulomb.
     let mut laws = std::collections::BTreeSet::new();
-    for (sa, sb) in [(-1.0, 1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, -1.0)] {
+    for (sa, sb) in [
+        (-1.0, 1.0),
+        (1.0, -1.0),
+        (1.0, 1.0),
+        (-1.0, -1.0),
+        (-1.0, 0.0),
+        (1.0, 0.0),
+    ] {
         for friction in [0.3, 0.8, 10.0] {
-            let (a, b, c) = two_slabs(sa, sb, -0.3, friction, 1.0);
+            let omega_b = if sb == 0.0 { 0.0 } else { -0.3 };
+            let (a, b, c) = two_slabs(sa, sb, omega_b, friction, 1.0);
             let out = resolve([Some(&a), Some(&b)], &c).unwrap();
             obeys([Some(&a), Some(&b)], &c, &out);
             for x in out.after.iter().flatten() {
-                laws.insert(format!("{:?}", x.pivot).chars().take(5).collect::<String>());
+                laws.insert(match x.base {
+                    Base::Pivot { slips: false, .. } => "sticks",
+                    Base::Pivot { slips: true, .. } => "slips",
+                    Base::Seated { .. } => "seated",
+                    Base::Flies => "flies",
+                });
             }
         }
     }
-    // The cases reach every law.
-    assert_eq!(laws.len(), 3, "{laws:?}");
+    // The cases reach every law on one corner and off the ground.
+    for law in ["sticks", "slips", "flies"] {
+        assert!(laws.contains(law), "{laws:?}");
+    }
+}
+
+#[test]
+fn a_seated_slab_struck_above_its_centroid_turns_on_its_far_corner() {
+    // B, 1.8 m high, seated, struck at 1.2 m from the left: it turns on its right corner, and
+    // with both bases holding and the contact elastic the energy is kept.
+    let (a, b, c) = two_slabs(-1.0, 0.0, 0.0, 10.0, 1.0);
+    let out = resolve([Some(&a), Some(&b)], &c).unwrap();
+    let xb = out.after[1].unwrap();
+    assert_eq!(
+        xb.base,
+        Base::Pivot {
+            corner: Corner::Right,
+            slips: false
+        }
+    );
+    assert!(xb.omega > 0.0, "it turns clockwise, onto its right corner");
+    let before = kinetic_j(&a, a.omega, 0.0, 0.0);
+    assert!(out.loss_j.abs() <= 1e-14 * before, "{}", out.loss_j);
+    obeys([Some(&a), Some(&b)], &c, &out);
 }
 
 #[test]

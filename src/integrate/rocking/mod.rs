@@ -694,8 +694,8 @@ impl<'a> Engine<'a> {
     }
 
     /// Blocks of two columns (or a column's and a fixed one) meet. Where a corner strikes a
-    /// face, each block fixed or moved by a body that rocks alone on a pivot of its base (its
-    /// column holding no joint), the impact is resolved ([`collision`]) and the run goes on;
+    /// face, each block fixed or moved by a body that stands alone (its column holding no
+    /// joint), the impact is resolved ([`collision`]) and the run goes on;
     /// at any other meeting the run ends here, the state the one just before, and says why.
     fn meet(
         &mut self,
@@ -751,19 +751,29 @@ impl<'a> Engine<'a> {
                 Side::Body(i, origin) => (i, origin),
             };
             let (tr, body) = (&self.tracks[i], self.body(i));
-            let Some(c) = tr.mode.corner() else {
+            if tr.settles.is_some() {
                 return Ok(Some(format!(
-                    "{name} is seated, in the mode '{}' (only blocks fixed, rocking or in \
-                     flight are followed through an impact)",
-                    tr.mode.name()
+                    "{name} is seated through the end of a series of landings, which an impulse \
+                     would break off"
                 )));
-            };
+            }
             if !self.scene.watches.get(i).is_none_or(Watch::holds_nothing) {
                 return Ok(Some(format!(
                     "{name}'s column holds joints the impulse would pass through"
                 )));
             }
-            let (s, bp) = (c.sign(), self.layout.pivot_half_base_m(i));
+            // The corner the law takes the velocities of (a seated body's right one), and the
+            // corners on the ground.
+            let bp = self.layout.pivot_half_base_m(i);
+            let (c, ground) = match tr.mode {
+                Mode::Rock(c) | Mode::SlideRock(c, _) => (c, [Some((c, 0.0)), None]),
+                Mode::Flight(c) => (c, [None, None]),
+                Mode::Rest | Mode::Slide(_) => (
+                    Corner::Right,
+                    [Some((Corner::Right, 0.0)), Some((Corner::Left, -2.0 * bp))],
+                ),
+            };
+            let s = c.sign();
             let flying = matches!(tr.mode, Mode::Flight(_));
             let lift = if flying { tr.state.lift } else { 0.0 };
             let pivot = [origin[0] + s * bp + tr.state.u, origin[1] + lift];
@@ -782,7 +792,7 @@ impl<'a> Engine<'a> {
                 omega: tr.state.omega,
                 v: tr.state.v,
                 w: if flying { tr.state.lift_v } else { 0.0 },
-                flying,
+                ground,
             });
         }
         let restitution = self.scene.wall.map_or(1.0, |(w, _)| w.restitution.to_f64());
@@ -818,33 +828,49 @@ impl<'a> Engine<'a> {
             };
             self.rec.rocking_impact(t.blocks[k]);
             let tr = &mut self.tracks[i];
-            let c = tr.mode.corner().expect("a body rocking or in flight");
             omega.get_or_insert((tr.state.omega, after.omega));
-            what += &format!(
-                "; {}: theta' {:.6e} -> {:.6e} rad/s, its pivot {}",
-                self.layout.names[t.blocks[k]],
-                tr.state.omega,
-                after.omega,
-                match after.pivot {
-                    collision::Pivot::Sticks => "sticks".to_string(),
-                    collision::Pivot::Slips(_) => format!("slips at {:.6e} m/s", after.v),
-                    collision::Pivot::Lifts => {
-                        format!("leaves the ground at {:.6e} m/s", after.lift_v)
-                    }
-                    collision::Pivot::Flies => "flies on".to_string(),
+            let flying = matches!(tr.mode, Mode::Flight(_));
+            let slipping = |slips: bool| {
+                if slips {
+                    format!(", slipping at {:.6e} m/s", after.v)
+                } else {
+                    String::new()
                 }
+            };
+            let how = match after.base {
+                collision::Base::Seated { slips } => format!("stays seated{}", slipping(slips)),
+                collision::Base::Pivot { corner, slips } => {
+                    format!("rocks on its {} corner{}", corner.name(), slipping(slips))
+                }
+                collision::Base::Flies if flying => "flies on".into(),
+                collision::Base::Flies => {
+                    format!("leaves the ground at {:.6e} m/s", after.lift_v)
+                }
+            };
+            what += &format!(
+                "; {}: theta' {:.6e} -> {:.6e} rad/s, {how}",
+                self.layout.names[t.blocks[k]], tr.state.omega, after.omega,
             );
             tr.state.omega = after.omega;
             tr.state.v = after.v;
-            match after.pivot {
-                collision::Pivot::Lifts | collision::Pivot::Flies => {
-                    if after.pivot == collision::Pivot::Lifts {
+            match after.base {
+                collision::Base::Flies => {
+                    // A seated body leaves with its right corner followed, as from rest.
+                    let c = tr.mode.corner().unwrap_or(Corner::Right);
+                    if !flying {
                         tr.state.lift = 0.0;
                     }
                     tr.state.lift_v = after.lift_v;
                     tr.mode = Mode::Flight(c);
                 }
-                _ => decide.push(i),
+                collision::Base::Pivot { corner, .. } => {
+                    tr.mode = Mode::Rock(corner);
+                    decide.push(i);
+                }
+                collision::Base::Seated { .. } => {
+                    tr.mode = Mode::Rest;
+                    decide.push(i);
+                }
             }
         }
         self.rec
