@@ -238,7 +238,9 @@ impl Recorder {
     }
 
     /// Logs an event of a rocking body made of `blocks` (the lowest first, whose joint it
-    /// moves on): its angular velocity before and after, and the mode it goes on in.
+    /// moves on): its angular velocity before and after, and the mode it goes on in. Where two
+    /// blocks meet (`BlocksMeet`, `BlocksImpact`), the joint is the vertical one between them,
+    /// if they face each other across one, not a joint either moves on.
     pub fn rocking_event(
         &mut self,
         time_s: f64,
@@ -248,12 +250,20 @@ impl Recorder {
         mode: String,
     ) {
         if self.log_events {
-            // The joint under the lowest block: one, as a rocking body's block rests on one.
-            let joint = self
-                .horizontal
-                .iter()
-                .position(|h| h.0 == blocks[0])
-                .map(|k| JointRef::Horizontal(HorizontalId(k)));
+            let joint = if matches!(kind, EventKind::BlocksMeet | EventKind::BlocksImpact) {
+                self.vertical
+                    .iter()
+                    .position(|&(l, r)| {
+                        (l, r) == (blocks[0], blocks[1]) || (r, l) == (blocks[0], blocks[1])
+                    })
+                    .map(|k| JointRef::Vertical(VerticalId(k)))
+            } else {
+                // The joint under the lowest block: one, as a rocking body's block rests on one.
+                self.horizontal
+                    .iter()
+                    .position(|h| h.0 == blocks[0])
+                    .map(|k| JointRef::Horizontal(HorizontalId(k)))
+            };
             self.log(EventRecord {
                 time_s,
                 kind,

@@ -276,6 +276,8 @@ fn a_slab_that_strikes_an_abutment_flies_off_as_time_stepping_converges_to() {
     assert_eq!(impact.angular_velocity_before_rad_s, Some(before));
     let what = impact.mode.as_deref().unwrap_or_default();
     assert!(what.contains("leaves the ground"), "{what}");
+    // The joint across which they face each other, not one either block stands on.
+    assert_eq!(impact.joint.as_deref(), Some("S|A"));
     assert_eq!(r.summary.duration_s, 0.9);
     let e = &r.summary.energy;
     assert!(e.residual_j.abs() <= 1e-13 * e.input_j, "{e:?}");
