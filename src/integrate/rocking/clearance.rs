@@ -136,13 +136,18 @@ fn distances(own: &Placed, e: usize, other: &Placed) -> [Coeffs; 4] {
     })
 }
 
-/// The least distance of `other`'s corners outside edge e of `own`, at one instant.
-fn least_outside(own: &At, e: usize, other: &At) -> f64 {
+/// The outward normal of edge e of `own`, turned with it, at one instant.
+fn normal(own: &At, e: usize) -> [f64; 2] {
     let [n0x, n0y] = NORMALS[e];
-    let n = [
+    [
         own.cos * n0x + own.sin * n0y,
         -own.sin * n0x + own.cos * n0y,
-    ];
+    ]
+}
+
+/// The least distance of `other`'s corners outside edge e of `own`, at one instant.
+fn least_outside(own: &At, e: usize, other: &At) -> f64 {
+    let n = normal(own, e);
     let c = own.corners[e];
     other
         .corners
@@ -386,11 +391,7 @@ impl Clearance {
             },
         );
         let (face, corner) = if of_b { (at_b, at_a) } else { (at_a, at_b) };
-        let [n0x, n0y] = NORMALS[e];
-        let n = [
-            face.cos * n0x + face.sin * n0y,
-            -face.sin * n0x + face.cos * n0y,
-        ];
+        let n = normal(face, e);
         let (c0, c1) = (face.corners[e], face.corners[(e + 1) % 4]);
         let along = [c1[0] - c0[0], c1[1] - c0[1]];
         let length = along[0].hypot(along[1]);
