@@ -124,6 +124,64 @@ fn free_rocking_comes_to_rest_after_its_summed_half_cycles() {
     balanced(&run);
 }
 
+/// The history of a lone body through its series of landings: a row at the landing that
+/// starts the series and at every output time while it accumulates, seated, in time order, and
+/// the row at rest where the series ends. (The clock used to jump over the series: the landing's
+/// row and the output times inside it were missing, and rows came out of order.)
+#[test]
+fn a_series_of_landings_keeps_every_history_row_in_order() {
+    let body = slender(0.8);
+    // The series that ends the free rocking from 0.15 rad lasts 3.3e-4 s, from 7.7729 s.
+    let dt = 5e-5;
+    let settings = Settings {
+        log_events: true,
+        output_dt_s: Some(dt),
+        ..Settings::summary_only(8.0)
+    };
+    let r = rocking::run(&Scene {
+        bodies: std::slice::from_ref(&body),
+        watches: &[],
+        wall: None,
+        initial_rotation_rad: &[0.15],
+        equations: Equations::Exact,
+        motion: &Motion::Pulse(Pulse::rest()),
+        settings: &settings,
+    })
+    .unwrap();
+    let hist = r.history.as_ref().unwrap();
+    let time = &hist.time_s;
+    assert!(time.windows(2).all(|w| w[0] < w[1]), "rows out of order");
+    let rest = times(&r, EventKind::Rest)[0];
+    let start = (r.events.iter())
+        .rfind(|e| e.kind == EventKind::RockingImpact)
+        .expect("landings")
+        .time_s;
+    let tail = rest - start;
+    assert!(tail > 3.0 * dt, "a series of {tail} s spans no output time");
+    for t in [start, rest] {
+        let k = time
+            .iter()
+            .position(|&x| x == t)
+            .expect("a row at each event");
+        assert_eq!(hist.rotation_rad[k][0], 0.0);
+    }
+    let inside: Vec<usize> = (0..time.len())
+        .filter(|&k| time[k] > start && time[k] < rest)
+        .collect();
+    assert!(
+        inside.len() as f64 >= (tail / dt).floor(),
+        "{} rows",
+        inside.len()
+    );
+    for k in inside {
+        let j = (time[k] / dt).round();
+        assert_eq!(time[k], j * dt, "an output time");
+        assert_eq!(hist.rotation_rad[k][0], 0.0);
+        assert_eq!(hist.angular_velocity_rad_s[k][0], 0.0);
+    }
+    balanced(&r);
+}
+
 #[test]
 fn linearised_free_rocking_lands_at_its_closed_form() {
     let body = slender(0.8);

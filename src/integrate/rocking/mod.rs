@@ -81,9 +81,9 @@ struct Track {
     state: State,
     /// Where it lies once it has overturned (its trajectory at rest there); it moves no more.
     fallen: Option<Trajectory>,
-    /// In a scene of several bodies, the end of the series of landings it is in (its time,
-    /// the angular velocity after the landing that started it and the series' duration): it
-    /// is taken as seated until then, when it comes to rest.
+    /// The end of the series of landings it is in (its time, the angular velocity after the
+    /// landing that started it and the series' duration): it is taken as seated until then,
+    /// when it comes to rest.
     settles: Option<(f64, f64, f64)>,
 }
 
@@ -1037,18 +1037,12 @@ impl<'a> Engine<'a> {
                     ..State::default()
                 };
                 tr.mode = Mode::Rest;
-                if self.tracks.len() > 1 {
-                    // The other bodies go on through the series' duration: this one is seated
-                    // through it (what the series leaves is below 1e-9 alpha) and comes to
-                    // rest at its end, an event of its own.
-                    self.tracks[i].settles = Some((self.t + tail, after, tail));
-                    return Ok(());
-                }
-                // A body alone: nothing else moves meanwhile, so the clock jumps to the end.
-                self.t += tail;
-                self.settled(i, after, tail);
-                let (_, at) = self.inputs_at(self.t);
-                return self.decide(i, &at, false);
+                // Seated through the series' duration (what the series leaves is below 1e-9
+                // alpha), the body comes to rest at its end, an event of its own; the steps
+                // meanwhile write the history's rows (the landing's, the output times') and
+                // move the other bodies.
+                tr.settles = Some((self.t + tail, after, tail));
+                return Ok(());
             }
         }
         self.decide(i, now, false)
