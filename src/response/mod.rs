@@ -29,7 +29,8 @@ pub enum EventKind {
     Impact,
     /// Two faces come into contact with zero approach speed.
     Touch,
-    /// Two touching faces move apart.
+    /// Two touching faces move apart; a column turns away from the fixed block it rested
+    /// against.
     Separation,
     /// A block falls.
     Collapse,

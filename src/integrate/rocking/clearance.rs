@@ -50,6 +50,9 @@ struct Pair {
     edge: (bool, usize),
     /// Struck at an impact, and not parted since by more than the tie tolerance.
     struck: bool,
+    /// A body of the pair rests leaning on the other block (`lean`): their contact is held,
+    /// not watched, until it ends.
+    leaning: bool,
 }
 
 /// Where two blocks meet: the instant within the step, their outputs and, where a corner of
@@ -238,6 +241,7 @@ impl Clearance {
                         b,
                         edge: (false, 0),
                         struck: false,
+                        leaning: false,
                     });
                 }
             }
@@ -252,6 +256,12 @@ impl Clearance {
     /// No pair to watch.
     pub(super) fn is_empty(&self) -> bool {
         self.pairs.is_empty()
+    }
+
+    /// Whether a block of body i is kept apart from another block: what it may run into.
+    pub(super) fn watches(&self, i: usize) -> bool {
+        let moves = |p: usize| self.pieces[p].body.is_some_and(|(b, _)| b == i);
+        self.pairs.iter().any(|pair| moves(pair.a) || moves(pair.b))
     }
 
     /// Piece p over the step, its body on `trajs` (none where its body lies fallen).
@@ -350,7 +360,8 @@ impl Clearance {
     ) -> Option<(f64, usize)> {
         let mut best: Option<(f64, usize)> = None;
         for (k, pair) in self.pairs.iter().enumerate() {
-            let (Some(pa), Some(pb)) = (&placed[pair.a], &placed[pair.b]) else {
+            let (Some(pa), Some(pb), false) = (&placed[pair.a], &placed[pair.b], pair.leaning)
+            else {
                 continue;
             };
             let (of_b, e) = pair.edge;
@@ -458,6 +469,14 @@ impl Clearance {
 
     /// The blocks of `pair` took an impact: they must part before they may strike again.
     pub(super) fn strike(&mut self, pair: usize) {
+        self.pairs[pair].struck = true;
+    }
+
+    /// The blocks of `pair` stay in contact, one leaning on the other (`leaning`), or their
+    /// contact has just ended: from their touching edge they must part before they may strike
+    /// again.
+    pub(super) fn lean(&mut self, pair: usize, leaning: bool) {
+        self.pairs[pair].leaning = leaning;
         self.pairs[pair].struck = true;
     }
 

@@ -269,6 +269,197 @@ fn a_slab_that_strikes_an_abutment_flies_off_as_time_stepping_converges_to() {
     converges(&elastic, &motion, &r, t, 0);
 }
 
+/// The slab 0.68 m from an abutment, without restitution, under a 0.6 g sine: it falls past
+/// its alpha onto the abutment, its top corner on the face at 1.2 sin theta = 0.68 m, and the
+/// impact leaves it at rest there, its pivot stuck (`lean.rs`); the abutment pushes on it until
+/// the ground's acceleration turns it away, a_g r_Gy = g r_Gx (the moment of its weight about
+/// the pivot balanced by the inertial load's), and it swings back, falls onto the abutment
+/// again and rests there, cycle after cycle. Every rest holds the slab still, to the bit; each
+/// ends where the push is zero (the closed form's root, to round-off) and nowhere before; the
+/// energy balance closes through it all; and Moreau-Jean with every block's rotation converges
+/// on the slab's rotation as its step falls.
+#[test]
+fn a_slab_fallen_onto_an_abutment_rests_on_it_until_the_ground_turns_it_away() {
+    let model = wall_with(
+        ", (width_m: 0.5, gap_m: 0.68, fixed: true, name: \"A\")",
+        0.0,
+    );
+    let motion = sine(0.6, 180.0);
+    let r = run(&model, &motion, 1.7, 0.0);
+    let rests: Vec<f64> = impacts(&r)
+        .iter()
+        .filter(|e| {
+            e.mode
+                .as_deref()
+                .unwrap_or_default()
+                .contains("at rest against A")
+        })
+        .map(|e| e.time_s)
+        .collect();
+    let parts: Vec<f64> = (r.events.iter())
+        .filter(|e| e.kind == EventKind::Separation)
+        .map(|e| e.time_s)
+        .collect();
+    assert_eq!(rests.len(), 2, "{:?}", r.events);
+    assert_eq!(parts.len(), 2);
+    assert_eq!(r.summary.duration_s, 1.7);
+    let (b, h, g) = (0.15, 0.6, 9.81);
+    let theta: f64 = (0.68f64 / 1.2).asin();
+    let (sin, cos) = theta.sin_cos();
+    let (gx, gy) = (-b * cos + h * sin, b * sin + h * cos);
+    // The push is a positive multiple of g r_Gx - a_g r_Gy.
+    let push = |t: f64| g * gx - motion.accel(t) * gy;
+    for (&from, &to) in rests.iter().zip(&parts) {
+        assert!(to >= from);
+        let still: Vec<[f64; 6]> = rows(&r, 0)
+            .into_iter()
+            .filter(|x| x[0] >= from && x[0] <= to)
+            .collect();
+        assert!(!still.is_empty());
+        for x in &still {
+            assert_eq!(x[3], still[0][3], "{x:?}");
+            assert_eq!((x[1], x[2], x[4]), (still[0][1], 0.0, 0.0), "{x:?}");
+            assert!(x[0] == to || push(x[0]) > 0.0, "{x:?}");
+        }
+        assert!(
+            (1.2 * still[0][3].sin() - 0.68).abs() < 1e-15,
+            "{:?}",
+            still[0]
+        );
+        assert!((still[0][1] - b * (1.0 - still[0][3].cos())).abs() < 1e-15);
+        if to > from {
+            // The root of the push from the event's time by Newton's method.
+            let mut t = to;
+            for _ in 0..4 {
+                let slope = -gy
+                    * 0.6
+                    * g
+                    * std::f64::consts::TAU
+                    * (std::f64::consts::TAU * t + std::f64::consts::PI).cos();
+                t -= push(t) / slope;
+            }
+            assert!((t - to).abs() < 1e-12, "{t} {to}");
+        } else {
+            assert!(push(from) <= 0.0);
+        }
+    }
+    // The ground takes back more than it put in (the slab ends lower than it stood).
+    let e = &r.summary.energy;
+    let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
+    assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+    converges(&model, &motion, &r, rests[0], 0);
+}
+
+/// The same slab on a base of friction 0.3, under 0.3 g: it falls onto the abutment and rests
+/// against it, the abutment's push P and the ground's acceleration loading its pivot with
+/// m a_g + P horizontally against m g vertically; where that reaches Coulomb's cone the pivot
+/// would slip, the slab sliding along the face it touches: the run stops there, saying so.
+#[test]
+fn a_slab_resting_on_an_abutment_stops_where_its_pivot_would_slip() {
+    let model = Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.3, restitution: 0.0,
+          rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"),
+                    (width_m: 0.5, gap_m: 0.68, fixed: true, name: \"A\")])])",
+    )
+    .unwrap();
+    let motion = sine(0.3, 180.0);
+    let r = run(&model, &motion, 5.0, 0.0);
+    let rest = impacts(&r)[0];
+    assert!(rest
+        .mode
+        .as_deref()
+        .unwrap_or_default()
+        .contains("at rest against A"));
+    let stop = r.summary.duration_s;
+    assert!(r.summary.warnings.iter().any(|w| matches!(
+        w,
+        Warning::BlocksMeet { first, second, time_s, why }
+            if first == "S" && second == "A" && *time_s == stop && why.contains("pivot would slip")
+    )));
+    let (b, h, g, mu) = (0.15, 0.6, 9.81, 0.3);
+    let (sin, cos) = (0.68f64 / 1.2).asin().sin_cos();
+    let (gx, gy) = (-b * cos + h * sin, b * sin + h * cos);
+    // The friction the pivot needs, per unit mass, less what it holds.
+    let excess = |t: f64| {
+        let a = motion.accel(t);
+        (a + (g * gx - a * gy) / (1.2 * cos)).abs() - mu * g
+    };
+    assert!(excess(stop).abs() < 1e-12 * g, "{}", excess(stop));
+    let before: Vec<f64> = rows(&r, 0)
+        .iter()
+        .map(|x| x[0])
+        .filter(|&t| t >= rest.time_s && t < stop)
+        .collect();
+    assert!(before.len() > 10);
+    assert!(before.iter().all(|&t| excess(t) < 0.0));
+}
+
+/// The slab released at 0.4 rad towards the abutment 0.68 m away, on still ground, with a
+/// coefficient of restitution of 0.5: it falls onto the abutment and bounces, each rebound at
+/// half the speed it struck at, each flight (under a nearly constant pull towards the face) half
+/// as long as the one before, until what is left of the bounces is round-off: it then rests
+/// against the abutment for good, its corner on the face, before the geometric series of the
+/// flights ends.
+#[test]
+fn a_slab_bouncing_on_an_abutment_comes_to_rest_against_it() {
+    let model = wall_with(
+        ", (width_m: 0.5, gap_m: 0.68, fixed: true, name: \"A\")",
+        0.5,
+    );
+    let motion = Motion::Pulse(crate::motion::Pulse::rest());
+    let r = run(&model, &motion, 2.0, 0.4);
+    let events = impacts(&r);
+    let (rest, bounces) = events.split_last().expect("impacts");
+    let what = rest.mode.as_deref().unwrap_or_default();
+    assert!(what.contains("at rest against A"), "{what}");
+    assert!(bounces.len() > 10, "{}", bounces.len());
+    for e in bounces {
+        let what = e.mode.as_deref().unwrap_or_default();
+        let (before, after) = e
+            .angular_velocity_before_rad_s
+            .zip(e.angular_velocity_after_rad_s)
+            .unwrap();
+        assert!(
+            (after + 0.5 * before).abs() < 1e-12 * before.abs(),
+            "{what}"
+        );
+    }
+    let times: Vec<f64> = bounces.iter().map(|e| e.time_s).collect();
+    let flights: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
+    for w in flights[flights.len() - 5..].windows(2) {
+        assert!((w[1] / w[0] - 0.5).abs() < 1e-3, "{flights:?}");
+    }
+    // The flights after the last bounce add up to the last flight (halved, and halved...);
+    // the rest starts within them, where the gap the bounces open is below the tie tolerance
+    // (1e-11 of the slab's diagonal).
+    let last = times.last().unwrap();
+    let end = last + flights.last().unwrap();
+    assert!(
+        rest.time_s > *last && rest.time_s <= end,
+        "{} {end}",
+        rest.time_s
+    );
+    let still: Vec<[f64; 6]> = rows(&r, 0)
+        .into_iter()
+        .filter(|x| x[0] >= rest.time_s)
+        .collect();
+    assert!(still.len() > 50);
+    for x in &still {
+        assert_eq!(x[1..], still[0][1..], "{x:?}");
+        assert_eq!(x[4], 0.0);
+    }
+    assert!(
+        (1.2 * still[0][3].sin() - 0.68).abs() < 1e-10,
+        "{:?}",
+        still[0]
+    );
+    assert_eq!(r.summary.duration_s, 2.0);
+    let e = &r.summary.energy;
+    assert_eq!(e.kinetic_j, 0.0);
+    let scale = e.initial_j + e.impact_loss_j + e.potential_j.abs();
+    assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+}
+
 /// The largest difference in block k's rotation between the exact run `r` (rows every 1e-2
 /// s) and Moreau-Jean with every block's rotation, after t, must fall with the step: at dt =
 /// 1e-5 s under a quarter of that at 1e-4 s and 1 % of the largest rotation.

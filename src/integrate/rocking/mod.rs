@@ -33,6 +33,7 @@ mod frame;
 mod handoff_tests;
 mod impact;
 mod layout;
+mod lean;
 mod modes;
 mod scenes;
 mod series;
@@ -53,6 +54,7 @@ use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
 use clearance::{Clearance, Side, Touch};
 use layout::Layout;
+use lean::Lean;
 use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
 use series::Coeffs;
 
@@ -85,6 +87,8 @@ struct Track {
     /// landing that started it and the series' duration): it is taken as seated until then,
     /// when it comes to rest.
     settles: Option<(f64, f64, f64)>,
+    /// It rests leaning on a fixed block, held still by their contact, until that lets go.
+    leans: Option<Lean>,
 }
 
 /// Bodies to run side by side, and how.
@@ -279,6 +283,7 @@ impl<'a> Engine<'a> {
                 },
                 fallen: None,
                 settles: None,
+                leans: None,
             })
             .collect();
         Engine {
@@ -325,13 +330,17 @@ impl<'a> Engine<'a> {
 
     fn trajectory(&self, i: usize, inputs: &Inputs) -> Trajectory {
         let tr = &self.tracks[i];
-        modes::trajectory(
+        let mut t = modes::trajectory(
             self.body(i),
             self.scene.equations,
             tr.mode,
             &tr.state,
             inputs,
-        )
+        );
+        if let Some(lean) = &tr.leans {
+            lean.hold(self.body(i), &mut t, inputs);
+        }
+        t
     }
 
     /// Decides body i's mode now, from its state and the pivot it rocks on, and logs the
@@ -340,6 +349,11 @@ impl<'a> Engine<'a> {
         if let Mode::Flight(_) = self.tracks[i].mode {
             // Nothing touches a body in flight: a jump of the ground changes its motion only
             // through its trajectory, and it leaves flight by landing.
+            return Ok(());
+        }
+        if self.tracks[i].leans.is_some() {
+            // A body resting against a block stays so while the block's push and its pivot's
+            // forces allow, which its conditions watch from every instant on.
             return Ok(());
         }
         let body = self.body(i);
@@ -611,7 +625,12 @@ impl<'a> Engine<'a> {
         if let Some(watch) = self.scene.watches.get(i) {
             conditions.extend(watch.conditions(traj, inputs));
         }
-        if is_quiet {
+        if let Some(lean) = &self.tracks[i].leans {
+            conditions.push(lean.condition(body, inputs));
+        }
+        // A body that may run into a block beside it is followed until it lies on its face or
+        // strikes: a block can stop its fall.
+        if is_quiet && !self.clearance.watches(i) {
             if let Some(c) = traj.mode.pivot() {
                 let s = c.sign();
                 let inside = s * traj.theta[0] <= body.slenderness_rad();
@@ -670,6 +689,11 @@ impl<'a> Engine<'a> {
             return Ok(());
         };
         match guard {
+            Guard::Parts => self.lets_go(i, now),
+            Guard::PivotSlip | Guard::Flight if self.tracks[i].leans.is_some() => {
+                self.lean_gives(i, guard);
+                Ok(())
+            }
             Guard::Overturn => self.overturn(i, traj, tau),
             Guard::Impact => self.land(i, now),
             Guard::Land(corner) => self.land_from_flight(i, corner, now),
@@ -710,6 +734,12 @@ impl<'a> Engine<'a> {
             },
             None => "two corners meet, or a face comes down flat on a face".into(),
         };
+        self.stops_meeting((a, b), why);
+        Ok(())
+    }
+
+    /// The exact model stops where blocks a and b meet (or touch), for the reason `why`.
+    fn stops_meeting(&mut self, (a, b): (usize, usize), why: String) {
         let (first, second) = (self.layout.names[a].clone(), self.layout.names[b].clone());
         self.rec.rocking_event(
             self.t,
@@ -724,19 +754,49 @@ impl<'a> Engine<'a> {
             why,
             time_s: self.t,
         });
-        Ok(())
+    }
+
+    /// The fixed block body i rests against lets go of it: the body turns away, in the mode
+    /// its state now gives, and its pair must part before it may strike again.
+    fn lets_go(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+        let lean = self.tracks[i]
+            .leans
+            .take()
+            .expect("a body resting against a block");
+        self.clearance.lean(lean.pair, false);
+        let [own, other] = lean.blocks.map(|k| self.layout.names[k].clone());
+        self.rec.rocking_event(
+            self.t,
+            EventKind::Separation,
+            &lean.blocks,
+            None,
+            format!("{own} turns away from {other}'s face, which no longer pushes on it"),
+        );
+        self.decide(i, now, false)
+    }
+
+    /// Body i, resting against a fixed block, would slip or leave the ground at its pivot
+    /// (`guard`): the two contacts would move together, which the exact model does not follow.
+    fn lean_gives(&mut self, i: usize, guard: Guard) {
+        let lean = self.tracks[i]
+            .leans
+            .expect("a body resting against a block");
+        let [own, other] = lean.blocks.map(|k| self.layout.names[k].as_str());
+        let how = if guard == Guard::Flight {
+            "leave the ground"
+        } else {
+            "slip (the friction it needs exceeds what its base holds)"
+        };
+        let why = format!(
+            "{own} rests against {other}'s face, and its pivot would {how}: a body sliding or \
+             lifting along a face it touches is not followed"
+        );
+        self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
     }
 
     /// The impact where a corner strikes a face (`t`), then the modes after it; or why it is
     /// not followed (nothing changed then).
     fn strike(&mut self, t: &Touch, now: &Inputs) -> Result<Option<String>, SimulationError> {
-        if t.stays {
-            return Ok(Some(
-                "they stay in contact (since their last impact they have not parted by more \
-                 than round-off), and their contact is not followed"
-                    .into(),
-            ));
-        }
         let mut turning = [None; 2];
         for (k, turns) in turning.iter_mut().enumerate() {
             let name = &self.layout.names[t.blocks[k]];
@@ -751,6 +811,13 @@ impl<'a> Engine<'a> {
                 Side::Body(i, origin) => (i, origin),
             };
             let (tr, body) = (&self.tracks[i], self.body(i));
+            if let Some(lean) = tr.leans {
+                return Ok(Some(format!(
+                    "{name} rests against {}'s face, and an impulse on a body with two \
+                     contacts besides its base is not followed",
+                    self.layout.names[lean.blocks[1]]
+                )));
+            }
             if tr.settles.is_some() {
                 return Ok(Some(format!(
                     "{name} is seated through the end of a series of landings, which an impulse \
@@ -795,21 +862,46 @@ impl<'a> Engine<'a> {
                 ground,
             });
         }
-        let restitution = self.scene.wall.map_or(1.0, |(w, _)| w.restitution.to_f64());
+        // Blocks that have not parted since their last impact rattle at the scale of
+        // round-off: what is left of their approach is taken up without a rebound.
+        let restitution = if t.stays {
+            0.0
+        } else {
+            self.scene.wall.map_or(1.0, |(w, _)| w.restitution.to_f64())
+        };
         let contact = collision::Contact {
             point: t.point,
             normal: t.normal,
             restitution,
         };
+        let stays = if t.stays {
+            "they stay in contact (since their last impact they have not parted by more than \
+             round-off)"
+                .to_string()
+        } else {
+            format!(
+                "they stay in contact after the impact (coefficient of restitution {restitution})"
+            )
+        };
         let out = match collision::resolve([turning[0].as_ref(), turning[1].as_ref()], &contact) {
             Ok(out) => out,
+            Err(collision::Refusal::Grazing) => {
+                // What is left of the blocks' approach is round-off (a body's bounces on a
+                // block accumulated): no impulse, and they stay in contact.
+                let out = collision::Outcome {
+                    after: [0, 1].map(|k| Some(self.unchanged(t.sides[k], turning[k].as_ref()?))),
+                    impulse_n_s: 0.0,
+                    normal_m_s: (0.0, 0.0),
+                    loss_j: 0.0,
+                };
+                let why = "they touch without approaching (what was left of their bounces is \
+                           round-off)";
+                return Ok(self.rests_against(t, &turning, &out, now, why.into()));
+            }
             Err(refusal) => return Ok(Some(refusal.to_string())),
         };
-        if out.normal_m_s.1 <= t.tie_m_s {
-            return Ok(Some(format!(
-                "they stay in contact after the impact (coefficient of restitution \
-                 {restitution}), and their contact is not followed"
-            )));
+        if t.stays || out.normal_m_s.1 <= t.tie_m_s {
+            return Ok(self.rests_against(t, &turning, &out, now, stays));
         }
         self.clearance.strike(t.pair);
         self.rec.energy.impact_loss_j += out.loss_j;
@@ -879,6 +971,148 @@ impl<'a> Engine<'a> {
             self.decide(i, now, false)?;
         }
         Ok(None)
+    }
+
+    /// The velocities of a body that a contact leaves as they are (`turns`, on `side`), and
+    /// where it stands.
+    fn unchanged(&self, side: Side, turns: &collision::Turning) -> collision::After {
+        let Side::Body(i, _) = side else {
+            unreachable!("a side that moves is a body's");
+        };
+        let base = match self.tracks[i].mode {
+            Mode::Rock(corner) => collision::Base::Pivot {
+                corner,
+                slips: false,
+            },
+            Mode::SlideRock(corner, _) => collision::Base::Pivot {
+                corner,
+                slips: true,
+            },
+            Mode::Rest => collision::Base::Seated { slips: false },
+            Mode::Slide(_) => collision::Base::Seated { slips: true },
+            Mode::Flight(_) => collision::Base::Flies,
+        };
+        collision::After {
+            omega: turns.omega,
+            v: turns.v,
+            lift_v: turns.w,
+            base,
+        }
+    }
+
+    /// Where the blocks of an impact `t` stay in contact after it (`out`, the bodies' states
+    /// before it `turning`; `stays` says how): a body whose pivot stays on the ground, stuck,
+    /// against a fixed block comes to rest there ([`lean`]); any other contact that stays stops
+    /// the run, and the reason is returned.
+    fn rests_against(
+        &mut self,
+        t: &Touch,
+        turning: &[Option<collision::Turning>; 2],
+        out: &collision::Outcome,
+        now: &Inputs,
+        stays: String,
+    ) -> Option<String> {
+        let k = match t.sides {
+            [Side::Body(..), Side::Fixed] => 0,
+            [Side::Fixed, Side::Body(..)] => 1,
+            _ => {
+                return Some(format!(
+                    "{stays}, and the contact of two moving bodies is not followed"
+                ))
+            }
+        };
+        let (Side::Body(i, _), Some(turns), Some(after)) = (t.sides[k], turning[k], out.after[k])
+        else {
+            unreachable!("a body's side of an impact has its velocities");
+        };
+        let name = self.layout.names[t.blocks[k]].clone();
+        let body = self.body(i);
+        if self.scene.equations != Equations::Exact {
+            return Some(format!(
+                "{stays}, and the linearised equations do not follow a body resting against a \
+                 block"
+            ));
+        }
+        let c = match (after.base, self.tracks[i].mode.pivot()) {
+            (
+                collision::Base::Pivot {
+                    corner,
+                    slips: false,
+                },
+                Some(c),
+            ) if corner == c => c,
+            (base, _) => {
+                let what = match base {
+                    collision::Base::Flies => "leaves the ground",
+                    collision::Base::Pivot { slips: true, .. } => "slips at its pivot",
+                    collision::Base::Pivot { .. } => "turns on its other corner",
+                    collision::Base::Seated { .. } => "stays seated",
+                };
+                return Some(format!(
+                    "{stays}, and {name} {what} against it: a contact that stays on a body \
+                     that is not at rest on a stuck pivot is not followed"
+                ));
+            }
+        };
+        let push = if k == 0 {
+            t.normal
+        } else {
+            t.normal.map(|x| -x)
+        };
+        let blocks = [t.blocks[k], t.blocks[1 - k]];
+        let tie_m = series::TIE * body.size_m();
+        let Some(lean) = Lean::new(
+            t.pair,
+            blocks,
+            turns.pivot,
+            turns.centroid,
+            t.point,
+            push,
+            tie_m,
+        ) else {
+            return Some(format!(
+                "{stays}, and the contact's push has no moment about {name}'s pivot to hold it by"
+            ));
+        };
+        // What the impact leaves of the body's motion is round-off: it rests, and that goes
+        // with the impact's loss.
+        let before = self.tracks[i].state.omega;
+        self.tracks[i].state.omega = after.omega;
+        self.tracks[i].state.v = after.v;
+        let left = modes::kinetic_j(body, &self.trajectory(i, now), 0.0);
+        self.rec.energy.impact_loss_j += out.loss_j + left;
+        let [corner, face] = t.blocks.map(|b| self.layout.names[b].clone());
+        let meeting = if out.impulse_n_s > 0.0 {
+            self.rec.impacts += 1;
+            self.rec.rocking_impact(t.blocks[k]);
+            format!(
+                "{corner}'s corner strikes {face}'s face at {:.6e} m/s and {stays}",
+                -out.normal_m_s.0
+            )
+        } else {
+            format!("{corner}'s corner touches {face}'s face: {stays}")
+        };
+        self.clearance.lean(t.pair, true);
+        let tr = &mut self.tracks[i];
+        tr.state.omega = 0.0;
+        tr.state.v = 0.0;
+        tr.mode = Mode::Rock(c);
+        tr.leans = Some(lean);
+        let what = format!(
+            "{meeting}; {name}: theta' {before:.6e} -> 0 rad/s, at rest against {} at theta = \
+             {:.6e} rad, pushed by {:.6e} N",
+            self.layout.names[blocks[1]],
+            tr.state.theta,
+            lean.push_n(body, now),
+        );
+        self.rec.rocking_event(
+            self.t,
+            EventKind::BlocksImpact,
+            &t.blocks,
+            Some((before, 0.0)),
+            what,
+        );
+        None
     }
 
     /// Condition k of body i's watch falls (`at_landing`: under a landing's impulse): a held

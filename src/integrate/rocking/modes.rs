@@ -418,6 +418,9 @@ pub enum Guard {
     /// The series of landings a body's last landing started has summed to its end: it is
     /// seated from here (in a scene of several bodies, which go on meanwhile).
     Settled,
+    /// A body resting against a fixed block (`lean`): the block's push falls to zero, the
+    /// ground turning the body away from it.
+    Parts,
 }
 
 /// One condition of a mode: a series that must stay non-negative (positive just after the
