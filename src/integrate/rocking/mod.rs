@@ -719,8 +719,9 @@ impl<'a> Engine<'a> {
 
     /// Blocks of two columns (or a column's and a fixed one) meet. Where a corner strikes a
     /// face, each block fixed or moved by a body that stands alone (its column holding no
-    /// joint), the impact is resolved ([`collision`]) and the run goes on;
-    /// at any other meeting the run ends here, the state the one just before, and says why.
+    /// joint), the impact is resolved ([`collision`]) and the run goes on, the column perhaps
+    /// at rest against a fixed block from there ([`lean`]); at any other meeting the run ends
+    /// here, the state the one just before, and says why.
     fn meet(
         &mut self,
         (a, b): (usize, usize),
