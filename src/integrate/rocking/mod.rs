@@ -887,16 +887,15 @@ impl<'a> Engine<'a> {
         let out = match collision::resolve([turning[0].as_ref(), turning[1].as_ref()], &contact) {
             Ok(out) => out,
             Err(collision::Refusal::Grazing) => {
-                // What is left of the blocks' approach is round-off (a body's bounces on a
-                // block accumulated): no impulse, and they stay in contact.
+                // What is left of the blocks' approach is round-off (a graze, or a body's
+                // bounces on a block accumulated): no impulse, and they stay in contact.
                 let out = collision::Outcome {
                     after: [0, 1].map(|k| Some(self.unchanged(t.sides[k], turning[k].as_ref()?))),
                     impulse_n_s: 0.0,
                     normal_m_s: (0.0, 0.0),
                     loss_j: 0.0,
                 };
-                let why = "they touch without approaching (what was left of their bounces is \
-                           round-off)";
+                let why = "they touch without approaching faster than round-off";
                 return Ok(self.rests_against(t, &turning, &out, now, why.into()));
             }
             Err(refusal) => return Ok(Some(refusal.to_string())),
