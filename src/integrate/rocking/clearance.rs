@@ -53,6 +53,9 @@ struct Pair {
     /// A body of the pair rests leaning on the other block (`lean`): their contact is held,
     /// not watched, until it ends.
     leaning: bool,
+    /// The pair's bodies turn in contact (`couple`), this corner of one block on the edge of
+    /// the other: the corner is watched along the edge, not across it.
+    held: Option<usize>,
 }
 
 /// Where two blocks meet: the instant within the step, their outputs and, where a corner of
@@ -86,6 +89,8 @@ pub(super) struct Touch {
     pub tie_m_s: f64,
     /// The pair, for [`Clearance::strike`].
     pub pair: usize,
+    /// Which of its block's corners (counter-clockwise from the bottom left) the corner is.
+    pub corner: usize,
     /// The pair was struck and has not parted since by more than the tie tolerance: the blocks
     /// stay in contact (the gap an elastic impact opens closes again within round-off).
     pub stays: bool,
@@ -137,6 +142,18 @@ fn distances(own: &Placed, e: usize, other: &Placed) -> [Coeffs; 4] {
         let ry = series::add(&p[1], &c[1], -1.0);
         series::add(&series::product(&rx, &nx), &series::product(&ry, &ny), 1.0)
     })
+}
+
+/// How far `other`'s corner j lies along edge e of `own`, from the edge's first corner.
+fn along(own: &Placed, e: usize, other: &Placed, j: usize) -> Coeffs {
+    let [n0x, n0y] = NORMALS[e];
+    let (t0x, t0y) = (-n0y, n0x);
+    let tx = series::add(&series::scaled(&own.cos, t0x), &own.sin, t0y);
+    let ty = series::add(&series::scaled(&own.sin, -t0x), &own.cos, t0y);
+    let (c, p) = (&own.corners[e], &other.corners[j]);
+    let rx = series::add(&p[0], &c[0], -1.0);
+    let ry = series::add(&p[1], &c[1], -1.0);
+    series::add(&series::product(&rx, &tx), &series::product(&ry, &ty), 1.0)
 }
 
 /// The outward normal of edge e of `own`, turned with it, at one instant.
@@ -242,6 +259,7 @@ impl Clearance {
                         edge: (false, 0),
                         struck: false,
                         leaning: false,
+                        held: None,
                     });
                 }
             }
@@ -365,13 +383,22 @@ impl Clearance {
                 continue;
             };
             let (of_b, e) = pair.edge;
-            let gaps = if of_b {
-                distances(pb, e, pa)
-            } else {
-                distances(pa, e, pb)
-            };
+            let (own, other) = if of_b { (pb, pa) } else { (pa, pb) };
+            // A corner held on the edge stays on the edge's line: where it reaches either end.
+            let ends = pair.held.map(|j| {
+                let [p0, p1] = [e, (e + 1) % 4]
+                    .map(|c| self.pieces[if of_b { pair.b } else { pair.a }].corners[c]);
+                let length = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
+                let x = along(own, e, other, j);
+                [x, series::plus(&series::scaled(&x, -1.0), length)]
+            });
+            let gaps = distances(own, e, other);
+            let gaps = (gaps.iter().enumerate())
+                .filter(|(c, _)| pair.held != Some(*c))
+                .map(|(_, g)| g)
+                .chain(ends.iter().flatten());
             let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
-            for g in &gaps {
+            for g in gaps {
                 let g = if from > 0.0 {
                     series::shifted(g, from)
                 } else {
@@ -406,12 +433,13 @@ impl Clearance {
         let (c0, c1) = (face.corners[e], face.corners[(e + 1) % 4]);
         let along = [c1[0] - c0[0], c1[1] - c0[1]];
         let length = along[0].hypot(along[1]);
-        let on: Vec<&[f64; 2]> = corner
+        let on: Vec<(usize, &[f64; 2])> = corner
             .corners
             .iter()
-            .filter(|p| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1] <= tie)
+            .enumerate()
+            .filter(|(_, p)| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1] <= tie)
             .collect();
-        let [point] = on.as_slice() else {
+        let [(j, point)] = on.as_slice() else {
             return None;
         };
         let x = ((point[0] - c0[0]) * along[0] + (point[1] - c0[1]) * along[1]) / length;
@@ -434,6 +462,7 @@ impl Clearance {
         };
         Some(Touch {
             pair: k,
+            corner: *j,
             stays: false,
             blocks: [self.pieces[other].output, self.pieces[own].output],
             sides: [side(other), side(own)],
@@ -469,6 +498,13 @@ impl Clearance {
 
     /// The blocks of `pair` took an impact: they must part before they may strike again.
     pub(super) fn strike(&mut self, pair: usize) {
+        self.pairs[pair].struck = true;
+    }
+
+    /// The blocks of `pair` turn in contact, the other block's `corner` on the pair's edge, or
+    /// (none) that contact has just ended: they must part before they may strike again.
+    pub(super) fn hold(&mut self, pair: usize, corner: Option<usize>) {
+        self.pairs[pair].held = corner;
         self.pairs[pair].struck = true;
     }
 

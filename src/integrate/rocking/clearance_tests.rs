@@ -554,3 +554,147 @@ fn a_slab_strikes_a_seated_column_which_rocks_as_time_stepping_converges_to() {
         converges(&model, &motion, &r, impact.time_s, k);
     }
 }
+
+/// A slab 0.2 m wide and 0.8 m high 0.5 m to the right of the 1.2 m slab (friction 2: neither
+/// slips; no restitution), under 0.4 g at 1 Hz from 180 degrees: both rock to the left and the
+/// short one falls onto the tall one, its top corner on the tall one's right face, where it
+/// stays: the two turn together on their pivots, the push between them from the mechanism's
+/// equations, until the short one's left face comes down flat on the tall one's (their
+/// rotations equal), where the run stops, saying so. Throughout, the corner stays on the face
+/// to round-off, the energy balance closes, and Moreau-Jean converges on both rotations.
+#[test]
+fn two_slabs_fallen_together_turn_as_one_mechanism_until_their_faces_meet() {
+    let model = Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 2.0, restitution: 0.0,
+          rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"),
+                    (width_m: 0.2, height_m: 0.8, gap_m: 0.5, name: \"T\")])])",
+    )
+    .unwrap();
+    let motion = sine(0.4, 180.0);
+    let r = run(&model, &motion, 5.0, 0.0);
+    let [impact] = impacts(&r)[..] else {
+        panic!("{:?}", r.events)
+    };
+    let what = impact.mode.as_deref().unwrap_or_default();
+    assert!(
+        impact.blocks == ["T", "S"] && what.contains("they turn on together"),
+        "{what}"
+    );
+    let stop = r.summary.duration_s;
+    assert!(stop > impact.time_s + 0.1, "{stop}");
+    assert!(r.summary.warnings.iter().any(|w| matches!(
+        w,
+        Warning::BlocksMeet { first, second, time_s, why }
+            if first == "S" && second == "T" && *time_s == stop && why.contains("flat")
+    )));
+    // Both rock on their left corners, at x = 0 and 0.8 m, which stay where they are: the
+    // distance of T's top left corner, and of its bottom left one, from S's right face.
+    let turn = |theta: f64, x: f64, y: f64| {
+        let (sin, cos) = theta.sin_cos();
+        [x * cos + y * sin, -x * sin + y * cos]
+    };
+    let from_face = |ts: f64, tt: f64, y: f64| {
+        let (c, f, n) = (turn(tt, 0.0, y), turn(ts, 0.3, 0.0), turn(ts, 1.0, 0.0));
+        (0.8 + c[0] - f[0]) * n[0] + (c[1] - f[1]) * n[1]
+    };
+    let (s, t) = (rows(&r, 0), rows(&r, 1));
+    let together: Vec<usize> = (0..s.len()).filter(|&i| s[i][0] >= impact.time_s).collect();
+    assert!(together.len() > 10);
+    for &i in &together {
+        let gap = from_face(s[i][3], t[i][3], 0.8);
+        assert!(gap.abs() < 1e-15, "{:?} {:?}: {gap}", s[i], t[i]);
+        assert!(s[i][0] == stop || from_face(s[i][3], t[i][3], 0.0) > 0.0);
+    }
+    let last = *together.last().unwrap();
+    assert_eq!(s[last][0], stop);
+    assert!(from_face(s[last][3], t[last][3], 0.0).abs() < 1e-14);
+    assert!(
+        (s[last][3] - t[last][3]).abs() < 1e-13,
+        "{:?} {:?}",
+        s[last],
+        t[last]
+    );
+    let e = &r.summary.energy;
+    let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
+    assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+    for k in 0..2 {
+        converges(&model, &motion, &r, impact.time_s, k);
+    }
+}
+
+/// The same two slabs under the same sine until 1.499 s, then (within one 1 ms sample) a ground
+/// acceleration of -1.5 g: it throws both back to the right, the short one faster, and the
+/// push between them falls to zero at 1.5347 s: they part there (`separation`) and each rocks
+/// on alone. At that instant the push of the mechanism's closed form is zero to round-off
+/// (with d = 0.8 cos A + 0.8 sin(B - A) - 0.3 the distance of T's corner from S's face, A and B
+/// their rotations: I_A A'' = Q_A + P d_A, I_B B'' = Q_B + P d_B, d_A A'' + d_B B'' + A' B'
+/// terms = 0), and positive at every row between the impact and it.
+#[test]
+fn two_slabs_turning_together_part_where_their_push_falls_to_zero() {
+    let model = Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 2.0, restitution: 0.0,
+          rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"),
+                    (width_m: 0.2, height_m: 0.8, gap_m: 0.5, name: \"T\")])])",
+    )
+    .unwrap();
+    let (g, dt) = (9.81, 1e-3);
+    let accel = |t: f64| {
+        if t < 1.4995 {
+            0.4 * g * (std::f64::consts::TAU * t + std::f64::consts::PI).sin()
+        } else {
+            -1.5 * g
+        }
+    };
+    let samples = (0..2500).map(|i| accel(i as f64 * dt)).collect();
+    let motion = Motion::Record(crate::motion::Record::new("throw", dt, samples).unwrap());
+    let r = run(&model, &motion, 2.4, 0.0);
+    let [impact] = impacts(&r)[..] else {
+        panic!("{:?}", r.events)
+    };
+    let parts: Vec<_> = (r.events.iter())
+        .filter(|e| e.kind == EventKind::Separation)
+        .collect();
+    let [part] = parts[..] else {
+        panic!("{:?}", r.events)
+    };
+    assert_eq!(part.blocks, ["T", "S"]);
+    assert!(
+        part.time_s > 1.5 + dt && part.time_s < 1.6,
+        "{}",
+        part.time_s
+    );
+    // The push from the state: both on their left corners (s = -1), corner inertias m (w^2 +
+    // h^2) / 3, and the ground's acceleration between the samples.
+    let push = |t: f64, a: f64, b: f64, wa: f64, wb: f64| {
+        let rocking = |m: f64, half: f64, hc: f64, theta: f64| {
+            let (sin, cos) = theta.sin_cos();
+            let (gy, dx) = (-half * sin + hc * cos, -half * cos - hc * sin);
+            let inertia = m * (4.0 * half * half + 4.0 * hc * hc) / 3.0;
+            (-m * (gy * motion.accel(t) + dx * g), inertia)
+        };
+        let (qa, ia) = rocking(450.0, 0.15, 0.6, a);
+        let (qb, ib) = rocking(200.0, 0.1, 0.4, b);
+        let (sin, cos) = (b - a).sin_cos();
+        let (da, db) = (-0.8 * a.sin() - 0.8 * cos, 0.8 * cos);
+        let (daa, dab, dbb) = (-0.8 * a.cos() - 0.8 * sin, 0.8 * sin, -0.8 * sin);
+        let h = daa * wa * wa + 2.0 * dab * wa * wb + dbb * wb * wb;
+        (-h - da * qa / ia - db * qb / ib) / (da * da / ia + db * db / ib)
+    };
+    let (s, t) = (rows(&r, 0), rows(&r, 1));
+    let mut checked = 0;
+    for i in (0..s.len()).filter(|&i| s[i][0] >= impact.time_s && s[i][0] <= part.time_s) {
+        let (a, b) = (s[i][3], t[i][3]);
+        assert!((0.8 * a.cos() + 0.8 * (b - a).sin() - 0.3).abs() < 1e-15);
+        let p = push(s[i][0], a, b, s[i][4], t[i][4]);
+        if s[i][0] == part.time_s {
+            assert!(p.abs() < 1e-12 * 200.0 * g, "{p}");
+            checked += 1;
+        } else {
+            assert!(p > 0.0, "{:?} {p}", s[i]);
+        }
+    }
+    assert_eq!(checked, 1);
+    let e = &r.summary.energy;
+    let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
+    assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+}

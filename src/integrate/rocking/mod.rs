@@ -26,6 +26,7 @@ mod clearance;
 mod clearance_tests;
 mod collision;
 mod column;
+mod couple;
 #[cfg(test)]
 mod enumeration;
 mod frame;
@@ -53,6 +54,7 @@ use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
 use clearance::{Clearance, Side, Touch};
+use couple::Couple;
 use layout::Layout;
 use lean::Lean;
 use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
@@ -89,6 +91,8 @@ struct Track {
     settles: Option<(f64, f64, f64)>,
     /// It rests leaning on a fixed block, held still by their contact, until that lets go.
     leans: Option<Lean>,
+    /// It turns in contact with another body, the two as one mechanism, until they part.
+    couple: Option<Couple>,
 }
 
 /// Bodies to run side by side, and how.
@@ -246,6 +250,32 @@ fn transition(old: Mode, new: Mode, start: bool) -> Option<EventKind> {
 }
 
 /// Is the ground at rest from this segment on?
+/// The corner a body rocks on after an impact (`after`; its mode before, `mode`) where that is
+/// the pivot it had, or one it starts rocking on from seated where `seated` allows, and it does
+/// not slip; else what it does instead, in words.
+fn stuck_pivot(after: &collision::After, mode: Mode, seated: bool) -> Result<Corner, &'static str> {
+    match (after.base, mode.pivot()) {
+        (
+            collision::Base::Pivot {
+                corner,
+                slips: false,
+            },
+            Some(c),
+        ) if corner == c => Ok(c),
+        (
+            collision::Base::Pivot {
+                corner,
+                slips: false,
+            },
+            None,
+        ) if seated => Ok(corner),
+        (collision::Base::Flies, _) => Err("leaves the ground"),
+        (collision::Base::Pivot { slips: true, .. }, _) => Err("slips at its pivot"),
+        (collision::Base::Pivot { .. }, _) => Err("turns on its other corner"),
+        (collision::Base::Seated { .. }, _) => Err("stays seated"),
+    }
+}
+
 fn quiet(seg: &Segment) -> bool {
     seg.t1.is_infinite()
         && seg.shape
@@ -284,6 +314,7 @@ impl<'a> Engine<'a> {
                 fallen: None,
                 settles: None,
                 leans: None,
+                couple: None,
             })
             .collect();
         Engine {
@@ -330,6 +361,10 @@ impl<'a> Engine<'a> {
 
     fn trajectory(&self, i: usize, inputs: &Inputs) -> Trajectory {
         let tr = &self.tracks[i];
+        if let Some(couple) = &tr.couple {
+            let [first, second] = self.coupled(couple, inputs).bodies;
+            return if couple.bodies[0] == i { first } else { second };
+        }
         let mut t = modes::trajectory(
             self.body(i),
             self.scene.equations,
@@ -343,6 +378,19 @@ impl<'a> Engine<'a> {
         t
     }
 
+    /// The motion of a couple's two bodies and their contact's push.
+    fn coupled(&self, couple: &Couple, inputs: &Inputs) -> couple::Motion {
+        let tracks = couple.bodies.map(|i| &self.tracks[i]);
+        let corner =
+            |i: usize| (tracks[i].mode.pivot()).expect("a body of a couple rocks on a pivot");
+        couple.motion(
+            couple.bodies.map(|i| self.body(i)),
+            [corner(0), corner(1)],
+            tracks.map(|t| &t.state),
+            inputs,
+        )
+    }
+
     /// Decides body i's mode now, from its state and the pivot it rocks on, and logs the
     /// change (`start`: the first decision of the run).
     fn decide(&mut self, i: usize, inputs: &Inputs, start: bool) -> Result<(), SimulationError> {
@@ -351,9 +399,10 @@ impl<'a> Engine<'a> {
             // through its trajectory, and it leaves flight by landing.
             return Ok(());
         }
-        if self.tracks[i].leans.is_some() {
-            // A body resting against a block stays so while the block's push and its pivot's
-            // forces allow, which its conditions watch from every instant on.
+        if self.tracks[i].leans.is_some() || self.tracks[i].couple.is_some() {
+            // A body resting against a block, or turning in contact with another body, stays
+            // so while the contact's push and its pivot's forces allow, which its conditions
+            // watch from every instant on.
             return Ok(());
         }
         let body = self.body(i);
@@ -628,6 +677,10 @@ impl<'a> Engine<'a> {
         if let Some(lean) = &self.tracks[i].leans {
             conditions.push(lean.condition(body, inputs));
         }
+        if let Some(couple) = self.tracks[i].couple.filter(|c| c.bodies[0] == i) {
+            // The couple's own condition, once: on its corner's body.
+            conditions.push(couple.condition(body, &self.coupled(&couple, inputs)));
+        }
         // A body that may run into a block beside it is followed until it lies on its face or
         // strikes: a block can stop its fall.
         if is_quiet && !self.clearance.watches(i) {
@@ -688,6 +741,19 @@ impl<'a> Engine<'a> {
         let Some(guard) = guard else {
             return Ok(());
         };
+        if self.tracks[i].couple.is_some() {
+            if self.stop.is_some() {
+                // The other body of the couple stopped the run at this instant.
+                return Ok(());
+            }
+            return match guard {
+                Guard::Parts => self.part(i, now),
+                _ => {
+                    self.couple_gives(i, guard);
+                    Ok(())
+                }
+            };
+        }
         match guard {
             Guard::Parts => self.lets_go(i, now),
             Guard::PivotSlip | Guard::Flight if self.tracks[i].leans.is_some() => {
@@ -720,8 +786,9 @@ impl<'a> Engine<'a> {
     /// Blocks of two columns (or a column's and a fixed one) meet. Where a corner strikes a
     /// face, each block fixed or moved by a body that stands alone (its column holding no
     /// joint), the impact is resolved ([`collision`]) and the run goes on, the column perhaps
-    /// at rest against a fixed block from there ([`lean`]); at any other meeting the run ends
-    /// here, the state the one just before, and says why.
+    /// at rest against a fixed block from there ([`lean`]), or two columns turning together
+    /// ([`couple`]); at any other meeting the run ends here, the state the one just before,
+    /// and says why.
     fn meet(
         &mut self,
         (a, b): (usize, usize),
@@ -733,6 +800,15 @@ impl<'a> Engine<'a> {
                 None => return Ok(()),
                 Some(why) => why,
             },
+            None if self.tracks.iter().any(|tr| {
+                tr.couple
+                    .is_some_and(|c| c.blocks == [a, b] || c.blocks == [b, a])
+            }) =>
+            {
+                "the corner on which they turn together reaches an end of the face, or another \
+                 corner reaches the face (it comes down flat on it)"
+                    .into()
+            }
             None => "two corners meet, or a face comes down flat on a face".into(),
         };
         self.stops_meeting((a, b), why);
@@ -776,6 +852,48 @@ impl<'a> Engine<'a> {
         self.decide(i, now, false)
     }
 
+    /// The bodies of body i's couple part: the push between them falls to zero. Each turns on
+    /// in the mode its state now gives, and the pair must part before it may strike again.
+    fn part(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+        let couple = self.tracks[i].couple.expect("a body of a couple");
+        for k in couple.bodies {
+            self.tracks[k].couple = None;
+        }
+        self.clearance.hold(couple.pair, None);
+        let [corner, face] = couple.blocks.map(|k| self.layout.names[k].clone());
+        self.rec.rocking_event(
+            self.t,
+            EventKind::Separation,
+            &couple.blocks,
+            None,
+            format!("{corner}'s corner leaves {face}'s face, which no longer pushes on it"),
+        );
+        for k in couple.bodies {
+            self.decide(k, now, false)?;
+        }
+        Ok(())
+    }
+
+    /// Body i of a couple would land, slip or leave the ground at its pivot, or fall flat
+    /// (`guard`): the mechanism changes in a way the exact model does not follow.
+    fn couple_gives(&mut self, i: usize, guard: Guard) {
+        let couple = self.tracks[i].couple.expect("a body of a couple");
+        let name = &self.body(i).name;
+        let how = match guard {
+            Guard::Impact => "land on its base",
+            Guard::PivotSlip => "slip at its pivot",
+            Guard::Flight => "leave the ground at its pivot",
+            Guard::Overturn => "lie on its face",
+            _ => "change its mode",
+        };
+        let [corner, face] = couple.blocks.map(|k| self.layout.names[k].as_str());
+        let why = format!(
+            "{corner}'s corner turns on {face}'s face, the two bodies in contact, and {name} \
+             would {how}: a change of such a mechanism is not followed"
+        );
+        self.stops_meeting((couple.blocks[0], couple.blocks[1]), why);
+    }
+
     /// Body i, resting against a fixed block, would slip or leave the ground at its pivot
     /// (`guard`): the two contacts would move together, which the exact model does not follow.
     fn lean_gives(&mut self, i: usize, guard: Guard) {
@@ -817,6 +935,14 @@ impl<'a> Engine<'a> {
                     "{name} rests against {}'s face, and an impulse on a body with two \
                      contacts besides its base is not followed",
                     self.layout.names[lean.blocks[1]]
+                )));
+            }
+            if let Some(couple) = tr.couple {
+                let [corner, face] = couple.blocks.map(|b| &self.layout.names[b]);
+                return Ok(Some(format!(
+                    "{name} turns in contact with another body ({corner}'s corner on {face}'s \
+                     face), and an impulse on a body with a contact besides its base is not \
+                     followed"
                 )));
             }
             if tr.settles.is_some() {
@@ -1015,11 +1141,8 @@ impl<'a> Engine<'a> {
         let k = match t.sides {
             [Side::Body(..), Side::Fixed] => 0,
             [Side::Fixed, Side::Body(..)] => 1,
-            _ => {
-                return Some(format!(
-                    "{stays}, and the contact of two moving bodies is not followed"
-                ))
-            }
+            [Side::Body(..), Side::Body(..)] => return self.couples(t, out, now, stays),
+            _ => unreachable!("an impact's sides move, at least one of them"),
         };
         let (Side::Body(i, _), Some(turns), Some(after)) = (t.sides[k], turning[k], out.after[k])
         else {
@@ -1033,25 +1156,13 @@ impl<'a> Engine<'a> {
                  block"
             ));
         }
-        let c = match (after.base, self.tracks[i].mode.pivot()) {
-            (
-                collision::Base::Pivot {
-                    corner,
-                    slips: false,
-                },
-                Some(c),
-            ) if corner == c => c,
-            (base, _) => {
-                let what = match base {
-                    collision::Base::Flies => "leaves the ground",
-                    collision::Base::Pivot { slips: true, .. } => "slips at its pivot",
-                    collision::Base::Pivot { .. } => "turns on its other corner",
-                    collision::Base::Seated { .. } => "stays seated",
-                };
+        let c = match stuck_pivot(&after, self.tracks[i].mode, false) {
+            Ok(c) => c,
+            Err(what) => {
                 return Some(format!(
                     "{stays}, and {name} {what} against it: a contact that stays on a body \
                      that is not at rest on a stuck pivot is not followed"
-                ));
+                ))
             }
         };
         let push = if k == 0 {
@@ -1112,6 +1223,95 @@ impl<'a> Engine<'a> {
             Some((before, 0.0)),
             what,
         );
+        None
+    }
+
+    /// Where two bodies' blocks stay in contact after an impact `t` (`out`; `stays` says how):
+    /// each rocking on the pivot it had (or a seated one on the corner the blow turns it on),
+    /// neither slipping, they turn on together ([`couple`]); any other contact that stays
+    /// stops the run, and the reason is returned.
+    fn couples(
+        &mut self,
+        t: &Touch,
+        out: &collision::Outcome,
+        now: &Inputs,
+        stays: String,
+    ) -> Option<String> {
+        if self.scene.equations != Equations::Exact {
+            return Some(format!(
+                "{stays}, and the linearised equations do not follow two bodies in contact"
+            ));
+        }
+        let mut bodies = [0; 2];
+        let mut after = [(0.0, Corner::Right); 2];
+        let mut pivots = [[0.0; 2]; 2];
+        for k in 0..2 {
+            let (Side::Body(i, origin), Some(a)) = (t.sides[k], out.after[k]) else {
+                unreachable!("both sides of a contact between bodies move");
+            };
+            let mode = self.tracks[i].mode;
+            let c = match stuck_pivot(&a, mode, matches!(mode, Mode::Rest | Mode::Slide(_))) {
+                Ok(c) => c,
+                Err(what) => {
+                    return Some(format!(
+                        "{stays}, and {} {what}: two bodies in contact are followed only while \
+                         each rocks on a stuck pivot",
+                        self.body(i).name
+                    ))
+                }
+            };
+            (bodies[k], after[k]) = (i, (a.omega, c));
+            let bp = self.layout.pivot_half_base_m(i);
+            pivots[k] = [
+                origin[0] + c.sign() * bp + self.tracks[i].state.u,
+                origin[1],
+            ];
+        }
+        let size = bodies.map(|i| self.body(i).size_m());
+        let tie_m = series::TIE * size[0].max(size[1]);
+        let theta = bodies.map(|i| self.tracks[i].state.theta);
+        let contact = (t.point, t.normal);
+        let Some(couple) = Couple::new(t.pair, t.blocks, bodies, pivots, theta, contact, tie_m)
+        else {
+            return Some(format!(
+                "{stays}, and the contact's push has no moment about either body's pivot"
+            ));
+        };
+        self.rec.energy.impact_loss_j += out.loss_j;
+        let [corner, face] = t.blocks.map(|b| self.layout.names[b].clone());
+        let mut what = if out.impulse_n_s > 0.0 {
+            self.rec.impacts += 1;
+            format!(
+                "{corner}'s corner strikes {face}'s face at {:.6e} m/s and {stays}",
+                -out.normal_m_s.0
+            )
+        } else {
+            format!("{corner}'s corner touches {face}'s face: {stays}")
+        };
+        let before = self.tracks[bodies[0]].state.omega;
+        for k in 0..2 {
+            let (i, (omega, c)) = (bodies[k], after[k]);
+            if out.impulse_n_s > 0.0 {
+                self.rec.rocking_impact(t.blocks[k]);
+            }
+            let tr = &mut self.tracks[i];
+            what += &format!(
+                "; {}: theta' {:.6e} -> {omega:.6e} rad/s",
+                self.layout.names[t.blocks[k]], tr.state.omega
+            );
+            tr.state.omega = omega;
+            tr.state.v = 0.0;
+            tr.mode = Mode::Rock(c);
+            tr.couple = Some(couple);
+        }
+        self.clearance.hold(t.pair, Some(t.corner));
+        what += &format!(
+            "; they turn on together, pushed apart by {:.6e} N",
+            self.coupled(&couple, now).push[0]
+        );
+        let omega = Some((before, after[0].0));
+        self.rec
+            .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
         None
     }
 

@@ -246,8 +246,37 @@ pub struct Trajectory {
     pub dx: Coeffs,
 }
 
+impl Trajectory {
+    /// A trajectory of `mode` whose series hold only the state they start from.
+    pub(super) fn start(mode: Mode, equations: Equations, state: &State) -> Trajectory {
+        let mut t = Trajectory {
+            mode,
+            equations,
+            theta: ZERO,
+            omega: ZERO,
+            u: ZERO,
+            v: ZERO,
+            lift: ZERO,
+            lift_v: ZERO,
+            tangential: ZERO,
+            normal: ZERO,
+            corners: None,
+            denominator: None,
+            gy: ZERO,
+            dx: ZERO,
+        };
+        t.theta[0] = state.theta;
+        t.omega[0] = state.omega;
+        t.u[0] = state.u;
+        t.v[0] = state.v;
+        t.lift[0] = state.lift;
+        t.lift_v[0] = state.lift_v;
+        t
+    }
+}
+
 /// Coefficient k of s b sin(theta) + h_c cos(theta) and s b cos(theta) - h_c sin(theta).
-fn arms(body: &RockingBody, s: f64, sin: &Coeffs, cos: &Coeffs, k: usize) -> (f64, f64) {
+pub(super) fn arms(body: &RockingBody, s: f64, sin: &Coeffs, cos: &Coeffs, k: usize) -> (f64, f64) {
     let (b, h) = (body.half_base_m, body.centroid_height_m);
     (s * b * sin[k] + h * cos[k], s * b * cos[k] - h * sin[k])
 }
@@ -267,28 +296,7 @@ pub fn trajectory(
     let io = body.corner_inertia_kg_m2();
     let ig = body.inertia_kg_m2;
     let (a, lam) = (&inputs.accel, &inputs.lambda);
-    let mut t = Trajectory {
-        mode,
-        equations,
-        theta: ZERO,
-        omega: ZERO,
-        u: ZERO,
-        v: ZERO,
-        lift: ZERO,
-        lift_v: ZERO,
-        tangential: ZERO,
-        normal: ZERO,
-        corners: None,
-        denominator: None,
-        gy: ZERO,
-        dx: ZERO,
-    };
-    t.theta[0] = state.theta;
-    t.omega[0] = state.omega;
-    t.u[0] = state.u;
-    t.v[0] = state.v;
-    t.lift[0] = state.lift;
-    t.lift_v[0] = state.lift_v;
+    let mut t = Trajectory::start(mode, equations, state);
     let (mut sin, mut cos, mut w) = (ZERO, ZERO, ZERO);
     let (mut acc_theta, mut acc_u, mut acc_lift) = (ZERO, ZERO, ZERO);
     // Slide-rock: theta'' = num / den with num = m X e, X = mu sigma G_y - dx,
@@ -418,8 +426,8 @@ pub enum Guard {
     /// The series of landings a body's last landing started has summed to its end: it is
     /// seated from here (in a scene of several bodies, which go on meanwhile).
     Settled,
-    /// A body resting against a fixed block (`lean`): the block's push falls to zero, the
-    /// ground turning the body away from it.
+    /// A body resting against a fixed block (`lean`), or two bodies turning together
+    /// (`couple`): the contact's push falls to zero, the bodies parting.
     Parts,
 }
 
