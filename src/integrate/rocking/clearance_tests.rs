@@ -94,6 +94,32 @@ fn row_at(r: &Response, k: usize, t: f64) -> [f64; 6] {
         .expect("a row at the event")
 }
 
+/// The distance (m) of the left corner at height y of a slab T (its left corner at x_t, its
+/// width w_t, turned by theta_t) from the right face of the 0.3 m slab S at x = 0 turned by
+/// theta_s, each rocking on the corner of its rotation's sign, which stays where it stood.
+fn from_face(theta_s: f64, (theta_t, x_t, w_t): (f64, f64, f64), y: f64) -> f64 {
+    let turn = |theta: f64, x: f64, y: f64| {
+        let (sin, cos) = theta.sin_cos();
+        [x * cos + y * sin, -x * sin + y * cos]
+    };
+    let (ps, fs) = if theta_s > 0.0 {
+        (0.3, 0.0)
+    } else {
+        (0.0, 0.3)
+    };
+    let (pt, ct) = if theta_t > 0.0 {
+        (x_t + w_t, -w_t)
+    } else {
+        (x_t, 0.0)
+    };
+    let (c, f, n) = (
+        turn(theta_t, ct, y),
+        turn(theta_s, fs, 0.0),
+        turn(theta_s, 1.0, 0.0),
+    );
+    (pt + c[0] - ps - f[0]) * n[0] + (c[1] - f[1]) * n[1]
+}
+
 /// Two slabs 2 m apart under sines that rock them a little, or overturn them both the same
 /// way, one falling away from the other (its face that kept the pair apart turns to face up:
 /// the pair keeps apart by another edge from then on), the other towards it, short of it:
@@ -589,14 +615,7 @@ fn two_slabs_fallen_together_turn_as_one_mechanism_until_their_faces_meet() {
     )));
     // Both rock on their left corners, at x = 0 and 0.8 m, which stay where they are: the
     // distance of T's top left corner, and of its bottom left one, from S's right face.
-    let turn = |theta: f64, x: f64, y: f64| {
-        let (sin, cos) = theta.sin_cos();
-        [x * cos + y * sin, -x * sin + y * cos]
-    };
-    let from_face = |ts: f64, tt: f64, y: f64| {
-        let (c, f, n) = (turn(tt, 0.0, y), turn(ts, 0.3, 0.0), turn(ts, 1.0, 0.0));
-        (0.8 + c[0] - f[0]) * n[0] + (c[1] - f[1]) * n[1]
-    };
+    let from_face = |ts: f64, tt: f64, y: f64| from_face(ts, (tt, 0.8, 0.2), y);
     let (s, t) = (rows(&r, 0), rows(&r, 1));
     let together: Vec<usize> = (0..s.len()).filter(|&i| s[i][0] >= impact.time_s).collect();
     assert!(together.len() > 10);
@@ -697,4 +716,75 @@ fn two_slabs_turning_together_part_where_their_push_falls_to_zero() {
     let e = &r.summary.energy;
     let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
     assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+}
+
+/// The slabs 0.4 m apart under 0.3 g from 180 degrees: T falls onto S's face at 1.3982 s and
+/// they turn together, S pushing T to the right, until S lands on its base at 1.4037 s. The
+/// landing's impulse is taken first (Housner's, S alone: theta' falls by r = 1 - 1.5 sin^2
+/// alpha), then what is left at the contact, where T now moves away from S's slower face: they
+/// part at that instant, and stand apart until they meet again at 1.5117 s, where the run
+/// stops (S's pivot would leave the ground). Moreau-Jean converges on both rotations.
+#[test]
+fn a_slab_that_lands_while_turning_with_another_parts_from_it() {
+    let model = Model::from_ron_str(
+        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 2.0, restitution: 0.0,
+          rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"),
+                    (width_m: 0.2, height_m: 0.8, gap_m: 0.4, name: \"T\")])])",
+    )
+    .unwrap();
+    let motion = sine(0.3, 180.0);
+    let r = run(&model, &motion, 5.0, 0.0);
+    let [impact] = impacts(&r)[..] else {
+        panic!("{:?}", r.events)
+    };
+    assert!(impact
+        .mode
+        .as_deref()
+        .unwrap_or_default()
+        .contains("turn on together"));
+    let after: Vec<_> = (r.events.iter())
+        .filter(|e| e.time_s > impact.time_s && e.kind != EventKind::Uplift)
+        .collect();
+    let [landing, part, meet] = after[..] else {
+        panic!("{after:?}")
+    };
+    assert_eq!(
+        (landing.kind, part.kind, meet.kind),
+        (
+            EventKind::RockingImpact,
+            EventKind::Separation,
+            EventKind::BlocksMeet
+        )
+    );
+    assert_eq!(
+        (landing.blocks.as_slice(), part.time_s),
+        (&["S".to_string()][..], landing.time_s)
+    );
+    let (before, after) = (
+        landing.angular_velocity_before_rad_s.unwrap(),
+        landing.angular_velocity_after_rad_s.unwrap(),
+    );
+    let housner = 1.0 - 1.5 * (0.25f64.atan().sin()).powi(2);
+    assert!((after / before - housner).abs() < 1e-12, "{before} {after}");
+    let stop = r.summary.duration_s;
+    assert_eq!(meet.time_s, stop);
+    let (s, t) = (rows(&r, 0), rows(&r, 1));
+    let (mut on, mut apart) = (0, 0);
+    for i in (0..s.len()).filter(|&i| s[i][0] >= impact.time_s && s[i][0] < stop) {
+        let gap = from_face(s[i][3], (t[i][3], 0.7, 0.2), 0.8);
+        if s[i][0] <= landing.time_s {
+            assert!(gap.abs() < 1e-15, "{:?} {:?}: {gap}", s[i], t[i]);
+            on += 1;
+        } else {
+            assert!(gap > 0.0, "{:?} {:?}: {gap}", s[i], t[i]);
+            apart += 1;
+        }
+    }
+    assert!(on >= 2 && apart > 5, "{on} {apart}");
+    let e = &r.summary.energy;
+    let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
+    assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+    for k in 0..2 {
+        converges(&model, &motion, &r, impact.time_s, k);
+    }
 }

@@ -162,25 +162,34 @@ fn laws(n: usize) -> Vec<Laws> {
     out
 }
 
-/// The impact of the corner of side 0 on the face of side 1 (`None`: a fixed block).
-pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Refusal> {
-    const SIGN: [f64; 2] = [1.0, -1.0];
-    let n = c.normal;
-    // theta', v and w of a side enter the normal velocity at the contact with these weights.
-    let arms = |b: &Turning| {
-        let d = [c.point[0] - b.pivot[0], c.point[1] - b.pivot[1]];
-        [n[0], n[0] * d[1] - n[1] * d[0], n[1]]
-    };
+/// The sides' signs in the contact's normal velocity: the corner's block, then the face's.
+const SIGN: [f64; 2] = [1.0, -1.0];
+
+/// The weights with which theta', v and w of a side enter the normal velocity at the contact.
+fn arms(b: &Turning, c: &Contact) -> [f64; 3] {
+    let (n, d) = (c.normal, [c.point[0] - b.pivot[0], c.point[1] - b.pivot[1]]);
+    [n[0], n[0] * d[1] - n[1] * d[0], n[1]]
+}
+
+/// The normal velocity of the corner against the face (m/s, negative: approaching), the sum of
+/// the sides' speeds (m/s: what round-off is measured against) and of their momenta (N s).
+pub fn approach(sides: [Option<&Turning>; 2], c: &Contact) -> (f64, f64, f64) {
     let (mut approach, mut speed, mut momentum) = (0.0, 0.0, 0.0);
     for (k, b) in sides.iter().enumerate() {
         if let Some(b) = b {
-            let a = arms(b);
+            let a = arms(b, c);
             approach += SIGN[k] * (a[0] * b.v + a[1] * b.omega + a[2] * b.w);
             let s = b.v.abs() + b.w.abs() + b.omega.abs() * reach(b);
             speed += s;
             momentum += b.mass_kg * s;
         }
     }
+    (approach, speed, momentum)
+}
+
+/// The impact of the corner of side 0 on the face of side 1 (`None`: a fixed block).
+pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Refusal> {
+    let (approach, speed, momentum) = approach(sides, c);
     let tie = super::series::TIE;
     if approach >= -tie * speed {
         return Err(Refusal::Grazing);
@@ -228,7 +237,7 @@ pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Ref
                 ],
                 [0.0, -m * g[0], m],
             ];
-            let arm = arms(b);
+            let arm = arms(b, c);
             for row in 0..3 {
                 for col in 0..3 {
                     a[(r + row, r + col)] = mass[row][col];

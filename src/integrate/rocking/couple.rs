@@ -7,6 +7,8 @@
 //! and the condition that ends it, the push falling to zero (the bodies part). The pivots'
 //! conditions (slip, lift) are the rocking mode's, on the forces with the push; where the
 //! corner reaches an end of the face, or another corner the face, is the pair's (`clearance`).
+//! A landing of either body ends the couple; the engine takes its impulses one after the other
+//! (the landing's, then the contact's) and may start another.
 //!
 //! With the push P along the face's normal n (into the corner's body), body k's equation about
 //! its pivot is I_O,k theta_k'' = Q_k + J_k P, Q_k the rocking one (I_O theta'' = -m (G_y a_g +
@@ -16,6 +18,7 @@
 //! series, three linear equations in theta_1'', theta_2'' and P.
 
 use super::body::RockingBody;
+use super::clearance::Touch;
 use super::modes::{arms, Constraint, Equations, Guard, Inputs, Mode, Scales, State, Trajectory};
 use super::series::{mul_at, sin_cos_at, Coeffs, ORDER, ZERO};
 
@@ -23,14 +26,13 @@ use super::series::{mul_at, sin_cos_at, Coeffs, ORDER, ZERO};
 /// each body's frame upright (theta = 0), from its pivot, which stays where it is meanwhile.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Couple {
-    /// The clearance pair of the two blocks.
-    pub(super) pair: usize,
-    /// The corner's block, then the face's block (outputs).
-    pub(super) blocks: [usize; 2],
+    /// The contact as the impact that started the couple found it: the corner's block, then
+    /// the face's, their pair, and what moves them.
+    pub(super) touch: Touch,
     /// The corner's body, then the face's.
     pub(super) bodies: [usize; 2],
-    /// The corner's body's pivot, from the face's body's pivot (m).
-    between: [f64; 2],
+    /// Their pivots (m).
+    pivots: [[f64; 2]; 2],
     /// The corner, from its body's pivot (m).
     corner: [f64; 2],
     /// The face's normal, pointing into the corner's body.
@@ -76,8 +78,9 @@ impl Geometry {
         self.r1[1][j] = -c[0] * sin[0][j] + c[1] * cos[0][j];
         self.n[0][j] = q[0] * cos[1][j] + q[1] * sin[1][j];
         self.n[1][j] = -q[0] * sin[1][j] + q[1] * cos[1][j];
+        let [p1, p2] = couple.pivots;
         for x in 0..2 {
-            self.r2[x][j] = self.r1[x][j] + couple.between[x] * one;
+            self.r2[x][j] = self.r1[x][j] + (p1[x] - p2[x]) * one;
         }
         let n = &self.n;
         let crossed = |r: &[Coeffs; 2]| mul_at(&r[0], &n[1], j) - mul_at(&r[1], &n[0], j);
@@ -94,29 +97,40 @@ pub(super) struct Motion {
 
 impl Couple {
     /// The couple of the bodies whose pivots are at `pivots` and rotations `theta` (the
-    /// corner's body first), the corner at `point` on the face of normal `normal` (pointing
-    /// into the corner's body; wall's frame, m); none where the push would turn neither body
+    /// corner's body first) in contact at `touch`; none where the push would turn neither body
     /// (to a tie of the arms).
     pub(super) fn new(
-        pair: usize,
-        blocks: [usize; 2],
+        touch: &Touch,
         bodies: [usize; 2],
         pivots: [[f64; 2]; 2],
         theta: [f64; 2],
-        (point, normal): ([f64; 2], [f64; 2]),
         tie_m: f64,
     ) -> Option<Couple> {
-        let [p1, p2] = pivots;
+        let (point, normal) = (touch.point, touch.normal);
+        let p1 = pivots[0];
         let couple = Couple {
-            pair,
-            blocks,
+            touch: Touch {
+                stays: true,
+                ..*touch
+            },
             bodies,
-            between: [p1[0] - p2[0], p1[1] - p2[1]],
+            pivots,
             corner: upright([point[0] - p1[0], point[1] - p1[1]], theta[0].sin_cos()),
             normal: upright(normal, theta[1].sin_cos()),
         };
-        let reach = [p1, p2].map(|p| cross([point[0] - p[0], point[1] - p[1]], normal));
+        let reach = pivots.map(|p| cross([point[0] - p[0], point[1] - p[1]], normal));
         reach.iter().any(|a| a.abs() > tie_m).then_some(couple)
+    }
+
+    /// The contact where the bodies are turned by `theta`, as a touch of blocks that have not
+    /// parted.
+    pub(super) fn touch_at(&self, theta: [f64; 2]) -> Touch {
+        let (r, p) = (turned(self.corner, theta[0].sin_cos()), self.pivots[0]);
+        Touch {
+            point: [p[0] + r[0], p[1] + r[1]],
+            normal: turned(self.normal, theta[1].sin_cos()),
+            ..self.touch
+        }
     }
 
     /// Both bodies' motion from their states (rocking on the corners `corners`) under

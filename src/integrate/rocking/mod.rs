@@ -748,6 +748,7 @@ impl<'a> Engine<'a> {
             }
             return match guard {
                 Guard::Parts => self.part(i, now),
+                Guard::Impact => self.couple_lands(i, now),
                 _ => {
                     self.couple_gives(i, guard);
                     Ok(())
@@ -802,7 +803,7 @@ impl<'a> Engine<'a> {
             },
             None if self.tracks.iter().any(|tr| {
                 tr.couple
-                    .is_some_and(|c| c.blocks == [a, b] || c.blocks == [b, a])
+                    .is_some_and(|c| c.touch.blocks == [a, b] || c.touch.blocks == [b, a])
             }) =>
             {
                 "the corner on which they turn together reaches an end of the face, or another \
@@ -859,12 +860,12 @@ impl<'a> Engine<'a> {
         for k in couple.bodies {
             self.tracks[k].couple = None;
         }
-        self.clearance.hold(couple.pair, None);
-        let [corner, face] = couple.blocks.map(|k| self.layout.names[k].clone());
+        self.clearance.hold(couple.touch.pair, None);
+        let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].clone());
         self.rec.rocking_event(
             self.t,
             EventKind::Separation,
-            &couple.blocks,
+            &couple.touch.blocks,
             None,
             format!("{corner}'s corner leaves {face}'s face, which no longer pushes on it"),
         );
@@ -874,24 +875,72 @@ impl<'a> Engine<'a> {
         Ok(())
     }
 
-    /// Body i of a couple would land, slip or leave the ground at its pivot, or fall flat
+    /// Body i of a couple lands on its base, the other body's corner on its face or its corner
+    /// on the other's face. The two contacts' impulses are taken one after the other: the
+    /// landing first, as the body's alone (Housner's), then at the contact between the bodies
+    /// what is left of their approach, without restitution ([`Engine::strike`]): they turn
+    /// together again, or the run stops there, saying why; where the landing turns the body
+    /// away from the other, they part.
+    fn couple_lands(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+        let couple = self.tracks[i].couple.expect("a body of a couple");
+        for k in couple.bodies {
+            self.tracks[k].couple = None;
+        }
+        self.clearance.hold(couple.touch.pair, None);
+        self.land(i, now)?;
+        if self.stop.is_some() {
+            return Ok(());
+        }
+        let touch = couple.touch_at(couple.bodies.map(|k| self.tracks[k].state.theta));
+        let sides = touch.sides.map(|side| match side {
+            Side::Body(k, origin) => Some(self.turning(k, origin)),
+            Side::Fixed | Side::Held => None,
+        });
+        let contact = collision::Contact {
+            point: touch.point,
+            normal: touch.normal,
+            restitution: 0.0,
+        };
+        let (approach, speed, _) =
+            collision::approach([sides[0].as_ref(), sides[1].as_ref()], &contact);
+        if approach > series::TIE * speed {
+            let [corner, face] = touch.blocks.map(|k| self.layout.names[k].clone());
+            self.rec.rocking_event(
+                self.t,
+                EventKind::Separation,
+                &touch.blocks,
+                None,
+                format!(
+                    "{corner}'s corner leaves {face}'s face as {} lands",
+                    self.body(i).name
+                ),
+            );
+            let other = couple.bodies[usize::from(couple.bodies[0] == i)];
+            return self.decide(other, now, false);
+        }
+        if let Some(why) = self.strike(&touch, now)? {
+            self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
+        }
+        Ok(())
+    }
+
+    /// Body i of a couple would slip or leave the ground at its pivot, or fall flat
     /// (`guard`): the mechanism changes in a way the exact model does not follow.
     fn couple_gives(&mut self, i: usize, guard: Guard) {
         let couple = self.tracks[i].couple.expect("a body of a couple");
         let name = &self.body(i).name;
         let how = match guard {
-            Guard::Impact => "land on its base",
             Guard::PivotSlip => "slip at its pivot",
             Guard::Flight => "leave the ground at its pivot",
             Guard::Overturn => "lie on its face",
             _ => "change its mode",
         };
-        let [corner, face] = couple.blocks.map(|k| self.layout.names[k].as_str());
+        let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].as_str());
         let why = format!(
             "{corner}'s corner turns on {face}'s face, the two bodies in contact, and {name} \
              would {how}: a change of such a mechanism is not followed"
         );
-        self.stops_meeting((couple.blocks[0], couple.blocks[1]), why);
+        self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
     }
 
     /// Body i, resting against a fixed block, would slip or leave the ground at its pivot
@@ -929,7 +978,7 @@ impl<'a> Engine<'a> {
                 }
                 Side::Body(i, origin) => (i, origin),
             };
-            let (tr, body) = (&self.tracks[i], self.body(i));
+            let tr = &self.tracks[i];
             if let Some(lean) = tr.leans {
                 return Ok(Some(format!(
                     "{name} rests against {}'s face, and an impulse on a body with two \
@@ -938,7 +987,7 @@ impl<'a> Engine<'a> {
                 )));
             }
             if let Some(couple) = tr.couple {
-                let [corner, face] = couple.blocks.map(|b| &self.layout.names[b]);
+                let [corner, face] = couple.touch.blocks.map(|b| &self.layout.names[b]);
                 return Ok(Some(format!(
                     "{name} turns in contact with another body ({corner}'s corner on {face}'s \
                      face), and an impulse on a body with a contact besides its base is not \
@@ -956,38 +1005,7 @@ impl<'a> Engine<'a> {
                     "{name}'s column holds joints the impulse would pass through"
                 )));
             }
-            // The corner the law takes the velocities of (a seated body's right one), and the
-            // corners on the ground.
-            let bp = self.layout.pivot_half_base_m(i);
-            let (c, ground) = match tr.mode {
-                Mode::Rock(c) | Mode::SlideRock(c, _) => (c, [Some((c, 0.0)), None]),
-                Mode::Flight(c) => (c, [None, None]),
-                Mode::Rest | Mode::Slide(_) => (
-                    Corner::Right,
-                    [Some((Corner::Right, 0.0)), Some((Corner::Left, -2.0 * bp))],
-                ),
-            };
-            let s = c.sign();
-            let flying = matches!(tr.mode, Mode::Flight(_));
-            let lift = if flying { tr.state.lift } else { 0.0 };
-            let pivot = [origin[0] + s * bp + tr.state.u, origin[1] + lift];
-            // The centroid, at (0, h_c) from the base's middle, turned clockwise about the pivot.
-            let (sin, cos) = tr.state.theta.sin_cos();
-            let (rx, ry) = (-s * bp, body.centroid_height_m);
-            *turns = Some(collision::Turning {
-                mass_kg: body.mass_kg,
-                inertia_kg_m2: body.inertia_kg_m2,
-                friction: body.friction,
-                pivot,
-                centroid: [
-                    pivot[0] + rx * cos + ry * sin,
-                    pivot[1] - rx * sin + ry * cos,
-                ],
-                omega: tr.state.omega,
-                v: tr.state.v,
-                w: if flying { tr.state.lift_v } else { 0.0 },
-                ground,
-            });
+            *turns = Some(self.turning(i, origin));
         }
         // Blocks that have not parted since their last impact rattle at the scale of
         // round-off: what is left of their approach is taken up without a rebound.
@@ -1097,6 +1115,43 @@ impl<'a> Engine<'a> {
             self.decide(i, now, false)?;
         }
         Ok(None)
+    }
+
+    /// Body i as the impact law takes it, its base's middle at rest at `origin` (m).
+    fn turning(&self, i: usize, origin: [f64; 2]) -> collision::Turning {
+        let (tr, body) = (&self.tracks[i], self.body(i));
+        // The corner the law takes the velocities of (a seated body's right one), and the
+        // corners on the ground.
+        let bp = self.layout.pivot_half_base_m(i);
+        let (c, ground) = match tr.mode {
+            Mode::Rock(c) | Mode::SlideRock(c, _) => (c, [Some((c, 0.0)), None]),
+            Mode::Flight(c) => (c, [None, None]),
+            Mode::Rest | Mode::Slide(_) => (
+                Corner::Right,
+                [Some((Corner::Right, 0.0)), Some((Corner::Left, -2.0 * bp))],
+            ),
+        };
+        let s = c.sign();
+        let flying = matches!(tr.mode, Mode::Flight(_));
+        let lift = if flying { tr.state.lift } else { 0.0 };
+        let pivot = [origin[0] + s * bp + tr.state.u, origin[1] + lift];
+        // The centroid, at (0, h_c) from the base's middle, turned clockwise about the pivot.
+        let (sin, cos) = tr.state.theta.sin_cos();
+        let (rx, ry) = (-s * bp, body.centroid_height_m);
+        collision::Turning {
+            mass_kg: body.mass_kg,
+            inertia_kg_m2: body.inertia_kg_m2,
+            friction: body.friction,
+            pivot,
+            centroid: [
+                pivot[0] + rx * cos + ry * sin,
+                pivot[1] - rx * sin + ry * cos,
+            ],
+            omega: tr.state.omega,
+            v: tr.state.v,
+            w: if flying { tr.state.lift_v } else { 0.0 },
+            ground,
+        }
     }
 
     /// The velocities of a body that a contact leaves as they are (`turns`, on `side`), and
@@ -1270,9 +1325,7 @@ impl<'a> Engine<'a> {
         let size = bodies.map(|i| self.body(i).size_m());
         let tie_m = series::TIE * size[0].max(size[1]);
         let theta = bodies.map(|i| self.tracks[i].state.theta);
-        let contact = (t.point, t.normal);
-        let Some(couple) = Couple::new(t.pair, t.blocks, bodies, pivots, theta, contact, tie_m)
-        else {
+        let Some(couple) = Couple::new(t, bodies, pivots, theta, tie_m) else {
             return Some(format!(
                 "{stays}, and the contact's push has no moment about either body's pivot"
             ));
