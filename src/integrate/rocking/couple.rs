@@ -19,7 +19,9 @@
 
 use super::body::RockingBody;
 use super::clearance::Touch;
-use super::modes::{arms, Constraint, Equations, Guard, Inputs, Mode, Scales, State, Trajectory};
+use super::modes::{
+    arms, Constraint, Corner, Equations, Guard, Inputs, Mode, Scales, State, Trajectory,
+};
 use super::series::{mul_at, sin_cos_at, Coeffs, ORDER, ZERO};
 
 /// Two bodies in contact, the corner of the first on a face of the second: the geometry in
@@ -138,7 +140,7 @@ impl Couple {
     pub(super) fn motion(
         &self,
         bodies: [&RockingBody; 2],
-        corners: [super::modes::Corner; 2],
+        corners: [Corner; 2],
         states: [&State; 2],
         inputs: &Inputs,
     ) -> Motion {
