@@ -582,20 +582,15 @@ fn a_slab_strikes_a_seated_column_which_rocks_as_time_stepping_converges_to() {
 }
 
 /// A slab 0.2 m wide and 0.8 m high 0.5 m to the right of the 1.2 m slab (friction 2: neither
-/// slips; no restitution), under 0.4 g at 1 Hz from 180 degrees: both rock to the left and the
-/// short one falls onto the tall one, its top corner on the tall one's right face, where it
-/// stays: the two turn together on their pivots, the push between them from the mechanism's
-/// equations, until the short one's left face comes down flat on the tall one's (their
-/// rotations equal), where the run stops, saying so. Throughout, the corner stays on the face
-/// to round-off, the energy balance closes, and Moreau-Jean converges on both rotations.
+/// slips; no restitution; walls/rocking/leaning-slabs.ron), under 0.4 g at 1 Hz from 180 degrees:
+/// both rock to the left and the short one falls onto the tall one, its top corner on the tall
+/// one's right face, where it stays: the two turn together on their pivots, the push between them
+/// from the mechanism's equations, until the short one's left face comes down flat on the tall
+/// one's (their rotations equal), where the run stops, saying so. Throughout, the corner stays on
+/// the face to round-off, the energy balance closes, and Moreau-Jean converges on both rotations.
 #[test]
 fn two_slabs_fallen_together_turn_as_one_mechanism_until_their_faces_meet() {
-    let model = Model::from_ron_str(
-        "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 2.0, restitution: 0.0,
-          rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"),
-                    (width_m: 0.2, height_m: 0.8, gap_m: 0.5, name: \"T\")])])",
-    )
-    .unwrap();
+    let model = Model::from_file("walls/rocking/leaning-slabs.ron").unwrap();
     let motion = sine(0.4, 180.0);
     let r = run(&model, &motion, 5.0, 0.0);
     let [impact] = impacts(&r)[..] else {
