@@ -853,14 +853,21 @@ impl<'a> Engine<'a> {
         self.decide(i, now, false)
     }
 
-    /// The bodies of body i's couple part: the push between them falls to zero. Each turns on
-    /// in the mode its state now gives, and the pair must part before it may strike again.
-    fn part(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+    /// Ends body i's couple: its bodies move each on its own from here, and their pair must
+    /// part before it may strike again.
+    fn uncouple(&mut self, i: usize) -> Couple {
         let couple = self.tracks[i].couple.expect("a body of a couple");
         for k in couple.bodies {
             self.tracks[k].couple = None;
         }
         self.clearance.hold(couple.touch.pair, None);
+        couple
+    }
+
+    /// The bodies of body i's couple part: the push between them falls to zero. Each turns on
+    /// in the mode its state now gives, and the pair must part before it may strike again.
+    fn part(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+        let couple = self.uncouple(i);
         let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].clone());
         self.rec.rocking_event(
             self.t,
@@ -882,11 +889,7 @@ impl<'a> Engine<'a> {
     /// together again, or the run stops there, saying why; where the landing turns the body
     /// away from the other, they part.
     fn couple_lands(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
-        let couple = self.tracks[i].couple.expect("a body of a couple");
-        for k in couple.bodies {
-            self.tracks[k].couple = None;
-        }
-        self.clearance.hold(couple.touch.pair, None);
+        let couple = self.uncouple(i);
         self.land(i, now)?;
         if self.stop.is_some() {
             return Ok(());
