@@ -1250,17 +1250,10 @@ impl<'a> Engine<'a> {
         self.tracks[i].state.v = after.v;
         let left = modes::kinetic_j(body, &self.trajectory(i, now), 0.0);
         self.rec.energy.impact_loss_j += out.loss_j + left;
-        let [corner, face] = t.blocks.map(|b| self.layout.names[b].clone());
-        let meeting = if out.impulse_n_s > 0.0 {
-            self.rec.impacts += 1;
+        let meeting = self.stays_in_contact(t, out, &stays);
+        if out.impulse_n_s > 0.0 {
             self.rec.rocking_impact(t.blocks[k]);
-            format!(
-                "{corner}'s corner strikes {face}'s face at {:.6e} m/s and {stays}",
-                -out.normal_m_s.0
-            )
-        } else {
-            format!("{corner}'s corner touches {face}'s face: {stays}")
-        };
+        }
         self.clearance.lean(t.pair, true);
         let tr = &mut self.tracks[i];
         tr.state.omega = 0.0;
@@ -1282,6 +1275,21 @@ impl<'a> Engine<'a> {
             what,
         );
         None
+    }
+
+    /// The words of an impact `t` (`out`) after which the blocks stay in contact (`stays` says
+    /// how), counted among the impacts where it has an impulse.
+    fn stays_in_contact(&mut self, t: &Touch, out: &collision::Outcome, stays: &str) -> String {
+        let [corner, face] = t.blocks.map(|b| &self.layout.names[b]);
+        if out.impulse_n_s > 0.0 {
+            self.rec.impacts += 1;
+            format!(
+                "{corner}'s corner strikes {face}'s face at {:.6e} m/s and {stays}",
+                -out.normal_m_s.0
+            )
+        } else {
+            format!("{corner}'s corner touches {face}'s face: {stays}")
+        }
     }
 
     /// Where two bodies' blocks stay in contact after an impact `t` (`out`; `stays` says how):
@@ -1334,16 +1342,7 @@ impl<'a> Engine<'a> {
             ));
         };
         self.rec.energy.impact_loss_j += out.loss_j;
-        let [corner, face] = t.blocks.map(|b| self.layout.names[b].clone());
-        let mut what = if out.impulse_n_s > 0.0 {
-            self.rec.impacts += 1;
-            format!(
-                "{corner}'s corner strikes {face}'s face at {:.6e} m/s and {stays}",
-                -out.normal_m_s.0
-            )
-        } else {
-            format!("{corner}'s corner touches {face}'s face: {stays}")
-        };
+        let mut what = self.stays_in_contact(t, out, &stays);
         let before = self.tracks[bodies[0]].state.omega;
         for k in 0..2 {
             let (i, (omega, c)) = (bodies[k], after[k]);
