@@ -635,9 +635,9 @@ impl std::fmt::Display for Warning {
                 "{first} meets {second} at t = {time_s} s, and {why}: the exact model follows \
                  blocks of different columns while they stand apart, and through the impact \
                  where a corner of one strikes a face of the other, each block fixed or moved by \
-                 a column that holds no joint, and while such a column rests against a fixed \
-                 block on its stuck pivot or two such columns turn together on theirs; it stops \
-                 at any other meeting, and the run with it \
+                 a column that holds no joint, and while such a column rests against or slides \
+                 along a fixed block or two such columns turn together, their pivots stuck or \
+                 slipping; it stops at any other meeting, and the run with it \
                  (run the wall with --after-stop moreau --dt S to go on from there by time \
                  stepping every block)"
             ),

@@ -378,10 +378,17 @@ fn a_slab_fallen_onto_an_abutment_rests_on_it_until_the_ground_turns_it_away() {
 
 /// The same slab on a base of friction 0.3, under 0.3 g: it falls onto the abutment and rests
 /// against it, the abutment's push P and the ground's acceleration loading its pivot with
-/// m a_g + P horizontally against m g vertically; where that reaches Coulomb's cone the pivot
-/// would slip, the slab sliding along the face it touches: the run stops there, saying so.
+/// m a_g + P horizontally against m g vertically; where that reaches Coulomb's cone (closed
+/// form) the pivot slips, and the slab slides down the face it touches, its corner on it, as a
+/// ladder does: its one degree of freedom theta, the pivot at X - H sin theta. Against that
+/// ladder's own equations (Newton-Euler about the centroid, the push, the pivot's normal force
+/// and its friction mu N against the slip as unknowns, integrated by Runge-Kutta), the slab's
+/// rotation at every row of the slide and the instant its slip stops (where it rests against
+/// the abutment again, still to the bit until it slips once more) agree to round-off; the corner
+/// stays on the face; the energy balance closes with the pivot's friction in it; and
+/// Moreau-Jean converges on the rotation.
 #[test]
-fn a_slab_resting_on_an_abutment_stops_where_its_pivot_would_slip() {
+fn a_slab_resting_on_an_abutment_slides_down_it_where_its_pivot_slips() {
     let model = Model::from_ron_str(
         "(version: 1, thickness_m: 0.5, density_kg_m3: 2500, friction: 0.3, restitution: 0.0,
           rows: [(height_m: 1.2, blocks: [(width_m: 0.3, name: \"S\"),
@@ -396,28 +403,138 @@ fn a_slab_resting_on_an_abutment_stops_where_its_pivot_would_slip() {
         .as_deref()
         .unwrap_or_default()
         .contains("at rest against A"));
-    let stop = r.summary.duration_s;
-    assert!(r.summary.warnings.iter().any(|w| matches!(
-        w,
-        Warning::BlocksMeet { first, second, time_s, why }
-            if first == "S" && second == "A" && *time_s == stop && why.contains("pivot would slip")
-    )));
+    let after: Vec<_> = (r.events.iter())
+        .filter(|e| e.time_s > rest.time_s)
+        .collect();
+    let [slip, stick, again, ..] = after[..] else {
+        panic!("{after:?}")
+    };
+    assert_eq!(
+        (slip.kind, stick.kind, again.kind),
+        (
+            EventKind::PivotSlip,
+            EventKind::PivotStick,
+            EventKind::PivotSlip
+        )
+    );
+    assert!(slip
+        .mode
+        .as_deref()
+        .unwrap_or_default()
+        .contains("sliding along A's face"));
     let (b, h, g, mu) = (0.15, 0.6, 9.81, 0.3);
     let (sin, cos) = (0.68f64 / 1.2).asin().sin_cos();
     let (gx, gy) = (-b * cos + h * sin, b * sin + h * cos);
-    // The friction the pivot needs, per unit mass, less what it holds.
+    // The friction the pivot needs at rest, per unit mass, less what it holds.
     let excess = |t: f64| {
         let a = motion.accel(t);
         (a + (g * gx - a * gy) / (1.2 * cos)).abs() - mu * g
     };
-    assert!(excess(stop).abs() < 1e-12 * g, "{}", excess(stop));
-    let before: Vec<f64> = rows(&r, 0)
+    assert!(
+        excess(slip.time_s).abs() < 1e-12 * g,
+        "{}",
+        excess(slip.time_s)
+    );
+    let s = rows(&r, 0);
+    let resting = |from: f64, to: f64| s.iter().filter(move |x| x[0] >= from && x[0] <= to);
+    assert!(resting(rest.time_s, slip.time_s).count() > 10);
+    assert!(resting(rest.time_s, slip.time_s).all(|x| x[0] == slip.time_s || excess(x[0]) < 0.0));
+    let still = resting(stick.time_s, again.time_s).collect::<Vec<_>>();
+    assert!(still.len() > 10 && still.iter().all(|x| x[3] == still[0][3] && x[4] == 0.0));
+    let abutment = [[0.98, 0.0], [1.48, 0.0], [1.48, 1.2], [0.98, 1.2]];
+    for x in resting(rest.time_s, again.time_s) {
+        let sep = apart(&block_corners(0.15, (0.3, 1.2), x), &abutment);
+        assert!(sep.abs() < 1e-15, "{x:?}: {sep}");
+    }
+    // The ladder: pivot at (X - H sin theta, 0), X = 0.98 m the face, H = 1.2 m; the centroid
+    // at G = pivot + (-b cos + h sin, b sin + h cos); the slip to -x, so friction +mu N.
+    let (m, big_h, x_face) = (2500.0 * 0.5 * 0.3 * 1.2, 1.2, 0.98);
+    let inertia = m * (0.3f64.powi(2) + 1.2f64.powi(2)) / 12.0;
+    let accel = |t: f64, th: f64, w: f64| -> f64 {
+        let (sn, cs) = th.sin_cos();
+        // G_x = X - H sin + (-b cos + h sin), G_y = b sin + h cos: their first and second
+        // derivatives in theta.
+        let (gx1, gx2) = (-big_h * cs + b * sn + h * cs, big_h * sn + b * cs - h * sn);
+        let (gy1, gy2) = (b * cs - h * sn, -b * sn - h * cs);
+        let pivot = [x_face - big_h * sn, 0.0];
+        let centroid = [pivot[0] - b * cs + h * sn, b * sn + h * cs];
+        let corner = [x_face, big_h * cs];
+        let rp = [pivot[0] - centroid[0], pivot[1] - centroid[1]];
+        let rc = [corner[0] - centroid[0], corner[1] - centroid[1]];
+        // Unknowns theta'', N, P: m G_x'' = mu N - P - m a_g, m G_y'' = N - m g, and
+        // I_G theta'' = -(r_P x (mu N, N) + r_C x (-P, 0)) (clockwise positive).
+        let a = nalgebra::Matrix3::new(
+            m * gx1,
+            -mu,
+            1.0,
+            m * gy1,
+            -1.0,
+            0.0,
+            inertia,
+            rp[0] - rp[1] * mu,
+            rc[1],
+        );
+        let rhs = nalgebra::Vector3::new(
+            -m * gx2 * w * w - m * motion.accel(t),
+            -m * gy2 * w * w - m * g,
+            0.0,
+        );
+        a.lu().solve(&rhs).unwrap()[0]
+    };
+    // Runge-Kutta from the slip's start (at rest), steps of at most 1e-4 s, to each row of the
+    // slide, and on to where theta' (the slip's rate over -H cos theta) returns to zero.
+    let step = |(t, th, w): (f64, f64, f64), d: f64| {
+        let f = |t: f64, th: f64, w: f64| (w, accel(t, th, w));
+        let k1 = f(t, th, w);
+        let k2 = f(t + d / 2.0, th + d / 2.0 * k1.0, w + d / 2.0 * k1.1);
+        let k3 = f(t + d / 2.0, th + d / 2.0 * k2.0, w + d / 2.0 * k2.1);
+        let k4 = f(t + d, th + d * k3.0, w + d * k3.1);
+        (
+            t + d,
+            th + d / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0),
+            w + d / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1),
+        )
+    };
+    let start = s.iter().find(|x| x[0] == slip.time_s).unwrap();
+    let mut at = (slip.time_s, start[3], 0.0);
+    let dt: f64 = 1e-4;
+    let mut checked = 0;
+    for x in s
         .iter()
-        .map(|x| x[0])
-        .filter(|&t| t >= rest.time_s && t < stop)
-        .collect();
-    assert!(before.len() > 10);
-    assert!(before.iter().all(|&t| excess(t) < 0.0));
+        .filter(|x| x[0] > slip.time_s && x[0] < stick.time_s)
+    {
+        while at.0 < x[0] {
+            at = step(at, dt.min(x[0] - at.0));
+        }
+        // The reference's own round-off: its answers at steps of 1e-4 and 2e-5 s differ by
+        // 4e-12 rad.
+        assert!((at.1 - x[3]).abs() < 1e-11, "{x:?}: {at:?}");
+        checked += 1;
+    }
+    assert!(checked > 30, "{checked}");
+    while step(at, dt).2 > 0.0 {
+        at = step(at, dt);
+    }
+    // The stop within the last step, by secant iterations on the step's length.
+    let (mut d0, mut d1) = (0.0, dt);
+    for _ in 0..6 {
+        let (w0, w1) = (step(at, d0).2, step(at, d1).2);
+        if w1 == w0 {
+            break;
+        }
+        (d0, d1) = (d1, d1 - w1 * (d1 - d0) / (w1 - w0));
+    }
+    let stops = at.0 + d1;
+    assert!(
+        (stops - stick.time_s).abs() < 1e-10,
+        "{stops} {}",
+        stick.time_s
+    );
+    let e = &r.summary.energy;
+    let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
+    assert!(e.friction_j > 1.0, "{e:?}");
+    assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+    converges(&model, &motion, &r, slip.time_s, 0);
 }
 
 /// The slab released at 0.4 rad towards the abutment 0.68 m away, on still ground, with a
@@ -490,6 +607,11 @@ fn a_slab_bouncing_on_an_abutment_comes_to_rest_against_it() {
 /// s) and Moreau-Jean with every block's rotation, after t, must fall with the step: at dt =
 /// 1e-5 s under a quarter of that at 1e-4 s and 1 % of the largest rotation.
 fn converges(model: &Model, motion: &Motion, r: &Response, t: f64, k: usize) {
+    converges_in(model, motion, r, t, k, 3);
+}
+
+/// The same for column `col` of block k's rows (1: the base's displacement, 3: the rotation).
+fn converges_in(model: &Model, motion: &Motion, r: &Response, t: f64, k: usize, col: usize) {
     let exact = rows(r, k);
     let error = |dt: f64| {
         let settings = Settings {
@@ -510,12 +632,16 @@ fn converges(model: &Model, motion: &Motion, r: &Response, t: f64, k: usize) {
             .filter(|x| x[0] > t)
             .filter_map(|x| {
                 let i = h.time_s.iter().position(|&s| (s - x[0]).abs() < 1e-9)?;
-                Some((h.rotation_rad[i][k] - x[3]).abs())
+                let stepped = match col {
+                    1 => h.displacement_m[i][k],
+                    _ => h.rotation_rad[i][k],
+                };
+                Some((stepped - x[col]).abs())
             })
             .fold(0.0, f64::max)
     };
     let (coarse, fine) = (error(1e-4), error(1e-5));
-    let largest = exact.iter().map(|x| x[3].abs()).fold(0.0, f64::max);
+    let largest = exact.iter().map(|x| x[col].abs()).fold(0.0, f64::max);
     assert!(largest > 1e-3, "{largest}");
     assert!(
         fine < 0.25 * coarse && fine < 1e-2 * largest,
@@ -818,9 +944,10 @@ fn apart(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> f64 {
 /// Two slabs (the 0.3 x 1.2 m one and one w x h, `gap` m to its right, friction mu, no
 /// restitution) under sines that make them fall onto each other and turn together, one's
 /// corner on the other's face whichever way they lean, the couple ending every way it can
-/// (faces flat, a pivot slipping, a landing and parting, the run's end): at every row the two
-/// blocks, drawn from the rows alone, do not overlap by more than round-off, and while they
-/// turn together they touch to round-off; every energy balance closes.
+/// (faces flat, after a pivot starts slipping or not, a landing and parting, the run's end):
+/// at every row the two blocks, drawn from the rows alone, do not overlap by more than
+/// round-off, and while they turn together they touch to round-off; every energy balance
+/// closes.
 #[test]
 fn slabs_turning_together_touch_and_never_overlap_however_they_lean() {
     // (mu, gap, w, h, frequency, amplitude in g, phase in degrees)
@@ -901,4 +1028,73 @@ fn slabs_turning_together_touch_and_never_overlap_however_they_lean() {
         assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
     }
     assert!(couples >= scenes.len());
+}
+
+/// The slabs of walls/rocking/leaning-slabs.ron with friction 0.6 under the same sine (0.4 g
+/// at 1 Hz from 180 degrees): T falls onto S's face at 1.4631 s, and the impact leaves S's
+/// pivot slipping: they turn together, S's pivot sliding to the left under the push, until it
+/// sticks (1.4702 s), then slips again (1.5903 s) until S's face comes down flat on T's
+/// (1.6213 s), where the run stops. Throughout, the blocks drawn from the rows (the pivot's
+/// slip among them) touch to round-off, the energy balance closes with the work of the
+/// pivot's friction in it, and Moreau-Jean converges on both rotations and on S's
+/// displacement.
+#[test]
+fn two_slabs_turn_together_while_a_pivot_slips_and_sticks() {
+    let mut text = std::fs::read_to_string("walls/rocking/leaning-slabs.ron").unwrap();
+    text = text.replace("friction: 2.0", "friction: 0.6");
+    let model = Model::from_ron_str(&text).unwrap();
+    let motion = sine(0.4, 180.0);
+    let r = run(&model, &motion, 5.0, 0.0);
+    let [impact] = impacts(&r)[..] else {
+        panic!("{:?}", r.events)
+    };
+    let what = impact.mode.as_deref().unwrap_or_default();
+    assert!(
+        impact.blocks == ["T", "S"]
+            && what.contains("S: theta'")
+            && what.contains("slipping at")
+            && what.contains("they turn on together"),
+        "{what}"
+    );
+    let after: Vec<_> = (r.events.iter())
+        .filter(|e| e.time_s > impact.time_s)
+        .collect();
+    let [stick, slip, meet] = after[..] else {
+        panic!("{after:?}")
+    };
+    assert_eq!(
+        (stick.kind, slip.kind, meet.kind),
+        (
+            EventKind::PivotStick,
+            EventKind::PivotSlip,
+            EventKind::BlocksMeet
+        )
+    );
+    assert!(stick.blocks == ["S"] && slip.blocks == ["S"]);
+    let stop = r.summary.duration_s;
+    assert_eq!(meet.time_s, stop);
+    assert!(r.summary.warnings.iter().any(|w| matches!(
+        w,
+        Warning::BlocksMeet { why, .. } if why.contains("flat")
+    )));
+    let (s, t) = (rows(&r, 0), rows(&r, 1));
+    let size = (0.3f64).hypot(1.2);
+    let mut together = 0;
+    for i in (0..s.len()).filter(|&i| s[i][0] >= impact.time_s) {
+        let sep = apart(
+            &block_corners(0.15, (0.3, 1.2), &s[i]),
+            &block_corners(0.9, (0.2, 0.8), &t[i]),
+        );
+        assert!(sep.abs() < 1e-14 * size, "{:?} {:?}: {sep}", s[i], t[i]);
+        together += 1;
+    }
+    assert!(together > 10, "{together}");
+    let e = &r.summary.energy;
+    let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
+    assert!(e.friction_j > 0.1, "{e:?}");
+    assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+    for k in 0..2 {
+        converges(&model, &motion, &r, impact.time_s, k);
+    }
+    converges_in(&model, &motion, &r, impact.time_s, 0, 1);
 }

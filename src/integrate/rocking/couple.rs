@@ -1,40 +1,48 @@
 //! Two rocking bodies in contact. Where an impact between two bodies, each rocking on a pivot
-//! that stays on the ground without slipping, leaves no speed to part (no restitution, or
+//! that stays on the ground (stuck or slipping), leaves no speed to part (no restitution, or
 //! elastic bounces that accumulate to round-off), the corner of one stays on the face of the
-//! other: two columns leaning together. They turn as one mechanism of one degree of freedom,
-//! the contact (frictionless, as at every face between blocks) pushing them apart. This module
-//! owns that mechanism's motion: both rotations and the contact's push as series over a step,
-//! and the condition that ends it, the push falling to zero (the bodies part). The pivots'
-//! conditions (slip, lift) are the rocking mode's, on the forces with the push; where the
-//! corner reaches an end of the face, or another corner the face, is the pair's (`clearance`).
-//! A landing of either body ends the couple; the engine takes its impulses one after the other
-//! (the landing's, then the contact's) and may start another.
+//! other: two columns leaning together. They move as one mechanism (one degree of freedom, one
+//! more for each pivot that slips), the contact (frictionless, as at every face between blocks)
+//! pushing them apart. This module owns that mechanism's motion: both rotations, the slipping
+//! pivots' displacements and the contact's push as series over a step, and the condition that
+//! ends it, the push falling to zero (the bodies part). The pivots' conditions (slip, stick,
+//! lift) are the rocking modes', on the forces with the push; where the corner reaches an end
+//! of the face, or another corner the face, is the pair's (`clearance`). A landing of either
+//! body ends the couple; the engine takes its impulses one after the other (the landing's, then
+//! the contact's) and may start another. A body resting against a fixed block whose pivot
+//! slips is a couple too, the block its second side, fixed: the body slides down the block's
+//! face as a ladder down a wall.
 //!
 //! With the push P along the face's normal n (into the corner's body), body k's equation about
-//! its pivot is I_O,k theta_k'' = Q_k + J_k P, Q_k the rocking one (I_O theta'' = -m (G_y a_g +
-//! dx g lambda)) and J_k the push's arm: J_1 = -(r_1 x n) for the corner's body, J_2 = r_2 x n
-//! for the face's, r_k from pivot k to the corner. The same J_k give the rate at which the
-//! corner leaves the face, J_1 theta_1' + J_2 theta_2', which stays zero: order by order in the
-//! series, three linear equations in theta_1'', theta_2'' and P.
+//! its pivot is I_O,k theta_k'' + m_k G_y,k u_k'' = Q_k + J_k P, Q_k the rocking one (I_O
+//! theta'' = -m (G_y a_g + dx g lambda)), u_k'' the pivot's acceleration along the ground (zero
+//! while it sticks) and J_k the push's arm: J_1 = -(r_1 x n) for the corner's body, J_2 = r_2 x
+//! n for the face's, r_k from pivot k to the corner. A slipping pivot adds the body's two
+//! equations of translation, m (u'' + G_y theta'' + dx theta'^2 + a_g) = -mu sigma N + s_k P n_x
+//! and m (dx theta'' - G_y theta'^2 + g lambda) = N + s_k P n_y (s_1 = 1, s_2 = -1), with N its
+//! normal force and sigma its slip's sign, as in slide-rock. The same J_k give the rate at
+//! which the corner leaves the face, J_1 theta_1' + J_2 theta_2' + n_x (u_1' - u_2'), which stays
+//! zero: order by order in the series, each body's accelerations are linear in P, and that
+//! rate gives P.
 
 use super::body::RockingBody;
 use super::clearance::Touch;
-use super::modes::{
-    arms, Constraint, Corner, Equations, Guard, Inputs, Mode, Scales, State, Trajectory,
-};
+use super::modes::{arms, Constraint, Equations, Guard, Inputs, Mode, Scales, State, Trajectory};
 use super::series::{mul_at, sin_cos_at, Coeffs, ORDER, ZERO};
 
 /// Two bodies in contact, the corner of the first on a face of the second: the geometry in
-/// each body's frame upright (theta = 0), from its pivot, which stays where it is meanwhile.
+/// each body's frame upright (theta = 0), from its pivot, which moves along the ground with
+/// the body's u.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Couple {
     /// The contact as the impact that started the couple found it: the corner's block, then
     /// the face's, their pair, and what moves them.
     pub(super) touch: Touch,
-    /// The corner's body, then the face's.
-    pub(super) bodies: [usize; 2],
-    /// Their pivots (m).
-    pivots: [[f64; 2]; 2],
+    /// The corner's body, then the face's; none for a fixed block (a body resting against it
+    /// whose pivot slips).
+    pub(super) bodies: [Option<usize>; 2],
+    /// Their pivots where u = 0 (m).
+    homes: [[f64; 2]; 2],
     /// The corner, from its body's pivot (m).
     corner: [f64; 2],
     /// The face's normal, pointing into the corner's body.
@@ -68,7 +76,7 @@ struct Geometry {
 }
 
 impl Geometry {
-    /// Order j, the rotations known to order j.
+    /// Order j, the rotations and the pivots' displacements known to order j.
     fn place(&mut self, couple: &Couple, t: &[Trajectory; 2], j: usize) {
         for (k, body) in t.iter().enumerate() {
             sin_cos_at(&body.theta, &mut self.sin[k], &mut self.cos[k], j);
@@ -80,10 +88,9 @@ impl Geometry {
         self.r1[1][j] = -c[0] * sin[0][j] + c[1] * cos[0][j];
         self.n[0][j] = q[0] * cos[1][j] + q[1] * sin[1][j];
         self.n[1][j] = -q[0] * sin[1][j] + q[1] * cos[1][j];
-        let [p1, p2] = couple.pivots;
-        for x in 0..2 {
-            self.r2[x][j] = self.r1[x][j] + (p1[x] - p2[x]) * one;
-        }
+        let [h1, h2] = couple.homes;
+        self.r2[0][j] = self.r1[0][j] + (h1[0] - h2[0]) * one + t[0].u[j] - t[1].u[j];
+        self.r2[1][j] = self.r1[1][j] + (h1[1] - h2[1]) * one;
         let n = &self.n;
         let crossed = |r: &[Coeffs; 2]| mul_at(&r[0], &n[1], j) - mul_at(&r[1], &n[0], j);
         self.arm[0][j] = -crossed(&self.r1);
@@ -95,20 +102,53 @@ impl Geometry {
 pub(super) struct Motion {
     pub(super) bodies: [Trajectory; 2],
     pub(super) push: Coeffs,
+    /// How fast the corner's acceleration away from the face grows with the push (1/kg):
+    /// positive for every couple whose pivots stick; where a pivot slips, friction can make it
+    /// zero or negative, and the push is then indeterminate (Painleve's paradox for the
+    /// mechanism).
+    pub(super) compliance: f64,
+}
+
+/// A side of a couple as its motion needs it: a body in its mode (rocking on a pivot) and
+/// state, or a fixed block.
+#[derive(Clone, Copy)]
+pub(super) enum Member<'a> {
+    Moves(&'a RockingBody, Mode, &'a State),
+    Fixed,
+}
+
+/// The state of a fixed block's side: never moved.
+const UNMOVED: State = State {
+    theta: 0.0,
+    omega: 0.0,
+    u: 0.0,
+    v: 0.0,
+    lift: 0.0,
+    lift_v: 0.0,
+};
+
+/// A body's accelerations at one order of the series, affine in the push there: theta'' =
+/// a.0 + a.1 P, u'' = p.0 + p.1 P.
+#[derive(Default, Clone, Copy)]
+struct Affine {
+    a: (f64, f64),
+    p: (f64, f64),
 }
 
 impl Couple {
-    /// The couple of the bodies whose pivots are at `pivots` and rotations `theta` (the
-    /// corner's body first) in contact at `touch`; none where the push would turn neither body
-    /// (to a tie of the arms).
+    /// The couple of the bodies whose pivots are where `homes` say at u = 0 (the corner's body
+    /// first; a fixed block's home is any point of it, its state none), in `states`, in
+    /// contact at `touch`; none where the push would turn neither body (to a tie of the arms).
     pub(super) fn new(
         touch: &Touch,
-        bodies: [usize; 2],
-        pivots: [[f64; 2]; 2],
-        theta: [f64; 2],
+        bodies: [Option<usize>; 2],
+        homes: [[f64; 2]; 2],
+        states: [Option<&State>; 2],
         tie_m: f64,
     ) -> Option<Couple> {
         let (point, normal) = (touch.point, touch.normal);
+        let states = states.map(|s| s.unwrap_or(&UNMOVED));
+        let pivots = [0, 1].map(|k| [homes[k][0] + states[k].u, homes[k][1]]);
         let p1 = pivots[0];
         let couple = Couple {
             touch: Touch {
@@ -116,82 +156,150 @@ impl Couple {
                 ..*touch
             },
             bodies,
-            pivots,
-            corner: upright([point[0] - p1[0], point[1] - p1[1]], theta[0].sin_cos()),
-            normal: upright(normal, theta[1].sin_cos()),
+            homes,
+            corner: upright(
+                [point[0] - p1[0], point[1] - p1[1]],
+                states[0].theta.sin_cos(),
+            ),
+            normal: upright(normal, states[1].theta.sin_cos()),
         };
         let reach = pivots.map(|p| cross([point[0] - p[0], point[1] - p[1]], normal));
-        reach.iter().any(|a| a.abs() > tie_m).then_some(couple)
+        let turns = (0..2).any(|k| bodies[k].is_some() && reach[k].abs() > tie_m);
+        turns.then_some(couple)
     }
 
-    /// The contact where the bodies are turned by `theta`, as a touch of blocks that have not
-    /// parted.
-    pub(super) fn touch_at(&self, theta: [f64; 2]) -> Touch {
-        let (r, p) = (turned(self.corner, theta[0].sin_cos()), self.pivots[0]);
+    /// The bodies of the couple (one where the other side is a fixed block).
+    pub(super) fn moving(&self) -> impl Iterator<Item = usize> {
+        self.bodies.into_iter().flatten()
+    }
+
+    /// The contact where the bodies are in `states` (none for a fixed block), as a touch of
+    /// blocks that have not parted.
+    pub(super) fn touch_at(&self, states: [Option<&State>; 2]) -> Touch {
+        let states = states.map(|s| s.unwrap_or(&UNMOVED));
+        let r = turned(self.corner, states[0].theta.sin_cos());
+        let p = [self.homes[0][0] + states[0].u, self.homes[0][1]];
         Touch {
             point: [p[0] + r[0], p[1] + r[1]],
-            normal: turned(self.normal, theta[1].sin_cos()),
+            normal: turned(self.normal, states[1].theta.sin_cos()),
             ..self.touch
         }
     }
 
-    /// Both bodies' motion from their states (rocking on the corners `corners`) under
-    /// `inputs`, to order [`ORDER`], and the push.
-    pub(super) fn motion(
-        &self,
-        bodies: [&RockingBody; 2],
-        corners: [Corner; 2],
-        states: [&State; 2],
-        inputs: &Inputs,
-    ) -> Motion {
+    /// Both sides' motion from their states in their modes (each body rocking on a pivot that
+    /// sticks or slips; a fixed block's trajectory stays zero) under `inputs`, to order
+    /// [`ORDER`], and the push.
+    pub(super) fn motion(&self, members: [Member; 2], inputs: &Inputs) -> Motion {
         let (a, lam) = (&inputs.accel, &inputs.lambda);
-        let mut t =
-            [0, 1].map(|k| Trajectory::start(Mode::Rock(corners[k]), Equations::Exact, states[k]));
-        let io = bodies.map(RockingBody::corner_inertia_kg_m2);
+        let mut t = members.map(|m| match m {
+            Member::Moves(_, mode, state) => Trajectory::start(mode, Equations::Exact, state),
+            Member::Fixed => Trajectory::start(Mode::Rest, Equations::Exact, &UNMOVED),
+        });
         let mut at = Geometry::default();
-        let (mut acc, mut w, mut push) = ([ZERO; 2], [ZERO; 2], ZERO);
+        let (mut acc, mut acc_u, mut w, mut push) = ([ZERO; 2], [ZERO; 2], [ZERO; 2], ZERO);
+        let mut compliance = 0.0;
+        let io = members.map(|m| match m {
+            Member::Moves(body, ..) => body.corner_inertia_kg_m2(),
+            Member::Fixed => 0.0,
+        });
         at.place(self, &t, 0);
         for k in 0..=ORDER {
             if k < ORDER {
                 for tk in t.iter_mut() {
                     tk.theta[k + 1] = tk.omega[k] / (k + 1) as f64;
+                    tk.u[k + 1] = tk.v[k] / (k + 1) as f64;
                 }
                 at.place(self, &t, k + 1);
             }
-            let mut rest = [0.0; 2];
-            for b in 0..2 {
-                let (m, g) = (bodies[b].mass_kg, bodies[b].g_m_s2);
-                (t[b].gy[k], t[b].dx[k]) =
-                    arms(bodies[b], corners[b].sign(), &at.sin[b], &at.cos[b], k);
-                let q = -m * (mul_at(&t[b].gy, a, k) + g * mul_at(&t[b].dx, lam, k));
-                let earlier: f64 = (1..=k).map(|j| at.arm[b][j] * push[k - j]).sum();
-                rest[b] = q + earlier;
+            let mut affine = [Affine::default(); 2];
+            for (b, member) in members.iter().enumerate() {
+                let Member::Moves(body, mode, _) = *member else {
+                    continue;
+                };
+                let (m, g) = (body.mass_kg, body.g_m_s2);
+                let on = if b == 0 { 1.0 } else { -1.0 };
+                let s = mode
+                    .pivot()
+                    .expect("a body of a couple rocks on a pivot")
+                    .sign();
+                (t[b].gy[k], t[b].dx[k]) = arms(body, s, &at.sin[b], &at.cos[b], k);
+                w[b][k] = mul_at(&t[b].omega, &t[b].omega, k);
+                let (tb, n) = (&t[b], &at.n);
+                // What each equation holds at order k but for the terms of order k's unknowns.
+                let earlier =
+                    |x: &Coeffs, y: &Coeffs| -> f64 { (1..=k).map(|j| x[j] * y[k - j]).sum() };
+                let q = -m * (mul_at(&tb.gy, a, k) + g * mul_at(&tb.dx, lam, k));
+                let rm = q - m * earlier(&tb.gy, &acc_u[b]) + earlier(&at.arm[b], &push);
+                let (j0, gy0, dx0) = (at.arm[b][0], tb.gy[0], tb.dx[0]);
+                affine[b] = match mode {
+                    Mode::SlideRock(_, slip) => {
+                        let f = body.friction * slip.sign();
+                        let rh = -m * (earlier(&tb.gy, &acc[b]) + mul_at(&tb.dx, &w[b], k) + a[k])
+                            + on * earlier(&n[0], &push);
+                        let rv = -m
+                            * (earlier(&tb.dx, &acc[b]) - mul_at(&tb.gy, &w[b], k) + g * lam[k])
+                            + on * earlier(&n[1], &push);
+                        // Slide-rock's denominator I_G + m dx^2 - m mu sigma G_y dx.
+                        let d = io[b] - m * gy0 * (gy0 + f * dx0);
+                        if k == 0 {
+                            t[b].denominator = Some(d);
+                        }
+                        // N from the vertical equation into the horizontal one gives u'', and
+                        // that into the moment about the pivot theta'', each affine in P.
+                        let along = on * (n[0][0] + f * n[1][0]);
+                        let turn = ((rm - gy0 * (rh + f * rv)) / d, (j0 - gy0 * along) / d);
+                        let lever = gy0 + f * dx0;
+                        Affine {
+                            a: turn,
+                            p: (
+                                (rh + f * rv) / m - lever * turn.0,
+                                along / m - lever * turn.1,
+                            ),
+                        }
+                    }
+                    _ => Affine {
+                        a: (rm / io[b], j0 / io[b]),
+                        p: (0.0, 0.0),
+                    },
+                };
             }
             // The rate at which the corner leaves the face, at order k + 1, but for the
-            // accelerations at order k: J_1 theta_1'' + J_2 theta_2'' = c (at the last order,
-            // whose accelerations give only forces, the rate's term lies beyond the series).
+            // accelerations at order k: J_1 theta_1'' + J_2 theta_2'' + n_x (u_1'' - u_2'') = c
+            // (at the last order, whose accelerations give only forces, the rate's term lies
+            // beyond the series).
             let c = if k < ORDER {
+                let dv = |j: usize| t[0].v[j] - t[1].v[j];
                 let known: f64 = (1..=k + 1)
                     .map(|j| {
-                        at.arm[0][j] * t[0].omega[k + 1 - j] + at.arm[1][j] * t[1].omega[k + 1 - j]
+                        at.arm[0][j] * t[0].omega[k + 1 - j]
+                            + at.arm[1][j] * t[1].omega[k + 1 - j]
+                            + at.n[0][j] * dv(k + 1 - j)
                     })
                     .sum();
                 -((k + 1) as f64) * known
             } else {
                 0.0
             };
-            let (j1, j2) = (at.arm[0][0], at.arm[1][0]);
-            push[k] = (c - j1 * rest[0] / io[0] - j2 * rest[1] / io[1])
-                / (j1 * j1 / io[0] + j2 * j2 / io[1]);
-            for b in 0..2 {
-                acc[b][k] = (rest[b] + at.arm[b][0] * push[k]) / io[b];
-                w[b][k] = mul_at(&t[b].omega, &t[b].omega, k);
-                // The ground's forces as the rocking mode's, less the push on the body (+n on
-                // the corner's, -n on the face's).
-                let (m, g) = (bodies[b].mass_kg, bodies[b].g_m_s2);
+            let (j1, j2, nx) = (at.arm[0][0], at.arm[1][0], at.n[0][0]);
+            let [f1, f2] = &affine;
+            let free = j1 * f1.a.0 + j2 * f2.a.0 + nx * (f1.p.0 - f2.p.0);
+            let per = j1 * f1.a.1 + j2 * f2.a.1 + nx * (f1.p.1 - f2.p.1);
+            if k == 0 {
+                compliance = per;
+            }
+            push[k] = (c - free) / per;
+            for (b, member) in members.iter().enumerate() {
+                let Member::Moves(body, ..) = *member else {
+                    continue;
+                };
+                acc[b][k] = affine[b].a.0 + affine[b].a.1 * push[k];
+                acc_u[b][k] = affine[b].p.0 + affine[b].p.1 * push[k];
+                // The ground's forces: what moves the body, less the push on it (+n on the
+                // corner's, -n on the face's).
+                let (m, g) = (body.mass_kg, body.g_m_s2);
                 let on = if b == 0 { 1.0 } else { -1.0 };
                 let (tb, ab, wb) = (&t[b], &acc[b], &w[b]);
-                let fx = m * (mul_at(&tb.gy, ab, k) + mul_at(&tb.dx, wb, k) + a[k]);
+                let fx = m * (mul_at(&tb.gy, ab, k) + mul_at(&tb.dx, wb, k) + a[k] + acc_u[b][k]);
                 let fy = m * (mul_at(&tb.dx, ab, k) - mul_at(&tb.gy, wb, k) + g * lam[k]);
                 t[b].tangential[k] = fx - on * mul_at(&push, &at.n[0], k);
                 t[b].normal[k] = fy - on * mul_at(&push, &at.n[1], k);
@@ -199,10 +307,15 @@ impl Couple {
             if k < ORDER {
                 for b in 0..2 {
                     t[b].omega[k + 1] = acc[b][k] / (k + 1) as f64;
+                    t[b].v[k + 1] = acc_u[b][k] / (k + 1) as f64;
                 }
             }
         }
-        Motion { bodies: t, push }
+        Motion {
+            bodies: t,
+            push,
+            compliance,
+        }
     }
 
     /// The contact lasts while the push stays >= 0.

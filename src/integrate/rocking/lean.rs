@@ -7,9 +7,11 @@
 //! balance about the pivot, and the ground's reaction at the pivot, as series over a step,
 //! and the condition that ends the rest, the push falling to zero (the ground acceleration
 //! turning the body away). The pivot's own conditions (slip, lift) are the rocking mode's,
-//! on these forces.
+//! on these forces; where the pivot slips, the body slides along the face, a `couple` with
+//! the fixed block, and rests here again where the slip stops.
 
 use super::body::RockingBody;
+use super::clearance::Touch;
 use super::modes::{Constraint, Guard, Inputs, Scales, Trajectory};
 use super::series::{constant, Coeffs, ZERO};
 
@@ -17,8 +19,8 @@ use super::series::{constant, Coeffs, ZERO};
 /// from the body's pivot, which stays where it is while the body rests.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Lean {
-    /// The clearance pair of the two blocks.
-    pub(super) pair: usize,
+    /// The contact, as the body came to rest against the block (it stays there).
+    pub(super) touch: Touch,
     /// The body's block, then the fixed block (outputs).
     pub(super) blocks: [usize; 2],
     /// From the pivot to the body's centroid and to the contact point (m).
@@ -29,25 +31,29 @@ pub(super) struct Lean {
 }
 
 impl Lean {
-    /// The lean of a body whose pivot is at `pivot` and centroid at `centroid`, touching the
-    /// fixed block at `point` with the push along `push` (positions in the wall's frame, m);
-    /// none where the push has no moment about the pivot to hold the body by (to a tie of
-    /// the arm).
+    /// The lean of the body on side k of `touch` (0: its corner on the fixed block's face, 1:
+    /// its face on the block's corner), whose pivot is at `pivot` and centroid at `centroid`
+    /// (positions in the wall's frame, m); none where the push has no moment about the pivot
+    /// to hold the body by (to a tie of the arm).
     pub(super) fn new(
-        pair: usize,
-        blocks: [usize; 2],
+        touch: &Touch,
+        k: usize,
         pivot: [f64; 2],
         centroid: [f64; 2],
-        point: [f64; 2],
-        push: [f64; 2],
         tie_m: f64,
     ) -> Option<Lean> {
         let from = |p: [f64; 2]| [p[0] - pivot[0], p[1] - pivot[1]];
+        // The face's normal points into the corner's block.
+        let push = if k == 0 {
+            touch.normal
+        } else {
+            touch.normal.map(|x| -x)
+        };
         let lean = Lean {
-            pair,
-            blocks,
+            touch: *touch,
+            blocks: [touch.blocks[k], touch.blocks[1 - k]],
             centroid: from(centroid),
-            contact: from(point),
+            contact: from(touch.point),
             push,
         };
         (lean.arm().abs() > tie_m).then_some(lean)

@@ -54,10 +54,10 @@ use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
 use clearance::{Clearance, Side, Touch};
-use couple::Couple;
+use couple::{Couple, Member};
 use layout::Layout;
 use lean::Lean;
-use modes::{Corner, Guard, Inputs, Mode, Scales, State, Trajectory};
+use modes::{Corner, Guard, Inputs, Mode, Scales, Slip, State, Trajectory};
 use series::Coeffs;
 
 /// Stops at one instant (events that do not move the time) before a run is declared stuck.
@@ -249,33 +249,36 @@ fn transition(old: Mode, new: Mode, start: bool) -> Option<EventKind> {
     }
 }
 
-/// Is the ground at rest from this segment on?
 /// The corner a body rocks on after an impact (`after`; its mode before, `mode`) where that is
-/// the pivot it had, or one it starts rocking on from seated where `seated` allows, and it does
-/// not slip; else what it does instead, in words.
-fn stuck_pivot(after: &collision::After, mode: Mode, seated: bool) -> Result<Corner, &'static str> {
+/// the pivot it had, or one it starts rocking on from seated where `seated` allows, and whether
+/// it slips; else what it does instead, in words.
+fn pivot_after(
+    after: &collision::After,
+    mode: Mode,
+    seated: bool,
+) -> Result<(Corner, bool), &'static str> {
     match (after.base, mode.pivot()) {
-        (
-            collision::Base::Pivot {
-                corner,
-                slips: false,
-            },
-            Some(c),
-        ) if corner == c => Ok(c),
-        (
-            collision::Base::Pivot {
-                corner,
-                slips: false,
-            },
-            None,
-        ) if seated => Ok(corner),
+        (collision::Base::Pivot { corner, slips }, Some(c)) if corner == c => Ok((c, slips)),
+        (collision::Base::Pivot { corner, slips }, None) if seated => Ok((corner, slips)),
         (collision::Base::Flies, _) => Err("leaves the ground"),
-        (collision::Base::Pivot { slips: true, .. }, _) => Err("slips at its pivot"),
         (collision::Base::Pivot { .. }, _) => Err("turns on its other corner"),
         (collision::Base::Seated { .. }, _) => Err("stays seated"),
     }
 }
 
+/// What a body does where the condition `guard` of its mode falls, in words.
+fn breaks(guard: Guard) -> &'static str {
+    match guard {
+        Guard::PivotSlip | Guard::StickLimit => "slip at its pivot",
+        Guard::PivotStick => "slip the other way",
+        Guard::Flight => "leave the ground at its pivot",
+        Guard::Overturn => "lie on its face",
+        Guard::Impact => "land on its base",
+        _ => "change its mode",
+    }
+}
+
+/// Is the ground at rest from this segment on?
 fn quiet(seg: &Segment) -> bool {
     seg.t1.is_infinite()
         && seg.shape
@@ -363,7 +366,11 @@ impl<'a> Engine<'a> {
         let tr = &self.tracks[i];
         if let Some(couple) = &tr.couple {
             let [first, second] = self.coupled(couple, inputs).bodies;
-            return if couple.bodies[0] == i { first } else { second };
+            return if couple.bodies[0] == Some(i) {
+                first
+            } else {
+                second
+            };
         }
         let mut t = modes::trajectory(
             self.body(i),
@@ -378,17 +385,17 @@ impl<'a> Engine<'a> {
         t
     }
 
-    /// The motion of a couple's two bodies and their contact's push.
+    /// The sides of a couple: its bodies in their modes and states, or a fixed block.
+    fn members(&self, couple: &Couple) -> [Member<'_>; 2] {
+        couple.bodies.map(|b| match b {
+            Some(i) => Member::Moves(self.body(i), self.tracks[i].mode, &self.tracks[i].state),
+            None => Member::Fixed,
+        })
+    }
+
+    /// The motion of a couple's bodies and their contact's push.
     fn coupled(&self, couple: &Couple, inputs: &Inputs) -> couple::Motion {
-        let tracks = couple.bodies.map(|i| &self.tracks[i]);
-        let corner =
-            |i: usize| (tracks[i].mode.pivot()).expect("a body of a couple rocks on a pivot");
-        couple.motion(
-            couple.bodies.map(|i| self.body(i)),
-            [corner(0), corner(1)],
-            tracks.map(|t| &t.state),
-            inputs,
-        )
+        couple.motion(self.members(couple), inputs)
     }
 
     /// Decides body i's mode now, from its state and the pivot it rocks on, and logs the
@@ -677,8 +684,11 @@ impl<'a> Engine<'a> {
         if let Some(lean) = &self.tracks[i].leans {
             conditions.push(lean.condition(body, inputs));
         }
-        if let Some(couple) = self.tracks[i].couple.filter(|c| c.bodies[0] == i) {
-            // The couple's own condition, once: on its corner's body.
+        if let Some(couple) = self.tracks[i]
+            .couple
+            .filter(|c| c.moving().next() == Some(i))
+        {
+            // The couple's own condition, once: on its first body.
             conditions.push(couple.condition(body, &self.coupled(&couple, inputs)));
         }
         // A body that may run into a block beside it is followed until it lies on its face or
@@ -749,6 +759,7 @@ impl<'a> Engine<'a> {
             return match guard {
                 Guard::Parts => self.part(i, now),
                 Guard::Impact => self.couple_lands(i, now),
+                Guard::PivotSlip | Guard::PivotStick => self.recouple(i, guard, now),
                 _ => {
                     self.couple_gives(i, guard);
                     Ok(())
@@ -757,8 +768,9 @@ impl<'a> Engine<'a> {
         }
         match guard {
             Guard::Parts => self.lets_go(i, now),
-            Guard::PivotSlip | Guard::Flight if self.tracks[i].leans.is_some() => {
-                self.lean_gives(i, guard);
+            Guard::PivotSlip if self.tracks[i].leans.is_some() => self.lean_slips(i, now),
+            Guard::Flight if self.tracks[i].leans.is_some() => {
+                self.lean_gives(i);
                 Ok(())
             }
             Guard::Overturn => self.overturn(i, traj, tau),
@@ -841,7 +853,7 @@ impl<'a> Engine<'a> {
             .leans
             .take()
             .expect("a body resting against a block");
-        self.clearance.lean(lean.pair, false);
+        self.clearance.lean(lean.touch.pair, false);
         let [own, other] = lean.blocks.map(|k| self.layout.names[k].clone());
         self.rec.rocking_event(
             self.t,
@@ -857,7 +869,7 @@ impl<'a> Engine<'a> {
     /// part before it may strike again.
     fn uncouple(&mut self, i: usize) -> Couple {
         let couple = self.tracks[i].couple.expect("a body of a couple");
-        for k in couple.bodies {
+        for k in couple.moving() {
             self.tracks[k].couple = None;
         }
         self.clearance.hold(couple.touch.pair, None);
@@ -876,7 +888,7 @@ impl<'a> Engine<'a> {
             None,
             format!("{corner}'s corner leaves {face}'s face, which no longer pushes on it"),
         );
-        for k in couple.bodies {
+        for k in couple.moving() {
             self.decide(k, now, false)?;
         }
         Ok(())
@@ -894,7 +906,7 @@ impl<'a> Engine<'a> {
         if self.stop.is_some() {
             return Ok(());
         }
-        let touch = couple.touch_at(couple.bodies.map(|k| self.tracks[k].state.theta));
+        let touch = couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)));
         let sides = touch.sides.map(|side| match side {
             Side::Body(k, origin) => Some(self.turning(k, origin)),
             Side::Fixed | Side::Held => None,
@@ -918,8 +930,10 @@ impl<'a> Engine<'a> {
                     self.body(i).name
                 ),
             );
-            let other = couple.bodies[usize::from(couple.bodies[0] == i)];
-            return self.decide(other, now, false);
+            return match couple.moving().find(|&k| k != i) {
+                Some(other) => self.decide(other, now, false),
+                None => Ok(()),
+            };
         }
         if let Some(why) = self.strike(&touch, now)? {
             self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
@@ -927,39 +941,157 @@ impl<'a> Engine<'a> {
         Ok(())
     }
 
-    /// Body i of a couple would slip or leave the ground at its pivot, or fall flat
-    /// (`guard`): the mechanism changes in a way the exact model does not follow.
+    /// Body i of a couple would leave the ground at its pivot, or fall flat (`guard`): the
+    /// mechanism changes in a way the exact model does not follow.
     fn couple_gives(&mut self, i: usize, guard: Guard) {
         let couple = self.tracks[i].couple.expect("a body of a couple");
-        let name = &self.body(i).name;
-        let how = match guard {
-            Guard::PivotSlip => "slip at its pivot",
-            Guard::Flight => "leave the ground at its pivot",
-            Guard::Overturn => "lie on its face",
-            _ => "change its mode",
-        };
         let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].as_str());
         let why = format!(
-            "{corner}'s corner turns on {face}'s face, the two bodies in contact, and {name} \
-             would {how}: a change of such a mechanism is not followed"
+            "{corner}'s corner turns on {face}'s face, the two bodies in contact, and {} would \
+             {}: a change of such a mechanism is not followed",
+            self.body(i).name,
+            breaks(guard)
         );
         self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
     }
 
-    /// Body i, resting against a fixed block, would slip or leave the ground at its pivot
-    /// (`guard`): the two contacts would move together, which the exact model does not follow.
-    fn lean_gives(&mut self, i: usize, guard: Guard) {
+    /// Body i of a couple reaches the limit of its pivot's friction, or its slipping pivot
+    /// stops (`guard`): the couple's modes are decided again, each change logged; a body
+    /// sliding along a fixed block's face whose pivot sticks rests there ([`lean`]); where no
+    /// one mode holds, the run stops, saying why.
+    fn recouple(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
+        if guard == Guard::PivotStick {
+            self.tracks[i].state.v = 0.0;
+        }
+        let couple = self.tracks[i].couple.expect("a body of a couple");
+        let modes = match self.couple_modes(&couple, self.members(&couple), now) {
+            Ok(modes) => modes,
+            Err(why) => {
+                let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].as_str());
+                let why = format!("{corner}'s corner turns on {face}'s face, and {why}");
+                self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
+                return Ok(());
+            }
+        };
+        self.rec.stats.mode_decisions += 1;
+        for (k, new) in couple.bodies.into_iter().zip(modes) {
+            let (Some(k), Some(new)) = (k, new) else {
+                continue;
+            };
+            let old = self.tracks[k].mode;
+            if let Some(kind) = transition(old, new, false) {
+                let blocks = self.layout.outputs(k);
+                self.rec
+                    .rocking_event(self.t, kind, &blocks, None, new.name());
+            }
+            let tr = &mut self.tracks[k];
+            tr.mode = new;
+            if let Mode::Rock(_) = new {
+                tr.state.v = 0.0;
+            }
+        }
+        if couple.bodies.contains(&None) && matches!(self.tracks[i].mode, Mode::Rock(_)) {
+            self.rests_still(i, now);
+        }
+        Ok(())
+    }
+
+    /// Body i slides along a fixed block's face and its pivot sticks: the contact leaves it no
+    /// motion, and it rests against the block from here ([`lean`]), what it had of kinetic
+    /// energy (round-off: the contact ties its rotation to its slip) counted as lost.
+    fn rests_still(&mut self, i: usize, now: &Inputs) {
+        let couple = self.uncouple(i);
+        let k = usize::from(couple.bodies[1] == Some(i));
+        let touch = couple.touch_at([0, 1].map(|s| (s == k).then_some(&self.tracks[i].state)));
+        let Side::Body(_, origin) = touch.sides[k] else {
+            unreachable!("the body's side of its couple");
+        };
+        let turns = self.turning(i, origin);
+        let body = self.body(i);
+        let Some(lean) = Lean::new(&touch, k, turns.pivot, turns.centroid, 0.0) else {
+            unreachable!("a couple's push has a moment about its body's pivot");
+        };
+        let before = modes::kinetic_j(body, &self.trajectory(i, now), 0.0);
+        let tr = &mut self.tracks[i];
+        tr.state.omega = 0.0;
+        tr.leans = Some(lean);
+        self.rec.energy.impact_loss_j += before;
+        self.clearance.lean(touch.pair, true);
+    }
+
+    /// Body i, at rest against a fixed block, reaches the limit of its pivot's friction: it
+    /// slides along the block's face, the contact staying, as a couple with the block
+    /// ([`couple`]) in the mode its pivot's friction allows; or the run stops, saying why.
+    fn lean_slips(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+        let lean = self.tracks[i]
+            .leans
+            .expect("a body resting against a block");
+        let touch = lean.touch;
+        let k = usize::from(matches!(touch.sides[1], Side::Body(..)));
+        let Side::Body(_, origin) = touch.sides[k] else {
+            unreachable!("the body's side of its lean");
+        };
+        let c = self.tracks[i]
+            .mode
+            .pivot()
+            .expect("a leaning body rocks on a pivot");
+        let mut homes = [touch.point; 2];
+        homes[k] = [
+            origin[0] + c.sign() * self.layout.pivot_half_base_m(i),
+            origin[1],
+        ];
+        let bodies = [0, 1].map(|s| (s == k).then_some(i));
+        let state = self.tracks[i].state;
+        let placed = [0, 1].map(|s| (s == k).then_some(&state));
+        let tie_m = series::TIE * self.body(i).size_m();
+        let couple = Couple::new(&touch, bodies, homes, placed, tie_m)
+            .expect("a lean's push has a moment about the body's pivot");
+        let members = [0, 1].map(|s| match s == k {
+            true => Member::Moves(self.body(i), self.tracks[i].mode, &state),
+            false => Member::Fixed,
+        });
+        match self.couple_modes(&couple, members, now) {
+            Ok(modes) if modes[k] != Some(Mode::Rock(c)) => {
+                let mode = modes[k].expect("the body's side has a mode");
+                self.rec.stats.mode_decisions += 1;
+                self.rec.rocking_event(
+                    self.t,
+                    EventKind::PivotSlip,
+                    &self.layout.outputs(i),
+                    None,
+                    format!(
+                        "{}, sliding along {}'s face",
+                        mode.name(),
+                        self.layout.names[lean.blocks[1]]
+                    ),
+                );
+                self.clearance.lean(touch.pair, false);
+                self.clearance.hold(touch.pair, Some(touch.corner));
+                let tr = &mut self.tracks[i];
+                tr.leans = None;
+                tr.mode = mode;
+                tr.couple = Some(couple);
+            }
+            // Its friction holds after all: the margin touched zero and turns back.
+            Ok(_) => {}
+            Err(why) => {
+                let [own, other] = lean.blocks.map(|b| self.layout.names[b].as_str());
+                let why = format!("{own} rests against {other}'s face, and {why}");
+                self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
+            }
+        }
+        Ok(())
+    }
+
+    /// Body i, resting against a fixed block, would leave the ground at its pivot: the two
+    /// contacts would move together, which the exact model does not follow.
+    fn lean_gives(&mut self, i: usize) {
         let lean = self.tracks[i]
             .leans
             .expect("a body resting against a block");
         let [own, other] = lean.blocks.map(|k| self.layout.names[k].as_str());
-        let how = if guard == Guard::Flight {
-            "leave the ground"
-        } else {
-            "slip (the friction it needs exceeds what its base holds)"
-        };
         let why = format!(
-            "{own} rests against {other}'s face, and its pivot would {how}: a body sliding or \
+            "{own} rests against {other}'s face, and its pivot would leave the ground: a body \
              lifting along a face it touches is not followed"
         );
         self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
@@ -1214,31 +1346,19 @@ impl<'a> Engine<'a> {
                  block"
             ));
         }
-        let c = match stuck_pivot(&after, self.tracks[i].mode, false) {
-            Ok(c) => c,
+        let c = match pivot_after(&after, self.tracks[i].mode, false) {
+            Ok((c, false)) => c,
+            // Its pivot slipping, it slides along the face, the corner on it.
+            Ok((_, true)) => return self.couples(t, out, now, stays),
             Err(what) => {
                 return Some(format!(
                     "{stays}, and {name} {what} against it: a contact that stays on a body \
-                     that is not at rest on a stuck pivot is not followed"
+                     that is not rocking on a pivot on the ground is not followed"
                 ))
             }
         };
-        let push = if k == 0 {
-            t.normal
-        } else {
-            t.normal.map(|x| -x)
-        };
-        let blocks = [t.blocks[k], t.blocks[1 - k]];
         let tie_m = series::TIE * body.size_m();
-        let Some(lean) = Lean::new(
-            t.pair,
-            blocks,
-            turns.pivot,
-            turns.centroid,
-            t.point,
-            push,
-            tie_m,
-        ) else {
+        let Some(lean) = Lean::new(t, k, turns.pivot, turns.centroid, tie_m) else {
             return Some(format!(
                 "{stays}, and the contact's push has no moment about {name}'s pivot to hold it by"
             ));
@@ -1263,7 +1383,7 @@ impl<'a> Engine<'a> {
         let what = format!(
             "{meeting}; {name}: theta' {before:.6e} -> 0 rad/s, at rest against {} at theta = \
              {:.6e} rad, pushed by {:.6e} N",
-            self.layout.names[blocks[1]],
+            self.layout.names[t.blocks[1 - k]],
             tr.state.theta,
             lean.push_n(body, now),
         );
@@ -1292,10 +1412,11 @@ impl<'a> Engine<'a> {
         }
     }
 
-    /// Where two bodies' blocks stay in contact after an impact `t` (`out`; `stays` says how):
-    /// each rocking on the pivot it had (or a seated one on the corner the blow turns it on),
-    /// neither slipping, they turn on together ([`couple`]); any other contact that stays
-    /// stops the run, and the reason is returned.
+    /// Where the blocks of an impact `t` stay in contact (`out`; `stays` says how), each body
+    /// rocking on the pivot it had (or a seated one on the corner the blow turns it on), stuck
+    /// or slipping: two bodies move on together, or one slides along a fixed block's face, its
+    /// pivot slipping ([`couple`]), in the one mode of their pivots the contact conditions
+    /// allow; any other contact that stays stops the run, and the reason is returned.
     fn couples(
         &mut self,
         t: &Touch,
@@ -1305,69 +1426,187 @@ impl<'a> Engine<'a> {
     ) -> Option<String> {
         if self.scene.equations != Equations::Exact {
             return Some(format!(
-                "{stays}, and the linearised equations do not follow two bodies in contact"
+                "{stays}, and the linearised equations do not follow two blocks in contact"
             ));
         }
-        let mut bodies = [0; 2];
-        let mut after = [(0.0, Corner::Right); 2];
-        let mut pivots = [[0.0; 2]; 2];
+        let mut bodies = [None; 2];
+        let mut homes = [t.point; 2];
+        let mut states = [State::default(); 2];
+        let mut modes = [Mode::Rest; 2];
         for k in 0..2 {
-            let (Side::Body(i, origin), Some(a)) = (t.sides[k], out.after[k]) else {
-                unreachable!("both sides of a contact between bodies move");
+            let (i, origin, a) = match (t.sides[k], out.after[k]) {
+                (Side::Body(i, origin), Some(a)) => (i, origin, a),
+                (Side::Fixed, _) => continue,
+                _ => unreachable!("a side of a contact that moves has its velocities"),
             };
             let mode = self.tracks[i].mode;
-            let c = match stuck_pivot(&a, mode, matches!(mode, Mode::Rest | Mode::Slide(_))) {
-                Ok(c) => c,
-                Err(what) => {
-                    return Some(format!(
-                        "{stays}, and {} {what}: two bodies in contact are followed only while \
-                         each rocks on a stuck pivot",
-                        self.body(i).name
-                    ))
-                }
-            };
-            (bodies[k], after[k]) = (i, (a.omega, c));
+            let (c, slips) =
+                match pivot_after(&a, mode, matches!(mode, Mode::Rest | Mode::Slide(_))) {
+                    Ok(pivot) => pivot,
+                    Err(what) => {
+                        return Some(format!(
+                            "{stays}, and {} {what}: blocks in contact are followed only while \
+                             each body rocks on a pivot on the ground",
+                            self.body(i).name
+                        ))
+                    }
+                };
+            bodies[k] = Some(i);
             let bp = self.layout.pivot_half_base_m(i);
-            pivots[k] = [
-                origin[0] + c.sign() * bp + self.tracks[i].state.u,
-                origin[1],
-            ];
+            homes[k] = [origin[0] + c.sign() * bp, origin[1]];
+            states[k] = State {
+                omega: a.omega,
+                v: if slips { a.v } else { 0.0 },
+                ..self.tracks[i].state
+            };
+            modes[k] = if slips {
+                Mode::SlideRock(c, Slip::of_sign(a.v))
+            } else {
+                Mode::Rock(c)
+            };
         }
-        let size = bodies.map(|i| self.body(i).size_m());
+        let size = bodies.map(|b| b.map_or(0.0, |i| self.body(i).size_m()));
         let tie_m = series::TIE * size[0].max(size[1]);
-        let theta = bodies.map(|i| self.tracks[i].state.theta);
-        let Some(couple) = Couple::new(t, bodies, pivots, theta, tie_m) else {
+        let placed = [0, 1].map(|k| bodies[k].map(|_| &states[k]));
+        let Some(couple) = Couple::new(t, bodies, homes, placed, tie_m) else {
             return Some(format!(
-                "{stays}, and the contact's push has no moment about either body's pivot"
+                "{stays}, and the contact's push has no moment about a body's pivot"
             ));
+        };
+        let members = [0, 1].map(|k| match bodies[k] {
+            Some(i) => Member::Moves(self.body(i), modes[k], &states[k]),
+            None => Member::Fixed,
+        });
+        let modes = match self.couple_modes(&couple, members, now) {
+            Ok(modes) => modes,
+            Err(why) => return Some(format!("{stays}, and {why}")),
         };
         self.rec.energy.impact_loss_j += out.loss_j;
         let mut what = self.stays_in_contact(t, out, &stays);
-        let before = self.tracks[bodies[0]].state.omega;
+        let mut omega = None;
         for k in 0..2 {
-            let (i, (omega, c)) = (bodies[k], after[k]);
+            let (Some(i), Some(mode)) = (bodies[k], modes[k]) else {
+                continue;
+            };
             if out.impulse_n_s > 0.0 {
                 self.rec.rocking_impact(t.blocks[k]);
             }
             let tr = &mut self.tracks[i];
+            omega.get_or_insert((tr.state.omega, states[k].omega));
+            let slipping = match mode {
+                Mode::SlideRock(..) => format!(", slipping at {:.6e} m/s", states[k].v),
+                _ => String::new(),
+            };
             what += &format!(
-                "; {}: theta' {:.6e} -> {omega:.6e} rad/s",
-                self.layout.names[t.blocks[k]], tr.state.omega
+                "; {}: theta' {:.6e} -> {:.6e} rad/s{slipping}",
+                self.layout.names[t.blocks[k]], tr.state.omega, states[k].omega
             );
-            tr.state.omega = omega;
-            tr.state.v = 0.0;
-            tr.mode = Mode::Rock(c);
+            tr.state = states[k];
+            tr.mode = mode;
             tr.couple = Some(couple);
         }
         self.clearance.hold(t.pair, Some(t.corner));
-        what += &format!(
-            "; they turn on together, pushed apart by {:.6e} N",
-            self.coupled(&couple, now).push[0]
-        );
-        let omega = Some((before, after[0].0));
+        let push = self.coupled(&couple, now).push[0];
+        what += &if bodies.contains(&None) {
+            format!("; it slides along the face, pushed by {push:.6e} N")
+        } else {
+            format!("; they turn on together, pushed apart by {push:.6e} N")
+        };
         self.rec
             .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
         None
+    }
+
+    /// The modes of a couple's bodies (`members`, each rocking on the pivot of its mode): every
+    /// way their pivots may stick or slip (a pivot slipping now keeps its direction) is checked
+    /// against the bodies' conditions just after now, and exactly one must hold (none for a
+    /// fixed block's side); else why not, in words (no mode holds, friction makes the push
+    /// indeterminate, or several hold). The push's own condition is not among them: where it
+    /// falls at once, the blocks part at this instant.
+    fn couple_modes(
+        &self,
+        couple: &Couple,
+        members: [Member; 2],
+        now: &Inputs,
+    ) -> Result<[Option<Mode>; 2], String> {
+        let ways = |m: &Member| -> Vec<Option<Mode>> {
+            let Member::Moves(_, mode, state) = *m else {
+                return vec![None];
+            };
+            let c = mode.pivot().expect("a body of a couple rocks on a pivot");
+            let slips = if state.v == 0.0 {
+                vec![Slip::Forward, Slip::Backward]
+            } else {
+                vec![Slip::of_sign(state.v)]
+            };
+            let stuck = (state.v == 0.0).then_some(Mode::Rock(c));
+            (stuck.into_iter())
+                .chain(slips.into_iter().map(|s| Mode::SlideRock(c, s)))
+                .map(Some)
+                .collect()
+        };
+        let (mut holding, mut paradox, mut broken) = (Vec::new(), Vec::new(), Vec::new());
+        for first in ways(&members[0]) {
+            for second in ways(&members[1]) {
+                let modes = [first, second];
+                let trial = [0, 1].map(|k| match (members[k], modes[k]) {
+                    (Member::Moves(body, _, state), Some(mode)) => Member::Moves(body, mode, state),
+                    _ => Member::Fixed,
+                });
+                let named = || -> String {
+                    let each = trial.iter().filter_map(|m| match m {
+                        Member::Moves(body, mode, _) => {
+                            Some(format!("{} {}", body.name, mode.name()))
+                        }
+                        Member::Fixed => None,
+                    });
+                    each.collect::<Vec<_>>().join(" with ")
+                };
+                let motion = couple.motion(trial, now);
+                let painleve = motion
+                    .bodies
+                    .iter()
+                    .any(|t| t.denominator.is_some_and(|d| d <= 0.0));
+                if painleve || motion.compliance <= 0.0 {
+                    paradox.push(named());
+                    continue;
+                }
+                let fails = (0..2).find_map(|k| {
+                    let Member::Moves(body, ..) = trial[k] else {
+                        return None;
+                    };
+                    let scale_t = body.time_scale_s();
+                    modes::constraints(body, Equations::Exact, &motion.bodies[k])
+                        .into_iter()
+                        .find(|c| !c.holds_after(scale_t))
+                        .map(|c| format!("{}: {} would {}", named(), body.name, breaks(c.guard)))
+                });
+                match fails {
+                    None => holding.push((modes, named())),
+                    Some(why) => broken.push(why),
+                }
+            }
+        }
+        match &holding[..] {
+            [(modes, _)] => Ok(*modes),
+            [] if !paradox.is_empty() => Err(format!(
+                "Painleve's paradox: friction makes the push between them indeterminate ({})",
+                paradox.join("; ")
+            )),
+            [] => Err(format!(
+                "no mode of the pivots holds with the contact ({})",
+                broken.join("; ")
+            )),
+            _ => Err(format!(
+                "several modes of the pivots hold with the contact ({}): the rigid model with \
+                 Coulomb friction does not say which",
+                holding
+                    .iter()
+                    .map(|(_, named)| named.as_str())
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            )),
+        }
     }
 
     /// Condition k of body i's watch falls (`at_landing`: under a landing's impulse): a held

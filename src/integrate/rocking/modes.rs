@@ -445,6 +445,19 @@ pub struct Constraint {
     pub strict: bool,
 }
 
+impl Constraint {
+    /// Does it hold just after the start (the sign of its first coefficient that is not zero
+    /// at `scale_t`, s, deciding)?
+    pub fn holds_after(&self, scale_t: f64) -> bool {
+        let sign = sign_after(&self.series, self.scale, scale_t);
+        if self.strict {
+            sign > 0
+        } else {
+            sign >= 0
+        }
+    }
+}
+
 /// Scales for ties: forces (N), velocities (m/s), angles (rad).
 pub struct Scales {
     /// m g.
@@ -665,14 +678,9 @@ pub fn decide(
                 continue;
             }
         }
-        let ok = constraints(body, equations, &t).iter().all(|c| {
-            let sign = sign_after(&c.series, c.scale, scale_t);
-            if c.strict {
-                sign > 0
-            } else {
-                sign >= 0
-            }
-        });
+        let ok = constraints(body, equations, &t)
+            .iter()
+            .all(|c| c.holds_after(scale_t));
         if ok {
             holding.push(t);
         }

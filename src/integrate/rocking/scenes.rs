@@ -404,8 +404,8 @@ fn moving_parts(
     } else {
         "; blocks of different columns, and fixed blocks, watched while they stand apart, \
          through the impact where a corner of one strikes a face of the other, and while a \
-         column rests against a fixed block on its stuck pivot or two columns turn together on \
-         theirs (the exact model stops at any other meeting)"
+         column rests against or slides along a fixed block or two columns turn together, their \
+         pivots stuck or slipping (the exact model stops at any other meeting)"
     };
     let parts = columns
         .iter()
