@@ -28,6 +28,8 @@ mod collision;
 mod column;
 mod couple;
 #[cfg(test)]
+mod couple_tests;
+#[cfg(test)]
 mod enumeration;
 mod frame;
 #[cfg(test)]
@@ -91,7 +93,8 @@ struct Track {
     settles: Option<(f64, f64, f64)>,
     /// It rests leaning on a fixed block, held still by their contact, until that lets go.
     leans: Option<Lean>,
-    /// It turns in contact with another body, the two as one mechanism, until they part.
+    /// It turns in contact with another body, the two as one mechanism, or slides along a
+    /// fixed block's face, until they part.
     couple: Option<Couple>,
 }
 
@@ -998,19 +1001,21 @@ impl<'a> Engine<'a> {
 
     /// Body i slides along a fixed block's face and its pivot sticks: the contact leaves it no
     /// motion, and it rests against the block from here ([`lean`]), what it had of kinetic
-    /// energy (round-off: the contact ties its rotation to its slip) counted as lost.
+    /// energy (round-off: the contact ties its rotation to its slip) counted as lost. (Where
+    /// the push has no moment about the pivot at all, it stays in the couple, its pivot stuck.)
     fn rests_still(&mut self, i: usize, now: &Inputs) {
-        let couple = self.uncouple(i);
+        let couple = self.tracks[i].couple.expect("a body of a couple");
         let k = usize::from(couple.bodies[1] == Some(i));
         let touch = couple.touch_at([0, 1].map(|s| (s == k).then_some(&self.tracks[i].state)));
         let Side::Body(_, origin) = touch.sides[k] else {
             unreachable!("the body's side of its couple");
         };
         let turns = self.turning(i, origin);
-        let body = self.body(i);
         let Some(lean) = Lean::new(&touch, k, turns.pivot, turns.centroid, 0.0) else {
-            unreachable!("a couple's push has a moment about its body's pivot");
+            return;
         };
+        self.uncouple(i);
+        let body = self.body(i);
         let before = modes::kinetic_j(body, &self.trajectory(i, now), 0.0);
         let tr = &mut self.tracks[i];
         tr.state.omega = 0.0;
@@ -1044,8 +1049,15 @@ impl<'a> Engine<'a> {
         let state = self.tracks[i].state;
         let placed = [0, 1].map(|s| (s == k).then_some(&state));
         let tie_m = series::TIE * self.body(i).size_m();
-        let couple = Couple::new(&touch, bodies, homes, placed, tie_m)
-            .expect("a lean's push has a moment about the body's pivot");
+        let [own, other] = lean.blocks.map(|b| self.layout.names[b].clone());
+        let Some(couple) = Couple::new(&touch, bodies, homes, placed, tie_m) else {
+            let why = format!(
+                "{own} rests against {other}'s face, its pivot would slip, and the face's push \
+                 has no moment about it to slide it by"
+            );
+            self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
+            return Ok(());
+        };
         let members = [0, 1].map(|s| match s == k {
             true => Member::Moves(self.body(i), self.tracks[i].mode, &state),
             false => Member::Fixed,
@@ -1059,11 +1071,7 @@ impl<'a> Engine<'a> {
                     EventKind::PivotSlip,
                     &self.layout.outputs(i),
                     None,
-                    format!(
-                        "{}, sliding along {}'s face",
-                        mode.name(),
-                        self.layout.names[lean.blocks[1]]
-                    ),
+                    format!("{}, sliding along {other}'s face", mode.name()),
                 );
                 self.clearance.lean(touch.pair, false);
                 self.clearance.hold(touch.pair, Some(touch.corner));
@@ -1075,7 +1083,6 @@ impl<'a> Engine<'a> {
             // Its friction holds after all: the margin touched zero and turns back.
             Ok(_) => {}
             Err(why) => {
-                let [own, other] = lean.blocks.map(|b| self.layout.names[b].as_str());
                 let why = format!("{own} rests against {other}'s face, and {why}");
                 self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
             }
@@ -1124,7 +1131,7 @@ impl<'a> Engine<'a> {
             if let Some(couple) = tr.couple {
                 let [corner, face] = couple.touch.blocks.map(|b| &self.layout.names[b]);
                 return Ok(Some(format!(
-                    "{name} turns in contact with another body ({corner}'s corner on {face}'s \
+                    "{name} moves in contact with another block ({corner}'s corner on {face}'s \
                      face), and an impulse on a body with a contact besides its base is not \
                      followed"
                 )));
