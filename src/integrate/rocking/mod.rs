@@ -910,6 +910,22 @@ impl<'a> Engine<'a> {
             return Ok(());
         }
         let touch = couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)));
+        let cause = format!("{} lands", self.body(i).name);
+        self.rejoin(&touch, &cause, &[i], now)
+    }
+
+    /// What is left of the approach at a contact `touch` that stayed until an impulse
+    /// elsewhere at this instant (`cause` says which; the bodies `moved` took it and have
+    /// their modes): where the blocks now move apart, they part (a `separation` event, the
+    /// other bodies' modes decided); else the approach is taken up without restitution
+    /// ([`Engine::strike`]), which may leave them in contact again or stop the run, saying why.
+    fn rejoin(
+        &mut self,
+        touch: &Touch,
+        cause: &str,
+        moved: &[usize],
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
         let sides = touch.sides.map(|side| match side {
             Side::Body(k, origin) => Some(self.turning(k, origin)),
             Side::Fixed | Side::Held => None,
@@ -928,15 +944,45 @@ impl<'a> Engine<'a> {
                 EventKind::Separation,
                 &touch.blocks,
                 None,
-                format!(
-                    "{corner}'s corner leaves {face}'s face as {} lands",
-                    self.body(i).name
-                ),
+                format!("{corner}'s corner leaves {face}'s face as {cause}"),
             );
-            return match couple.moving().find(|&k| k != i) {
-                Some(other) => self.decide(other, now, false),
-                None => Ok(()),
-            };
+            for side in touch.sides {
+                if let Side::Body(k, _) = side {
+                    if !moved.contains(&k) {
+                        self.decide(k, now, false)?;
+                    }
+                }
+            }
+            return Ok(());
+        }
+        let touch = Touch {
+            stays: true,
+            ..*touch
+        };
+        // The impulse elsewhere may have left a body of this contact in contact with a third
+        // block: a chain of three in contact is beyond the model (and taking each contact in
+        // turn would not end).
+        let busy = touch.sides.iter().find_map(|side| match side {
+            Side::Body(k, _) => {
+                let tr = &self.tracks[*k];
+                let other = tr
+                    .couple
+                    .map(|c| c.touch.blocks)
+                    .or(tr.leans.map(|l| l.touch.blocks));
+                other.map(|blocks| (*k, blocks))
+            }
+            _ => None,
+        });
+        if let Some((k, blocks)) = busy {
+            let [corner, face] = blocks.map(|b| self.layout.names[b].as_str());
+            let why = format!(
+                "they stay in contact as {cause}, and {} is in contact with another block too \
+                 ({corner}'s corner on {face}'s face): blocks in contact on two sides at once \
+                 are not followed",
+                self.body(k).name
+            );
+            self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
+            return Ok(());
         }
         if let Some(why) = self.strike(&touch, now)? {
             self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
@@ -1105,12 +1151,14 @@ impl<'a> Engine<'a> {
     }
 
     /// The impact where a corner strikes a face (`t`), then the modes after it; or why it is
-    /// not followed (nothing changed then).
+    /// not followed (nothing changed then, but where a struck body had a contact besides: the
+    /// blow is refused after that contact was let go, and the run stops there anyway). A struck
+    /// body resting against a block or turning with another takes the blow first, then what is
+    /// left at that contact ([`Engine::rejoin`]).
     fn strike(&mut self, t: &Touch, now: &Inputs) -> Result<Option<String>, SimulationError> {
-        let mut turning = [None; 2];
-        for (k, turns) in turning.iter_mut().enumerate() {
+        for k in 0..2 {
             let name = &self.layout.names[t.blocks[k]];
-            let (i, origin) = match t.sides[k] {
+            let i = match t.sides[k] {
                 Side::Fixed => continue,
                 Side::Held => {
                     return Ok(Some(format!(
@@ -1118,24 +1166,9 @@ impl<'a> Engine<'a> {
                          impulse on it is not followed"
                     )))
                 }
-                Side::Body(i, origin) => (i, origin),
+                Side::Body(i, _) => i,
             };
             let tr = &self.tracks[i];
-            if let Some(lean) = tr.leans {
-                return Ok(Some(format!(
-                    "{name} rests against {}'s face, and an impulse on a body with two \
-                     contacts besides its base is not followed",
-                    self.layout.names[lean.blocks[1]]
-                )));
-            }
-            if let Some(couple) = tr.couple {
-                let [corner, face] = couple.touch.blocks.map(|b| &self.layout.names[b]);
-                return Ok(Some(format!(
-                    "{name} moves in contact with another block ({corner}'s corner on {face}'s \
-                     face), and an impulse on a body with a contact besides its base is not \
-                     followed"
-                )));
-            }
             if tr.settles.is_some() {
                 return Ok(Some(format!(
                     "{name} is seated through the end of a series of landings, which an impulse \
@@ -1147,7 +1180,50 @@ impl<'a> Engine<'a> {
                     "{name}'s column holds joints the impulse would pass through"
                 )));
             }
-            *turns = Some(self.turning(i, origin));
+        }
+        // A struck body that rests against a block or moves in contact with another takes the
+        // blow first, as if alone; then what is left of the approach at the contact it had
+        // (a sequential law, as for a landing in contact).
+        let mut held = Vec::new();
+        for side in t.sides {
+            let Side::Body(i, _) = side else { continue };
+            if let Some(lean) = self.tracks[i].leans.take() {
+                self.clearance.lean(lean.touch.pair, false);
+                held.push(lean.touch);
+            }
+            if let Some(couple) = self.tracks[i].couple {
+                held.push(couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state))));
+                self.uncouple(i);
+            }
+        }
+        if let Some(why) = self.blow(t, now)? {
+            return Ok(Some(why));
+        }
+        let [corner, face] = t.blocks.map(|k| self.layout.names[k].clone());
+        let cause = format!("{corner}'s corner meets {face}'s face");
+        let moved: Vec<usize> = (t.sides.iter())
+            .filter_map(|s| match s {
+                Side::Body(i, _) => Some(*i),
+                _ => None,
+            })
+            .collect();
+        for touch in held {
+            if self.stop.is_some() {
+                break;
+            }
+            self.rejoin(&touch, &cause, &moved, now)?;
+        }
+        Ok(None)
+    }
+
+    /// The impact where a corner strikes a face (`t`), each body on its side taken as it
+    /// stands (on the ground alone), then the modes after it; or why it is not followed.
+    fn blow(&mut self, t: &Touch, now: &Inputs) -> Result<Option<String>, SimulationError> {
+        let mut turning = [None; 2];
+        for (k, turns) in turning.iter_mut().enumerate() {
+            if let Side::Body(i, origin) = t.sides[k] {
+                *turns = Some(self.turning(i, origin));
+            }
         }
         // Blocks that have not parted since their last impact rattle at the scale of
         // round-off: what is left of their approach is taken up without a rebound.
