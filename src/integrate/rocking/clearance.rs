@@ -58,10 +58,19 @@ struct Pair {
     held: Option<usize>,
 }
 
-/// Where two blocks meet: the instant within the step, their outputs and, where a corner of
-/// one lies on a face of the other (not two corners on each other, nor a face on a face), the
-/// contact.
-pub(super) type Meet = (f64, (usize, usize), Option<Touch>);
+/// Where two blocks meet: the instant within the step, their outputs and how.
+pub(super) type Meet = (f64, (usize, usize), Meeting);
+
+/// How two blocks meet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Meeting {
+    /// A corner of one on a face of the other, strictly inside it: the contact.
+    Strikes(Touch),
+    /// Two corners of one on the face of the other: a face comes down flat on a face.
+    Flat,
+    /// A corner at an end of the other's face, or none on it: corner meets corner.
+    Corners,
+}
 
 /// A block of a contact: what moves it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -414,10 +423,10 @@ impl Clearance {
         best
     }
 
-    /// Where pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on
-    /// the edge that kept them apart, strictly inside that edge; none if two corners lie on
-    /// it (a face on a face) or the corner lies at an end of the edge (on a corner).
-    fn touch(&self, k: usize, at_a: &At, at_b: &At, bodies: &[RockingBody]) -> Option<Touch> {
+    /// How pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on
+    /// the edge that kept them apart, strictly inside that edge; else two corners on it (a
+    /// face on a face), or the corner at an end of the edge (on a corner).
+    fn touch(&self, k: usize, at_a: &At, at_b: &At, bodies: &[RockingBody]) -> Meeting {
         let pair = &self.pairs[k];
         let tie = self.tie_m(k);
         let ((of_b, e), [own, other]) = (
@@ -439,12 +448,14 @@ impl Clearance {
             .enumerate()
             .filter(|(_, p)| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1] <= tie)
             .collect();
-        let [(j, point)] = on.as_slice() else {
-            return None;
+        let (j, point) = match on.as_slice() {
+            [one] => *one,
+            [] => return Meeting::Corners,
+            _ => return Meeting::Flat,
         };
         let x = ((point[0] - c0[0]) * along[0] + (point[1] - c0[1]) * along[1]) / length;
         if x <= tie || x >= length - tie {
-            return None;
+            return Meeting::Corners;
         }
         let side = |p: usize| {
             let piece = &self.pieces[p];
@@ -460,13 +471,13 @@ impl Clearance {
                 None => Side::Held,
             }
         };
-        Some(Touch {
+        Meeting::Strikes(Touch {
             pair: k,
-            corner: *j,
+            corner: j,
             stays: false,
             blocks: [self.pieces[other].output, self.pieces[own].output],
             sides: [side(other), side(own)],
-            point: **point,
+            point: *point,
             normal: n,
             tie_m_s: tie / self.time_scale_s(k, bodies),
         })
@@ -548,10 +559,11 @@ impl Clearance {
                 // Where a pair meets again after an impact, the gap between is an arc whose
                 // top lies near its middle.
                 let stays = self.pairs[k].struck && self.gap(k, pa, pb, 0.5 * x) <= self.tie_m(k);
-                let touch = self
-                    .touch(k, &at_a, &at_b, bodies)
-                    .map(|t| Touch { stays, ..t });
-                return Ok(Some((x, outputs, touch)));
+                let meeting = match self.touch(k, &at_a, &at_b, bodies) {
+                    Meeting::Strikes(t) => Meeting::Strikes(Touch { stays, ..t }),
+                    other => other,
+                };
+                return Ok(Some((x, outputs, meeting)));
             }
             self.pairs[k].edge = edge;
             from = x;

@@ -55,7 +55,7 @@ use crate::integrate::event::{HandOff, Turned};
 use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
-use clearance::{Clearance, Side, Touch};
+use clearance::{Clearance, Meeting, Side, Touch};
 use couple::{Couple, Member};
 use layout::Layout;
 use lean::Lean;
@@ -808,24 +808,28 @@ impl<'a> Engine<'a> {
     fn meet(
         &mut self,
         (a, b): (usize, usize),
-        touch: Option<Touch>,
+        meeting: Meeting,
         now: &Inputs,
     ) -> Result<(), SimulationError> {
-        let why = match touch {
-            Some(t) => match self.strike(&t, now)? {
+        // The blocks' names, the corner's first, where they move together.
+        let together = self.tracks.iter().find_map(|tr| {
+            let c = tr.couple?;
+            let names = c.touch.blocks.map(|k| self.layout.names[k].clone());
+            (c.touch.blocks == [a, b] || c.touch.blocks == [b, a]).then_some(names)
+        });
+        let why = match (meeting, together) {
+            (Meeting::Strikes(t), _) => match self.strike(&t, now)? {
                 None => return Ok(()),
                 Some(why) => why,
             },
-            None if self.tracks.iter().any(|tr| {
-                tr.couple
-                    .is_some_and(|c| c.touch.blocks == [a, b] || c.touch.blocks == [b, a])
-            }) =>
-            {
-                "the corner on which they turn together reaches an end of the face, or another \
-                 corner reaches the face (it comes down flat on it)"
-                    .into()
+            (Meeting::Corners, Some([corner, face])) => {
+                format!("{corner}'s corner, on which they move together, reaches an end of {face}'s face")
             }
-            None => "two corners meet, or a face comes down flat on a face".into(),
+            (Meeting::Flat, Some([corner, face])) => {
+                format!("{corner}'s face comes down flat on {face}'s, the two moving together")
+            }
+            (Meeting::Corners, None) => "two corners meet".into(),
+            (Meeting::Flat, None) => "a face comes down flat on a face".into(),
         };
         self.stops_meeting((a, b), why);
         Ok(())
