@@ -1091,10 +1091,7 @@ impl<'a> Engine<'a> {
             .pivot()
             .expect("a leaning body rocks on a pivot");
         let mut homes = [touch.point; 2];
-        homes[k] = [
-            origin[0] + c.sign() * self.layout.pivot_half_base_m(i),
-            origin[1],
-        ];
+        homes[k] = self.home(i, origin, c);
         let bodies = [0, 1].map(|s| (s == k).then_some(i));
         let state = self.tracks[i].state;
         let placed = [0, 1].map(|s| (s == k).then_some(&state));
@@ -1339,6 +1336,15 @@ impl<'a> Engine<'a> {
         Ok(None)
     }
 
+    /// Where body i's corner c stands while its u is zero, its base's middle at rest at
+    /// `origin` (m).
+    fn home(&self, i: usize, origin: [f64; 2], c: Corner) -> [f64; 2] {
+        [
+            origin[0] + c.sign() * self.layout.pivot_half_base_m(i),
+            origin[1],
+        ]
+    }
+
     /// Body i as the impact law takes it, its base's middle at rest at `origin` (m).
     fn turning(&self, i: usize, origin: [f64; 2]) -> collision::Turning {
         let (tr, body) = (&self.tracks[i], self.body(i));
@@ -1356,7 +1362,8 @@ impl<'a> Engine<'a> {
         let s = c.sign();
         let flying = matches!(tr.mode, Mode::Flight(_));
         let lift = if flying { tr.state.lift } else { 0.0 };
-        let pivot = [origin[0] + s * bp + tr.state.u, origin[1] + lift];
+        let home = self.home(i, origin, c);
+        let pivot = [home[0] + tr.state.u, home[1] + lift];
         // The centroid, at (0, h_c) from the base's middle, turned clockwise about the pivot.
         let (sin, cos) = tr.state.theta.sin_cos();
         let (rx, ry) = (-s * bp, body.centroid_height_m);
@@ -1539,8 +1546,7 @@ impl<'a> Engine<'a> {
                     }
                 };
             bodies[k] = Some(i);
-            let bp = self.layout.pivot_half_base_m(i);
-            homes[k] = [origin[0] + c.sign() * bp, origin[1]];
+            homes[k] = self.home(i, origin, c);
             states[k] = State {
                 omega: a.omega,
                 v: if slips { a.v } else { 0.0 },
