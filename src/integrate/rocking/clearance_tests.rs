@@ -86,6 +86,13 @@ fn impacts(r: &Response) -> Vec<&crate::response::EventRecord> {
         .collect()
 }
 
+/// The run's events after t, but uplifts (a body leaving its seat, logged for each).
+fn events_after(r: &Response, t: f64) -> Vec<&crate::response::EventRecord> {
+    (r.events.iter())
+        .filter(|e| e.time_s > t && e.kind != EventKind::Uplift)
+        .collect()
+}
+
 /// Block k's first row at t.
 fn row_at(r: &Response, k: usize, t: f64) -> [f64; 6] {
     *rows(r, k)
@@ -398,9 +405,7 @@ fn a_slab_resting_on_an_abutment_slides_down_it_where_its_pivot_slips() {
         .as_deref()
         .unwrap_or_default()
         .contains("at rest against A"));
-    let after: Vec<_> = (r.events.iter())
-        .filter(|e| e.time_s > rest.time_s)
-        .collect();
+    let after = events_after(&r, rest.time_s);
     let [slip, stick, again, ..] = after[..] else {
         panic!("{after:?}")
     };
@@ -858,9 +863,7 @@ fn a_slab_that_lands_while_turning_with_another_parts_from_it() {
         .as_deref()
         .unwrap_or_default()
         .contains("turn on together"));
-    let after: Vec<_> = (r.events.iter())
-        .filter(|e| e.time_s > impact.time_s && e.kind != EventKind::Uplift)
-        .collect();
+    let after = events_after(&r, impact.time_s);
     let [landing, part, meet] = after[..] else {
         panic!("{after:?}")
     };
@@ -1051,9 +1054,7 @@ fn two_slabs_turn_together_while_a_pivot_slips_and_sticks() {
             && what.contains("they turn on together"),
         "{what}"
     );
-    let after: Vec<_> = (r.events.iter())
-        .filter(|e| e.time_s > impact.time_s)
-        .collect();
+    let after = events_after(&r, impact.time_s);
     let [stick, slip, meet] = after[..] else {
         panic!("{after:?}")
     };
