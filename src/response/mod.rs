@@ -636,8 +636,8 @@ impl std::fmt::Display for Warning {
                  blocks of different columns while they stand apart, and through the impact \
                  where a corner of one strikes a face of the other, each block fixed or moved by \
                  a column that holds no joint, and while such a column rests against or slides \
-                 along a fixed block or two such columns turn together, their pivots stuck or \
-                 slipping; it stops at any other meeting, and the run with it \
+                 along a fixed block or two such columns turn together, their pivots stuck, \
+                 slipping or off the ground; it stops at any other meeting, and the run with it \
                  (run the wall with --after-stop moreau --dt S to go on from there by time \
                  stepping every block)"
             ),

@@ -187,6 +187,17 @@ pub fn approach(sides: [Option<&Turning>; 2], c: &Contact) -> (f64, f64, f64) {
     (approach, speed, momentum)
 }
 
+/// The side whose rotation moves the contact most, and the change of its theta' (rad/s) that
+/// leaves the corner's normal velocity against the face zero: what closes the round-off (up
+/// to a tie, which no impulse takes up) at a contact that stays.
+pub fn closing(sides: [Option<&Turning>; 2], c: &Contact) -> Option<(usize, f64)> {
+    let (rate, ..) = approach(sides, c);
+    let (k, arm) = (0..2)
+        .filter_map(|k| Some((k, SIGN[k] * arms(sides[k]?, c)[1])))
+        .max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))?;
+    (arm != 0.0).then_some((k, -rate / arm))
+}
+
 /// The impact of the corner of side 0 on the face of side 1 (`None`: a fixed block).
 pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Refusal> {
     let (approach, speed, momentum) = approach(sides, c);

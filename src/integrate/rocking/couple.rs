@@ -1,9 +1,9 @@
 //! Two rocking bodies in contact. Where an impact between two bodies, each rocking on a pivot
-//! that stays on the ground (stuck or slipping), leaves no speed to part (no restitution, or
+//! (stuck or slipping) or flying off the ground, leaves no speed to part (no restitution, or
 //! elastic bounces that accumulate to round-off), the corner of one stays on the face of the
 //! other: two columns leaning together. They move as one mechanism (one degree of freedom, one
-//! more for each pivot that slips), the contact (frictionless, as at every face between blocks)
-//! pushing them apart. This module owns that mechanism's motion: both rotations, the slipping
+//! more for each pivot that slips, two more for a body in flight), the contact (frictionless,
+//! as at every face between blocks) pushing them apart. This module owns that mechanism's motion: both rotations, the slipping
 //! pivots' displacements and the contact's push as series over a step, and the condition that
 //! ends it, the push falling to zero (the bodies part). The pivots' conditions (slip, stick,
 //! lift) are the rocking modes', on the forces with the push; where the corner reaches an end
@@ -23,7 +23,10 @@
 //! normal force and sigma its slip's sign, as in slide-rock. The same J_k give the rate at
 //! which the corner leaves the face, J_1 theta_1' + J_2 theta_2' + n_x (u_1' - u_2'), which stays
 //! zero: order by order in the series, each body's accelerations are linear in P, and that
-//! rate gives P.
+//! rate gives P. A body in flight (its pivot's height lift above the ground) is pushed only:
+//! I_G theta'' = J_G P about its centroid, the push's arm there J_G = J_k - s_k (dx n_y + G_y
+//! n_x), and its centroid accelerates by s_k P n / m beside gravity and the ground's inertial
+//! force; the corner's rate gains n_y (lift_1' - lift_2').
 
 use super::body::RockingBody;
 use super::clearance::Touch;
@@ -90,7 +93,7 @@ impl Geometry {
         self.n[1][j] = -q[0] * sin[1][j] + q[1] * cos[1][j];
         let [h1, h2] = couple.homes;
         self.r2[0][j] = self.r1[0][j] + (h1[0] - h2[0]) * one + t[0].u[j] - t[1].u[j];
-        self.r2[1][j] = self.r1[1][j] + (h1[1] - h2[1]) * one;
+        self.r2[1][j] = self.r1[1][j] + (h1[1] - h2[1]) * one + t[0].lift[j] - t[1].lift[j];
         let n = &self.n;
         let crossed = |r: &[Coeffs; 2]| mul_at(&r[0], &n[1], j) - mul_at(&r[1], &n[0], j);
         self.arm[0][j] = -crossed(&self.r1);
@@ -109,8 +112,8 @@ pub(super) struct Motion {
     pub(super) compliance: f64,
 }
 
-/// A side of a couple as its motion needs it: a body in its mode (rocking on a pivot) and
-/// state, or a fixed block.
+/// A side of a couple as its motion needs it: a body in its mode (rocking on a pivot, or in
+/// flight) and state, or a fixed block.
 #[derive(Clone, Copy)]
 pub(super) enum Member<'a> {
     Moves(&'a RockingBody, Mode, &'a State),
@@ -128,11 +131,12 @@ const UNMOVED: State = State {
 };
 
 /// A body's accelerations at one order of the series, affine in the push there: theta'' =
-/// a.0 + a.1 P, u'' = p.0 + p.1 P.
+/// a.0 + a.1 P, u'' = p.0 + p.1 P and, in flight, lift'' = l.0 + l.1 P.
 #[derive(Default, Clone, Copy)]
 struct Affine {
     a: (f64, f64),
     p: (f64, f64),
+    l: (f64, f64),
 }
 
 impl Couple {
@@ -148,7 +152,7 @@ impl Couple {
     ) -> Option<Couple> {
         let (point, normal) = (touch.point, touch.normal);
         let states = states.map(|s| s.unwrap_or(&UNMOVED));
-        let pivots = [0, 1].map(|k| [homes[k][0] + states[k].u, homes[k][1]]);
+        let pivots = [0, 1].map(|k| [homes[k][0] + states[k].u, homes[k][1] + states[k].lift]);
         let p1 = pivots[0];
         let couple = Couple {
             touch: Touch {
@@ -178,7 +182,10 @@ impl Couple {
     pub(super) fn touch_at(&self, states: [Option<&State>; 2]) -> Touch {
         let states = states.map(|s| s.unwrap_or(&UNMOVED));
         let r = turned(self.corner, states[0].theta.sin_cos());
-        let p = [self.homes[0][0] + states[0].u, self.homes[0][1]];
+        let p = [
+            self.homes[0][0] + states[0].u,
+            self.homes[0][1] + states[0].lift,
+        ];
         Touch {
             point: [p[0] + r[0], p[1] + r[1]],
             normal: turned(self.normal, states[1].theta.sin_cos()),
@@ -187,8 +194,8 @@ impl Couple {
     }
 
     /// Both sides' motion from their states in their modes (each body rocking on a pivot that
-    /// sticks or slips; a fixed block's trajectory stays zero) under `inputs`, to order
-    /// [`ORDER`], and the push.
+    /// sticks or slips, or in flight; a fixed block's trajectory stays zero) under `inputs`, to
+    /// order [`ORDER`], and the push.
     pub(super) fn motion(&self, members: [Member; 2], inputs: &Inputs) -> Motion {
         let (a, lam) = (&inputs.accel, &inputs.lambda);
         let mut t = members.map(|m| match m {
@@ -196,7 +203,8 @@ impl Couple {
             Member::Fixed => Trajectory::start(Mode::Rest, Equations::Exact, &UNMOVED),
         });
         let mut at = Geometry::default();
-        let (mut acc, mut acc_u, mut w, mut push) = ([ZERO; 2], [ZERO; 2], [ZERO; 2], ZERO);
+        let (mut acc, mut acc_u, mut acc_lift) = ([ZERO; 2], [ZERO; 2], [ZERO; 2]);
+        let (mut w, mut arm_g, mut push) = ([ZERO; 2], [ZERO; 2], ZERO);
         let mut compliance = 0.0;
         let io = members.map(|m| match m {
             Member::Moves(body, ..) => body.corner_inertia_kg_m2(),
@@ -208,6 +216,7 @@ impl Couple {
                 for tk in t.iter_mut() {
                     tk.theta[k + 1] = tk.omega[k] / (k + 1) as f64;
                     tk.u[k + 1] = tk.v[k] / (k + 1) as f64;
+                    tk.lift[k + 1] = tk.lift_v[k] / (k + 1) as f64;
                 }
                 at.place(self, &t, k + 1);
             }
@@ -219,8 +228,8 @@ impl Couple {
                 let (m, g) = (body.mass_kg, body.g_m_s2);
                 let on = if b == 0 { 1.0 } else { -1.0 };
                 let s = mode
-                    .pivot()
-                    .expect("a body of a couple rocks on a pivot")
+                    .corner()
+                    .expect("a body of a couple rocks on a pivot or flies from one")
                     .sign();
                 (t[b].gy[k], t[b].dx[k]) = arms(body, s, &at.sin[b], &at.cos[b], k);
                 w[b][k] = mul_at(&t[b].omega, &t[b].omega, k);
@@ -232,6 +241,26 @@ impl Couple {
                 let rm = q - m * earlier(&tb.gy, &acc_u[b]) + earlier(&at.arm[b], &push);
                 let (j0, gy0, dx0) = (at.arm[b][0], tb.gy[0], tb.dx[0]);
                 affine[b] = match mode {
+                    Mode::Flight(_) => {
+                        // Pushed only: about the centroid I_G theta'' = J_G P, J_G = J - s_k
+                        // (dx n_y + G_y n_x) the push's arm there, and the centroid's
+                        // accelerations (u'' + G_y theta'' + dx w + a_g, lift'' + dx theta'' -
+                        // G_y w + g lambda) are s_k P n / m.
+                        arm_g[b][k] = at.arm[b][k]
+                            - on * (mul_at(&tb.dx, &n[1], k) + mul_at(&tb.gy, &n[0], k));
+                        let ig = body.inertia_kg_m2;
+                        let turn = (earlier(&arm_g[b], &push) / ig, arm_g[b][0] / ig);
+                        let rh = -a[k] - earlier(&tb.gy, &acc[b]) - mul_at(&tb.dx, &w[b], k)
+                            + on * earlier(&n[0], &push) / m;
+                        let rv = -g * lam[k] - earlier(&tb.dx, &acc[b])
+                            + mul_at(&tb.gy, &w[b], k)
+                            + on * earlier(&n[1], &push) / m;
+                        Affine {
+                            a: turn,
+                            p: (rh - gy0 * turn.0, on * n[0][0] / m - gy0 * turn.1),
+                            l: (rv - dx0 * turn.0, on * n[1][0] / m - dx0 * turn.1),
+                        }
+                    }
                     Mode::SlideRock(_, slip) => {
                         let f = body.friction * slip.sign();
                         let rh = -m * (earlier(&tb.gy, &acc[b]) + mul_at(&tb.dx, &w[b], k) + a[k])
@@ -255,35 +284,39 @@ impl Couple {
                                 (rh + f * rv) / m - lever * turn.0,
                                 along / m - lever * turn.1,
                             ),
+                            l: (0.0, 0.0),
                         }
                     }
                     _ => Affine {
                         a: (rm / io[b], j0 / io[b]),
-                        p: (0.0, 0.0),
+                        ..Affine::default()
                     },
                 };
             }
             // The rate at which the corner leaves the face, at order k + 1, but for the
-            // accelerations at order k: J_1 theta_1'' + J_2 theta_2'' + n_x (u_1'' - u_2'') = c
-            // (at the last order, whose accelerations give only forces, the rate's term lies
-            // beyond the series).
+            // accelerations at order k: J_1 theta_1'' + J_2 theta_2'' + n_x (u_1'' - u_2'') +
+            // n_y (lift_1'' - lift_2'') = c (at the last order, whose accelerations give only
+            // forces, the rate's term lies beyond the series).
             let c = if k < ORDER {
                 let dv = |j: usize| t[0].v[j] - t[1].v[j];
+                let dl = |j: usize| t[0].lift_v[j] - t[1].lift_v[j];
                 let known: f64 = (1..=k + 1)
                     .map(|j| {
                         at.arm[0][j] * t[0].omega[k + 1 - j]
                             + at.arm[1][j] * t[1].omega[k + 1 - j]
                             + at.n[0][j] * dv(k + 1 - j)
+                            + at.n[1][j] * dl(k + 1 - j)
                     })
                     .sum();
                 -((k + 1) as f64) * known
             } else {
                 0.0
             };
-            let (j1, j2, nx) = (at.arm[0][0], at.arm[1][0], at.n[0][0]);
+            let (j1, j2) = (at.arm[0][0], at.arm[1][0]);
+            let (nx, ny) = (at.n[0][0], at.n[1][0]);
             let [f1, f2] = &affine;
-            let free = j1 * f1.a.0 + j2 * f2.a.0 + nx * (f1.p.0 - f2.p.0);
-            let per = j1 * f1.a.1 + j2 * f2.a.1 + nx * (f1.p.1 - f2.p.1);
+            let free = j1 * f1.a.0 + j2 * f2.a.0 + nx * (f1.p.0 - f2.p.0) + ny * (f1.l.0 - f2.l.0);
+            let per = j1 * f1.a.1 + j2 * f2.a.1 + nx * (f1.p.1 - f2.p.1) + ny * (f1.l.1 - f2.l.1);
             if k == 0 {
                 compliance = per;
             }
@@ -294,6 +327,10 @@ impl Couple {
                 };
                 acc[b][k] = affine[b].a.0 + affine[b].a.1 * push[k];
                 acc_u[b][k] = affine[b].p.0 + affine[b].p.1 * push[k];
+                acc_lift[b][k] = affine[b].l.0 + affine[b].l.1 * push[k];
+                if let Member::Moves(_, Mode::Flight(_), _) = member {
+                    continue;
+                }
                 // The ground's forces: what moves the body, less the push on it (+n on the
                 // corner's, -n on the face's).
                 let (m, g) = (body.mass_kg, body.g_m_s2);
@@ -308,6 +345,7 @@ impl Couple {
                 for b in 0..2 {
                     t[b].omega[k + 1] = acc[b][k] / (k + 1) as f64;
                     t[b].v[k + 1] = acc_u[b][k] / (k + 1) as f64;
+                    t[b].lift_v[k + 1] = acc_lift[b][k] / (k + 1) as f64;
                 }
             }
         }

@@ -252,27 +252,35 @@ fn transition(old: Mode, new: Mode, start: bool) -> Option<EventKind> {
     }
 }
 
-/// The corner a body rocks on after an impact (`after`; its mode before, `mode`) where that is
-/// the pivot it had, or one it starts rocking on from seated where `seated` allows, and whether
-/// it slips; else what it does instead, in words.
-fn pivot_after(
-    after: &collision::After,
-    mode: Mode,
-    seated: bool,
-) -> Result<(Corner, bool), &'static str> {
+/// A body's mode after an impact (`after`; its mode before, `mode`): rocking on the pivot it
+/// had, or on one it starts rocking on from seated where `seated` allows, stuck or slipping; or
+/// in flight, its u and lift following the corner it rocked on (or its right one, as from
+/// rest); else what it does instead, in words.
+fn mode_after(after: &collision::After, mode: Mode, seated: bool) -> Result<Mode, &'static str> {
+    let rocks = |corner, slips| match slips {
+        true => Mode::SlideRock(corner, Slip::of_sign(after.v)),
+        false => Mode::Rock(corner),
+    };
     match (after.base, mode.pivot()) {
-        (collision::Base::Pivot { corner, slips }, Some(c)) if corner == c => Ok((c, slips)),
-        (collision::Base::Pivot { corner, slips }, None) if seated => Ok((corner, slips)),
-        (collision::Base::Flies, _) => Err("leaves the ground"),
+        (collision::Base::Pivot { corner, slips }, Some(c)) if corner == c => Ok(rocks(c, slips)),
+        (collision::Base::Pivot { corner, slips }, None) if seated => Ok(rocks(corner, slips)),
+        (collision::Base::Flies, _) => Ok(Mode::Flight(mode.corner().unwrap_or(Corner::Right))),
         (collision::Base::Pivot { .. }, _) => Err("turns on its other corner"),
         (collision::Base::Seated { .. }, _) => Err("stays seated"),
     }
+}
+
+/// Is a speed of the body's (m/s) a tie at its scales: round-off of an impact's law, which a
+/// contact may read as zero?
+fn tie_speed(body: &RockingBody, speed_m_s: f64) -> bool {
+    speed_m_s.abs() * body.time_scale_s() <= series::TIE * body.size_m()
 }
 
 /// What a body does where the condition `guard` of its mode falls, in words.
 fn breaks(guard: Guard) -> &'static str {
     match guard {
         Guard::PivotSlip | Guard::StickLimit => "slip at its pivot",
+        Guard::Land(_) => "land on a corner",
         Guard::PivotStick => "slip the other way",
         Guard::Flight => "leave the ground at its pivot",
         Guard::Overturn => "lie on its face",
@@ -761,8 +769,11 @@ impl<'a> Engine<'a> {
             }
             return match guard {
                 Guard::Parts => self.part(i, now),
-                Guard::Impact => self.couple_lands(i, now),
-                Guard::PivotSlip | Guard::PivotStick => self.recouple(i, guard, now),
+                Guard::Impact => self.couple_lands(i, None, now),
+                Guard::Land(corner) => self.couple_lands(i, Some(corner), now),
+                Guard::PivotSlip | Guard::PivotStick | Guard::Flight => {
+                    self.recouple(i, guard, now)
+                }
                 _ => {
                     self.couple_gives(i, guard);
                     Ok(())
@@ -771,10 +782,8 @@ impl<'a> Engine<'a> {
         }
         match guard {
             Guard::Parts => self.lets_go(i, now),
-            Guard::PivotSlip if self.tracks[i].leans.is_some() => self.lean_slips(i, now),
-            Guard::Flight if self.tracks[i].leans.is_some() => {
-                self.lean_gives(i);
-                Ok(())
+            Guard::PivotSlip | Guard::Flight if self.tracks[i].leans.is_some() => {
+                self.lean_moves(i, now)
             }
             Guard::Overturn => self.overturn(i, traj, tau),
             Guard::Impact => self.land(i, now),
@@ -901,15 +910,23 @@ impl<'a> Engine<'a> {
         Ok(())
     }
 
-    /// Body i of a couple lands on its base, the other body's corner on its face or its corner
-    /// on the other's face. The two contacts' impulses are taken one after the other: the
-    /// landing first, as the body's alone (Housner's), then at the contact between the bodies
-    /// what is left of their approach, without restitution ([`Engine::strike`]): they turn
-    /// together again, or the run stops there, saying why; where the landing turns the body
-    /// away from the other, they part.
-    fn couple_lands(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+    /// Body i of a couple lands on its base (or, in flight, on `corner`), the other body's
+    /// corner on its face or its corner on the other's face. The two contacts' impulses are
+    /// taken one after the other: the landing first, as the body's alone (Housner's), then at
+    /// the contact between the bodies what is left of their approach, without restitution
+    /// ([`Engine::strike`]): they turn together again, or the run stops there, saying why;
+    /// where the landing turns the body away from the other, they part.
+    fn couple_lands(
+        &mut self,
+        i: usize,
+        corner: Option<Corner>,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
         let couple = self.uncouple(i);
-        self.land(i, now)?;
+        match corner {
+            Some(corner) => self.land_from_flight(i, corner, now)?,
+            None => self.land(i, now)?,
+        }
         if self.stop.is_some() {
             return Ok(());
         }
@@ -994,8 +1011,8 @@ impl<'a> Engine<'a> {
         Ok(())
     }
 
-    /// Body i of a couple would leave the ground at its pivot, or fall flat (`guard`): the
-    /// mechanism changes in a way the exact model does not follow.
+    /// Body i of a couple would fall flat (`guard`): the mechanism changes in a way the exact
+    /// model does not follow.
     fn couple_gives(&mut self, i: usize, guard: Guard) {
         let couple = self.tracks[i].couple.expect("a body of a couple");
         let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].as_str());
@@ -1008,10 +1025,10 @@ impl<'a> Engine<'a> {
         self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
     }
 
-    /// Body i of a couple reaches the limit of its pivot's friction, or its slipping pivot
-    /// stops (`guard`): the couple's modes are decided again, each change logged; a body
-    /// sliding along a fixed block's face whose pivot sticks rests there ([`lean`]); where no
-    /// one mode holds, the run stops, saying why.
+    /// Body i of a couple reaches the limit of its pivot's friction, its slipping pivot stops,
+    /// or the ground's push on its pivot falls to zero (`guard`): the couple's modes are
+    /// decided again, each change logged; a body sliding along a fixed block's face whose
+    /// pivot sticks rests there ([`lean`]); where no one mode holds, the run stops, saying why.
     fn recouple(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
         if guard == Guard::PivotStick {
             self.tracks[i].state.v = 0.0;
@@ -1039,8 +1056,11 @@ impl<'a> Engine<'a> {
             }
             let tr = &mut self.tracks[k];
             tr.mode = new;
-            if let Mode::Rock(_) = new {
-                tr.state.v = 0.0;
+            match new {
+                Mode::Rock(_) => tr.state.v = 0.0,
+                // It leaves the ground from its pivot, at rest there.
+                Mode::Flight(_) if old != new => (tr.state.lift, tr.state.lift_v) = (0.0, 0.0),
+                _ => {}
             }
         }
         if couple.bodies.contains(&None) && matches!(self.tracks[i].mode, Mode::Rock(_)) {
@@ -1074,10 +1094,11 @@ impl<'a> Engine<'a> {
         self.clearance.lean(touch.pair, true);
     }
 
-    /// Body i, at rest against a fixed block, reaches the limit of its pivot's friction: it
-    /// slides along the block's face, the contact staying, as a couple with the block
-    /// ([`couple`]) in the mode its pivot's friction allows; or the run stops, saying why.
-    fn lean_slips(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+    /// Body i, at rest against a fixed block, reaches the limit of its pivot's friction, or the
+    /// ground's push on its pivot falls to zero: it slides along the block's face, or leaves
+    /// the ground, the contact staying, as a couple with the block ([`couple`]) in the mode the
+    /// contact conditions allow; or the run stops, saying why.
+    fn lean_moves(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
         let lean = self.tracks[i]
             .leans
             .expect("a body resting against a block");
@@ -1099,8 +1120,8 @@ impl<'a> Engine<'a> {
         let [own, other] = lean.blocks.map(|b| self.layout.names[b].clone());
         let Some(couple) = Couple::new(&touch, bodies, homes, placed, tie_m) else {
             let why = format!(
-                "{own} rests against {other}'s face, its pivot would slip, and the face's push \
-                 has no moment about it to slide it by"
+                "{own} rests against {other}'s face, its pivot would move, and the face's push \
+                 has no moment about it to move it by"
             );
             self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
             return Ok(());
@@ -1113,12 +1134,16 @@ impl<'a> Engine<'a> {
             Ok(modes) if modes[k] != Some(Mode::Rock(c)) => {
                 let mode = modes[k].expect("the body's side has a mode");
                 self.rec.stats.mode_decisions += 1;
+                let (kind, along) = match mode {
+                    Mode::Flight(_) => (EventKind::Flight, "its corner on"),
+                    _ => (EventKind::PivotSlip, "sliding along"),
+                };
                 self.rec.rocking_event(
                     self.t,
-                    EventKind::PivotSlip,
+                    kind,
                     &self.layout.outputs(i),
                     None,
-                    format!("{}, sliding along {other}'s face", mode.name()),
+                    format!("{}, {along} {other}'s face", mode.name()),
                 );
                 self.clearance.lean(touch.pair, false);
                 self.clearance.hold(touch.pair, Some(touch.corner));
@@ -1135,20 +1160,6 @@ impl<'a> Engine<'a> {
             }
         }
         Ok(())
-    }
-
-    /// Body i, resting against a fixed block, would leave the ground at its pivot: the two
-    /// contacts would move together, which the exact model does not follow.
-    fn lean_gives(&mut self, i: usize) {
-        let lean = self.tracks[i]
-            .leans
-            .expect("a body resting against a block");
-        let [own, other] = lean.blocks.map(|k| self.layout.names[k].as_str());
-        let why = format!(
-            "{own} rests against {other}'s face, and its pivot would leave the ground: a body \
-             lifting along a face it touches is not followed"
-        );
-        self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
     }
 
     /// The impact where a corner strikes a face (`t`), then the modes after it; or why it is
@@ -1440,14 +1451,14 @@ impl<'a> Engine<'a> {
                  block"
             ));
         }
-        let c = match pivot_after(&after, self.tracks[i].mode, false) {
-            Ok((c, false)) => c,
-            // Its pivot slipping, it slides along the face, the corner on it.
-            Ok((_, true)) => return self.couples(t, out, now, stays),
+        let c = match mode_after(&after, self.tracks[i].mode, false) {
+            Ok(Mode::Rock(c)) => c,
+            // Its pivot slipping, or off the ground, it moves along the face, the corner on it.
+            Ok(_) => return self.couples(t, out, now, stays),
             Err(what) => {
                 return Some(format!(
                     "{stays}, and {name} {what} against it: a contact that stays on a body \
-                     that is not rocking on a pivot on the ground is not followed"
+                     that is not rocking on a pivot or in flight is not followed"
                 ))
             }
         };
@@ -1533,30 +1544,36 @@ impl<'a> Engine<'a> {
                 (Side::Fixed, _) => continue,
                 _ => unreachable!("a side of a contact that moves has its velocities"),
             };
-            let mode = self.tracks[i].mode;
-            let (c, slips) =
-                match pivot_after(&a, mode, matches!(mode, Mode::Rest | Mode::Slide(_))) {
-                    Ok(pivot) => pivot,
-                    Err(what) => {
-                        return Some(format!(
-                            "{stays}, and {} {what}: blocks in contact are followed only while \
-                             each body rocks on a pivot on the ground",
-                            self.body(i).name
-                        ))
-                    }
-                };
+            let (old, state) = (self.tracks[i].mode, self.tracks[i].state);
+            let mode = match mode_after(&a, old, matches!(old, Mode::Rest | Mode::Slide(_))) {
+                Ok(mode) => mode,
+                Err(what) => {
+                    return Some(format!(
+                        "{stays}, and {} {what}: blocks in contact are followed only while each \
+                         body rocks on a pivot or flies",
+                        self.body(i).name
+                    ))
+                }
+            };
+            let c = mode
+                .corner()
+                .expect("a body that rocks or flies follows a corner");
             bodies[k] = Some(i);
             homes[k] = self.home(i, origin, c);
+            let flies = matches!(mode, Mode::Flight(_));
             states[k] = State {
                 omega: a.omega,
-                v: if slips { a.v } else { 0.0 },
-                ..self.tracks[i].state
+                v: if matches!(mode, Mode::Rock(_)) {
+                    0.0
+                } else {
+                    a.v
+                },
+                // A body that leaves the ground here leaves it from its pivot.
+                lift: if flies { state.lift } else { 0.0 },
+                lift_v: if flies { a.lift_v } else { 0.0 },
+                ..state
             };
-            modes[k] = if slips {
-                Mode::SlideRock(c, Slip::of_sign(a.v))
-            } else {
-                Mode::Rock(c)
-            };
+            modes[k] = mode;
         }
         let size = bodies.map(|b| b.map_or(0.0, |i| self.body(i).size_m()));
         let tie_m = series::TIE * size[0].max(size[1]);
@@ -1570,10 +1587,24 @@ impl<'a> Engine<'a> {
             Some(i) => Member::Moves(self.body(i), modes[k], &states[k]),
             None => Member::Fixed,
         });
+        let given = (modes, states);
         let modes = match self.couple_modes(&couple, members, now) {
             Ok(modes) => modes,
             Err(why) => return Some(format!("{stays}, and {why}")),
         };
+        for k in 0..2 {
+            let (Some(i), Some(mode)) = (bodies[k], modes[k]) else {
+                continue;
+            };
+            // On the ground, a rise (and a slip) at a tie's rate is the impact law's round-off.
+            let state = &mut states[k];
+            if !matches!(mode, Mode::Flight(_)) {
+                (state.lift, state.lift_v) = (0.0, 0.0);
+                if matches!(mode, Mode::Rock(_)) || tie_speed(self.body(i), state.v) {
+                    state.v = 0.0;
+                }
+            }
+        }
         self.rec.energy.impact_loss_j += out.loss_j;
         let mut what = self.stays_in_contact(t, out, &stays);
         let mut omega = None;
@@ -1588,6 +1619,7 @@ impl<'a> Engine<'a> {
             omega.get_or_insert((tr.state.omega, states[k].omega));
             let slipping = match mode {
                 Mode::SlideRock(..) => format!(", slipping at {:.6e} m/s", states[k].v),
+                Mode::Flight(_) => format!(", leaving the ground at {:.6e} m/s", states[k].lift_v),
                 _ => String::new(),
             };
             what += &format!(
@@ -1598,24 +1630,65 @@ impl<'a> Engine<'a> {
             tr.mode = mode;
             tr.couple = Some(couple);
         }
+        // A rise or a slip read as zero, and the tie an impulse leaves at the contact, leave
+        // round-off in the corner's normal velocity: one body's rotation closes it, so that
+        // the corner stays on the face to round-off. What that changes of the kinetic energy
+        // goes with the impact's loss.
+        let sides = t.sides.map(|side| match side {
+            Side::Body(k, origin) => Some(self.turning(k, origin)),
+            Side::Fixed | Side::Held => None,
+        });
+        let contact = collision::Contact {
+            point: t.point,
+            normal: t.normal,
+            restitution: 0.0,
+        };
+        if let Some((k, d_omega)) =
+            collision::closing([sides[0].as_ref(), sides[1].as_ref()], &contact)
+        {
+            let i = bodies[k].expect("a side that turns is a body's");
+            self.tracks[i].state.omega += d_omega;
+        }
+        let kinetic = |modes: [Mode; 2], states: &[State; 2]| -> f64 {
+            (0..2)
+                .filter_map(|k| {
+                    let body = self.body(bodies[k]?);
+                    let traj = modes::trajectory(body, Equations::Exact, modes[k], &states[k], now);
+                    Some(modes::kinetic_j(body, &traj, 0.0))
+                })
+                .sum()
+        };
+        let now_states =
+            [0, 1].map(|k| bodies[k].map_or(State::default(), |i| self.tracks[i].state));
+        let now_modes = [0, 1].map(|k| bodies[k].map_or(Mode::Rest, |i| self.tracks[i].mode));
+        self.rec.energy.impact_loss_j +=
+            kinetic(given.0, &given.1) - kinetic(now_modes, &now_states);
         self.clearance.hold(t.pair, Some(t.corner));
+        // A body against a fixed face whose pivot stays on the ground, stuck, rests there.
+        let resting = (bodies.iter().flatten().copied())
+            .find(|&i| bodies.contains(&None) && matches!(self.tracks[i].mode, Mode::Rock(_)));
         let push = self.coupled(&couple, now).push[0];
-        what += &if bodies.contains(&None) {
-            format!("; it slides along the face, pushed by {push:.6e} N")
-        } else {
-            format!("; they turn on together, pushed apart by {push:.6e} N")
+        what += &match (resting, bodies.contains(&None)) {
+            (Some(_), _) => format!("; it rests against the face, pushed by {push:.6e} N"),
+            (None, true) => format!("; it slides along the face, pushed by {push:.6e} N"),
+            (None, false) => format!("; they turn on together, pushed apart by {push:.6e} N"),
         };
         self.rec
             .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
+        if let Some(i) = resting {
+            self.rests_still(i, now);
+        }
         None
     }
 
-    /// The modes of a couple's bodies (`members`, each rocking on the pivot of its mode): every
-    /// way their pivots may stick or slip (a pivot slipping now keeps its direction) is checked
-    /// against the bodies' conditions just after now, and exactly one must hold (none for a
-    /// fixed block's side); else why not, in words (no mode holds, friction makes the push
-    /// indeterminate, or several hold). The push's own condition is not among them: where it
-    /// falls at once, the blocks part at this instant.
+    /// The modes of a couple's bodies (`members`, each rocking on the pivot of its mode, or in
+    /// flight): every way their pivots may stick, slip (a pivot slipping now keeps its
+    /// direction) or leave the ground is checked against the bodies' conditions just after
+    /// now, and exactly one must hold (none for a fixed block's side; a body off the ground
+    /// stays in flight); else why not, in words (no mode holds, friction makes the push
+    /// indeterminate, or several hold). A pivot leaves the ground only where its height grows
+    /// just after now, not where it stays zero to a tie. The push's own condition is not among
+    /// them: where it falls at once, the blocks part at this instant.
     fn couple_modes(
         &self,
         couple: &Couple,
@@ -1623,18 +1696,25 @@ impl<'a> Engine<'a> {
         now: &Inputs,
     ) -> Result<[Option<Mode>; 2], String> {
         let ways = |m: &Member| -> Vec<Option<Mode>> {
-            let Member::Moves(_, mode, state) = *m else {
+            let Member::Moves(body, mode, state) = *m else {
                 return vec![None];
             };
-            let c = mode.pivot().expect("a body of a couple rocks on a pivot");
-            let slips = if state.v == 0.0 {
+            let c = mode.corner().expect("a body of a couple rocks or flies");
+            // A pivot that an impulse leaves rising, or slipping, at a tie's rate may stay on
+            // the ground, or stick.
+            if state.lift != 0.0 || !tie_speed(body, state.lift_v) {
+                return vec![Some(Mode::Flight(c))];
+            }
+            let still = tie_speed(body, state.v);
+            let slips = if still {
                 vec![Slip::Forward, Slip::Backward]
             } else {
                 vec![Slip::of_sign(state.v)]
             };
-            let stuck = (state.v == 0.0).then_some(Mode::Rock(c));
+            let stuck = still.then_some(Mode::Rock(c));
             (stuck.into_iter())
                 .chain(slips.into_iter().map(|s| Mode::SlideRock(c, s)))
+                .chain([Mode::Flight(c)])
                 .map(Some)
                 .collect()
         };
@@ -1665,11 +1745,23 @@ impl<'a> Engine<'a> {
                     continue;
                 }
                 let fails = (0..2).find_map(|k| {
-                    let Member::Moves(body, ..) = trial[k] else {
+                    let Member::Moves(body, mode, _) = trial[k] else {
                         return None;
                     };
                     let scale_t = body.time_scale_s();
-                    modes::constraints(body, Equations::Exact, &motion.bodies[k])
+                    let mut conditions =
+                        modes::constraints(body, Equations::Exact, &motion.bodies[k]);
+                    if let Mode::Flight(c) = mode {
+                        // Off the ground strictly: a pivot whose height stays zero to a tie
+                        // stays on it.
+                        conditions.push(modes::Constraint {
+                            series: motion.bodies[k].lift,
+                            scale: body.size_m(),
+                            guard: Guard::Land(c),
+                            strict: true,
+                        });
+                    }
+                    conditions
                         .into_iter()
                         .find(|c| !c.holds_after(scale_t))
                         .map(|c| format!("{}: {} would {}", named(), body.name, breaks(c.guard)))
