@@ -1664,20 +1664,29 @@ impl<'a> Engine<'a> {
         self.rec.energy.impact_loss_j +=
             kinetic(given.0, &given.1) - kinetic(now_modes, &now_states);
         self.clearance.hold(t.pair, Some(t.corner));
-        // A body against a fixed face whose pivot stays on the ground, stuck, rests there.
+        // A body against a fixed face whose pivot stays on the ground, stuck, rests there
+        // (where the push has a moment about its pivot to hold it by).
         let resting = (bodies.iter().flatten().copied())
             .find(|&i| bodies.contains(&None) && matches!(self.tracks[i].mode, Mode::Rock(_)));
-        let push = self.coupled(&couple, now).push[0];
-        what += &match (resting, bodies.contains(&None)) {
-            (Some(_), _) => format!("; it rests against the face, pushed by {push:.6e} N"),
-            (None, true) => format!("; it slides along the face, pushed by {push:.6e} N"),
-            (None, false) => format!("; they turn on together, pushed apart by {push:.6e} N"),
-        };
-        self.rec
-            .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
         if let Some(i) = resting {
             self.rests_still(i, now);
         }
+        let leaning = resting.and_then(|i| Some((i, self.tracks[i].leans?)));
+        what += &match (leaning, bodies.contains(&None)) {
+            (Some((i, lean)), _) => format!(
+                "; it rests against the face, pushed by {:.6e} N",
+                lean.push_n(self.body(i), now)
+            ),
+            (None, fixed) => {
+                let push = self.coupled(&couple, now).push[0];
+                match fixed {
+                    true => format!("; it slides along the face, pushed by {push:.6e} N"),
+                    false => format!("; they turn on together, pushed apart by {push:.6e} N"),
+                }
+            }
+        };
+        self.rec
+            .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
         None
     }
 
