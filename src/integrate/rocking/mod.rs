@@ -947,15 +947,7 @@ impl<'a> Engine<'a> {
         moved: &[usize],
         now: &Inputs,
     ) -> Result<(), SimulationError> {
-        let sides = touch.sides.map(|side| match side {
-            Side::Body(k, origin) => Some(self.turning(k, origin)),
-            Side::Fixed | Side::Held => None,
-        });
-        let contact = collision::Contact {
-            point: touch.point,
-            normal: touch.normal,
-            restitution: 0.0,
-        };
+        let (sides, contact) = self.staying(touch);
         let (approach, speed, _) =
             collision::approach([sides[0].as_ref(), sides[1].as_ref()], &contact);
         if approach > series::TIE * speed {
@@ -1009,6 +1001,21 @@ impl<'a> Engine<'a> {
             self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
         }
         Ok(())
+    }
+
+    /// The sides of a contact `touch` that stays, as the impact law takes them, and the
+    /// contact, without restitution.
+    fn staying(&self, touch: &Touch) -> ([Option<collision::Turning>; 2], collision::Contact) {
+        let sides = touch.sides.map(|side| match side {
+            Side::Body(k, origin) => Some(self.turning(k, origin)),
+            Side::Fixed | Side::Held => None,
+        });
+        let contact = collision::Contact {
+            point: touch.point,
+            normal: touch.normal,
+            restitution: 0.0,
+        };
+        (sides, contact)
     }
 
     /// Body i of a couple would fall flat (`guard`): the mechanism changes in a way the exact
@@ -1634,15 +1641,7 @@ impl<'a> Engine<'a> {
         // round-off in the corner's normal velocity: one body's rotation closes it, so that
         // the corner stays on the face to round-off. What that changes of the kinetic energy
         // goes with the impact's loss.
-        let sides = t.sides.map(|side| match side {
-            Side::Body(k, origin) => Some(self.turning(k, origin)),
-            Side::Fixed | Side::Held => None,
-        });
-        let contact = collision::Contact {
-            point: t.point,
-            normal: t.normal,
-            restitution: 0.0,
-        };
+        let (sides, contact) = self.staying(t);
         if let Some((k, d_omega)) =
             collision::closing([sides[0].as_ref(), sides[1].as_ref()], &contact)
         {
