@@ -1,16 +1,16 @@
 //! Two rocking bodies in contact. Where an impact between two bodies, each rocking on a pivot
 //! (stuck or slipping) or flying off the ground, leaves no speed to part (no restitution, or
-//! elastic bounces that accumulate to round-off), the corner of one stays on the face of the
-//! other: two columns leaning together. They move as one mechanism (one degree of freedom, one
-//! more for each pivot that slips, two more for a body in flight), the contact (frictionless,
-//! as at every face between blocks) pushing them apart. This module owns that mechanism's motion: both rotations, the slipping
-//! pivots' displacements and the contact's push as series over a step, and the condition that
-//! ends it, the push falling to zero (the bodies part). The pivots' conditions (slip, stick,
-//! lift) are the rocking modes', on the forces with the push; where the corner reaches an end
-//! of the face, or another corner the face, is the pair's (`clearance`). A landing of either
-//! body ends the couple; the engine takes its impulses one after the other (the landing's, then
-//! the contact's) and may start another. A body resting against a fixed block whose pivot
-//! slips is a couple too, the block its second side, fixed: the body slides down the block's
+//! elastic bounces that accumulate to round-off), the corner of one stays on the face of the other:
+//! two columns leaning together. They move as one mechanism (one degree of freedom, one more for
+//! each pivot that slips, two more for a body in flight), the contact (frictionless, as at every
+//! face between blocks) pushing them apart. This module owns that mechanism's motion: both
+//! rotations, the slipping pivots' displacements and the contact's push as series over a step, and
+//! the condition that ends it, the push falling to zero (the bodies part). The pivots' conditions
+//! (slip, stick, lift) are the rocking modes', on the forces with the push; where the corner
+//! reaches an end of the face, or another corner the face, is the pair's (`clearance`). A landing
+//! of either body ends the couple; the engine takes its impulses one after the other (the
+//! landing's, then the contact's) and may start another. A body resting against a fixed block whose
+//! pivot slips is a couple too, the block its second side, fixed: the body slides down the block's
 //! face as a ladder down a wall.
 //!
 //! With the push P along the face's normal n (into the corner's body), body k's equation about
