@@ -159,11 +159,12 @@ fn columns_standing_apart_move_each_as_alone_to_the_bit() {
 /// its top right corner reaches the face, h sin theta = 0.02 m (its pivot sticks: its base's
 /// middle has moved by b (1 - cos theta)), where the slab alone, run to that instant, stands.
 /// Without restitution the corner stays on the face, and the blow lifts the slab's pivot off
-/// the ground: it flies with its corner on the face, lands, and the landing's impulse, then
-/// the contact's, lift it again, each flight shorter, until it rests against the face. It
-/// turns away from it, rattles against it, and its last blow throws it up along the face
-/// until its corner reaches the face's top, where the run stops, saying so. The energy balance
-/// closes.
+/// the ground: it flies with its corner on the face and lands, the landing and the contact
+/// taking their impulses at once (plastic both), which leaves its pivot on the ground and its
+/// corner on the face. It turns away from the face, strikes it again, and its last blow throws
+/// it up along the face until its corner reaches the face's top, where the run stops, saying
+/// so. The energy balance closes, and Moreau-Jean, which resolves the same contacts at once,
+/// converges on the rotation and the displacement through the whole run.
 #[test]
 fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
     let niche = wall_with(
@@ -195,23 +196,31 @@ fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
             "{alone:?} {at:?}"
         );
     }
-    // Flights along the face, each ended by a landing whose blows lift it again, until one
-    // leaves it at rest against the face; then it turns away.
-    let rest = blows
-        .iter()
-        .position(|e| what(e).contains("it rests against the face"))
-        .expect("comes to rest");
-    assert!(rest > 5, "{blows:?}");
-    for e in &blows[1..rest] {
-        assert!(what(e).contains("leaving the ground at"), "{e:?}");
-    }
-    let flights: Vec<f64> = blows[..rest]
-        .windows(2)
-        .map(|w| w[1].time_s - w[0].time_s)
-        .collect();
-    assert!(flights.windows(2).all(|w| w[1] < w[0]), "{flights:?}");
+    // One flight along the face, ended by a landing that keeps the corner on the face and
+    // the pivot on the ground.
+    let landing = (r.events.iter())
+        .find(|e| e.time_s > t && e.kind == EventKind::RockingImpact)
+        .unwrap();
+    assert!(
+        what(landing).contains(
+            "lands from free flight on its right corner in contact with A, \
+             both contacts plastic at once"
+        ),
+        "{landing:?}"
+    );
+    assert_eq!(blows[1].time_s, landing.time_s);
+    assert!(
+        what(blows[1]).contains("S's corner stays on A's face, its impulse"),
+        "{:?}",
+        blows[1]
+    );
+    assert!(
+        !what(blows[1]).contains("leaving the ground"),
+        "{:?}",
+        blows[1]
+    );
     let stop = r.summary.duration_s;
-    assert!(r.events.iter().any(|e| e.time_s >= blows[rest].time_s
+    assert!(r.events.iter().any(|e| e.time_s > landing.time_s
         && e.time_s < stop
         && e.mode
             .as_deref()
@@ -226,6 +235,9 @@ fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
     )));
     let e = &r.summary.energy;
     assert!(e.residual_j.abs() <= 1e-14 * e.input_j, "{e:?}");
+    for col in [1, 3] {
+        converges_in(&niche, &motion, &r, t, 0, col);
+    }
 }
 
 /// A slender slab (0.2 by 2 m) 5 cm from a low fixed block (0.5 by 0.3 m) on its left leans
@@ -880,15 +892,14 @@ fn two_slabs_turning_together_part_where_their_push_falls_to_zero() {
 
 /// The slabs 0.4 m apart under 0.3 g from 180 degrees: T falls onto S's face at 1.3982 s and
 /// they turn together, S pushing T to the right, until S lands on its base at 1.4037 s. The
-/// landing's impulse is taken first (Housner's, S alone: theta' falls by r = 1 - 1.5 sin^2
-/// alpha), then what is left at the contact, where T now moves away from S's slower face: they
-/// part at that instant, and stand apart until they meet again at 1.5117 s, where S's pivot
-/// leaves the ground, T's corner on its face; S lands, and the landing's impulse, then the
-/// contact's, lift it again, each flight shorter, until one leaves it on the ground (1.5121
-/// s); the two turn together from there, through S's next landing, until T's face comes down
-/// flat on S's (2.881 s), where the run stops. Moreau-Jean converges on both rotations up to
-/// the second meeting (from there the sequential law, a landing's impulse then the contact's,
-/// and time stepping's simultaneous impulses part ways, as docs/rocking-walls.md says).
+/// landing and the contact take their impulses at once, and the contact's is zero: the
+/// landing is Housner's, S alone (theta' falls by r = 1 - 1.5 sin^2 alpha), and T moves away
+/// from S's slower face: they part at that instant, and stand apart until they meet again at
+/// 1.5117 s, where S's pivot leaves the ground, T's corner on its face; S lands from that
+/// flight (1.5121 s), both contacts taking their impulses at once, and the two turn together
+/// from there, through S's next landing, until T's face comes down flat on S's (2.881 s),
+/// where the run stops. Moreau-Jean converges on both rotations from the first meeting
+/// through the second and the landing from flight, to 1.6 s.
 #[test]
 fn a_slab_that_lands_while_turning_with_another_parts_from_it() {
     let model = Model::from_ron_str(
@@ -941,6 +952,12 @@ fn a_slab_that_lands_while_turning_with_another_parts_from_it() {
         .as_deref()
         .unwrap()
         .contains("turn on together"));
+    assert!(r.events.iter().any(|e| e.time_s == settled.time_s
+        && e.kind == EventKind::RockingImpact
+        && e.mode
+            .as_deref()
+            .unwrap()
+            .contains("both contacts plastic at once")));
     let stop = r.summary.duration_s;
     assert!(r.summary.warnings.iter().any(|w| matches!(
         w,
@@ -963,9 +980,9 @@ fn a_slab_that_lands_while_turning_with_another_parts_from_it() {
     let e = &r.summary.energy;
     let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
     assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
-    let to_meeting = run(&model, &motion, stop, 0.0);
+    let through_landing = run(&model, &motion, 1.6, 0.0);
     for k in 0..2 {
-        converges(&model, &motion, &to_meeting, impact.time_s, k);
+        converges(&model, &motion, &through_landing, impact.time_s, k);
     }
 }
 

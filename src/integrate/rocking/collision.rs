@@ -200,11 +200,29 @@ pub fn closing(sides: [Option<&Turning>; 2], c: &Contact) -> Option<(usize, f64)
 
 /// The impact of the corner of side 0 on the face of side 1 (`None`: a fixed block).
 pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Refusal> {
-    let (approach, speed, momentum) = approach(sides, c);
-    let tie = super::series::TIE;
-    if approach >= -tie * speed {
+    let (approach, speed, _) = approach(sides, c);
+    if approach >= -super::series::TIE * speed {
         return Err(Refusal::Grazing);
     }
+    solve(sides, c, false)
+}
+
+/// A landing in contact: a corner of a side's base comes down on the ground (a ground corner
+/// whose rise before is negative) while the corner of side 0 stays on the face of side 1.
+/// Every contact takes its impulse at once, each plastic (Moreau's law with no restitution,
+/// as the time-stepped model resolves them): a ground corner stays on the ground with an
+/// impulse that presses, or leaves it with none, and so does the contact between the blocks,
+/// which may open. The contact's restitution is not used.
+pub fn resolve_landing(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Refusal> {
+    solve(sides, c, true)
+}
+
+/// Every combination of the laws, the contact between the blocks closed (its normal velocity
+/// after -e times before) or, where it `may_open`, open (no impulse, its normal velocity after
+/// not negative); exactly one outcome must obey them.
+fn solve(sides: [Option<&Turning>; 2], c: &Contact, may_open: bool) -> Result<Outcome, Refusal> {
+    let (approach, speed, momentum) = approach(sides, c);
+    let tie = super::series::TIE;
     let moving: Vec<(usize, &Turning)> = (0..2).filter_map(|k| Some((k, sides[k]?))).collect();
     let corners =
         |b: &Turning| -> Vec<(Corner, f64)> { b.ground.iter().flatten().copied().collect() };
@@ -217,10 +235,12 @@ pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Ref
         p += 4 + corners(b).len();
     }
     let choices: Vec<Vec<Laws>> = moving.iter().map(|(_, b)| laws(corners(b).len())).collect();
-    let combos: usize = choices.iter().map(Vec::len).product();
+    let closings = if may_open { 2 } else { 1 };
+    let combos: usize = choices.iter().map(Vec::len).product::<usize>() * closings;
     let mut found: Vec<Outcome> = Vec::new();
     for combo in 0..combos {
-        let mut rest = combo;
+        let opens = combo % closings == 1;
+        let mut rest = combo / closings;
         let picked: Vec<Laws> = choices
             .iter()
             .map(|ch| {
@@ -284,17 +304,40 @@ pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Ref
                 Friction::Free => a[(r + 3, r + 3)] = 1.0,
             }
         }
-        rhs[p] = -(1.0 + c.restitution) * approach;
+        if opens {
+            for col in 0..p {
+                a[(p, col)] = 0.0;
+            }
+            a[(p, p)] = 1.0;
+        } else {
+            rhs[p] = -(1.0 + c.restitution) * approach;
+        }
         let Some(x) = a.lu().solve(&rhs) else {
             continue;
         };
         let impulse = x[p];
         let impulse_tol = tie * (impulse.abs() + momentum);
-        let mut consistent = impulse >= -impulse_tol;
+        // The normal velocity after: what the law holds where the contact closes.
+        let normal_after = if opens {
+            approach
+                + (moving.iter().enumerate())
+                    .map(|(j, &(k, b))| {
+                        let arm = arms(b, c);
+                        let r = offsets[j];
+                        SIGN[k] * (arm[0] * x[r] + arm[1] * x[r + 1] + arm[2] * x[r + 2])
+                    })
+                    .sum::<f64>()
+        } else {
+            -c.restitution * approach
+        };
+        let mut consistent = match opens {
+            true => normal_after >= -tie * speed,
+            false => impulse >= -impulse_tol,
+        };
         let mut outcome = Outcome {
             after: [None; 2],
-            impulse_n_s: impulse.max(0.0),
-            normal_m_s: (approach, -c.restitution * approach),
+            impulse_n_s: if opens { 0.0 } else { impulse.max(0.0) },
+            normal_m_s: (approach, normal_after),
             loss_j: 0.0,
         };
         for (j, &(k, b)) in moving.iter().enumerate() {

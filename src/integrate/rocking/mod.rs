@@ -253,7 +253,8 @@ fn transition(old: Mode, new: Mode, start: bool) -> Option<EventKind> {
 }
 
 /// A body's mode after an impact (`after`; its mode before, `mode`): rocking on the pivot it
-/// had, or on one it starts rocking on from seated where `seated` allows, stuck or slipping; or
+/// had, or on either corner where both were on the ground through the impact (`seated`: a
+/// seated body, or one landing on its base), stuck or slipping; or
 /// in flight, its u and lift following the corner it rocked on (or its right one, as from
 /// rest); else what it does instead, in words.
 fn mode_after(after: &collision::After, mode: Mode, seated: bool) -> Result<Mode, &'static str> {
@@ -263,10 +264,27 @@ fn mode_after(after: &collision::After, mode: Mode, seated: bool) -> Result<Mode
     };
     match (after.base, mode.pivot()) {
         (collision::Base::Pivot { corner, slips }, Some(c)) if corner == c => Ok(rocks(c, slips)),
-        (collision::Base::Pivot { corner, slips }, None) if seated => Ok(rocks(corner, slips)),
+        (collision::Base::Pivot { corner, slips }, _) if seated => Ok(rocks(corner, slips)),
         (collision::Base::Flies, _) => Ok(Mode::Flight(mode.corner().unwrap_or(Corner::Right))),
         (collision::Base::Pivot { .. }, _) => Err("turns on its other corner"),
         (collision::Base::Seated { .. }, _) => Err("stays seated"),
+    }
+}
+
+/// The state of a body in flight followed by its other corner instead of `from` (its base's
+/// half-width `bp`, m): that corner's displacement from its own place at rest, its height and
+/// their rates. Turned clockwise by theta, it lies (dx cos, -dx sin) from the one followed, dx =
+/// -2 s b (and dx (cos - 1) = -2 dx sin^2(theta / 2)).
+fn refollowed(state: State, from: Corner, bp: f64) -> State {
+    let dx = -2.0 * from.sign() * bp;
+    let (sin, cos) = state.theta.sin_cos();
+    let half = (0.5 * state.theta).sin();
+    State {
+        u: state.u - 2.0 * dx * half * half,
+        lift: state.lift - dx * sin,
+        v: state.v - state.omega * dx * sin,
+        lift_v: state.lift_v - state.omega * dx * cos,
+        ..state
     }
 }
 
@@ -911,11 +929,12 @@ impl<'a> Engine<'a> {
     }
 
     /// Body i of a couple lands on its base (or, in flight, on `corner`), the other body's
-    /// corner on its face or its corner on the other's face. The two contacts' impulses are
-    /// taken one after the other: the landing first, as the body's alone (Housner's), then at
-    /// the contact between the bodies what is left of their approach, without restitution
-    /// ([`Engine::strike`]): they turn together again, or the run stops there, saying why;
-    /// where the landing turns the body away from the other, they part.
+    /// corner on its face or its corner on the other's face. Both contacts take their impulses
+    /// at once, plastic ([`collision::resolve_landing`], the time-stepped model's law solved
+    /// exactly): the bodies turn together again, or part where the contact opens, or the run
+    /// stops there, saying why. Where that law is not the landing's (a restitution factor
+    /// below one, a column holding joints, the linearised equations), the impulses are taken
+    /// one after the other ([`Engine::lands_in_turn`]).
     fn couple_lands(
         &mut self,
         i: usize,
@@ -923,6 +942,126 @@ impl<'a> Engine<'a> {
         now: &Inputs,
     ) -> Result<(), SimulationError> {
         let couple = self.uncouple(i);
+        let plain = |k: usize| self.scene.watches.get(k).is_none_or(Watch::holds_nothing);
+        if self.scene.equations != Equations::Exact
+            || self.body(i).restitution_factor != 1.0
+            || !couple.moving().all(plain)
+        {
+            return self.lands_in_turn(i, &couple, corner, now);
+        }
+        // The body as the law takes it: seated at theta = 0, or followed by the corner it
+        // lands on, on the ground; what height it had there (a tie) goes with the loss.
+        let (body, before) = (self.body(i), self.tracks[i].state);
+        let dropped = modes::potential_j(body, &self.trajectory(i, now), 0.0);
+        let tr = &mut self.tracks[i];
+        let ground = match corner {
+            None => {
+                tr.state.theta = 0.0;
+                let c = tr
+                    .mode
+                    .pivot()
+                    .expect("only a rocking body lands on its base");
+                let bp = self.layout.pivot_half_base_m(i);
+                [Some((c, 0.0)), Some((c.other(), -2.0 * c.sign() * bp))]
+            }
+            Some(c) => {
+                let Mode::Flight(followed) = tr.mode else {
+                    return Err(SimulationError::Bug(
+                        "only a body in flight lands from it".into(),
+                    ));
+                };
+                if c != followed {
+                    tr.state = refollowed(tr.state, followed, self.layout.pivot_half_base_m(i));
+                }
+                tr.state.lift = 0.0;
+                tr.mode = Mode::Flight(c);
+                [Some((c, 0.0)), None]
+            }
+        };
+        self.rec.energy.impact_loss_j +=
+            dropped - modes::potential_j(body, &self.trajectory(i, now), 0.0);
+        let touch = Touch {
+            stays: true,
+            ..couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)))
+        };
+        let (mut sides, contact) = self.staying(&touch);
+        let k = usize::from(couple.bodies[1] == Some(i));
+        if let Some(turns) = sides[k].as_mut() {
+            turns.ground = ground;
+        }
+        let [own, other] = [k, 1 - k].map(|s| self.layout.names[touch.blocks[s]].clone());
+        let lands = match corner {
+            None => format!("{own} lands on its base"),
+            Some(c) => format!("{own} lands from free flight on its {} corner", c.name()),
+        };
+        let out = match collision::resolve_landing([sides[0].as_ref(), sides[1].as_ref()], &contact)
+        {
+            Ok(out) => out,
+            Err(refusal) => {
+                let why = format!("{lands} in contact with {other}, and {refusal}");
+                self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
+                return Ok(());
+            }
+        };
+        let after = out.after[k].expect("the landing body's side moves");
+        let (_, speed, _) = collision::approach([sides[0].as_ref(), sides[1].as_ref()], &contact);
+        let mut what = format!(
+            "{lands} in contact with {other}, both contacts plastic at once: theta' {:.6e} -> \
+             {:.6e} rad/s",
+            before.omega, after.omega
+        );
+        if out.normal_m_s.1 > series::TIE * speed {
+            // The landing turns the body away from the other: the contact opens, its impulse
+            // zero, and the other side moves on as it was.
+            self.rec.energy.impact_loss_j += out.loss_j;
+            let (how, _) = self.take(i, &after);
+            let [corner_name, face_name] = touch.blocks.map(|b| self.layout.names[b].clone());
+            what += &format!(", {how}; the contact opens at {:.6e} m/s", out.normal_m_s.1);
+            self.rec.rocking_event(
+                self.t,
+                EventKind::RockingImpact,
+                &self.layout.outputs(i),
+                Some((before.omega, after.omega)),
+                what,
+            );
+            self.rec.rocking_event(
+                self.t,
+                EventKind::Separation,
+                &touch.blocks,
+                None,
+                format!("{corner_name}'s corner leaves {face_name}'s face as {lands}"),
+            );
+            for j in couple.moving() {
+                self.decide(j, now, false)?;
+            }
+            return Ok(());
+        }
+        self.rec.rocking_event(
+            self.t,
+            EventKind::RockingImpact,
+            &self.layout.outputs(i),
+            Some((before.omega, after.omega)),
+            what,
+        );
+        let stays = format!("they stay in contact as {lands}");
+        if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, Some(i)) {
+            self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
+        }
+        Ok(())
+    }
+
+    /// Body i of `couple` lands on its base (or, in flight, on `corner`), the impulses taken
+    /// one after the other: the landing first, as the body's alone (Housner's), then at the
+    /// contact between the bodies what is left of their approach, without restitution
+    /// ([`Engine::strike`]): they turn together again, or the run stops there, saying why;
+    /// where the landing turns the body away from the other, they part.
+    fn lands_in_turn(
+        &mut self,
+        i: usize,
+        couple: &Couple,
+        corner: Option<Corner>,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
         match corner {
             Some(corner) => self.land_from_flight(i, corner, now)?,
             None => self.land(i, now)?,
@@ -1277,12 +1416,12 @@ impl<'a> Engine<'a> {
                     loss_j: 0.0,
                 };
                 let why = "they touch without approaching faster than round-off";
-                return Ok(self.rests_against(t, &turning, &out, now, why.into()));
+                return Ok(self.rests_against(t, &turning, &out, now, why.into(), None));
             }
             Err(refusal) => return Ok(Some(refusal.to_string())),
         };
         if t.stays || out.normal_m_s.1 <= t.tie_m_s {
-            return Ok(self.rests_against(t, &turning, &out, now, stays));
+            return Ok(self.rests_against(t, &turning, &out, now, stays, None));
         }
         self.clearance.strike(t.pair);
         self.rec.energy.impact_loss_j += out.loss_j;
@@ -1300,50 +1439,15 @@ impl<'a> Engine<'a> {
                 continue;
             };
             self.rec.rocking_impact(t.blocks[k]);
-            let tr = &mut self.tracks[i];
-            omega.get_or_insert((tr.state.omega, after.omega));
-            let flying = matches!(tr.mode, Mode::Flight(_));
-            let slipping = |slips: bool| {
-                if slips {
-                    format!(", slipping at {:.6e} m/s", after.v)
-                } else {
-                    String::new()
-                }
-            };
-            let how = match after.base {
-                collision::Base::Seated { slips } => format!("stays seated{}", slipping(slips)),
-                collision::Base::Pivot { corner, slips } => {
-                    format!("rocks on its {} corner{}", corner.name(), slipping(slips))
-                }
-                collision::Base::Flies if flying => "flies on".into(),
-                collision::Base::Flies => {
-                    format!("leaves the ground at {:.6e} m/s", after.lift_v)
-                }
-            };
+            let before = self.tracks[i].state.omega;
+            omega.get_or_insert((before, after.omega));
+            let (how, decides) = self.take(i, &after);
             what += &format!(
-                "; {}: theta' {:.6e} -> {:.6e} rad/s, {how}",
-                self.layout.names[t.blocks[k]], tr.state.omega, after.omega,
+                "; {}: theta' {before:.6e} -> {:.6e} rad/s, {how}",
+                self.layout.names[t.blocks[k]], after.omega,
             );
-            tr.state.omega = after.omega;
-            tr.state.v = after.v;
-            match after.base {
-                collision::Base::Flies => {
-                    // A seated body leaves with its right corner followed, as from rest.
-                    let c = tr.mode.corner().unwrap_or(Corner::Right);
-                    if !flying {
-                        tr.state.lift = 0.0;
-                    }
-                    tr.state.lift_v = after.lift_v;
-                    tr.mode = Mode::Flight(c);
-                }
-                collision::Base::Pivot { corner, .. } => {
-                    tr.mode = Mode::Rock(corner);
-                    decide.push(i);
-                }
-                collision::Base::Seated { .. } => {
-                    tr.mode = Mode::Rest;
-                    decide.push(i);
-                }
+            if decides {
+                decide.push(i);
             }
         }
         self.rec
@@ -1352,6 +1456,52 @@ impl<'a> Engine<'a> {
             self.decide(i, now, false)?;
         }
         Ok(None)
+    }
+
+    /// Body i comes out of an impulse with the velocities `after`, in the mode its base gives:
+    /// rocking on a pivot or seated (to be decided again: true), or in flight. The words say
+    /// how it goes on.
+    fn take(&mut self, i: usize, after: &collision::After) -> (String, bool) {
+        let tr = &mut self.tracks[i];
+        let flying = matches!(tr.mode, Mode::Flight(_));
+        let slipping = |slips: bool| {
+            if slips {
+                format!(", slipping at {:.6e} m/s", after.v)
+            } else {
+                String::new()
+            }
+        };
+        let how = match after.base {
+            collision::Base::Seated { slips } => format!("stays seated{}", slipping(slips)),
+            collision::Base::Pivot { corner, slips } => {
+                format!("rocks on its {} corner{}", corner.name(), slipping(slips))
+            }
+            collision::Base::Flies if flying => "flies on".into(),
+            collision::Base::Flies => format!("leaves the ground at {:.6e} m/s", after.lift_v),
+        };
+        tr.state.omega = after.omega;
+        tr.state.v = after.v;
+        let decides = match after.base {
+            collision::Base::Flies => {
+                // A seated body leaves with its right corner followed, as from rest.
+                let c = tr.mode.corner().unwrap_or(Corner::Right);
+                if !flying {
+                    tr.state.lift = 0.0;
+                }
+                tr.state.lift_v = after.lift_v;
+                tr.mode = Mode::Flight(c);
+                false
+            }
+            collision::Base::Pivot { corner, .. } => {
+                tr.mode = Mode::Rock(corner);
+                true
+            }
+            collision::Base::Seated { .. } => {
+                tr.mode = Mode::Rest;
+                true
+            }
+        };
+        (how, decides)
     }
 
     /// Where body i's corner c stands while its u is zero, its base's middle at rest at
@@ -1429,9 +1579,9 @@ impl<'a> Engine<'a> {
     }
 
     /// Where the blocks of an impact `t` stay in contact after it (`out`, the bodies' states
-    /// before it `turning`; `stays` says how): a body whose pivot stays on the ground, stuck,
-    /// against a fixed block comes to rest there ([`lean`]); any other contact that stays stops
-    /// the run, and the reason is returned.
+    /// before it `turning`; `stays` says how; the body `landing` on its base through it, if
+    /// any): a body whose pivot stays on the ground, stuck, against a fixed block comes to rest
+    /// there ([`lean`]); any other contact that stays stops the run, and the reason is returned.
     fn rests_against(
         &mut self,
         t: &Touch,
@@ -1439,14 +1589,16 @@ impl<'a> Engine<'a> {
         out: &collision::Outcome,
         now: &Inputs,
         stays: String,
+        landing: Option<usize>,
     ) -> Option<String> {
         let k = match t.sides {
             [Side::Body(..), Side::Fixed] => 0,
             [Side::Fixed, Side::Body(..)] => 1,
-            [Side::Body(..), Side::Body(..)] => return self.couples(t, out, now, stays),
+            [Side::Body(..), Side::Body(..)] => return self.couples(t, out, now, stays, landing),
             _ => unreachable!("an impact's sides move, at least one of them"),
         };
-        let (Side::Body(i, _), Some(turns), Some(after)) = (t.sides[k], turning[k], out.after[k])
+        let (Side::Body(i, origin), Some(turns), Some(after)) =
+            (t.sides[k], turning[k], out.after[k])
         else {
             unreachable!("a body's side of an impact has its velocities");
         };
@@ -1458,10 +1610,10 @@ impl<'a> Engine<'a> {
                  block"
             ));
         }
-        let c = match mode_after(&after, self.tracks[i].mode, false) {
+        let c = match mode_after(&after, self.tracks[i].mode, landing == Some(i)) {
             Ok(Mode::Rock(c)) => c,
             // Its pivot slipping, or off the ground, it moves along the face, the corner on it.
-            Ok(_) => return self.couples(t, out, now, stays),
+            Ok(_) => return self.couples(t, out, now, stays, landing),
             Err(what) => {
                 return Some(format!(
                     "{stays}, and {name} {what} against it: a contact that stays on a body \
@@ -1470,7 +1622,10 @@ impl<'a> Engine<'a> {
             }
         };
         let tie_m = series::TIE * body.size_m();
-        let Some(lean) = Lean::new(t, k, turns.pivot, turns.centroid, tie_m) else {
+        // Its pivot on the ground (the corner it landed on, for a body landing on its base).
+        let pivot = self.home(i, origin, c);
+        let pivot = [pivot[0] + self.tracks[i].state.u, pivot[1]];
+        let Some(lean) = Lean::new(t, k, pivot, turns.centroid, tie_m) else {
             return Some(format!(
                 "{stays}, and the contact's push has no moment about {name}'s pivot to hold it by"
             ));
@@ -1482,7 +1637,7 @@ impl<'a> Engine<'a> {
         self.tracks[i].state.v = after.v;
         let left = modes::kinetic_j(body, &self.trajectory(i, now), 0.0);
         self.rec.energy.impact_loss_j += out.loss_j + left;
-        let meeting = self.stays_in_contact(t, out, &stays);
+        let meeting = self.stays_in_contact(t, out, &stays, landing.is_some());
         if out.impulse_n_s > 0.0 {
             self.rec.rocking_impact(t.blocks[k]);
         }
@@ -1511,9 +1666,24 @@ impl<'a> Engine<'a> {
 
     /// The words of an impact `t` (`out`) after which the blocks stay in contact (`stays` says
     /// how), counted among the impacts where it has an impulse.
-    fn stays_in_contact(&mut self, t: &Touch, out: &collision::Outcome, stays: &str) -> String {
+    fn stays_in_contact(
+        &mut self,
+        t: &Touch,
+        out: &collision::Outcome,
+        stays: &str,
+        landing: bool,
+    ) -> String {
         let [corner, face] = t.blocks.map(|b| &self.layout.names[b]);
-        if out.impulse_n_s > 0.0 {
+        if landing {
+            // The contact's impulse comes from the landing, not from an approach.
+            if out.impulse_n_s > 0.0 {
+                self.rec.impacts += 1;
+            }
+            format!(
+                "{corner}'s corner stays on {face}'s face, its impulse {:.6e} N s: {stays}",
+                out.impulse_n_s
+            )
+        } else if out.impulse_n_s > 0.0 {
             self.rec.impacts += 1;
             format!(
                 "{corner}'s corner strikes {face}'s face at {:.6e} m/s and {stays}",
@@ -1525,16 +1695,18 @@ impl<'a> Engine<'a> {
     }
 
     /// Where the blocks of an impact `t` stay in contact (`out`; `stays` says how), each body
-    /// rocking on the pivot it had (or a seated one on the corner the blow turns it on), stuck
-    /// or slipping: two bodies move on together, or one slides along a fixed block's face, its
-    /// pivot slipping ([`couple`]), in the one mode of their pivots the contact conditions
-    /// allow; any other contact that stays stops the run, and the reason is returned.
+    /// rocking on the pivot it had (or a seated one, or the one `landing` on its base, on the
+    /// corner the impact turns it on), stuck or slipping: two bodies move on together, or one
+    /// slides along a fixed block's face, its pivot slipping ([`couple`]), in the one mode of
+    /// their pivots the contact conditions allow; any other contact that stays stops the run,
+    /// and the reason is returned.
     fn couples(
         &mut self,
         t: &Touch,
         out: &collision::Outcome,
         now: &Inputs,
         stays: String,
+        landing: Option<usize>,
     ) -> Option<String> {
         if self.scene.equations != Equations::Exact {
             return Some(format!(
@@ -1552,7 +1724,8 @@ impl<'a> Engine<'a> {
                 _ => unreachable!("a side of a contact that moves has its velocities"),
             };
             let (old, state) = (self.tracks[i].mode, self.tracks[i].state);
-            let mode = match mode_after(&a, old, matches!(old, Mode::Rest | Mode::Slide(_))) {
+            let seated = matches!(old, Mode::Rest | Mode::Slide(_)) || landing == Some(i);
+            let mode = match mode_after(&a, old, seated) {
                 Ok(mode) => mode,
                 Err(what) => {
                     return Some(format!(
@@ -1613,7 +1786,7 @@ impl<'a> Engine<'a> {
             }
         }
         self.rec.energy.impact_loss_j += out.loss_j;
-        let mut what = self.stays_in_contact(t, out, &stays);
+        let mut what = self.stays_in_contact(t, out, &stays, landing.is_some());
         let mut omega = None;
         for k in 0..2 {
             let (Some(i), Some(mode)) = (bodies[k], modes[k]) else {
