@@ -16,7 +16,11 @@
 //! on the corner away from the blow, slides, or leaves the ground, as the law says. Every
 //! combination of the corners' and the friction's laws is a linear system; exactly one must be
 //! consistent: none (Painleve-type: no impulse obeys the law) or two that differ is reported,
-//! never chosen between.
+//! never chosen between. Every contact between blocks is closed (Newton's law, an impulse that
+//! presses) or open (no impulse, the corner leaving at least as fast as the law would have it),
+//! so the same law takes several contacts at once (`resolve_all`): a landing in contact (a base
+//! corner coming down onto the ground while a contact stays, `resolve_landing`), or a blow on a
+//! block in contact with others.
 
 use super::modes::Corner;
 use nalgebra::{DMatrix, DVector};
@@ -204,42 +208,86 @@ pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Ref
     if approach >= -super::series::TIE * speed {
         return Err(Refusal::Grazing);
     }
-    solve(sides, c, false)
+    resolve_landing(sides, c)
 }
 
 /// A landing in contact: a corner of a side's base comes down on the ground (a ground corner
 /// whose rise before is negative) while the corner of side 0 stays on the face of side 1.
-/// Every contact takes its impulse at once, each plastic (Moreau's law with no restitution,
-/// as the time-stepped model resolves them): a ground corner stays on the ground with an
-/// impulse that presses, or leaves it with none, and so does the contact between the blocks,
-/// which may open. The contact's restitution is not used.
+/// Every contact takes its impulse at once (Moreau's law, as the time-stepped model resolves
+/// them): a ground corner stays on the ground with an impulse that presses, or leaves it with
+/// none, and so does the contact between the blocks, which may open.
 pub fn resolve_landing(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Refusal> {
-    solve(sides, c, true)
+    let moving: Vec<usize> = (0..2).filter(|&k| sides[k].is_some()).collect();
+    let bodies: Vec<Turning> = moving.iter().filter_map(|&k| sides[k].copied()).collect();
+    let link = Link {
+        sides: [0, 1].map(|k| moving.iter().position(|&m| m == k)),
+        contact: *c,
+    };
+    let all = resolve_all(&bodies, &[link])?;
+    let mut after = [None; 2];
+    for (j, &k) in moving.iter().enumerate() {
+        after[k] = Some(all.after[j]);
+    }
+    Ok(Outcome {
+        after,
+        impulse_n_s: all.impulse_n_s[0],
+        normal_m_s: all.normal_m_s[0],
+        loss_j: all.loss_j,
+    })
 }
 
-/// Every combination of the laws, the contact between the blocks closed (its normal velocity
-/// after -e times before) or, where it `may_open`, open (no impulse, its normal velocity after
-/// not negative); exactly one outcome must obey them.
-fn solve(sides: [Option<&Turning>; 2], c: &Contact, may_open: bool) -> Result<Outcome, Refusal> {
-    let (approach, speed, momentum) = approach(sides, c);
+/// A contact of an impact at several contacts: the corner of side 0's block on the face of
+/// side 1's, each side a body's index in the impact's list (`None`: a fixed block).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Link {
+    pub sides: [Option<usize>; 2],
+    pub contact: Contact,
+}
+
+/// What an impact at several contacts does: per body its velocities after; per contact its
+/// normal impulse (N s) and the corner's normal velocity against the face before and after
+/// (m/s); the kinetic energy lost (J).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Impulses {
+    pub after: Vec<After>,
+    pub impulse_n_s: Vec<f64>,
+    pub normal_m_s: Vec<(f64, f64)>,
+    pub loss_j: f64,
+}
+
+/// An impact at several contacts at once, every contact between blocks by Moreau's law with
+/// its coefficient of restitution e: closed, its normal velocity after -e times before and an
+/// impulse that presses, or open, no impulse and its normal velocity after at least that; each
+/// body's base by the laws above. Every combination of the laws is a linear system; exactly one
+/// outcome must obey them all.
+pub fn resolve_all(bodies: &[Turning], links: &[Link]) -> Result<Impulses, Refusal> {
     let tie = super::series::TIE;
-    let moving: Vec<(usize, &Turning)> = (0..2).filter_map(|k| Some((k, sides[k]?))).collect();
+    let side = |l: &Link| l.sides.map(|s| s.map(|k| &bodies[k]));
+    let approaches: Vec<f64> = links
+        .iter()
+        .map(|l| approach(side(l), &l.contact).0)
+        .collect();
+    let (speed, momentum) = bodies.iter().fold((0.0, 0.0), |(speed, momentum), b| {
+        let s = b.v.abs() + b.w.abs() + b.omega.abs() * reach(b);
+        (speed + s, momentum + b.mass_kg * s)
+    });
     let corners =
         |b: &Turning| -> Vec<(Corner, f64)> { b.ground.iter().flatten().copied().collect() };
-    // Per side that moves, from its offset: the changes of v, theta' and w, the base's
-    // tangential impulse, each ground corner's normal impulse; then the contact's.
+    // Per body, from its offset: the changes of v, theta' and w, the base's tangential impulse,
+    // each ground corner's normal impulse; then each contact's.
     let mut offsets = Vec::new();
     let mut p = 0;
-    for (_, b) in &moving {
+    for b in bodies {
         offsets.push(p);
         p += 4 + corners(b).len();
     }
-    let choices: Vec<Vec<Laws>> = moving.iter().map(|(_, b)| laws(corners(b).len())).collect();
-    let closings = if may_open { 2 } else { 1 };
+    let n = p + links.len();
+    let choices: Vec<Vec<Laws>> = bodies.iter().map(|b| laws(corners(b).len())).collect();
+    let closings = 1usize << links.len();
     let combos: usize = choices.iter().map(Vec::len).product::<usize>() * closings;
-    let mut found: Vec<Outcome> = Vec::new();
+    let mut found: Vec<Impulses> = Vec::new();
     for combo in 0..combos {
-        let opens = combo % closings == 1;
+        let opens = |l: usize| (combo % closings) & 1 << l != 0;
         let mut rest = combo / closings;
         let picked: Vec<Laws> = choices
             .iter()
@@ -249,16 +297,17 @@ fn solve(sides: [Option<&Turning>; 2], c: &Contact, may_open: bool) -> Result<Ou
                 l
             })
             .collect();
-        let mut a = DMatrix::<f64>::zeros(p + 1, p + 1);
-        let mut rhs = DVector::<f64>::zeros(p + 1);
-        for (j, &(k, b)) in moving.iter().enumerate() {
-            let (m, s, r) = (b.mass_kg, SIGN[k], offsets[j]);
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        let mut rhs = DVector::<f64>::zeros(n);
+        for (j, b) in bodies.iter().enumerate() {
+            let (m, r) = (b.mass_kg, offsets[j]);
             let g = [b.centroid[0] - b.pivot[0], b.centroid[1] - b.pivot[1]];
             let ground = corners(b);
             let (mask, friction) = picked[j];
             // Momentum in the velocities q = (v, theta', w), whose centroid moves at
-            // (v + theta' g_y, w - theta' g_x): M dq = (P_T, -sum N_k d_k, sum N_k) + s P J^T n
-            // (the ground corners lie on the pivot's level: no moment from P_T).
+            // (v + theta' g_y, w - theta' g_x): M dq = (P_T, -sum N_k d_k, sum N_k) + sum over
+            // the contacts of s P J^T n (the ground corners lie on the pivot's level: no moment
+            // from P_T).
             let mass = [
                 [m, m * g[1], 0.0],
                 [
@@ -268,14 +317,20 @@ fn solve(sides: [Option<&Turning>; 2], c: &Contact, may_open: bool) -> Result<Ou
                 ],
                 [0.0, -m * g[0], m],
             ];
-            let arm = arms(b, c);
             for row in 0..3 {
                 for col in 0..3 {
                     a[(r + row, r + col)] = mass[row][col];
                 }
-                a[(r + row, p)] = -s * arm[row];
-                // Newton's law at the contact, summed over the sides.
-                a[(p, r + row)] = s * arm[row];
+            }
+            for (l, link) in links.iter().enumerate() {
+                for k in (0..2).filter(|&k| link.sides[k] == Some(j)) {
+                    let (s, arm) = (SIGN[k], arms(b, &link.contact));
+                    for row in 0..3 {
+                        a[(r + row, p + l)] = -s * arm[row];
+                        // Newton's law at the contact, summed over the sides.
+                        a[(p + l, r + row)] = s * arm[row];
+                    }
+                }
             }
             a[(r, r + 3)] = -1.0;
             for (q, &(_, dx)) in ground.iter().enumerate() {
@@ -304,43 +359,52 @@ fn solve(sides: [Option<&Turning>; 2], c: &Contact, may_open: bool) -> Result<Ou
                 Friction::Free => a[(r + 3, r + 3)] = 1.0,
             }
         }
-        if opens {
-            for col in 0..p {
-                a[(p, col)] = 0.0;
+        for (l, link) in links.iter().enumerate() {
+            if opens(l) {
+                for col in 0..p {
+                    a[(p + l, col)] = 0.0;
+                }
+                a[(p + l, p + l)] = 1.0;
+            } else {
+                rhs[p + l] = -(1.0 + link.contact.restitution) * approaches[l];
             }
-            a[(p, p)] = 1.0;
-        } else {
-            rhs[p] = -(1.0 + c.restitution) * approach;
         }
         let Some(x) = a.lu().solve(&rhs) else {
             continue;
         };
-        let impulse = x[p];
-        let impulse_tol = tie * (impulse.abs() + momentum);
-        // The normal velocity after: what the law holds where the contact closes.
-        let normal_after = if opens {
-            approach
-                + (moving.iter().enumerate())
-                    .map(|(j, &(k, b))| {
-                        let arm = arms(b, c);
-                        let r = offsets[j];
-                        SIGN[k] * (arm[0] * x[r] + arm[1] * x[r + 1] + arm[2] * x[r + 2])
-                    })
-                    .sum::<f64>()
-        } else {
-            -c.restitution * approach
-        };
-        let mut consistent = match opens {
-            true => normal_after >= -tie * speed,
-            false => impulse >= -impulse_tol,
-        };
-        let mut outcome = Outcome {
-            after: [None; 2],
-            impulse_n_s: if opens { 0.0 } else { impulse.max(0.0) },
-            normal_m_s: (approach, normal_after),
+        let mut consistent = true;
+        let mut outcome = Impulses {
+            after: Vec::with_capacity(bodies.len()),
+            impulse_n_s: Vec::with_capacity(links.len()),
+            normal_m_s: Vec::with_capacity(links.len()),
             loss_j: 0.0,
         };
-        for (j, &(k, b)) in moving.iter().enumerate() {
+        // Impulses are measured against the contacts' and the bodies' momenta.
+        let impulse_tol = tie * ((0..links.len()).map(|l| x[p + l].abs()).sum::<f64>() + momentum);
+        for (l, link) in links.iter().enumerate() {
+            let (before, e) = (approaches[l], link.contact.restitution);
+            let impulse = x[p + l];
+            // The normal velocity after: what the law holds where the contact closes.
+            let normal_after = if opens(l) {
+                let change: f64 = (0..2)
+                    .filter_map(|k| {
+                        let j = link.sides[k]?;
+                        let (arm, r) = (arms(&bodies[j], &link.contact), offsets[j]);
+                        Some(SIGN[k] * (arm[0] * x[r] + arm[1] * x[r + 1] + arm[2] * x[r + 2]))
+                    })
+                    .sum();
+                consistent &= before + change >= -e * before - tie * speed;
+                before + change
+            } else {
+                consistent &= impulse >= -impulse_tol;
+                -e * before
+            };
+            outcome
+                .impulse_n_s
+                .push(if opens(l) { 0.0 } else { impulse.max(0.0) });
+            outcome.normal_m_s.push((before, normal_after));
+        }
+        for (j, b) in bodies.iter().enumerate() {
             let r = offsets[j];
             let ground = corners(b);
             let (mask, friction) = picked[j];
@@ -393,7 +457,7 @@ fn solve(sides: [Option<&Turning>; 2], c: &Contact, may_open: bool) -> Result<Ou
             };
             outcome.loss_j +=
                 kinetic_j(b, b.omega, b.v, b.w) - kinetic_j(b, after.omega, after.v, after.lift_v);
-            outcome.after[k] = Some(after);
+            outcome.after.push(after);
         }
         if consistent {
             found.push(outcome);
@@ -401,14 +465,12 @@ fn solve(sides: [Option<&Turning>; 2], c: &Contact, may_open: bool) -> Result<Ou
     }
     // A base at the tie between two laws obeys both with one outcome: outcomes that agree to
     // 1e-9 of the speeds are one.
-    let same = |x: &Outcome, y: &Outcome| {
-        let apart: f64 = (0..2)
-            .filter_map(|k| {
-                let (a, b) = (x.after[k]?, y.after[k]?);
-                let r = sides[k].map_or(0.0, reach);
-                Some(
-                    (a.omega - b.omega).abs() * r + (a.v - b.v).abs() + (a.lift_v - b.lift_v).abs(),
-                )
+    let same = |x: &Impulses, y: &Impulses| {
+        let apart: f64 = (x.after.iter().zip(&y.after).zip(bodies))
+            .map(|((a, b), body)| {
+                (a.omega - b.omega).abs() * reach(body)
+                    + (a.v - b.v).abs()
+                    + (a.lift_v - b.lift_v).abs()
             })
             .sum();
         apart <= 1e-9 * speed

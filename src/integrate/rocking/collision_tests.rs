@@ -416,3 +416,106 @@ fn a_landing_held_by_a_face_stops_the_slab_with_every_contact_pressing() {
     assert!(ground[1] > 0.0, "{ground:?}");
     assert!(ground[0].abs() <= body.friction * ground[1], "{ground:?}");
 }
+
+/// Slab B of [`two_slabs`] (on its right corner, leaning right and swinging right) strikes a
+/// fixed face with its top right corner while slab A's corner stays on its left face, A turning
+/// with it (A's theta' set so that the contact neither approaches nor leaves). B's rebound
+/// drives its face into A's corner, so both contacts take impulses, at once: whatever the
+/// friction, the blow obeys Newton's law with e, the
+/// contact that stayed is closed with an impulse that presses or open without one, and each
+/// slab's momentum and angular momentum about its pivot change by the impulses on it alone, its
+/// pivot's pressing and within Coulomb's cone (at its edge where it slips), or zero where the
+/// pivot leaves the ground.
+#[test]
+fn a_blow_on_a_slab_another_leans_on_obeys_both_contacts_laws_at_once() {
+    for friction in [0.3, 0.8, 10.0] {
+        let (mut a, b, held) = two_slabs(-1.0, 1.0, 0.4, friction, 0.0);
+        let (still, ..) = approach([Some(&Turning { omega: 0.0, ..a }), Some(&b)], &held);
+        a.omega = -still / arms(&a, &held)[1];
+        assert!(approach([Some(&a), Some(&b)], &held).0.abs() < 1e-15);
+        let top = turned(b.pivot, 0.03, [0.0, 1.8]);
+        let blow = Contact {
+            point: top,
+            normal: [-1.0, 0.0],
+            restitution: 0.5,
+        };
+        let links = [
+            Link {
+                sides: [Some(1), None],
+                contact: blow,
+            },
+            Link {
+                sides: [Some(0), Some(1)],
+                contact: held,
+            },
+        ];
+        let bodies = [a, b];
+        let all = resolve_all(&bodies, &links).unwrap();
+        let (before, after) = all.normal_m_s[0];
+        assert!(before < -0.1, "{before}");
+        assert_relative_eq!(after, -0.5 * before, epsilon = 1e-14 * before.abs());
+        assert!(all.impulse_n_s[0] > 0.0);
+        // Rebounding, B drives its face into A's corner: both contacts take an impulse.
+        assert!(all.impulse_n_s[1] > 0.0, "{friction}: {all:?}");
+        let (held_before, held_after) = all.normal_m_s[1];
+        assert!(held_before.abs() < 1e-15);
+        if all.impulse_n_s[1] > 0.0 {
+            assert!(held_after.abs() <= 1e-14, "{held_after}");
+        } else {
+            assert!(held_after >= 0.0, "{held_after}");
+        }
+        for (j, body) in bodies.iter().enumerate() {
+            let x = all.after[j];
+            // The contacts' impulses on this body, at their points.
+            let mut p = [0.0; 2];
+            let mut moment = 0.0;
+            for (l, link) in links.iter().enumerate() {
+                for k in (0..2).filter(|&k| link.sides[k] == Some(j)) {
+                    let s = [1.0, -1.0][k] * all.impulse_n_s[l];
+                    let f = [s * link.contact.normal[0], s * link.contact.normal[1]];
+                    let d = [
+                        link.contact.point[0] - body.pivot[0],
+                        link.contact.point[1] - body.pivot[1],
+                    ];
+                    p = [p[0] + f[0], p[1] + f[1]];
+                    moment += d[0] * f[1] - d[1] * f[0];
+                }
+            }
+            let dh = momentum_about(body, body.pivot, x.omega, x.v, x.lift_v)
+                - momentum_about(body, body.pivot, body.omega, body.v, body.w);
+            let (g1, g0) = (
+                point_velocity(body, body.centroid, x.omega, x.v, x.lift_v),
+                point_velocity(body, body.centroid, body.omega, body.v, body.w),
+            );
+            let pt = body.mass_kg * (g1[0] - g0[0]) - p[0];
+            let pn = body.mass_kg * (g1[1] - g0[1]) - p[1];
+            let speeds =
+                body.v.abs() + x.v.abs() + (body.omega.abs() + x.omega.abs()) * reach(body);
+            let tol = 1e-13 * body.mass_kg * speeds;
+            assert!(
+                (dh - moment).abs() <= 2.0 * reach(body) * tol,
+                "{dh} {moment}"
+            );
+            let slips = match x.base {
+                Base::Pivot { corner, slips } => {
+                    assert_eq!(corner, body.ground[0].unwrap().0);
+                    slips
+                }
+                Base::Flies => {
+                    // Off the ground: no impulse there, and its pivot rises.
+                    assert!(pt.abs() <= tol && pn.abs() <= tol, "{pt} {pn}");
+                    assert!(x.lift_v >= 0.0, "{x:?}");
+                    continue;
+                }
+                Base::Seated { .. } => panic!("{friction}: {x:?}"),
+            };
+            assert!(pn > 0.0, "{pn}");
+            if slips {
+                assert_relative_eq!(pt, -body.friction * pn * x.v.signum(), epsilon = tol);
+            } else {
+                assert_eq!(x.v, 0.0);
+                assert!(pt.abs() <= body.friction * pn + tol, "{pt} {pn}");
+            }
+        }
+    }
+}

@@ -271,6 +271,27 @@ fn mode_after(after: &collision::After, mode: Mode, seated: bool) -> Result<Mode
     }
 }
 
+/// How a blow on blocks in contact with others is taken.
+enum AtOnce {
+    /// Every contact's impulse at once, the modes after it set.
+    Done,
+    /// Not followed: the run stops, for this reason.
+    Stops(String),
+    /// By the sequential law instead: the blow first, then each contact that stayed.
+    InTurn,
+}
+
+/// What gives a contact that stays through an impact its impulse.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Through {
+    /// The blocks' own approach there.
+    Approach,
+    /// Body i landing on its base (or a corner) beside it, both at once.
+    Landing(usize),
+    /// A blow at another contact, both at once.
+    Blow,
+}
+
 /// The state of a body in flight followed by its other corner instead of `from` (its base's
 /// half-width `bp`, m): that corner's displacement from its own place at rest, its height and
 /// their rates. Turned clockwise by theta, it lies (dx cos, -dx sin) from the one followed, dx =
@@ -1044,7 +1065,8 @@ impl<'a> Engine<'a> {
             what,
         );
         let stays = format!("they stay in contact as {lands}");
-        if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, Some(i)) {
+        if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, Through::Landing(i))
+        {
             self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
         }
         Ok(())
@@ -1354,6 +1376,13 @@ impl<'a> Engine<'a> {
                 self.uncouple(i);
             }
         }
+        if !held.is_empty() {
+            match self.blow_at_once(t, &held, now)? {
+                AtOnce::Done => return Ok(None),
+                AtOnce::Stops(why) => return Ok(Some(why)),
+                AtOnce::InTurn => {}
+            }
+        }
         if let Some(why) = self.blow(t, now)? {
             return Ok(Some(why));
         }
@@ -1372,6 +1401,158 @@ impl<'a> Engine<'a> {
             self.rejoin(&touch, &cause, &moved, now)?;
         }
         Ok(None)
+    }
+
+    /// A blow `t` on blocks in contact with others (`held`, the contacts that stayed until
+    /// now): every contact takes its impulse at once ([`collision::resolve_all`]: Moreau's law,
+    /// the blow's with the wall's restitution, the others' without, each free to open). Where
+    /// the blow parts its blocks, the contacts that open part theirs (`separation` events) and
+    /// those that stay go on as a couple or a rest against a fixed block; where the blow's own
+    /// contact stays, or the blocks rattle, or a side is held in its column, the impulses are
+    /// taken in turn instead ([`AtOnce::InTurn`]).
+    fn blow_at_once(
+        &mut self,
+        t: &Touch,
+        held: &[Touch],
+        now: &Inputs,
+    ) -> Result<AtOnce, SimulationError> {
+        let all_sides = || std::iter::once(t).chain(held).flat_map(|h| h.sides);
+        if t.stays
+            || self.scene.equations != Equations::Exact
+            || all_sides().any(|side| side == Side::Held)
+        {
+            return Ok(AtOnce::InTurn);
+        }
+        // The bodies of every contact, each once, and each contact's sides among them.
+        let mut ids: Vec<(usize, [f64; 2])> = Vec::new();
+        for side in all_sides() {
+            if let Side::Body(i, origin) = side {
+                if !ids.iter().any(|&(j, _)| j == i) {
+                    ids.push((i, origin));
+                }
+            }
+        }
+        let index = |side: Side| match side {
+            Side::Body(i, _) => ids.iter().position(|&(j, _)| j == i),
+            _ => None,
+        };
+        let restitution = self.scene.wall.map_or(1.0, |(w, _)| w.restitution.to_f64());
+        let mut links = vec![collision::Link {
+            sides: t.sides.map(index),
+            contact: collision::Contact {
+                point: t.point,
+                normal: t.normal,
+                restitution,
+            },
+        }];
+        for h in held {
+            links.push(collision::Link {
+                sides: h.sides.map(index),
+                contact: self.staying(h).1,
+            });
+        }
+        let bodies: Vec<collision::Turning> = (ids.iter())
+            .map(|&(i, origin)| self.turning(i, origin))
+            .collect();
+        let sides_of = |l: &collision::Link| l.sides.map(|k| k.map(|j| &bodies[j]));
+        let (approach, speed, _) = collision::approach(sides_of(&links[0]), &links[0].contact);
+        if approach >= -series::TIE * speed {
+            return Ok(AtOnce::InTurn);
+        }
+        let all = match collision::resolve_all(&bodies, &links) {
+            Ok(all) => all,
+            Err(refusal) => return Ok(AtOnce::Stops(refusal.to_string())),
+        };
+        if all.normal_m_s[0].1 <= t.tie_m_s {
+            return Ok(AtOnce::InTurn);
+        }
+        // The contacts that stay, and no body in two of them: taking each in turn would not end.
+        let stays: Vec<usize> = (1..links.len())
+            .filter(|&l| {
+                let (_, speed, _) = collision::approach(sides_of(&links[l]), &links[l].contact);
+                all.normal_m_s[l].1 <= series::TIE * speed
+            })
+            .collect();
+        for (j, &(i, _)) in ids.iter().enumerate() {
+            let count = (stays.iter())
+                .filter(|&&l| links[l].sides.contains(&Some(j)))
+                .count();
+            if count > 1 {
+                return Ok(AtOnce::Stops(format!(
+                    "{} stays in contact on two sides at once: blocks in contact on two sides \
+                     are not followed",
+                    self.body(i).name
+                )));
+            }
+        }
+        self.clearance.strike(t.pair);
+        self.rec.energy.impact_loss_j += all.loss_j;
+        self.rec.impacts += 1;
+        let [corner, face] = t.blocks.map(|b| self.layout.names[b].clone());
+        let mut what = format!(
+            "{corner}'s corner strikes {face}'s face at {:.6e} m/s, parting at {:.6e} m/s \
+             (impulse {:.6e} N s), every contact it touches taking its impulse at once",
+            -all.normal_m_s[0].0, all.normal_m_s[0].1, all.impulse_n_s[0]
+        );
+        let mut omega = None;
+        for k in 0..2 {
+            if let (Side::Body(i, _), Some(j)) = (t.sides[k], links[0].sides[k]) {
+                self.rec.rocking_impact(t.blocks[k]);
+                omega.get_or_insert((self.tracks[i].state.omega, all.after[j].omega));
+            }
+        }
+        // Bodies in no contact that stays take their velocities now; the others through it.
+        let mut decide = Vec::new();
+        for (j, &(i, _)) in ids.iter().enumerate() {
+            if stays.iter().any(|&l| links[l].sides.contains(&Some(j))) {
+                continue;
+            }
+            let after = all.after[j];
+            let before = self.tracks[i].state.omega;
+            let (how, decides) = self.take(i, &after);
+            what += &format!(
+                "; {}: theta' {before:.6e} -> {:.6e} rad/s, {how}",
+                self.body(i).name,
+                after.omega
+            );
+            if decides {
+                decide.push(i);
+            }
+        }
+        self.rec
+            .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
+        for (l, h) in held.iter().enumerate().map(|(k, h)| (k + 1, h)) {
+            let [c, f] = h.blocks.map(|b| self.layout.names[b].clone());
+            if !stays.contains(&l) {
+                self.rec.rocking_event(
+                    self.t,
+                    EventKind::Separation,
+                    &h.blocks,
+                    None,
+                    format!("{c}'s corner leaves {f}'s face as {corner}'s corner strikes {face}'s"),
+                );
+                continue;
+            }
+            let pair = links[l].sides.map(|k| k.map(|j| all.after[j]));
+            let out = collision::Outcome {
+                after: pair,
+                impulse_n_s: all.impulse_n_s[l],
+                normal_m_s: all.normal_m_s[l],
+                loss_j: 0.0,
+            };
+            let turning = links[l].sides.map(|k| k.map(|j| bodies[j]));
+            let stays = format!("they stay in contact as {corner}'s corner strikes {face}'s face");
+            let touch = Touch { stays: true, ..*h };
+            if let Some(why) = self.rests_against(&touch, &turning, &out, now, stays, Through::Blow)
+            {
+                self.stops_meeting((h.blocks[0], h.blocks[1]), why);
+                return Ok(AtOnce::Done);
+            }
+        }
+        for i in decide {
+            self.decide(i, now, false)?;
+        }
+        Ok(AtOnce::Done)
     }
 
     /// The impact where a corner strikes a face (`t`), each body on its side taken as it
@@ -1416,12 +1597,19 @@ impl<'a> Engine<'a> {
                     loss_j: 0.0,
                 };
                 let why = "they touch without approaching faster than round-off";
-                return Ok(self.rests_against(t, &turning, &out, now, why.into(), None));
+                return Ok(self.rests_against(
+                    t,
+                    &turning,
+                    &out,
+                    now,
+                    why.into(),
+                    Through::Approach,
+                ));
             }
             Err(refusal) => return Ok(Some(refusal.to_string())),
         };
         if t.stays || out.normal_m_s.1 <= t.tie_m_s {
-            return Ok(self.rests_against(t, &turning, &out, now, stays, None));
+            return Ok(self.rests_against(t, &turning, &out, now, stays, Through::Approach));
         }
         self.clearance.strike(t.pair);
         self.rec.energy.impact_loss_j += out.loss_j;
@@ -1579,9 +1767,10 @@ impl<'a> Engine<'a> {
     }
 
     /// Where the blocks of an impact `t` stay in contact after it (`out`, the bodies' states
-    /// before it `turning`; `stays` says how; the body `landing` on its base through it, if
-    /// any): a body whose pivot stays on the ground, stuck, against a fixed block comes to rest
-    /// there ([`lean`]); any other contact that stays stops the run, and the reason is returned.
+    /// before it `turning`; `stays` says how, and `through` what gave the contact its
+    /// impulse): a body whose pivot stays on the ground, stuck, against a fixed block comes to
+    /// rest there ([`lean`]); any other contact that stays stops the run, and the reason is
+    /// returned.
     fn rests_against(
         &mut self,
         t: &Touch,
@@ -1589,12 +1778,12 @@ impl<'a> Engine<'a> {
         out: &collision::Outcome,
         now: &Inputs,
         stays: String,
-        landing: Option<usize>,
+        through: Through,
     ) -> Option<String> {
         let k = match t.sides {
             [Side::Body(..), Side::Fixed] => 0,
             [Side::Fixed, Side::Body(..)] => 1,
-            [Side::Body(..), Side::Body(..)] => return self.couples(t, out, now, stays, landing),
+            [Side::Body(..), Side::Body(..)] => return self.couples(t, out, now, stays, through),
             _ => unreachable!("an impact's sides move, at least one of them"),
         };
         let (Side::Body(i, origin), Some(turns), Some(after)) =
@@ -1610,10 +1799,10 @@ impl<'a> Engine<'a> {
                  block"
             ));
         }
-        let c = match mode_after(&after, self.tracks[i].mode, landing == Some(i)) {
+        let c = match mode_after(&after, self.tracks[i].mode, through == Through::Landing(i)) {
             Ok(Mode::Rock(c)) => c,
             // Its pivot slipping, or off the ground, it moves along the face, the corner on it.
-            Ok(_) => return self.couples(t, out, now, stays, landing),
+            Ok(_) => return self.couples(t, out, now, stays, through),
             Err(what) => {
                 return Some(format!(
                     "{stays}, and {name} {what} against it: a contact that stays on a body \
@@ -1637,7 +1826,7 @@ impl<'a> Engine<'a> {
         self.tracks[i].state.v = after.v;
         let left = modes::kinetic_j(body, &self.trajectory(i, now), 0.0);
         self.rec.energy.impact_loss_j += out.loss_j + left;
-        let meeting = self.stays_in_contact(t, out, &stays, landing.is_some());
+        let meeting = self.stays_in_contact(t, out, &stays, through);
         if out.impulse_n_s > 0.0 {
             self.rec.rocking_impact(t.blocks[k]);
         }
@@ -1671,11 +1860,11 @@ impl<'a> Engine<'a> {
         t: &Touch,
         out: &collision::Outcome,
         stays: &str,
-        landing: bool,
+        through: Through,
     ) -> String {
         let [corner, face] = t.blocks.map(|b| &self.layout.names[b]);
-        if landing {
-            // The contact's impulse comes from the landing, not from an approach.
+        if through != Through::Approach {
+            // The contact's impulse comes from an impact elsewhere, not from an approach.
             if out.impulse_n_s > 0.0 {
                 self.rec.impacts += 1;
             }
@@ -1695,18 +1884,18 @@ impl<'a> Engine<'a> {
     }
 
     /// Where the blocks of an impact `t` stay in contact (`out`; `stays` says how), each body
-    /// rocking on the pivot it had (or a seated one, or the one `landing` on its base, on the
-    /// corner the impact turns it on), stuck or slipping: two bodies move on together, or one
-    /// slides along a fixed block's face, its pivot slipping ([`couple`]), in the one mode of
-    /// their pivots the contact conditions allow; any other contact that stays stops the run,
-    /// and the reason is returned.
+    /// rocking on the pivot it had (or a seated one, or one landing on its base `through` it,
+    /// on the corner the impact turns it on), stuck or slipping: two bodies move on together,
+    /// or one slides along a fixed block's face, its pivot slipping ([`couple`]), in the one
+    /// mode of their pivots the contact conditions allow; any other contact that stays stops
+    /// the run, and the reason is returned.
     fn couples(
         &mut self,
         t: &Touch,
         out: &collision::Outcome,
         now: &Inputs,
         stays: String,
-        landing: Option<usize>,
+        through: Through,
     ) -> Option<String> {
         if self.scene.equations != Equations::Exact {
             return Some(format!(
@@ -1724,7 +1913,8 @@ impl<'a> Engine<'a> {
                 _ => unreachable!("a side of a contact that moves has its velocities"),
             };
             let (old, state) = (self.tracks[i].mode, self.tracks[i].state);
-            let seated = matches!(old, Mode::Rest | Mode::Slide(_)) || landing == Some(i);
+            let seated =
+                matches!(old, Mode::Rest | Mode::Slide(_)) || through == Through::Landing(i);
             let mode = match mode_after(&a, old, seated) {
                 Ok(mode) => mode,
                 Err(what) => {
@@ -1786,7 +1976,7 @@ impl<'a> Engine<'a> {
             }
         }
         self.rec.energy.impact_loss_j += out.loss_j;
-        let mut what = self.stays_in_contact(t, out, &stays, landing.is_some());
+        let mut what = self.stays_in_contact(t, out, &stays, through);
         let mut omega = None;
         for k in 0..2 {
             let (Some(i), Some(mode)) = (bodies[k], modes[k]) else {
