@@ -1031,20 +1031,23 @@ impl<'a> Engine<'a> {
              {:.6e} rad/s",
             before.omega, after.omega
         );
-        if out.normal_m_s.1 > series::TIE * speed {
-            // The landing turns the body away from the other: the contact opens, its impulse
-            // zero, and the other side moves on as it was.
+        // The landing may turn the body away from the other: the contact opens, its impulse
+        // zero, and the other side moves on as it was.
+        let opens = out.normal_m_s.1 > series::TIE * speed;
+        if opens {
             self.rec.energy.impact_loss_j += out.loss_j;
             let (how, _) = self.take(i, &after);
-            let [corner_name, face_name] = touch.blocks.map(|b| self.layout.names[b].clone());
             what += &format!(", {how}; the contact opens at {:.6e} m/s", out.normal_m_s.1);
-            self.rec.rocking_event(
-                self.t,
-                EventKind::RockingImpact,
-                &self.layout.outputs(i),
-                Some((before.omega, after.omega)),
-                what,
-            );
+        }
+        self.rec.rocking_event(
+            self.t,
+            EventKind::RockingImpact,
+            &self.layout.outputs(i),
+            Some((before.omega, after.omega)),
+            what,
+        );
+        if opens {
+            let [corner_name, face_name] = touch.blocks.map(|b| self.layout.names[b].clone());
             self.rec.rocking_event(
                 self.t,
                 EventKind::Separation,
@@ -1057,13 +1060,6 @@ impl<'a> Engine<'a> {
             }
             return Ok(());
         }
-        self.rec.rocking_event(
-            self.t,
-            EventKind::RockingImpact,
-            &self.layout.outputs(i),
-            Some((before.omega, after.omega)),
-            what,
-        );
         let stays = format!("they stay in contact as {lands}");
         if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, Through::Landing(i))
         {
