@@ -30,8 +30,11 @@
 
 use super::body::RockingBody;
 use super::clearance::Touch;
-use super::modes::{arms, Constraint, Equations, Guard, Inputs, Mode, Scales, State, Trajectory};
-use super::series::{mul_at, sin_cos_at, Coeffs, ORDER, ZERO};
+use super::modes::{
+    self, arms, Constraint, Equations, Guard, Inputs, Mode, Scales, Slip, State, Trajectory,
+};
+use super::series::{mul_at, sign_after, sin_cos_at, Coeffs, ORDER, TIE, ZERO};
+use super::{breaks, tie_speed};
 
 /// Two bodies in contact, the corner of the first on a face of the second: the geometry in
 /// each body's frame upright (theta = 0), from its pivot, which moves along the ground with
@@ -110,6 +113,9 @@ pub(super) struct Motion {
     /// zero or negative, and the push is then indeterminate (Painleve's paradox for the
     /// mechanism).
     pub(super) compliance: f64,
+    /// The corner's acceleration away from the face were the push zero (m/s2): the bodies'
+    /// own motion at the instant, which parts them where it is positive.
+    pub(super) leaving: f64,
 }
 
 /// A side of a couple as its motion needs it: a body in its mode (rocking on a pivot, or in
@@ -205,7 +211,7 @@ impl Couple {
         let mut at = Geometry::default();
         let (mut acc, mut acc_u, mut acc_lift) = ([ZERO; 2], [ZERO; 2], [ZERO; 2]);
         let (mut w, mut arm_g, mut push) = ([ZERO; 2], [ZERO; 2], ZERO);
-        let mut compliance = 0.0;
+        let (mut compliance, mut leaving) = (0.0, 0.0);
         let io = members.map(|m| match m {
             Member::Moves(body, ..) => body.corner_inertia_kg_m2(),
             Member::Fixed => 0.0,
@@ -318,7 +324,7 @@ impl Couple {
             let free = j1 * f1.a.0 + j2 * f2.a.0 + nx * (f1.p.0 - f2.p.0) + ny * (f1.l.0 - f2.l.0);
             let per = j1 * f1.a.1 + j2 * f2.a.1 + nx * (f1.p.1 - f2.p.1) + ny * (f1.l.1 - f2.l.1);
             if k == 0 {
-                compliance = per;
+                (compliance, leaving) = (per, free - c);
             }
             push[k] = (c - free) / per;
             for (b, member) in members.iter().enumerate() {
@@ -353,6 +359,182 @@ impl Couple {
             bodies: t,
             push,
             compliance,
+            leaving,
+        }
+    }
+
+    /// The modes of a couple's bodies (`members`, each rocking on the pivot of its mode, or in
+    /// flight): every way their pivots may stick, slip (a pivot slipping now keeps its
+    /// direction) or leave the ground is checked against the bodies' conditions just after now
+    /// (none for a fixed block's side; a body off the ground stays in flight; a pivot leaves
+    /// the ground only where its height grows just after now, not where it stays zero to a
+    /// tie). Where every way's effective mass is positive (each slipping body's D and the
+    /// push's compliance), exactly one must hold with the contact closed, the push's own
+    /// condition not among them: where it falls at once, the blocks part at this instant. Where
+    /// friction leaves one not positive (Painleve), the law may have no motion or several, so
+    /// every way counts twice, with the contact closed and pressing and with it open (each
+    /// body alone, the corner leaving the face), and exactly one must hold: closed, it is
+    /// taken; open, the one way that holds closed is, and parts them at once. Else why not, in
+    /// words, naming each way and what breaks it.
+    pub(super) fn decide(
+        &self,
+        members: [Member; 2],
+        now: &Inputs,
+    ) -> Result<[Option<Mode>; 2], String> {
+        // The push at the instant, against the first moving body's weight.
+        let pressing = |motion: &Motion| {
+            members.iter().find_map(|m| match m {
+                Member::Moves(body, ..) => {
+                    Some(sign_after(&motion.push, Scales::of(body).force, body.time_scale_s()) >= 0)
+                }
+                Member::Fixed => None,
+            }) == Some(true)
+        };
+        let ways = |m: &Member| -> Vec<Option<Mode>> {
+            let Member::Moves(body, mode, state) = *m else {
+                return vec![None];
+            };
+            let c = mode.corner().expect("a body of a couple rocks or flies");
+            // A pivot that an impulse leaves rising, or slipping, at a tie's rate may stay on
+            // the ground, or stick.
+            if state.lift != 0.0 || !tie_speed(body, state.lift_v) {
+                return vec![Some(Mode::Flight(c))];
+            }
+            let still = tie_speed(body, state.v);
+            let slips = if still {
+                vec![Slip::Forward, Slip::Backward]
+            } else {
+                vec![Slip::of_sign(state.v)]
+            };
+            let stuck = still.then_some(Mode::Rock(c));
+            (stuck.into_iter())
+                .chain(slips.into_iter().map(|s| Mode::SlideRock(c, s)))
+                .chain([Mode::Flight(c)])
+                .map(Some)
+                .collect()
+        };
+        // The first condition of body k's mode that `traj` breaks just after now.
+        let broken_by = |k: usize, trial: &[Member; 2], traj: &Trajectory| {
+            let Member::Moves(body, mode, _) = trial[k] else {
+                return None;
+            };
+            let mut conditions = modes::constraints(body, Equations::Exact, traj);
+            if let Mode::Flight(c) = mode {
+                // Off the ground strictly: a pivot whose height stays zero to a tie stays on it.
+                conditions.push(modes::Constraint {
+                    series: traj.lift,
+                    scale: body.size_m(),
+                    guard: Guard::Land(c),
+                    strict: true,
+                });
+            }
+            let scale_t = body.time_scale_s();
+            (conditions.into_iter())
+                .find(|c| !c.holds_after(scale_t))
+                .map(|c| (body.name.clone(), c.guard))
+        };
+        let tie_accel = members.iter().find_map(|m| match m {
+            Member::Moves(body, ..) => Some(TIE * body.g_m_s2),
+            Member::Fixed => None,
+        });
+        // Each way with the contact closed and its pivots' conditions met (and whether the push
+        // presses), the others with what breaks; each way met with the contact open, the
+        // bodies alone and the corner leaving the face; the ways whose effective mass is not
+        // positive.
+        let (mut holding, mut broken, mut opening, mut paradox) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for first in ways(&members[0]) {
+            for second in ways(&members[1]) {
+                let modes = [first, second];
+                let trial = [0, 1].map(|k| match (members[k], modes[k]) {
+                    (Member::Moves(body, _, state), Some(mode)) => Member::Moves(body, mode, state),
+                    _ => Member::Fixed,
+                });
+                let named = || -> String {
+                    let each = trial.iter().filter_map(|m| match m {
+                        Member::Moves(body, mode, _) => {
+                            Some(format!("{} {}", body.name, mode.name()))
+                        }
+                        Member::Fixed => None,
+                    });
+                    each.collect::<Vec<_>>().join(" with ")
+                };
+                let motion = self.motion(trial, now);
+                if motion.compliance <= 0.0
+                    || (motion.bodies.iter()).any(|t| t.denominator.is_some_and(|d| d <= 0.0))
+                {
+                    paradox.push(named());
+                }
+                let alone = (0..2).all(|k| match trial[k] {
+                    Member::Moves(body, mode, state) => {
+                        let traj = modes::trajectory(body, Equations::Exact, mode, state, now);
+                        broken_by(k, &trial, &traj).is_none()
+                    }
+                    Member::Fixed => true,
+                });
+                if alone && tie_accel.is_some_and(|tie| motion.leaving > tie) {
+                    opening.push(named());
+                }
+                match (0..2).find_map(|k| broken_by(k, &trial, &motion.bodies[k])) {
+                    None => holding.push((modes, named(), pressing(&motion))),
+                    Some((body, guard)) => {
+                        broken.push(format!("{}: {body} would {}", named(), breaks(guard)));
+                    }
+                }
+            }
+        }
+        let names = |ways: &[&String]| {
+            (ways.iter())
+                .map(|n| n.as_str())
+                .collect::<Vec<_>>()
+                .join("; ")
+        };
+        if paradox.is_empty() {
+            // Every way's effective mass positive: at most one holds with the contact (a push
+            // that falls at once parts the bodies at this instant).
+            return match &holding[..] {
+                [(modes, ..)] => Ok(*modes),
+                [] => Err(format!(
+                    "no mode of the pivots holds with the contact ({})",
+                    broken.join("; ")
+                )),
+                _ => Err(format!(
+                    "several modes of the pivots hold with the contact ({}): the rigid model \
+                     with Coulomb friction does not say which",
+                    names(&holding.iter().map(|(_, n, _)| n).collect::<Vec<_>>())
+                )),
+            };
+        }
+        // Friction leaves some way's effective mass not positive (Painleve): the law may then
+        // have no motion or several, so every way counts, the contact closed and pressing or
+        // open and parting.
+        let closed: Vec<_> = holding.iter().filter(|(.., presses)| *presses).collect();
+        let paradox = names(&paradox.iter().collect::<Vec<_>>());
+        match (&closed[..], &opening[..], &holding[..]) {
+            ([(modes, ..)], [], _) => Ok(*modes),
+            // The contact opens at once: the one way that holds with it parts the bodies now.
+            ([], [_], [(modes, ..)]) => Ok(*modes),
+            ([], [], _) => Err(format!(
+                "Painleve's paradox: no mode of the pivots holds, with the contact pressing or \
+                 parting, friction making the effective mass of {paradox} not positive ({}): the \
+                 rigid model with Coulomb friction has no motion here",
+                broken.join("; ")
+            )),
+            ([], [open], _) => Err(format!(
+                "Painleve's paradox: only {open}, the contact parting, holds, friction making the \
+                 effective mass of {paradox} not positive, and no way of the pivots with the \
+                 contact leads there"
+            )),
+            _ => Err(format!(
+                "Painleve's paradox: several motions hold ({}{}), friction making the effective \
+                 mass of {paradox} not positive: the rigid model with Coulomb friction does not \
+                 determine the motion",
+                names(&closed.iter().map(|(_, n, _)| n).collect::<Vec<_>>()),
+                opening
+                    .iter()
+                    .map(|n| format!("; {n}, the contact parting"))
+                    .collect::<String>()
+            )),
         }
     }
 

@@ -190,3 +190,176 @@ fn a_couple_with_slipping_or_flying_pivots_obeys_newton_euler_coulomb_and_its_co
         }
     }
 }
+
+/// A block leaning on a fixed block's face, its pivot stuck, slipping or leaving the ground:
+/// the couple's decision against an enumeration of every law of its pivot and its contact
+/// (closed, pressing, or open, parting), written here with nalgebra. Where exactly one law holds
+/// and keeps the contact, the couple takes it; where none or two hold (Painleve's paradox: a
+/// slipping pivot whose effective mass, or a contact whose compliance, is not positive), the
+/// couple refuses, naming the paradox. Cases whose one law opens the contact are the parting
+/// the engine finds from the push (not this decision's), and are left out; the grid holds each
+/// of the other outcomes.
+#[test]
+fn a_leaning_blocks_decision_is_the_contact_law_and_painleves_cases_are_refused() {
+    use super::modes::Inputs;
+    use super::series::ZERO;
+    let g = 9.81;
+    let (b, h) = (0.25, 0.5);
+    let mut seen = std::collections::BTreeMap::new();
+    for theta in [0.05f64, 0.3, 0.6] {
+        for v in [-5.0, -0.2, 0.0, 0.2, 5.0] {
+            for a in [-15.0, -6.0, -2.0, 0.0, 2.0, 6.0, 15.0] {
+                for mu in [0.3, 0.8, 1.5, 2.5, 4.0] {
+                    let body = RockingBody::rectangle("T", 2.0 * b, 2.0 * h, 500.0, mu, g);
+                    // The top right corner on the fixed face, kept there by the rates.
+                    let omega = -v / (2.0 * h * theta.cos());
+                    let state = State {
+                        theta,
+                        omega,
+                        v,
+                        ..State::default()
+                    };
+                    let corner = [2.0 * b + 2.0 * h * theta.sin(), 2.0 * h * theta.cos()];
+                    let touch = Touch {
+                        blocks: [0, 1],
+                        sides: [Side::Body(0, [b, 0.0]), Side::Fixed],
+                        point: corner,
+                        normal: [-1.0, 0.0],
+                        tie_m_s: 1e-12,
+                        pair: 0,
+                        corner: 2,
+                        stays: false,
+                    };
+                    let homes = [[2.0 * b, 0.0], corner];
+                    let couple =
+                        Couple::new(&touch, [Some(0), None], homes, [Some(&state), None], 1e-12)
+                            .unwrap();
+                    let laws = |tol| enumerate_leaning(&body, &state, a, tol);
+                    let strict = laws(1e-7);
+                    if strict != laws(-1e-7) {
+                        continue;
+                    }
+                    let mut inputs = Inputs {
+                        accel: ZERO,
+                        lambda: ZERO,
+                    };
+                    inputs.accel[0] = a;
+                    inputs.lambda[0] = 1.0;
+                    let member = Member::Moves(&body, Mode::Rock(Corner::Right), &state);
+                    let decided = couple.decide([member, Member::Fixed], &inputs);
+                    let case = format!("{state:?} a_g {a} mu {mu}: {strict:?}");
+                    let outcome = match (&strict[..], decided) {
+                        ([(_, false)], _) => "opens",
+                        ([(one, true)], Ok([Some(mode), None])) => {
+                            let law = match mode {
+                                Mode::Rock(_) => "stuck",
+                                Mode::SlideRock(..) => "slipping",
+                                Mode::Flight(_) => "off",
+                                other => panic!("{case}: {other:?}"),
+                            };
+                            assert_eq!(law, *one, "{case}");
+                            "one"
+                        }
+                        ([_], other) => panic!("{case}: {other:?}"),
+                        (_, Ok(modes)) => panic!("{case}: decided {modes:?}"),
+                        (ways, Err(e)) => {
+                            assert!(e.contains("Painleve's paradox"), "{case}: {e}");
+                            if ways.is_empty() {
+                                "none"
+                            } else {
+                                "two"
+                            }
+                        }
+                    };
+                    *seen.entry(outcome).or_insert(0) += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(seen.len(), 4, "{seen:?}");
+}
+
+/// Every law of the leaning block's pivot (off, stuck, slipping the way it slips, or either way
+/// from rest) with its contact closed (the corner's acceleration along the face's normal zero,
+/// the push pressing) or open (no push, the corner leaving the face): unknowns (theta'', u'',
+/// l'', F, N, P), the block's Newton-Euler equations about its centroid. Each law that holds,
+/// and whether its contact stays closed.
+fn enumerate_leaning(
+    body: &RockingBody,
+    state: &State,
+    a_g: f64,
+    tol: f64,
+) -> Vec<(&'static str, bool)> {
+    use nalgebra::{SMatrix, SVector};
+    let g = body.g_m_s2;
+    let (m, ig, b, h, mu) = (
+        body.mass_kg,
+        body.inertia_kg_m2,
+        body.half_base_m,
+        body.centroid_height_m,
+        body.friction,
+    );
+    let (sin, cos) = state.theta.sin_cos();
+    let (gy, dx, w) = (b * sin + h * cos, b * cos - h * sin, state.omega.powi(2));
+    // The corner from the pivot, the face's normal, and the corner from the centroid.
+    let t = [2.0 * h * sin, 2.0 * h * cos];
+    let n = [-1.0, 0.0];
+    let arm = [t[0] + dx, t[1] - gy];
+    let arm_x_n = arm[0] * n[1] - arm[1] * n[0];
+    let slips: &[f64] = if state.v == 0.0 {
+        &[1.0, -1.0]
+    } else {
+        &[state.v.signum()]
+    };
+    let mut ways = vec![("off", 0.0)];
+    if state.v == 0.0 {
+        ways.push(("stuck", 0.0));
+    }
+    ways.extend(slips.iter().map(|&sigma| ("slipping", sigma)));
+    let (force, accel) = (tol * m * g, tol * g);
+    let mut out = Vec::new();
+    for (law, sigma) in ways {
+        for closed in [true, false] {
+            let mut k = SMatrix::<f64, 6, 6>::zeros();
+            let mut rhs = SVector::<f64, 6>::zeros();
+            (k[(0, 1)], k[(0, 0)], k[(0, 3)], k[(0, 5)]) = (m, m * gy, -1.0, -n[0]);
+            rhs[0] = -m * (dx * w + a_g);
+            (k[(1, 2)], k[(1, 0)], k[(1, 4)], k[(1, 5)]) = (m, m * dx, -1.0, -n[1]);
+            rhs[1] = m * (gy * w - g);
+            (k[(2, 0)], k[(2, 3)], k[(2, 4)], k[(2, 5)]) = (ig, gy, dx, arm_x_n);
+            match law {
+                "off" => (k[(3, 3)], k[(4, 4)]) = (1.0, 1.0),
+                "stuck" => (k[(3, 1)], k[(4, 2)]) = (1.0, 1.0),
+                _ => (k[(3, 3)], k[(3, 4)], k[(4, 2)]) = (1.0, mu * sigma, 1.0),
+            }
+            // The corner's acceleration along n: u'' + theta'' t_y - w t_x across, l'' -
+            // theta'' t_x - w t_y up.
+            let gap = |x: &SVector<f64, 6>| {
+                n[0] * (x[1] + x[0] * t[1] - w * t[0]) + n[1] * (x[2] - x[0] * t[0] - w * t[1])
+            };
+            if closed {
+                (k[(5, 1)], k[(5, 2)], k[(5, 0)]) = (n[0], n[1], n[0] * t[1] - n[1] * t[0]);
+                rhs[5] = w * (n[0] * t[0] + n[1] * t[1]);
+            } else {
+                k[(5, 5)] = 1.0;
+            }
+            let Some(x) = k.lu().solve(&rhs) else {
+                continue;
+            };
+            let pivot = match law {
+                "off" => x[2] > accel,
+                "stuck" => x[4] > force && x[3].abs() < mu * x[4] - force,
+                _ => x[4] > force && (state.v != 0.0 || sigma * x[1] > accel),
+            };
+            let contact = if closed {
+                x[5] > force
+            } else {
+                gap(&x) > accel
+            };
+            if pivot && contact {
+                out.push((law, closed));
+            }
+        }
+    }
+    out
+}

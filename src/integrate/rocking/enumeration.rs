@@ -180,3 +180,139 @@ fn enumerate(body: &RockingBody, a: f64) -> Vec<&'static str> {
     }
     out
 }
+
+/// The mode decision of a block on one corner (rocking, its pivot stuck, slipping or leaving
+/// the ground) against an enumeration of that corner's contacts: where exactly one holds, the
+/// engine decides it; where none holds (Painleve's inconsistency) or two do (Painleve's
+/// indeterminacy: a slipping corner whose effective mass I_G + m dx^2 - m mu sigma G_y dx is not
+/// positive meets its conditions beside another way), the engine refuses, naming Painleve's
+/// paradox, and never picks one. The grid holds each of the three outcomes.
+#[test]
+fn a_pivot_decision_is_the_one_contact_law_and_painleves_cases_are_refused() {
+    let (b, h) = (0.25, 0.5); // a block of h = 2 b: slipping needs mu > 4/3 for the paradox
+    let mut seen = [0usize; 3]; // none, one, two ways hold
+    for corner in [modes::Corner::Left, modes::Corner::Right] {
+        for theta in [0.05, 0.3, 0.6] {
+            for omega in [-5.0, -1.0, 0.0, 1.0, 5.0] {
+                for v in [-0.2, 0.0, 0.2] {
+                    for a in [-15.0, -6.0, -2.0, 0.0, 2.0, 6.0, 15.0] {
+                        for mu in [0.3, 0.8, 1.5, 2.5, 4.0] {
+                            let body = RockingBody::rectangle("B", 2.0 * b, 2.0 * h, 500.0, mu, G);
+                            let state = State {
+                                theta: corner.sign() * theta,
+                                omega,
+                                v,
+                                ..State::default()
+                            };
+                            let strict = enumerate_pivot(&body, &state, corner, a, 1e-7);
+                            if strict != enumerate_pivot(&body, &state, corner, a, -1e-7) {
+                                continue; // a tie: the enumeration's answer hangs on round-off
+                            }
+                            let mut inputs = Inputs {
+                                accel: ZERO,
+                                lambda: ZERO,
+                            };
+                            inputs.accel[0] = a;
+                            inputs.lambda[0] = 1.0;
+                            let decided = modes::decide(
+                                &body,
+                                Equations::Exact,
+                                &state,
+                                Some(corner),
+                                &inputs,
+                                0.0,
+                            );
+                            let case = format!("{corner:?} {state:?} a_g {a} mu {mu}: {strict:?}");
+                            seen[strict.len().min(2)] += 1;
+                            match (&strict[..], decided) {
+                                ([one], Ok(t)) => {
+                                    let regime = match t.mode {
+                                        Mode::Rock(_) => "stuck",
+                                        Mode::SlideRock(..) => "slipping",
+                                        Mode::Flight(_) => "off",
+                                        other => panic!("{case}: {other:?}"),
+                                    };
+                                    assert_eq!(regime, *one, "{case}");
+                                }
+                                ([_], Err(e)) => panic!("{case}: refused: {e}"),
+                                (_, Ok(t)) => panic!("{case}: decided {:?}", t.mode),
+                                (_, Err(e)) => assert!(
+                                    e.to_string().contains("Painleve's paradox"),
+                                    "{case}: {e}"
+                                ),
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(seen.iter().all(|&n| n > 0), "none, one, two: {seen:?}");
+}
+
+/// Every law of a block's pivot at `corner` (sign s) in `state` under a_g: off the ground,
+/// stuck, or slipping (the way its slip velocity goes, or either way from rest), by the
+/// Newton-Euler equations with unknowns (theta'', u'', l'', F, N): u the pivot's place along
+/// the ground, l its height, theta clockwise, the centroid at (-dx, G_y) from the pivot with
+/// G_y = s b sin theta + h cos theta and dx = s b cos theta - h sin theta. `tol` (relative)
+/// makes each sign condition strict (positive) or loose (negative).
+fn enumerate_pivot(
+    body: &RockingBody,
+    state: &State,
+    corner: modes::Corner,
+    a_g: f64,
+    tol: f64,
+) -> Vec<&'static str> {
+    let (m, ig, b, h, mu) = (
+        body.mass_kg,
+        body.inertia_kg_m2,
+        body.half_base_m,
+        body.centroid_height_m,
+        body.friction,
+    );
+    let s = corner.sign();
+    let (sin, cos) = state.theta.sin_cos();
+    let (gy, dx, w) = (
+        s * b * sin + h * cos,
+        s * b * cos - h * sin,
+        state.omega.powi(2),
+    );
+    let slips: &[f64] = if state.v == 0.0 {
+        &[1.0, -1.0]
+    } else {
+        &[state.v.signum()]
+    };
+    let (force, accel) = (tol * m * G, tol * G);
+    let mut out = Vec::new();
+    let mut ways = vec![("off", 0.0), ("stuck", 0.0)];
+    ways.extend(slips.iter().map(|&sigma| ("slipping", sigma)));
+    for (law, sigma) in ways {
+        if law == "stuck" && state.v != 0.0 {
+            continue;
+        }
+        let mut k = SMatrix::<f64, 5, 5>::zeros();
+        let mut rhs = SVector::<f64, 5>::zeros();
+        // m (u'' + G_y theta'' + dx w + a_g) = F; m (l'' + dx theta'' - G_y w + g) = N; about
+        // the centroid I_G theta'' = -(dx N + G_y F).
+        (k[(0, 1)], k[(0, 0)], k[(0, 3)], rhs[0]) = (m, m * gy, -1.0, -m * (dx * w + a_g));
+        (k[(1, 2)], k[(1, 0)], k[(1, 4)], rhs[1]) = (m, m * dx, -1.0, m * (gy * w - G));
+        (k[(2, 0)], k[(2, 3)], k[(2, 4)]) = (ig, gy, dx);
+        match law {
+            "off" => (k[(3, 3)], k[(4, 4)]) = (1.0, 1.0),
+            "stuck" => (k[(3, 1)], k[(4, 2)]) = (1.0, 1.0),
+            _ => (k[(3, 3)], k[(3, 4)], k[(4, 2)]) = (1.0, mu * sigma, 1.0),
+        }
+        let Some(x) = k.lu().solve(&rhs) else {
+            continue;
+        };
+        let holds = match law {
+            "off" => x[2] > accel,
+            "stuck" => x[4] > force && x[3].abs() < mu * x[4] - force,
+            _ => x[4] > force && (state.v != 0.0 || sigma * x[1] > accel),
+        };
+        if holds {
+            out.push(law);
+        }
+    }
+    out
+}

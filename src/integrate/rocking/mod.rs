@@ -1198,7 +1198,7 @@ impl<'a> Engine<'a> {
             self.tracks[i].state.v = 0.0;
         }
         let couple = self.tracks[i].couple.expect("a body of a couple");
-        let modes = match self.couple_modes(&couple, self.members(&couple), now) {
+        let modes = match couple.decide(self.members(&couple), now) {
             Ok(modes) => modes,
             Err(why) => {
                 let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].as_str());
@@ -1294,7 +1294,7 @@ impl<'a> Engine<'a> {
             true => Member::Moves(self.body(i), self.tracks[i].mode, &state),
             false => Member::Fixed,
         });
-        match self.couple_modes(&couple, members, now) {
+        match couple.decide(members, now) {
             Ok(modes) if modes[k] != Some(Mode::Rock(c)) => {
                 let mode = modes[k].expect("the body's side has a mode");
                 self.rec.stats.mode_decisions += 1;
@@ -1954,7 +1954,7 @@ impl<'a> Engine<'a> {
             None => Member::Fixed,
         });
         let given = (modes, states);
-        let modes = match self.couple_modes(&couple, members, now) {
+        let modes = match couple.decide(members, now) {
             Ok(modes) => modes,
             Err(why) => return Some(format!("{stays}, and {why}")),
         };
@@ -2046,119 +2046,6 @@ impl<'a> Engine<'a> {
         self.rec
             .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
         None
-    }
-
-    /// The modes of a couple's bodies (`members`, each rocking on the pivot of its mode, or in
-    /// flight): every way their pivots may stick, slip (a pivot slipping now keeps its
-    /// direction) or leave the ground is checked against the bodies' conditions just after
-    /// now, and exactly one must hold (none for a fixed block's side; a body off the ground
-    /// stays in flight); else why not, in words (no mode holds, friction makes the push
-    /// indeterminate, or several hold). A pivot leaves the ground only where its height grows
-    /// just after now, not where it stays zero to a tie. The push's own condition is not among
-    /// them: where it falls at once, the blocks part at this instant.
-    fn couple_modes(
-        &self,
-        couple: &Couple,
-        members: [Member; 2],
-        now: &Inputs,
-    ) -> Result<[Option<Mode>; 2], String> {
-        let ways = |m: &Member| -> Vec<Option<Mode>> {
-            let Member::Moves(body, mode, state) = *m else {
-                return vec![None];
-            };
-            let c = mode.corner().expect("a body of a couple rocks or flies");
-            // A pivot that an impulse leaves rising, or slipping, at a tie's rate may stay on
-            // the ground, or stick.
-            if state.lift != 0.0 || !tie_speed(body, state.lift_v) {
-                return vec![Some(Mode::Flight(c))];
-            }
-            let still = tie_speed(body, state.v);
-            let slips = if still {
-                vec![Slip::Forward, Slip::Backward]
-            } else {
-                vec![Slip::of_sign(state.v)]
-            };
-            let stuck = still.then_some(Mode::Rock(c));
-            (stuck.into_iter())
-                .chain(slips.into_iter().map(|s| Mode::SlideRock(c, s)))
-                .chain([Mode::Flight(c)])
-                .map(Some)
-                .collect()
-        };
-        let (mut holding, mut paradox, mut broken) = (Vec::new(), Vec::new(), Vec::new());
-        for first in ways(&members[0]) {
-            for second in ways(&members[1]) {
-                let modes = [first, second];
-                let trial = [0, 1].map(|k| match (members[k], modes[k]) {
-                    (Member::Moves(body, _, state), Some(mode)) => Member::Moves(body, mode, state),
-                    _ => Member::Fixed,
-                });
-                let named = || -> String {
-                    let each = trial.iter().filter_map(|m| match m {
-                        Member::Moves(body, mode, _) => {
-                            Some(format!("{} {}", body.name, mode.name()))
-                        }
-                        Member::Fixed => None,
-                    });
-                    each.collect::<Vec<_>>().join(" with ")
-                };
-                let motion = couple.motion(trial, now);
-                let painleve = motion
-                    .bodies
-                    .iter()
-                    .any(|t| t.denominator.is_some_and(|d| d <= 0.0));
-                if painleve || motion.compliance <= 0.0 {
-                    paradox.push(named());
-                    continue;
-                }
-                let fails = (0..2).find_map(|k| {
-                    let Member::Moves(body, mode, _) = trial[k] else {
-                        return None;
-                    };
-                    let scale_t = body.time_scale_s();
-                    let mut conditions =
-                        modes::constraints(body, Equations::Exact, &motion.bodies[k]);
-                    if let Mode::Flight(c) = mode {
-                        // Off the ground strictly: a pivot whose height stays zero to a tie
-                        // stays on it.
-                        conditions.push(modes::Constraint {
-                            series: motion.bodies[k].lift,
-                            scale: body.size_m(),
-                            guard: Guard::Land(c),
-                            strict: true,
-                        });
-                    }
-                    conditions
-                        .into_iter()
-                        .find(|c| !c.holds_after(scale_t))
-                        .map(|c| format!("{}: {} would {}", named(), body.name, breaks(c.guard)))
-                });
-                match fails {
-                    None => holding.push((modes, named())),
-                    Some(why) => broken.push(why),
-                }
-            }
-        }
-        match &holding[..] {
-            [(modes, _)] => Ok(*modes),
-            [] if !paradox.is_empty() => Err(format!(
-                "Painleve's paradox: friction makes the push between them indeterminate ({})",
-                paradox.join("; ")
-            )),
-            [] => Err(format!(
-                "no mode of the pivots holds with the contact ({})",
-                broken.join("; ")
-            )),
-            _ => Err(format!(
-                "several modes of the pivots hold with the contact ({}): the rigid model with \
-                 Coulomb friction does not say which",
-                holding
-                    .iter()
-                    .map(|(_, named)| named.as_str())
-                    .collect::<Vec<_>>()
-                    .join("; ")
-            )),
-        }
     }
 
     /// Condition k of body i's watch falls (`at_landing`: under a landing's impulse): a held

@@ -651,7 +651,10 @@ fn flight_lifts(body: &RockingBody, state: &State, pivot: Option<Corner>, inputs
 /// Decides the mode from `state` (with `pivot` the corner it rocks on, when it is not seated):
 /// every mode the contacts allow is checked against all its conditions just after now, and
 /// exactly one must hold (or several with one motion). Errors name the body and what failed:
-/// no mode holds (Painleve's inconsistency), or several with different motions (indeterminacy).
+/// no mode holds (Painleve's inconsistency), several with different motions, or a slipping
+/// mode whose corner's effective mass is not positive meets its conditions (Painleve's
+/// indeterminacy: with a single contact the rigid model then has a second motion too, or
+/// none).
 pub fn decide(
     body: &RockingBody,
     equations: Equations,
@@ -663,7 +666,7 @@ pub fn decide(
     let scale_t = body.time_scale_s();
     let sc = Scales::of(body);
     let mut holding: Vec<Trajectory> = Vec::new();
-    let mut paradox = Vec::new();
+    let (mut paradox, mut paradox_holds) = (Vec::new(), Vec::new());
     for mode in candidates(equations, state, pivot) {
         if let Mode::Flight(_) = mode {
             if flight_lifts(body, state, pivot, inputs) {
@@ -672,16 +675,16 @@ pub fn decide(
             continue;
         }
         let t = trajectory(body, equations, mode, state, inputs);
-        if let Some(d) = t.denominator {
-            if d <= 0.0 {
-                paradox.push(mode.name());
-                continue;
-            }
-        }
         let ok = constraints(body, equations, &t)
             .iter()
             .all(|c| c.holds_after(scale_t));
-        if ok {
+        if t.denominator.is_some_and(|d| d <= 0.0) {
+            if ok {
+                paradox_holds.push(mode.name());
+            } else {
+                paradox.push(mode.name());
+            }
+        } else if ok {
             holding.push(t);
         }
     }
@@ -691,6 +694,24 @@ pub fn decide(
             body.name, state.theta, state.omega, state.v
         )
     };
+    if !paradox_holds.is_empty() {
+        let others: Vec<String> = holding.iter().map(|t| t.mode.name()).collect();
+        return Err(SimulationError::RigidModel {
+            at: where_(),
+            why: format!(
+                "Painleve's paradox: {} meets every condition with friction {} making the \
+                 effective mass of its slipping corner not positive{}: the rigid model with \
+                 Coulomb friction does not determine the motion",
+                paradox_holds.join(", "),
+                body.friction,
+                if others.is_empty() {
+                    String::new()
+                } else {
+                    format!(", and {} holds too", others.join(", "))
+                }
+            ),
+        });
+    }
     match holding.len() {
         0 => Err(SimulationError::RigidModel {
             at: where_(),
