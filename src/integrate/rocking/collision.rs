@@ -191,12 +191,18 @@ pub fn approach(sides: [Option<&Turning>; 2], c: &Contact) -> (f64, f64, f64) {
     (approach, speed, momentum)
 }
 
-/// The side whose rotation moves the contact most, and the change of its theta' (rad/s) that
-/// leaves the corner's normal velocity against the face zero: what closes the round-off (up
-/// to a tie, which no impulse takes up) at a contact that stays.
-pub fn closing(sides: [Option<&Turning>; 2], c: &Contact) -> Option<(usize, f64)> {
+/// The side whose rotation moves the contact most, among those that may turn (`turns`: a
+/// seated body does not), and the change of its theta' (rad/s) that leaves the corner's normal
+/// velocity against the face zero: what closes the round-off (up to a tie, which no impulse
+/// takes up) at a contact that stays.
+pub fn closing(
+    sides: [Option<&Turning>; 2],
+    c: &Contact,
+    turns: [bool; 2],
+) -> Option<(usize, f64)> {
     let (rate, ..) = approach(sides, c);
     let (k, arm) = (0..2)
+        .filter(|&k| turns[k])
         .filter_map(|k| Some((k, SIGN[k] * arms(sides[k]?, c)[1])))
         .max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))?;
     (arm != 0.0).then_some((k, -rate / arm))

@@ -29,9 +29,9 @@
 //! force; the corner's rate gains n_y (lift_1' - lift_2').
 
 use super::body::RockingBody;
-use super::clearance::Touch;
+use super::clearance::{Side, Touch};
 use super::modes::{
-    self, arms, Constraint, Equations, Guard, Inputs, Mode, Scales, Slip, State, Trajectory,
+    self, arms, Constraint, Corner, Equations, Guard, Inputs, Mode, Scales, Slip, State, Trajectory,
 };
 use super::series::{mul_at, sign_after, sin_cos_at, Coeffs, ORDER, TIE, ZERO};
 use super::{breaks, tie_speed};
@@ -53,6 +53,10 @@ pub(super) struct Couple {
     corner: [f64; 2],
     /// The face's normal, pointing into the corner's body.
     normal: [f64; 2],
+    /// The corner of each body's base its pivot's home is (a seated body's too: it turns on
+    /// that corner if it lifts), and the middle of that base from there (m).
+    pub(super) pivots: [Corner; 2],
+    middles: [[f64; 2]; 2],
 }
 
 /// The clockwise rotation by theta of r: (r_x cos + r_y sin, -r_x sin + r_y cos).
@@ -172,10 +176,29 @@ impl Couple {
                 states[0].theta.sin_cos(),
             ),
             normal: upright(normal, states[1].theta.sin_cos()),
+            pivots: [Corner::Right; 2],
+            middles: [[0.0; 2]; 2],
+        };
+        let (mut corners, mut middles) = ([Corner::Right; 2], [[0.0; 2]; 2]);
+        for k in 0..2 {
+            if let Side::Body(_, origin) = touch.sides[k] {
+                corners[k] = Corner::of_sign(homes[k][0] - origin[0]);
+                middles[k] = [origin[0] - homes[k][0], origin[1] - homes[k][1]];
+            }
+        }
+        let couple = Couple {
+            pivots: corners,
+            middles,
+            ..couple
         };
         let reach = pivots.map(|p| cross([point[0] - p[0], point[1] - p[1]], normal));
         let turns = (0..2).any(|k| bodies[k].is_some() && reach[k].abs() > tie_m);
         turns.then_some(couple)
+    }
+
+    /// Side k's pivot's home (m).
+    pub(super) fn home(&self, k: usize) -> [f64; 2] {
+        self.homes[k]
     }
 
     /// The bodies of the couple (one where the other side is a fixed block).
@@ -233,16 +256,36 @@ impl Couple {
                 };
                 let (m, g) = (body.mass_kg, body.g_m_s2);
                 let on = if b == 0 { 1.0 } else { -1.0 };
+                let n = &at.n;
+                let earlier =
+                    |x: &Coeffs, y: &Coeffs| -> f64 { (1..=k).map(|j| x[j] * y[k - j]).sum() };
+                if let Mode::Rest | Mode::Slide(_) = mode {
+                    // Seated: it does not turn; a slipping base moves by m (u'' + a_g) = -mu
+                    // sigma N + s_k P n_x with N = m g lambda - s_k P n_y.
+                    t[b].gy[k] = if k == 0 { body.centroid_height_m } else { 0.0 };
+                    affine[b] = match mode {
+                        Mode::Slide(sl) => {
+                            let f = body.friction * sl.sign();
+                            let known = earlier(&n[0], &push) + f * earlier(&n[1], &push);
+                            Affine {
+                                p: (
+                                    -a[k] - f * g * lam[k] + on * known / m,
+                                    on * (n[0][0] + f * n[1][0]) / m,
+                                ),
+                                ..Affine::default()
+                            }
+                        }
+                        _ => Affine::default(),
+                    };
+                    continue;
+                }
                 let s = mode
                     .corner()
-                    .expect("a body of a couple rocks on a pivot or flies from one")
+                    .expect("a body of a couple is seated, rocks on a pivot or flies from one")
                     .sign();
                 (t[b].gy[k], t[b].dx[k]) = arms(body, s, &at.sin[b], &at.cos[b], k);
                 w[b][k] = mul_at(&t[b].omega, &t[b].omega, k);
-                let (tb, n) = (&t[b], &at.n);
-                // What each equation holds at order k but for the terms of order k's unknowns.
-                let earlier =
-                    |x: &Coeffs, y: &Coeffs| -> f64 { (1..=k).map(|j| x[j] * y[k - j]).sum() };
+                let tb = &t[b];
                 let q = -m * (mul_at(&tb.gy, a, k) + g * mul_at(&tb.dx, lam, k));
                 let rm = q - m * earlier(&tb.gy, &acc_u[b]) + earlier(&at.arm[b], &push);
                 let (j0, gy0, dx0) = (at.arm[b][0], tb.gy[0], tb.dx[0]);
@@ -355,12 +398,49 @@ impl Couple {
                 }
             }
         }
+        for (b, member) in members.iter().enumerate() {
+            if let Member::Moves(body, Mode::Rest | Mode::Slide(_), _) = *member {
+                t[b].corners = Some(self.seated_corners(b, body, &t[b], &push, &at));
+            }
+        }
         Motion {
             bodies: t,
             push,
             compliance,
             leaving,
         }
+    }
+
+    /// A seated body b's normal forces at its base's corners (left, right) with the push on it:
+    /// its moments about the centroid, b (N_R - N_L) + h_c F + r x Q = 0, Q = s_b P n at r
+    /// from the centroid (the seated trajectory's N_R - N_L = -h_c F / b, and the push's).
+    fn seated_corners(
+        &self,
+        b: usize,
+        body: &RockingBody,
+        t: &Trajectory,
+        push: &Coeffs,
+        at: &Geometry,
+    ) -> (Coeffs, Coeffs) {
+        let on = if b == 0 { 1.0 } else { -1.0 };
+        let (bb, h) = (body.half_base_m, body.centroid_height_m);
+        let contact = if b == 0 { &at.r1 } else { &at.r2 };
+        let centre = [self.middles[b][0], self.middles[b][1] + h];
+        let (mut q, mut r) = ([ZERO; 2], *contact);
+        for ((q, r), (n, c)) in q.iter_mut().zip(&mut r).zip(at.n.iter().zip(centre)) {
+            for (k, x) in q.iter_mut().enumerate() {
+                *x = on * mul_at(push, n, k);
+            }
+            r[0] -= c;
+        }
+        let (mut left, mut right) = (ZERO, ZERO);
+        for k in 0..=ORDER {
+            let moment = mul_at(&r[0], &q[1], k) - mul_at(&r[1], &q[0], k);
+            let diff = -(h * t.tangential[k] + moment) / bb;
+            right[k] = 0.5 * (t.normal[k] + diff);
+            left[k] = 0.5 * (t.normal[k] - diff);
+        }
+        (left, right)
     }
 
     /// The modes of a couple's bodies (`members`, each rocking on the pivot of its mode, or in
@@ -390,11 +470,11 @@ impl Couple {
                 Member::Fixed => None,
             }) == Some(true)
         };
-        let ways = |m: &Member| -> Vec<Option<Mode>> {
-            let Member::Moves(body, mode, state) = *m else {
+        let ways = |k: usize| -> Vec<Option<Mode>> {
+            let Member::Moves(body, mode, state) = members[k] else {
                 return vec![None];
             };
-            let c = mode.corner().expect("a body of a couple rocks or flies");
+            let c = mode.corner().unwrap_or(self.pivots[k]);
             // A pivot that an impulse leaves rising, or slipping, at a tie's rate may stay on
             // the ground, or stick.
             if state.lift != 0.0 || !tie_speed(body, state.lift_v) {
@@ -406,9 +486,15 @@ impl Couple {
             } else {
                 vec![Slip::of_sign(state.v)]
             };
+            // Seated (turning at a tie's rate: an impact law's round-off), it may stay so, the
+            // push passing to the ground through its base, or turn on its pivot's corner.
+            let tie = TIE * body.slenderness_rad() * body.frequency_parameter_rad_s();
+            let seated = state.theta == 0.0 && state.omega.abs() <= tie;
+            let rest = (seated && still).then_some(Mode::Rest);
+            let slides = slips.iter().filter(|_| seated).map(|&s| Mode::Slide(s));
             let stuck = still.then_some(Mode::Rock(c));
-            (stuck.into_iter())
-                .chain(slips.into_iter().map(|s| Mode::SlideRock(c, s)))
+            (rest.into_iter().chain(slides).chain(stuck))
+                .chain(slips.iter().map(|&s| Mode::SlideRock(c, s)))
                 .chain([Mode::Flight(c)])
                 .map(Some)
                 .collect()
@@ -443,8 +529,8 @@ impl Couple {
         // positive.
         let (mut holding, mut broken, mut opening, mut paradox) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for first in ways(&members[0]) {
-            for second in ways(&members[1]) {
+        for first in ways(0) {
+            for second in ways(1) {
                 let modes = [first, second];
                 let trial = [0, 1].map(|k| match (members[k], modes[k]) {
                     (Member::Moves(body, _, state), Some(mode)) => Member::Moves(body, mode, state),

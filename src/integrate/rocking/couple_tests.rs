@@ -32,6 +32,8 @@ enum Case {
     OneSlips,
     BothSlip,
     BFlies,
+    BSeated,
+    BSlides,
 }
 
 /// Two slabs turning together, A's pivot slipping towards B and B's pivot stuck, slipping
@@ -43,11 +45,18 @@ enum Case {
 /// m).
 #[test]
 fn a_couple_with_slipping_or_flying_pivots_obeys_newton_euler_coulomb_and_its_contact() {
-    for case in [Case::OneSlips, Case::BothSlip, Case::BFlies] {
+    for case in [
+        Case::OneSlips,
+        Case::BothSlip,
+        Case::BFlies,
+        Case::BSeated,
+        Case::BSlides,
+    ] {
         let g = 9.81;
         let a = RockingBody::rectangle("A", 0.3, 1.2, 1350.0, 0.4, g);
         let b = RockingBody::rectangle("B", 0.2, 1.6, 800.0, 0.5, g);
-        let (theta_a, u_a, theta_b) = (0.3, 0.01, -0.1);
+        let seated = matches!(case, Case::BSeated | Case::BSlides);
+        let (theta_a, u_a, theta_b) = (0.3, 0.01, if seated { 0.0 } else { -0.1 });
         let (l_b, w_b) = match case {
             Case::BFlies => (0.02, 0.3),
             _ => (0.0, 0.0),
@@ -66,14 +75,27 @@ fn a_couple_with_slipping_or_flying_pivots_obeys_newton_euler_coulomb_and_its_co
             stays: false,
         };
         // Velocities that keep the corner on the face: d gap / dt = 0.
-        let (omega_a, v_a) = (0.5, 1.0);
-        let v_b = if case == Case::OneSlips { 0.0 } else { -0.5 };
+        let v_b = match case {
+            Case::OneSlips | Case::BSeated => 0.0,
+            _ => -0.5,
+        };
+        let v_a = 1.0;
         // gap = (C_x - x_b - u_b) (-cos theta_b) + (C_y - l_b) sin theta_b: its partials.
         let (sa, ca) = theta_a.sin_cos();
         let (sb, cb) = theta_b.sin_cos();
         let d_theta_a = -1.2 * ca * cb - 1.2 * sa * sb;
         let d_theta_b = (corner[0] - x_b) * sb + (corner[1] - l_b) * cb;
-        let omega_b = -(d_theta_a * omega_a - cb * v_a + cb * v_b - sb * w_b) / d_theta_b;
+        // A seated B does not turn: A's rate keeps the corner on B's face.
+        let omega_a = if seated {
+            (cb * v_a - cb * v_b) / d_theta_a
+        } else {
+            0.5
+        };
+        let omega_b = if seated {
+            0.0
+        } else {
+            -(d_theta_a * omega_a - cb * v_a + cb * v_b - sb * w_b) / d_theta_b
+        };
         let states = [
             State {
                 theta: theta_a,
@@ -106,6 +128,8 @@ fn a_couple_with_slipping_or_flying_pivots_obeys_newton_euler_coulomb_and_its_co
                 Case::OneSlips => Mode::Rock(Corner::Left),
                 Case::BothSlip => Mode::SlideRock(Corner::Left, Slip::Backward),
                 Case::BFlies => Mode::Flight(Corner::Left),
+                Case::BSeated => Mode::Rest,
+                Case::BSlides => Mode::Slide(Slip::Backward),
             },
         ];
         let bodies = [&a, &b];
@@ -136,7 +160,8 @@ fn a_couple_with_slipping_or_flying_pivots_obeys_newton_euler_coulomb_and_its_co
             let (accel, lambda) = (eval(&inputs.accel, tau), eval(&inputs.lambda, tau));
             for k in 0..2 {
                 let (body, t) = (bodies[k], &motion.bodies[k]);
-                let s = modes[k].corner().unwrap().sign();
+                // A seated B's pivot's home is its left corner, the centroid at (b, h) from it.
+                let s = modes[k].corner().map_or(-1.0, Corner::sign);
                 let on = if k == 0 { 1.0 } else { -1.0 };
                 let (bb, hh, m) = (body.half_base_m, body.centroid_height_m, body.mass_kg);
                 let theta = eval(&t.theta, tau);
@@ -167,8 +192,27 @@ fn a_couple_with_slipping_or_flying_pivots_obeys_newton_euler_coulomb_and_its_co
                 let pivot = [homes[k][0] + eval(&t.u, tau), eval(&t.lift, tau)];
                 let centroid = [pivot[0] + r[0], pivot[1] + r[1]];
                 let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
-                let torque = -cross([-r[0], -r[1]], [f, normal_n])
-                    - cross([contact[0] - centroid[0], contact[1] - centroid[1]], p);
+                let to_contact = [contact[0] - centroid[0], contact[1] - centroid[1]];
+                if seated && k == 1 {
+                    // Seated: no turn, the ground's forces at the base's corners and the push
+                    // in balance about the centroid (whether both corners press is the
+                    // engine's uplift condition, not the motion's).
+                    let (left, right) = t.corners.as_ref().unwrap();
+                    let (nl, nr) = (eval(left, tau), eval(right, tau));
+                    assert_eq!(theta2, 0.0);
+                    assert!((nl + nr - normal_n).abs() < 1e-12 * weight);
+                    let moment = bb * (nr - nl) + hh * f + cross(to_contact, p);
+                    assert!(moment.abs() < 1e-12 * weight, "{case:?} {tau}: {moment}");
+                    if let Mode::Slide(slip) = modes[k] {
+                        let coulomb = -body.friction * slip.sign() * normal_n;
+                        assert!((f - coulomb).abs() < 1e-12 * weight, "{case:?} {tau}");
+                        assert!(eval(&t.v, tau) * slip.sign() > 0.0);
+                    } else {
+                        assert_eq!(eval(&t.v, tau), 0.0);
+                    }
+                    continue;
+                }
+                let torque = -cross([-r[0], -r[1]], [f, normal_n]) - cross(to_contact, p);
                 assert!(
                     (body.inertia_kg_m2 * theta2 - torque).abs() < 1e-12 * weight * 1.6,
                     "{case:?} {k} {tau}"

@@ -810,9 +810,12 @@ impl<'a> Engine<'a> {
                 Guard::Parts => self.part(i, now),
                 Guard::Impact => self.couple_lands(i, None, now),
                 Guard::Land(corner) => self.couple_lands(i, Some(corner), now),
-                Guard::PivotSlip | Guard::PivotStick | Guard::Flight => {
-                    self.recouple(i, guard, now)
-                }
+                Guard::PivotSlip
+                | Guard::PivotStick
+                | Guard::Flight
+                | Guard::StickLimit
+                | Guard::Stop
+                | Guard::Uplift => self.recouple(i, guard, now),
                 _ => {
                     self.couple_gives(i, guard);
                     Ok(())
@@ -1194,10 +1197,57 @@ impl<'a> Engine<'a> {
     /// decided again, each change logged; a body sliding along a fixed block's face whose
     /// pivot sticks rests there ([`lean`]); where no one mode holds, the run stops, saying why.
     fn recouple(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
-        if guard == Guard::PivotStick {
+        if matches!(guard, Guard::PivotStick | Guard::Stop) {
             self.tracks[i].state.v = 0.0;
         }
-        let couple = self.tracks[i].couple.expect("a body of a couple");
+        let mut couple = self.tracks[i].couple.expect("a body of a couple");
+        if guard == Guard::Uplift {
+            // A seated body lifts off the corner whose share of the load fell to zero: it turns
+            // on the other, its pivot's home there.
+            let (left, _) = self
+                .trajectory(i, now)
+                .corners
+                .expect("a seated body's corners");
+            let pivot = if series::sign_after(&left, 1.0, 0.0) > 0 {
+                Corner::Left
+            } else {
+                Corner::Right
+            };
+            let k = usize::from(couple.bodies[1] == Some(i));
+            if couple.pivots[k] != pivot {
+                let Side::Body(_, origin) = couple.touch.sides[k] else {
+                    unreachable!("a body's side of its couple");
+                };
+                let homes = [0, 1].map(|s| match couple.bodies[s] {
+                    Some(j) if j == i => self.home(i, origin, pivot),
+                    Some(_) => couple.home(s),
+                    None => couple.touch.point,
+                });
+                let states = couple.bodies.map(|b| b.map(|j| self.tracks[j].state));
+                let touch = couple.touch_at(states.each_ref().map(Option::as_ref));
+                let size = self.body(i).size_m();
+                let Some(again) = Couple::new(
+                    &touch,
+                    couple.bodies,
+                    homes,
+                    states.each_ref().map(Option::as_ref),
+                    series::TIE * size,
+                ) else {
+                    let [corner, face] = couple.touch.blocks.map(|b| self.layout.names[b].clone());
+                    let why = format!(
+                        "{corner}'s corner turns on {face}'s face, and {} would lift onto a corner \
+                         about which the push has no moment",
+                        self.body(i).name
+                    );
+                    self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
+                    return Ok(());
+                };
+                couple = again;
+                for j in couple.moving() {
+                    self.tracks[j].couple = Some(couple);
+                }
+            }
+        }
         let modes = match couple.decide(self.members(&couple), now) {
             Ok(modes) => modes,
             Err(why) => {
@@ -1911,25 +1961,29 @@ impl<'a> Engine<'a> {
             let (old, state) = (self.tracks[i].mode, self.tracks[i].state);
             let seated =
                 matches!(old, Mode::Rest | Mode::Slide(_)) || through == Through::Landing(i);
-            let mode = match mode_after(&a, old, seated) {
-                Ok(mode) => mode,
-                Err(what) => {
+            let mode = match (a.base, mode_after(&a, old, seated)) {
+                (collision::Base::Seated { slips: true }, _) => Mode::Slide(Slip::of_sign(a.v)),
+                (collision::Base::Seated { slips: false }, _) => Mode::Rest,
+                (_, Ok(mode)) => mode,
+                (_, Err(what)) => {
                     return Some(format!(
                         "{stays}, and {} {what}: blocks in contact are followed only while each \
-                         body rocks on a pivot or flies",
+                         body is seated, rocks on a pivot or flies",
                         self.body(i).name
                     ))
                 }
             };
-            let c = mode
-                .corner()
-                .expect("a body that rocks or flies follows a corner");
+            // A seated body's pivot is the corner the push would turn it on.
+            let push_x = if k == 0 { t.normal[0] } else { -t.normal[0] };
+            let c = mode.corner().unwrap_or(Corner::of_sign(push_x));
             bodies[k] = Some(i);
             homes[k] = self.home(i, origin, c);
             let flies = matches!(mode, Mode::Flight(_));
+            let seated = matches!(mode, Mode::Rest | Mode::Slide(_));
             states[k] = State {
-                omega: a.omega,
-                v: if matches!(mode, Mode::Rock(_)) {
+                theta: if seated { 0.0 } else { state.theta },
+                omega: if seated { 0.0 } else { a.omega },
+                v: if matches!(mode, Mode::Rock(_) | Mode::Rest) {
                     0.0
                 } else {
                     a.v
@@ -1966,9 +2020,12 @@ impl<'a> Engine<'a> {
             let state = &mut states[k];
             if !matches!(mode, Mode::Flight(_)) {
                 (state.lift, state.lift_v) = (0.0, 0.0);
-                if matches!(mode, Mode::Rock(_)) || tie_speed(self.body(i), state.v) {
+                if matches!(mode, Mode::Rock(_) | Mode::Rest) || tie_speed(self.body(i), state.v) {
                     state.v = 0.0;
                 }
+            }
+            if matches!(mode, Mode::Rest | Mode::Slide(_)) {
+                (state.theta, state.omega) = (0.0, 0.0);
             }
         }
         self.rec.energy.impact_loss_j += out.loss_j;
@@ -1985,6 +2042,8 @@ impl<'a> Engine<'a> {
             omega.get_or_insert((tr.state.omega, states[k].omega));
             let slipping = match mode {
                 Mode::SlideRock(..) => format!(", slipping at {:.6e} m/s", states[k].v),
+                Mode::Rest => ", seated".to_string(),
+                Mode::Slide(_) => format!(", seated, sliding at {:.6e} m/s", states[k].v),
                 Mode::Flight(_) => format!(", leaving the ground at {:.6e} m/s", states[k].lift_v),
                 _ => String::new(),
             };
@@ -2001,8 +2060,10 @@ impl<'a> Engine<'a> {
         // the corner stays on the face to round-off. What that changes of the kinetic energy
         // goes with the impact's loss.
         let (sides, contact) = self.staying(t);
+        // A seated body does not turn.
+        let turns = modes.map(|m| !m.is_some_and(|m| matches!(m, Mode::Rest | Mode::Slide(_))));
         if let Some((k, d_omega)) =
-            collision::closing([sides[0].as_ref(), sides[1].as_ref()], &contact)
+            collision::closing([sides[0].as_ref(), sides[1].as_ref()], &contact, turns)
         {
             let i = bodies[k].expect("a side that turns is a body's");
             self.tracks[i].state.omega += d_omega;
