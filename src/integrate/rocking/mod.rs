@@ -1208,7 +1208,9 @@ impl<'a> Engine<'a> {
                 .trajectory(i, now)
                 .corners
                 .expect("a seated body's corners");
-            let pivot = if series::sign_after(&left, 1.0, 0.0) > 0 {
+            let body = self.body(i);
+            let force = modes::Scales::of(body).force;
+            let pivot = if series::sign_after(&left, force, body.time_scale_s()) > 0 {
                 Corner::Left
             } else {
                 Corner::Right
