@@ -6,6 +6,7 @@
 use super::body::RockingBody;
 use super::clearance::{Side, Touch};
 use super::couple::{Couple, Member};
+use super::enumeration::PivotLaw;
 use super::modes::{test_inputs_at, Corner, Mode, Slip, State};
 use super::series::{derivative, eval};
 
@@ -350,19 +351,9 @@ fn enumerate_leaning(
     let n = [-1.0, 0.0];
     let arm = [t[0] + dx, t[1] - gy];
     let arm_x_n = arm[0] * n[1] - arm[1] * n[0];
-    let slips: &[f64] = if state.v == 0.0 {
-        &[1.0, -1.0]
-    } else {
-        &[state.v.signum()]
-    };
-    let mut ways = vec![("off", 0.0)];
-    if state.v == 0.0 {
-        ways.push(("stuck", 0.0));
-    }
-    ways.extend(slips.iter().map(|&sigma| ("slipping", sigma)));
     let (force, accel) = (tol * m * g, tol * g);
     let mut out = Vec::new();
-    for (law, sigma) in ways {
+    for law in PivotLaw::ways(state) {
         for closed in [true, false] {
             let mut k = SMatrix::<f64, 6, 6>::zeros();
             let mut rhs = SVector::<f64, 6>::zeros();
@@ -371,11 +362,7 @@ fn enumerate_leaning(
             (k[(1, 2)], k[(1, 0)], k[(1, 4)], k[(1, 5)]) = (m, m * dx, -1.0, -n[1]);
             rhs[1] = m * (gy * w - g);
             (k[(2, 0)], k[(2, 3)], k[(2, 4)], k[(2, 5)]) = (ig, gy, dx, arm_x_n);
-            match law {
-                "off" => (k[(3, 3)], k[(4, 4)]) = (1.0, 1.0),
-                "stuck" => (k[(3, 1)], k[(4, 2)]) = (1.0, 1.0),
-                _ => (k[(3, 3)], k[(3, 4)], k[(4, 2)]) = (1.0, mu * sigma, 1.0),
-            }
+            law.rows(&mut k, mu);
             // The corner's acceleration along n: u'' + theta'' t_y - w t_x across, l'' -
             // theta'' t_x - w t_y up.
             let gap = |x: &SVector<f64, 6>| {
@@ -390,18 +377,14 @@ fn enumerate_leaning(
             let Some(x) = k.lu().solve(&rhs) else {
                 continue;
             };
-            let pivot = match law {
-                "off" => x[2] > accel,
-                "stuck" => x[4] > force && x[3].abs() < mu * x[4] - force,
-                _ => x[4] > force && (state.v != 0.0 || sigma * x[1] > accel),
-            };
+            let pivot = law.holds(x.as_slice(), state, mu, force, accel);
             let contact = if closed {
                 x[5] > force
             } else {
                 gap(&x) > accel
             };
             if pivot && contact {
-                out.push((law, closed));
+                out.push((law.name(), closed));
             }
         }
     }

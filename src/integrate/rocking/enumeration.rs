@@ -277,19 +277,9 @@ fn enumerate_pivot(
         s * b * cos - h * sin,
         state.omega.powi(2),
     );
-    let slips: &[f64] = if state.v == 0.0 {
-        &[1.0, -1.0]
-    } else {
-        &[state.v.signum()]
-    };
     let (force, accel) = (tol * m * G, tol * G);
     let mut out = Vec::new();
-    let mut ways = vec![("off", 0.0), ("stuck", 0.0)];
-    ways.extend(slips.iter().map(|&sigma| ("slipping", sigma)));
-    for (law, sigma) in ways {
-        if law == "stuck" && state.v != 0.0 {
-            continue;
-        }
+    for law in PivotLaw::ways(state) {
         let mut k = SMatrix::<f64, 5, 5>::zeros();
         let mut rhs = SVector::<f64, 5>::zeros();
         // m (u'' + G_y theta'' + dx w + a_g) = F; m (l'' + dx theta'' - G_y w + g) = N; about
@@ -297,22 +287,72 @@ fn enumerate_pivot(
         (k[(0, 1)], k[(0, 0)], k[(0, 3)], rhs[0]) = (m, m * gy, -1.0, -m * (dx * w + a_g));
         (k[(1, 2)], k[(1, 0)], k[(1, 4)], rhs[1]) = (m, m * dx, -1.0, m * (gy * w - G));
         (k[(2, 0)], k[(2, 3)], k[(2, 4)]) = (ig, gy, dx);
-        match law {
-            "off" => (k[(3, 3)], k[(4, 4)]) = (1.0, 1.0),
-            "stuck" => (k[(3, 1)], k[(4, 2)]) = (1.0, 1.0),
-            _ => (k[(3, 3)], k[(3, 4)], k[(4, 2)]) = (1.0, mu * sigma, 1.0),
-        }
+        law.rows(&mut k, mu);
         let Some(x) = k.lu().solve(&rhs) else {
             continue;
         };
-        let holds = match law {
-            "off" => x[2] > accel,
-            "stuck" => x[4] > force && x[3].abs() < mu * x[4] - force,
-            _ => x[4] > force && (state.v != 0.0 || sigma * x[1] > accel),
-        };
-        if holds {
-            out.push(law);
+        if law.holds(x.as_slice(), state, mu, force, accel) {
+            out.push(law.name());
         }
     }
     out
+}
+
+/// A law of a block's pivot in the enumerations: off the ground, stuck, or slipping with the
+/// sign of its slip.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum PivotLaw {
+    Off,
+    Stuck,
+    Slipping(f64),
+}
+
+impl PivotLaw {
+    /// The laws `state` allows: stuck only while the pivot does not slip, slipping the way it
+    /// slips (either way from rest).
+    pub(super) fn ways(state: &State) -> Vec<PivotLaw> {
+        let mut ways = vec![PivotLaw::Off];
+        if state.v == 0.0 {
+            ways.extend([
+                PivotLaw::Stuck,
+                PivotLaw::Slipping(1.0),
+                PivotLaw::Slipping(-1.0),
+            ]);
+        } else {
+            ways.push(PivotLaw::Slipping(state.v.signum()));
+        }
+        ways
+    }
+
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            PivotLaw::Off => "off",
+            PivotLaw::Stuck => "stuck",
+            PivotLaw::Slipping(_) => "slipping",
+        }
+    }
+
+    /// Its two rows (3 and 4) of a system whose unknowns begin (theta'', u'', l'', F, N): no
+    /// force off the ground; no motion of the pivot stuck; slipping, on the ground with F = -mu
+    /// sigma N.
+    pub(super) fn rows<const R: usize>(self, k: &mut SMatrix<f64, R, R>, mu: f64) {
+        match self {
+            PivotLaw::Off => (k[(3, 3)], k[(4, 4)]) = (1.0, 1.0),
+            PivotLaw::Stuck => (k[(3, 1)], k[(4, 2)]) = (1.0, 1.0),
+            PivotLaw::Slipping(sigma) => {
+                (k[(3, 3)], k[(3, 4)], k[(4, 2)]) = (1.0, mu * sigma, 1.0);
+            }
+        }
+    }
+
+    /// Does the solution x (the same unknowns) meet the law's conditions, each by `force` (N)
+    /// or `accel` (m/s2): rising off the ground; pressing inside the cone; pressing and
+    /// slipping on (from rest, accelerating its way)?
+    pub(super) fn holds(self, x: &[f64], state: &State, mu: f64, force: f64, accel: f64) -> bool {
+        match self {
+            PivotLaw::Off => x[2] > accel,
+            PivotLaw::Stuck => x[4] > force && x[3].abs() < mu * x[4] - force,
+            PivotLaw::Slipping(sigma) => x[4] > force && (state.v != 0.0 || sigma * x[1] > accel),
+        }
+    }
 }
