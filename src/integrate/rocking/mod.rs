@@ -40,6 +40,8 @@ mod lean;
 mod modes;
 mod scenes;
 mod series;
+#[cfg(test)]
+mod tie_tests;
 
 pub use body::RockingBody;
 pub use column::{columns, Column, JointLimit, Watch};
@@ -464,15 +466,36 @@ impl<'a> Engine<'a> {
         }
         let body = self.body(i);
         let st = self.tracks[i].state;
-        let tie = series::TIE * body.slenderness_rad() * body.frequency_parameter_rad_s();
-        if st.theta == 0.0 && st.omega != 0.0 && st.omega.abs() <= tie {
-            // Back at theta = 0 turning at a rate that is round-off: the body touched its
-            // uplift threshold (a ground acceleration that peaks on it to the last bit) and
-            // came back. It is seated; what it had of kinetic energy counts as lost.
-            let before = modes::kinetic_j(body, &self.trajectory(i, inputs), 0.0);
-            self.tracks[i].state.omega = 0.0;
-            let after = modes::kinetic_j(body, &self.trajectory(i, inputs), 0.0);
-            self.rec.energy.impact_loss_j += before - after;
+        let (angle, rate) = (body.slenderness_rad(), body.frequency_parameter_rad_s());
+        let rocking = matches!(self.tracks[i].mode, Mode::Rock(_) | Mode::SlideRock(..));
+        if rocking && st.theta * st.omega < 0.0 && st.theta.abs() <= series::TIE * angle {
+            // On its pivot a round-off from its seat and turning down onto it (where a blow
+            // left it as it was landing): it lands now, as where its rotation reaches zero.
+            return self.land(i, inputs);
+        }
+        let mut settled = st;
+        if st.theta.abs() <= series::TIE * angle && st.omega.abs() <= series::TIE * angle * rate {
+            // Turned and turning by round-off: the body touched its uplift threshold (a ground
+            // acceleration that peaks on it to the last bit) and came back, or a blow at a
+            // rate of round-off left it so. It is seated.
+            (settled.theta, settled.omega) = (0.0, 0.0);
+        }
+        if st.v != 0.0 && st.v.abs() <= series::TIE * Scales::of(body).velocity {
+            // Slipping at a rate that is round-off (what a landing at a rate of round-off
+            // leaves): the contact decides as one at rest in slip, as a slide's own stop
+            // condition reads that rate.
+            settled.v = 0.0;
+        }
+        if settled != st {
+            // What it had of kinetic and potential energy beyond the state it settles to
+            // counts as lost.
+            let energy = |engine: &Self| {
+                let t = engine.trajectory(i, inputs);
+                modes::kinetic_j(body, &t, 0.0) + modes::potential_j(body, &t, 0.0)
+            };
+            let before = energy(self);
+            self.tracks[i].state = settled;
+            self.rec.energy.impact_loss_j += before - energy(self);
         }
         let tr = &self.tracks[i];
         let old = tr.mode;
@@ -637,13 +660,21 @@ impl<'a> Engine<'a> {
             }
             self.t = t_new;
             let (_, now) = self.inputs_at(self.t);
-            // The events of the bodies whose first event is this stop.
+            // The events of the bodies whose first event is this stop. A body that an earlier
+            // one's event at this stop decided anew (a contact that ends, a blow) has left the
+            // trajectory its guard was found on: its new mode's conditions were checked from
+            // now, and its next step finds its events again.
             row = false;
+            let reached: Vec<(Mode, State)> =
+                self.tracks.iter().map(|tr| (tr.mode, tr.state)).collect();
             for (i, plan) in plans.into_iter().enumerate() {
                 let Some((traj, Some((x, guard)))) = plan else {
                     continue;
                 };
                 if x != tau || self.tracks[i].fallen.is_some() {
+                    continue;
+                }
+                if (self.tracks[i].mode, self.tracks[i].state) != reached[i] {
                     continue;
                 }
                 if guard.is_some() {
