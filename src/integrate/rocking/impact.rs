@@ -455,8 +455,9 @@ mod tests {
     /// after is zero and the impulse lies in the cone; where it slips the friction impulse is
     /// at the cone's edge against the slip before, which keeps its sense (from none: against the
     /// slip it takes), or the slip stops within the impact and turns (Routh: the second leg's
-    /// friction against the slip after); energy is lost. Every kind comes up, the turning one too, where the landing once took
-    /// the sticking impulse's sense for the friction's and called the turn a bug.
+    /// friction against the slip after); energy is lost. Every kind comes up, the turning one
+    /// too, where the landing once took the sticking impulse's sense for the friction's and
+    /// called the turn a bug.
     #[test]
     fn a_slipping_pivots_landing_keeps_its_momenta_within_coulombs_cone() {
         let mut kinds = [0, 0, 0];

@@ -194,6 +194,9 @@ struct Engine<'a> {
     stop: Option<String>,
     /// The blocks of different columns (or a column's and a fixed one) that stand apart.
     clearance: Clearance,
+    /// Each body's mode and state as a step reached its stop, before that stop's events
+    /// (kept between steps, not allocated anew).
+    reached: Vec<(Mode, State)>,
 }
 
 /// Where a block is at a hand-over: its centroid's horizontal displacement (m) and velocity
@@ -388,6 +391,7 @@ impl<'a> Engine<'a> {
                 .wall
                 .map(|(wall, topo)| Clearance::of(wall, topo, scene.watches))
                 .unwrap_or_default(),
+            reached: Vec::new(),
         }
     }
 
@@ -665,8 +669,9 @@ impl<'a> Engine<'a> {
             // trajectory its guard was found on: its new mode's conditions were checked from
             // now, and its next step finds its events again.
             row = false;
-            let reached: Vec<(Mode, State)> =
-                self.tracks.iter().map(|tr| (tr.mode, tr.state)).collect();
+            self.reached.clear();
+            self.reached
+                .extend(self.tracks.iter().map(|tr| (tr.mode, tr.state)));
             for (i, plan) in plans.into_iter().enumerate() {
                 let Some((traj, Some((x, guard)))) = plan else {
                     continue;
@@ -674,7 +679,7 @@ impl<'a> Engine<'a> {
                 if x != tau || self.tracks[i].fallen.is_some() {
                     continue;
                 }
-                if (self.tracks[i].mode, self.tracks[i].state) != reached[i] {
+                if (self.tracks[i].mode, self.tracks[i].state) != self.reached[i] {
                     continue;
                 }
                 if guard.is_some() {

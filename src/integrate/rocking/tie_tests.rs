@@ -3,8 +3,8 @@
 //! rotation, a rate or a slip of round-off, a landing whose sticking impulse lies on the
 //! friction cone's edge, a slip that turns within a landing, a body decided anew by another's
 //! event at the same instant. Found by sweeping slab-and-block scenes (1,248 runs over widths,
-//! heights, gaps, friction, restitution and motions; 19 and more of them stopped with an error,
-//! one as a bug); each scene here is one of them, and each now ends as its run does (to its
+//! heights, gaps, friction, restitution and motions; 19 of them stopped with an error, five as
+//! a bug); each scene here is one of them, and each now ends as its run does (to its
 //! duration, at an overturning, or at a meeting the exact model names and does not follow),
 //! its energy balance closing.
 
