@@ -484,7 +484,7 @@ impl<'a> Engine<'a> {
             // rate of round-off left it so. It is seated.
             (settled.theta, settled.omega) = (0.0, 0.0);
         }
-        if st.v != 0.0 && st.v.abs() <= series::TIE * Scales::of(body).velocity {
+        if st.v != 0.0 && tie_speed(body, st.v) {
             // Slipping at a rate that is round-off (what a landing at a rate of round-off
             // leaves): the contact decides as one at rest in slip, as a slide's own stop
             // condition reads that rate.
