@@ -197,6 +197,9 @@ struct Engine<'a> {
     /// Each body's mode and state as a step reached its stop, before that stop's events
     /// (kept between steps, not allocated anew).
     reached: Vec<(Mode, State)>,
+    /// The landings due at a step's stop, per body (on its base: `Some(None)`; from flight, on
+    /// a corner: `Some(Some(corner))`); a body of a couple taking both takes the other's.
+    landings: Vec<Option<Option<Corner>>>,
 }
 
 /// Where a block is at a hand-over: its centroid's horizontal displacement (m) and velocity
@@ -291,10 +294,18 @@ enum AtOnce {
 enum Through {
     /// The blocks' own approach there.
     Approach,
-    /// Body i landing on its base (or a corner) beside it, both at once.
-    Landing(usize),
+    /// Body i landing on its base (or a corner) beside it, both at once (and the other
+    /// body, where it lands at the same instant).
+    Landing(usize, Option<usize>),
     /// A blow at another contact, both at once.
     Blow,
+}
+
+impl Through {
+    /// Whether body i lands through it.
+    fn lands(self, i: usize) -> bool {
+        matches!(self, Through::Landing(a, b) if a == i || b == Some(i))
+    }
 }
 
 /// The state of a body in flight followed by its other corner instead of `from` (its base's
@@ -392,6 +403,7 @@ impl<'a> Engine<'a> {
                 .map(|(wall, topo)| Clearance::of(wall, topo, scene.watches))
                 .unwrap_or_default(),
             reached: Vec::new(),
+            landings: Vec::new(),
         }
     }
 
@@ -454,6 +466,36 @@ impl<'a> Engine<'a> {
         couple.motion(self.members(couple), inputs)
     }
 
+    /// Whether body i rocks on its pivot a round-off from its seat and turns down onto it
+    /// (where a blow left it as it was landing): it lands now, as where its rotation reaches
+    /// zero.
+    fn seats_by_round_off(&self, i: usize) -> bool {
+        let st = self.tracks[i].state;
+        matches!(self.tracks[i].mode, Mode::Rock(_) | Mode::SlideRock(..))
+            && st.theta * st.omega < 0.0
+            && st.theta.abs() <= series::TIE * self.body(i).slenderness_rad()
+    }
+
+    /// The landing body i of a couple is a round-off from: on its base (`Some(None)`) where
+    /// it turns down onto its seat from a round-off, or is turned and turning by round-off (a
+    /// body alone settles there, [`Engine::decide`]; in a couple the contact's impulse takes
+    /// what is left); from flight (`Some(Some(corner))`) where the corner it follows is a
+    /// round-off above the ground and coming down.
+    fn lands_by_round_off(&self, i: usize) -> Option<Option<Corner>> {
+        let (body, st) = (self.body(i), self.tracks[i].state);
+        let angle = body.slenderness_rad();
+        match self.tracks[i].mode {
+            Mode::Flight(c) => {
+                (st.lift <= series::TIE * body.size_m() && st.lift_v < 0.0).then_some(Some(c))
+            }
+            Mode::Rock(_) | Mode::SlideRock(..) => (self.seats_by_round_off(i)
+                || st.theta.abs() <= series::TIE * angle
+                    && st.omega.abs() <= series::TIE * angle * body.frequency_parameter_rad_s())
+            .then_some(None),
+            _ => None,
+        }
+    }
+
     /// Decides body i's mode now, from its state and the pivot it rocks on, and logs the
     /// change (`start`: the first decision of the run).
     fn decide(&mut self, i: usize, inputs: &Inputs, start: bool) -> Result<(), SimulationError> {
@@ -471,10 +513,7 @@ impl<'a> Engine<'a> {
         let body = self.body(i);
         let st = self.tracks[i].state;
         let (angle, rate) = (body.slenderness_rad(), body.frequency_parameter_rad_s());
-        let rocking = matches!(self.tracks[i].mode, Mode::Rock(_) | Mode::SlideRock(..));
-        if rocking && st.theta * st.omega < 0.0 && st.theta.abs() <= series::TIE * angle {
-            // On its pivot a round-off from its seat and turning down onto it (where a blow
-            // left it as it was landing): it lands now, as where its rotation reaches zero.
+        if self.seats_by_round_off(i) {
             return self.land(i, inputs);
         }
         let mut settled = st;
@@ -667,11 +706,18 @@ impl<'a> Engine<'a> {
             // The events of the bodies whose first event is this stop. A body that an earlier
             // one's event at this stop decided anew (a contact that ends, a blow) has left the
             // trajectory its guard was found on: its new mode's conditions were checked from
-            // now, and its next step finds its events again.
+            // now, and its next step finds its events again. A landing that a body of a couple
+            // took with the other's at this instant is not taken again.
             row = false;
             self.reached.clear();
             self.reached
                 .extend(self.tracks.iter().map(|tr| (tr.mode, tr.state)));
+            self.landings.clear();
+            self.landings.extend(plans.iter().map(|plan| match plan {
+                Some((_, Some((x, Some(Guard::Impact))))) if *x == tau => Some(None),
+                Some((_, Some((x, Some(Guard::Land(c)))))) if *x == tau => Some(Some(*c)),
+                _ => None,
+            }));
             for (i, plan) in plans.into_iter().enumerate() {
                 let Some((traj, Some((x, guard)))) = plan else {
                     continue;
@@ -680,6 +726,11 @@ impl<'a> Engine<'a> {
                     continue;
                 }
                 if (self.tracks[i].mode, self.tracks[i].state) != self.reached[i] {
+                    continue;
+                }
+                if matches!(guard, Some(Guard::Impact | Guard::Land(_)))
+                    && self.landings[i].is_none()
+                {
                     continue;
                 }
                 if guard.is_some() {
@@ -991,8 +1042,9 @@ impl<'a> Engine<'a> {
     /// Body i of a couple lands on its base (or, in flight, on `corner`), the other body's
     /// corner on its face or its corner on the other's face. Both contacts take their impulses
     /// at once, plastic ([`collision::resolve_landing`], the time-stepped model's law solved
-    /// exactly): the bodies turn together again, or part where the contact opens, or the run
-    /// stops there, saying why. Where that law is not the landing's (a restitution factor
+    /// exactly), and the other body's ground contacts with them where it lands at this instant
+    /// too: the bodies turn together again, or part where the contact opens, or the run stops
+    /// there, saying why. Where that law is not the landing's (a restitution factor
     /// below one, a column holding joints, the linearised equations), the impulses are taken
     /// one after the other ([`Engine::lands_in_turn`]).
     fn couple_lands(
@@ -1002,6 +1054,10 @@ impl<'a> Engine<'a> {
         now: &Inputs,
     ) -> Result<(), SimulationError> {
         let couple = self.uncouple(i);
+        if let Some(due) = self.landings.get_mut(i) {
+            // Taken here, wherever it was found: not again at this stop.
+            *due = None;
+        }
         let plain = |k: usize| self.scene.watches.get(k).is_none_or(Watch::holds_nothing);
         if self.scene.equations != Equations::Exact
             || self.body(i).restitution_factor != 1.0
@@ -1009,82 +1065,89 @@ impl<'a> Engine<'a> {
         {
             return self.lands_in_turn(i, &couple, corner, now);
         }
-        // The body as the law takes it: seated at theta = 0, or followed by the corner it
-        // lands on, on the ground; what height it had there (a tie) goes with the loss.
-        let (body, before) = (self.body(i), self.tracks[i].state);
-        let dropped = modes::potential_j(body, &self.trajectory(i, now), 0.0);
-        let tr = &mut self.tracks[i];
-        let ground = match corner {
-            None => {
-                tr.state.theta = 0.0;
-                let c = tr
-                    .mode
-                    .pivot()
-                    .expect("only a rocking body lands on its base");
-                let bp = self.layout.pivot_half_base_m(i);
-                [Some((c, 0.0)), Some((c.other(), -2.0 * c.sign() * bp))]
+        // The other body, where its landing is due at this instant too or it is a round-off
+        // from landing (and its wall keeps Housner's factor of one), lands with it: the law
+        // takes both bodies' ground contacts with the contact between them.
+        let k = usize::from(couple.bodies[1] == Some(i));
+        let mut partner = None;
+        if let Some(j) = couple.bodies[1 - k] {
+            if self.body(j).restitution_factor == 1.0 {
+                let due = self.landings.get_mut(j).and_then(Option::take);
+                partner = due.or(self.lands_by_round_off(j)).map(|c| (j, c));
             }
-            Some(c) => {
-                let Mode::Flight(followed) = tr.mode else {
-                    return Err(SimulationError::Bug(
-                        "only a body in flight lands from it".into(),
-                    ));
-                };
-                if c != followed {
-                    tr.state = refollowed(tr.state, followed, self.layout.pivot_half_base_m(i));
-                }
-                tr.state.lift = 0.0;
-                tr.mode = Mode::Flight(c);
-                [Some((c, 0.0)), None]
-            }
+        }
+        let before = [Some(i), partner.map(|(j, _)| j)].map(|b| b.map(|b| self.tracks[b].state));
+        let ground = self.grounded(i, corner, now)?;
+        let partner_ground = match partner {
+            Some((j, c)) => Some(self.grounded(j, c, now)?),
+            None => None,
         };
-        self.rec.energy.impact_loss_j +=
-            dropped - modes::potential_j(body, &self.trajectory(i, now), 0.0);
         let touch = Touch {
             stays: true,
             ..couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)))
         };
         let (mut sides, contact) = self.staying(&touch);
-        let k = usize::from(couple.bodies[1] == Some(i));
-        if let Some(turns) = sides[k].as_mut() {
-            turns.ground = ground;
+        for (s, g) in [(k, Some(ground)), (1 - k, partner_ground)] {
+            if let (Some(turns), Some(g)) = (sides[s].as_mut(), g) {
+                turns.ground = g;
+            }
         }
         let [own, other] = [k, 1 - k].map(|s| self.layout.names[touch.blocks[s]].clone());
-        let lands = match corner {
-            None => format!("{own} lands on its base"),
-            Some(c) => format!("{own} lands from free flight on its {} corner", c.name()),
+        let landing = |name: &str, c: Option<Corner>| match c {
+            None => format!("{name} lands on its base"),
+            Some(c) => format!("{name} lands from free flight on its {} corner", c.name()),
+        };
+        let (lands, with, contacts) = match partner {
+            None => (
+                landing(&own, corner),
+                format!("in contact with {other}"),
+                "both",
+            ),
+            Some((_, c)) => (
+                format!("{} and {}", landing(&own, corner), landing(&other, c)),
+                "in contact".to_string(),
+                "the three",
+            ),
         };
         let out = match collision::resolve_landing([sides[0].as_ref(), sides[1].as_ref()], &contact)
         {
             Ok(out) => out,
             Err(refusal) => {
-                let why = format!("{lands} in contact with {other}, and {refusal}");
+                let why = format!("{lands} {with}, and {refusal}");
                 self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
                 return Ok(());
             }
         };
-        let after = out.after[k].expect("the landing body's side moves");
         let (_, speed, _) = collision::approach([sides[0].as_ref(), sides[1].as_ref()], &contact);
-        let mut what = format!(
-            "{lands} in contact with {other}, both contacts plastic at once: theta' {:.6e} -> \
-             {:.6e} rad/s",
-            before.omega, after.omega
-        );
         // The landing may turn the body away from the other: the contact opens, its impulse
-        // zero, and the other side moves on as it was.
+        // zero, and the other side moves on as it was (or lands by its own law).
         let opens = out.normal_m_s.1 > series::TIE * speed;
         if opens {
             self.rec.energy.impact_loss_j += out.loss_j;
-            let (how, _) = self.take(i, &after);
-            what += &format!(", {how}; the contact opens at {:.6e} m/s", out.normal_m_s.1);
         }
-        self.rec.rocking_event(
-            self.t,
-            EventKind::RockingImpact,
-            &self.layout.outputs(i),
-            Some((before.omega, after.omega)),
-            what,
-        );
+        let landed = [(k, Some(i)), (1 - k, partner.map(|(j, _)| j))];
+        for ((s, b), before) in landed.into_iter().zip(before) {
+            let (Some(b), Some(before)) = (b, before) else {
+                continue;
+            };
+            let after = out.after[s].expect("a landing body's side moves");
+            let mut what = format!(
+                "{lands} {with}, {contacts} contacts plastic at once: theta' {:.6e} -> {:.6e} \
+                 rad/s",
+                before.omega, after.omega
+            );
+            if opens {
+                let (how, _) = self.take(b, &after);
+                what += &format!(", {how}; the contact opens at {:.6e} m/s", out.normal_m_s.1);
+            }
+            self.rec.rocking_event(
+                self.t,
+                EventKind::RockingImpact,
+                &self.layout.outputs(b),
+                Some((before.omega, after.omega)),
+                what,
+            );
+        }
         if opens {
             let [corner_name, face_name] = touch.blocks.map(|b| self.layout.names[b].clone());
             self.rec.rocking_event(
@@ -1100,11 +1163,52 @@ impl<'a> Engine<'a> {
             return Ok(());
         }
         let stays = format!("they stay in contact as {lands}");
-        if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, Through::Landing(i))
-        {
+        let through = Through::Landing(i, partner.map(|(j, _)| j));
+        if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, through) {
             self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
         }
         Ok(())
+    }
+
+    /// Body i as a landing's law takes it (`corner`: from flight, on that corner; else on its
+    /// base): seated at theta = 0, or followed by the corner it lands on, on the ground (what
+    /// height it had there, a tie, goes with the loss); its ground contacts for the law.
+    fn grounded(
+        &mut self,
+        i: usize,
+        corner: Option<Corner>,
+        now: &Inputs,
+    ) -> Result<[Option<(Corner, f64)>; 2], SimulationError> {
+        let body = self.body(i);
+        let dropped = modes::potential_j(body, &self.trajectory(i, now), 0.0);
+        let bp = self.layout.pivot_half_base_m(i);
+        let tr = &mut self.tracks[i];
+        let ground = match corner {
+            None => {
+                tr.state.theta = 0.0;
+                let c = tr
+                    .mode
+                    .pivot()
+                    .expect("only a rocking body lands on its base");
+                [Some((c, 0.0)), Some((c.other(), -2.0 * c.sign() * bp))]
+            }
+            Some(c) => {
+                let Mode::Flight(followed) = tr.mode else {
+                    return Err(SimulationError::Bug(
+                        "only a body in flight lands from it".into(),
+                    ));
+                };
+                if c != followed {
+                    tr.state = refollowed(tr.state, followed, bp);
+                }
+                tr.state.lift = 0.0;
+                tr.mode = Mode::Flight(c);
+                [Some((c, 0.0)), None]
+            }
+        };
+        self.rec.energy.impact_loss_j +=
+            dropped - modes::potential_j(body, &self.trajectory(i, now), 0.0);
+        Ok(ground)
     }
 
     /// Body i of `couple` lands on its base (or, in flight, on `corner`), the impulses taken
@@ -1230,13 +1334,22 @@ impl<'a> Engine<'a> {
 
     /// Body i of a couple reaches the limit of its pivot's friction, its slipping pivot stops,
     /// or the ground's push on its pivot falls to zero (`guard`): the couple's modes are
-    /// decided again, each change logged; a body sliding along a fixed block's face whose
-    /// pivot sticks rests there ([`lean`]); where no one mode holds, the run stops, saying why.
+    /// decided again, each change logged (after the landing of a body a round-off from one,
+    /// [`Engine::couple_lands`]); a body sliding along a fixed block's face whose pivot sticks
+    /// rests there ([`lean`]); where no one mode holds, the run stops, saying why.
     fn recouple(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
         if matches!(guard, Guard::PivotStick | Guard::Stop) {
             self.tracks[i].state.v = 0.0;
         }
         let mut couple = self.tracks[i].couple.expect("a body of a couple");
+        if let Some((j, corner)) = couple
+            .moving()
+            .find_map(|j| Some((j, self.lands_by_round_off(j)?)))
+        {
+            // A body a round-off from landing (a flight of round-off after a blow) lands now,
+            // the couple's modes decided after it.
+            return self.couple_lands(j, corner, now);
+        }
         if guard == Guard::Uplift {
             // A seated body lifts off the corner whose share of the load fell to zero: it turns
             // on the other, its pivot's home there.
@@ -1303,8 +1416,14 @@ impl<'a> Engine<'a> {
             let old = self.tracks[k].mode;
             if let Some(kind) = transition(old, new, false) {
                 let blocks = self.layout.outputs(k);
-                self.rec
-                    .rocking_event(self.t, kind, &blocks, None, new.name());
+                let mut mode = new.name();
+                if kind == EventKind::Uplift {
+                    // A seated member lifting under the push: said in the log, for no swept
+                    // scene has reached it yet (docs/rocking/scans).
+                    let [corner, face] = couple.touch.blocks.map(|b| &self.layout.names[b]);
+                    mode += &format!(", in the contact of {corner}'s corner with {face}'s face");
+                }
+                self.rec.rocking_event(self.t, kind, &blocks, None, mode);
             }
             let tr = &mut self.tracks[k];
             tr.mode = new;
@@ -1883,7 +2002,7 @@ impl<'a> Engine<'a> {
                  block"
             ));
         }
-        let c = match mode_after(&after, self.tracks[i].mode, through == Through::Landing(i)) {
+        let c = match mode_after(&after, self.tracks[i].mode, through.lands(i)) {
             Ok(Mode::Rock(c)) => c,
             // Its pivot slipping, or off the ground, it moves along the face, the corner on it.
             Ok(_) => return self.couples(t, out, now, stays, through),
@@ -1997,8 +2116,7 @@ impl<'a> Engine<'a> {
                 _ => unreachable!("a side of a contact that moves has its velocities"),
             };
             let (old, state) = (self.tracks[i].mode, self.tracks[i].state);
-            let seated =
-                matches!(old, Mode::Rest | Mode::Slide(_)) || through == Through::Landing(i);
+            let seated = matches!(old, Mode::Rest | Mode::Slide(_)) || through.lands(i);
             let mode = match (a.base, mode_after(&a, old, seated)) {
                 (collision::Base::Seated { slips: true }, _) => Mode::Slide(Slip::of_sign(a.v)),
                 (collision::Base::Seated { slips: false }, _) => Mode::Rest,

@@ -1,12 +1,13 @@
-//! Small scenes whose runs once ended in an error at a tie of round-off: a ground acceleration
+//! Small scenes whose runs once ended in an error, or stopped short, at a tie of round-off: a ground acceleration
 //! that peaks on a block's uplift threshold to the last bit, a blow or a landing that leaves a
 //! rotation, a rate or a slip of round-off, a landing whose sticking impulse lies on the
 //! friction cone's edge, a slip that turns within a landing, a body decided anew by another's
-//! event at the same instant. Found by sweeping slab-and-block scenes (1,248 runs over widths,
-//! heights, gaps, friction, restitution and motions; 19 of them stopped with an error, five as
-//! a bug); each scene here is one of them, and each now ends as its run does (to its
-//! duration, at an overturning, or at a meeting the exact model names and does not follow),
-//! its energy balance closing.
+//! event at the same instant, two landings at one instant in a contact. Found by the sweeps of
+//! docs/rocking/scans (1,572 runs over widths, heights, gaps, friction, restitution and
+//! motions; with the engine of d06c785, 55 of them stopped with an error, nine as a bug); each
+//! scene here is one of them, and each now ends as its run does (to its duration, at an
+//! overturning, or at a meeting the exact model names and does not follow), its energy balance
+//! closing.
 
 use super::{Equations, Rocking};
 use crate::integrate::{Integrator, Scenario, Settings};
@@ -142,4 +143,56 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     let r = run(&three, (0.35, 1.2, 90.0), 15.0);
     assert!(meets(&r) && r.summary.duration_s > 2.0, "{:?}", r.summary);
     balances(&r);
+}
+
+/// A wall W, a slab S and a squat block T 1.0 x 0.8 m, apart by `gap` m, 1.2 m high.
+fn three_blocks(friction: f64, restitution: f64, width: f64, gap: f64) -> Model {
+    row(
+        friction,
+        restitution,
+        &format!(
+            "(width_m: {width:?}, name: \"W\"), (width_m: 0.25, gap_m: {gap:?}, name: \"S\"), \
+             (width_m: 1.0, height_m: 0.8, gap_m: {gap:?}, name: \"T\")"
+        ),
+    )
+}
+
+/// Two landings at one instant in a contact: a block landing on its base as the slab whose
+/// corner rests on its face comes down on a corner from a flight (W 1.2 m, 0.8 friction); the
+/// slab landing as the block it touches turns a round-off from its seat (W 0.9 m); the slab a
+/// round-off above the ground as the block it touches stops slipping (W 1.2 m, 0.1 m apart:
+/// the slab lands there, then rattles on the block to rest). Each stopped before, "no mode of
+/// the pivots holds with the contact" (one body would land at that instant); now the landings
+/// take their impulses at once with the contact's and each run goes to its end.
+#[test]
+fn landings_at_one_instant_in_a_contact_are_taken_together() {
+    for (model, motion, together) in [
+        (three_blocks(0.8, 0.3, 1.2, 0.02), (0.35, 1.2, 90.0), true),
+        (three_blocks(0.5, 0.3, 0.9, 0.02), (0.45, 2.0, 270.0), true),
+        (three_blocks(0.5, 0.0, 1.2, 0.1), (0.45, 2.0, 270.0), false),
+    ] {
+        let r = run(&model, motion, 15.0);
+        assert_eq!(
+            r.summary.duration_s, 15.0,
+            "{motion:?}: {:?}",
+            r.summary.warnings
+        );
+        assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+        balances(&r);
+        // Both bodies' landings logged at the same instant, by the same law.
+        let both: Vec<_> = r
+            .events
+            .iter()
+            .filter(|e| {
+                e.mode
+                    .as_deref()
+                    .is_some_and(|m| m.contains("the three contacts"))
+            })
+            .collect();
+        assert_eq!(!both.is_empty(), together, "{motion:?}");
+        assert_eq!(both.len() % 2, 0);
+        for pair in both.chunks(2) {
+            assert!(pair[0].time_s == pair[1].time_s && pair[0].blocks != pair[1].blocks);
+        }
+    }
 }
