@@ -476,11 +476,11 @@ impl<'a> Engine<'a> {
             && st.theta.abs() <= series::TIE * self.body(i).slenderness_rad()
     }
 
-    /// The landing body i of a couple is a round-off from: on its base (`Some(None)`) where
-    /// it turns down onto its seat from a round-off, or is turned and turning by round-off (a
-    /// body alone settles there, [`Engine::decide`]; in a couple the contact's impulse takes
-    /// what is left); from flight (`Some(Some(corner))`) where the corner it follows is a
-    /// round-off above the ground and coming down.
+    /// The landing body i is a round-off from where another body meets it: on its base
+    /// (`Some(None)`) where it turns down onto its seat from a round-off, or is turned and
+    /// turning by round-off (a body that nothing meets settles there, [`Engine::decide`]; here
+    /// the landing's impulse takes what is left); from flight (`Some(Some(corner))`) where the
+    /// corner it follows is a round-off above the ground and coming down.
     fn lands_by_round_off(&self, i: usize) -> Option<Option<Corner>> {
         let (body, st) = (self.body(i), self.tracks[i].state);
         let angle = body.slenderness_rad();
@@ -1562,6 +1562,22 @@ impl<'a> Engine<'a> {
                 return Ok(Some(format!(
                     "{name}'s column holds joints the impulse would pass through"
                 )));
+            }
+        }
+        // A body alone in flight a round-off from landing (a flight of round-off that an
+        // impact at this contact left, a round-off ago) lands first, as it would have; the
+        // blow takes it as it then moves. (One on its pivot a round-off from its seat is struck
+        // as it is: landing it first could start a series of landings the blow would break.)
+        for side in t.sides {
+            let Side::Body(i, _) = side else { continue };
+            if self.tracks[i].leans.is_some() || self.tracks[i].couple.is_some() {
+                continue;
+            }
+            if let Some(Some(corner)) = self.lands_by_round_off(i) {
+                self.land_from_flight(i, corner, now)?;
+                if self.stop.is_some() {
+                    return Ok(None);
+                }
             }
         }
         // A struck body that rests against a block or moves in contact with another takes the
