@@ -1072,7 +1072,10 @@ impl<'a> Engine<'a> {
         let mut partner = None;
         if let Some(j) = couple.bodies[1 - k] {
             if self.body(j).restitution_factor == 1.0 {
-                let due = self.landings.get_mut(j).and_then(Option::take);
+                // Due on the trajectory it had at this stop, where nothing has moved it since.
+                let due = self.landings.get_mut(j).and_then(Option::take).filter(|_| {
+                    self.reached.get(j) == Some(&(self.tracks[j].mode, self.tracks[j].state))
+                });
                 partner = due.or(self.lands_by_round_off(j)).map(|c| (j, c));
             }
         }
