@@ -331,6 +331,14 @@ fn tie_speed(body: &RockingBody, speed_m_s: f64) -> bool {
     speed_m_s.abs() * body.time_scale_s() <= series::TIE * body.size_m()
 }
 
+/// Is the body turned and turning by round-off (|theta| within TIE of alpha, |theta'| within
+/// TIE of alpha p): seated, to the decision's ties?
+fn still_by_round_off(body: &RockingBody, st: &State) -> bool {
+    let angle = body.slenderness_rad();
+    st.theta.abs() <= series::TIE * angle
+        && st.omega.abs() <= series::TIE * angle * body.frequency_parameter_rad_s()
+}
+
 /// What a body does where the condition `guard` of its mode falls, in words.
 fn breaks(guard: Guard) -> &'static str {
     match guard {
@@ -483,15 +491,13 @@ impl<'a> Engine<'a> {
     /// corner it follows is a round-off above the ground and coming down.
     fn lands_by_round_off(&self, i: usize) -> Option<Option<Corner>> {
         let (body, st) = (self.body(i), self.tracks[i].state);
-        let angle = body.slenderness_rad();
         match self.tracks[i].mode {
             Mode::Flight(c) => {
                 (st.lift <= series::TIE * body.size_m() && st.lift_v < 0.0).then_some(Some(c))
             }
-            Mode::Rock(_) | Mode::SlideRock(..) => (self.seats_by_round_off(i)
-                || st.theta.abs() <= series::TIE * angle
-                    && st.omega.abs() <= series::TIE * angle * body.frequency_parameter_rad_s())
-            .then_some(None),
+            Mode::Rock(_) | Mode::SlideRock(..) => {
+                (self.seats_by_round_off(i) || still_by_round_off(body, &st)).then_some(None)
+            }
             _ => None,
         }
     }
@@ -512,12 +518,11 @@ impl<'a> Engine<'a> {
         }
         let body = self.body(i);
         let st = self.tracks[i].state;
-        let (angle, rate) = (body.slenderness_rad(), body.frequency_parameter_rad_s());
         if self.seats_by_round_off(i) {
             return self.land(i, inputs);
         }
         let mut settled = st;
-        if st.theta.abs() <= series::TIE * angle && st.omega.abs() <= series::TIE * angle * rate {
+        if still_by_round_off(body, &st) {
             // Turned and turning by round-off: the body touched its uplift threshold (a ground
             // acceleration that peaks on it to the last bit) and came back, or a blow at a
             // rate of round-off left it so. It is seated.
