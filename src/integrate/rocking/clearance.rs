@@ -9,8 +9,10 @@
 //! bodies, are series along each step like every contact condition, and the first to come down
 //! to zero is an event located to round-off. There the pair either has another edge with every
 //! corner of the other block outside it by more than the tie tolerance, which it keeps from
-//! then on, or none: the blocks meet (a corner on a face, or two corners on each other), and
-//! the pair says where: the corner, the face and its normal (`collision` has the impact).
+//! then on; or, the blocks touching at that instant, an edge every corner of the other block
+//! is outside of just after (a corner that slides off the end of a face, or grazes one, and
+//! moves away); or none: the blocks meet (a corner on a face, or two corners on each other),
+//! and the pair says where: the corner, the face and its normal (`collision` has the impact).
 
 use super::layout::point_series;
 use super::modes::Trajectory;
@@ -423,6 +425,41 @@ impl Clearance {
         best
     }
 
+    /// An edge of either block of pair k with every corner of the other block outside it
+    /// just after tau, where the blocks touch at tau: each corner's distance from it is
+    /// outside by more than the tie tolerance, or within it and growing (its first term that
+    /// is not zero in the sense of the tie positive). The blocks touch without meeting: a
+    /// corner that slides off the end of a face, or grazes a corner, and moves away. Of
+    /// several, the one that keeps them apart by most at tau.
+    fn opening(
+        &self,
+        k: usize,
+        (pa, pb): (&Placed, &Placed),
+        tau: f64,
+        bodies: &[RockingBody],
+    ) -> Option<(bool, usize)> {
+        let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
+        let (at_a, at_b) = (pa.at(tau), pb.at(tau));
+        (0..8)
+            .filter_map(|m| {
+                let (of_b, e) = (m >= 4, m % 4);
+                let (own, other, at_own, at_other) = if of_b {
+                    (pb, pa, &at_b, &at_a)
+                } else {
+                    (pa, pb, &at_a, &at_b)
+                };
+                distances(own, e, other)
+                    .iter()
+                    .all(|g| series::sign_after(&series::shifted(g, tau), scale, ts) > 0)
+                    .then(|| ((of_b, e), least_outside(at_own, e, at_other)))
+            })
+            .fold(None, |best: Option<((bool, usize), f64)>, x| match best {
+                Some(b) if b.1 >= x.1 => Some(b),
+                _ => Some(x),
+            })
+            .map(|(edge, _)| edge)
+    }
+
     /// How pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on
     /// the edge that kept them apart, strictly inside that edge; else two corners on it (a
     /// face on a face), or the corner at an end of the edge (on a corner).
@@ -527,9 +564,11 @@ impl Clearance {
         self.pairs[pair].struck = true;
     }
 
-    /// Follows every pair over a step of the bodies on `trajs` from t0 up to h: where a corner reaches
-    /// the edge that kept its pair apart, the pair takes another edge that keeps it apart by
-    /// more than the tie tolerance, and the search goes on from there within the same step
+    /// Follows every pair over a step of the bodies on `trajs` from t0 up to h: where a corner
+    /// reaches the edge that kept its pair apart, the pair takes another edge that keeps it
+    /// apart by more than the tie tolerance, or one that opens just after where the blocks
+    /// touch ([`Clearance::opening`]; not a pair held in contact, which parts only as the
+    /// engine decides), and the search goes on from there within the same step
     /// (no step is cut for it: a run whose blocks never meet is the run without them, to the
     /// bit); where no edge does, the blocks meet: the instant and the pair's two outputs.
     pub(super) fn follow(
@@ -553,8 +592,15 @@ impl Clearance {
                 return Ok(None);
             };
             let (at_a, at_b) = (pa.at(x), pb.at(x));
-            let (edge, margin) = widest(&at_a, &at_b);
-            if margin <= self.tie_m(k) {
+            let (mut edge, margin) = widest(&at_a, &at_b);
+            // A pair in contact (`held`) parts only as the engine decides.
+            let touches = margin <= self.tie_m(k);
+            let opens = (touches && self.pairs[k].held.is_none())
+                .then(|| self.opening(k, (pa, pb), x, bodies))
+                .flatten();
+            if let Some(e) = opens {
+                edge = e;
+            } else if touches {
                 let outputs = (self.pieces[a].output, self.pieces[b].output);
                 // Where a pair meets again after an impact, the gap between is an arc whose
                 // top lies near its middle.

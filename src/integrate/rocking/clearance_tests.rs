@@ -162,9 +162,11 @@ fn columns_standing_apart_move_each_as_alone_to_the_bit() {
 /// the ground: it flies with its corner on the face and lands, the landing and the contact
 /// taking their impulses at once (plastic both), which leaves its pivot on the ground and its
 /// corner on the face. It turns away from the face, strikes it again, and its last blow throws
-/// it up along the face until its corner reaches the face's top, where the run stops, saying
-/// so. The energy balance closes, and Moreau-Jean, which resolves the same contacts at once,
-/// converges on the rotation and the displacement through the whole run.
+/// it up along the face until its corner reaches the face's top, (0.32, 1.2) m to the bit,
+/// where it slides off: they part. The abutment's corner then strikes the slab's face, and
+/// the run stops where the abutment's top comes down flat on it, saying so. The energy balance
+/// closes, and Moreau-Jean, which resolves the same contacts at once, converges on the
+/// rotation and the displacement through the whole run.
 #[test]
 fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
     let niche = wall_with(
@@ -226,12 +228,34 @@ fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
             .as_deref()
             .unwrap_or_default()
             .contains("S turns away from A's face")));
-    assert!(stop > 1.0 && stop < 5.0, "{stop}");
+    let off = (r.events.iter())
+        .find(|e| {
+            e.kind == EventKind::Separation
+                && what(e) == "S's corner slides off an end of A's face: the two part"
+        })
+        .expect("the corner slides off the face's top");
+    // The top right corner, from the middle of the slab's base (lifted by w, moved by u).
+    let [_, u, _, theta, _, w] = row_at(&r, 0, off.time_s);
+    let (sin, cos) = theta.sin_cos();
+    assert!(
+        (0.15 + u + 0.15 * cos + 1.2 * sin - 0.32).abs() <= 1e-15,
+        "{u} {theta}"
+    );
+    assert!(
+        (w - 0.15 * sin + 1.2 * cos - 1.2).abs() <= 1e-15,
+        "{w} {theta}"
+    );
+    let after = events_after(&r, off.time_s);
+    assert!(
+        what(after[0]).starts_with("A's corner strikes S's face"),
+        "{after:?}"
+    );
+    assert!(stop > off.time_s && stop < 5.0, "{stop}");
     assert!(r.summary.warnings.iter().any(|w| matches!(
         w,
         Warning::BlocksMeet { first, second, time_s, why }
             if first == "S" && second == "A" && *time_s == stop
-                && why.contains("reaches an end of A's face")
+                && why.contains("A's face comes down flat on S's")
     )));
     let e = &r.summary.energy;
     assert!(e.residual_j.abs() <= 1e-14 * e.input_j, "{e:?}");

@@ -7,11 +7,11 @@
 //! rotations, the slipping pivots' displacements and the contact's push as series over a step, and
 //! the condition that ends it, the push falling to zero (the bodies part). The pivots' conditions
 //! (slip, stick, lift) are the rocking modes', on the forces with the push; where the corner
-//! reaches an end of the face, or another corner the face, is the pair's (`clearance`). A landing
-//! of either body ends the couple; the engine resolves the landing's impulses and the contact's at
-//! once (`collision::resolve_landing`) and may start another. A body resting against a fixed block
-//! whose pivot slips is a couple too, the block its second side, fixed: the body slides down the
-//! block's face as a ladder down a wall.
+//! reaches an end of the face (it slides off: the bodies part), or another corner the face, is the
+//! pair's (`clearance`). A landing of either body ends the couple; the engine resolves the
+//! landing's impulses and the contact's at once (`collision::resolve_landing`) and may start
+//! another. A body resting against a fixed block whose pivot slips is a couple too, the block its
+//! second side, fixed: the body slides down the block's face as a ladder down a wall.
 //!
 //! With the push P along the face's normal n (into the corner's body), body k's equation about
 //! its pivot is I_O,k theta_k'' + m_k G_y,k u_k'' = Q_k + J_k P, Q_k the rocking one (I_O

@@ -130,6 +130,17 @@ pub fn land(
     })
 }
 
+/// Whether a body in free flight, turned by `theta`, reaches the ground on `corner` without
+/// coming down: its centroid rising at `yg0` (m/s) and turning at `omega` (rad/s) leave the
+/// corner's vertical velocity zero to a tie (a flight of round-off, after a blow that left its
+/// pivot rising at a tie's rate). That is a touch, not an impact: no impulse, nothing lost,
+/// and the body goes on from the corner at the velocities it has.
+pub fn touches(body: &RockingBody, theta: f64, corner: Corner, (yg0, omega): (f64, f64)) -> bool {
+    let (b, h, s) = (body.half_base_m, body.centroid_height_m, corner.sign());
+    let (sin, cos) = theta.sin_cos();
+    super::tie_speed(body, yg0 - (s * b * cos - h * sin) * omega)
+}
+
 /// The landing of a body in free flight on its corner `corner`, turned by `theta`, with its
 /// centroid's velocity (`xg0`, `yg0`, m/s) and angular velocity `omega` (clockwise, rad/s):
 /// the law of [`land`] at any angle and any velocity (Housner's assumption, the impulse at the
@@ -138,8 +149,9 @@ pub fn land(
 /// impact with the friction impulse at its limit (Routh), turning its slip within the impact
 /// where it stops there ([`slip_turning`]). At theta = 0 both corners land:
 /// [`land_flat`]. The wall's restitution factor multiplies the velocities after, as it does
-/// Housner's. (The landing at theta = 0 from rocking keeps [`land`], whose arithmetic every
-/// earlier run's outputs were computed with.)
+/// Housner's. A corner that reaches the ground without coming down touches it ([`touches`]).
+/// (The landing at theta = 0 from rocking keeps [`land`], whose arithmetic every earlier run's
+/// outputs were computed with.)
 pub fn land_from_flight(
     body: &RockingBody,
     theta: f64,
@@ -163,6 +175,20 @@ pub fn land_from_flight(
     let s = corner.sign();
     let (sin, cos) = theta.sin_cos();
     let (gy, dx) = (s * b * sin + h * cos, s * b * cos - h * sin);
+    let fall = yg0 - dx * omega;
+    if touches(body, theta, corner, (yg0, omega)) {
+        return Ok(Landing {
+            state: State {
+                theta,
+                omega,
+                v: xg0 - gy * omega,
+                ..State::default()
+            },
+            pivot: Some(corner),
+            slipped: !super::tie_speed(body, xg0 - gy * omega),
+            loss_j: 0.0,
+        });
+    }
     let stick = (ig * omega + m * (gy * xg0 + dx * yg0)) / io;
     let (pt, pn) = (m * (gy * stick - xg0), m * (dx * stick - yg0));
     let (mut w, mut vq, mut slipped) = (stick, 0.0, false);
@@ -178,7 +204,7 @@ pub fn land_from_flight(
             pt.signum()
         };
         let inv_mass = 1.0 / m + (dx * dx + dir * mu * gy * dx) / ig;
-        let pn = (dx * omega - yg0) / inv_mass;
+        let pn = -fall / inv_mass;
         let at = format!("{} at t = {time_s} s", body.name);
         if inv_mass <= 0.0 {
             return Err(SimulationError::RigidModel {

@@ -899,7 +899,7 @@ impl<'a> Engine<'a> {
                 return Ok(());
             }
             return match guard {
-                Guard::Parts => self.part(i, now),
+                Guard::Parts => self.part(i, now, false),
                 Guard::Impact => self.couple_lands(i, None, now),
                 Guard::Land(corner) => self.couple_lands(i, Some(corner), now),
                 Guard::PivotSlip
@@ -954,21 +954,24 @@ impl<'a> Engine<'a> {
         meeting: Meeting,
         now: &Inputs,
     ) -> Result<(), SimulationError> {
-        // The blocks' names, the corner's first, where they move together.
-        let together = self.tracks.iter().find_map(|tr| {
+        // A body of theirs and the blocks' names, the corner's first, where they move together.
+        let together = self.tracks.iter().enumerate().find_map(|(i, tr)| {
             let c = tr.couple?;
             let names = c.touch.blocks.map(|k| self.layout.names[k].clone());
-            (c.touch.blocks == [a, b] || c.touch.blocks == [b, a]).then_some(names)
+            (c.touch.blocks == [a, b] || c.touch.blocks == [b, a]).then_some((i, names))
         });
         let why = match (meeting, together) {
             (Meeting::Strikes(t), _) => match self.strike(&t, now)? {
                 None => return Ok(()),
                 Some(why) => why,
             },
-            (Meeting::Corners, Some([corner, face])) => {
-                format!("{corner}'s corner, on which they move together, reaches an end of {face}'s face")
-            }
-            (Meeting::Flat, Some([corner, face])) => {
+            // The corner they move on goes past an end of the face, along the face's line:
+            // the blocks, each convex, touch there corner on corner with no room to press on
+            // each other beyond it, so the push ends at once (no impulse) and they part; the
+            // clearance finds the edge that keeps them apart from there, or stops the run where
+            // none does.
+            (Meeting::Corners, Some((i, _))) => return self.part(i, now, true),
+            (Meeting::Flat, Some((_, [corner, face]))) => {
                 format!("{corner}'s face comes down flat on {face}'s, the two moving together")
             }
             (Meeting::Corners, None) => "two corners meet".into(),
@@ -1026,17 +1029,24 @@ impl<'a> Engine<'a> {
         couple
     }
 
-    /// The bodies of body i's couple part: the push between them falls to zero. Each turns on
-    /// in the mode its state now gives, and the pair must part before it may strike again.
-    fn part(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+    /// The bodies of body i's couple part: the push between them falls to zero, or (`off_end`)
+    /// the corner slides off an end of the face. Each turns on in the mode its state now
+    /// gives, and the pair must part before it may strike again.
+    fn part(&mut self, i: usize, now: &Inputs, off_end: bool) -> Result<(), SimulationError> {
         let couple = self.uncouple(i);
         let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].clone());
+        let how = match off_end {
+            true => format!("{corner}'s corner slides off an end of {face}'s face: the two part"),
+            false => {
+                format!("{corner}'s corner leaves {face}'s face, which no longer pushes on it")
+            }
+        };
         self.rec.rocking_event(
             self.t,
             EventKind::Separation,
             &couple.touch.blocks,
             None,
-            format!("{corner}'s corner leaves {face}'s face, which no longer pushes on it"),
+            how,
         );
         for k in couple.moving() {
             self.decide(k, now, false)?;
@@ -2529,6 +2539,12 @@ impl<'a> Engine<'a> {
             );
         self.install(i, &landing, u, dropped);
         let what = match landing.pivot {
+            Some(c) if impact::touches(body, st.theta, corner, (yg, st.omega)) => {
+                format!(
+                    "from free flight on the {} corner, touching without speed: no impulse",
+                    c.name()
+                )
+            }
             Some(c) => format!("from free flight on the {} corner", c.name()),
             None => "from free flight, flat on both corners".into(),
         };
