@@ -908,6 +908,7 @@ impl<'a> Engine<'a> {
                 | Guard::StickLimit
                 | Guard::Stop
                 | Guard::Uplift => self.recouple(i, guard, now),
+                Guard::Overturn => self.couple_overturns(i, traj, tau, now),
                 _ => {
                     self.couple_gives(i, guard);
                     Ok(())
@@ -1350,6 +1351,26 @@ impl<'a> Engine<'a> {
         self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
     }
 
+    /// Body i of a couple lies on its face: it has overturned, as a body alone does
+    /// ([`Engine::overturn`]), and drops out of the contact; the other body turns on alone, in
+    /// the mode its state gives (where the run goes on after a collapse).
+    fn couple_overturns(
+        &mut self,
+        i: usize,
+        traj: &Trajectory,
+        tau: f64,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
+        let couple = self.uncouple(i);
+        self.overturn(i, traj, tau)?;
+        for k in couple.moving().filter(|&k| k != i) {
+            if self.t < self.t_end {
+                self.decide(k, now, false)?;
+            }
+        }
+        Ok(())
+    }
+
     /// Body i of a couple reaches the limit of its pivot's friction, its slipping pivot stops,
     /// or the ground's push on its pivot falls to zero (`guard`): the couple's modes are
     /// decided again, each change logged (after the landing of a body a round-off from one,
@@ -1555,7 +1576,8 @@ impl<'a> Engine<'a> {
     /// not followed (nothing changed then, but where a struck body had a contact besides: the
     /// blow is refused after that contact was let go, and the run stops there anyway). A struck
     /// body resting against a block or turning with another takes the blow first, then what is
-    /// left at that contact ([`Engine::rejoin`]).
+    /// left at that contact ([`Engine::rejoin`]); one seated through the rest of a series of
+    /// landings takes it seated, the series ending there.
     fn strike(&mut self, t: &Touch, now: &Inputs) -> Result<Option<String>, SimulationError> {
         for k in 0..2 {
             let name = &self.layout.names[t.blocks[k]];
@@ -1569,17 +1591,30 @@ impl<'a> Engine<'a> {
                 }
                 Side::Body(i, _) => i,
             };
-            let tr = &self.tracks[i];
-            if tr.settles.is_some() {
-                return Ok(Some(format!(
-                    "{name} is seated through the end of a series of landings, which an impulse \
-                     would break off"
-                )));
-            }
             if !self.scene.watches.get(i).is_none_or(Watch::holds_nothing) {
                 return Ok(Some(format!(
                     "{name}'s column holds joints the impulse would pass through"
                 )));
+            }
+        }
+        // A body seated through the rest of a series of landings rocks below ZENO_ROTATION of
+        // its alpha there (the series summed as rest, its energy booked with the landing's
+        // loss): it takes the blow seated, and the series ends here.
+        for side in t.sides {
+            if let Side::Body(i, _) = side {
+                if let Some((until, after, _)) = self.tracks[i].settles.take() {
+                    self.rec.rocking_event(
+                        self.t,
+                        EventKind::Rest,
+                        &self.layout.outputs(i),
+                        Some((after, 0.0)),
+                        format!(
+                            "its landings accumulate, ended {:e} s before their series' end by \
+                             a blow",
+                            until - self.t
+                        ),
+                    );
+                }
             }
         }
         // A body alone in flight a round-off from landing (a flight of round-off that an
