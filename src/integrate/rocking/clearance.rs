@@ -68,8 +68,10 @@ pub(super) type Meet = (f64, (usize, usize), Meeting);
 pub(super) enum Meeting {
     /// A corner of one on a face of the other, strictly inside it: the contact.
     Strikes(Touch),
-    /// Two corners of one on the face of the other: a face comes down flat on a face.
-    Flat,
+    /// Two corners of one on the face of the other: a face comes down flat on a face. Where
+    /// the pair is held in contact (a corner on the face), the contact at the other end of the
+    /// faces' overlap, which strikes there.
+    Flat(Option<Touch>),
     /// A corner at an end of the other's face, or none on it: corner meets corner.
     Corners,
 }
@@ -102,6 +104,8 @@ pub(super) struct Touch {
     pub pair: usize,
     /// Which of its block's corners (counter-clockwise from the bottom left) the corner is.
     pub corner: usize,
+    /// Which edge of the face's block (edge e from its corner e to e + 1) the face is.
+    pub edge: usize,
     /// The pair was struck and has not parted since by more than the tie tolerance: the blocks
     /// stay in contact (the gap an elastic impact opens closes again within round-off).
     pub stays: bool,
@@ -462,7 +466,10 @@ impl Clearance {
 
     /// How pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on
     /// the edge that kept them apart, strictly inside that edge; else two corners on it (a
-    /// face on a face), or the corner at an end of the edge (on a corner).
+    /// face on a face), or the corner at an end of the edge (on a corner). Where a face comes
+    /// down flat on the face a held corner is on, also the edge that keeps the pair apart from
+    /// there: the corner's block's own face, where the contact at the other end of the faces'
+    /// overlap is the other block's corner on it.
     fn touch(&self, k: usize, at_a: &At, at_b: &At, bodies: &[RockingBody]) -> Meeting {
         let pair = &self.pairs[k];
         let tie = self.tie_m(k);
@@ -485,15 +492,7 @@ impl Clearance {
             .enumerate()
             .filter(|(_, p)| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1] <= tie)
             .collect();
-        let (j, point) = match on.as_slice() {
-            [one] => *one,
-            [] => return Meeting::Corners,
-            _ => return Meeting::Flat,
-        };
-        let x = ((point[0] - c0[0]) * along[0] + (point[1] - c0[1]) * along[1]) / length;
-        if x <= tie || x >= length - tie {
-            return Meeting::Corners;
-        }
+        let x = |p: &[f64; 2]| ((p[0] - c0[0]) * along[0] + (p[1] - c0[1]) * along[1]) / length;
         let side = |p: usize| {
             let piece = &self.pieces[p];
             match piece.body {
@@ -508,16 +507,52 @@ impl Clearance {
                 None => Side::Held,
             }
         };
-        Meeting::Strikes(Touch {
+        // The corner `j` of piece `of` on the face (`edge`) of piece `on`, whose normal is
+        // `normal`.
+        let contact = |[of, on]: [usize; 2], (j, edge), point, normal| Touch {
             pair: k,
             corner: j,
+            edge,
             stays: false,
-            blocks: [self.pieces[other].output, self.pieces[own].output],
-            sides: [side(other), side(own)],
-            point: *point,
-            normal: n,
+            blocks: [self.pieces[of].output, self.pieces[on].output],
+            sides: [side(of), side(on)],
+            point,
+            normal,
             tie_m_s: tie / self.time_scale_s(k, bodies),
-        })
+        };
+        let (j, point) = match on.as_slice() {
+            [one] => *one,
+            [] => return Meeting::Corners,
+            _ => {
+                // The held corner stays inside the face; the overlap's other end is the
+                // corner's block's next corner where that lies inside the face too, else the
+                // face's end beyond which it lies, on the face of the corner's block between
+                // the two corners.
+                let Some((h, (j, p))) =
+                    (pair.held).and_then(|h| Some((h, *on.iter().find(|(c, _)| *c != h)?)))
+                else {
+                    return Meeting::Flat(None);
+                };
+                let x = x(p);
+                if x > tie && x < length - tie {
+                    return Meeting::Flat(Some(contact([other, own], (j, e), *p, n)));
+                }
+                let end = if x >= length - tie { (e + 1) % 4 } else { e };
+                let m = if j == (h + 1) % 4 { h } else { j };
+                let point = face.corners[end];
+                return Meeting::Flat(Some(contact(
+                    [own, other],
+                    (end, m),
+                    point,
+                    normal(corner, m),
+                )));
+            }
+        };
+        let x = x(point);
+        if x <= tie || x >= length - tie {
+            return Meeting::Corners;
+        }
+        Meeting::Strikes(contact([other, own], (j, e), *point, n))
     }
 
     /// The least distance of pair k's blocks outside the edge that keeps them apart, at tau.
@@ -549,10 +584,14 @@ impl Clearance {
         self.pairs[pair].struck = true;
     }
 
-    /// The blocks of `pair` turn in contact, the other block's `corner` on the pair's edge, or
+    /// The blocks of `pair` turn in contact (`touch`, whose face becomes the pair's edge), or
     /// (none) that contact has just ended: they must part before they may strike again.
-    pub(super) fn hold(&mut self, pair: usize, corner: Option<usize>) {
-        self.pairs[pair].held = corner;
+    pub(super) fn hold(&mut self, pair: usize, touch: Option<&Touch>) {
+        if let Some(t) = touch {
+            let b = self.pairs[pair].b;
+            self.pairs[pair].edge = (self.pieces[b].output == t.blocks[1], t.edge);
+        }
+        self.pairs[pair].held = touch.map(|t| t.corner);
         self.pairs[pair].struck = true;
     }
 

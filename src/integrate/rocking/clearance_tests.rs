@@ -6,7 +6,7 @@ use super::{columns, Equations, Rocking};
 use crate::integrate::{Integrator, Scenario, Settings};
 use crate::model::Model;
 use crate::motion::{Motion, Sine};
-use crate::response::{EventKind, Response, Warning};
+use crate::response::{CollapseCause, EventKind, Response, Warning};
 
 /// A slab 0.3 m wide and 1.2 m high (friction 0.8: it rocks, it does not slide) and `rest`,
 /// the blocks of its row after it.
@@ -164,7 +164,8 @@ fn columns_standing_apart_move_each_as_alone_to_the_bit() {
 /// corner on the face. It turns away from the face, strikes it again, and its last blow throws
 /// it up along the face until its corner reaches the face's top, (0.32, 1.2) m to the bit,
 /// where it slides off: they part. The abutment's corner then strikes the slab's face, and
-/// the run stops where the abutment's top comes down flat on it, saying so. The energy balance
+/// the abutment's face comes down flat on the slab's: both ends of their contact stay on it, the
+/// slab lying on the abutment's face, and the run stops there, saying so. The energy balance
 /// closes, and Moreau-Jean, which resolves the same contacts at once, converges on the
 /// rotation and the displacement through the whole run.
 #[test]
@@ -255,7 +256,7 @@ fn a_slab_meets_an_abutment_where_its_corner_reaches_the_face() {
         w,
         Warning::BlocksMeet { first, second, time_s, why }
             if first == "S" && second == "A" && *time_s == stop
-                && why.contains("A's face comes down flat on S's")
+                && why.contains("A's face comes down flat on S's, and both ends of their")
     )));
     let e = &r.summary.energy;
     assert!(e.residual_j.abs() <= 1e-14 * e.input_j, "{e:?}");
@@ -831,19 +832,23 @@ fn a_slab_fallen_onto_a_squat_block_leans_on_it_while_the_block_stays_seated() {
     converges(&model, &motion, &r, seated, 0);
 }
 
-/// A slab 0.2 m wide and 0.8 m high 0.5 m to the right of the 1.2 m slab (friction 2: neither
-/// slips; no restitution; walls/rocking/leaning-slabs.ron), under 0.4 g at 1 Hz from 180 degrees:
-/// both rock to the left and the short one falls onto the tall one, its top corner on the tall
-/// one's right face, where it stays: the two turn together on their pivots, the push between them
-/// from the mechanism's equations, until the short one's left face comes down flat on the tall
-/// one's (their rotations equal), where the run stops, saying so. Throughout, the corner stays on
-/// the face to round-off, the energy balance closes, and Moreau-Jean converges on both rotations.
+/// A slab 0.2 m wide and 0.8 m high 0.5 m to the right of the 1.2 m slab (friction 2; no
+/// restitution; walls/rocking/leaning-slabs.ron), under 0.4 g at 1 Hz from 180 degrees: both
+/// rock to the left and the short one falls onto the tall one, its top corner on the tall one's
+/// right face, where it stays: the two turn together on their pivots, the push between them from
+/// the mechanism's equations, until the short one's left face comes down flat on the tall one's
+/// (their rotations equal) at 1.621 s. There both ends of the faces' overlap take their impulses
+/// at once: S's corner strikes T's face plastically while T's old corner leaves S's face, so the
+/// two turn on together on the new contact, until S's corner slides off the end of T's face
+/// (1.676 s) and S, alone, overturns. Until the faces meet the old corner stays on the face to
+/// round-off and the bottom of T's face stays off it; the energy balance closes through the
+/// overturning, and Moreau-Jean converges on both rotations up to the faces' meeting.
 #[test]
 fn two_slabs_fallen_together_turn_as_one_mechanism_until_their_faces_meet() {
     let model = Model::from_file("walls/rocking/leaning-slabs.ron").unwrap();
     let motion = sine(0.4, 180.0);
     let r = run(&model, &motion, 5.0, 0.0);
-    let [impact] = impacts(&r)[..] else {
+    let [impact, flat] = impacts(&r)[..] else {
         panic!("{:?}", r.events)
     };
     let what = impact.mode.as_deref().unwrap_or_default();
@@ -851,26 +856,47 @@ fn two_slabs_fallen_together_turn_as_one_mechanism_until_their_faces_meet() {
         impact.blocks == ["T", "S"] && what.contains("they turn on together"),
         "{what}"
     );
-    let stop = r.summary.duration_s;
-    assert!(stop > impact.time_s + 0.1, "{stop}");
-    assert!(r.summary.warnings.iter().any(|w| matches!(
-        w,
-        Warning::BlocksMeet { first, second, time_s, why }
-            if first == "S" && second == "T" && *time_s == stop && why.contains("flat")
-    )));
+    let lands = flat.mode.as_deref().unwrap_or_default();
+    assert!(
+        flat.blocks == ["S", "T"]
+            && lands.contains("S's corner strikes T's face")
+            && lands.contains("T's face comes down flat on S's and T's corner leaves S's face")
+            && lands.contains("they turn on together"),
+        "{lands}"
+    );
+    assert!(flat.time_s > impact.time_s + 0.1, "{}", flat.time_s);
+    let after = events_after(&r, flat.time_s);
+    let part = (after.iter())
+        .find(|e| e.kind == EventKind::Separation)
+        .expect("the two part");
+    assert!(
+        part.blocks == ["S", "T"]
+            && part
+                .mode
+                .as_deref()
+                .unwrap()
+                .contains("slides off an end of T's face"),
+        "{part:?}"
+    );
+    let collapse = r.summary.collapse.as_ref().expect("S overturns");
+    assert!(collapse.block == "S" && collapse.cause == CollapseCause::Overturning);
+    assert!(collapse.time_s > part.time_s, "{collapse:?}");
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
     // Both rock on their left corners, at x = 0 and 0.8 m, which stay where they are: the
     // distance of T's top left corner, and of its bottom left one, from S's right face.
     let from_face = |ts: f64, tt: f64, y: f64| from_face(ts, (tt, 0.8, 0.2), y);
     let (s, t) = (rows(&r, 0), rows(&r, 1));
-    let together: Vec<usize> = (0..s.len()).filter(|&i| s[i][0] >= impact.time_s).collect();
+    let together: Vec<usize> = (0..s.len())
+        .filter(|&i| s[i][0] >= impact.time_s && s[i][0] <= flat.time_s)
+        .collect();
     assert!(together.len() > 10);
     for &i in &together {
         let gap = from_face(s[i][3], t[i][3], 0.8);
         assert!(gap.abs() < 1e-15, "{:?} {:?}: {gap}", s[i], t[i]);
-        assert!(s[i][0] == stop || from_face(s[i][3], t[i][3], 0.0) > 0.0);
+        assert!(s[i][0] == flat.time_s || from_face(s[i][3], t[i][3], 0.0) > 0.0);
     }
     let last = *together.last().unwrap();
-    assert_eq!(s[last][0], stop);
+    assert_eq!(s[last][0], flat.time_s);
     assert!(from_face(s[last][3], t[last][3], 0.0).abs() < 1e-14);
     assert!(
         (s[last][3] - t[last][3]).abs() < 1e-13,
@@ -881,8 +907,9 @@ fn two_slabs_fallen_together_turn_as_one_mechanism_until_their_faces_meet() {
     let e = &r.summary.energy;
     let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
     assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+    let to_flat = run(&model, &motion, flat.time_s, 0.0);
     for k in 0..2 {
-        converges(&model, &motion, &r, impact.time_s, k);
+        converges(&model, &motion, &to_flat, impact.time_s, k);
     }
 }
 
@@ -970,9 +997,10 @@ fn two_slabs_turning_together_part_where_their_push_falls_to_zero() {
 /// from S's slower face: they part at that instant, and stand apart until they meet again at
 /// 1.5117 s, where S's pivot leaves the ground, T's corner on its face; S lands from that
 /// flight (1.5121 s), both contacts taking their impulses at once, and the two turn together
-/// from there, through S's next landing, until T's face comes down flat on S's (2.881 s),
-/// where the run stops. Moreau-Jean converges on both rotations from the first meeting
-/// through the second and the landing from flight, to 1.6 s.
+/// from there, through S's next landing, until T's face comes down flat on S's (2.881 s): S's
+/// corner strikes T's face there while T's leaves S's, and S, turning on with T, overturns
+/// (2.988 s). Moreau-Jean converges on both rotations from the first meeting through the second
+/// and the landing from flight, to 1.6 s.
 #[test]
 fn a_slab_that_lands_while_turning_with_another_parts_from_it() {
     let model = Model::from_ron_str(
@@ -1031,11 +1059,20 @@ fn a_slab_that_lands_while_turning_with_another_parts_from_it() {
             .as_deref()
             .unwrap()
             .contains("both contacts plastic at once")));
-    let stop = r.summary.duration_s;
-    assert!(r.summary.warnings.iter().any(|w| matches!(
-        w,
-        Warning::BlocksMeet { time_s, why, .. } if *time_s == stop && why.contains("comes down flat")
-    )));
+    let flat = (impacts(&r).into_iter())
+        .find(|e| e.mode.as_deref().unwrap().contains("comes down flat"))
+        .expect("T's face comes down flat on S's");
+    assert!(flat.time_s > settled.time_s);
+    let lands = flat.mode.as_deref().unwrap();
+    assert!(
+        lands.contains("S's corner strikes T's face")
+            && lands.contains("T's face comes down flat on S's and T's corner leaves S's face"),
+        "{lands}"
+    );
+    assert!(flat.time_s > 2.8 && flat.time_s < 2.9, "{}", flat.time_s);
+    let collapse = r.summary.collapse.as_ref().expect("S overturns");
+    assert!(collapse.block == "S" && collapse.cause == CollapseCause::Overturning);
+    assert!(collapse.time_s > flat.time_s && r.summary.warnings.is_empty());
     let stop = meet.time_s;
     let (s, t) = (rows(&r, 0), rows(&r, 1));
     let (mut on, mut apart) = (0, 0);
@@ -1125,24 +1162,24 @@ fn slabs_turning_together_touch_and_never_overlap_however_they_lean() {
             duration_s: 5.0,
         });
         let r = run(&model, &motion, 5.0, 0.0);
-        let starts: Vec<f64> = impacts(&r)
-            .iter()
-            .filter(|e| {
-                e.mode
-                    .as_deref()
-                    .unwrap_or_default()
-                    .contains("turn on together")
+        let starts: Vec<(usize, f64)> = (r.events.iter().enumerate())
+            .filter(|(_, e)| {
+                e.kind == EventKind::BlocksImpact
+                    && e.mode
+                        .as_deref()
+                        .unwrap_or_default()
+                        .contains("turn on together")
             })
-            .map(|e| e.time_s)
+            .map(|(j, e)| (j, e.time_s))
             .collect();
         assert!(!starts.is_empty(), "{:?}", r.events);
         couples += starts.len();
-        // A couple lasts to the next event between the blocks, or the run's end.
+        // A couple lasts to the next event between the blocks (at the same instant, where one
+        // is logged after it), or the run's end.
         let ends: Vec<f64> = starts
             .iter()
-            .map(|&from| {
-                (r.events.iter())
-                    .filter(|e| e.time_s > from)
+            .map(|&(from, _)| {
+                (r.events.iter().skip(from + 1))
                     .filter(|e| {
                         matches!(
                             e.kind,
@@ -1164,7 +1201,8 @@ fn slabs_turning_together_touch_and_never_overlap_however_they_lean() {
                 &block_corners(0.3 + gap + 0.5 * w, (w, h), &t[i]),
             );
             assert!(sep > -1e-14 * size, "{:?} {:?}: {sep}", s[i], t[i]);
-            let together = (starts.iter().zip(&ends)).any(|(&a, &b)| s[i][0] >= a && s[i][0] <= b);
+            let together =
+                (starts.iter().zip(&ends)).any(|(&(_, a), &b)| s[i][0] >= a && s[i][0] <= b);
             assert!(
                 !together || sep < 1e-14 * size,
                 "{:?} {:?}: {sep}",
@@ -1182,11 +1220,12 @@ fn slabs_turning_together_touch_and_never_overlap_however_they_lean() {
 /// The slabs of walls/rocking/leaning-slabs.ron with friction 0.6 under the same sine (0.4 g
 /// at 1 Hz from 180 degrees): T falls onto S's face at 1.4631 s, and the impact leaves S's
 /// pivot slipping: they turn together, S's pivot sliding to the left under the push, until it
-/// sticks (1.4702 s), then slips again (1.5903 s) until S's face comes down flat on T's
-/// (1.6213 s), where the run stops. Throughout, the blocks drawn from the rows (the pivot's
-/// slip among them) touch to round-off, the energy balance closes with the work of the
-/// pivot's friction in it, and Moreau-Jean converges on both rotations and on S's
-/// displacement.
+/// sticks (1.4702 s), then slips again (1.5903 s) until T's face comes down flat on S's
+/// (1.6213 s): S's corner strikes T's face there, T's corner leaves S's, and the two turn on
+/// together until S's corner slides off the end of T's face (1.6727 s) and S overturns. From the
+/// first impact to the parting the blocks drawn from the rows (the pivots' slip among them)
+/// touch to round-off, the energy balance closes with the work of the pivots' friction in it,
+/// and Moreau-Jean converges on both rotations and on S's displacement up to the faces' meeting.
 #[test]
 fn two_slabs_turn_together_while_a_pivot_slips_and_sticks() {
     let mut text = std::fs::read_to_string("walls/rocking/leaning-slabs.ron").unwrap();
@@ -1194,7 +1233,7 @@ fn two_slabs_turn_together_while_a_pivot_slips_and_sticks() {
     let model = Model::from_ron_str(&text).unwrap();
     let motion = sine(0.4, 180.0);
     let r = run(&model, &motion, 5.0, 0.0);
-    let [impact] = impacts(&r)[..] else {
+    let [impact, _] = impacts(&r)[..] else {
         panic!("{:?}", r.events)
     };
     let what = impact.mode.as_deref().unwrap_or_default();
@@ -1206,28 +1245,38 @@ fn two_slabs_turn_together_while_a_pivot_slips_and_sticks() {
         "{what}"
     );
     let after = events_after(&r, impact.time_s);
-    let [stick, slip, meet] = after[..] else {
+    let [stick, slip, flat, ..] = after[..] else {
         panic!("{after:?}")
     };
     assert_eq!(
-        (stick.kind, slip.kind, meet.kind),
+        (stick.kind, slip.kind, flat.kind),
         (
             EventKind::PivotStick,
             EventKind::PivotSlip,
-            EventKind::BlocksMeet
+            EventKind::BlocksImpact
         )
     );
     assert!(stick.blocks == ["S"] && slip.blocks == ["S"]);
-    let stop = r.summary.duration_s;
-    assert_eq!(meet.time_s, stop);
-    assert!(r.summary.warnings.iter().any(|w| matches!(
-        w,
-        Warning::BlocksMeet { why, .. } if why.contains("flat")
-    )));
+    assert!(flat
+        .mode
+        .as_deref()
+        .unwrap()
+        .contains("T's face comes down flat on S's"));
+    let part = (after.iter())
+        .find(|e| e.kind == EventKind::Separation)
+        .expect("the two part");
+    assert!(part
+        .mode
+        .as_deref()
+        .unwrap()
+        .contains("slides off an end of T's face"));
+    let collapse = r.summary.collapse.as_ref().expect("S overturns");
+    assert!(collapse.block == "S" && collapse.cause == CollapseCause::Overturning);
+    assert!(collapse.time_s > part.time_s && r.summary.warnings.is_empty());
     let (s, t) = (rows(&r, 0), rows(&r, 1));
     let size = (0.3f64).hypot(1.2);
     let mut together = 0;
-    for i in (0..s.len()).filter(|&i| s[i][0] >= impact.time_s) {
+    for i in (0..s.len()).filter(|&i| s[i][0] >= impact.time_s && s[i][0] <= part.time_s) {
         let sep = apart(
             &block_corners(0.15, (0.3, 1.2), &s[i]),
             &block_corners(0.9, (0.2, 0.8), &t[i]),
@@ -1240,10 +1289,11 @@ fn two_slabs_turn_together_while_a_pivot_slips_and_sticks() {
     let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
     assert!(e.friction_j > 0.1, "{e:?}");
     assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
+    let to_flat = run(&model, &motion, flat.time_s, 0.0);
     for k in 0..2 {
-        converges(&model, &motion, &r, impact.time_s, k);
+        converges(&model, &motion, &to_flat, impact.time_s, k);
     }
-    converges_in(&model, &motion, &r, impact.time_s, 0, 1);
+    converges_in(&model, &motion, &to_flat, impact.time_s, 0, 1);
 }
 
 /// A slab T (0.2 x 0.9 m) 0.3 m left of S (0.3 x 1.2 m), S 0.68 m left of a fixed abutment A

@@ -73,6 +73,7 @@ fn a_couple_with_slipping_or_flying_pivots_obeys_newton_euler_coulomb_and_its_co
             tie_m_s: 1e-12,
             pair: 0,
             corner: 2,
+            edge: 3,
             stays: false,
         };
         // Velocities that keep the corner on the face: d gap / dt = 0.
@@ -273,6 +274,7 @@ fn a_leaning_blocks_decision_is_the_contact_law_and_painleves_cases_are_refused(
                         tie_m_s: 1e-12,
                         pair: 0,
                         corner: 2,
+                        edge: 3,
                         stays: false,
                     };
                     let homes = [[2.0 * b, 0.0], corner];

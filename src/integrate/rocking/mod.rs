@@ -972,14 +972,178 @@ impl<'a> Engine<'a> {
             // clearance finds the edge that keeps them apart from there, or stops the run where
             // none does.
             (Meeting::Corners, Some((i, _))) => return self.part(i, now, true),
-            (Meeting::Flat, Some((_, [corner, face]))) => {
+            (Meeting::Flat(Some(t)), Some((i, _))) => match self.flat(i, &t, now)? {
+                None => return Ok(()),
+                Some(why) => why,
+            },
+            (Meeting::Flat(_), Some((_, [corner, face]))) => {
                 format!("{corner}'s face comes down flat on {face}'s, the two moving together")
             }
             (Meeting::Corners, None) => "two corners meet".into(),
-            (Meeting::Flat, None) => "a face comes down flat on a face".into(),
+            (Meeting::Flat(_), None) => "a face comes down flat on a face".into(),
         };
         self.stops_meeting((a, b), why);
         Ok(())
+    }
+
+    /// The face beside the corner of body i's couple comes down flat on the face the corner
+    /// is on: the other end of the faces' overlap strikes (`t`) while the corner stays. Both
+    /// contacts take their impulses at once ([`collision::resolve_all`]: the strike's with the
+    /// wall's restitution, the corner's without, each free to open). Where the strike's
+    /// contact stays and the corner's opens (Housner's law between two blocks: the face rocks
+    /// on over its other end), the blocks turn on together on the new contact; where the strike
+    /// parts them there and the corner stays, on the old; where both open, they part. Where both
+    /// stay the faces lie on each other, which is not followed: the reason is returned, as it
+    /// is where the law has no outcome or two, or a column holds joints the impulse would pass
+    /// through; nothing has changed then.
+    fn flat(
+        &mut self,
+        i: usize,
+        t: &Touch,
+        now: &Inputs,
+    ) -> Result<Option<String>, SimulationError> {
+        let couple = self.tracks[i].couple.expect("a body of a couple");
+        let held = Touch {
+            stays: true,
+            ..couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)))
+        };
+        let [corner, face] = held.blocks.map(|b| self.layout.names[b].clone());
+        let comes = format!("{corner}'s face comes down flat on {face}'s");
+        let ids: Vec<(usize, [f64; 2])> = (held.sides.iter())
+            .filter_map(|side| match *side {
+                Side::Body(k, origin) => Some((k, origin)),
+                _ => None,
+            })
+            .collect();
+        if let Some(&(k, _)) = (ids.iter())
+            .find(|&&(k, _)| !self.scene.watches.get(k).is_none_or(Watch::holds_nothing))
+        {
+            return Ok(Some(format!(
+                "{comes}, and {}'s column holds joints the impulse would pass through",
+                self.body(k).name
+            )));
+        }
+        let index = |side: Side| match side {
+            Side::Body(k, _) => ids.iter().position(|&(j, _)| j == k),
+            _ => None,
+        };
+        let restitution = self.scene.wall.map_or(1.0, |(w, _)| w.restitution.to_f64());
+        let links = [
+            collision::Link {
+                sides: t.sides.map(index),
+                contact: collision::Contact {
+                    point: t.point,
+                    normal: t.normal,
+                    restitution,
+                },
+            },
+            collision::Link {
+                sides: held.sides.map(index),
+                contact: self.staying(&held).1,
+            },
+        ];
+        let bodies: Vec<collision::Turning> = (ids.iter())
+            .map(|&(k, origin)| self.turning(k, origin))
+            .collect();
+        let all = match collision::resolve_all(&bodies, &links) {
+            Ok(all) => all,
+            Err(refusal) => return Ok(Some(format!("{comes}, and {refusal}"))),
+        };
+        let sides_of = |l: &collision::Link| l.sides.map(|k| k.map(|j| &bodies[j]));
+        let (_, speed, _) = collision::approach(sides_of(&links[1]), &links[1].contact);
+        let stays = [
+            all.normal_m_s[0].1 <= t.tie_m_s,
+            all.normal_m_s[1].1 <= series::TIE * speed,
+        ];
+        if stays == [true, true] {
+            return Ok(Some(format!(
+                "{comes}, and both ends of their contact stay on it (impulses {:.6e} and {:.6e} N \
+                 s): blocks that lie face on face are not followed",
+                all.impulse_n_s[0], all.impulse_n_s[1]
+            )));
+        }
+        self.uncouple(i);
+        let [c, f] = t.blocks.map(|b| self.layout.names[b].clone());
+        let strikes = format!("{comes}, {c}'s corner striking {f}'s face at its other end");
+        // Each side's velocities after, and the impact as one contact's.
+        let one = |l: usize, loss_j: f64| {
+            let link = &links[l];
+            (
+                link.sides.map(|k| k.map(|j| bodies[j])),
+                collision::Outcome {
+                    after: link.sides.map(|k| k.map(|j| all.after[j])),
+                    impulse_n_s: all.impulse_n_s[l],
+                    normal_m_s: all.normal_m_s[l],
+                    loss_j,
+                },
+            )
+        };
+        let strike = format!(
+            "{strikes} at {:.6e} m/s, parting at {:.6e} m/s (impulse {:.6e} N s)",
+            -all.normal_m_s[0].0, all.normal_m_s[0].1, all.impulse_n_s[0]
+        );
+        if stays[0] {
+            // The corner's contact took no impulse: the strike's is the whole impact.
+            let (turning, out) = one(0, all.loss_j);
+            let why = format!(
+                "they stay in contact after the impact (coefficient of restitution \
+                 {restitution}), {comes} and {corner}'s corner leaves {face}'s face"
+            );
+            return Ok(self.rests_against(t, &turning, &out, now, why, Through::Approach));
+        }
+        if stays[1] {
+            // The strike parts at once: the corner's contact carries the whole impact.
+            let (turning, out) = one(1, all.loss_j);
+            let why = format!("they stay in contact as {strike}");
+            let stop = self.rests_against(&held, &turning, &out, now, why, Through::Blow);
+            if stop.is_none() {
+                self.clearance.strike(t.pair);
+                // The contact that stays counts the impact where it takes an impulse.
+                if all.impulse_n_s[1] <= 0.0 {
+                    self.rec.impacts += 1;
+                    self.struck(t);
+                }
+            }
+            return Ok(stop);
+        }
+        let leaves = format!("{corner}'s corner leaves {face}'s face as {strikes}");
+        self.rec
+            .rocking_event(self.t, EventKind::Separation, &held.blocks, None, leaves);
+        self.clearance.strike(t.pair);
+        self.rec.energy.impact_loss_j += all.loss_j;
+        self.rec.impacts += 1;
+        self.struck(t);
+        let mut what = strike;
+        let mut omega = None;
+        let mut decide = Vec::new();
+        for (j, &(k, _)) in ids.iter().enumerate() {
+            let before = self.tracks[k].state.omega;
+            omega.get_or_insert((before, all.after[j].omega));
+            let (how, decides) = self.take(k, &all.after[j]);
+            what += &format!(
+                "; {}: theta' {before:.6e} -> {:.6e} rad/s, {how}",
+                self.body(k).name,
+                all.after[j].omega
+            );
+            if decides {
+                decide.push(k);
+            }
+        }
+        self.rec
+            .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
+        for k in decide {
+            self.decide(k, now, false)?;
+        }
+        Ok(None)
+    }
+
+    /// Counts an impact at `t` for each of its blocks that moves.
+    fn struck(&mut self, t: &Touch) {
+        for (side, &block) in t.sides.iter().zip(&t.blocks) {
+            if let Side::Body(..) = side {
+                self.rec.rocking_impact(block);
+            }
+        }
     }
 
     /// The exact model stops where blocks a and b meet (or touch), for the reason `why`.
@@ -1556,7 +1720,7 @@ impl<'a> Engine<'a> {
                     format!("{}, {along} {other}'s face", mode.name()),
                 );
                 self.clearance.lean(touch.pair, false);
-                self.clearance.hold(touch.pair, Some(touch.corner));
+                self.clearance.hold(touch.pair, Some(&touch));
                 let tr = &mut self.tracks[i];
                 tr.leans = None;
                 tr.mode = mode;
@@ -1952,11 +2116,14 @@ impl<'a> Engine<'a> {
                 tr.mode = Mode::Flight(c);
                 false
             }
+            // On the ground, whatever rise it had (landing from flight) is gone.
             collision::Base::Pivot { corner, .. } => {
+                tr.state.lift_v = 0.0;
                 tr.mode = Mode::Rock(corner);
                 true
             }
             collision::Base::Seated { .. } => {
+                tr.state.lift_v = 0.0;
                 tr.mode = Mode::Rest;
                 true
             }
@@ -2307,7 +2474,7 @@ impl<'a> Engine<'a> {
         let now_modes = [0, 1].map(|k| bodies[k].map_or(Mode::Rest, |i| self.tracks[i].mode));
         self.rec.energy.impact_loss_j +=
             kinetic(given.0, &given.1) - kinetic(now_modes, &now_states);
-        self.clearance.hold(t.pair, Some(t.corner));
+        self.clearance.hold(t.pair, Some(t));
         // A body against a fixed face whose pivot stays on the ground, stuck, rests there
         // (where the push has a moment about its pivot to hold it by).
         let resting = (bodies.iter().flatten().copied())

@@ -3,11 +3,12 @@
 //! landing that leaves a rotation, a rate or a slip of round-off, a landing whose sticking impulse
 //! lies on the friction cone's edge, a slip that turns within a landing, a body decided anew by
 //! another's event at the same instant, two landings at one instant in a contact, a corner that
-//! reaches the ground without coming down. Found by the sweeps of docs/rocking/scans (1,572 runs
-//! over widths, heights, gaps, friction, restitution and motions; with the engine of d06c785, 55 of
-//! them stopped with an error, nine as a bug); each scene here is one of them, and each now ends as
-//! its run does (to its duration, at an overturning, or at a meeting the exact model names and does
-//! not follow), its energy balance closing.
+//! reaches the ground without coming down, a landing from flight that kept its rise. Found by the
+//! sweeps of docs/rocking/scans (1,572 runs over widths, heights, gaps, friction, restitution and
+//! motions; with the engine of d06c785, 55 of them stopped with an error, nine as a bug); each
+//! scene here is one of them, and each now ends as its run does (to its duration, at an
+//! overturning, or at a meeting the exact model names and does not follow), its energy balance
+//! closing.
 
 use super::{Equations, Rocking};
 use crate::integrate::{Integrator, Scenario, Settings};
@@ -109,7 +110,8 @@ fn slab_and_block_scenes_at_ties_of_round_off_run_to_their_end() {
 /// high (a blow leaving it 5e-14 rad off its seat, not turning) until the slab overturns; three
 /// blocks where the slab's landing parts it from the block to its right at the instant that
 /// block's own landing was due (the block was handled on the trajectory it had left, and the
-/// engine panicked) until the slab's face comes down flat on the wall's.
+/// engine panicked) until the slab's face comes down flat on the wall's and both ends of their
+/// contact stay on it (blocks lying face on face, not followed).
 #[test]
 fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     let meets = |r: &Response, how: &str| {
@@ -147,7 +149,10 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     );
     let r = run(&three, (0.35, 1.2, 90.0), 15.0);
     assert!(
-        meets(&r, "S's face comes down flat on W's") && r.summary.duration_s > 2.0,
+        meets(
+            &r,
+            "S's face comes down flat on W's, and both ends of their contact stay"
+        ) && r.summary.duration_s > 2.0,
         "{:?}",
         r.summary
     );
@@ -324,4 +329,33 @@ fn a_body_turning_in_contact_that_lies_on_its_face_has_overturned() {
     assert!(!r.events.iter().any(|e| e.time_s > between.time_s
         && e.time_s < collapse.time_s
         && e.kind == crate::response::EventKind::Separation));
+}
+
+/// A slab S and a block T 0.2 x 0.6 m 0.5 m to its right (friction 2, restitution 0.4) under
+/// 0.3 g at 0.8 Hz from 60 degrees: both tumble, and T, flying in contact with S, lands on its
+/// right corner at 1.98496 s, both contacts plastic at once, and the contact opens. T kept the
+/// rise rate it had in flight (-2.27 m/s) on the ground, and its next landing from flight gained
+/// 1.09e3 J (the balance's residual); on the ground, whatever rise it had is gone, and the
+/// balance closes through the run's end, where the two fly together in contact and no mode of
+/// the pivots holds (1.9853 s).
+#[test]
+fn a_block_that_lands_from_flight_in_a_contact_that_opens_keeps_no_rise() {
+    let model = row(
+        2.0,
+        0.4,
+        "(width_m: 0.3, name: \"S\"), (width_m: 0.2, height_m: 0.6, gap_m: 0.5, name: \"T\")",
+    );
+    let r = run(&model, (0.3, 0.8, 60.0), 8.0);
+    let landing = (r.events.iter())
+        .find(|e| {
+            (e.mode.as_deref()).is_some_and(|m| {
+                m.starts_with(
+                    "T lands from free flight on its right corner in contact with S, \
+                     both contacts plastic at once",
+                ) && m.contains("the contact opens")
+            })
+        })
+        .expect("T lands from flight as the contact opens");
+    assert!(landing.time_s > 1.98 && landing.time_s < r.summary.duration_s);
+    balances(&r);
 }
