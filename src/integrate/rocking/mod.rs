@@ -1056,9 +1056,31 @@ impl<'a> Engine<'a> {
             all.normal_m_s[1].1 <= series::TIE * speed,
         ];
         if stays == [true, true] {
+            // What the impact leaves of each body's pivot says which motion would follow: two
+            // pivots that stay stuck leave the blocks no motion (locked face on face), one that
+            // lifts or slips a face sliding along the other.
+            let moves: Vec<String> = (ids.iter().enumerate())
+                .filter_map(|(j, &(k, _))| {
+                    let what = match mode_after(&all.after[j], self.tracks[k].mode, false) {
+                        Ok(Mode::Rock(_)) => return None,
+                        Ok(Mode::Flight(_)) => "leaves the ground",
+                        Ok(_) => "slips at its pivot",
+                        Err(what) => what,
+                    };
+                    Some(format!("{} {what}", self.body(k).name))
+                })
+                .collect();
+            let how = match moves.is_empty() {
+                true => "every pivot stays, stuck: blocks locked face on face are not followed"
+                    .to_string(),
+                false => format!(
+                    "{} through it: a face that moves along a face it lies on is not followed",
+                    moves.join(" and ")
+                ),
+            };
             return Ok(Some(format!(
                 "{comes}, and both ends of their contact stay on it (impulses {:.6e} and {:.6e} N \
-                 s): blocks that lie face on face are not followed",
+                 s), and {how}",
                 all.impulse_n_s[0], all.impulse_n_s[1]
             )));
         }

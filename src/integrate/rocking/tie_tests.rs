@@ -111,7 +111,8 @@ fn slab_and_block_scenes_at_ties_of_round_off_run_to_their_end() {
 /// blocks where the slab's landing parts it from the block to its right at the instant that
 /// block's own landing was due (the block was handled on the trajectory it had left, and the
 /// engine panicked) until the slab's face comes down flat on the wall's and both ends of their
-/// contact stay on it (blocks lying face on face, not followed).
+/// contact stay on it, the impact lifting both bodies off the ground (a face moving along a
+/// face, not followed).
 #[test]
 fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     let meets = |r: &Response, how: &str| {
@@ -152,6 +153,9 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
         meets(
             &r,
             "S's face comes down flat on W's, and both ends of their contact stay"
+        ) && meets(
+            &r,
+            "and S leaves the ground and W leaves the ground through it"
         ) && r.summary.duration_s > 2.0,
         "{:?}",
         r.summary
