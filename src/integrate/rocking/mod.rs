@@ -1056,22 +1056,27 @@ impl<'a> Engine<'a> {
             all.normal_m_s[1].1 <= series::TIE * speed,
         ];
         if stays == [true, true] {
-            // What the impact leaves of each body's pivot says which motion would follow: two
-            // pivots that stay stuck leave the blocks no motion (locked face on face), one that
-            // lifts or slips a face sliding along the other.
+            // What the impact leaves of each body's base says which motion would follow: bases
+            // that stay as they were, stuck, leave the blocks no motion (locked face on face), one
+            // that lifts or slips a face sliding along the other.
             let moves: Vec<String> = (ids.iter().enumerate())
                 .filter_map(|(j, &(k, _))| {
-                    let what = match mode_after(&all.after[j], self.tracks[k].mode, false) {
-                        Ok(Mode::Rock(_)) => return None,
-                        Ok(Mode::Flight(_)) => "leaves the ground",
-                        Ok(_) => "slips at its pivot",
-                        Err(what) => what,
+                    let (old, after) = (self.tracks[k].mode, &all.after[j]);
+                    let seated = matches!(old, Mode::Rest | Mode::Slide(_));
+                    let what = match (after.base, mode_after(after, old, seated)) {
+                        (collision::Base::Seated { slips: false }, _) => return None,
+                        (collision::Base::Seated { slips: true }, _) => "slides on its base",
+                        (_, Ok(Mode::Rock(_))) if !seated => return None,
+                        (_, Ok(Mode::Rock(_))) => "turns onto a corner",
+                        (_, Ok(Mode::Flight(_))) => "leaves the ground",
+                        (_, Ok(_)) => "slips at its pivot",
+                        (_, Err(what)) => what,
                     };
                     Some(format!("{} {what}", self.body(k).name))
                 })
                 .collect();
             let how = match moves.is_empty() {
-                true => "every pivot stays, stuck: blocks locked face on face are not followed"
+                true => "every base stays, stuck: blocks locked face on face are not followed"
                     .to_string(),
                 false => format!(
                     "{} through it: a face that moves along a face it lies on is not followed",

@@ -163,6 +163,38 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     balances(&r);
 }
 
+/// A face that comes down flat on a face with both ends of their overlap staying on it stops the
+/// run, saying what the impact did to each base: the slab S's face lands on the face of the
+/// block W, seated till then (a run of the scans, docs/rocking/scans), and the impulses slip the
+/// slab's pivot and turn the block onto a corner, a motion the exact model does not follow.
+#[test]
+fn a_flat_landing_that_stays_on_both_ends_says_what_each_base_does() {
+    let r = run(
+        &slab_and_block(0.6, 0.0, (0.8, 1.2, 0.05)),
+        (0.5, 2.5, 0.0),
+        4.0,
+    );
+    let why = r.summary.warnings.iter().find_map(|w| match w {
+        Warning::BlocksMeet { time_s, why, .. } if *time_s == r.summary.duration_s => Some(why),
+        _ => None,
+    });
+    assert!(
+        why.is_some_and(|why| why.starts_with("S's face comes down flat on W's")
+            && why.ends_with(
+                "and S slips at its pivot and W turns onto a corner through it: a face that \
+                 moves along a face it lies on is not followed"
+            )),
+        "{:?}",
+        r.summary.warnings
+    );
+    assert!(
+        (r.summary.duration_s - 2.4896).abs() < 1e-4,
+        "{}",
+        r.summary.duration_s
+    );
+    balances(&r);
+}
+
 /// A wall W, a slab S and a squat block T 1.0 x 0.8 m, apart by `gap` m, 1.2 m high.
 fn three_blocks(friction: f64, restitution: f64, width: f64, gap: f64) -> Model {
     row(
