@@ -1057,8 +1057,8 @@ impl<'a> Engine<'a> {
         ];
         if stays == [true, true] {
             // What the impact leaves of each body's base says which motion would follow: bases
-            // that stay as they were, stuck, leave the blocks no motion (locked face on face), one
-            // that lifts or slips a face sliding along the other.
+            // that stay as they were, stuck, leave the blocks no motion (locked face on face); one
+            // that lifts or slips leaves a face sliding along the other.
             let moves: Vec<String> = (ids.iter().enumerate())
                 .filter_map(|(j, &(k, _))| {
                     let (old, after) = (self.tracks[k].mode, &all.after[j]);
