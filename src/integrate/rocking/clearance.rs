@@ -72,6 +72,9 @@ pub(super) enum Meeting {
     /// the pair is held in contact (a corner on the face), the contact at the other end of the
     /// faces' overlap, which strikes there.
     Flat(Option<Touch>),
+    /// The same where the pair was apart: the contacts at both ends of the faces' overlap,
+    /// which strike at once.
+    Faces([Touch; 2]),
     /// A corner at an end of the other's face, or none on it: corner meets corner.
     Corners,
 }
@@ -524,28 +527,34 @@ impl Clearance {
             [one] => *one,
             [] => return Meeting::Corners,
             _ => {
-                // The held corner stays inside the face; the overlap's other end is the
-                // corner's block's next corner where that lies inside the face too, else the
-                // face's end beyond which it lies, on the face of the corner's block between
-                // the two corners.
-                let Some((h, (j, p))) =
-                    (pair.held).and_then(|h| Some((h, *on.iter().find(|(c, _)| *c != h)?)))
-                else {
+                // Each end of the faces' overlap is a corner of the corner's block where it
+                // lies inside the face, else the face's end beyond which it lies, on the face of
+                // the corner's block between its two corners on the face (`h` the other).
+                let end = |(j, p): (usize, &[f64; 2]), h: usize| {
+                    let x = x(p);
+                    if x > tie && x < length - tie {
+                        return contact([other, own], (j, e), *p, n);
+                    }
+                    let end = if x >= length - tie { (e + 1) % 4 } else { e };
+                    let m = if j == (h + 1) % 4 { h } else { j };
+                    contact([own, other], (end, m), face.corners[end], normal(corner, m))
+                };
+                // A held corner stays inside the face: the other end strikes.
+                if let Some(h) = pair.held {
+                    return match on.iter().find(|(c, _)| *c != h) {
+                        Some(&other_end) => Meeting::Flat(Some(end(other_end, h))),
+                        None => Meeting::Flat(None),
+                    };
+                }
+                let [a, b] = on.as_slice() else {
                     return Meeting::Flat(None);
                 };
-                let x = x(p);
-                if x > tie && x < length - tie {
-                    return Meeting::Flat(Some(contact([other, own], (j, e), *p, n)));
+                let ends = [end(*a, b.0), end(*b, a.0)];
+                // Both beyond one end of the face: the blocks touch corner on corner.
+                if ends[0].point == ends[1].point {
+                    return Meeting::Corners;
                 }
-                let end = if x >= length - tie { (e + 1) % 4 } else { e };
-                let m = if j == (h + 1) % 4 { h } else { j };
-                let point = face.corners[end];
-                return Meeting::Flat(Some(contact(
-                    [own, other],
-                    (end, m),
-                    point,
-                    normal(corner, m),
-                )));
+                return Meeting::Faces(ends);
             }
         };
         let x = x(point);
@@ -564,6 +573,22 @@ impl Clearance {
         } else {
             least_outside(&at_a, e, &at_b)
         }
+    }
+
+    /// How far the corner of `t` stands outside the face of `t` at tau (m), the blocks of pair
+    /// k placed as `pa` and `pb`.
+    fn end_gap(&self, k: usize, t: &Touch, (pa, pb): (&Placed, &Placed), tau: f64) -> f64 {
+        let (at_a, at_b) = (pa.at(tau), pb.at(tau));
+        let (face, corner) = match self.pieces[self.pairs[k].a].output == t.blocks[1] {
+            true => (&at_a, &at_b),
+            false => (&at_b, &at_a),
+        };
+        let (n, c, p) = (
+            normal(face, t.edge),
+            face.corners[t.edge],
+            corner.corners[t.corner],
+        );
+        (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1]
     }
 
     /// Pairs struck at an impact that stand apart by more than the tie tolerance at the end
@@ -646,6 +671,12 @@ impl Clearance {
                 let stays = self.pairs[k].struck && self.gap(k, pa, pb, 0.5 * x) <= self.tie_m(k);
                 let meeting = match self.touch(k, &at_a, &at_b, bodies) {
                     Meeting::Strikes(t) => Meeting::Strikes(Touch { stays, ..t }),
+                    Meeting::Faces(ends) => Meeting::Faces(ends.map(|t| Touch { stays, ..t })),
+                    // In contact, what has parted is the end that strikes, not the held corner.
+                    Meeting::Flat(Some(t)) => {
+                        let stays = self.end_gap(k, &t, (pa, pb), 0.5 * x) <= self.tie_m(k);
+                        Meeting::Flat(Some(Touch { stays, ..t }))
+                    }
                     other => other,
                 };
                 return Ok(Some((x, outputs, meeting)));

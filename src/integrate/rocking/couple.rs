@@ -411,6 +411,26 @@ impl Couple {
         }
     }
 
+    /// The corner's acceleration away from the face (m/s2) at the start of the step on which the
+    /// sides move as `t` says (a fixed block's trajectory zero), the corner on the face with no
+    /// normal velocity there: the rate's derivative, J_1 theta_1'' + J_2 theta_2'' + n_x (u_1''
+    /// - u_2'') + n_y (lift_1'' - lift_2'') with what the arms' and the normal's own rates add.
+    pub(super) fn away(&self, t: &[Trajectory; 2]) -> f64 {
+        let mut at = Geometry::default();
+        at.place(self, t, 0);
+        at.place(self, t, 1);
+        let dv = |j: usize| t[0].v[j] - t[1].v[j];
+        let dl = |j: usize| t[0].lift_v[j] - t[1].lift_v[j];
+        (0..=1)
+            .map(|j| {
+                at.arm[0][j] * t[0].omega[1 - j]
+                    + at.arm[1][j] * t[1].omega[1 - j]
+                    + at.n[0][j] * dv(1 - j)
+                    + at.n[1][j] * dl(1 - j)
+            })
+            .sum()
+    }
+
     /// A seated body b's normal forces at its base's corners (left, right) with the push on it:
     /// its moments about the centroid, b (N_R - N_L) + h_c F + r x Q = 0, Q = s_b P n at r
     /// from the centroid (the seated trajectory's N_R - N_L = -h_c F / b, and the push's).

@@ -392,3 +392,95 @@ fn enumerate_leaning(
     }
     out
 }
+
+/// Two slabs in flight, the top right corner of A (0.3 x 1.2 m, its right corner lifted by l_a)
+/// on the left face of B (0.2 x 1.6 m, its left corner lifted by l_b), each turning and moving
+/// at its own rates: the acceleration at which the corner leaves the face (`Couple::away`, what
+/// decides which ends of two faces lying on each other stay pressed) is the second derivative of
+/// the corner's distance from the face, written here in closed form from each body's trajectory
+/// alone (to 1e-12 of g), and zero on the couple's own motion, whose push keeps the corner on the
+/// face (to 1e-12 of g).
+#[test]
+fn the_acceleration_at_which_a_corner_leaves_a_face_is_the_distances_second_derivative() {
+    use super::modes::{trajectory, Equations};
+    let g = 9.81;
+    let a = RockingBody::rectangle("A", 0.3, 1.2, 1350.0, 0.4, g);
+    let b = RockingBody::rectangle("B", 0.2, 1.6, 800.0, 0.5, g);
+    let inputs = test_inputs_at(0.4);
+    for (theta_a, theta_b, spin) in [(0.3, -0.1, 1.0), (0.05, 0.05, -2.0), (-0.2, 0.4, 0.5)] {
+        let (l_a, l_b, u_a) = (0.01, 0.03, 0.02);
+        let corner = [
+            0.3 + u_a + 1.2 * f64::sin(theta_a),
+            l_a + 1.2 * f64::cos(theta_a),
+        ];
+        let x_b = corner[0] - (corner[1] - l_b) / f64::cos(theta_b) * f64::sin(theta_b);
+        let states = [
+            State {
+                theta: theta_a,
+                omega: 0.7 * spin,
+                u: u_a,
+                v: 0.4,
+                lift: l_a,
+                lift_v: 0.2,
+            },
+            State {
+                theta: theta_b,
+                omega: -0.3 * spin,
+                u: 0.0,
+                v: -0.5,
+                lift: l_b,
+                lift_v: 0.1 * spin,
+            },
+        ];
+        let touch = Touch {
+            blocks: [0, 1],
+            sides: [Side::Body(0, [0.15, 0.0]), Side::Body(1, [x_b + 0.1, 0.0])],
+            point: corner,
+            normal: [-f64::cos(theta_b), f64::sin(theta_b)],
+            tie_m_s: 1e-12,
+            pair: 0,
+            corner: 2,
+            edge: 3,
+            stays: false,
+        };
+        let homes = [[0.3, 0.0], [x_b, 0.0]];
+        let placed = [Some(&states[0]), Some(&states[1])];
+        let couple = Couple::new(&touch, [Some(0), Some(1)], homes, placed, 1e-12).unwrap();
+        let modes = [Mode::Flight(Corner::Right), Mode::Flight(Corner::Left)];
+        let bodies = [&a, &b];
+        let alone =
+            [0, 1].map(|k| trajectory(bodies[k], Equations::Exact, modes[k], &states[k], &inputs));
+        // The distance -(C_x - x_B) cos theta_B + (C_y - y_B) sin theta_B, C the corner and
+        // (x_B, y_B) B's pivot, differentiated twice.
+        let [ta, tb] = &alone;
+        let (th_a, w_a, al_a) = (ta.theta[0], ta.omega[0], ta.omega[1]);
+        let (th_b, w_b, al_b) = (tb.theta[0], tb.omega[0], tb.omega[1]);
+        let (sa, ca) = th_a.sin_cos();
+        let (sb, cb) = th_b.sin_cos();
+        let d = [
+            0.3 + ta.u[0] + 1.2 * sa - x_b - tb.u[0],
+            ta.v[0] + 1.2 * ca * w_a - tb.v[0],
+            ta.v[1] + 1.2 * (ca * al_a - sa * w_a * w_a) - tb.v[1],
+        ];
+        let e = [
+            ta.lift[0] + 1.2 * ca - tb.lift[0],
+            ta.lift_v[0] - 1.2 * sa * w_a - tb.lift_v[0],
+            ta.lift_v[1] - 1.2 * (sa * al_a + ca * w_a * w_a) - tb.lift_v[1],
+        ];
+        let closed = -d[2] * cb
+            + 2.0 * d[1] * sb * w_b
+            + d[0] * (cb * w_b * w_b + sb * al_b)
+            + e[2] * sb
+            + 2.0 * e[1] * cb * w_b
+            + e[0] * (cb * al_b - sb * w_b * w_b);
+        let away = couple.away(&alone);
+        assert!((away - closed).abs() < 1e-12 * g, "{away} {closed}");
+        assert!(away.abs() > 1e-3 * g, "a case that shows nothing: {away}");
+        let motion = couple.motion(
+            [0, 1].map(|k| Member::Moves(bodies[k], modes[k], &states[k])),
+            &inputs,
+        );
+        let held = couple.away(&motion.bodies);
+        assert!(held.abs() < 1e-12 * g, "{held}");
+    }
+}

@@ -279,6 +279,15 @@ fn mode_after(after: &collision::After, mode: Mode, seated: bool) -> Result<Mode
     }
 }
 
+/// The sides of a couple just after an impact: each side's body (none for a fixed block),
+/// its pivot's home, its state and mode.
+struct Sides {
+    bodies: [Option<usize>; 2],
+    homes: [[f64; 2]; 2],
+    states: [State; 2],
+    modes: [Mode; 2],
+}
+
 /// How a blow on blocks in contact with others is taken.
 enum AtOnce {
     /// Every contact's impulse at once, the modes after it set.
@@ -981,21 +990,18 @@ impl<'a> Engine<'a> {
             }
             (Meeting::Corners, None) => "two corners meet".into(),
             (Meeting::Flat(_), None) => "a face comes down flat on a face".into(),
+            (Meeting::Faces(ends), _) => match self.lies_flat(ends, None, now)? {
+                None => return Ok(()),
+                Some(why) => why,
+            },
         };
         self.stops_meeting((a, b), why);
         Ok(())
     }
 
     /// The face beside the corner of body i's couple comes down flat on the face the corner
-    /// is on: the other end of the faces' overlap strikes (`t`) while the corner stays. Both
-    /// contacts take their impulses at once ([`collision::resolve_all`]: the strike's with the
-    /// wall's restitution, the corner's without, each free to open). Where the strike's
-    /// contact stays and the corner's opens (Housner's law between two blocks: the face rocks
-    /// on over its other end), the blocks turn on together on the new contact; where the strike
-    /// parts them there and the corner stays, on the old; where both open, they part. Where both
-    /// stay the faces lie on each other, which is not followed: the reason is returned, as it
-    /// is where the law has no outcome or two, or a column holds joints the impulse would pass
-    /// through; nothing has changed then.
+    /// is on: the other end of the faces' overlap strikes (`t`) while the corner stays
+    /// ([`Engine::lies_flat`]).
     fn flat(
         &mut self,
         i: usize,
@@ -1007,7 +1013,32 @@ impl<'a> Engine<'a> {
             stays: true,
             ..couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)))
         };
-        let [corner, face] = held.blocks.map(|b| self.layout.names[b].clone());
+        self.lies_flat([*t, held], Some(i), now)
+    }
+
+    /// A face comes down flat on a face, and the two ends of their overlap (`ends`) take their
+    /// impulses at once ([`collision::resolve_all`], each free to open). Where the pair was held
+    /// in contact (body i's couple), `ends[1]` is the corner it moved on, which takes no
+    /// restitution, while `ends[0]` strikes; where the pair was apart, both strike with the
+    /// wall's restitution. Where one end stays and the other opens (Housner's law between two
+    /// blocks: the face rocks on over one end), the blocks turn on together on the one that
+    /// stays; where both open, they part. Where both are left at rest on each other, which ends
+    /// press is decided from the accelerations ([`Engine::pressed_ends`]); where both do, the
+    /// faces lie on each other, which is not followed: the reason is returned, as it is where
+    /// the law has no outcome or two, or a column holds joints the impulse would pass through;
+    /// nothing has changed then.
+    fn lies_flat(
+        &mut self,
+        ends: [Touch; 2],
+        couple: Option<usize>,
+        now: &Inputs,
+    ) -> Result<Option<String>, SimulationError> {
+        let [t, held] = &ends;
+        // Each end's blocks' names, the corner's first.
+        let named = ends
+            .each_ref()
+            .map(|t| t.blocks.map(|b| self.layout.names[b].clone()));
+        let [corner, face] = named[usize::from(couple.is_some())].clone();
         let comes = format!("{corner}'s face comes down flat on {face}'s");
         let ids: Vec<(usize, [f64; 2])> = (held.sides.iter())
             .filter_map(|side| match *side {
@@ -1023,11 +1054,40 @@ impl<'a> Engine<'a> {
                 self.body(k).name
             )));
         }
+        if couple.is_none() {
+            // From apart, a block held in its column, or a body in contact with a third block,
+            // would take the impulses elsewhere too.
+            if let Some(k) = (0..2).find(|&k| held.sides[k] == Side::Held) {
+                return Ok(Some(format!(
+                    "{comes}, and {} stands held in its column under a joint that opened: an \
+                     impulse on it is not followed",
+                    named[1][k]
+                )));
+            }
+            let busy = ids.iter().find_map(|&(k, _)| {
+                let tr = &self.tracks[k];
+                let other =
+                    (tr.couple.map(|c| c.touch.blocks)).or(tr.leans.map(|l| l.touch.blocks));
+                other.map(|blocks| (k, blocks))
+            });
+            if let Some((k, blocks)) = busy {
+                let [c, f] = blocks.map(|b| self.layout.names[b].as_str());
+                return Ok(Some(format!(
+                    "{comes}, and {} is in contact with another block too ({c}'s corner on {f}'s \
+                     face): blocks in contact on two sides at once are not followed",
+                    self.body(k).name
+                )));
+            }
+        }
         let index = |side: Side| match side {
             Side::Body(k, _) => ids.iter().position(|&(j, _)| j == k),
             _ => None,
         };
-        let restitution = self.scene.wall.map_or(1.0, |(w, _)| w.restitution.to_f64());
+        // An end that has not parted since the pair's last impact rattles at the scale of
+        // round-off: it takes up what is left of its approach without a rebound.
+        let wall = self.scene.wall.map_or(1.0, |(w, _)| w.restitution.to_f64());
+        let restitution_of = |t: &Touch| if t.stays { 0.0 } else { wall };
+        let restitution = restitution_of(t);
         let links = [
             collision::Link {
                 sides: t.sides.map(index),
@@ -1039,7 +1099,14 @@ impl<'a> Engine<'a> {
             },
             collision::Link {
                 sides: held.sides.map(index),
-                contact: self.staying(&held).1,
+                contact: match couple {
+                    Some(_) => self.staying(held).1,
+                    None => collision::Contact {
+                        point: held.point,
+                        normal: held.normal,
+                        restitution: restitution_of(held),
+                    },
+                },
             },
         ];
         let bodies: Vec<collision::Turning> = (ids.iter())
@@ -1051,10 +1118,39 @@ impl<'a> Engine<'a> {
         };
         let sides_of = |l: &collision::Link| l.sides.map(|k| k.map(|j| &bodies[j]));
         let (_, speed, _) = collision::approach(sides_of(&links[1]), &links[1].contact);
-        let stays = [
+        let mut stays = [
             all.normal_m_s[0].1 <= t.tie_m_s,
-            all.normal_m_s[1].1 <= series::TIE * speed,
+            all.normal_m_s[1].1
+                <= match couple {
+                    Some(_) => series::TIE * speed,
+                    None => held.tie_m_s,
+                },
         ];
+        // Where both ends are left at rest on each other, the words saying so and that the
+        // faces turn apart at an end, for the end (or both) that opens all the same.
+        let mut at_rest = None;
+        if stays == [true, true] {
+            let after = links
+                .each_ref()
+                .map(|l| l.sides.map(|k| k.map(|j| all.after[j])));
+            match self.pressed_ends([t, held], after, now) {
+                Ok(Some(pressed)) if pressed != stays => {
+                    let impulses = match couple {
+                        Some(_) => format!(
+                            " (impulses {:.6e} and {:.6e} N s)",
+                            all.impulse_n_s[0], all.impulse_n_s[1]
+                        ),
+                        None => String::new(),
+                    };
+                    at_rest = Some(format!(
+                        "both ends of their contact at rest on it after the impact{impulses}"
+                    ));
+                    stays = pressed;
+                }
+                Ok(_) => {}
+                Err(why) => return Ok(Some(format!("{comes}, and {why}"))),
+            }
+        }
         if stays == [true, true] {
             // What the impact leaves of each body's base says which motion would follow: bases
             // that stay as they were, stuck, leave the blocks no motion (locked face on face); one
@@ -1068,6 +1164,9 @@ impl<'a> Engine<'a> {
                         (collision::Base::Seated { slips: true }, _) => "slides on its base",
                         (_, Ok(Mode::Rock(_))) if !seated => return None,
                         (_, Ok(Mode::Rock(_))) => "turns onto a corner",
+                        (_, Ok(Mode::Flight(_))) if tie_speed(self.body(k), after.lift_v) => {
+                            "rises off the ground at a tie's rate"
+                        }
                         (_, Ok(Mode::Flight(_))) => "leaves the ground",
                         (_, Ok(_)) => "slips at its pivot",
                         (_, Err(what)) => what,
@@ -1089,8 +1188,10 @@ impl<'a> Engine<'a> {
                 all.impulse_n_s[0], all.impulse_n_s[1]
             )));
         }
-        self.uncouple(i);
-        let [c, f] = t.blocks.map(|b| self.layout.names[b].clone());
+        if let Some(i) = couple {
+            self.uncouple(i);
+        }
+        let [c, f] = &named[0];
         let strikes = format!("{comes}, {c}'s corner striking {f}'s face at its other end");
         // Each side's velocities after, and the impact as one contact's.
         let one = |l: usize, loss_j: f64| {
@@ -1105,24 +1206,60 @@ impl<'a> Engine<'a> {
                 },
             )
         };
-        let strike = format!(
-            "{strikes} at {:.6e} m/s, parting at {:.6e} m/s (impulse {:.6e} N s)",
-            -all.normal_m_s[0].0, all.normal_m_s[0].1, all.impulse_n_s[0]
-        );
+        let blow = |e: usize| {
+            format!(
+                "at {:.6e} m/s, parting at {:.6e} m/s (impulse {:.6e} N s)",
+                -all.normal_m_s[e].0, all.normal_m_s[e].1, all.impulse_n_s[e]
+            )
+        };
+        let strike = format!("{strikes} {}", blow(0));
+        // From apart: where one end stays, they turn on together on it, the other leaving.
+        if let (None, Some(e)) = (couple, stays.iter().position(|&s| s)) {
+            let (turning, out) = one(e, all.loss_j);
+            let [c, f] = &named[1 - e];
+            let why = match &at_rest {
+                None => format!(
+                    "they stay in contact after the impact (coefficient of restitution {}), \
+                     {comes} and {c}'s corner leaves {f}'s face, its normal velocity {:.6e} m/s \
+                     before and {:.6e} m/s after (impulse {:.6e} N s)",
+                    restitution_of(&ends[e]),
+                    all.normal_m_s[1 - e].0,
+                    all.normal_m_s[1 - e].1,
+                    all.impulse_n_s[1 - e]
+                ),
+                Some(rest) => format!(
+                    "they stay in contact after the impact, {comes}, {rest}, and {c}'s corner \
+                     leaves {f}'s face as the faces turn apart there"
+                ),
+            };
+            return Ok(self.rests_against(&ends[e], &turning, &out, now, why, Through::Approach));
+        }
         if stays[0] {
             // The corner's contact took no impulse: the strike's is the whole impact.
             let (turning, out) = one(0, all.loss_j);
-            let why = format!(
-                "they stay in contact after the impact (coefficient of restitution \
-                 {restitution}), {comes} and {corner}'s corner leaves {face}'s face"
-            );
+            let why = match &at_rest {
+                None => format!(
+                    "they stay in contact after the impact (coefficient of restitution \
+                     {restitution}), {comes} and {corner}'s corner leaves {face}'s face"
+                ),
+                Some(rest) => format!(
+                    "they stay in contact after the impact, {comes}, {rest}, and {corner}'s \
+                     corner leaves {face}'s face as the faces turn apart there"
+                ),
+            };
             return Ok(self.rests_against(t, &turning, &out, now, why, Through::Approach));
         }
         if stays[1] {
             // The strike parts at once: the corner's contact carries the whole impact.
             let (turning, out) = one(1, all.loss_j);
-            let why = format!("they stay in contact as {strike}");
-            let stop = self.rests_against(&held, &turning, &out, now, why, Through::Blow);
+            let why = match &at_rest {
+                None => format!("they stay in contact as {strike}"),
+                Some(rest) => format!(
+                    "they stay in contact as {strike}, {rest}, and the faces turn apart at that \
+                     end"
+                ),
+            };
+            let stop = self.rests_against(held, &turning, &out, now, why, Through::Blow);
             if stop.is_none() {
                 self.clearance.strike(t.pair);
                 // The contact that stays counts the impact where it takes an impulse.
@@ -1133,14 +1270,32 @@ impl<'a> Engine<'a> {
             }
             return Ok(stop);
         }
-        let leaves = format!("{corner}'s corner leaves {face}'s face as {strikes}");
-        self.rec
-            .rocking_event(self.t, EventKind::Separation, &held.blocks, None, leaves);
+        let apart = match &at_rest {
+            None => String::new(),
+            Some(rest) => format!(", {rest}, and the faces turn apart from both ends"),
+        };
+        let mut what = match couple {
+            Some(_) => {
+                let leaves = format!("{corner}'s corner leaves {face}'s face as {strikes}{apart}");
+                self.rec
+                    .rocking_event(self.t, EventKind::Separation, &held.blocks, None, leaves);
+                strike
+            }
+            None => {
+                let [c1, f1] = &named[1];
+                let [(b0, a0), (b1, a1)] = [all.normal_m_s[0], all.normal_m_s[1]];
+                format!(
+                    "{comes} at the ends of their overlap, {c}'s corner on {f}'s face and {c1}'s \
+                     on {f1}'s, their normal velocities {b0:.6e} and {b1:.6e} m/s before and \
+                     {a0:.6e} and {a1:.6e} m/s after (impulses {:.6e} and {:.6e} N s){apart}",
+                    all.impulse_n_s[0], all.impulse_n_s[1]
+                )
+            }
+        };
         self.clearance.strike(t.pair);
         self.rec.energy.impact_loss_j += all.loss_j;
         self.rec.impacts += 1;
         self.struck(t);
-        let mut what = strike;
         let mut omega = None;
         let mut decide = Vec::new();
         for (j, &(k, _)) in ids.iter().enumerate() {
@@ -1162,6 +1317,92 @@ impl<'a> Engine<'a> {
             self.decide(k, now, false)?;
         }
         Ok(None)
+    }
+
+    /// Which ends of two faces lying on each other stay pressed just after an impact that left
+    /// both at rest on each other (`ends`: the strike's contact, then the old corner's; `after`:
+    /// the velocities of each end's sides), where every body flies from it: the contact problem
+    /// at the level of accelerations. For frictionless contacts between bodies in flight, the
+    /// matrix that takes the two pushes to the ends' accelerations away from the faces is
+    /// positive definite (each body's mass matrix is, and two points of one face constrain
+    /// independently), so exactly one of the four ways holds: both ends pressing; one pressing
+    /// (its push >= 0, the couple's motion on it alone), the other's acceleration away
+    /// positive; none, both accelerations positive with the bodies alone. The last three are
+    /// checked; where none holds, both ends press. None where a body stays on the ground, or
+    /// a push would turn neither body: not decided here.
+    fn pressed_ends(
+        &self,
+        ends: [&Touch; 2],
+        after: [[Option<collision::After>; 2]; 2],
+        now: &Inputs,
+    ) -> Result<Option<[bool; 2]>, String> {
+        let mut sides = Vec::with_capacity(2);
+        for (end, after) in ends.iter().zip(&after) {
+            let Ok(s) = self.sides_after(end, after, Through::Approach) else {
+                return Ok(None);
+            };
+            // Every body off the ground, rising faster than round-off (a rise at a tie's rate
+            // leaves the pivot on the ground to the decisions of its couple).
+            let flies = |k: usize| match (s.bodies[k], s.modes[k]) {
+                (Some(i), Mode::Flight(_)) => !tie_speed(self.body(i), s.states[k].lift_v),
+                _ => false,
+            };
+            if !(flies(0) && flies(1)) {
+                return Ok(None);
+            }
+            sides.push(s);
+        }
+        let body_of = |s: &Sides, k: usize| self.body(s.bodies[k].expect("a body flies"));
+        let size = (0..2)
+            .map(|k| body_of(&sides[0], k).size_m())
+            .fold(0.0, f64::max);
+        let mut couples = Vec::with_capacity(2);
+        for (end, s) in ends.iter().zip(&sides) {
+            let placed = s.states.each_ref().map(Some);
+            let Some(c) = Couple::new(end, s.bodies, s.homes, placed, series::TIE * size) else {
+                return Ok(None);
+            };
+            couples.push(c);
+        }
+        let first = body_of(&sides[0], 0);
+        let tie = series::TIE * first.g_m_s2;
+        let alone = |s: &Sides| {
+            [0, 1].map(|k| {
+                modes::trajectory(
+                    body_of(s, k),
+                    Equations::Exact,
+                    s.modes[k],
+                    &s.states[k],
+                    now,
+                )
+            })
+        };
+        let apart = (0..2).all(|e| couples[e].away(&alone(&sides[e])) > tie);
+        let mut only = [false; 2];
+        for e in 0..2 {
+            let (s, other) = (&sides[e], &sides[1 - e]);
+            let members = [0, 1].map(|k| Member::Moves(body_of(s, k), s.modes[k], &s.states[k]));
+            let motion = couples[e].motion(members, now);
+            let presses =
+                series::sign_after(&motion.push, Scales::of(first).force, first.time_scale_s())
+                    >= 0;
+            // The bodies' trajectories in the other couple's order (its corner's body first).
+            let order = other.bodies.map(|b| usize::from(s.bodies[0] != b));
+            let t = order.map(|p| motion.bodies[p].clone());
+            only[e] = presses && couples[1 - e].away(&t) > tie;
+        }
+        match (apart, only) {
+            (true, [false, false]) => Ok(Some([false, false])),
+            (false, [true, false]) => Ok(Some([true, false])),
+            (false, [false, true]) => Ok(Some([false, true])),
+            (false, [false, false]) => Ok(Some([true, true])),
+            _ => Err(format!(
+                "both ends of their contact are at rest on it after the impact, and more than one \
+                 way of their pushes holds (apart: {apart}, pressing at the strike alone: {}, at \
+                 the old corner alone: {}), which bodies in flight cannot have",
+                only[0], only[1]
+            )),
+        }
     }
 
     /// Counts an impact at `t` for each of its blocks that moves.
@@ -2349,31 +2590,23 @@ impl<'a> Engine<'a> {
         }
     }
 
-    /// Where the blocks of an impact `t` stay in contact (`out`; `stays` says how), each body
-    /// rocking on the pivot it had (or a seated one, or one landing on its base `through` it,
-    /// on the corner the impact turns it on), stuck or slipping: two bodies move on together,
-    /// or one slides along a fixed block's face, its pivot slipping ([`couple`]), in the one
-    /// mode of their pivots the contact conditions allow; any other contact that stays stops
-    /// the run, and the reason is returned.
-    fn couples(
-        &mut self,
+    /// The sides of a couple on `t` where an impact leaves the blocks there with the velocities
+    /// `after` (each body's, `through` what): each body's mode just after it (on the pivot it
+    /// had, or a seated one, or one landing on its base, on the corner the impact turns it on;
+    /// stuck or slipping; or in flight), its state in that mode and its pivot's home; else what
+    /// a body does instead, in words.
+    fn sides_after(
+        &self,
         t: &Touch,
-        out: &collision::Outcome,
-        now: &Inputs,
-        stays: String,
+        after: &[Option<collision::After>; 2],
         through: Through,
-    ) -> Option<String> {
-        if self.scene.equations != Equations::Exact {
-            return Some(format!(
-                "{stays}, and the linearised equations do not follow two blocks in contact"
-            ));
-        }
+    ) -> Result<Sides, String> {
         let mut bodies = [None; 2];
         let mut homes = [t.point; 2];
         let mut states = [State::default(); 2];
         let mut modes = [Mode::Rest; 2];
         for k in 0..2 {
-            let (i, origin, a) = match (t.sides[k], out.after[k]) {
+            let (i, origin, a) = match (t.sides[k], after[k]) {
                 (Side::Body(i, origin), Some(a)) => (i, origin, a),
                 (Side::Fixed, _) => continue,
                 _ => unreachable!("a side of a contact that moves has its velocities"),
@@ -2384,13 +2617,7 @@ impl<'a> Engine<'a> {
                 (collision::Base::Seated { slips: true }, _) => Mode::Slide(Slip::of_sign(a.v)),
                 (collision::Base::Seated { slips: false }, _) => Mode::Rest,
                 (_, Ok(mode)) => mode,
-                (_, Err(what)) => {
-                    return Some(format!(
-                        "{stays}, and {} {what}: blocks in contact are followed only while each \
-                         body is seated, rocks on a pivot or flies",
-                        self.body(i).name
-                    ))
-                }
+                (_, Err(what)) => return Err(format!("{} {what}", self.body(i).name)),
             };
             // A seated body's pivot is the corner the push would turn it on.
             let push_x = if k == 0 { t.normal[0] } else { -t.normal[0] };
@@ -2414,6 +2641,47 @@ impl<'a> Engine<'a> {
             };
             modes[k] = mode;
         }
+        Ok(Sides {
+            bodies,
+            homes,
+            states,
+            modes,
+        })
+    }
+
+    /// Where the blocks of an impact `t` stay in contact (`out`; `stays` says how), each body
+    /// rocking on the pivot it had (or a seated one, or one landing on its base `through` it,
+    /// on the corner the impact turns it on), stuck or slipping: two bodies move on together,
+    /// or one slides along a fixed block's face, its pivot slipping ([`couple`]), in the one
+    /// mode of their pivots the contact conditions allow; any other contact that stays stops
+    /// the run, and the reason is returned.
+    fn couples(
+        &mut self,
+        t: &Touch,
+        out: &collision::Outcome,
+        now: &Inputs,
+        stays: String,
+        through: Through,
+    ) -> Option<String> {
+        if self.scene.equations != Equations::Exact {
+            return Some(format!(
+                "{stays}, and the linearised equations do not follow two blocks in contact"
+            ));
+        }
+        let Sides {
+            bodies,
+            homes,
+            mut states,
+            modes,
+        } = match self.sides_after(t, &out.after, through) {
+            Ok(sides) => sides,
+            Err(what) => {
+                return Some(format!(
+                    "{stays}, and {what}: blocks in contact are followed only while each body is \
+                     seated, rocks on a pivot or flies"
+                ))
+            }
+        };
         let size = bodies.map(|b| b.map_or(0.0, |i| self.body(i).size_m()));
         let tie_m = series::TIE * size[0].max(size[1]);
         let placed = [0, 1].map(|k| bodies[k].map(|_| &states[k]));

@@ -206,6 +206,55 @@ fn three_blocks(friction: f64, restitution: f64, width: f64, gap: f64) -> Model 
     )
 }
 
+/// Faces that meet from apart, or come down flat in a couple, again and again at shrinking
+/// speeds: where the impacts' speeds accumulate to round-off the run stops, naming the faces
+/// lying on each other, instead of going on at one instant or in bounces of round-off. A slab
+/// beside a block (friction 0.6, no restitution, 0.4 g at 2.5 Hz) whose face meets the block's
+/// as it lands from a flight, each impact throwing it up again more slowly (10,001 events at
+/// 3.66253 s, an error, before the slab's rise at a tie's rate was read as a rise); a slab between
+/// a wall and a squat block (restitution 0.8) whose face, in a couple, comes down on the wall's
+/// again and again at 1e-10 m/s (a run of 22,000 events in 1e-4 s that did not end, before an end
+/// that has not parted by more than round-off since the last impact took it up without a
+/// rebound).
+#[test]
+fn faces_that_meet_at_speeds_of_round_off_stop_the_run() {
+    let r = run(
+        &slab_and_block(0.6, 0.0, (1.0, 1.2, 0.05)),
+        (0.4, 2.5, 0.0),
+        4.0,
+    );
+    assert!(
+        meets(
+            &r,
+            "S's face comes down flat on W's, and both ends of their contact stay on it"
+        ) && meets(&r, "S rises off the ground at a tie's rate"),
+        "{:?}",
+        r.summary.warnings
+    );
+    assert!(
+        (r.summary.duration_s - 3.66253).abs() < 1e-5,
+        "{}",
+        r.summary.duration_s
+    );
+    assert!(r.events.len() < 1_000, "{}", r.events.len());
+    balances(&r);
+    let r = run(&three_blocks(0.5, 0.8, 0.6, 0.02), (0.45, 2.0, 270.0), 15.0);
+    assert!(
+        r.summary.duration_s < 15.0 && r.events.len() < 10_000,
+        "{}",
+        r.events.len()
+    );
+    assert!(
+        r.summary
+            .warnings
+            .iter()
+            .any(|w| matches!(w, Warning::BlocksMeet { .. })),
+        "{:?}",
+        r.summary.warnings
+    );
+    balances(&r);
+}
+
 /// Two landings at one instant in a contact: a block landing on its base as the slab whose
 /// corner rests on its face comes down on a corner from a flight (W 1.2 m, 0.8 friction); the
 /// slab landing as the block it touches turns a round-off from its seat (W 0.9 m); the slab a
