@@ -498,6 +498,22 @@ pub enum SimulationError {
         /// Which limit, and what to do about it.
         limit: &'static str,
     },
+    /// Steps of a rocking run crowded in, each far shorter than the bodies' motion, until the
+    /// backstop: events at the scale of round-off that would go on for ever.
+    #[error(
+        "at t = {time_s} s: {count} steps in a row, each shorter than {step_s:.3e} s (a \
+         millionth of the bodies' shortest time scale), the most allowed: events that crowd in \
+         this closely (blocks rattling at the scale of round-off) are beyond the rocking model; \
+         please report the wall and the motion"
+    )]
+    EventsCrowd {
+        /// Time (s).
+        time_s: f64,
+        /// Steps in a row that short.
+        count: usize,
+        /// The longest step that counts (s).
+        step_s: f64,
+    },
     /// A chain of impacts came back to the same velocities again and again.
     #[error(
         "at t = {time_s} s: the impact chain among {blocks} came back to the same velocities every \

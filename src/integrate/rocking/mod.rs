@@ -64,8 +64,15 @@ use lean::Lean;
 use modes::{Corner, Guard, Inputs, Mode, Scales, Slip, State, Trajectory};
 use series::Coeffs;
 
-/// Stops at one instant (events that do not move the time) before a run is declared stuck.
+/// Stops at one instant (events that do not move the time) before a run is declared stuck; the
+/// same number of stops in a row that each move it by less than [`CRAWL`] of the bodies'
+/// shortest time scale is a run that crawls (events crowding in at the scale of round-off, which
+/// would go on for ever, each a history row).
 const STALL_STOPS: usize = 10_000;
+
+/// See [`STALL_STOPS`]: well above the steps of any series of events the model sums or follows
+/// (a series of landings is summed in closed form once a rise is below 1e-9 of alpha).
+const CRAWL: f64 = 1e-6;
 
 /// A landing after which the body would rise by less than this fraction of alpha starts a series
 /// of landings that is summed in closed form (Zeno). It must lie well above [`series::TIE`]: an
@@ -632,7 +639,11 @@ impl<'a> Engine<'a> {
         let dt = self.scene.settings.output_dt_s;
         // A history row at each stop that is an event or an output time (and at the start).
         let mut row = true;
-        let mut stalled = 0usize;
+        let (mut stalled, mut crawled) = (0usize, 0usize);
+        let crawl_s = CRAWL
+            * (self.scene.bodies.iter())
+                .map(RockingBody::time_scale_s)
+                .fold(f64::INFINITY, f64::min);
         while self.t < self.t_end {
             let (seg, inputs) = self.inputs_at(self.t);
             let limit = seg.t1.min(self.t_end);
@@ -689,6 +700,18 @@ impl<'a> Engine<'a> {
                                 beyond the rocking model; please report the body and the motion",
                     });
                 }
+            }
+            crawled = if t_new - self.t < crawl_s {
+                crawled + 1
+            } else {
+                0
+            };
+            if crawled > STALL_STOPS {
+                return Err(SimulationError::EventsCrowd {
+                    time_s: self.t,
+                    count: crawled,
+                    step_s: crawl_s,
+                });
             }
             // History rows inside the step, from the series (dense output).
             while self.next_out < t_new {
