@@ -1041,9 +1041,9 @@ impl<'a> Engine<'a> {
 
     /// A face comes down flat on a face, and the two ends of their overlap (`ends`) take their
     /// impulses at once ([`collision::resolve_all`], each free to open). Where the pair was held
-    /// in contact (body i's couple), `ends[1]` is the corner it moved on, which takes no
-    /// restitution, while `ends[0]` strikes; where the pair was apart, both strike with the
-    /// wall's restitution. Where one end stays and the other opens (Housner's law between two
+    /// in contact (`couple`: a body of their couple), `ends[1]` is the corner it moved on, which
+    /// takes no restitution, while `ends[0]` strikes; where the pair was apart, both strike with
+    /// the wall's restitution (none for an end that has not parted since the last impact). Where one end stays and the other opens (Housner's law between two
     /// blocks: the face rocks on over one end), the blocks turn on together on the one that
     /// stays; where both open, they part. Where both are left at rest on each other, which ends
     /// press is decided from the accelerations ([`Engine::pressed_ends`]); where both do, the
