@@ -1087,19 +1087,8 @@ impl<'a> Engine<'a> {
                     named[1][k]
                 )));
             }
-            let busy = ids.iter().find_map(|&(k, _)| {
-                let tr = &self.tracks[k];
-                let other =
-                    (tr.couple.map(|c| c.touch.blocks)).or(tr.leans.map(|l| l.touch.blocks));
-                other.map(|blocks| (k, blocks))
-            });
-            if let Some((k, blocks)) = busy {
-                let [c, f] = blocks.map(|b| self.layout.names[b].as_str());
-                return Ok(Some(format!(
-                    "{comes}, and {} is in contact with another block too ({c}'s corner on {f}'s \
-                     face): blocks in contact on two sides at once are not followed",
-                    self.body(k).name
-                )));
+            if let Some(busy) = self.in_contact_elsewhere(&held.sides) {
+                return Ok(Some(format!("{comes}, and {busy}")));
             }
         }
         let index = |side: Side| match side {
@@ -1428,6 +1417,26 @@ impl<'a> Engine<'a> {
         }
     }
 
+    /// Where a body on `sides` is in contact with a third block (turning with it or resting
+    /// against it), why the exact model does not follow the contact of `sides` besides.
+    fn in_contact_elsewhere(&self, sides: &[Side; 2]) -> Option<String> {
+        let (k, blocks) = sides.iter().find_map(|side| match *side {
+            Side::Body(k, _) => {
+                let tr = &self.tracks[k];
+                let other =
+                    (tr.couple.map(|c| c.touch.blocks)).or(tr.leans.map(|l| l.touch.blocks));
+                other.map(|blocks| (k, blocks))
+            }
+            _ => None,
+        })?;
+        let [corner, face] = blocks.map(|b| self.layout.names[b].as_str());
+        Some(format!(
+            "{} is in contact with another block too ({corner}'s corner on {face}'s face): blocks \
+             in contact on two sides at once are not followed",
+            self.body(k).name
+        ))
+    }
+
     /// Counts an impact at `t` for each of its blocks that moves.
     fn struck(&mut self, t: &Touch) {
         for (side, &block) in t.sides.iter().zip(&t.blocks) {
@@ -1749,25 +1758,8 @@ impl<'a> Engine<'a> {
         // The impulse elsewhere may have left a body of this contact in contact with a third
         // block: a chain of three in contact is beyond the model (and taking each contact in
         // turn would not end).
-        let busy = touch.sides.iter().find_map(|side| match side {
-            Side::Body(k, _) => {
-                let tr = &self.tracks[*k];
-                let other = tr
-                    .couple
-                    .map(|c| c.touch.blocks)
-                    .or(tr.leans.map(|l| l.touch.blocks));
-                other.map(|blocks| (*k, blocks))
-            }
-            _ => None,
-        });
-        if let Some((k, blocks)) = busy {
-            let [corner, face] = blocks.map(|b| self.layout.names[b].as_str());
-            let why = format!(
-                "they stay in contact as {cause}, and {} is in contact with another block too \
-                 ({corner}'s corner on {face}'s face): blocks in contact on two sides at once \
-                 are not followed",
-                self.body(k).name
-            );
+        if let Some(busy) = self.in_contact_elsewhere(&touch.sides) {
+            let why = format!("they stay in contact as {cause}, and {busy}");
             self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
             return Ok(());
         }
