@@ -239,9 +239,9 @@ impl Recorder {
 
     /// Logs an event of a rocking body made of `blocks` (the lowest first, whose joint it
     /// moves on): its angular velocity before and after, and the mode it goes on in. Where two
-    /// blocks meet or part (`BlocksMeet`, `BlocksImpact`, `Separation`), the joint is the
-    /// vertical one between them, if they face each other across one, not a joint either moves
-    /// on.
+    /// blocks meet, part or move their contact (`BlocksMeet`, `BlocksImpact`, `Separation`,
+    /// `Touch`), the joint is the vertical one between them, if they face each other across
+    /// one, not a joint either moves on.
     pub fn rocking_event(
         &mut self,
         time_s: f64,
@@ -253,7 +253,10 @@ impl Recorder {
         if self.log_events {
             let joint = if matches!(
                 kind,
-                EventKind::BlocksMeet | EventKind::BlocksImpact | EventKind::Separation
+                EventKind::BlocksMeet
+                    | EventKind::BlocksImpact
+                    | EventKind::Separation
+                    | EventKind::Touch
             ) {
                 self.vertical
                     .iter()

@@ -58,6 +58,18 @@ struct Pair {
     /// The pair's bodies turn in contact (`couple`), this corner of one block on the edge of
     /// the other: the corner is watched along the edge, not across it.
     held: Option<usize>,
+    /// The pair's faces lie on each other (`lying`): each end of their overlap is watched
+    /// along the face it is on, not across it.
+    lies: Option<Lies>,
+}
+
+/// Two faces lying on each other: the edge of each block that lies on the other's (`a`'s,
+/// then `b`'s), and the ends of their overlap, each a corner of one block (true: of `b`; its
+/// index) on the other's edge.
+#[derive(Clone, Copy)]
+struct Lies {
+    edges: [usize; 2],
+    ends: [(bool, usize); 2],
 }
 
 /// Where two blocks meet: the instant within the step, their outputs and how.
@@ -278,6 +290,7 @@ impl Clearance {
                         struck: false,
                         leaning: false,
                         held: None,
+                        lies: None,
                     });
                 }
             }
@@ -400,6 +413,29 @@ impl Clearance {
             else {
                 continue;
             };
+            let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
+            let mut consider = |g: &Coeffs| {
+                let g = if from > 0.0 {
+                    series::shifted(g, from)
+                } else {
+                    *g
+                };
+                if let Some(x) = series::first_fall(&g, scale, ts, h - from) {
+                    if best.is_none_or(|(b, _)| from + x < b) {
+                        best = Some((from + x, k));
+                    }
+                }
+            };
+            if let Some(lies) = &pair.lies {
+                // Faces on each other: where an end of the overlap reaches an end of the face
+                // it is on.
+                for end in lies.ends {
+                    for x in self.along_ends(pair, lies, end, pa, pb) {
+                        consider(&x);
+                    }
+                }
+                continue;
+            }
             let (of_b, e) = pair.edge;
             let (own, other) = if of_b { (pb, pa) } else { (pa, pb) };
             // A corner held on the edge stays on the edge's line: where it reaches either end.
@@ -415,21 +451,33 @@ impl Clearance {
                 .filter(|(c, _)| pair.held != Some(*c))
                 .map(|(_, g)| g)
                 .chain(ends.iter().flatten());
-            let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
             for g in gaps {
-                let g = if from > 0.0 {
-                    series::shifted(g, from)
-                } else {
-                    *g
-                };
-                if let Some(x) = series::first_fall(&g, scale, ts, h - from) {
-                    if best.is_none_or(|(b, _)| from + x < b) {
-                        best = Some((from + x, k));
-                    }
-                }
+                consider(g);
             }
         }
         best
+    }
+
+    /// How far the corner of an end of lying faces (`end`) lies along the face it is on from
+    /// that face's first corner, and from its second: both stay positive while the end lies
+    /// on the face.
+    fn along_ends(
+        &self,
+        pair: &Pair,
+        lies: &Lies,
+        (of_b, j): (bool, usize),
+        pa: &Placed,
+        pb: &Placed,
+    ) -> [Coeffs; 2] {
+        let (corner, face, piece) = match of_b {
+            true => (pb, pa, pair.a),
+            false => (pa, pb, pair.b),
+        };
+        let e = lies.edges[usize::from(!of_b)];
+        let [p0, p1] = [e, (e + 1) % 4].map(|c| self.pieces[piece].corners[c]);
+        let length = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
+        let x = along(face, e, corner, j);
+        [x, series::plus(&series::scaled(&x, -1.0), length)]
     }
 
     /// An edge of either block of pair k with every corner of the other block outside it
@@ -467,6 +515,96 @@ impl Clearance {
             .map(|(edge, _)| edge)
     }
 
+    /// What moves piece p.
+    fn side(&self, p: usize) -> Side {
+        let piece = &self.pieces[p];
+        match piece.body {
+            Some((i, frame)) => Side::Body(
+                i,
+                [
+                    piece.corners[0][0] - frame[0][0],
+                    piece.corners[0][1] - frame[0][1],
+                ],
+            ),
+            None if piece.fixed => Side::Fixed,
+            None => Side::Held,
+        }
+    }
+
+    /// The contact of pair k where corner `j` of piece `of` lies on the face (`edge`) of piece
+    /// `on`, at `point`, the face's normal `normal`.
+    fn contact(
+        &self,
+        k: usize,
+        [of, on]: [usize; 2],
+        (j, edge): (usize, usize),
+        point: [f64; 2],
+        normal: [f64; 2],
+        bodies: &[RockingBody],
+    ) -> Touch {
+        Touch {
+            pair: k,
+            corner: j,
+            edge,
+            stays: false,
+            blocks: [self.pieces[of].output, self.pieces[on].output],
+            sides: [self.side(of), self.side(on)],
+            point,
+            normal,
+            tie_m_s: self.tie_m(k) / self.time_scale_s(k, bodies),
+        }
+    }
+
+    /// Where an end of pair k's lying faces reaches an end of the face it is on, the blocks
+    /// `at_a` and `at_b`: that end passes to the face's corner there, on the other block's face
+    /// (the faces slide along each other), and the two ends are returned; where the new end is
+    /// the other end's corner, the overlap is gone, and the faces slide off each other corner
+    /// on corner.
+    fn slides(&self, k: usize, at_a: &At, at_b: &At, bodies: &[RockingBody]) -> Meeting {
+        let pair = &self.pairs[k];
+        let lies = pair.lies.expect("lying faces");
+        let piece = |of_b: bool| if of_b { pair.b } else { pair.a };
+        // The end nearest an end of its face, and the corner of the face there.
+        let mut nearest = (f64::INFINITY, 0, (false, 0));
+        for (n, &(of_b, j)) in lies.ends.iter().enumerate() {
+            let (corner, face) = if of_b { (at_b, at_a) } else { (at_a, at_b) };
+            let e = lies.edges[usize::from(!of_b)];
+            let (c0, c1, p) = (
+                face.corners[e],
+                face.corners[(e + 1) % 4],
+                corner.corners[j],
+            );
+            let d = [c1[0] - c0[0], c1[1] - c0[1]];
+            let length = d[0].hypot(d[1]);
+            let x = ((p[0] - c0[0]) * d[0] + (p[1] - c0[1]) * d[1]) / length;
+            for (gap, c) in [(x, e), (length - x, (e + 1) % 4)] {
+                if gap.abs() < nearest.0 {
+                    nearest = (gap.abs(), n, (!of_b, c));
+                }
+            }
+        }
+        let (_, n, new) = nearest;
+        let mut ends = lies.ends;
+        ends[n] = new;
+        if ends[0] == ends[1] {
+            return Meeting::Corners;
+        }
+        Meeting::Faces(ends.map(|(of_b, j)| {
+            let (corner, face) = if of_b { (at_b, at_a) } else { (at_a, at_b) };
+            let e = lies.edges[usize::from(!of_b)];
+            let pieces = [piece(of_b), piece(!of_b)];
+            let t = self.contact(
+                k,
+                pieces,
+                (j, e),
+                corner.corners[j],
+                normal(face, e),
+                bodies,
+            );
+            Touch { stays: true, ..t }
+        }))
+    }
+
     /// How pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on
     /// the edge that kept them apart, strictly inside that edge; else two corners on it (a
     /// face on a face), or the corner at an end of the edge (on a corner). Where a face comes
@@ -496,33 +634,8 @@ impl Clearance {
             .filter(|(_, p)| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1] <= tie)
             .collect();
         let x = |p: &[f64; 2]| ((p[0] - c0[0]) * along[0] + (p[1] - c0[1]) * along[1]) / length;
-        let side = |p: usize| {
-            let piece = &self.pieces[p];
-            match piece.body {
-                Some((i, frame)) => Side::Body(
-                    i,
-                    [
-                        piece.corners[0][0] - frame[0][0],
-                        piece.corners[0][1] - frame[0][1],
-                    ],
-                ),
-                None if piece.fixed => Side::Fixed,
-                None => Side::Held,
-            }
-        };
-        // The corner `j` of piece `of` on the face (`edge`) of piece `on`, whose normal is
-        // `normal`.
-        let contact = |[of, on]: [usize; 2], (j, edge), point, normal| Touch {
-            pair: k,
-            corner: j,
-            edge,
-            stays: false,
-            blocks: [self.pieces[of].output, self.pieces[on].output],
-            sides: [side(of), side(on)],
-            point,
-            normal,
-            tie_m_s: tie / self.time_scale_s(k, bodies),
-        };
+        let contact =
+            |pieces, at, point, normal| self.contact(k, pieces, at, point, normal, bodies);
         let (j, point) = match on.as_slice() {
             [one] => *one,
             [] => return Meeting::Corners,
@@ -620,6 +733,34 @@ impl Clearance {
         self.pairs[pair].struck = true;
     }
 
+    /// The faces of `pair` lie on each other, the ends of their overlap the contacts `ends`
+    /// (each a corner of one block on the other's face), or (none) they no longer do: from the
+    /// face of the first end they must part before they may strike again.
+    pub(super) fn lie(&mut self, pair: usize, ends: Option<&[Touch; 2]>) {
+        let b = self.pieces[self.pairs[pair].b].output;
+        self.pairs[pair].struck = true;
+        let Some(ends) = ends else {
+            self.pairs[pair].lies = None;
+            return;
+        };
+        let [first, second] = ends;
+        self.pairs[pair].edge = (first.blocks[1] == b, first.edge);
+        // Each block's edge on the other: the edge of a face an end lies on, or, where both
+        // ends are corners of one block, the edge between them.
+        let mut edges = [0; 2];
+        for t in ends {
+            edges[usize::from(t.blocks[1] == b)] = t.edge;
+        }
+        if first.blocks == second.blocks {
+            let (j0, j1) = (first.corner, second.corner);
+            edges[usize::from(first.blocks[0] == b)] = if j1 == (j0 + 1) % 4 { j0 } else { j1 };
+        }
+        self.pairs[pair].lies = Some(Lies {
+            edges,
+            ends: ends.map(|t| (t.blocks[0] == b, t.corner)),
+        });
+    }
+
     /// The blocks of `pair` stay in contact, one leaning on the other (`leaning`), or their
     /// contact has just ended: from their touching edge they must part before they may strike
     /// again.
@@ -656,6 +797,10 @@ impl Clearance {
                 return Ok(None);
             };
             let (at_a, at_b) = (pa.at(x), pb.at(x));
+            if self.pairs[k].lies.is_some() {
+                let outputs = (self.pieces[a].output, self.pieces[b].output);
+                return Ok(Some((x, outputs, self.slides(k, &at_a, &at_b, bodies))));
+            }
             let (mut edge, margin) = widest(&at_a, &at_b);
             // A pair in contact (`held`) parts only as the engine decides.
             let touches = margin <= self.tie_m(k);

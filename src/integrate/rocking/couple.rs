@@ -87,7 +87,7 @@ struct Geometry {
 
 impl Geometry {
     /// Order j, the rotations and the pivots' displacements known to order j.
-    fn place(&mut self, couple: &Couple, t: &[Trajectory; 2], j: usize) {
+    fn place(&mut self, couple: &Couple, t: [&Trajectory; 2], j: usize) {
         for (k, body) in t.iter().enumerate() {
             sin_cos_at(&body.theta, &mut self.sin[k], &mut self.cos[k], j);
         }
@@ -140,13 +140,13 @@ const UNMOVED: State = State {
     lift_v: 0.0,
 };
 
-/// A body's accelerations at one order of the series, affine in the push there: theta'' =
-/// a.0 + a.1 P, u'' = p.0 + p.1 P and, in flight, lift'' = l.0 + l.1 P.
+/// A body's accelerations at one order of the series, affine in the pushes there: theta'' =
+/// a.0 + a.1[0] P_0 + a.1[1] P_1, u'' = p.0 + ... and, in flight, lift'' = l.0 + ....
 #[derive(Default, Clone, Copy)]
 struct Affine {
-    a: (f64, f64),
-    p: (f64, f64),
-    l: (f64, f64),
+    a: (f64, [f64; 2]),
+    p: (f64, [f64; 2]),
+    l: (f64, [f64; 2]),
 }
 
 impl Couple {
@@ -226,188 +226,12 @@ impl Couple {
     /// sticks or slips, or in flight; a fixed block's trajectory stays zero) under `inputs`, to
     /// order [`ORDER`], and the push.
     pub(super) fn motion(&self, members: [Member; 2], inputs: &Inputs) -> Motion {
-        let (a, lam) = (&inputs.accel, &inputs.lambda);
-        let mut t = members.map(|m| match m {
-            Member::Moves(_, mode, state) => Trajectory::start(mode, Equations::Exact, state),
-            Member::Fixed => Trajectory::start(Mode::Rest, Equations::Exact, &UNMOVED),
-        });
-        let mut at = Geometry::default();
-        let (mut acc, mut acc_u, mut acc_lift) = ([ZERO; 2], [ZERO; 2], [ZERO; 2]);
-        let (mut w, mut arm_g, mut push) = ([ZERO; 2], [ZERO; 2], ZERO);
-        let (mut compliance, mut leaving) = (0.0, 0.0);
-        let io = members.map(|m| match m {
-            Member::Moves(body, ..) => body.corner_inertia_kg_m2(),
-            Member::Fixed => 0.0,
-        });
-        at.place(self, &t, 0);
-        for k in 0..=ORDER {
-            if k < ORDER {
-                for tk in t.iter_mut() {
-                    tk.theta[k + 1] = tk.omega[k] / (k + 1) as f64;
-                    tk.u[k + 1] = tk.v[k] / (k + 1) as f64;
-                    tk.lift[k + 1] = tk.lift_v[k] / (k + 1) as f64;
-                }
-                at.place(self, &t, k + 1);
-            }
-            let mut affine = [Affine::default(); 2];
-            for (b, member) in members.iter().enumerate() {
-                let Member::Moves(body, mode, _) = *member else {
-                    continue;
-                };
-                let (m, g) = (body.mass_kg, body.g_m_s2);
-                let on = if b == 0 { 1.0 } else { -1.0 };
-                let n = &at.n;
-                let earlier =
-                    |x: &Coeffs, y: &Coeffs| -> f64 { (1..=k).map(|j| x[j] * y[k - j]).sum() };
-                if let Mode::Rest | Mode::Slide(_) = mode {
-                    // Seated: it does not turn; a slipping base moves by m (u'' + a_g) = -mu
-                    // sigma N + s_k P n_x with N = m g lambda - s_k P n_y.
-                    t[b].gy[k] = if k == 0 { body.centroid_height_m } else { 0.0 };
-                    affine[b] = match mode {
-                        Mode::Slide(sl) => {
-                            let f = body.friction * sl.sign();
-                            let known = earlier(&n[0], &push) + f * earlier(&n[1], &push);
-                            Affine {
-                                p: (
-                                    -a[k] - f * g * lam[k] + on * known / m,
-                                    on * (n[0][0] + f * n[1][0]) / m,
-                                ),
-                                ..Affine::default()
-                            }
-                        }
-                        _ => Affine::default(),
-                    };
-                    continue;
-                }
-                let s = mode
-                    .corner()
-                    .expect("a body of a couple is seated, rocks on a pivot or flies from one")
-                    .sign();
-                (t[b].gy[k], t[b].dx[k]) = arms(body, s, &at.sin[b], &at.cos[b], k);
-                w[b][k] = mul_at(&t[b].omega, &t[b].omega, k);
-                let tb = &t[b];
-                let q = -m * (mul_at(&tb.gy, a, k) + g * mul_at(&tb.dx, lam, k));
-                let rm = q - m * earlier(&tb.gy, &acc_u[b]) + earlier(&at.arm[b], &push);
-                let (j0, gy0, dx0) = (at.arm[b][0], tb.gy[0], tb.dx[0]);
-                affine[b] = match mode {
-                    Mode::Flight(_) => {
-                        // Pushed only: about the centroid I_G theta'' = J_G P, J_G = J - s_k
-                        // (dx n_y + G_y n_x) the push's arm there, and the centroid's
-                        // accelerations (u'' + G_y theta'' + dx w + a_g, lift'' + dx theta'' -
-                        // G_y w + g lambda) are s_k P n / m.
-                        arm_g[b][k] = at.arm[b][k]
-                            - on * (mul_at(&tb.dx, &n[1], k) + mul_at(&tb.gy, &n[0], k));
-                        let ig = body.inertia_kg_m2;
-                        let turn = (earlier(&arm_g[b], &push) / ig, arm_g[b][0] / ig);
-                        let rh = -a[k] - earlier(&tb.gy, &acc[b]) - mul_at(&tb.dx, &w[b], k)
-                            + on * earlier(&n[0], &push) / m;
-                        let rv = -g * lam[k] - earlier(&tb.dx, &acc[b])
-                            + mul_at(&tb.gy, &w[b], k)
-                            + on * earlier(&n[1], &push) / m;
-                        Affine {
-                            a: turn,
-                            p: (rh - gy0 * turn.0, on * n[0][0] / m - gy0 * turn.1),
-                            l: (rv - dx0 * turn.0, on * n[1][0] / m - dx0 * turn.1),
-                        }
-                    }
-                    Mode::SlideRock(_, slip) => {
-                        let f = body.friction * slip.sign();
-                        let rh = -m * (earlier(&tb.gy, &acc[b]) + mul_at(&tb.dx, &w[b], k) + a[k])
-                            + on * earlier(&n[0], &push);
-                        let rv = -m
-                            * (earlier(&tb.dx, &acc[b]) - mul_at(&tb.gy, &w[b], k) + g * lam[k])
-                            + on * earlier(&n[1], &push);
-                        // Slide-rock's denominator I_G + m dx^2 - m mu sigma G_y dx.
-                        let d = io[b] - m * gy0 * (gy0 + f * dx0);
-                        if k == 0 {
-                            t[b].denominator = Some(d);
-                        }
-                        // N from the vertical equation into the horizontal one gives u'', and
-                        // that into the moment about the pivot theta'', each affine in P.
-                        let along = on * (n[0][0] + f * n[1][0]);
-                        let turn = ((rm - gy0 * (rh + f * rv)) / d, (j0 - gy0 * along) / d);
-                        let lever = gy0 + f * dx0;
-                        Affine {
-                            a: turn,
-                            p: (
-                                (rh + f * rv) / m - lever * turn.0,
-                                along / m - lever * turn.1,
-                            ),
-                            l: (0.0, 0.0),
-                        }
-                    }
-                    _ => Affine {
-                        a: (rm / io[b], j0 / io[b]),
-                        ..Affine::default()
-                    },
-                };
-            }
-            // The rate at which the corner leaves the face, at order k + 1, but for the
-            // accelerations at order k: J_1 theta_1'' + J_2 theta_2'' + n_x (u_1'' - u_2'') +
-            // n_y (lift_1'' - lift_2'') = c (at the last order, whose accelerations give only
-            // forces, the rate's term lies beyond the series).
-            let c = if k < ORDER {
-                let dv = |j: usize| t[0].v[j] - t[1].v[j];
-                let dl = |j: usize| t[0].lift_v[j] - t[1].lift_v[j];
-                let known: f64 = (1..=k + 1)
-                    .map(|j| {
-                        at.arm[0][j] * t[0].omega[k + 1 - j]
-                            + at.arm[1][j] * t[1].omega[k + 1 - j]
-                            + at.n[0][j] * dv(k + 1 - j)
-                            + at.n[1][j] * dl(k + 1 - j)
-                    })
-                    .sum();
-                -((k + 1) as f64) * known
-            } else {
-                0.0
-            };
-            let (j1, j2) = (at.arm[0][0], at.arm[1][0]);
-            let (nx, ny) = (at.n[0][0], at.n[1][0]);
-            let [f1, f2] = &affine;
-            let free = j1 * f1.a.0 + j2 * f2.a.0 + nx * (f1.p.0 - f2.p.0) + ny * (f1.l.0 - f2.l.0);
-            let per = j1 * f1.a.1 + j2 * f2.a.1 + nx * (f1.p.1 - f2.p.1) + ny * (f1.l.1 - f2.l.1);
-            if k == 0 {
-                (compliance, leaving) = (per, free - c);
-            }
-            push[k] = (c - free) / per;
-            for (b, member) in members.iter().enumerate() {
-                let Member::Moves(body, ..) = *member else {
-                    continue;
-                };
-                acc[b][k] = affine[b].a.0 + affine[b].a.1 * push[k];
-                acc_u[b][k] = affine[b].p.0 + affine[b].p.1 * push[k];
-                acc_lift[b][k] = affine[b].l.0 + affine[b].l.1 * push[k];
-                if let Member::Moves(_, Mode::Flight(_), _) = member {
-                    continue;
-                }
-                // The ground's forces: what moves the body, less the push on it (+n on the
-                // corner's, -n on the face's).
-                let (m, g) = (body.mass_kg, body.g_m_s2);
-                let on = if b == 0 { 1.0 } else { -1.0 };
-                let (tb, ab, wb) = (&t[b], &acc[b], &w[b]);
-                let fx = m * (mul_at(&tb.gy, ab, k) + mul_at(&tb.dx, wb, k) + a[k] + acc_u[b][k]);
-                let fy = m * (mul_at(&tb.dx, ab, k) - mul_at(&tb.gy, wb, k) + g * lam[k]);
-                t[b].tangential[k] = fx - on * mul_at(&push, &at.n[0], k);
-                t[b].normal[k] = fy - on * mul_at(&push, &at.n[1], k);
-            }
-            if k < ORDER {
-                for b in 0..2 {
-                    t[b].omega[k + 1] = acc[b][k] / (k + 1) as f64;
-                    t[b].v[k + 1] = acc_u[b][k] / (k + 1) as f64;
-                    t[b].lift_v[k + 1] = acc_lift[b][k] / (k + 1) as f64;
-                }
-            }
-        }
-        for (b, member) in members.iter().enumerate() {
-            if let Member::Moves(body, Mode::Rest | Mode::Slide(_), _) = *member {
-                t[b].corners = Some(self.seated_corners(b, body, &t[b], &push, &at));
-            }
-        }
+        let both = pushed(&[self], members, inputs);
         Motion {
-            bodies: t,
-            push,
-            compliance,
-            leaving,
+            bodies: both.bodies,
+            push: both.pushes[0],
+            compliance: both.compliance[0][0],
+            leaving: both.leaving[0],
         }
     }
 
@@ -417,8 +241,8 @@ impl Couple {
     /// - u_2'') + n_y (lift_1'' - lift_2'') with what the arms' and the normal's own rates add.
     pub(super) fn away(&self, t: &[Trajectory; 2]) -> f64 {
         let mut at = Geometry::default();
-        at.place(self, t, 0);
-        at.place(self, t, 1);
+        at.place(self, [&t[0], &t[1]], 0);
+        at.place(self, [&t[0], &t[1]], 1);
         let dv = |j: usize| t[0].v[j] - t[1].v[j];
         let dl = |j: usize| t[0].lift_v[j] - t[1].lift_v[j];
         (0..=1)
@@ -429,38 +253,6 @@ impl Couple {
                     + at.n[1][j] * dl(1 - j)
             })
             .sum()
-    }
-
-    /// A seated body b's normal forces at its base's corners (left, right) with the push on it:
-    /// its moments about the centroid, b (N_R - N_L) + h_c F + r x Q = 0, Q = s_b P n at r
-    /// from the centroid (the seated trajectory's N_R - N_L = -h_c F / b, and the push's).
-    fn seated_corners(
-        &self,
-        b: usize,
-        body: &RockingBody,
-        t: &Trajectory,
-        push: &Coeffs,
-        at: &Geometry,
-    ) -> (Coeffs, Coeffs) {
-        let on = if b == 0 { 1.0 } else { -1.0 };
-        let (bb, h) = (body.half_base_m, body.centroid_height_m);
-        let contact = if b == 0 { &at.r1 } else { &at.r2 };
-        let centre = [self.middles[b][0], self.middles[b][1] + h];
-        let (mut q, mut r) = ([ZERO; 2], *contact);
-        for ((q, r), (n, c)) in q.iter_mut().zip(&mut r).zip(at.n.iter().zip(centre)) {
-            for (k, x) in q.iter_mut().enumerate() {
-                *x = on * mul_at(push, n, k);
-            }
-            r[0] -= c;
-        }
-        let (mut left, mut right) = (ZERO, ZERO);
-        for k in 0..=ORDER {
-            let moment = mul_at(&r[0], &q[1], k) - mul_at(&r[1], &q[0], k);
-            let diff = -(h * t.tangential[k] + moment) / bb;
-            right[k] = 0.5 * (t.normal[k] + diff);
-            left[k] = 0.5 * (t.normal[k] - diff);
-        }
-        (left, right)
     }
 
     /// The modes of a couple's bodies (`members`, each rocking on the pivot of its mode, or in
@@ -653,4 +445,343 @@ impl Couple {
             strict: false,
         }
     }
+}
+
+/// The sides' motion where one or two contacts (`ends`) hold them together, and each
+/// contact's push.
+pub(super) struct Pushed {
+    /// Each side's trajectory, in the order of the first contact's sides.
+    pub(super) bodies: [Trajectory; 2],
+    /// Each contact's push (N); the second zero where there is one contact.
+    pub(super) pushes: [Coeffs; 2],
+    /// How fast each contact's acceleration away from its face grows with each push (1/kg): W
+    /// of the contact problem at the start of the step, W[e][f] for contact e and push f.
+    pub(super) compliance: [[f64; 2]; 2],
+    /// Each contact's acceleration away from its face were the pushes zero (m/s2).
+    pub(super) leaving: [f64; 2],
+}
+
+/// The motion of two sides held together by one contact, or two (the two ends of two faces
+/// lying on each other): the couple's equations with one push per contact. Each body's
+/// accelerations are affine in the pushes order by order, and each contact's rate of leaving
+/// its face stays zero, so each order's pushes solve a system of one or two equations whose
+/// matrix is W. The sides are in the order of `ends[0]`; a second contact's corner may be on
+/// either side.
+pub(super) fn pushed(ends: &[&Couple], members: [Member; 2], inputs: &Inputs) -> Pushed {
+    let count = ends.len();
+    // Side b of the first contact is side slot[e][b] of contact e.
+    let slot: Vec<[usize; 2]> = (ends.iter())
+        .map(|c| match c.bodies == ends[0].bodies {
+            true => [0, 1],
+            false => [1, 0],
+        })
+        .collect();
+    let (a, lam) = (&inputs.accel, &inputs.lambda);
+    let mut t = members.map(|m| match m {
+        Member::Moves(_, mode, state) => Trajectory::start(mode, Equations::Exact, state),
+        Member::Fixed => Trajectory::start(Mode::Rest, Equations::Exact, &UNMOVED),
+    });
+    let mut at: [Geometry; 2] = Default::default();
+    let (mut acc, mut acc_u, mut acc_lift) = ([ZERO; 2], [ZERO; 2], [ZERO; 2]);
+    let mut w = [ZERO; 2];
+    // The push's arm about each body's centroid, per contact (a body in flight).
+    let mut arm_g = [[ZERO; 2]; 2];
+    let mut push = [ZERO; 2];
+    let (mut compliance, mut leaving) = ([[0.0; 2]; 2], [0.0; 2]);
+    let io = members.map(|m| match m {
+        Member::Moves(body, ..) => body.corner_inertia_kg_m2(),
+        Member::Fixed => 0.0,
+    });
+    let place = |at: &mut [Geometry; 2], t: &[Trajectory; 2], j: usize| {
+        for e in 0..count {
+            let [p, q] = slot[e];
+            at[e].place(ends[e], [&t[p], &t[q]], j);
+        }
+    };
+    place(&mut at, &t, 0);
+    for k in 0..=ORDER {
+        if k < ORDER {
+            for tk in t.iter_mut() {
+                tk.theta[k + 1] = tk.omega[k] / (k + 1) as f64;
+                tk.u[k + 1] = tk.v[k] / (k + 1) as f64;
+                tk.lift[k + 1] = tk.lift_v[k] / (k + 1) as f64;
+            }
+            place(&mut at, &t, k + 1);
+        }
+        let mut affine = [Affine::default(); 2];
+        for (b, member) in members.iter().enumerate() {
+            let Member::Moves(body, mode, _) = *member else {
+                continue;
+            };
+            let (m, g) = (body.mass_kg, body.g_m_s2);
+            // The push of contact e on body b: +n on its corner's body, -n on its face's.
+            let on = |e: usize| if slot[e][b] == 0 { 1.0 } else { -1.0 };
+            let earlier =
+                |x: &Coeffs, y: &Coeffs| -> f64 { (1..=k).map(|j| x[j] * y[k - j]).sum() };
+            if let Mode::Rest | Mode::Slide(_) = mode {
+                // Seated: it does not turn; a slipping base moves by m (u'' + a_g) = -mu
+                // sigma N + s_k P n_x with N = m g lambda - s_k P n_y.
+                t[b].gy[k] = if k == 0 { body.centroid_height_m } else { 0.0 };
+                affine[b] = match mode {
+                    Mode::Slide(sl) => {
+                        let f = body.friction * sl.sign();
+                        let mut p = (-a[k] - f * g * lam[k], [0.0; 2]);
+                        for e in 0..count {
+                            let n = &at[e].n;
+                            let known = earlier(&n[0], &push[e]) + f * earlier(&n[1], &push[e]);
+                            p.0 += on(e) * known / m;
+                            p.1[e] = on(e) * (n[0][0] + f * n[1][0]) / m;
+                        }
+                        Affine {
+                            p,
+                            ..Affine::default()
+                        }
+                    }
+                    _ => Affine::default(),
+                };
+                continue;
+            }
+            let s = mode
+                .corner()
+                .expect("a body of a couple is seated, rocks on a pivot or flies from one")
+                .sign();
+            (t[b].gy[k], t[b].dx[k]) =
+                arms(body, s, &at[0].sin[slot[0][b]], &at[0].cos[slot[0][b]], k);
+            w[b][k] = mul_at(&t[b].omega, &t[b].omega, k);
+            let tb = &t[b];
+            let q = -m * (mul_at(&tb.gy, a, k) + g * mul_at(&tb.dx, lam, k));
+            let mut rm = q - m * earlier(&tb.gy, &acc_u[b]);
+            for e in 0..count {
+                rm += earlier(&at[e].arm[slot[e][b]], &push[e]);
+            }
+            let j0 = [0, 1].map(|e| {
+                if e < count {
+                    at[e].arm[slot[e][b]][0]
+                } else {
+                    0.0
+                }
+            });
+            let (gy0, dx0) = (tb.gy[0], tb.dx[0]);
+            affine[b] = match mode {
+                Mode::Flight(_) => {
+                    // Pushed only: about the centroid I_G theta'' = J_G P, J_G = J - s_k
+                    // (dx n_y + G_y n_x) the push's arm there, and the centroid's
+                    // accelerations (u'' + G_y theta'' + dx w + a_g, lift'' + dx theta'' -
+                    // G_y w + g lambda) are s_k P n / m.
+                    let ig = body.inertia_kg_m2;
+                    // The sum over the contacts starts from the first one's term, so that one
+                    // contact's arithmetic is the couple's to the bit.
+                    let mut turn = (0.0, [0.0; 2]);
+                    let mut rh = -a[k] - earlier(&tb.gy, &acc[b]) - mul_at(&tb.dx, &w[b], k);
+                    let mut rv = -g * lam[k] - earlier(&tb.dx, &acc[b]) + mul_at(&tb.gy, &w[b], k);
+                    for e in 0..count {
+                        let n = &at[e].n;
+                        arm_g[e][b][k] = at[e].arm[slot[e][b]][k]
+                            - on(e) * (mul_at(&tb.dx, &n[1], k) + mul_at(&tb.gy, &n[0], k));
+                        let x = earlier(&arm_g[e][b], &push[e]) / ig;
+                        turn.0 = if e == 0 { x } else { turn.0 + x };
+                        turn.1[e] = arm_g[e][b][0] / ig;
+                        rh += on(e) * earlier(&n[0], &push[e]) / m;
+                        rv += on(e) * earlier(&n[1], &push[e]) / m;
+                    }
+                    let per = |e: usize, n: usize| {
+                        if e < count {
+                            on(e) * at[e].n[n][0] / m
+                        } else {
+                            0.0
+                        }
+                    };
+                    Affine {
+                        a: turn,
+                        p: (
+                            rh - gy0 * turn.0,
+                            [0, 1].map(|e| per(e, 0) - gy0 * turn.1[e]),
+                        ),
+                        l: (
+                            rv - dx0 * turn.0,
+                            [0, 1].map(|e| per(e, 1) - dx0 * turn.1[e]),
+                        ),
+                    }
+                }
+                Mode::SlideRock(_, slip) => {
+                    let f = body.friction * slip.sign();
+                    let mut rh = -m * (earlier(&tb.gy, &acc[b]) + mul_at(&tb.dx, &w[b], k) + a[k]);
+                    let mut rv =
+                        -m * (earlier(&tb.dx, &acc[b]) - mul_at(&tb.gy, &w[b], k) + g * lam[k]);
+                    let mut along = [0.0; 2];
+                    for e in 0..count {
+                        let n = &at[e].n;
+                        rh += on(e) * earlier(&n[0], &push[e]);
+                        rv += on(e) * earlier(&n[1], &push[e]);
+                        along[e] = on(e) * (n[0][0] + f * n[1][0]);
+                    }
+                    // Slide-rock's denominator I_G + m dx^2 - m mu sigma G_y dx.
+                    let d = io[b] - m * gy0 * (gy0 + f * dx0);
+                    if k == 0 {
+                        t[b].denominator = Some(d);
+                    }
+                    // N from the vertical equation into the horizontal one gives u'', and
+                    // that into the moment about the pivot theta'', each affine in P.
+                    let turn = (
+                        (rm - gy0 * (rh + f * rv)) / d,
+                        [0, 1].map(|e| (j0[e] - gy0 * along[e]) / d),
+                    );
+                    let lever = gy0 + f * dx0;
+                    Affine {
+                        a: turn,
+                        p: (
+                            (rh + f * rv) / m - lever * turn.0,
+                            [0, 1].map(|e| along[e] / m - lever * turn.1[e]),
+                        ),
+                        l: (0.0, [0.0; 2]),
+                    }
+                }
+                _ => Affine {
+                    a: (rm / io[b], j0.map(|j| j / io[b])),
+                    ..Affine::default()
+                },
+            };
+        }
+        // The rate at which each contact's corner leaves its face, at order k + 1, but for
+        // the accelerations at order k: J_1 theta_1'' + J_2 theta_2'' + n_x (u_1'' - u_2'') +
+        // n_y (lift_1'' - lift_2'') = c (at the last order, whose accelerations give only
+        // forces, the rate's term lies beyond the series).
+        let mut rhs = [0.0; 2];
+        let mut matrix = [[0.0; 2]; 2];
+        for e in 0..count {
+            let [p, q] = slot[e];
+            let (t0, t1) = (&t[p], &t[q]);
+            let g = &at[e];
+            let c = if k < ORDER {
+                let dv = |j: usize| t0.v[j] - t1.v[j];
+                let dl = |j: usize| t0.lift_v[j] - t1.lift_v[j];
+                let known: f64 = (1..=k + 1)
+                    .map(|j| {
+                        g.arm[0][j] * t0.omega[k + 1 - j]
+                            + g.arm[1][j] * t1.omega[k + 1 - j]
+                            + g.n[0][j] * dv(k + 1 - j)
+                            + g.n[1][j] * dl(k + 1 - j)
+                    })
+                    .sum();
+                -((k + 1) as f64) * known
+            } else {
+                0.0
+            };
+            let (j1, j2) = (g.arm[0][0], g.arm[1][0]);
+            let (nx, ny) = (g.n[0][0], g.n[1][0]);
+            let [f1, f2] = [&affine[p], &affine[q]];
+            let free = j1 * f1.a.0 + j2 * f2.a.0 + nx * (f1.p.0 - f2.p.0) + ny * (f1.l.0 - f2.l.0);
+            for (f, entry) in matrix[e].iter_mut().enumerate().take(count) {
+                *entry = j1 * f1.a.1[f]
+                    + j2 * f2.a.1[f]
+                    + nx * (f1.p.1[f] - f2.p.1[f])
+                    + ny * (f1.l.1[f] - f2.l.1[f]);
+            }
+            if k == 0 {
+                leaving[e] = free - c;
+            }
+            rhs[e] = c - free;
+        }
+        if k == 0 {
+            compliance = matrix;
+        }
+        let solved = match count {
+            1 => [rhs[0] / matrix[0][0], 0.0],
+            _ => {
+                let [[w00, w01], [w10, w11]] = matrix;
+                let det = w00 * w11 - w01 * w10;
+                [
+                    (rhs[0] * w11 - w01 * rhs[1]) / det,
+                    (w00 * rhs[1] - w10 * rhs[0]) / det,
+                ]
+            }
+        };
+        for e in 0..count {
+            push[e][k] = solved[e];
+        }
+        for (b, member) in members.iter().enumerate() {
+            let Member::Moves(body, ..) = *member else {
+                continue;
+            };
+            let by = |x: (f64, [f64; 2])| (0..count).fold(x.0, |sum, e| sum + x.1[e] * push[e][k]);
+            acc[b][k] = by(affine[b].a);
+            acc_u[b][k] = by(affine[b].p);
+            acc_lift[b][k] = by(affine[b].l);
+            if let Member::Moves(_, Mode::Flight(_), _) = member {
+                continue;
+            }
+            // The ground's forces: what moves the body, less the pushes on it (+n on a
+            // contact's corner's body, -n on its face's).
+            let (m, g) = (body.mass_kg, body.g_m_s2);
+            let (tb, ab, wb) = (&t[b], &acc[b], &w[b]);
+            let mut fx = m * (mul_at(&tb.gy, ab, k) + mul_at(&tb.dx, wb, k) + a[k] + acc_u[b][k]);
+            let mut fy = m * (mul_at(&tb.dx, ab, k) - mul_at(&tb.gy, wb, k) + g * lam[k]);
+            for e in 0..count {
+                let on = if slot[e][b] == 0 { 1.0 } else { -1.0 };
+                fx -= on * mul_at(&push[e], &at[e].n[0], k);
+                fy -= on * mul_at(&push[e], &at[e].n[1], k);
+            }
+            t[b].tangential[k] = fx;
+            t[b].normal[k] = fy;
+        }
+        if k < ORDER {
+            for b in 0..2 {
+                t[b].omega[k + 1] = acc[b][k] / (k + 1) as f64;
+                t[b].v[k + 1] = acc_u[b][k] / (k + 1) as f64;
+                t[b].lift_v[k + 1] = acc_lift[b][k] / (k + 1) as f64;
+            }
+        }
+    }
+    for (b, member) in members.iter().enumerate() {
+        if let Member::Moves(body, Mode::Rest | Mode::Slide(_), _) = *member {
+            let loads: Vec<(usize, &Couple, &Coeffs, &Geometry)> = (0..count)
+                .map(|e| (slot[e][b], ends[e], &push[e], &at[e]))
+                .collect();
+            t[b].corners = Some(seated_corners(body, &t[b], &loads));
+        }
+    }
+    Pushed {
+        bodies: t,
+        pushes: push,
+        compliance,
+        leaving,
+    }
+}
+
+/// A seated body's normal forces at its base's corners (left, right) with the pushes on it
+/// (`loads`: for each contact, the body's side in it, the contact, its push and geometry): its
+/// moments about the centroid, b (N_R - N_L) + h_c F + sum of r x Q = 0, Q = s P n at r from
+/// the centroid (the seated trajectory's N_R - N_L = -h_c F / b, and the pushes').
+fn seated_corners(
+    body: &RockingBody,
+    t: &Trajectory,
+    loads: &[(usize, &Couple, &Coeffs, &Geometry)],
+) -> (Coeffs, Coeffs) {
+    let (bb, h) = (body.half_base_m, body.centroid_height_m);
+    let arms: Vec<([Coeffs; 2], [Coeffs; 2])> = (loads.iter())
+        .map(|&(b, couple, push, at)| {
+            let on = if b == 0 { 1.0 } else { -1.0 };
+            let contact = if b == 0 { &at.r1 } else { &at.r2 };
+            let centre = [couple.middles[b][0], couple.middles[b][1] + h];
+            let (mut q, mut r) = ([ZERO; 2], *contact);
+            for ((q, r), (n, c)) in q.iter_mut().zip(&mut r).zip(at.n.iter().zip(centre)) {
+                for (k, x) in q.iter_mut().enumerate() {
+                    *x = on * mul_at(push, n, k);
+                }
+                r[0] -= c;
+            }
+            (q, r)
+        })
+        .collect();
+    let (mut left, mut right) = (ZERO, ZERO);
+    for k in 0..=ORDER {
+        let moment = (arms.iter())
+            .map(|(q, r)| mul_at(&r[0], &q[1], k) - mul_at(&r[1], &q[0], k))
+            .reduce(|sum, x| sum + x)
+            .unwrap_or(0.0);
+        let diff = -(h * t.tangential[k] + moment) / bb;
+        right[k] = 0.5 * (t.normal[k] + diff);
+        left[k] = 0.5 * (t.normal[k] - diff);
+    }
+    (left, right)
 }

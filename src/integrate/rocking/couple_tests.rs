@@ -37,6 +37,28 @@ enum Case {
     BSlides,
 }
 
+/// Where `body`'s centroid stands from its pivot (the corner of sign s) turned by theta, and
+/// the centroid's acceleration, from theta, theta', theta'' and the pivot's u'' and lift''.
+pub(super) fn centroid(
+    body: &RockingBody,
+    s: f64,
+    [theta, omega, theta2, u2, lift2]: [f64; 5],
+) -> ([f64; 2], [f64; 2]) {
+    let (bb, hh) = (body.half_base_m, body.centroid_height_m);
+    let (sin, cos) = theta.sin_cos();
+    // The centroid from the pivot and its derivatives in theta.
+    let r = [-s * bb * cos + hh * sin, s * bb * sin + hh * cos];
+    let r1 = [s * bb * sin + hh * cos, s * bb * cos - hh * sin];
+    let r2 = [s * bb * cos - hh * sin, -s * bb * sin - hh * cos];
+    (
+        r,
+        [
+            u2 + r1[0] * theta2 + r2[0] * omega * omega,
+            lift2 + r1[1] * theta2 + r2[1] * omega * omega,
+        ],
+    )
+}
+
 /// Two slabs turning together, A's pivot slipping towards B and B's pivot stuck, slipping
 /// towards A, or off the ground (B in flight): over 0.02 s of the couple's series under the
 /// test sine, at every instant sampled each body's Newton-Euler equations about its centroid
@@ -172,13 +194,7 @@ fn a_couple_with_slipping_or_flying_pivots_obeys_newton_euler_coulomb_and_its_co
                 let u2 = eval(&derivative(&t.v), tau);
                 let lift2 = eval(&derivative(&t.lift_v), tau);
                 let (f, normal_n) = (eval(&t.tangential, tau), eval(&t.normal, tau));
-                let (sin, cos) = theta.sin_cos();
-                // The centroid from the pivot and its derivatives in theta.
-                let r = [-s * bb * cos + hh * sin, s * bb * sin + hh * cos];
-                let r1 = [s * bb * sin + hh * cos, s * bb * cos - hh * sin];
-                let r2 = [s * bb * cos - hh * sin, -s * bb * sin - hh * cos];
-                let gx2 = u2 + r1[0] * theta2 + r2[0] * omega * omega;
-                let gy2 = lift2 + r1[1] * theta2 + r2[1] * omega * omega;
+                let (r, [gx2, gy2]) = centroid(body, s, [theta, omega, theta2, u2, lift2]);
                 let p = [on * push * n[0], on * push * n[1]];
                 let weight = m * g;
                 assert!(

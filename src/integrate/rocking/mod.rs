@@ -37,6 +37,9 @@ mod handoff_tests;
 mod impact;
 mod layout;
 mod lean;
+mod lying;
+#[cfg(test)]
+mod lying_tests;
 mod modes;
 mod scenes;
 mod series;
@@ -61,6 +64,7 @@ use clearance::{Clearance, Meeting, Side, Touch};
 use couple::{Couple, Member};
 use layout::Layout;
 use lean::Lean;
+use lying::Lying;
 use modes::{Corner, Guard, Inputs, Mode, Scales, Slip, State, Trajectory};
 use series::Coeffs;
 
@@ -105,6 +109,9 @@ struct Track {
     /// It turns in contact with another body, the two as one mechanism, or slides along a
     /// fixed block's face, until they part.
     couple: Option<Couple>,
+    /// Its face lies on another body's, pressed at both ends of their overlap, until an end
+    /// lets go.
+    lies: Option<Lying>,
 }
 
 /// Bodies to run side by side, and how.
@@ -408,6 +415,7 @@ impl<'a> Engine<'a> {
                 settles: None,
                 leans: None,
                 couple: None,
+                lies: None,
             })
             .collect();
         Engine {
@@ -456,6 +464,14 @@ impl<'a> Engine<'a> {
 
     fn trajectory(&self, i: usize, inputs: &Inputs) -> Trajectory {
         let tr = &self.tracks[i];
+        if let Some(lying) = &tr.lies {
+            let [first, second] = lying.motion(self.members(&lying.ends[0]), inputs).bodies;
+            return if lying.bodies()[0] == Some(i) {
+                first
+            } else {
+                second
+            };
+        }
         if let Some(couple) = &tr.couple {
             let [first, second] = self.coupled(couple, inputs).bodies;
             return if couple.bodies[0] == Some(i) {
@@ -526,7 +542,8 @@ impl<'a> Engine<'a> {
             // through its trajectory, and it leaves flight by landing.
             return Ok(());
         }
-        if self.tracks[i].leans.is_some() || self.tracks[i].couple.is_some() {
+        let tr = &self.tracks[i];
+        if tr.leans.is_some() || tr.couple.is_some() || tr.lies.is_some() {
             // A body resting against a block, or turning in contact with another body, stays
             // so while the contact's push and its pivot's forces allow, which its conditions
             // watch from every instant on.
@@ -865,6 +882,10 @@ impl<'a> Engine<'a> {
             // The couple's own condition, once: on its first body.
             conditions.push(couple.condition(body, &self.coupled(&couple, inputs)));
         }
+        if let Some(lying) = self.tracks[i].lies.filter(|l| l.bodies()[0] == Some(i)) {
+            let motion = lying.motion(self.members(&lying.ends[0]), inputs);
+            conditions.extend(lying.conditions(body, &motion));
+        }
         // A body that may run into a block beside it is followed until it lies on its face or
         // strikes: a block can stop its fall.
         if is_quiet && !self.clearance.watches(i) {
@@ -925,6 +946,19 @@ impl<'a> Engine<'a> {
         let Some(guard) = guard else {
             return Ok(());
         };
+        if self.tracks[i].lies.is_some() {
+            if self.stop.is_some() {
+                // The other body stopped the run at this instant.
+                return Ok(());
+            }
+            return match guard {
+                Guard::Parts => self.lying_parts(i, now),
+                _ => {
+                    self.lying_gives(i, guard);
+                    Ok(())
+                }
+            };
+        }
         if self.tracks[i].couple.is_some() {
             if self.stop.is_some() {
                 // The other body of the couple stopped the run at this instant.
@@ -987,6 +1021,14 @@ impl<'a> Engine<'a> {
         meeting: Meeting,
         now: &Inputs,
     ) -> Result<(), SimulationError> {
+        let lying = self.tracks.iter().find_map(|tr| {
+            let l = tr.lies?;
+            let blocks = l.ends[0].touch.blocks;
+            (blocks == [a, b] || blocks == [b, a]).then_some(l)
+        });
+        if let Some(lying) = lying {
+            return self.lying_meets(lying, meeting, now);
+        }
         // A body of theirs and the blocks' names, the corner's first, where they move together.
         let together = self.tracks.iter().enumerate().find_map(|(i, tr)| {
             let c = tr.couple?;
@@ -1146,7 +1188,10 @@ impl<'a> Engine<'a> {
                 .each_ref()
                 .map(|l| l.sides.map(|k| k.map(|j| all.after[j])));
             match self.pressed_ends([t, held], after, now) {
-                Ok(Some(pressed)) if pressed != stays => {
+                Ok(Some(([true, true], lying, sides))) => {
+                    return Ok(self.lie(&ends, couple, lying, &sides, &all, &comes, now));
+                }
+                Ok(Some((pressed, ..))) if pressed != stays => {
                     let impulses = match couple {
                         Some(_) => format!(
                             " (impulses {:.6e} and {:.6e} N s)",
@@ -1333,85 +1378,92 @@ impl<'a> Engine<'a> {
 
     /// Which ends of two faces lying on each other stay pressed just after an impact that left
     /// both at rest on each other (`ends`: the strike's contact, then the old corner's; `after`:
-    /// the velocities of each end's sides), where every body flies from it: the contact problem
-    /// at the level of accelerations. For frictionless contacts between bodies in flight, the
-    /// matrix that takes the two pushes to the ends' accelerations away from the faces is
-    /// positive definite (each body's mass matrix is, and two points of one face constrain
-    /// independently), so exactly one of the four ways holds: both ends pressing; one pressing
-    /// (its push >= 0, the couple's motion on it alone), the other's acceleration away
-    /// positive; none, both accelerations positive with the bodies alone. The last three are
-    /// checked; where none holds, both ends press. None where a body stays on the ground, or
-    /// a push would turn neither body: not decided here.
+    /// the velocities of each end's sides), where every body flies from it ([`Engine::pressed`]),
+    /// with the faces' two contacts and the bodies' modes and states after the impact (in the
+    /// first end's order). None where a body stays on the ground, or a push would turn neither
+    /// body: not decided here.
     fn pressed_ends(
         &self,
         ends: [&Touch; 2],
         after: [[Option<collision::After>; 2]; 2],
         now: &Inputs,
-    ) -> Result<Option<[bool; 2]>, String> {
-        let mut sides = Vec::with_capacity(2);
-        for (end, after) in ends.iter().zip(&after) {
-            let Ok(s) = self.sides_after(end, after, Through::Approach) else {
-                return Ok(None);
-            };
-            // Every body off the ground, rising faster than round-off (a rise at a tie's rate
-            // leaves the pivot on the ground to the decisions of its couple).
-            let flies = |k: usize| match (s.bodies[k], s.modes[k]) {
-                (Some(i), Mode::Flight(_)) => !tie_speed(self.body(i), s.states[k].lift_v),
-                _ => false,
-            };
-            if !(flies(0) && flies(1)) {
-                return Ok(None);
-            }
-            sides.push(s);
-        }
-        let body_of = |s: &Sides, k: usize| self.body(s.bodies[k].expect("a body flies"));
-        let size = (0..2)
-            .map(|k| body_of(&sides[0], k).size_m())
-            .fold(0.0, f64::max);
-        let mut couples = Vec::with_capacity(2);
-        for (end, s) in ends.iter().zip(&sides) {
-            let placed = s.states.each_ref().map(Some);
-            let Some(c) = Couple::new(end, s.bodies, s.homes, placed, series::TIE * size) else {
-                return Ok(None);
-            };
-            couples.push(c);
-        }
-        let first = body_of(&sides[0], 0);
-        let tie = series::TIE * first.g_m_s2;
-        let alone = |s: &Sides| {
-            [0, 1].map(|k| {
-                modes::trajectory(
-                    body_of(s, k),
-                    Equations::Exact,
-                    s.modes[k],
-                    &s.states[k],
-                    now,
-                )
-            })
+    ) -> Result<Option<([bool; 2], Lying, Sides)>, String> {
+        // Each body's mode and state after the impact, as the first end's sides have them.
+        let Ok(first) = self.sides_after(ends[0], &after[0], Through::Approach) else {
+            return Ok(None);
         };
-        let apart = (0..2).all(|e| couples[e].away(&alone(&sides[e])) > tie);
-        let mut only = [false; 2];
-        for e in 0..2 {
-            let (s, other) = (&sides[e], &sides[1 - e]);
-            let members = [0, 1].map(|k| Member::Moves(body_of(s, k), s.modes[k], &s.states[k]));
-            let motion = couples[e].motion(members, now);
-            let presses =
-                series::sign_after(&motion.push, Scales::of(first).force, first.time_scale_s())
-                    >= 0;
-            // The bodies' trajectories in the other couple's order (its corner's body first).
-            let order = other.bodies.map(|b| usize::from(s.bodies[0] != b));
-            let t = order.map(|p| motion.bodies[p].clone());
-            only[e] = presses && couples[1 - e].away(&t) > tie;
+        // Every body off the ground, rising faster than round-off (a rise at a tie's rate
+        // leaves the pivot on the ground to the decisions of its couple).
+        let flies = |k: usize| match (first.bodies[k], first.modes[k]) {
+            (Some(i), Mode::Flight(_)) => !tie_speed(self.body(i), first.states[k].lift_v),
+            _ => false,
+        };
+        if !(flies(0) && flies(1)) {
+            return Ok(None);
         }
-        match (apart, only) {
-            (true, [false, false]) => Ok(Some([false, false])),
-            (false, [true, false]) => Ok(Some([true, false])),
-            (false, [false, true]) => Ok(Some([false, true])),
-            (false, [false, false]) => Ok(Some([true, true])),
+        let bodies = first.bodies.map(|b| b.expect("a body flies"));
+        let states = first.states.each_ref();
+        let Some(lying) = Lying::new(ends, bodies, first.homes, states) else {
+            return Ok(None);
+        };
+        let members =
+            [0, 1].map(|k| Member::Moves(self.body(bodies[k]), first.modes[k], states[k]));
+        let pressed = self.pressed(&lying, members, now)?;
+        Ok(Some((pressed, lying, first)))
+    }
+
+    /// Which ends of two faces on each other (`lying`) press, the bodies (`members`, in the
+    /// first end's order) in flight and at rest on each other at both ends: the contact
+    /// problem at the level of accelerations. For frictionless contacts between bodies in
+    /// flight, the matrix that takes the two pushes to the ends' accelerations away from the
+    /// faces is positive definite (each body's mass matrix is, and two points of one face
+    /// constrain independently), so exactly one of four ways holds: both ends pressing (both
+    /// pushes of the faces' motion >= 0, [`Lying::motion`]); one pressing (its push >= 0, the
+    /// couple's motion on it alone), the other's acceleration away positive; none, both
+    /// accelerations away positive with the bodies alone. Each is checked; where none or more
+    /// than one holds, why, in words.
+    fn pressed(
+        &self,
+        lying: &Lying,
+        members: [Member<'_>; 2],
+        now: &Inputs,
+    ) -> Result<[bool; 2], String> {
+        let Member::Moves(first, ..) = members[0] else {
+            unreachable!("the bodies of lying faces fly");
+        };
+        let tie = series::TIE * first.g_m_s2;
+        let presses = |push: &Coeffs| {
+            series::sign_after(push, Scales::of(first).force, first.time_scale_s()) >= 0
+        };
+        // End e's sides as the first end's order numbers them (an involution).
+        let order = |e: usize| {
+            lying.ends[e]
+                .bodies
+                .map(|b| usize::from(b != lying.bodies()[0]))
+        };
+        let ordered = |t: &[Trajectory; 2], e: usize| order(e).map(|k| t[k].clone());
+        let alone = members.map(|m| match m {
+            Member::Moves(body, mode, state) => {
+                modes::trajectory(body, Equations::Exact, mode, state, now)
+            }
+            Member::Fixed => unreachable!("the bodies of lying faces fly"),
+        });
+        let apart = (0..2).all(|e| lying.ends[e].away(&ordered(&alone, e)) > tie);
+        let only = [0, 1].map(|e| {
+            let motion = lying.ends[e].motion(order(e).map(|k| members[k]), now);
+            let moved = ordered(&motion.bodies, e);
+            presses(&motion.push) && lying.ends[1 - e].away(&ordered(&moved, 1 - e)) > tie
+        });
+        let both = lying.motion(members, now).pushes.iter().all(presses);
+        match (apart, only, both) {
+            (true, [false, false], false) => Ok([false, false]),
+            (false, [true, false], false) => Ok([true, false]),
+            (false, [false, true], false) => Ok([false, true]),
+            (false, [false, false], true) => Ok([true, true]),
             _ => Err(format!(
-                "both ends of their contact are at rest on it after the impact, and more than one \
-                 way of their pushes holds (apart: {apart}, pressing at the strike alone: {}, at \
-                 the old corner alone: {}), which bodies in flight cannot have",
+                "both ends of their contact are at rest on it, and not exactly one way of their \
+                 pushes holds (apart: {apart}, pressing at the first end alone: {}, at the second \
+                 alone: {}, at both: {both}), which bodies in flight cannot have",
                 only[0], only[1]
             )),
         }
@@ -1423,8 +1475,9 @@ impl<'a> Engine<'a> {
         let (k, blocks) = sides.iter().find_map(|side| match *side {
             Side::Body(k, _) => {
                 let tr = &self.tracks[k];
-                let other =
-                    (tr.couple.map(|c| c.touch.blocks)).or(tr.leans.map(|l| l.touch.blocks));
+                let other = (tr.couple.map(|c| c.touch.blocks))
+                    .or(tr.leans.map(|l| l.touch.blocks))
+                    .or(tr.lies.map(|l| l.ends[0].touch.blocks));
                 other.map(|blocks| (k, blocks))
             }
             _ => None,
@@ -1435,6 +1488,208 @@ impl<'a> Engine<'a> {
              in contact on two sides at once are not followed",
             self.body(k).name
         ))
+    }
+
+    /// A face came down flat on a face (`ends`: the strike's contact, then the other end's; in
+    /// a couple, `couple` a body of it), and both ends, at rest on each other after the impact
+    /// (`all`), press ([`Engine::pressed`]): the faces lie on each other from here (`lying`),
+    /// the bodies in flight as `sides` says. Returns none: the run goes on.
+    #[allow(clippy::too_many_arguments)]
+    fn lie(
+        &mut self,
+        ends: &[Touch; 2],
+        couple: Option<usize>,
+        lying: Lying,
+        sides: &Sides,
+        all: &collision::Impulses,
+        comes: &str,
+        now: &Inputs,
+    ) -> Option<String> {
+        if let Some(i) = couple {
+            self.uncouple(i);
+        }
+        self.rec.energy.impact_loss_j += all.loss_j;
+        self.rec.impacts += 1;
+        self.struck(&ends[0]);
+        let [(b0, a0), (b1, a1)] = [all.normal_m_s[0], all.normal_m_s[1]];
+        let mut what = format!(
+            "{comes} at the ends of their overlap, their normal velocities {b0:.6e} and {b1:.6e} \
+             m/s before and {a0:.6e} and {a1:.6e} m/s after (impulses {:.6e} and {:.6e} N s), \
+             and both ends press: the faces lie on each other",
+            all.impulse_n_s[0], all.impulse_n_s[1]
+        );
+        let mut omega = None;
+        for k in 0..2 {
+            let i = sides.bodies[k].expect("the bodies of lying faces fly");
+            let tr = &mut self.tracks[i];
+            let before = tr.state.omega;
+            omega.get_or_insert((before, sides.states[k].omega));
+            (tr.mode, tr.state, tr.lies) = (sides.modes[k], sides.states[k], Some(lying));
+            what += &format!(
+                "; {}: theta' {before:.6e} -> {:.6e} rad/s, in flight",
+                self.body(i).name,
+                sides.states[k].omega
+            );
+        }
+        self.clearance.lie(ends[0].pair, Some(ends));
+        let [p0, p1] = lying.motion(self.members(&lying.ends[0]), now).pushes;
+        what += &format!("; pushed by {:.6e} and {:.6e} N", p0[0], p1[0]);
+        self.rec.rocking_event(
+            self.t,
+            EventKind::BlocksImpact,
+            &ends[0].blocks,
+            omega,
+            what,
+        );
+        None
+    }
+
+    /// A push of the faces body i lies on falls to zero: which ends press is decided again
+    /// ([`Engine::pressed`]). Where one does, the bodies turn on together on it (a couple);
+    /// where none does, they part; where the decision fails, the run stops, saying why.
+    fn lying_parts(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
+        let lying = self.tracks[i].lies.expect("a body of lying faces");
+        let bodies = lying
+            .bodies()
+            .map(|b| b.expect("the bodies of lying faces fly"));
+        let touches = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
+        let names = |t: &Touch| t.blocks.map(|b| self.layout.names[b].clone());
+        let [a, b] = names(&touches[0]);
+        let pressed = match self.pressed(&lying, self.members(&lying.ends[0]), now) {
+            Ok(pressed) => pressed,
+            Err(why) => {
+                let blocks = (touches[0].blocks[0], touches[0].blocks[1]);
+                self.stops_meeting(blocks, format!("{a}'s face lies on {b}'s, and {why}"));
+                return Ok(());
+            }
+        };
+        if pressed == [true, true] {
+            // The push touched zero and presses on.
+            return Ok(());
+        }
+        for k in bodies {
+            self.tracks[k].lies = None;
+        }
+        self.clearance.lie(touches[0].pair, None);
+        let how = match pressed.iter().position(|&p| p) {
+            Some(e) => {
+                let couple = lying.ends[e];
+                for k in bodies {
+                    self.tracks[k].couple = Some(couple);
+                }
+                self.clearance.hold(touches[e].pair, Some(&couple.touch));
+                let [c, f] = names(&touches[1 - e]);
+                format!(
+                    "{c}'s corner leaves {f}'s face, which no longer pushes on it: the faces that \
+                     lay on each other turn apart at that end, the bodies turning on together on \
+                     the other"
+                )
+            }
+            None => format!("{a}'s and {b}'s faces, which lay on each other, part at both ends"),
+        };
+        self.rec
+            .rocking_event(self.t, EventKind::Separation, &touches[0].blocks, None, how);
+        if pressed == [false, false] {
+            for k in bodies {
+                self.decide(k, now, false)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Body i, whose face lies on another's, would change its mode (`guard`: a landing): the
+    /// exact model does not follow that; the run ends here and says so.
+    fn lying_gives(&mut self, i: usize, guard: Guard) {
+        let lying = self.tracks[i].lies.expect("a body of lying faces");
+        let blocks = lying.ends[0].touch.blocks;
+        let [a, b] = blocks.map(|k| self.layout.names[k].as_str());
+        let why = format!(
+            "{a}'s face lies on {b}'s, pressed at both ends of their overlap, and {} would {}: \
+             a change of such a mechanism is not followed",
+            self.body(i).name,
+            breaks(guard)
+        );
+        self.stops_meeting((blocks[0], blocks[1]), why);
+    }
+
+    /// The pair of faces lying on each other (`lying`) meets: an end of their overlap reaches
+    /// an end of the face it is on (`Meeting::Faces`, the ends from there: the faces slide
+    /// along each other, and the end passes to the other face's corner, the pushes going on),
+    /// or the overlap is gone (the faces slide off each other, corner on corner: they part).
+    fn lying_meets(
+        &mut self,
+        lying: Lying,
+        meeting: Meeting,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
+        let bodies = lying
+            .bodies()
+            .map(|b| b.expect("the bodies of lying faces fly"));
+        let old = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
+        let [a, b] = old[0].blocks.map(|k| self.layout.names[k].clone());
+        let ends = match meeting {
+            Meeting::Faces(ends) => ends,
+            Meeting::Corners => {
+                for k in bodies {
+                    self.tracks[k].lies = None;
+                }
+                self.clearance.lie(old[0].pair, None);
+                self.rec.rocking_event(
+                    self.t,
+                    EventKind::Separation,
+                    &old[0].blocks,
+                    None,
+                    format!(
+                        "{a}'s and {b}'s faces, which lay on each other, slide off each other's \
+                         ends, corner on corner: they part"
+                    ),
+                );
+                for k in bodies {
+                    self.decide(k, now, false)?;
+                }
+                return Ok(());
+            }
+            _ => unreachable!("lying faces meet only where their overlap's ends move"),
+        };
+        // Each body's pivot's home, from the contacts it had; the first new end's order.
+        let home = |k: usize| {
+            let side = usize::from(lying.ends[0].bodies[0] != Some(k));
+            lying.ends[0].home(side)
+        };
+        let order = ends[0].sides.map(|s| match s {
+            Side::Body(k, _) => k,
+            _ => unreachable!("the sides of lying faces are bodies"),
+        });
+        let states = order.map(|k| self.tracks[k].state);
+        let Some(new) = Lying::new(ends.each_ref(), order, order.map(home), states.each_ref())
+        else {
+            self.stops_meeting(
+                (old[0].blocks[0], old[0].blocks[1]),
+                format!(
+                    "{a}'s and {b}'s faces lie on each other, and an end of their overlap passes \
+                     to a corner that is both bodies' pivots: its push would turn neither body"
+                ),
+            );
+            return Ok(());
+        };
+        for k in bodies {
+            self.tracks[k].lies = Some(new);
+        }
+        self.clearance.lie(ends[0].pair, Some(&ends));
+        let moved = (ends.iter())
+            .find(|t| {
+                !old.iter()
+                    .any(|o| o.blocks == t.blocks && o.corner == t.corner)
+            })
+            .unwrap_or(&ends[0]);
+        let [c, f] = moved.blocks.map(|k| self.layout.names[k].as_str());
+        let how = format!(
+            "the faces lying on each other slide along each other: an end of their overlap \
+             passes to {c}'s corner, on {f}'s face"
+        );
+        self.rec
+            .rocking_event(self.t, EventKind::Touch, &moved.blocks, None, how);
+        Ok(())
     }
 
     /// Counts an impact at `t` for each of its blocks that moves.
@@ -2026,6 +2281,21 @@ impl<'a> Engine<'a> {
     /// left at that contact ([`Engine::rejoin`]); one seated through the rest of a series of
     /// landings takes it seated, the series ending there.
     fn strike(&mut self, t: &Touch, now: &Inputs) -> Result<Option<String>, SimulationError> {
+        let lies = t.sides.iter().find_map(|side| match *side {
+            Side::Body(i, _) => self.tracks[i].lies.map(|l| (i, l)),
+            _ => None,
+        });
+        if let Some((i, lying)) = lies {
+            let [a, b] = lying.ends[0]
+                .touch
+                .blocks
+                .map(|k| self.layout.names[k].as_str());
+            return Ok(Some(format!(
+                "{}'s face lies on another's ({a}'s on {b}'s): a blow on faces lying on each \
+                 other is not followed",
+                self.body(i).name
+            )));
+        }
         for k in 0..2 {
             let name = &self.layout.names[t.blocks[k]];
             let i = match t.sides[k] {
