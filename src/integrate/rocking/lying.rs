@@ -10,8 +10,9 @@
 //! faces turn apart at that end, or part). Where an end of the overlap reaches a corner of
 //! the other face (the faces slide along each other) is the pair's (`clearance`), and the
 //! end passes to that corner. Bodies in flight only: a body on the ground takes its pivot's
-//! friction into the decision of which ends press, which is not built, and a landing of
-//! either body while the faces lie on each other stops the run.
+//! friction into the decision of which ends press, which is not built; a landing of either
+//! body takes the ground's impulses with both ends' at once (the engine's `lying_lands`), and
+//! where both ends stay after it, the run stops.
 
 use super::body::RockingBody;
 use super::clearance::{Side, Touch};

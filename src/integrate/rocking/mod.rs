@@ -953,6 +953,8 @@ impl<'a> Engine<'a> {
             }
             return match guard {
                 Guard::Parts => self.lying_parts(i, now),
+                Guard::Impact => self.lying_lands(i, None, now),
+                Guard::Land(corner) => self.lying_lands(i, Some(corner), now),
                 _ => {
                     self.lying_gives(i, guard);
                     Ok(())
@@ -1597,8 +1599,150 @@ impl<'a> Engine<'a> {
         Ok(())
     }
 
-    /// Body i, whose face lies on another's, would change its mode (`guard`: a landing): the
-    /// exact model does not follow that; the run ends here and says so.
+    /// Body i, whose face lies on another's, lands (on its base, or from flight on `corner`):
+    /// the landing's impulses and both ends' at once, plastic ([`collision::resolve_all`], the
+    /// law of a landing in a couple with one more contact). Where both ends open, the bodies
+    /// part; where one stays, they turn on together on it (or the body rests against the
+    /// other, as after any impact that leaves a contact); where both stay, or the other body
+    /// lands at the same instant, or the law has no outcome, the run stops, saying why.
+    fn lying_lands(
+        &mut self,
+        i: usize,
+        corner: Option<Corner>,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
+        let lying = self.tracks[i].lies.expect("a body of lying faces");
+        if let Some(due) = self.landings.get_mut(i) {
+            // Taken here, wherever it was found: not again at this stop.
+            *due = None;
+        }
+        let bodies = lying
+            .bodies()
+            .map(|b| b.expect("the bodies of lying faces fly"));
+        let ends = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
+        let [a, b] = ends[0].blocks.map(|k| self.layout.names[k].clone());
+        let name = self.body(i).name.clone();
+        let lands = match corner {
+            None => format!("{name} lands on its base"),
+            Some(c) => format!("{name} lands from free flight on its {} corner", c.name()),
+        };
+        let comes = format!("{lands} while {a}'s face lies on {b}'s");
+        let pair = (ends[0].blocks[0], ends[0].blocks[1]);
+        let j = bodies[usize::from(bodies[0] == i)];
+        let partner = self.landings.get(j).is_some_and(Option::is_some)
+            || self.lands_by_round_off(j).is_some();
+        let why = match () {
+            _ if self.scene.equations != Equations::Exact => {
+                Some("the linearised equations do not follow blocks in contact")
+            }
+            _ if self.body(i).restitution_factor != 1.0 => Some(
+                "a landing that keeps less than Housner's rate (a restitution factor below one) \
+                 with two contacts is not followed",
+            ),
+            _ if partner => Some("the other body lands at the same instant, which is not followed"),
+            _ => None,
+        };
+        if let Some(why) = why {
+            self.stops_meeting(pair, format!("{comes}, and {why}"));
+            return Ok(());
+        }
+        for k in bodies {
+            self.tracks[k].lies = None;
+        }
+        self.clearance.lie(ends[0].pair, None);
+        let before = self.tracks[i].state.omega;
+        let ground = self.grounded(i, corner, now)?;
+        let ids = ends[0].sides.map(|side| match side {
+            Side::Body(k, origin) => (k, origin),
+            _ => unreachable!("the sides of lying faces are bodies"),
+        });
+        let mut turning = ids.map(|(k, origin)| self.turning(k, origin));
+        turning[usize::from(ids[0].0 != i)].ground = ground;
+        let index = |side: Side| match side {
+            Side::Body(k, _) => ids.iter().position(|&(b, _)| b == k),
+            _ => None,
+        };
+        let links = ends.each_ref().map(|t| collision::Link {
+            sides: t.sides.map(index),
+            contact: collision::Contact {
+                point: t.point,
+                normal: t.normal,
+                restitution: 0.0,
+            },
+        });
+        let all = match collision::resolve_all(&turning, &links) {
+            Ok(all) => all,
+            Err(refusal) => {
+                self.stops_meeting(pair, format!("{comes}, and {refusal}"));
+                return Ok(());
+            }
+        };
+        let stays = [0, 1].map(|e| all.normal_m_s[e].1 <= ends[e].tie_m_s);
+        if stays == [true, true] {
+            let why = format!(
+                "{comes}, and both ends of their contact stay on it (impulses {:.6e} and {:.6e} N \
+                 s): faces lying on each other with a body on the ground are not followed",
+                all.impulse_n_s[0], all.impulse_n_s[1]
+            );
+            self.stops_meeting(pair, why);
+            return Ok(());
+        }
+        let after = all.after[usize::from(ids[0].0 != i)].omega;
+        self.rec.rocking_event(
+            self.t,
+            EventKind::RockingImpact,
+            &self.layout.outputs(i),
+            Some((before, after)),
+            format!("{comes}, the three contacts plastic at once: theta' {before:.6e} -> {after:.6e} rad/s"),
+        );
+        match stays.iter().position(|&s| s) {
+            None => {
+                // Both ends open: each body on in the mode its velocities give.
+                self.rec.energy.impact_loss_j += all.loss_j;
+                self.rec.rocking_event(
+                    self.t,
+                    EventKind::Separation,
+                    &ends[0].blocks,
+                    None,
+                    format!(
+                        "{a}'s and {b}'s faces, which lay on each other, part at both ends as \
+                         {lands}, at {:.6e} and {:.6e} m/s",
+                        all.normal_m_s[0].1, all.normal_m_s[1].1
+                    ),
+                );
+                for (n, &(k, _)) in ids.iter().enumerate() {
+                    let (_, decides) = self.take(k, &all.after[n]);
+                    if decides {
+                        self.decide(k, now, false)?;
+                    }
+                }
+            }
+            Some(e) => {
+                let t = &ends[e];
+                let [c, f] = ends[1 - e].blocks.map(|k| self.layout.names[k].clone());
+                let sides = links[e].sides.map(|k| k.map(|n| turning[n]));
+                let out = collision::Outcome {
+                    after: links[e].sides.map(|k| k.map(|n| all.after[n])),
+                    impulse_n_s: all.impulse_n_s[e],
+                    normal_m_s: all.normal_m_s[e],
+                    loss_j: all.loss_j,
+                };
+                let why = format!(
+                    "they stay in contact as {lands}, {c}'s corner leaving {f}'s face at the other \
+                     end of the faces that lay on each other"
+                );
+                let through = Through::Landing(i, None);
+                if let Some(why) = self.rests_against(t, &sides, &out, now, why, through) {
+                    self.stops_meeting(pair, why);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Body i, whose face lies on another's, would change its mode otherwise than by a landing
+    /// (`guard`: lie on its face): the exact model does not follow that; the run ends here and
+    /// says so.
     fn lying_gives(&mut self, i: usize, guard: Guard) {
         let lying = self.tracks[i].lies.expect("a body of lying faces");
         let blocks = lying.ends[0].touch.blocks;
