@@ -282,55 +282,6 @@ impl Couple {
                 Member::Fixed => None,
             }) == Some(true)
         };
-        let ways = |k: usize| -> Vec<Option<Mode>> {
-            let Member::Moves(body, mode, state) = members[k] else {
-                return vec![None];
-            };
-            let c = mode.corner().unwrap_or(self.pivots[k]);
-            // A pivot that an impulse leaves rising, or slipping, at a tie's rate may stay on
-            // the ground, or stick.
-            if state.lift != 0.0 || !tie_speed(body, state.lift_v) {
-                return vec![Some(Mode::Flight(c))];
-            }
-            let still = tie_speed(body, state.v);
-            let slips = if still {
-                vec![Slip::Forward, Slip::Backward]
-            } else {
-                vec![Slip::of_sign(state.v)]
-            };
-            // Seated (turning at a tie's rate: an impact law's round-off), it may stay so, the
-            // push passing to the ground through its base, or turn on its pivot's corner.
-            let tie = TIE * body.slenderness_rad() * body.frequency_parameter_rad_s();
-            let seated = state.theta == 0.0 && state.omega.abs() <= tie;
-            let rest = (seated && still).then_some(Mode::Rest);
-            let slides = slips.iter().filter(|_| seated).map(|&s| Mode::Slide(s));
-            let stuck = still.then_some(Mode::Rock(c));
-            (rest.into_iter().chain(slides).chain(stuck))
-                .chain(slips.iter().map(|&s| Mode::SlideRock(c, s)))
-                .chain([Mode::Flight(c)])
-                .map(Some)
-                .collect()
-        };
-        // The first condition of body k's mode that `traj` breaks just after now.
-        let broken_by = |k: usize, trial: &[Member; 2], traj: &Trajectory| {
-            let Member::Moves(body, mode, _) = trial[k] else {
-                return None;
-            };
-            let mut conditions = modes::constraints(body, Equations::Exact, traj);
-            if let Mode::Flight(c) = mode {
-                // Off the ground strictly: a pivot whose height stays zero to a tie stays on it.
-                conditions.push(modes::Constraint {
-                    series: traj.lift,
-                    scale: body.size_m(),
-                    guard: Guard::Land(c),
-                    strict: true,
-                });
-            }
-            let scale_t = body.time_scale_s();
-            (conditions.into_iter())
-                .find(|c| !c.holds_after(scale_t))
-                .map(|c| (body.name.clone(), c.guard))
-        };
         let tie_accel = members.iter().find_map(|m| match m {
             Member::Moves(body, ..) => Some(TIE * body.g_m_s2),
             Member::Fixed => None,
@@ -341,8 +292,8 @@ impl Couple {
         // positive.
         let (mut holding, mut broken, mut opening, mut paradox) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for first in ways(0) {
-            for second in ways(1) {
+        for first in ways(members[0], self.pivots[0]) {
+            for second in ways(members[1], self.pivots[1]) {
                 let modes = [first, second];
                 let trial = [0, 1].map(|k| match (members[k], modes[k]) {
                     (Member::Moves(body, _, state), Some(mode)) => Member::Moves(body, mode, state),
@@ -366,14 +317,14 @@ impl Couple {
                 let alone = (0..2).all(|k| match trial[k] {
                     Member::Moves(body, mode, state) => {
                         let traj = modes::trajectory(body, Equations::Exact, mode, state, now);
-                        broken_by(k, &trial, &traj).is_none()
+                        broken_by(trial[k], &traj).is_none()
                     }
                     Member::Fixed => true,
                 });
                 if alone && tie_accel.is_some_and(|tie| motion.leaving > tie) {
                     opening.push(named());
                 }
-                match (0..2).find_map(|k| broken_by(k, &trial, &motion.bodies[k])) {
+                match (0..2).find_map(|k| broken_by(trial[k], &motion.bodies[k])) {
                     None => holding.push((modes, named(), pressing(&motion))),
                     Some((body, guard)) => {
                         broken.push(format!("{}: {body} would {}", named(), breaks(guard)));
@@ -784,4 +735,60 @@ fn seated_corners(
         left[k] = 0.5 * (t.normal[k] - diff);
     }
     (left, right)
+}
+
+/// The modes a side of a contact may take just after now (`member`; a fixed block's side, none),
+/// on the pivot of its mode or, seated, on `pivot`: every way its pivot may stick, slip (a pivot
+/// slipping now keeps its direction) or leave the ground; a body off the ground stays in flight,
+/// and a pivot leaves the ground only where its height grows just after now.
+pub(super) fn ways(member: Member, pivot: Corner) -> Vec<Option<Mode>> {
+    let Member::Moves(body, mode, state) = member else {
+        return vec![None];
+    };
+    let c = mode.corner().unwrap_or(pivot);
+    // A pivot that an impulse leaves rising, or slipping, at a tie's rate may stay on the
+    // ground, or stick.
+    if state.lift != 0.0 || !tie_speed(body, state.lift_v) {
+        return vec![Some(Mode::Flight(c))];
+    }
+    let still = tie_speed(body, state.v);
+    let slips = if still {
+        vec![Slip::Forward, Slip::Backward]
+    } else {
+        vec![Slip::of_sign(state.v)]
+    };
+    // Seated (turning at a tie's rate: an impact law's round-off), it may stay so, the push
+    // passing to the ground through its base, or turn on its pivot's corner.
+    let tie = TIE * body.slenderness_rad() * body.frequency_parameter_rad_s();
+    let seated = state.theta == 0.0 && state.omega.abs() <= tie;
+    let rest = (seated && still).then_some(Mode::Rest);
+    let slides = slips.iter().filter(|_| seated).map(|&s| Mode::Slide(s));
+    let stuck = still.then_some(Mode::Rock(c));
+    (rest.into_iter().chain(slides).chain(stuck))
+        .chain(slips.iter().map(|&s| Mode::SlideRock(c, s)))
+        .chain([Mode::Flight(c)])
+        .map(Some)
+        .collect()
+}
+
+/// The first condition of the mode of `member` (a body's; a fixed block's side has none) that
+/// `traj` breaks just after now: the body's name and the condition's guard.
+pub(super) fn broken_by(member: Member, traj: &Trajectory) -> Option<(String, Guard)> {
+    let Member::Moves(body, mode, _) = member else {
+        return None;
+    };
+    let mut conditions = modes::constraints(body, Equations::Exact, traj);
+    if let Mode::Flight(c) = mode {
+        // Off the ground strictly: a pivot whose height stays zero to a tie stays on it.
+        conditions.push(modes::Constraint {
+            series: traj.lift,
+            scale: body.size_m(),
+            guard: Guard::Land(c),
+            strict: true,
+        });
+    }
+    let scale_t = body.time_scale_s();
+    (conditions.into_iter())
+        .find(|c| !c.holds_after(scale_t))
+        .map(|c| (body.name.clone(), c.guard))
 }
