@@ -555,41 +555,45 @@ impl Clearance {
         }
     }
 
-    /// Where an end of pair k's lying faces reaches an end of the face it is on, the blocks
-    /// `at_a` and `at_b`: that end passes to the face's corner there, on the other block's face
-    /// (the faces slide along each other), and the two ends are returned; where the new end is
-    /// the other end's corner, the overlap is gone, and the faces slide off each other corner
-    /// on corner.
-    fn slides(&self, k: usize, at_a: &At, at_b: &At, bodies: &[RockingBody]) -> Meeting {
+    /// Where an end of pair k's lying faces reaches an end of the face it is on, at tau on the
+    /// placed blocks `pa` and `pb`, and goes past it just after (an end that only touches the
+    /// end of its face and comes back, its distance from there growing again, stays: none):
+    /// that end passes to the face's corner there, on the other block's face (the faces slide
+    /// along each other), and the two ends are returned; where the new end is the other end's
+    /// corner, the overlap is gone, and the faces slide off each other corner on corner.
+    fn slides(
+        &self,
+        k: usize,
+        (pa, pb): (&Placed, &Placed),
+        tau: f64,
+        bodies: &[RockingBody],
+    ) -> Option<Meeting> {
         let pair = &self.pairs[k];
         let lies = pair.lies.expect("lying faces");
         let piece = |of_b: bool| if of_b { pair.b } else { pair.a };
-        // The end nearest an end of its face, and the corner of the face there.
-        let mut nearest = (f64::INFINITY, 0, (false, 0));
+        let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
+        let (at_a, at_b) = (&pa.at(tau), &pb.at(tau));
+        // The end nearest an end of its face of those that go past it, and the corner of the
+        // face there.
+        let mut nearest: Option<(f64, usize, (bool, usize))> = None;
         for (n, &(of_b, j)) in lies.ends.iter().enumerate() {
-            let (corner, face) = if of_b { (at_b, at_a) } else { (at_a, at_b) };
             let e = lies.edges[usize::from(!of_b)];
-            let (c0, c1, p) = (
-                face.corners[e],
-                face.corners[(e + 1) % 4],
-                corner.corners[j],
-            );
-            let d = [c1[0] - c0[0], c1[1] - c0[1]];
-            let length = d[0].hypot(d[1]);
-            let x = ((p[0] - c0[0]) * d[0] + (p[1] - c0[1]) * d[1]) / length;
-            for (gap, c) in [(x, e), (length - x, (e + 1) % 4)] {
-                if gap.abs() < nearest.0 {
-                    nearest = (gap.abs(), n, (!of_b, c));
+            let gaps = self.along_ends(pair, &lies, (of_b, j), pa, pb);
+            for (gap, c) in gaps.iter().zip([e, (e + 1) % 4]) {
+                let past = series::sign_after(&series::shifted(gap, tau), scale, ts) < 0;
+                let size = series::eval(gap, tau).abs();
+                if past && nearest.is_none_or(|(d, ..)| size < d) {
+                    nearest = Some((size, n, (!of_b, c)));
                 }
             }
         }
-        let (_, n, new) = nearest;
+        let (_, n, new) = nearest?;
         let mut ends = lies.ends;
         ends[n] = new;
         if ends[0] == ends[1] {
-            return Meeting::Corners;
+            return Some(Meeting::Corners);
         }
-        Meeting::Faces(ends.map(|(of_b, j)| {
+        Some(Meeting::Faces(ends.map(|(of_b, j)| {
             let (corner, face) = if of_b { (at_b, at_a) } else { (at_a, at_b) };
             let e = lies.edges[usize::from(!of_b)];
             let pieces = [piece(of_b), piece(!of_b)];
@@ -602,7 +606,7 @@ impl Clearance {
                 bodies,
             );
             Touch { stays: true, ..t }
-        }))
+        })))
     }
 
     /// How pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on
@@ -796,11 +800,17 @@ impl Clearance {
             let (Some(pa), Some(pb)) = (&placed[a], &placed[b]) else {
                 return Ok(None);
             };
-            let (at_a, at_b) = (pa.at(x), pb.at(x));
             if self.pairs[k].lies.is_some() {
                 let outputs = (self.pieces[a].output, self.pieces[b].output);
-                return Ok(Some((x, outputs, self.slides(k, &at_a, &at_b, bodies))));
+                match self.slides(k, (pa, pb), x, bodies) {
+                    Some(meeting) => return Ok(Some((x, outputs, meeting))),
+                    None => {
+                        from = x;
+                        continue;
+                    }
+                }
             }
+            let (at_a, at_b) = (pa.at(x), pb.at(x));
             let (mut edge, margin) = widest(&at_a, &at_b);
             // A pair in contact (`held`) parts only as the engine decides.
             let touches = margin <= self.tie_m(k);

@@ -208,6 +208,77 @@ pub fn closing(
     (arm != 0.0).then_some((k, -rate / arm))
 }
 
+/// The changes of the bodies' velocities (v, theta', w each, m/s and rad/s) that leave the
+/// normal velocity at every contact of `links` zero, each body changing only the velocities
+/// its mode leaves free (`free`, in that order), by the least in kinetic energy (weighting v
+/// and w by the mass, theta' by the inertia about the centroid): what closes the round-off at
+/// contacts that stay where a decision made a rate at a tie zero. One or two contacts; none
+/// where the free velocities cannot close them (a singular system).
+pub fn closing_all(
+    bodies: &[Turning],
+    links: &[Link],
+    free: &[[bool; 3]],
+) -> Option<Vec<[f64; 3]>> {
+    let side = |l: &Link, k: usize| l.sides[k].map(|j| &bodies[j]);
+    let rates: Vec<f64> = (links.iter())
+        .map(|l| approach([side(l, 0), side(l, 1)], &l.contact).0)
+        .collect();
+    // J[e][j][d]: how contact e's normal velocity grows with velocity d of body j.
+    let jac: Vec<Vec<[f64; 3]>> = (links.iter())
+        .map(|l| {
+            let mut row = vec![[0.0; 3]; bodies.len()];
+            for (side, sign) in l.sides.iter().zip(SIGN) {
+                if let Some(j) = *side {
+                    let a = arms(&bodies[j], &l.contact);
+                    for d in 0..3 {
+                        row[j][d] += sign * a[d];
+                    }
+                }
+            }
+            row
+        })
+        .collect();
+    let weight = |j: usize, d: usize| match d {
+        1 => bodies[j].inertia_kg_m2,
+        _ => bodies[j].mass_kg,
+    };
+    let n = links.len();
+    let mut a = [[0.0; 2]; 2];
+    for e in 0..n {
+        for f in 0..n {
+            for (j, dofs) in free.iter().enumerate() {
+                for d in (0..3).filter(|&d| dofs[d]) {
+                    a[e][f] += jac[e][j][d] * jac[f][j][d] / weight(j, d);
+                }
+            }
+        }
+    }
+    let lambda = match n {
+        1 => [-rates[0] / a[0][0], 0.0],
+        2 => {
+            let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+            [
+                (-rates[0] * a[1][1] + a[0][1] * rates[1]) / det,
+                (-a[0][0] * rates[1] + a[1][0] * rates[0]) / det,
+            ]
+        }
+        _ => return None,
+    };
+    if !lambda.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    Some(
+        (free.iter().enumerate())
+            .map(|(j, dofs)| {
+                [0, 1, 2].map(|d| match dofs[d] {
+                    true => (0..n).map(|e| jac[e][j][d] * lambda[e]).sum::<f64>() / weight(j, d),
+                    false => 0.0,
+                })
+            })
+            .collect(),
+    )
+}
+
 /// The impact of the corner of side 0 on the face of side 1 (`None`: a fixed block).
 pub fn resolve(sides: [Option<&Turning>; 2], c: &Contact) -> Result<Outcome, Refusal> {
     let (approach, speed, _) = approach(sides, c);

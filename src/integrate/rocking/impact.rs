@@ -133,12 +133,19 @@ pub fn land(
 /// Whether a body in free flight, turned by `theta`, reaches the ground on `corner` without
 /// coming down: its centroid rising at `yg0` (m/s) and turning at `omega` (rad/s) leave the
 /// corner's vertical velocity zero to a tie (a flight of round-off, after a blow that left its
-/// pivot rising at a tie's rate). That is a touch, not an impact: no impulse, nothing lost,
-/// and the body goes on from the corner at the velocities it has.
+/// pivot rising at a tie's rate). That is a touch, not an impact: no impulse, and the body
+/// goes on from the corner at the velocities it has (less the corner's vertical speed, a tie,
+/// whose share of the kinetic energy counts as lost).
 pub fn touches(body: &RockingBody, theta: f64, corner: Corner, (yg0, omega): (f64, f64)) -> bool {
+    super::tie_speed(body, rise_m_s(body, theta, corner, (yg0, omega)))
+}
+
+/// The vertical velocity (m/s) of `corner` of a body in free flight turned by `theta`, its
+/// centroid rising at `yg0` (m/s) and turning at `omega` (rad/s).
+pub fn rise_m_s(body: &RockingBody, theta: f64, corner: Corner, (yg0, omega): (f64, f64)) -> f64 {
     let (b, h, s) = (body.half_base_m, body.centroid_height_m, corner.sign());
     let (sin, cos) = theta.sin_cos();
-    super::tie_speed(body, yg0 - (s * b * cos - h * sin) * omega)
+    yg0 - (s * b * cos - h * sin) * omega
 }
 
 /// The landing of a body in free flight on its corner `corner`, turned by `theta`, with its
@@ -186,7 +193,10 @@ pub fn land_from_flight(
             },
             pivot: Some(corner),
             slipped: !super::tie_speed(body, xg0 - gy * omega),
-            loss_j: 0.0,
+            // The corner's vertical speed, a tie, is gone: the centroid's vertical velocity
+            // becomes dx theta', and what that takes of the kinetic energy (first order in
+            // the tie, not second) goes with the loss.
+            loss_j: 0.5 * m * (yg0 * yg0 - (dx * omega) * (dx * omega)),
         });
     }
     let stick = (ig * omega + m * (gy * xg0 + dx * yg0)) / io;

@@ -9,15 +9,26 @@
 //! solve a 2x2 system), and the conditions that end it, either push falling to zero (the
 //! faces turn apart at that end, or part). Where an end of the overlap reaches a corner of
 //! the other face (the faces slide along each other) is the pair's (`clearance`), and the
-//! end passes to that corner. Bodies in flight only: a body on the ground takes its pivot's
-//! friction into the decision of which ends press, which is not built; a landing of either
-//! body takes the ground's impulses with both ends' at once (the engine's `lying_lands`), and
-//! where both ends stay after it, the run stops.
+//! end passes to that corner. A body may stay on the ground, rocking on its pivot, slipping or
+//! seated: which ends press is then decided together with how each pivot moves
+//! ([`Lying::decide`], friction at a pivot making it a problem that may have no answer or
+//! several, said by name); a landing of either body takes the ground's impulses with both
+//! ends' at once (the engine's `lying_lands`), and the faces lie on each other on where both
+//! ends still press after it.
 
 use super::body::RockingBody;
 use super::clearance::{Side, Touch};
 use super::couple::{self, Couple, Member, Pushed};
-use super::modes::{Constraint, Guard, Inputs, Scales, State};
+use super::modes::{self, Constraint, Equations, Guard, Inputs, Mode, Scales, State, Trajectory};
+use super::series::{self, Coeffs};
+
+/// What the contact problem of two faces lying on each other decides: each body's mode (in
+/// the first contact's order) and which ends press.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Decision {
+    pub(super) modes: [Mode; 2],
+    pub(super) pressed: [bool; 2],
+}
 
 /// Two faces lying on each other: the contact at each end of their overlap, the first's sides
 /// giving the bodies' order.
@@ -28,9 +39,10 @@ pub(super) struct Lying {
 
 impl Lying {
     /// The faces lying on each other at the contacts `ends` (each a corner of one body on the
-    /// other's face), the bodies in flight (`bodies`, in the first contact's order, with their
-    /// pivots' homes and their states); none where a contact's sides are not these bodies.
-    /// A push moves a body in flight whatever its arm: no contact is refused for its arms.
+    /// other's face), the bodies (`bodies`, in the first contact's order, with their pivots'
+    /// homes and their states); none where a contact's sides are not these bodies. No contact
+    /// is refused for its arms: a push whose arm turns neither body about its pivot leaves the
+    /// decision's matrix singular, and [`Lying::decide`] says so.
     pub(super) fn new(
         ends: [&Touch; 2],
         bodies: [usize; 2],
@@ -61,6 +73,134 @@ impl Lying {
     /// contact's order), and the two pushes.
     pub(super) fn motion(&self, members: [Member; 2], inputs: &Inputs) -> Pushed {
         couple::pushed(&[&self.ends[0], &self.ends[1]], members, inputs)
+    }
+
+    /// Contact e's sides as the first contact's order numbers them (an involution).
+    pub(super) fn order(&self, e: usize) -> [usize; 2] {
+        self.ends[e]
+            .bodies
+            .map(|b| usize::from(b != self.bodies()[0]))
+    }
+
+    /// Trajectories in the first contact's order, in contact e's (or back).
+    fn ordered(&self, t: &[Trajectory; 2], e: usize) -> [Trajectory; 2] {
+        self.order(e).map(|k| t[k].clone())
+    }
+
+    /// The contact problem at the level of accelerations, for faces at rest on each other at
+    /// both ends (`members`: the bodies in their modes and states, the first contact's order).
+    /// Every way each body's pivot may stick, slip or leave the ground, or a seated body stay
+    /// seated or turn on its pivot ([`couple::ways`]), is tried with each set of pressing
+    /// ends: both (the two pushes of [`Lying::motion`] >= 0), one (its push >= 0, the couple's
+    /// motion on it alone, the other end's acceleration away from its face positive), none
+    /// (the bodies alone, both ends' accelerations away positive); a way holds where, besides,
+    /// no condition of either body's mode breaks just after now ([`couple::broken_by`]). For
+    /// bodies in flight the matrix W that takes the pushes to the ends' accelerations away is
+    /// positive definite (each body's mass matrix is, and two points of one face constrain
+    /// independently), and exactly one holds; with a body on the ground, Coulomb friction at
+    /// its pivot makes the problem one with friction, which may have no solution or several
+    /// (Painleve), so exactly one must hold: else why not, in words, naming the ways that hold
+    /// or saying that none does and which ways friction leaves without a positive effective
+    /// mass.
+    pub(super) fn decide(&self, members: [Member; 2], now: &Inputs) -> Result<Decision, String> {
+        let Member::Moves(first, ..) = members[0] else {
+            unreachable!("the bodies of lying faces move");
+        };
+        let tie = series::TIE * first.g_m_s2;
+        // A push that W leaves undetermined (a singular matrix: no arm turns either body
+        // about its pivot) presses nowhere.
+        let presses = |push: &Coeffs| {
+            push.iter().all(|x| x.is_finite())
+                && series::sign_after(push, Scales::of(first).force, first.time_scale_s()) >= 0
+        };
+        let ways = [0, 1].map(|k| couple::ways(members[k], self.ends[0].pivots[k]));
+        let (mut holding, mut paradox, mut tried) = (Vec::new(), Vec::new(), 0);
+        for a in &ways[0] {
+            for b in &ways[1] {
+                let picked = [*a, *b].map(|m| m.expect("a body's way is a mode"));
+                let trial = [0, 1].map(|k| match members[k] {
+                    Member::Moves(body, _, state) => Member::Moves(body, picked[k], state),
+                    Member::Fixed => unreachable!("the bodies of lying faces move"),
+                });
+                let named = |pressed: [bool; 2]| {
+                    let each = trial.iter().map(|m| match m {
+                        Member::Moves(body, mode, _) => format!("{} {}", body.name, mode.name()),
+                        Member::Fixed => unreachable!("the bodies of lying faces move"),
+                    });
+                    let ends = match pressed {
+                        [true, true] => "pressing at both ends".to_string(),
+                        [false, false] => "parting at both ends".to_string(),
+                        _ => {
+                            let e = usize::from(pressed[1]);
+                            let corner = match trial[self.order(e)[0]] {
+                                Member::Moves(body, ..) => body.name.as_str(),
+                                Member::Fixed => unreachable!("the bodies of lying faces move"),
+                            };
+                            format!("pressing at {corner}'s corner alone")
+                        }
+                    };
+                    format!("{} {ends}", each.collect::<Vec<_>>().join(" with "))
+                };
+                let kept = |t: &[Trajectory; 2]| {
+                    (0..2).all(|k| couple::broken_by(trial[k], &t[k]).is_none())
+                };
+                let slips =
+                    |t: &[Trajectory; 2]| t.iter().any(|t| t.denominator.is_some_and(|d| d <= 0.0));
+                tried += 4;
+                let both = self.motion(trial, now);
+                let [[w00, w01], [w10, w11]] = both.compliance;
+                if w00 <= 0.0 || w11 <= 0.0 || w00 * w11 - w01 * w10 <= 0.0 || slips(&both.bodies) {
+                    paradox.push(named([true, true]));
+                }
+                if both.pushes.iter().all(&presses) && kept(&both.bodies) {
+                    holding.push((picked, [true, true], named([true, true])));
+                }
+                for e in 0..2 {
+                    let one = self.ends[e].motion(self.order(e).map(|k| trial[k]), now);
+                    let moved = self.ordered(&one.bodies, e);
+                    let other = self.ends[1 - e].away(&self.ordered(&moved, 1 - e));
+                    if presses(&one.push) && other > tie && kept(&moved) {
+                        let mut pressed = [false; 2];
+                        pressed[e] = true;
+                        holding.push((picked, pressed, named(pressed)));
+                    }
+                }
+                let alone = [0, 1].map(|k| match trial[k] {
+                    Member::Moves(body, mode, state) => {
+                        modes::trajectory(body, Equations::Exact, mode, state, now)
+                    }
+                    Member::Fixed => unreachable!("the bodies of lying faces move"),
+                });
+                let apart = (0..2).all(|e| self.ends[e].away(&self.ordered(&alone, e)) > tie);
+                if apart && kept(&alone) {
+                    holding.push((picked, [false, false], named([false, false])));
+                }
+            }
+        }
+        let friction = match paradox.is_empty() {
+            true => String::new(),
+            false => format!(
+                ", friction making the effective mass of {} not positive (Painleve's paradox)",
+                paradox.join("; ")
+            ),
+        };
+        match &holding[..] {
+            [(modes, pressed, _)] => Ok(Decision {
+                modes: *modes,
+                pressed: *pressed,
+            }),
+            [] => Err(format!(
+                "none of the {tried} ways of the pivots and the ends holds{friction}: the rigid \
+                 model with Coulomb friction has no motion here"
+            )),
+            _ => Err(format!(
+                "several ways of the pivots and the ends hold ({}){friction}: the rigid model \
+                 with Coulomb friction does not say which",
+                (holding.iter().map(|(.., n)| n.as_str()))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            )),
+        }
     }
 
     /// Each end's contact where the bodies are in `states` (first contact's order), as touches

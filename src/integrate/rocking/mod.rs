@@ -64,7 +64,7 @@ use clearance::{Clearance, Meeting, Side, Touch};
 use couple::{Couple, Member};
 use layout::Layout;
 use lean::Lean;
-use lying::Lying;
+use lying::{Decision, Lying};
 use modes::{Corner, Guard, Inputs, Mode, Scales, Slip, State, Trajectory};
 use series::Coeffs;
 
@@ -290,6 +290,45 @@ fn mode_after(after: &collision::After, mode: Mode, seated: bool) -> Result<Mode
         (collision::Base::Flies, _) => Ok(Mode::Flight(mode.corner().unwrap_or(Corner::Right))),
         (collision::Base::Pivot { .. }, _) => Err("turns on its other corner"),
         (collision::Base::Seated { .. }, _) => Err("stays seated"),
+    }
+}
+
+/// A body's state as the mode decided for it just after an impact takes it: on the ground, a
+/// rise (and a slip) at a tie's rate is the impact law's round-off, and a seated body does not
+/// turn.
+fn settled_in(body: &RockingBody, mode: Mode, state: State) -> State {
+    let mut state = state;
+    if !matches!(mode, Mode::Flight(_)) {
+        (state.lift, state.lift_v) = (0.0, 0.0);
+        if matches!(mode, Mode::Rock(_) | Mode::Rest) || tie_speed(body, state.v) {
+            state.v = 0.0;
+        }
+    }
+    if matches!(mode, Mode::Rest | Mode::Slide(_)) {
+        (state.theta, state.omega) = (0.0, 0.0);
+    }
+    state
+}
+
+/// Whether a body's tilt and rotation rate are round-off: a tie of its slenderness, and of
+/// the rate it would take to turn that far in its time scale.
+fn upright_by_round_off(body: &RockingBody, state: &State) -> bool {
+    let tie = series::TIE * body.slenderness_rad();
+    state.theta.abs() <= tie && state.omega.abs() <= tie * body.frequency_parameter_rad_s()
+}
+
+/// What a body does in `mode` from `state`, in words.
+fn in_mode(mode: Mode, state: &State) -> String {
+    match mode {
+        Mode::Flight(_) => "in flight".into(),
+        Mode::Rock(c) => format!("rocking on its {} corner", c.name()),
+        Mode::SlideRock(c, _) => format!(
+            "rocking on its {} corner, slipping at {:.6e} m/s",
+            c.name(),
+            state.v
+        ),
+        Mode::Rest => "seated".into(),
+        Mode::Slide(_) => format!("seated, sliding at {:.6e} m/s", state.v),
     }
 }
 
@@ -952,7 +991,13 @@ impl<'a> Engine<'a> {
                 return Ok(());
             }
             return match guard {
-                Guard::Parts => self.lying_parts(i, now),
+                Guard::Parts
+                | Guard::PivotSlip
+                | Guard::PivotStick
+                | Guard::Flight
+                | Guard::StickLimit
+                | Guard::Stop
+                | Guard::Uplift => self.relie(i, guard, now),
                 Guard::Impact => self.lying_lands(i, None, now),
                 Guard::Land(corner) => self.lying_lands(i, Some(corner), now),
                 _ => {
@@ -1087,13 +1132,15 @@ impl<'a> Engine<'a> {
     /// impulses at once ([`collision::resolve_all`], each free to open). Where the pair was held
     /// in contact (`couple`: a body of their couple), `ends[1]` is the corner it moved on, which
     /// takes no restitution, while `ends[0]` strikes; where the pair was apart, both strike with
-    /// the wall's restitution (none for an end that has not parted since the last impact). Where one end stays and the other opens (Housner's law between two
-    /// blocks: the face rocks on over one end), the blocks turn on together on the one that
-    /// stays; where both open, they part. Where both are left at rest on each other, which ends
-    /// press is decided from the accelerations ([`Engine::pressed_ends`]); where both do, the
-    /// faces lie on each other, which is not followed: the reason is returned, as it is where
-    /// the law has no outcome or two, or a column holds joints the impulse would pass through;
-    /// nothing has changed then.
+    /// the wall's restitution (none for an end that has not parted since the last impact).
+    /// Where one end stays and the other opens (Housner's law between two blocks: the face
+    /// rocks on over one end), the blocks turn on together on the one that stays; where both
+    /// open, they part. Where both are left at rest on each other, which ends press and how
+    /// each body's pivot moves is decided from the accelerations ([`Engine::pressed_ends`]);
+    /// where both press, the faces lie on each other from there ([`Engine::lie`]). Where the
+    /// decision or the law has no outcome or several, where one side is a block that does not
+    /// move (a face lying on it is not followed), or where a column holds joints the impulse
+    /// would pass through, the reason is returned; nothing has changed then.
     fn lies_flat(
         &mut self,
         ends: [Touch; 2],
@@ -1185,15 +1232,67 @@ impl<'a> Engine<'a> {
         // Where both ends are left at rest on each other, the words saying so and that the
         // faces turn apart at an end, for the end (or both) that opens all the same.
         let mut at_rest = None;
-        if stays == [true, true] {
-            let after = links
-                .each_ref()
-                .map(|l| l.sides.map(|k| k.map(|j| all.after[j])));
-            match self.pressed_ends([t, held], after, now) {
-                Ok(Some(([true, true], lying, sides))) => {
-                    return Ok(self.lie(&ends, couple, lying, &sides, &all, &comes, now));
+        if stays == [true, true] && ids.len() < 2 {
+            // What the impact leaves of the body's base says which motion would follow: a base
+            // that stays as it was, stuck, leaves the blocks no motion (locked face on face);
+            // one that lifts or slips leaves a face sliding along the fixed block's.
+            let (k, _) = ids[0];
+            let (old, after) = (self.tracks[k].mode, &all.after[0]);
+            let seated = matches!(old, Mode::Rest | Mode::Slide(_));
+            let what = match (after.base, mode_after(after, old, seated)) {
+                (collision::Base::Seated { slips: false }, _) => None,
+                (collision::Base::Seated { slips: true }, _) => Some("slides on its base"),
+                (_, Ok(Mode::Rock(_))) if !seated => None,
+                (_, Ok(Mode::Rock(_))) => Some("turns onto a corner"),
+                (_, Ok(Mode::Flight(_))) if tie_speed(self.body(k), after.lift_v) => {
+                    Some("rises off the ground at a tie's rate")
                 }
-                Ok(Some((pressed, ..))) if pressed != stays => {
+                (_, Ok(Mode::Flight(_))) => Some("leaves the ground"),
+                (_, Ok(_)) => Some("slips at its pivot"),
+                (_, Err(what)) => Some(what),
+            };
+            let how = match what {
+                None => {
+                    "its base stays, stuck: blocks locked face on face are not followed".to_string()
+                }
+                Some(what) => format!(
+                    "{} {what} through it: a face that moves along a face it lies on is not \
+                     followed",
+                    self.body(k).name
+                ),
+            };
+            return Ok(Some(format!(
+                "{comes}, and both ends of their contact stay on it (impulses {:.6e} and {:.6e} N \
+                 s), and {how}",
+                all.impulse_n_s[0], all.impulse_n_s[1]
+            )));
+        }
+        if stays == [true, true] {
+            let after = links[0].sides.map(|k| k.map(|j| all.after[j]));
+            match self.pressed_ends([t, held], &after, Through::Approach, now) {
+                Ok((decision, lying, sides)) if decision.pressed == [true, true] => {
+                    if let Some(i) = couple {
+                        self.uncouple(i);
+                    }
+                    self.rec.energy.impact_loss_j += all.loss_j;
+                    self.rec.impacts += 1;
+                    self.struck(t);
+                    let (bodies, omega) = self.lie(&ends, lying, &decision, &sides, now);
+                    let [(b0, a0), (b1, a1)] = [all.normal_m_s[0], all.normal_m_s[1]];
+                    let what = format!(
+                        "{comes} at the ends of their overlap, their normal velocities {b0:.6e} \
+                         and {b1:.6e} m/s before and {a0:.6e} and {a1:.6e} m/s after (impulses \
+                         {:.6e} and {:.6e} N s), and both ends press: the faces lie on each \
+                         other{bodies}",
+                        all.impulse_n_s[0], all.impulse_n_s[1]
+                    );
+                    let blocks = &t.blocks;
+                    let kind = EventKind::BlocksImpact;
+                    self.rec
+                        .rocking_event(self.t, kind, blocks, Some(omega), what);
+                    return Ok(None);
+                }
+                Ok((decision, ..)) => {
                     let impulses = match couple {
                         Some(_) => format!(
                             " (impulses {:.6e} and {:.6e} N s)",
@@ -1204,48 +1303,16 @@ impl<'a> Engine<'a> {
                     at_rest = Some(format!(
                         "both ends of their contact at rest on it after the impact{impulses}"
                     ));
-                    stays = pressed;
+                    stays = decision.pressed;
                 }
-                Ok(_) => {}
-                Err(why) => return Ok(Some(format!("{comes}, and {why}"))),
+                Err(why) => {
+                    return Ok(Some(format!(
+                        "{comes}, and both ends of their contact stay on it (impulses {:.6e} and \
+                         {:.6e} N s), and {why}",
+                        all.impulse_n_s[0], all.impulse_n_s[1]
+                    )))
+                }
             }
-        }
-        if stays == [true, true] {
-            // What the impact leaves of each body's base says which motion would follow: bases
-            // that stay as they were, stuck, leave the blocks no motion (locked face on face); one
-            // that lifts or slips leaves a face sliding along the other.
-            let moves: Vec<String> = (ids.iter().enumerate())
-                .filter_map(|(j, &(k, _))| {
-                    let (old, after) = (self.tracks[k].mode, &all.after[j]);
-                    let seated = matches!(old, Mode::Rest | Mode::Slide(_));
-                    let what = match (after.base, mode_after(after, old, seated)) {
-                        (collision::Base::Seated { slips: false }, _) => return None,
-                        (collision::Base::Seated { slips: true }, _) => "slides on its base",
-                        (_, Ok(Mode::Rock(_))) if !seated => return None,
-                        (_, Ok(Mode::Rock(_))) => "turns onto a corner",
-                        (_, Ok(Mode::Flight(_))) if tie_speed(self.body(k), after.lift_v) => {
-                            "rises off the ground at a tie's rate"
-                        }
-                        (_, Ok(Mode::Flight(_))) => "leaves the ground",
-                        (_, Ok(_)) => "slips at its pivot",
-                        (_, Err(what)) => what,
-                    };
-                    Some(format!("{} {what}", self.body(k).name))
-                })
-                .collect();
-            let how = match moves.is_empty() {
-                true => "every base stays, stuck: blocks locked face on face are not followed"
-                    .to_string(),
-                false => format!(
-                    "{} through it: a face that moves along a face it lies on is not followed",
-                    moves.join(" and ")
-                ),
-            };
-            return Ok(Some(format!(
-                "{comes}, and both ends of their contact stay on it (impulses {:.6e} and {:.6e} N \
-                 s), and {how}",
-                all.impulse_n_s[0], all.impulse_n_s[1]
-            )));
         }
         if let Some(i) = couple {
             self.uncouple(i);
@@ -1378,97 +1445,36 @@ impl<'a> Engine<'a> {
         Ok(None)
     }
 
-    /// Which ends of two faces lying on each other stay pressed just after an impact that left
-    /// both at rest on each other (`ends`: the strike's contact, then the old corner's; `after`:
-    /// the velocities of each end's sides), where every body flies from it ([`Engine::pressed`]),
-    /// with the faces' two contacts and the bodies' modes and states after the impact (in the
-    /// first end's order). None where a body stays on the ground, or a push would turn neither
-    /// body: not decided here.
+    /// Which ends of two faces lying on each other press just after an impact that left both
+    /// at rest on each other, and each body's mode ([`Lying::decide`]); `ends`: the strike's
+    /// contact, then the other end's; `after`: the velocities of the first end's sides;
+    /// `through`: what gave the impulses. With the decision, the faces' two contacts and the
+    /// bodies' states after the impact (in the first end's order); else why not, in words.
     fn pressed_ends(
         &self,
         ends: [&Touch; 2],
-        after: [[Option<collision::After>; 2]; 2],
+        after: &[Option<collision::After>; 2],
+        through: Through,
         now: &Inputs,
-    ) -> Result<Option<([bool; 2], Lying, Sides)>, String> {
-        // Each body's mode and state after the impact, as the first end's sides have them.
-        let Ok(first) = self.sides_after(ends[0], &after[0], Through::Approach) else {
-            return Ok(None);
+    ) -> Result<(Decision, Lying, Sides), String> {
+        let sides = self.sides_after(ends[0], after, through).map_err(|what| {
+            format!(
+                "{what}: faces lying on each other are followed only while each body is seated, \
+                 rocks on a pivot or flies"
+            )
+        })?;
+        let [Some(a), Some(b)] = sides.bodies else {
+            return Err(
+                "a face lying on the face of a block that does not move is not followed".into(),
+            );
         };
-        // Every body off the ground, rising faster than round-off (a rise at a tie's rate
-        // leaves the pivot on the ground to the decisions of its couple).
-        let flies = |k: usize| match (first.bodies[k], first.modes[k]) {
-            (Some(i), Mode::Flight(_)) => !tie_speed(self.body(i), first.states[k].lift_v),
-            _ => false,
+        let Some(lying) = Lying::new(ends, [a, b], sides.homes, sides.states.each_ref()) else {
+            return Err("the ends of the faces' overlap are not between the same blocks".into());
         };
-        if !(flies(0) && flies(1)) {
-            return Ok(None);
-        }
-        let bodies = first.bodies.map(|b| b.expect("a body flies"));
-        let states = first.states.each_ref();
-        let Some(lying) = Lying::new(ends, bodies, first.homes, states) else {
-            return Ok(None);
-        };
-        let members =
-            [0, 1].map(|k| Member::Moves(self.body(bodies[k]), first.modes[k], states[k]));
-        let pressed = self.pressed(&lying, members, now)?;
-        Ok(Some((pressed, lying, first)))
-    }
-
-    /// Which ends of two faces on each other (`lying`) press, the bodies (`members`, in the
-    /// first end's order) in flight and at rest on each other at both ends: the contact
-    /// problem at the level of accelerations. For frictionless contacts between bodies in
-    /// flight, the matrix that takes the two pushes to the ends' accelerations away from the
-    /// faces is positive definite (each body's mass matrix is, and two points of one face
-    /// constrain independently), so exactly one of four ways holds: both ends pressing (both
-    /// pushes of the faces' motion >= 0, [`Lying::motion`]); one pressing (its push >= 0, the
-    /// couple's motion on it alone), the other's acceleration away positive; none, both
-    /// accelerations away positive with the bodies alone. Each is checked; where none or more
-    /// than one holds, why, in words.
-    fn pressed(
-        &self,
-        lying: &Lying,
-        members: [Member<'_>; 2],
-        now: &Inputs,
-    ) -> Result<[bool; 2], String> {
-        let Member::Moves(first, ..) = members[0] else {
-            unreachable!("the bodies of lying faces fly");
-        };
-        let tie = series::TIE * first.g_m_s2;
-        let presses = |push: &Coeffs| {
-            series::sign_after(push, Scales::of(first).force, first.time_scale_s()) >= 0
-        };
-        // End e's sides as the first end's order numbers them (an involution).
-        let order = |e: usize| {
-            lying.ends[e]
-                .bodies
-                .map(|b| usize::from(b != lying.bodies()[0]))
-        };
-        let ordered = |t: &[Trajectory; 2], e: usize| order(e).map(|k| t[k].clone());
-        let alone = members.map(|m| match m {
-            Member::Moves(body, mode, state) => {
-                modes::trajectory(body, Equations::Exact, mode, state, now)
-            }
-            Member::Fixed => unreachable!("the bodies of lying faces fly"),
-        });
-        let apart = (0..2).all(|e| lying.ends[e].away(&ordered(&alone, e)) > tie);
-        let only = [0, 1].map(|e| {
-            let motion = lying.ends[e].motion(order(e).map(|k| members[k]), now);
-            let moved = ordered(&motion.bodies, e);
-            presses(&motion.push) && lying.ends[1 - e].away(&ordered(&moved, 1 - e)) > tie
-        });
-        let both = lying.motion(members, now).pushes.iter().all(presses);
-        match (apart, only, both) {
-            (true, [false, false], false) => Ok([false, false]),
-            (false, [true, false], false) => Ok([true, false]),
-            (false, [false, true], false) => Ok([false, true]),
-            (false, [false, false], true) => Ok([true, true]),
-            _ => Err(format!(
-                "both ends of their contact are at rest on it, and not exactly one way of their \
-                 pushes holds (apart: {apart}, pressing at the first end alone: {}, at the second \
-                 alone: {}, at both: {both}), which bodies in flight cannot have",
-                only[0], only[1]
-            )),
-        }
+        let members = [a, b].map(|i| self.body(i));
+        let members = [0, 1].map(|k| Member::Moves(members[k], sides.modes[k], &sides.states[k]));
+        let decision = lying.decide(members, now)?;
+        Ok((decision, lying, sides))
     }
 
     /// Where a body on `sides` is in contact with a third block (turning with it or resting
@@ -1492,88 +1498,227 @@ impl<'a> Engine<'a> {
         ))
     }
 
-    /// A face came down flat on a face (`ends`: the strike's contact, then the other end's; in
-    /// a couple, `couple` a body of it), and both ends, at rest on each other after the impact
-    /// (`all`), press ([`Engine::pressed`]): the faces lie on each other from here (`lying`),
-    /// the bodies in flight as `sides` says. Returns none: the run goes on.
-    #[allow(clippy::too_many_arguments)]
+    /// The faces of `lying` lie on each other from here, both ends pressing (`ends`, as the
+    /// clearance watches them), each body in the mode `decision` gives it from its state after
+    /// an impact (`sides`, in the first end's order; what that settles of the impact law's
+    /// round-off goes with the impact's loss). Returns the words of each body's change and of
+    /// the pushes, and the first body's rotation rate before and after.
     fn lie(
         &mut self,
         ends: &[Touch; 2],
-        couple: Option<usize>,
         lying: Lying,
+        decision: &Decision,
         sides: &Sides,
-        all: &collision::Impulses,
-        comes: &str,
         now: &Inputs,
-    ) -> Option<String> {
-        if let Some(i) = couple {
-            self.uncouple(i);
-        }
-        self.rec.energy.impact_loss_j += all.loss_j;
-        self.rec.impacts += 1;
-        self.struck(&ends[0]);
-        let [(b0, a0), (b1, a1)] = [all.normal_m_s[0], all.normal_m_s[1]];
-        let mut what = format!(
-            "{comes} at the ends of their overlap, their normal velocities {b0:.6e} and {b1:.6e} \
-             m/s before and {a0:.6e} and {a1:.6e} m/s after (impulses {:.6e} and {:.6e} N s), \
-             and both ends press: the faces lie on each other",
-            all.impulse_n_s[0], all.impulse_n_s[1]
-        );
-        let mut omega = None;
+    ) -> (String, (f64, f64)) {
+        let bodies = sides.bodies;
+        let mut settled = [0, 1].map(|k| match bodies[k] {
+            Some(i) => settled_in(self.body(i), decision.modes[k], sides.states[k]),
+            None => sides.states[k],
+        });
+        // Side faces lying on each other keep the bodies' rotations equal: on a seated body's
+        // face, the other stands upright, what the impact law leaves of its tilt and turning
+        // a round-off.
+        let seated = decision
+            .modes
+            .map(|m| matches!(m, Mode::Rest | Mode::Slide(_)));
         for k in 0..2 {
-            let i = sides.bodies[k].expect("the bodies of lying faces fly");
+            if let (true, Some(i)) = (seated[1 - k], bodies[k]) {
+                if upright_by_round_off(self.body(i), &settled[k]) {
+                    (settled[k].theta, settled[k].omega) = (0.0, 0.0);
+                }
+            }
+        }
+        let energy = |modes: [Mode; 2], states: &[State; 2]| {
+            let potential: f64 = (0..2)
+                .filter_map(|k| {
+                    let body = self.body(bodies[k]?);
+                    let traj = modes::trajectory(body, Equations::Exact, modes[k], &states[k], now);
+                    Some(modes::potential_j(body, &traj, 0.0))
+                })
+                .sum();
+            (self.kinetic_j(bodies, modes, states, now), potential)
+        };
+        let (before, after) = (
+            energy(sides.modes, &sides.states),
+            energy(decision.modes, &settled),
+        );
+        self.rec.energy.impact_loss_j += (before.0 - after.0) + (before.1 - after.1);
+        let mut what = String::new();
+        let mut omega = (0.0, 0.0);
+        for k in 0..2 {
+            let i = bodies[k].expect("the sides of lying faces are bodies");
+            let (mode, state) = (decision.modes[k], settled[k]);
             let tr = &mut self.tracks[i];
             let before = tr.state.omega;
-            omega.get_or_insert((before, sides.states[k].omega));
-            (tr.mode, tr.state, tr.lies) = (sides.modes[k], sides.states[k], Some(lying));
+            if k == 0 {
+                omega = (before, state.omega);
+            }
+            (tr.mode, tr.state, tr.lies) = (mode, state, Some(lying));
             what += &format!(
-                "; {}: theta' {before:.6e} -> {:.6e} rad/s, in flight",
+                "; {}: theta' {before:.6e} -> {:.6e} rad/s, {}",
                 self.body(i).name,
-                sides.states[k].omega
+                state.omega,
+                in_mode(mode, &state)
             );
         }
         self.clearance.lie(ends[0].pair, Some(ends));
+        self.close_lying(&lying, now);
         let [p0, p1] = lying.motion(self.members(&lying.ends[0]), now).pushes;
         what += &format!("; pushed by {:.6e} and {:.6e} N", p0[0], p1[0]);
-        self.rec.rocking_event(
-            self.t,
-            EventKind::BlocksImpact,
-            &ends[0].blocks,
-            omega,
-            what,
-        );
-        None
+        (what, omega)
     }
 
-    /// A push of the faces body i lies on falls to zero: which ends press is decided again
-    /// ([`Engine::pressed`]). Where one does, the bodies turn on together on it (a couple);
-    /// where none does, they part; where the decision fails, the run stops, saying why.
-    fn lying_parts(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
-        let lying = self.tracks[i].lies.expect("a body of lying faces");
+    /// The faces of `lying` stay on each other from here: the normal velocities at both ends,
+    /// round-off where a decision made a rate at a tie zero (a slip, a rise), are made zero,
+    /// each body changing the velocities its mode leaves free by the least that does it
+    /// ([`collision::closing_all`]), so that the pushes do no work; what that changes of the
+    /// kinetic energy goes with the impacts' loss.
+    fn close_lying(&mut self, lying: &Lying, now: &Inputs) {
         let bodies = lying
             .bodies()
-            .map(|b| b.expect("the bodies of lying faces fly"));
+            .map(|b| b.expect("the sides of lying faces are bodies"));
+        let origins = lying.ends[0].touch.sides.map(|side| match side {
+            Side::Body(_, origin) => origin,
+            _ => unreachable!("the sides of lying faces are bodies"),
+        });
+        let turning: Vec<collision::Turning> = (0..2)
+            .map(|k| self.turning(bodies[k], origins[k]))
+            .collect();
         let touches = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
+        let links = [0, 1].map(|e| collision::Link {
+            sides: lying.order(e).map(Some),
+            contact: collision::Contact {
+                point: touches[e].point,
+                normal: touches[e].normal,
+                restitution: 0.0,
+            },
+        });
+        let free: Vec<[bool; 3]> = (bodies.iter())
+            .map(|&k| match self.tracks[k].mode {
+                Mode::Rest => [false; 3],
+                Mode::Slide(_) => [true, false, false],
+                Mode::Rock(_) => [false, true, false],
+                Mode::SlideRock(..) => [true, true, false],
+                Mode::Flight(_) => [true; 3],
+            })
+            .collect();
+        let Some(change) = collision::closing_all(&turning, &links, &free) else {
+            return;
+        };
+        let states = bodies.map(|k| self.tracks[k].state);
+        let modes = bodies.map(|k| self.tracks[k].mode);
+        let was = self.kinetic_j(bodies.map(Some), modes, &states, now);
+        for (k, [dv, domega, dw]) in bodies.into_iter().zip(change) {
+            let st = &mut self.tracks[k].state;
+            (st.v, st.omega, st.lift_v) = (st.v + dv, st.omega + domega, st.lift_v + dw);
+        }
+        let states = bodies.map(|k| self.tracks[k].state);
+        self.rec.energy.impact_loss_j +=
+            was - self.kinetic_j(bodies.map(Some), modes, &states, now);
+    }
+
+    /// The bodies' kinetic energy (J) in `modes` and `states` (none for a fixed block's side).
+    fn kinetic_j(
+        &self,
+        bodies: [Option<usize>; 2],
+        modes: [Mode; 2],
+        states: &[State; 2],
+        now: &Inputs,
+    ) -> f64 {
+        (0..2)
+            .filter_map(|k| {
+                let body = self.body(bodies[k]?);
+                let traj = modes::trajectory(body, Equations::Exact, modes[k], &states[k], now);
+                Some(modes::kinetic_j(body, &traj, 0.0))
+            })
+            .sum()
+    }
+
+    /// A seated body (i) lifts off the corner whose share of the load fell to zero: the corner
+    /// it turns on.
+    fn lifts_on(&self, i: usize, now: &Inputs) -> Corner {
+        let (left, _) = self
+            .trajectory(i, now)
+            .corners
+            .expect("a seated body's corners");
+        let body = self.body(i);
+        let force = modes::Scales::of(body).force;
+        if series::sign_after(&left, force, body.time_scale_s()) > 0 {
+            Corner::Left
+        } else {
+            Corner::Right
+        }
+    }
+
+    /// Body i, whose face lies on another's, reaches a change of their mechanism (`guard`): a
+    /// push falls to zero, or a condition of a body's pivot (to slip, to stick, to leave the
+    /// ground; a seated body's, to lift). Which ends press and each body's mode are decided
+    /// again ([`Lying::decide`]; a seated body that lifts, on the corner that keeps its load).
+    /// Where both ends press, the faces lie on each other on, in the modes decided; where one
+    /// does, the bodies turn on together on it (a couple); where none does, they part, each in
+    /// its mode alone; where the decision fails, the run stops, saying why. At a pivot's
+    /// change, a body a round-off from landing lands now instead ([`Engine::lying_lands`]).
+    fn relie(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
+        if matches!(guard, Guard::PivotStick | Guard::Stop) {
+            self.tracks[i].state.v = 0.0;
+        }
+        let mut lying = self.tracks[i].lies.expect("a body of lying faces");
+        let bodies = lying
+            .bodies()
+            .map(|b| b.expect("the sides of lying faces are bodies"));
+        if guard != Guard::Parts {
+            let round_off = |j: usize| Some((j, self.lands_by_round_off(j)?));
+            if let Some((j, corner)) = bodies.into_iter().find_map(round_off) {
+                return self.lying_lands(j, corner, now);
+            }
+        }
+        let states = bodies.map(|k| self.tracks[k].state);
+        let touches = lying.touches_at(states.each_ref());
         let names = |t: &Touch| t.blocks.map(|b| self.layout.names[b].clone());
         let [a, b] = names(&touches[0]);
-        let pressed = match self.pressed(&lying, self.members(&lying.ends[0]), now) {
-            Ok(pressed) => pressed,
+        let blocks = (touches[0].blocks[0], touches[0].blocks[1]);
+        if guard == Guard::Uplift {
+            let pivot = self.lifts_on(i, now);
+            let k = usize::from(bodies[1] == i);
+            if lying.ends[0].pivots[k] != pivot {
+                let Side::Body(_, origin) = lying.ends[0].touch.sides[k] else {
+                    unreachable!("a body's side of lying faces");
+                };
+                let homes = [0, 1].map(|s| match s == k {
+                    true => self.home(i, origin, pivot),
+                    false => lying.ends[0].home(s),
+                });
+                lying = Lying::new(touches.each_ref(), bodies, homes, states.each_ref())
+                    .ok_or_else(|| {
+                        SimulationError::Bug("lying faces' ends change bodies".into())
+                    })?;
+            }
+        }
+        let decision = match lying.decide(self.members(&lying.ends[0]), now) {
+            Ok(decision) => decision,
             Err(why) => {
-                let blocks = (touches[0].blocks[0], touches[0].blocks[1]);
                 self.stops_meeting(blocks, format!("{a}'s face lies on {b}'s, and {why}"));
                 return Ok(());
             }
         };
-        if pressed == [true, true] {
-            // The push touched zero and presses on.
+        self.rec.stats.mode_decisions += 1;
+        let within = format!(", in the faces of {a} and {b} lying on each other");
+        let modes = decision.modes.map(Some);
+        if decision.pressed == [true, true] {
+            // The push touched zero and presses on, or the pivots change under both pushes.
+            for k in bodies {
+                self.tracks[k].lies = Some(lying);
+            }
+            self.retake(bodies.map(Some), modes, &within);
+            self.close_lying(&lying, now);
             return Ok(());
         }
         for k in bodies {
             self.tracks[k].lies = None;
         }
         self.clearance.lie(touches[0].pair, None);
-        let how = match pressed.iter().position(|&p| p) {
+        let how = match decision.pressed.iter().position(|&p| p) {
             Some(e) => {
                 let couple = lying.ends[e];
                 for k in bodies {
@@ -1591,20 +1736,19 @@ impl<'a> Engine<'a> {
         };
         self.rec
             .rocking_event(self.t, EventKind::Separation, &touches[0].blocks, None, how);
-        if pressed == [false, false] {
-            for k in bodies {
-                self.decide(k, now, false)?;
-            }
-        }
+        self.retake(bodies.map(Some), modes, &within);
         Ok(())
     }
 
     /// Body i, whose face lies on another's, lands (on its base, or from flight on `corner`):
     /// the landing's impulses and both ends' at once, plastic ([`collision::resolve_all`], the
-    /// law of a landing in a couple with one more contact). Where both ends open, the bodies
-    /// part; where one stays, they turn on together on it (or the body rests against the
-    /// other, as after any impact that leaves a contact); where both stay, or the other body
-    /// lands at the same instant, or the law has no outcome, the run stops, saying why.
+    /// law of a landing in a couple with one more contact). Where both ends stay, which press
+    /// is decided from the accelerations ([`Engine::pressed_ends`]); where both do, the faces
+    /// lie on each other on, in the modes decided. Where both ends open (or none presses), the
+    /// bodies part; where one stays (or presses), they turn on together on it (or the body
+    /// rests against the other, as after any impact that leaves a contact); where the other
+    /// body lands at the same instant, or the law or the decision has no outcome, the run
+    /// stops, saying why.
     fn lying_lands(
         &mut self,
         i: usize,
@@ -1618,7 +1762,7 @@ impl<'a> Engine<'a> {
         }
         let bodies = lying
             .bodies()
-            .map(|b| b.expect("the bodies of lying faces fly"));
+            .map(|b| b.expect("the sides of lying faces are bodies"));
         let ends = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
         let [a, b] = ends[0].blocks.map(|k| self.layout.names[k].clone());
         let name = self.body(i).name.clone();
@@ -1629,6 +1773,7 @@ impl<'a> Engine<'a> {
         let comes = format!("{lands} while {a}'s face lies on {b}'s");
         let pair = (ends[0].blocks[0], ends[0].blocks[1]);
         let j = bodies[usize::from(bodies[0] == i)];
+        let st = self.tracks[i].state;
         let partner = self.landings.get(j).is_some_and(Option::is_some)
             || self.lands_by_round_off(j).is_some();
         let why = match () {
@@ -1640,6 +1785,11 @@ impl<'a> Engine<'a> {
                  with two contacts is not followed",
             ),
             _ if partner => Some("the other body lands at the same instant, which is not followed"),
+            // Upright but for round-off (its face on a seated body's face), it comes down on
+            // both corners at once.
+            _ if corner.is_some() && upright_by_round_off(self.body(i), &st) => Some(
+                "it comes down flat on its base, which is not followed with the faces' contacts",
+            ),
             _ => None,
         };
         if let Some(why) = why {
@@ -1677,15 +1827,27 @@ impl<'a> Engine<'a> {
                 return Ok(());
             }
         };
-        let stays = [0, 1].map(|e| all.normal_m_s[e].1 <= ends[e].tie_m_s);
+        let mut stays = [0, 1].map(|e| all.normal_m_s[e].1 <= ends[e].tie_m_s);
+        // Where both ends stay, which press decides how the faces go on.
+        let mut pressed = None;
         if stays == [true, true] {
-            let why = format!(
-                "{comes}, and both ends of their contact stay on it (impulses {:.6e} and {:.6e} N \
-                 s): faces lying on each other with a body on the ground are not followed",
-                all.impulse_n_s[0], all.impulse_n_s[1]
-            );
-            self.stops_meeting(pair, why);
-            return Ok(());
+            let after = links[0].sides.map(|k| k.map(|n| all.after[n]));
+            let through = Through::Landing(i, None);
+            match self.pressed_ends([&ends[0], &ends[1]], &after, through, now) {
+                Ok(decided) => {
+                    stays = decided.0.pressed;
+                    pressed = Some(decided);
+                }
+                Err(why) => {
+                    let why = format!(
+                        "{comes}, and both ends of their contact stay on it (impulses {:.6e} and \
+                         {:.6e} N s), and {why}",
+                        all.impulse_n_s[0], all.impulse_n_s[1]
+                    );
+                    self.stops_meeting(pair, why);
+                    return Ok(());
+                }
+            }
         }
         let after = all.after[usize::from(ids[0].0 != i)].omega;
         self.rec.rocking_event(
@@ -1695,6 +1857,24 @@ impl<'a> Engine<'a> {
             Some((before, after)),
             format!("{comes}, the three contacts plastic at once: theta' {before:.6e} -> {after:.6e} rad/s"),
         );
+        if let Some((decision, lying, sides)) = pressed.filter(|d| d.0.pressed == [true, true]) {
+            self.rec.energy.impact_loss_j += all.loss_j;
+            if all.impulse_n_s.iter().any(|&j| j > 0.0) {
+                self.rec.impacts += 1;
+                self.struck(&ends[0]);
+            }
+            let (bodies, omega) = self.lie(&ends, lying, &decision, &sides, now);
+            let what = format!(
+                "both ends of the contact of {a}'s face with {b}'s stay on it as {lands} \
+                 (impulses {:.6e} and {:.6e} N s), and both press: the faces lie on each other \
+                 on{bodies}",
+                all.impulse_n_s[0], all.impulse_n_s[1]
+            );
+            let kind = EventKind::BlocksImpact;
+            self.rec
+                .rocking_event(self.t, kind, &ends[0].blocks, Some(omega), what);
+            return Ok(());
+        }
         match stays.iter().position(|&s| s) {
             None => {
                 // Both ends open: each body on in the mode its velocities give.
@@ -1768,7 +1948,7 @@ impl<'a> Engine<'a> {
     ) -> Result<(), SimulationError> {
         let bodies = lying
             .bodies()
-            .map(|b| b.expect("the bodies of lying faces fly"));
+            .map(|b| b.expect("the sides of lying faces are bodies"));
         let old = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
         let [a, b] = old[0].blocks.map(|k| self.layout.names[k].clone());
         let ends = match meeting {
@@ -2236,19 +2416,8 @@ impl<'a> Engine<'a> {
             return self.couple_lands(j, corner, now);
         }
         if guard == Guard::Uplift {
-            // A seated body lifts off the corner whose share of the load fell to zero: it turns
-            // on the other, its pivot's home there.
-            let (left, _) = self
-                .trajectory(i, now)
-                .corners
-                .expect("a seated body's corners");
-            let body = self.body(i);
-            let force = modes::Scales::of(body).force;
-            let pivot = if series::sign_after(&left, force, body.time_scale_s()) > 0 {
-                Corner::Left
-            } else {
-                Corner::Right
-            };
+            // It turns on the corner that keeps its load, its pivot's home there.
+            let pivot = self.lifts_on(i, now);
             let k = usize::from(couple.bodies[1] == Some(i));
             if couple.pivots[k] != pivot {
                 let Side::Body(_, origin) = couple.touch.sides[k] else {
@@ -2294,7 +2463,22 @@ impl<'a> Engine<'a> {
             }
         };
         self.rec.stats.mode_decisions += 1;
-        for (k, new) in couple.bodies.into_iter().zip(modes) {
+        let [corner, face] = couple.touch.blocks.map(|b| &self.layout.names[b]);
+        let within = format!(", in the contact of {corner}'s corner with {face}'s face");
+        self.retake(couple.bodies, modes, &within);
+        if couple.bodies.contains(&None) && matches!(self.tracks[i].mode, Mode::Rock(_)) {
+            self.rests_still(i, now);
+        }
+        Ok(())
+    }
+
+    /// The bodies of a mechanism of contacts (`bodies`, none for a fixed block) take the modes
+    /// decided for them again (none: a fixed block's), each change logged; a seated body that
+    /// lifts says in which contacts (`within`), for no swept scene has reached it yet
+    /// (docs/rocking/scans). A pivot that sticks does so from exactly zero slip, and a body
+    /// that leaves the ground leaves it from its pivot, at rest there.
+    fn retake(&mut self, bodies: [Option<usize>; 2], modes: [Option<Mode>; 2], within: &str) {
+        for (k, new) in bodies.into_iter().zip(modes) {
             let (Some(k), Some(new)) = (k, new) else {
                 continue;
             };
@@ -2303,10 +2487,7 @@ impl<'a> Engine<'a> {
                 let blocks = self.layout.outputs(k);
                 let mut mode = new.name();
                 if kind == EventKind::Uplift {
-                    // A seated member lifting under the push: said in the log, for no swept
-                    // scene has reached it yet (docs/rocking/scans).
-                    let [corner, face] = couple.touch.blocks.map(|b| &self.layout.names[b]);
-                    mode += &format!(", in the contact of {corner}'s corner with {face}'s face");
+                    mode += within;
                 }
                 self.rec.rocking_event(self.t, kind, &blocks, None, mode);
             }
@@ -2314,15 +2495,10 @@ impl<'a> Engine<'a> {
             tr.mode = new;
             match new {
                 Mode::Rock(_) => tr.state.v = 0.0,
-                // It leaves the ground from its pivot, at rest there.
                 Mode::Flight(_) if old != new => (tr.state.lift, tr.state.lift_v) = (0.0, 0.0),
                 _ => {}
             }
         }
-        if couple.bodies.contains(&None) && matches!(self.tracks[i].mode, Mode::Rock(_)) {
-            self.rests_still(i, now);
-        }
-        Ok(())
     }
 
     /// Body i slides along a fixed block's face and its pivot sticks: the contact leaves it no
@@ -3129,19 +3305,8 @@ impl<'a> Engine<'a> {
             Err(why) => return Some(format!("{stays}, and {why}")),
         };
         for k in 0..2 {
-            let (Some(i), Some(mode)) = (bodies[k], modes[k]) else {
-                continue;
-            };
-            // On the ground, a rise (and a slip) at a tie's rate is the impact law's round-off.
-            let state = &mut states[k];
-            if !matches!(mode, Mode::Flight(_)) {
-                (state.lift, state.lift_v) = (0.0, 0.0);
-                if matches!(mode, Mode::Rock(_) | Mode::Rest) || tie_speed(self.body(i), state.v) {
-                    state.v = 0.0;
-                }
-            }
-            if matches!(mode, Mode::Rest | Mode::Slide(_)) {
-                (state.theta, state.omega) = (0.0, 0.0);
+            if let (Some(i), Some(mode)) = (bodies[k], modes[k]) {
+                states[k] = settled_in(self.body(i), mode, states[k]);
             }
         }
         self.rec.energy.impact_loss_j += out.loss_j;
@@ -3184,20 +3349,11 @@ impl<'a> Engine<'a> {
             let i = bodies[k].expect("a side that turns is a body's");
             self.tracks[i].state.omega += d_omega;
         }
-        let kinetic = |modes: [Mode; 2], states: &[State; 2]| -> f64 {
-            (0..2)
-                .filter_map(|k| {
-                    let body = self.body(bodies[k]?);
-                    let traj = modes::trajectory(body, Equations::Exact, modes[k], &states[k], now);
-                    Some(modes::kinetic_j(body, &traj, 0.0))
-                })
-                .sum()
-        };
         let now_states =
             [0, 1].map(|k| bodies[k].map_or(State::default(), |i| self.tracks[i].state));
         let now_modes = [0, 1].map(|k| bodies[k].map_or(Mode::Rest, |i| self.tracks[i].mode));
-        self.rec.energy.impact_loss_j +=
-            kinetic(given.0, &given.1) - kinetic(now_modes, &now_states);
+        self.rec.energy.impact_loss_j += self.kinetic_j(bodies, given.0, &given.1, now)
+            - self.kinetic_j(bodies, now_modes, &now_states, now);
         self.clearance.hold(t.pair, Some(t));
         // A body against a fixed face whose pivot stays on the ground, stuck, rests there
         // (where the push has a moment about its pivot to hold it by).
@@ -3421,7 +3577,8 @@ impl<'a> Engine<'a> {
     }
 
     /// A body in free flight lands on `corner` ([`impact::land_from_flight`]), then the mode
-    /// after it.
+    /// after it. Tilted by a round-off the other way, its corners level to a tie, it lands on
+    /// the one that is lower to the bit.
     fn land_from_flight(
         &mut self,
         i: usize,
@@ -3440,6 +3597,12 @@ impl<'a> Engine<'a> {
             st.v + traj.gy[0] * st.omega,
             st.lift_v + traj.dx[0] * st.omega,
         );
+        let level = st.theta.abs() <= series::TIE * body.slenderness_rad();
+        let other = corner.other();
+        let lower = corner.sign() * st.theta < 0.0
+            && impact::rise_m_s(body, st.theta, other, (yg, st.omega)) < 0.0
+            && !impact::touches(body, st.theta, other, (yg, st.omega));
+        let corner = if level && lower { other } else { corner };
         let landing = impact::land_from_flight(body, st.theta, corner, (xg, yg, st.omega), self.t)?;
         // The landing corner's displacement: the other corner lies 2 s b cos theta from the
         // one followed, 2 s b apart at rest (2 s b (1 - cos) = 4 s b sin^2(theta / 2)).

@@ -113,8 +113,8 @@ fn slab_and_block_scenes_at_ties_of_round_off_run_to_their_end() {
 /// engine panicked) until the slab's face comes down flat on the wall's and both ends of their
 /// contact stay on it, the impact lifting both bodies off the ground: both ends press, the faces
 /// lie on each other until a body lands (4.96 s), one end staying; the next time they lie on
-/// each other (6.16 s), the wall's landing leaves both ends staying with the wall on the ground
-/// (not followed).
+/// each other (6.16 s), the wall's landing leaves both ends staying and pressing with the wall
+/// on the ground, and they lie on each other on, until two corners meet (6.80 s).
 #[test]
 fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     let square = run(
@@ -146,16 +146,20 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     );
     let r = run(&three, (0.35, 1.2, 90.0), 15.0);
     assert!(
-        meets(
-            &r,
-            "W lands from free flight on its left corner while W's face lies on S's, and both \
-             ends of their contact stay on it"
-        ) && (r.events.iter()).any(|e| {
-            (e.mode.as_deref()).is_some_and(|m| {
-                m.starts_with("S's face comes down flat on W's at the ends of their overlap")
-                    && m.contains("and both ends press: the faces lie on each other")
+        meets(&r, "two corners meet")
+            && (r.events.iter()).any(|e| {
+                (e.mode.as_deref()).is_some_and(|m| {
+                    m.starts_with("S's face comes down flat on W's at the ends of their overlap")
+                        && m.contains("and both ends press: the faces lie on each other")
+                })
             })
-        }) && r.summary.duration_s > 6.0,
+            && (r.events.iter()).any(|e| {
+                (e.mode.as_deref()).is_some_and(|m| {
+                    m.contains("as W lands from free flight on its left corner")
+                        && m.contains("and both press: the faces lie on each other on")
+                })
+            })
+            && r.summary.duration_s > 6.7,
         "{:?}",
         r.summary
     );
@@ -170,12 +174,13 @@ fn meets(r: &Response, how: &str) -> bool {
     })
 }
 
-/// A face that comes down flat on a face with both ends of their overlap staying on it stops the
-/// run, saying what the impact did to each base: the slab S's face lands on the face of the
-/// block W, seated till then (a run of the scans, docs/rocking/scans), and the impulses slip the
-/// slab's pivot and turn the block onto a corner, a motion the exact model does not follow.
+/// A face that comes down flat on a face with both ends of their overlap staying on it, where
+/// no way of the pivots and the ends holds, stops the run, saying so: the slab S's face lands
+/// on the face of the block W, seated till then (a run of the scans, docs/rocking/scans), and
+/// with both bodies on the ground friction leaves a way without a positive effective mass
+/// (Painleve), the rigid model with Coulomb friction having no motion there.
 #[test]
-fn a_flat_landing_that_stays_on_both_ends_says_what_each_base_does() {
+fn a_flat_landing_where_no_way_holds_says_so() {
     let r = run(
         &slab_and_block(0.6, 0.0, (0.8, 1.2, 0.05)),
         (0.5, 2.5, 0.0),
@@ -185,8 +190,12 @@ fn a_flat_landing_that_stays_on_both_ends_says_what_each_base_does() {
         meets(&r, "S's face comes down flat on W's")
             && meets(
                 &r,
-                "and S slips at its pivot and W turns onto a corner through it: a face that moves \
-                 along a face it lies on is not followed"
+                "and none of the 64 ways of the pivots and the ends holds, friction making the \
+                 effective mass of"
+            )
+            && meets(
+                &r,
+                "the rigid model with Coulomb friction has no motion here"
             ),
         "{:?}",
         r.summary.warnings
@@ -212,11 +221,12 @@ fn three_blocks(friction: f64, restitution: f64, width: f64, gap: f64) -> Model 
 }
 
 /// Faces that meet from apart, or come down flat in a couple, again and again at shrinking
-/// speeds: where the impacts' speeds accumulate to round-off the run stops, naming the faces
-/// lying on each other, instead of going on at one instant or in bounces of round-off. A slab
-/// beside a block (friction 0.6, no restitution, 0.4 g at 2.5 Hz) whose face meets the block's
-/// as it lands from a flight, each impact throwing it up again more slowly (10,001 events at
-/// 3.66253 s, an error, before the slab's rise at a tie's rate was read as a rise); a slab between
+/// speeds: where the impacts' speeds accumulate to round-off the faces lie on each other or the
+/// run stops, instead of going on at one instant or in bounces of round-off. A slab beside a
+/// block (friction 0.6, no restitution, 0.4 g at 2.5 Hz) whose face meets the block's as it
+/// lands from a flight, each impact throwing it up again more slowly (10,001 events at 3.66253
+/// s, an error, before the slab's rise at a tie's rate was read as a rise): there the faces lie
+/// on each other, the slab's pivot on the ground, until two corners meet later; a slab between
 /// a wall and a squat block (restitution 0.8) whose face, in a couple, comes down on the wall's
 /// again and again at 1e-10 m/s (a run of 22,000 events in 1e-4 s that did not end, before an end
 /// that has not parted by more than round-off since the last impact took it up without a
@@ -228,19 +238,19 @@ fn faces_that_meet_at_speeds_of_round_off_stop_the_run() {
         (0.4, 2.5, 0.0),
         4.0,
     );
+    let lies = (r.events.iter()).find(|e| {
+        (e.mode.as_deref()).is_some_and(|m| {
+            m.starts_with("S's face comes down flat on W's")
+                && m.contains("and both ends press: the faces lie on each other")
+        })
+    });
     assert!(
-        meets(
-            &r,
-            "S's face comes down flat on W's, and both ends of their contact stay on it"
-        ) && meets(&r, "S rises off the ground at a tie's rate"),
-        "{:?}",
-        r.summary.warnings
+        lies.is_some_and(|e| (e.time_s - 3.66253).abs() < 1e-5),
+        "{:#?}",
+        r.events
     );
-    assert!(
-        (r.summary.duration_s - 3.66253).abs() < 1e-5,
-        "{}",
-        r.summary.duration_s
-    );
+    assert!(meets(&r, "two corners meet"), "{:?}", r.summary.warnings);
+    assert!(r.summary.duration_s > 3.66253, "{}", r.summary.duration_s);
     assert!(r.events.len() < 1_000, "{}", r.events.len());
     balances(&r);
     let r = run(&three_blocks(0.5, 0.8, 0.6, 0.02), (0.45, 2.0, 270.0), 15.0);
