@@ -210,9 +210,10 @@ pub fn closing(
 
 /// The changes of the bodies' velocities (v, theta', w each, m/s and rad/s) that leave the
 /// normal velocity at every contact of `links` zero, each body changing only the velocities
-/// its mode leaves free (`free`, in that order), by the least in kinetic energy (weighting v
-/// and w by the mass, theta' by the inertia about the centroid): what closes the round-off at
-/// contacts that stay where a decision made a rate at a tie zero. One or two contacts; none
+/// its mode leaves free (`free`, in that order), by the least in the norm that weights v and w
+/// by the mass and theta' by the inertia about the centroid (the kinetic energy, were v and w
+/// the centroid's: for changes of round-off any such norm serves): what closes the round-off
+/// at contacts that stay where a decision made a rate at a tie zero. One or two contacts; none
 /// where the free velocities cannot close them (a singular system).
 pub fn closing_all(
     bodies: &[Turning],

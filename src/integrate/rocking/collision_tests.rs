@@ -513,3 +513,85 @@ fn a_blow_on_a_slab_another_leans_on_obeys_both_contacts_laws_at_once() {
         }
     }
 }
+
+/// The closing of two contacts at once: slab A in flight touches slab B (rocking, its pivot
+/// stuck: only theta' free) at two points of B's face, each approaching at a rate of
+/// round-off. After the changes both normal velocities are zero, the velocities the modes
+/// hold are untouched, and the changes are the least in their norm: weighted by the mass and
+/// the inertia they are a combination of the contacts' normal rows (the condition of a
+/// least-norm solution), the weights read back from A's v and theta' and checked
+/// on the others.
+#[test]
+fn closing_two_contacts_changes_the_free_velocities_by_the_least() {
+    let (a, b, c) = two_slabs(-1.0, 1.0, -0.3, 0.6, 0.0);
+    let a = Turning {
+        ground: [None, None],
+        w: 0.02,
+        ..a
+    };
+    // A second point on B's face, 0.3 m down it from the first.
+    let down = turned([0.0, 0.0], 0.03, [0.0, -0.3]);
+    let lower = Contact {
+        point: [c.point[0] + down[0], c.point[1] + down[1]],
+        ..c
+    };
+    // Velocities that leave both contacts approaching by about 1e-12 m/s.
+    let rates = |a: &Turning, b: &Turning| [c, lower].map(|c| approach([Some(a), Some(b)], &c).0);
+    let solve = |a: &Turning, b: &Turning| {
+        let [r0, r1] = rates(a, b);
+        let (d, e) = (-1e-12 - r0, -2e-12 - r1);
+        // Move A's v and theta' so that the two rates become -1e-12 and -2e-12 m/s (v and w
+        // enter both alike: the points share a face).
+        let (p, q) = (arms(a, &c), arms(a, &lower));
+        let det = p[0] * q[1] - p[1] * q[0];
+        Turning {
+            v: a.v + (d * q[1] - e * p[1]) / det,
+            omega: a.omega + (p[0] * e - q[0] * d) / det,
+            ..*a
+        }
+    };
+    let a = solve(&a, &b);
+    let before = rates(&a, &b);
+    assert!((before[0] + 1e-12).abs() < 1e-15 && (before[1] + 2e-12).abs() < 1e-15);
+    let links = [c, lower].map(|contact| Link {
+        sides: [Some(0), Some(1)],
+        contact,
+    });
+    let free = [[true; 3], [false, true, false]];
+    let change = closing_all(&[a, b], &links, &free).expect("two contacts closed");
+    assert_eq!((change[1][0], change[1][2]), (0.0, 0.0));
+    let moved = |t: &Turning, d: [f64; 3]| Turning {
+        v: t.v + d[0],
+        omega: t.omega + d[1],
+        w: t.w + d[2],
+        ..*t
+    };
+    let (a1, b1) = (moved(&a, change[0]), moved(&b, change[1]));
+    // Zero to the round-off of evaluating a rate from velocities of this size.
+    for c in [c, lower] {
+        let (rate, speed, _) = approach([Some(&a1), Some(&b1)], &c);
+        assert!(rate.abs() <= 2.0 * f64::EPSILON * speed, "{rate} {speed}");
+    }
+    // M change = J^T lambda over the free velocities (A's v, theta', w and B's theta').
+    let weighted = [
+        a.mass_kg * change[0][0],
+        a.inertia_kg_m2 * change[0][1],
+        a.mass_kg * change[0][2],
+        b.inertia_kg_m2 * change[1][1],
+    ];
+    let row = |c: &Contact| {
+        let (p, q) = (arms(&a, c), arms(&b, c));
+        [p[0], p[1], p[2], -q[1]]
+    };
+    let (j0, j1) = (row(&c), row(&lower));
+    // lambda from A's v and theta', then A's w and B's theta' must agree.
+    let det = j0[0] * j1[1] - j0[1] * j1[0];
+    let l0 = (weighted[0] * j1[1] - weighted[1] * j1[0]) / det;
+    let l1 = (j0[0] * weighted[1] - j0[1] * weighted[0]) / det;
+    let scale = weighted.iter().map(|x| x.abs()).fold(0.0, f64::max);
+    assert!(scale > 0.0);
+    for k in [2, 3] {
+        let r = weighted[k] - (l0 * j0[k] + l1 * j1[k]);
+        assert!(r.abs() <= 1e-12 * scale, "{k}: {r} of {scale}");
+    }
+}
