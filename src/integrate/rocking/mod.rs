@@ -1529,19 +1529,9 @@ impl<'a> Engine<'a> {
                 }
             }
         }
-        let energy = |modes: [Mode; 2], states: &[State; 2]| {
-            let potential: f64 = (0..2)
-                .filter_map(|k| {
-                    let body = self.body(bodies[k]?);
-                    let traj = modes::trajectory(body, Equations::Exact, modes[k], &states[k], now);
-                    Some(modes::potential_j(body, &traj, 0.0))
-                })
-                .sum();
-            (self.kinetic_j(bodies, modes, states, now), potential)
-        };
         let (before, after) = (
-            energy(sides.modes, &sides.states),
-            energy(decision.modes, &settled),
+            self.energies_j(bodies, sides.modes, &sides.states, now),
+            self.energies_j(bodies, decision.modes, &settled, now),
         );
         self.rec.energy.impact_loss_j += (before.0 - after.0) + (before.1 - after.1);
         let mut what = String::new();
@@ -1608,31 +1598,35 @@ impl<'a> Engine<'a> {
         };
         let states = bodies.map(|k| self.tracks[k].state);
         let modes = bodies.map(|k| self.tracks[k].mode);
-        let was = self.kinetic_j(bodies.map(Some), modes, &states, now);
+        let (was, _) = self.energies_j(bodies.map(Some), modes, &states, now);
         for (k, [dv, domega, dw]) in bodies.into_iter().zip(change) {
             let st = &mut self.tracks[k].state;
             (st.v, st.omega, st.lift_v) = (st.v + dv, st.omega + domega, st.lift_v + dw);
         }
         let states = bodies.map(|k| self.tracks[k].state);
-        self.rec.energy.impact_loss_j +=
-            was - self.kinetic_j(bodies.map(Some), modes, &states, now);
+        let (is, _) = self.energies_j(bodies.map(Some), modes, &states, now);
+        self.rec.energy.impact_loss_j += was - is;
     }
 
-    /// The bodies' kinetic energy (J) in `modes` and `states` (none for a fixed block's side).
-    fn kinetic_j(
+    /// The bodies' kinetic and potential energies (J) in `modes` and `states` (none for a
+    /// fixed block's side), each body's trajectory formed once for both.
+    fn energies_j(
         &self,
         bodies: [Option<usize>; 2],
         modes: [Mode; 2],
         states: &[State; 2],
         now: &Inputs,
-    ) -> f64 {
+    ) -> (f64, f64) {
         (0..2)
             .filter_map(|k| {
                 let body = self.body(bodies[k]?);
                 let traj = modes::trajectory(body, Equations::Exact, modes[k], &states[k], now);
-                Some(modes::kinetic_j(body, &traj, 0.0))
+                Some((
+                    modes::kinetic_j(body, &traj, 0.0),
+                    modes::potential_j(body, &traj, 0.0),
+                ))
             })
-            .sum()
+            .fold((0.0, 0.0), |(k, p), (dk, dp)| (k + dk, p + dp))
     }
 
     /// A seated body (i) lifts off the corner whose share of the load fell to zero: the corner
@@ -3352,8 +3346,9 @@ impl<'a> Engine<'a> {
         let now_states =
             [0, 1].map(|k| bodies[k].map_or(State::default(), |i| self.tracks[i].state));
         let now_modes = [0, 1].map(|k| bodies[k].map_or(Mode::Rest, |i| self.tracks[i].mode));
-        self.rec.energy.impact_loss_j += self.kinetic_j(bodies, given.0, &given.1, now)
-            - self.kinetic_j(bodies, now_modes, &now_states, now);
+        let (was, _) = self.energies_j(bodies, given.0, &given.1, now);
+        let (is, _) = self.energies_j(bodies, now_modes, &now_states, now);
+        self.rec.energy.impact_loss_j += was - is;
         self.clearance.hold(t.pair, Some(t));
         // A body against a fixed face whose pivot stays on the ground, stuck, rests there
         // (where the push has a moment about its pivot to hold it by).
