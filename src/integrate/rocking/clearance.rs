@@ -609,13 +609,101 @@ impl Clearance {
         })))
     }
 
+    /// How pair k meets at tau, its blocks placed as `pa` and `pb` ([`Clearance::on_edge`]);
+    /// where that finds no corner strictly inside the edge that kept them apart and the pair is
+    /// not held in contact, the contacts they strike at elsewhere ([`Clearance::elsewhere`]).
+    fn touch(
+        &self,
+        k: usize,
+        (pa, pb): (&Placed, &Placed),
+        tau: f64,
+        bodies: &[RockingBody],
+    ) -> Meeting {
+        let (at_a, at_b) = (&pa.at(tau), &pb.at(tau));
+        match self.on_edge(k, at_a, at_b, bodies) {
+            Meeting::Corners if self.pairs[k].held.is_none() => self
+                .elsewhere(k, (pa, pb), tau, bodies)
+                .unwrap_or(Meeting::Corners),
+            meeting => meeting,
+        }
+    }
+
+    /// Where pair k's blocks strike at tau (placed as `pa` and `pb`) when the corner that
+    /// reached the line of the edge that kept them apart lies within the tie tolerance of an
+    /// end of that edge, or beyond it (the line crossed past the face touches nothing there).
+    /// A contact is a corner of either block on the line of a face of the other and between the
+    /// face's ends (each within the tie tolerance) that, just after, goes across the line and
+    /// lies between the ends (the first terms of its distances from the line and from each end
+    /// that are not zero in the sense of the tie: negative, positive): where two corners meet,
+    /// the one that moves in along the other's face, not the one that goes past its end; and of
+    /// a corner's faces so met, the one whose line it crosses last. One such contact strikes;
+    /// two that are the ends of two faces' overlap (both corners of one block, ending one of its
+    /// faces, on a face of the other, or a corner of each on the other's face ending the face
+    /// the other corner lies on) meet as faces; none, or any other set, gives none (corner on
+    /// corner).
+    fn elsewhere(
+        &self,
+        k: usize,
+        (pa, pb): (&Placed, &Placed),
+        tau: f64,
+        bodies: &[RockingBody],
+    ) -> Option<Meeting> {
+        let pair = &self.pairs[k];
+        let (tie, ts) = (self.tie_m(k), self.time_scale_s(k, bodies));
+        // Each contact's face (true: of b; its edge), corner, distance from the face's line (m)
+        // and contact.
+        let mut found: Vec<((bool, usize), usize, f64, Touch)> = Vec::new();
+        for (of_b, e) in (0..8).map(|m| (m >= 4, m % 4)) {
+            let (face, corner, pieces) = match of_b {
+                true => (pb, pa, [pair.a, pair.b]),
+                false => (pa, pb, [pair.b, pair.a]),
+            };
+            let (at_face, at_corner) = (face.at(tau), corner.at(tau));
+            let n = normal(&at_face, e);
+            let (c0, c1) = (at_face.corners[e], at_face.corners[(e + 1) % 4]);
+            let length = (c1[0] - c0[0]).hypot(c1[1] - c0[1]);
+            let t = [(c1[0] - c0[0]) / length, (c1[1] - c0[1]) / length];
+            let gaps = distances(face, e, corner);
+            let after = |c: &Coeffs| series::sign_after(&series::shifted(c, tau), tie / TIE, ts);
+            for (j, p) in at_corner.corners.iter().enumerate() {
+                let r = [p[0] - c0[0], p[1] - c0[1]];
+                let (d, x) = (r[0] * n[0] + r[1] * n[1], r[0] * t[0] + r[1] * t[1]);
+                let meets = || {
+                    let from_start = along(face, e, corner, j);
+                    let from_end = series::plus(&series::scaled(&from_start, -1.0), length);
+                    after(&gaps[j]) < 0 && after(&from_start) > 0 && after(&from_end) > 0
+                };
+                if d.abs() <= tie && x >= -tie && x <= length + tie && meets() {
+                    let touch = self.contact(k, pieces, (j, e), *p, n, bodies);
+                    found.push(((of_b, e), j, d, touch));
+                }
+            }
+        }
+        // A corner at the other block's corner lies between the ends of both its faces: it
+        // goes in across the line it crosses last, the one it lies furthest outside of.
+        let outermost = |&(f, j, d, _): &((bool, usize), usize, f64, Touch)| {
+            !found.iter().any(|g| g.0 .0 == f.0 && g.1 == j && g.2 > d)
+        };
+        let found: Vec<_> = found.iter().filter(|c| outermost(c)).collect();
+        let ends = |c: usize, e: usize| c == e || c == (e + 1) % 4;
+        match found.as_slice() {
+            [(_, _, _, t)] => Some(Meeting::Strikes(*t)),
+            [((f, e), j, _, s), ((g, m), i, _, t)] => {
+                let same = f == g && e == m && (*i == (j + 1) % 4 || *j == (i + 1) % 4);
+                let crossed = f != g && ends(*j, *m) && ends(*i, *e);
+                (same || crossed).then_some(Meeting::Faces([*s, *t]))
+            }
+            _ => None,
+        }
+    }
+
     /// How pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on
     /// the edge that kept them apart, strictly inside that edge; else two corners on it (a
     /// face on a face), or the corner at an end of the edge (on a corner). Where a face comes
     /// down flat on the face a held corner is on, also the edge that keeps the pair apart from
     /// there: the corner's block's own face, where the contact at the other end of the faces'
     /// overlap is the other block's corner on it.
-    fn touch(&self, k: usize, at_a: &At, at_b: &At, bodies: &[RockingBody]) -> Meeting {
+    fn on_edge(&self, k: usize, at_a: &At, at_b: &At, bodies: &[RockingBody]) -> Meeting {
         let pair = &self.pairs[k];
         let tie = self.tie_m(k);
         let ((of_b, e), [own, other]) = (
@@ -824,7 +912,7 @@ impl Clearance {
                 // Where a pair meets again after an impact, the gap between is an arc whose
                 // top lies near its middle.
                 let stays = self.pairs[k].struck && self.gap(k, pa, pb, 0.5 * x) <= self.tie_m(k);
-                let meeting = match self.touch(k, &at_a, &at_b, bodies) {
+                let meeting = match self.touch(k, (pa, pb), x, bodies) {
                     Meeting::Strikes(t) => Meeting::Strikes(Touch { stays, ..t }),
                     Meeting::Faces(ends) => Meeting::Faces(ends.map(|t| Touch { stays, ..t })),
                     // In contact, what has parted is the end that strikes, not the held corner.

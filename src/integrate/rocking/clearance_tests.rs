@@ -74,7 +74,7 @@ fn run(model: &Model, motion: &Motion, duration_s: f64, initial: f64) -> Respons
 }
 
 /// Block k's rows: u, v, theta, theta', w.
-fn rows(r: &Response, k: usize) -> Vec<[f64; 6]> {
+pub(super) fn rows(r: &Response, k: usize) -> Vec<[f64; 6]> {
     let h = r.history.as_ref().unwrap();
     (0..h.time_s.len())
         .map(|i| {
@@ -1123,7 +1123,7 @@ fn a_slab_that_lands_while_turning_with_another_parts_from_it() {
 
 /// The corners of a block w wide and h high whose base's middle stood at x0, from a history
 /// row (u and w: the base middle's displacement and height, theta: the rotation).
-fn block_corners(x0: f64, (w, h): (f64, f64), row: &[f64; 6]) -> [[f64; 2]; 4] {
+pub(super) fn block_corners(x0: f64, (w, h): (f64, f64), row: &[f64; 6]) -> [[f64; 2]; 4] {
     let (sin, cos) = row[3].sin_cos();
     let turn = |x: f64, y: f64| [x * cos + y * sin, -x * sin + y * cos];
     let mid = [x0 + row[1], row[5]];
@@ -1135,7 +1135,7 @@ fn block_corners(x0: f64, (w, h): (f64, f64), row: &[f64; 6]) -> [[f64; 2]; 4] {
 
 /// How far apart two convex quadrilaterals stand (m): the largest, over the edges of both, of
 /// the least distance of the other's corners outside that edge (negative: they overlap).
-fn apart(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> f64 {
+pub(super) fn apart(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> f64 {
     let outside = |own: &[[f64; 2]; 4], other: &[[f64; 2]; 4]| {
         (0..4)
             .map(|e| {

@@ -40,9 +40,11 @@ pub(super) struct Lying {
 impl Lying {
     /// The faces lying on each other at the contacts `ends` (each a corner of one body on the
     /// other's face), the bodies (`bodies`, in the first contact's order, with their pivots'
-    /// homes and their states); none where a contact's sides are not these bodies. No contact
-    /// is refused for its arms: a push whose arm turns neither body about its pivot leaves the
-    /// decision's matrix singular, and [`Lying::decide`] says so.
+    /// homes and their states); none where a contact's sides are not these bodies, or where its
+    /// push would turn neither body about its pivot, both arms zero to the bit (an end at both
+    /// pivots: two seated blocks face on face, their bottom corners together). A push whose
+    /// arms are not zero but too short to turn the bodies leaves the decision's matrix
+    /// singular, and [`Lying::decide`] says so.
     pub(super) fn new(
         ends: [&Touch; 2],
         bodies: [usize; 2],

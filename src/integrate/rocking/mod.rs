@@ -310,6 +310,19 @@ fn settled_in(body: &RockingBody, mode: Mode, state: State) -> State {
     state
 }
 
+/// How far along the ground (m) a body that lands on its base, tilted by `theta` (rad) about
+/// its pivot (its home at rest `home`, its base moved by `u`), must be moved so that the point
+/// `point` of a contact with normal `normal`, turned back with the body to theta = 0, stays
+/// where it was along the normal.
+fn seat_shift_m(point: [f64; 2], normal: [f64; 2], home: [f64; 2], theta: f64, u: f64) -> f64 {
+    let r = [point[0] - home[0] - u, point[1] - home[1]];
+    let (sin, cos) = theta.sin_cos();
+    // The body turns clockwise by theta from rest: back by theta, a point r goes to R(-theta) r.
+    let back = [r[0] * cos - r[1] * sin, r[0] * sin + r[1] * cos];
+    let moved = (back[0] - r[0]) * normal[0] + (back[1] - r[1]) * normal[1];
+    -moved / normal[0]
+}
+
 /// Whether a body's tilt and rotation rate are round-off: a tie of its slenderness, and of
 /// the rate it would take to turn that far in its time scale.
 fn upright_by_round_off(body: &RockingBody, state: &State) -> bool {
@@ -696,6 +709,9 @@ impl<'a> Engine<'a> {
         // A history row at each stop that is an event or an output time (and at the start).
         let mut row = true;
         let (mut stalled, mut crawled) = (0usize, 0usize);
+        // The last two blocks to meet, and when; since when the steps have crawled.
+        let mut met: Option<((usize, usize), f64)> = None;
+        let mut crawl_from = self.t;
         let crawl_s = CRAWL
             * (self.scene.bodies.iter())
                 .map(RockingBody::time_scale_s)
@@ -743,10 +759,24 @@ impl<'a> Engine<'a> {
                 break;
             }
             let t_new = if tau >= span { limit } else { self.t + tau };
+            // Blocks that meet again and again without time passing, or crawling on, rattle
+            // against each other at the scale of round-off: the run stops at their meeting (and
+            // may be handed over), where any other stall is an error.
+            let rattle = |pair: Option<((usize, usize), f64)>, since: f64| {
+                pair.filter(|&(_, t)| t >= since).map(|(blocks, _)| blocks)
+            };
             if t_new > self.t {
                 stalled = 0;
             } else {
                 stalled += 1;
+                if let (true, Some(blocks)) = (stalled > STALL_STOPS, rattle(met, self.t)) {
+                    let why = format!(
+                        "they meet again {stalled} times at one instant: blocks that rattle \
+                         against each other at the scale of round-off are beyond the exact model"
+                    );
+                    self.stops_meeting(blocks, why);
+                    break;
+                }
                 if stalled > STALL_STOPS {
                     return Err(SimulationError::TooManyEvents {
                         time_s: self.t,
@@ -760,8 +790,18 @@ impl<'a> Engine<'a> {
             crawled = if t_new - self.t < crawl_s {
                 crawled + 1
             } else {
+                crawl_from = t_new;
                 0
             };
+            if let (true, Some(blocks)) = (crawled > STALL_STOPS, rattle(met, crawl_from)) {
+                let why = format!(
+                    "they meet again and again, {crawled} steps in a row each shorter than \
+                     {crawl_s:.3e} s: blocks that rattle against each other at the scale of \
+                     round-off are beyond the exact model"
+                );
+                self.stops_meeting(blocks, why);
+                break;
+            }
             if crawled > STALL_STOPS {
                 return Err(SimulationError::EventsCrowd {
                     time_s: self.t,
@@ -836,6 +876,7 @@ impl<'a> Engine<'a> {
                 if self.t < self.t_end {
                     self.rec.stats.events += 1;
                     row = true;
+                    met = Some((outputs, self.t));
                     self.meet(outputs, touch, &now)?;
                 }
             }
@@ -1100,8 +1141,12 @@ impl<'a> Engine<'a> {
             (Meeting::Flat(_), Some((_, [corner, face]))) => {
                 format!("{corner}'s face comes down flat on {face}'s, the two moving together")
             }
+            // The couple the pair was held in when the meeting was found ended at this instant
+            // (a body's event handled before it): the next step finds the meeting again, from
+            // the state after that event.
+            (Meeting::Flat(Some(_)), None) => return Ok(()),
             (Meeting::Corners, None) => "two corners meet".into(),
-            (Meeting::Flat(_), None) => "a face comes down flat on a face".into(),
+            (Meeting::Flat(None), None) => "a face comes down flat on a face".into(),
             (Meeting::Faces(ends), _) => match self.lies_flat(ends, None, now)? {
                 None => return Ok(()),
                 Some(why) => why,
@@ -1468,8 +1513,13 @@ impl<'a> Engine<'a> {
                 "a face lying on the face of a block that does not move is not followed".into(),
             );
         };
+        // Both ends are between the pair's blocks, the sides' bodies.
         let Some(lying) = Lying::new(ends, [a, b], sides.homes, sides.states.each_ref()) else {
-            return Err("the ends of the faces' overlap are not between the same blocks".into());
+            return Err(
+                "an end of the faces' overlap is at both bodies' pivots, where its push would \
+                 turn neither"
+                    .into(),
+            );
         };
         let members = [a, b].map(|i| self.body(i));
         let members = [0, 1].map(|k| Member::Moves(members[k], sides.modes[k], &sides.states[k]));
@@ -2133,11 +2183,25 @@ impl<'a> Engine<'a> {
             }
         }
         let before = [Some(i), partner.map(|(j, _)| j)].map(|b| b.map(|b| self.tracks[b].state));
+        let held = couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)));
         let ground = self.grounded(i, corner, now)?;
         let partner_ground = match partner {
             Some((j, c)) => Some(self.grounded(j, c, now)?),
             None => None,
         };
+        // A body that lands on its base a tie from its seat has that tilt set to zero, which
+        // would move the contact along its normal by up to the tie times the body's height:
+        // the blocks would overlap or part by that much. That round-off goes into where the
+        // body's base stands on the ground instead (a side face's normal is near horizontal;
+        // along a top face, which a tilt moves sideways only, nothing is moved).
+        for (n, (b, c)) in std::iter::once((i, corner)).chain(partner).enumerate() {
+            let s = usize::from(couple.bodies[1] == Some(b));
+            let theta = before[n].map_or(0.0, |st| st.theta);
+            if c.is_none() && held.normal[0].abs() > std::f64::consts::FRAC_1_SQRT_2 {
+                let st = &mut self.tracks[b].state;
+                st.u += seat_shift_m(held.point, held.normal, couple.home(s), theta, st.u);
+            }
+        }
         let touch = Touch {
             stays: true,
             ..couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)))

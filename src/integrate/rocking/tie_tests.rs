@@ -106,7 +106,10 @@ fn slab_and_block_scenes_at_ties_of_round_off_run_to_their_end() {
 
 /// Scenes that end before their duration, as the model has them: a square block (friction 0.6,
 /// |W_tn| = mu W_tt: its sticking landing impulse on the cone's edge, once a "bug"), the slab's
-/// corner sliding off the top of its face three times, until two corners meet; a block 0.9 m
+/// corner sliding off the top of its face five times (where it goes past the face's end and the
+/// block's corner, a round-off below the slab's, moves in along the slab's face, that corner
+/// strikes), until the slab lands from a flight flat on its base while its face lies on the
+/// block's (3.70 s); a block 0.9 m
 /// high (a blow leaving it 5e-14 rad off its seat, not turning) until the slab overturns; three
 /// blocks where the slab's landing parts it from the block to its right at the instant that
 /// block's own landing was due (the block was handled on the trajectory it had left, and the
@@ -114,7 +117,7 @@ fn slab_and_block_scenes_at_ties_of_round_off_run_to_their_end() {
 /// contact stay on it, the impact lifting both bodies off the ground: both ends press, the faces
 /// lie on each other until a body lands (4.96 s), one end staying; the next time they lie on
 /// each other (6.16 s), the wall's landing leaves both ends staying and pressing with the wall
-/// on the ground, and they lie on each other on, until two corners meet (6.80 s).
+/// on the ground, and they lie on each other on, until two corners meet (14.90 s).
 #[test]
 fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     let square = run(
@@ -122,12 +125,19 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
         (0.3, 1.5, 0.0),
         4.0,
     );
-    assert!(meets(&square, "two corners meet"), "{:?}", square.summary);
+    assert!(
+        meets(
+            &square,
+            "comes down flat on its base, which is not followed"
+        ),
+        "{:?}",
+        square.summary
+    );
     let slides_off = |e: &&crate::response::EventRecord| {
         (e.mode.as_deref()).is_some_and(|m| m.contains("slides off an end of W's face"))
     };
-    assert_eq!(square.events.iter().filter(slides_off).count(), 3);
-    assert!(square.summary.duration_s > 1.5);
+    assert_eq!(square.events.iter().filter(slides_off).count(), 5);
+    assert!(square.summary.duration_s > 3.7);
     balances(&square);
     let low = run(
         &slab_and_block(0.6, 0.0, (1.2, 0.9, 0.05)),
@@ -159,7 +169,7 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
                         && m.contains("and both press: the faces lie on each other on")
                 })
             })
-            && r.summary.duration_s > 6.7,
+            && r.summary.duration_s > 14.9,
         "{:?}",
         r.summary
     );
@@ -226,13 +236,14 @@ fn three_blocks(friction: f64, restitution: f64, width: f64, gap: f64) -> Model 
 /// block (friction 0.6, no restitution, 0.4 g at 2.5 Hz) whose face meets the block's as it
 /// lands from a flight, each impact throwing it up again more slowly (10,001 events at 3.66253
 /// s, an error, before the slab's rise at a tie's rate was read as a rise): there the faces lie
-/// on each other, the slab's pivot on the ground, until two corners meet later; a slab between
+/// on each other, the slab's pivot on the ground, and the run goes on to its end; a slab between
 /// a wall and a squat block (restitution 0.8) whose face, in a couple, comes down on the wall's
 /// again and again at 1e-10 m/s (a run of 22,000 events in 1e-4 s that did not end, before an end
 /// that has not parted by more than round-off since the last impact took it up without a
-/// rebound).
+/// rebound; then a stop where two corners met, and since corners that meet are told apart, a
+/// run to its end through 8,242 events, the wall bouncing and slipping on its corner).
 #[test]
-fn faces_that_meet_at_speeds_of_round_off_stop_the_run() {
+fn faces_that_meet_at_speeds_of_round_off_do_not_go_on_for_ever() {
     let r = run(
         &slab_and_block(0.6, 0.0, (1.0, 1.2, 0.05)),
         (0.4, 2.5, 0.0),
@@ -249,24 +260,14 @@ fn faces_that_meet_at_speeds_of_round_off_stop_the_run() {
         "{:#?}",
         r.events
     );
-    assert!(meets(&r, "two corners meet"), "{:?}", r.summary.warnings);
-    assert!(r.summary.duration_s > 3.66253, "{}", r.summary.duration_s);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    assert_eq!(r.summary.duration_s, 4.0);
     assert!(r.events.len() < 1_000, "{}", r.events.len());
     balances(&r);
     let r = run(&three_blocks(0.5, 0.8, 0.6, 0.02), (0.45, 2.0, 270.0), 15.0);
-    assert!(
-        r.summary.duration_s < 15.0 && r.events.len() < 10_000,
-        "{}",
-        r.events.len()
-    );
-    assert!(
-        r.summary
-            .warnings
-            .iter()
-            .any(|w| matches!(w, Warning::BlocksMeet { .. })),
-        "{:?}",
-        r.summary.warnings
-    );
+    assert_eq!(r.summary.duration_s, 15.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    assert!(r.events.len() < 10_000, "{}", r.events.len());
     balances(&r);
 }
 
@@ -457,4 +458,115 @@ fn a_block_that_lands_from_flight_in_a_contact_that_opens_keeps_no_rise() {
         .expect("T lands from flight as the contact opens");
     assert!(landing.time_s > 1.98 && landing.time_s < r.summary.duration_s);
     balances(&r);
+}
+
+/// Corners that meet to the tie tolerance, told apart (a slab 0.3 x 1.2 m beside a block 1.0 x
+/// 1.2 m 0.05 m away, friction 0.6, no restitution, 0.3 g at 1.5 Hz; the run stopped at 3.731 s
+/// where "two corners meet" before). At 3.7313 s the slab's corner that reached the line of the
+/// block's face lay beyond the face's end (the block a tie higher): the face touched nothing
+/// there, and the slab's own corner, inside the block's face, strikes it. At 3.7508 s the slab's
+/// corner slides off the top of the block's face and the block's corner, a round-off below it,
+/// moves in along the slab's face: that corner strikes, not the one that went past the end. Drawn
+/// from the rows alone the blocks never overlap, and the run goes on to 3.779 s, where a face
+/// comes down flat on a face while another contact holds.
+#[test]
+fn corners_that_meet_to_a_tie_strike_where_one_moves_in_along_a_face() {
+    use super::clearance_tests::{apart, block_corners, rows};
+    let r = run(
+        &slab_and_block(0.6, 0.0, (1.0, 1.2, 0.05)),
+        (0.3, 1.5, 0.0),
+        4.0,
+    );
+    let mode = |k: usize| r.events[k].mode.clone().unwrap_or_default();
+    let at = |t: f64, starts: &str| {
+        (0..r.events.len())
+            .find(|&k| (r.events[k].time_s - t).abs() < 1e-9 && mode(k).starts_with(starts))
+    };
+    assert!(
+        at(3.731_312_780_2, "S's corner strikes W's face").is_some(),
+        "{:#?}",
+        r.events
+    );
+    let off = at(3.750_804_099_7, "S's corner slides off an end of W's face").expect("off");
+    assert!(
+        mode(off + 1).starts_with("W's corner strikes S's face"),
+        "{}",
+        mode(off + 1)
+    );
+    assert!(r.events[off + 1].time_s - r.events[off].time_s < 1e-8);
+    assert!(
+        meets(&r, "a face comes down flat on a face"),
+        "{:?}",
+        r.summary
+    );
+    assert!(r.summary.duration_s > 3.779, "{}", r.summary.duration_s);
+    let (s, w) = (rows(&r, 0), rows(&r, 1));
+    let size = (1.0f64).hypot(1.2);
+    for i in 0..s.len() {
+        let sep = apart(
+            &block_corners(0.15, (0.3, 1.2), &s[i]),
+            &block_corners(0.3 + 0.05 + 0.5, (1.0, 1.2), &w[i]),
+        );
+        assert!(sep > -1e-14 * size, "{:?} {:?}: {sep}", s[i], w[i]);
+    }
+    balances(&r);
+}
+
+/// Blocks that meet again and again at one instant stop the run at their meeting, which may be
+/// handed over to time stepping, where before the run ended in an error: a wall 1.2 m wide, a
+/// block 0.4 x 1.2 m and a squat block (friction 0.5, no restitution, 0.45 g at 2 Hz from 270
+/// degrees) where the middle block's corner slides off the wall's face at 0.8046 s, and the
+/// wall's corner, turning on the middle block's face, comes down flat on it again and again
+/// without an impulse.
+#[test]
+fn blocks_that_rattle_at_one_instant_stop_the_run_at_their_meeting() {
+    let model = row(
+        0.5,
+        0.0,
+        "(width_m: 1.2, name: \"W\"), (width_m: 0.4, gap_m: 0.02, name: \"S\"), \
+         (width_m: 1.0, height_m: 0.8, gap_m: 0.02, name: \"T\")",
+    );
+    let r = run(&model, (0.45, 2.0, 270.0), 15.0);
+    assert!(
+        meets(
+            &r,
+            "they meet again 10001 times at one instant: blocks that rattle"
+        ),
+        "{:?}",
+        r.summary.warnings
+    );
+    assert!((r.summary.duration_s - 0.80462).abs() < 1e-5);
+    balances(&r);
+}
+
+/// A body that lands on its base a tie from its seat is moved along the ground so that the
+/// contact it holds stays where it was along the contact's normal: drawn as the history draws
+/// blocks, a slab 0.3 x 1.2 m on its right corner, turned by theta and seated again, has its top
+/// right corner where it was along a face's normal to round-off, for a tilt of a tie and a large
+/// one, a vertical face and a leaning one; turned back without the move, it would not be.
+#[test]
+fn a_body_seated_from_a_tie_keeps_its_contact_along_the_normal() {
+    use super::clearance_tests::block_corners;
+    use super::seat_shift_m;
+    let (home, u) = ([0.3, 0.0], 0.01);
+    for theta in [1e-11, 0.2f64] {
+        for lean in [0.0, 0.3f64] {
+            let n = [-lean.cos(), lean.sin()];
+            let (sin, cos) = theta.sin_cos();
+            let turned = [0.0, 0.15 + u - 0.15 * cos, 0.0, theta, 0.0, 0.15 * sin];
+            let p = block_corners(0.15, (0.3, 1.2), &turned)[2];
+            let shift = seat_shift_m(p, n, home, theta, u);
+            let along = |row: &[f64; 6]| {
+                let q = block_corners(0.15, (0.3, 1.2), row)[2];
+                (q[0] - p[0]) * n[0] + (q[1] - p[1]) * n[1]
+            };
+            let seated = [0.0, u + shift, 0.0, 0.0, 0.0, 0.0];
+            assert!(
+                along(&seated).abs() < 1e-15,
+                "{theta} {lean}: {}",
+                along(&seated)
+            );
+            assert!(along(&[0.0, u, 0.0, 0.0, 0.0, 0.0]).abs() > 0.5 * 1.2 * theta);
+        }
+    }
 }
