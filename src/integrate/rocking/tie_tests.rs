@@ -570,3 +570,29 @@ fn a_body_seated_from_a_tie_keeps_its_contact_along_the_normal() {
         }
     }
 }
+
+/// A meeting found while two bodies turned together, their couple ending at that instant by a
+/// body's event handled first, is found again from the state after it: a wall 1.2 m wide, a
+/// block 0.4 x 1.2 m and a squat block (friction 0.8, restitution 0.3, 0.45 g at 2 Hz from 270
+/// degrees), where the wall's corner strikes the middle block's face at 1.1894 s and the push
+/// between them falls at once. The run stopped there ("a face comes down flat on a face", read
+/// as if the couple held); it now goes on to its end.
+#[test]
+fn a_meeting_found_in_a_couple_that_ends_at_its_instant_is_found_again() {
+    let model = row(
+        0.8,
+        0.3,
+        "(width_m: 1.2, name: \"W\"), (width_m: 0.4, gap_m: 0.02, name: \"S\"), \
+         (width_m: 1.0, height_m: 0.8, gap_m: 0.02, name: \"T\")",
+    );
+    let r = run(&model, (0.45, 2.0, 270.0), 15.0);
+    let ends = (r.events.iter()).position(|e| {
+        (e.time_s - 1.189_427_56).abs() < 1e-8
+            && (e.mode.as_deref())
+                == Some("W's corner leaves S's face, which no longer pushes on it")
+    });
+    assert!(ends.is_some(), "{:#?}", r.events);
+    assert_eq!(r.summary.duration_s, 15.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    balances(&r);
+}
