@@ -851,6 +851,11 @@ impl<'a> Engine<'a> {
                 Some((_, Some((x, Some(Guard::Land(c)))))) if *x == tau => Some(Some(*c)),
                 _ => None,
             }));
+            // What holds bodies together as the meeting was found.
+            let bound: Vec<_> = match meet {
+                Some(_) => self.tracks.iter().map(|tr| (tr.couple, tr.lies)).collect(),
+                None => Vec::new(),
+            };
             for (i, plan) in plans.into_iter().enumerate() {
                 let Some((traj, Some((x, guard)))) = plan else {
                     continue;
@@ -872,8 +877,12 @@ impl<'a> Engine<'a> {
                 }
                 self.handle(i, guard, &traj, tau, &now)?;
             }
+            // A couple or faces lying on each other that a body's event at this instant ended
+            // or began leave the meeting found before it stale (read as if they held, or not):
+            // the next step finds it again, from the state after that event.
+            let stale = (self.tracks.iter().zip(&bound)).any(|(tr, b)| (tr.couple, tr.lies) != *b);
             if let Some((_, outputs, touch)) = meet {
-                if self.t < self.t_end {
+                if self.t < self.t_end && !stale {
                     self.rec.stats.events += 1;
                     row = true;
                     met = Some((outputs, self.t));
@@ -1141,12 +1150,8 @@ impl<'a> Engine<'a> {
             (Meeting::Flat(_), Some((_, [corner, face]))) => {
                 format!("{corner}'s face comes down flat on {face}'s, the two moving together")
             }
-            // The couple the pair was held in when the meeting was found ended at this instant
-            // (a body's event handled before it): the next step finds the meeting again, from
-            // the state after that event.
-            (Meeting::Flat(Some(_)), None) => return Ok(()),
             (Meeting::Corners, None) => "two corners meet".into(),
-            (Meeting::Flat(None), None) => "a face comes down flat on a face".into(),
+            (Meeting::Flat(_), None) => "a face comes down flat on a face".into(),
             (Meeting::Faces(ends), _) => match self.lies_flat(ends, None, now)? {
                 None => return Ok(()),
                 Some(why) => why,

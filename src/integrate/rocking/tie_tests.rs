@@ -572,7 +572,8 @@ fn a_body_seated_from_a_tie_keeps_its_contact_along_the_normal() {
 }
 
 /// A meeting found while two bodies turned together, their couple ending at that instant by a
-/// body's event handled first, is found again from the state after it: a wall 1.2 m wide, a
+/// body's event handled first, is found again by the next step, from the state after that
+/// event: a wall 1.2 m wide, a
 /// block 0.4 x 1.2 m and a squat block (friction 0.8, restitution 0.3, 0.45 g at 2 Hz from 270
 /// degrees), where the wall's corner strikes the middle block's face at 1.1894 s and the push
 /// between them falls at once. The run stopped there ("a face comes down flat on a face", read
