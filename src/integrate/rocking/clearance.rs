@@ -619,18 +619,19 @@ impl Clearance {
         tau: f64,
         bodies: &[RockingBody],
     ) -> Meeting {
-        let (at_a, at_b) = (&pa.at(tau), &pb.at(tau));
-        match self.on_edge(k, at_a, at_b, bodies) {
+        let ats = (&pa.at(tau), &pb.at(tau));
+        match self.on_edge(k, ats.0, ats.1, bodies) {
             Meeting::Corners if self.pairs[k].held.is_none() => self
-                .elsewhere(k, (pa, pb), tau, bodies)
+                .elsewhere(k, ((pa, pb), ats), tau, bodies)
                 .unwrap_or(Meeting::Corners),
             meeting => meeting,
         }
     }
 
-    /// Where pair k's blocks strike at tau (placed as `pa` and `pb`) when the corner that
-    /// reached the line of the edge that kept them apart lies within the tie tolerance of an
-    /// end of that edge, or beyond it (the line crossed past the face touches nothing there).
+    /// Where pair k's blocks strike at tau (placed as `pa` and `pb`, there `at_a` and `at_b`)
+    /// when the corner that reached the line of the edge that kept them apart lies within the
+    /// tie tolerance of an end of that edge, or beyond it (the line crossed past the face
+    /// touches nothing there).
     /// A contact is a corner of either block on the line of a face of the other and between the
     /// face's ends (each within the tie tolerance) that, just after, goes across the line and
     /// lies between the ends (the first terms of its distances from the line and from each end
@@ -644,7 +645,7 @@ impl Clearance {
     fn elsewhere(
         &self,
         k: usize,
-        (pa, pb): (&Placed, &Placed),
+        ((pa, pb), (at_a, at_b)): ((&Placed, &Placed), (&At, &At)),
         tau: f64,
         bodies: &[RockingBody],
     ) -> Option<Meeting> {
@@ -654,12 +655,11 @@ impl Clearance {
         // and contact.
         let mut found: Vec<((bool, usize), usize, f64, Touch)> = Vec::new();
         for (of_b, e) in (0..8).map(|m| (m >= 4, m % 4)) {
-            let (face, corner, pieces) = match of_b {
-                true => (pb, pa, [pair.a, pair.b]),
-                false => (pa, pb, [pair.b, pair.a]),
+            let (face, corner, at_face, at_corner, pieces) = match of_b {
+                true => (pb, pa, at_b, at_a, [pair.a, pair.b]),
+                false => (pa, pb, at_a, at_b, [pair.b, pair.a]),
             };
-            let (at_face, at_corner) = (face.at(tau), corner.at(tau));
-            let n = normal(&at_face, e);
+            let n = normal(at_face, e);
             let (c0, c1) = (at_face.corners[e], at_face.corners[(e + 1) % 4]);
             let length = (c1[0] - c0[0]).hypot(c1[1] - c0[1]);
             let t = [(c1[0] - c0[0]) / length, (c1[1] - c0[1]) / length];
