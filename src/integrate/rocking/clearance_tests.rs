@@ -74,7 +74,7 @@ fn run(model: &Model, motion: &Motion, duration_s: f64, initial: f64) -> Respons
 }
 
 /// Block k's rows: u, v, theta, theta', w.
-pub(super) fn rows(r: &Response, k: usize) -> Vec<[f64; 6]> {
+fn rows(r: &Response, k: usize) -> Vec<[f64; 6]> {
     let h = r.history.as_ref().unwrap();
     (0..h.time_s.len())
         .map(|i| {
@@ -1133,9 +1133,22 @@ pub(super) fn block_corners(x0: f64, (w, h): (f64, f64), row: &[f64; 6]) -> [[f6
     })
 }
 
+/// Asserts that, drawn from the rows of `r` alone, its first two blocks (each the middle of its
+/// base at rest and its width and height, m) never overlap by more than 1e-14 of `size_m`.
+pub(super) fn never_overlap(r: &Response, blocks: [(f64, (f64, f64)); 2], size_m: f64) {
+    let (s, t) = (rows(r, 0), rows(r, 1));
+    for i in 0..s.len() {
+        let sep = apart(
+            &block_corners(blocks[0].0, blocks[0].1, &s[i]),
+            &block_corners(blocks[1].0, blocks[1].1, &t[i]),
+        );
+        assert!(sep > -1e-14 * size_m, "{:?} {:?}: {sep}", s[i], t[i]);
+    }
+}
+
 /// How far apart two convex quadrilaterals stand (m): the largest, over the edges of both, of
 /// the least distance of the other's corners outside that edge (negative: they overlap).
-pub(super) fn apart(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> f64 {
+fn apart(a: &[[f64; 2]; 4], b: &[[f64; 2]; 4]) -> f64 {
     let outside = |own: &[[f64; 2]; 4], other: &[[f64; 2]; 4]| {
         (0..4)
             .map(|e| {
@@ -1553,15 +1566,8 @@ fn a_landing_of_faces_lying_on_each_other_takes_three_contacts_at_once() {
         "{}",
         collapse.time_s
     );
-    let (s, t) = (rows(&r, 0), rows(&r, 1));
-    let size = (0.3f64).hypot(1.2);
-    for i in 0..s.len() {
-        let sep = apart(
-            &block_corners(0.15, (0.3, 1.2), &s[i]),
-            &block_corners(0.3 + 0.5 + 0.1, (0.2, 0.6), &t[i]),
-        );
-        assert!(sep > -1e-14 * size, "{:?} {:?}: {sep}", s[i], t[i]);
-    }
+    let blocks = [(0.15, (0.3, 1.2)), (0.3 + 0.5 + 0.1, (0.2, 0.6))];
+    never_overlap(&r, blocks, (0.3f64).hypot(1.2));
     let e = &r.summary.energy;
     let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
     assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");
@@ -1600,15 +1606,8 @@ fn a_landing_of_faces_lying_on_each_other_can_part_them_at_both_ends() {
         .collect();
     assert!(speeds.iter().all(|&v| v > 1e-4), "{speeds:?}");
     assert!(r.summary.duration_s > parts.time_s + 0.3);
-    let (s, w) = (rows(&r, 0), rows(&r, 1));
-    let size = (1.2f64).hypot(1.2);
-    for i in 0..s.len() {
-        let sep = apart(
-            &block_corners(0.15, (0.3, 1.2), &s[i]),
-            &block_corners(0.3 + 0.05 + 0.6, (1.2, 1.2), &w[i]),
-        );
-        assert!(sep > -1e-14 * size, "{:?} {:?}: {sep}", s[i], w[i]);
-    }
+    let blocks = [(0.15, (0.3, 1.2)), (0.3 + 0.05 + 0.6, (1.2, 1.2))];
+    never_overlap(&r, blocks, (1.2f64).hypot(1.2));
     let e = &r.summary.energy;
     let scale = e.input_j.abs() + e.impact_loss_j + e.potential_j.abs();
     assert!(e.residual_j.abs() <= 1e-14 * scale, "{e:?}");

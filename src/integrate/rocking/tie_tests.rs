@@ -230,6 +230,17 @@ fn three_blocks(friction: f64, restitution: f64, width: f64, gap: f64) -> Model 
     )
 }
 
+/// A wall 1.2 m wide, a block 0.4 x 1.2 m 0.02 m from it and a squat block 1.0 x 0.8 m 0.02 m
+/// further, all on the ground.
+fn wall_block_and_squat(friction: f64, restitution: f64) -> Model {
+    row(
+        friction,
+        restitution,
+        "(width_m: 1.2, name: \"W\"), (width_m: 0.4, gap_m: 0.02, name: \"S\"), \
+         (width_m: 1.0, height_m: 0.8, gap_m: 0.02, name: \"T\")",
+    )
+}
+
 /// Faces that meet from apart, or come down flat in a couple, again and again at shrinking
 /// speeds: where the impacts' speeds accumulate to round-off the faces lie on each other or the
 /// run stops, instead of going on at one instant or in bounces of round-off. A slab beside a
@@ -471,7 +482,7 @@ fn a_block_that_lands_from_flight_in_a_contact_that_opens_keeps_no_rise() {
 /// comes down flat on a face while another contact holds.
 #[test]
 fn corners_that_meet_to_a_tie_strike_where_one_moves_in_along_a_face() {
-    use super::clearance_tests::{apart, block_corners, rows};
+    use super::clearance_tests::never_overlap;
     let r = run(
         &slab_and_block(0.6, 0.0, (1.0, 1.2, 0.05)),
         (0.3, 1.5, 0.0),
@@ -500,15 +511,8 @@ fn corners_that_meet_to_a_tie_strike_where_one_moves_in_along_a_face() {
         r.summary
     );
     assert!(r.summary.duration_s > 3.779, "{}", r.summary.duration_s);
-    let (s, w) = (rows(&r, 0), rows(&r, 1));
-    let size = (1.0f64).hypot(1.2);
-    for i in 0..s.len() {
-        let sep = apart(
-            &block_corners(0.15, (0.3, 1.2), &s[i]),
-            &block_corners(0.3 + 0.05 + 0.5, (1.0, 1.2), &w[i]),
-        );
-        assert!(sep > -1e-14 * size, "{:?} {:?}: {sep}", s[i], w[i]);
-    }
+    let blocks = [(0.15, (0.3, 1.2)), (0.3 + 0.05 + 0.5, (1.0, 1.2))];
+    never_overlap(&r, blocks, (1.0f64).hypot(1.2));
     balances(&r);
 }
 
@@ -520,13 +524,7 @@ fn corners_that_meet_to_a_tie_strike_where_one_moves_in_along_a_face() {
 /// without an impulse.
 #[test]
 fn blocks_that_rattle_at_one_instant_stop_the_run_at_their_meeting() {
-    let model = row(
-        0.5,
-        0.0,
-        "(width_m: 1.2, name: \"W\"), (width_m: 0.4, gap_m: 0.02, name: \"S\"), \
-         (width_m: 1.0, height_m: 0.8, gap_m: 0.02, name: \"T\")",
-    );
-    let r = run(&model, (0.45, 2.0, 270.0), 15.0);
+    let r = run(&wall_block_and_squat(0.5, 0.0), (0.45, 2.0, 270.0), 15.0);
     assert!(
         meets(
             &r,
@@ -573,20 +571,13 @@ fn a_body_seated_from_a_tie_keeps_its_contact_along_the_normal() {
 
 /// A meeting found while two bodies turned together, their couple ending at that instant by a
 /// body's event handled first, is found again by the next step, from the state after that
-/// event: a wall 1.2 m wide, a
-/// block 0.4 x 1.2 m and a squat block (friction 0.8, restitution 0.3, 0.45 g at 2 Hz from 270
-/// degrees), where the wall's corner strikes the middle block's face at 1.1894 s and the push
+/// event: a wall 1.2 m wide, a block 0.4 x 1.2 m and a squat block (friction 0.8, restitution
+/// 0.3, 0.45 g at 2 Hz from 270 degrees), where the wall's corner strikes the middle block's face at 1.1894 s and the push
 /// between them falls at once. The run stopped there ("a face comes down flat on a face", read
 /// as if the couple held); it now goes on to its end.
 #[test]
 fn a_meeting_found_in_a_couple_that_ends_at_its_instant_is_found_again() {
-    let model = row(
-        0.8,
-        0.3,
-        "(width_m: 1.2, name: \"W\"), (width_m: 0.4, gap_m: 0.02, name: \"S\"), \
-         (width_m: 1.0, height_m: 0.8, gap_m: 0.02, name: \"T\")",
-    );
-    let r = run(&model, (0.45, 2.0, 270.0), 15.0);
+    let r = run(&wall_block_and_squat(0.8, 0.3), (0.45, 2.0, 270.0), 15.0);
     let ends = (r.events.iter()).position(|e| {
         (e.time_s - 1.189_427_56).abs() < 1e-8
             && (e.mode.as_deref())
