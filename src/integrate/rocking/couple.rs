@@ -235,24 +235,23 @@ impl Couple {
         }
     }
 
-    /// The corner's acceleration away from the face (m/s2) at the start of the step on which the
-    /// sides move as `t` says (a fixed block's trajectory zero), the corner on the face with no
-    /// normal velocity there: the rate's derivative, J_1 theta_1'' + J_2 theta_2'' + n_x (u_1''
-    /// - u_2'') + n_y (lift_1'' - lift_2'') with what the arms' and the normal's own rates add.
-    pub(super) fn away(&self, t: &[Trajectory; 2]) -> f64 {
+    /// How far the corner stands outside the face over the step on which the sides move as `t`
+    /// says (m), the corner on the face at its start with no normal velocity there (what is
+    /// left of it is a landing's round-off, below the tie the caller found it at rest by):
+    /// r_2 . n less its value there, the face's own points at a fixed distance along the normal
+    /// that turns with it. Where the corner's acceleration away from the face is zero to a tie
+    /// (a push that falls to zero at the instant the corner would stop leaving), the orders
+    /// after it say whether the corner leaves.
+    pub(super) fn gap(&self, t: &[Trajectory; 2]) -> Coeffs {
         let mut at = Geometry::default();
-        at.place(self, [&t[0], &t[1]], 0);
-        at.place(self, [&t[0], &t[1]], 1);
-        let dv = |j: usize| t[0].v[j] - t[1].v[j];
-        let dl = |j: usize| t[0].lift_v[j] - t[1].lift_v[j];
-        (0..=1)
-            .map(|j| {
-                at.arm[0][j] * t[0].omega[1 - j]
-                    + at.arm[1][j] * t[1].omega[1 - j]
-                    + at.n[0][j] * dv(1 - j)
-                    + at.n[1][j] * dl(1 - j)
-            })
-            .sum()
+        let mut gap = ZERO;
+        for (j, g) in gap.iter_mut().enumerate() {
+            at.place(self, [&t[0], &t[1]], j);
+            if j > 1 {
+                *g = mul_at(&at.r2[0], &at.n[0], j) + mul_at(&at.r2[1], &at.n[1], j);
+            }
+        }
+        gap
     }
 
     /// The modes of a couple's bodies (`members`, each rocking on the pivot of its mode, or in

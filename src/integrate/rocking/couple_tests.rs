@@ -411,11 +411,11 @@ fn enumerate_leaning(
 
 /// Two slabs in flight, the top right corner of A (0.3 x 1.2 m, its right corner lifted by l_a)
 /// on the left face of B (0.2 x 1.6 m, its left corner lifted by l_b), each turning and moving
-/// at its own rates: the acceleration at which the corner leaves the face (`Couple::away`, what
-/// decides which ends of two faces lying on each other stay pressed) is the second derivative of
-/// the corner's distance from the face, written here in closed form from each body's trajectory
-/// alone (to 1e-12 of g), and zero on the couple's own motion, whose push keeps the corner on the
-/// face (to 1e-12 of g).
+/// at its own rates: the acceleration at which the corner leaves the face (twice the second
+/// coefficient of `Couple::gap`, what decides which ends of two faces lying on each other stay
+/// pressed) is the second derivative of the corner's distance from the face, written here in
+/// closed form from each body's trajectory alone (to 1e-12 of g), and zero on the couple's own
+/// motion, whose push keeps the corner on the face (to 1e-12 of g).
 #[test]
 fn the_acceleration_at_which_a_corner_leaves_a_face_is_the_distances_second_derivative() {
     use super::modes::{trajectory, Equations};
@@ -489,14 +489,14 @@ fn the_acceleration_at_which_a_corner_leaves_a_face_is_the_distances_second_deri
             + e[2] * sb
             + 2.0 * e[1] * cb * w_b
             + e[0] * (cb * al_b - sb * w_b * w_b);
-        let away = couple.away(&alone);
+        let away = 2.0 * couple.gap(&alone)[2];
         assert!((away - closed).abs() < 1e-12 * g, "{away} {closed}");
         assert!(away.abs() > 1e-3 * g, "a case that shows nothing: {away}");
         let motion = couple.motion(
             [0, 1].map(|k| Member::Moves(bodies[k], modes[k], &states[k])),
             &inputs,
         );
-        let held = couple.away(&motion.bodies);
+        let held = 2.0 * couple.gap(&motion.bodies)[2];
         assert!(held.abs() < 1e-12 * g, "{held}");
     }
 }

@@ -89,26 +89,31 @@ impl Lying {
         self.order(e).map(|k| t[k].clone())
     }
 
-    /// The contact problem at the level of accelerations, for faces at rest on each other at
-    /// both ends (`members`: the bodies in their modes and states, the first contact's order).
-    /// Every way each body's pivot may stick, slip or leave the ground, or a seated body stay
-    /// seated or turn on its pivot ([`couple::ways`]), is tried with each set of pressing
-    /// ends: both (the two pushes of [`Lying::motion`] >= 0), one (its push >= 0, the couple's
-    /// motion on it alone, the other end's acceleration away from its face positive), none
-    /// (the bodies alone, both ends' accelerations away positive); a way holds where, besides,
-    /// no condition of either body's mode breaks just after now ([`couple::broken_by`]). For
-    /// bodies in flight the matrix W that takes the pushes to the ends' accelerations away is
-    /// positive definite (each body's mass matrix is, and two points of one face constrain
-    /// independently), and exactly one holds; with a body on the ground, Coulomb friction at
-    /// its pivot makes the problem one with friction, which may have no solution or several
-    /// (Painleve), so exactly one must hold: else why not, in words, naming the ways that hold
-    /// or saying that none does and which ways friction leaves without a positive effective
-    /// mass.
+    /// The contact problem at the level of accelerations, for faces at rest on each other at both
+    /// ends (`members`: the bodies in their modes and states, the first contact's order). Every way
+    /// each body's pivot may stick, slip or leave the ground, or a seated body stay seated or turn
+    /// on its pivot ([`couple::ways`]), is tried with each set of pressing ends: both (the two
+    /// pushes of [`Lying::motion`] >= 0), one (its push >= 0, the couple's motion on it alone, the
+    /// other end's corner leaving its face: its distance outside grows just after now,
+    /// [`Couple::gap`], the orders after the acceleration deciding where that is zero to a tie),
+    /// none (the bodies alone, both corners leaving); a way holds where, besides, no condition of
+    /// either body's mode breaks just after now ([`couple::broken_by`]). For bodies in flight the
+    /// matrix W that takes the pushes to the ends' accelerations away is positive definite (each
+    /// body's mass matrix is, and two points of one face constrain independently), and exactly one
+    /// holds; with a body on the ground, Coulomb friction at its pivot makes the problem one with
+    /// friction, which may have no solution or several (Painleve), so exactly one must hold: else
+    /// why not, in words, naming the ways that hold or saying that none does and which ways
+    /// friction leaves without a positive effective mass.
     pub(super) fn decide(&self, members: [Member; 2], now: &Inputs) -> Result<Decision, String> {
         let Member::Moves(first, ..) = members[0] else {
             unreachable!("the bodies of lying faces move");
         };
-        let tie = series::TIE * first.g_m_s2;
+        // A corner leaves its face where its distance outside grows just after now, the orders
+        // after the acceleration saying so where that is zero to a tie.
+        let leaves = |e: usize, t: &[Trajectory; 2]| {
+            let gap = self.ends[e].gap(&self.ordered(t, e));
+            series::sign_after(&gap, first.size_m(), first.time_scale_s()) > 0
+        };
         // A push that W leaves undetermined (a singular matrix: no arm turns either body
         // about its pivot) presses nowhere.
         let presses = |push: &Coeffs| {
@@ -160,8 +165,7 @@ impl Lying {
                 for e in 0..2 {
                     let one = self.ends[e].motion(self.order(e).map(|k| trial[k]), now);
                     let moved = self.ordered(&one.bodies, e);
-                    let other = self.ends[1 - e].away(&self.ordered(&moved, 1 - e));
-                    if presses(&one.push) && other > tie && kept(&moved) {
+                    if presses(&one.push) && leaves(1 - e, &moved) && kept(&moved) {
                         let mut pressed = [false; 2];
                         pressed[e] = true;
                         holding.push((picked, pressed, named(pressed)));
@@ -173,7 +177,7 @@ impl Lying {
                     }
                     Member::Fixed => unreachable!("the bodies of lying faces move"),
                 });
-                let apart = (0..2).all(|e| self.ends[e].away(&self.ordered(&alone, e)) > tie);
+                let apart = (0..2).all(|e| leaves(e, &alone));
                 if apart && kept(&alone) {
                     holding.push((picked, [false, false], named([false, false])));
                 }
