@@ -11,10 +11,10 @@ use pirqa::{AfterUplift, Method, Model, ModelChoice, Response, RunSettings};
 const G: f64 = 9.81;
 
 /// A slender block S (0.3 x 1.2 m, b/h = 1/4) beside a squat one W (1.2 x 1.2 m), touching, on
-/// the ground, friction 0.6 (walls/rocking/slab-beside-block.ron): not free columns, so the
-/// sliding model runs it. Under a ground accelerating to the right both lean left; S has nothing
-/// on its left to hold it and lifts alone at g b/h = g/4, turning away from W, which would lift
-/// at g and slide at 0.6 g.
+/// the ground, friction 0.6 (walls/rocking/slab-beside-block.ron): `auto` slides walls whose
+/// blocks touch, so the sliding model runs it. Under a ground accelerating to the right both lean
+/// left; S has nothing on its left to hold it and lifts alone at g b/h = g/4, turning away from W,
+/// which would lift at g and slide at 0.6 g.
 pub(crate) fn pair() -> Model {
     Model::from_file("walls/rocking/slab-beside-block.ron").unwrap()
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sweeps of small rocking scenes: every run of four grids of walls and motions, and how each
+# Sweeps of small rocking scenes: every run of five grids of walls and motions, and how each
 # ended (to its duration, at an overturning, at a meeting the exact model stops at, or in an
 # error). The figures quoted in docs/model.md (section 8), docs/rocking-walls.md and
 # src/integrate/rocking/tie_tests.rs come from here.
@@ -80,6 +80,18 @@ for gap in 0.1 0.5; do
     scene slab-short-block "$(wall $f $r "$blocks")" 8 --sine 0.5g --freq 1.7
     scene slab-short-block "$(wall $f $r "$blocks")" 8 --sine 0.3g --freq 0.8 --phase 60
 done; done; done; done; done
+
+# A slab touching a block W, the two seated face on face from the start (--model slide-rock:
+# auto slides such walls), under sines and El Centro: 96 runs.
+for r in 0.0 0.5; do for w in 0.5 0.8 1.2; do for h in 1.2 0.9; do for f in 0.6 0.9; do
+    blocks="(width_m: 0.3, name: \"S\"), (width_m: $w, height_m: $h, name: \"W\")"
+    for motion in "--sine 0.3g --freq 1" "--sine 0.5g --freq 2.5" "--sine 0.4g --freq 1.5"; do
+        # shellcheck disable=SC2086
+        scene slab-touching-block "$(wall $f $r "$blocks")" 4 $motion --model slide-rock
+    done
+    scene slab-touching-block "$(wall $f $r "$blocks")" 15 --record $record --pga 0.4g \
+        --model slide-rock
+done; done; done; done
 
 python3 - "$scratch" "$out" <<'PY'
 import csv, json, os, re, sys

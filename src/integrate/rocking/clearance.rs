@@ -367,15 +367,18 @@ impl Clearance {
         TIE * self.pieces[pair.a].size_m.max(self.pieces[pair.b].size_m)
     }
 
-    /// Each pair's edge from where the bodies start: the one that keeps it apart by most; an
-    /// error names two blocks that no edge keeps apart by more than the tie tolerance (they
-    /// touch, or lie inside one another).
+    /// Each pair's edge from where the bodies start: the one that keeps it apart by most. Two
+    /// blocks moved by bodies that stand side by side, upright, their faces touching (the
+    /// columns let only blocks alone in their columns do) lie on each other from the start:
+    /// the ends of their overlap are returned. An error names two blocks that no edge keeps
+    /// apart by more than the tie tolerance otherwise (they touch, or lie inside one another).
     pub(super) fn start(
         &mut self,
         bodies: &[RockingBody],
         trajs: &[Option<&Trajectory>],
         names: &[String],
-    ) -> Result<(), SimulationError> {
+    ) -> Result<Vec<[Touch; 2]>, SimulationError> {
+        let mut lying = Vec::new();
         for k in 0..self.pairs.len() {
             let (a, b) = (self.pairs[k].a, self.pairs[k].b);
             let (Some(pa), Some(pb)) =
@@ -385,6 +388,11 @@ impl Clearance {
             };
             let (edge, margin) = widest(&pa.at(0.0), &pb.at(0.0));
             if margin <= self.tie_m(k) {
+                if let Some(ends) = self.face_on_face(k, (&pa.at(0.0), &pb.at(0.0)), bodies) {
+                    self.lie(k, Some(&ends));
+                    lying.push(ends);
+                    continue;
+                }
                 return Err(SimulationError::NotApplicable(format!(
                     "{} and {} touch (or lie inside one another) where the run starts: the exact \
                      rocking model follows blocks of different columns only while they stand \
@@ -395,7 +403,57 @@ impl Clearance {
             }
             self.pairs[k].edge = edge;
         }
-        Ok(())
+        Ok(lying)
+    }
+
+    /// Pair k's blocks (placed as `at_a` and `at_b`), both moved by bodies, upright side by
+    /// side with a face of each on the other's along a height: the contacts at the ends of
+    /// that overlap, the lower then the upper, each the corner of the block whose end of the
+    /// face is nearer the overlap's middle on the other's face; none otherwise.
+    fn face_on_face(
+        &self,
+        k: usize,
+        (at_a, at_b): (&At, &At),
+        bodies: &[RockingBody],
+    ) -> Option<[Touch; 2]> {
+        let pair = &self.pairs[k];
+        let tie = self.tie_m(k);
+        let moved = |p: usize| self.pieces[p].body.is_some();
+        if !moved(pair.a) || !moved(pair.b) || at_a.sin != 0.0 || at_b.sin != 0.0 {
+            return None;
+        }
+        // (piece, corners) on the left, then on the right.
+        let (a, b) = ((pair.a, &at_a.corners), (pair.b, &at_b.corners));
+        let [left, right] = if (a.1[1][0] - b.1[0][0]).abs() <= tie {
+            [a, b]
+        } else if (b.1[1][0] - a.1[0][0]).abs() <= tie {
+            [b, a]
+        } else {
+            return None;
+        };
+        let (bottoms, tops) = ([left.1[0][1], right.1[0][1]], [left.1[3][1], right.1[3][1]]);
+        if tops[0].min(tops[1]) - bottoms[0].max(bottoms[1]) <= tie {
+            return None;
+        }
+        // The right block's corner j on the left one's right face (edge 1, normal +x), or the
+        // left block's corner j on the right one's left face (edge 3, normal -x).
+        let end = |on_left: bool, j: usize| {
+            let t = match on_left {
+                true => self.contact(k, [right.0, left.0], (j, 1), right.1[j], [1.0, 0.0], bodies),
+                false => self.contact(k, [left.0, right.0], (j, 3), left.1[j], [-1.0, 0.0], bodies),
+            };
+            Touch { stays: true, ..t }
+        };
+        Some([
+            match bottoms[1] >= bottoms[0] {
+                true => end(true, 0),
+                false => end(false, 1),
+            },
+            match tops[1] <= tops[0] {
+                true => end(true, 3),
+                false => end(false, 2),
+            },
+        ])
     }
 
     /// The first instant within (from, h] at which a corner reaches the edge that keeps its

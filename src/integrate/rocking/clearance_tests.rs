@@ -345,12 +345,21 @@ fn a_column_of_two_drums_meets_a_wall_with_its_upper_drum() {
     assert!(why.is_some_and(|w| w.contains("holds joints")));
 }
 
-/// Blocks that touch a column beside it are not columns standing apart; a release that puts
-/// the slab into the abutment is refused by name, as is one that starts it touching.
+/// Blocks that touch a column beside it are not columns standing apart, but for two blocks
+/// each alone in its column face on face (`abutting`): a block touching two, or touching one
+/// that carries another, is refused by name; a release that puts the slab into the abutment is
+/// refused by name, as is one that starts it touching.
 #[test]
 fn touching_blocks_are_refused_by_name() {
-    let touching = wall(", (width_m: 1.2, name: \"W\")");
-    let e = columns(touching.wall(), touching.topology()).unwrap_err();
+    let face_on_face = wall(", (width_m: 1.2, name: \"W\")");
+    assert_eq!(
+        columns(face_on_face.wall(), face_on_face.topology())
+            .unwrap()
+            .len(),
+        2
+    );
+    let three = wall(", (width_m: 1.2, name: \"W\"), (width_m: 0.3, name: \"T\")");
+    let e = columns(three.wall(), three.topology()).unwrap_err();
     assert!(e.to_string().contains("S touches W beside it"), "{e}");
     let niche = wall(", (width_m: 0.5, gap_m: 0.02, fixed: true, name: \"A\")");
     let settings = Settings::summary_only(1.0);

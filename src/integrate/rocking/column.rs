@@ -444,15 +444,17 @@ struct Stacked {
 
 /// The columns of a wall, or why it is not made of columns: every movable block rests on one
 /// block (or the ground) and carries at most one, touching no block beside it (blocks that
-/// stand apart are watched, and their impacts resolved, by `clearance` and `collision`); the body of each
-/// column must have its centroid over the middle of the contact it moves on (the rocking
-/// body's equations take it there). A trilith is one column whose body is its frame
-/// ([`Trilith`](super::Trilith)).
+/// stand apart are watched, and their impacts resolved, by `clearance` and `collision`) but
+/// for two blocks each alone in its column that touch face on face (seated face on face from
+/// the start, `abutting`); the body of each column must have its centroid over the middle of
+/// the contact it moves on (the rocking body's equations take it there). A trilith is one
+/// column whose body is its frame ([`Trilith`](super::Trilith)).
 pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationError> {
     let not = |why: String| {
         SimulationError::NotApplicable(format!(
             "{why}: the exact rocking model runs walls whose movable blocks stand in free \
-             columns (each on one block, carrying at most one, nothing touching it beside it); \
+             columns (each on one block, carrying at most one, nothing touching it beside it \
+             but, face on face, one other block alone in its column like it); \
              run this \
              wall's blocks with rotations on time stepping (--model slide-rock --method moreau \
              --dt S), sliding exactly (--model slide), or across its plane (--direction \
@@ -463,19 +465,36 @@ pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationEr
         return Ok(vec![of_trilith(wall, t)]);
     }
     let movable = |b: usize| !wall.blocks[b].fixed;
+    let touching = |b: usize| {
+        (topo.sides[b].iter())
+            .map(|v| &topo.vertical[v.0])
+            .filter(|j| j.gap_m.is_zero())
+            .map(move |j| if j.left.0 == b { j.right.0 } else { j.left.0 })
+    };
+    // Alone in its column: on the ground or a fixed block, carrying nothing.
+    let alone = |b: usize| {
+        topo.above[b].is_empty()
+            && matches!(topo.below[b][..], [s] if match topo.horizontal[s.0].lower {
+                Base::Ground => true,
+                Base::Block(BlockId(l)) => !movable(l),
+            })
+    };
     let mut bottoms = Vec::new();
     for b in (0..wall.blocks.len()).filter(|&b| movable(b)) {
         let name = &wall.blocks[b].name;
-        if let Some(j) = topo.sides[b]
-            .iter()
-            .map(|v| &topo.vertical[v.0])
-            .find(|j| j.gap_m.is_zero())
-        {
-            let other = if j.left.0 == b { j.right.0 } else { j.left.0 };
-            return Err(not(format!(
-                "{name} touches {} beside it",
-                wall.blocks[other].name
-            )));
+        let beside: Vec<usize> = touching(b).collect();
+        if let Some(&other) = beside.first() {
+            let face_on_face = beside.len() == 1
+                && movable(other)
+                && touching(other).count() == 1
+                && alone(b)
+                && alone(other);
+            if !face_on_face {
+                return Err(not(format!(
+                    "{name} touches {} beside it",
+                    wall.blocks[other].name
+                )));
+            }
         }
         let [below] = topo.below[b] else {
             return Err(not(format!(
@@ -502,6 +521,16 @@ pub fn columns(wall: &Wall, topo: &Topology) -> Result<Vec<Column>, SimulationEr
         return Err(not(format!("{} has no movable block", wall.name)));
     }
     bottoms.into_iter().map(|b| column(wall, topo, b)).collect()
+}
+
+/// The first two movable blocks of a wall that touch face on face (their names), if any: the
+/// columns the exact model takes seated side by side from the start ([`columns`]).
+pub(super) fn face_on_face(wall: &Wall, topo: &Topology) -> Option<(String, String)> {
+    (topo.vertical.iter())
+        .filter(|j| j.gap_m.is_zero())
+        .map(|j| [j.left.0, j.right.0])
+        .find(|ends| ends.iter().all(|&b| !wall.blocks[b].fixed))
+        .map(|[l, r]| (wall.blocks[l].name.clone(), wall.blocks[r].name.clone()))
 }
 
 /// A trilith as the column model runs it: one column whose body is its frame, every joint

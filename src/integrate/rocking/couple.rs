@@ -57,6 +57,9 @@ pub(super) struct Couple {
     /// that corner if it lifts), and the middle of that base from there (m).
     pub(super) pivots: [Corner; 2],
     middles: [[f64; 2]; 2],
+    /// The push's arm about each body's pivot where the couple was placed (m; zero for a
+    /// fixed block).
+    reach: [f64; 2],
 }
 
 /// The clockwise rotation by theta of r: (r_x cos + r_y sin, -r_x sin + r_y cos).
@@ -160,6 +163,25 @@ impl Couple {
         states: [Option<&State>; 2],
         tie_m: f64,
     ) -> Option<Couple> {
+        let couple = Couple::placed(touch, bodies, homes, states);
+        couple.turns(tie_m).then_some(couple)
+    }
+
+    /// Whether the push turns either body about its pivot, its arm there longer than `tie_m`
+    /// where the couple was placed.
+    pub(super) fn turns(&self, tie_m: f64) -> bool {
+        (0..2).any(|k| self.bodies[k].is_some() && self.reach[k].abs() > tie_m)
+    }
+
+    /// The same couple whether or not its push turns a body: the end of two faces lying on
+    /// each other at both bodies' pivots (seated blocks face on face, their bottom corners
+    /// together) is one.
+    pub(super) fn placed(
+        touch: &Touch,
+        bodies: [Option<usize>; 2],
+        homes: [[f64; 2]; 2],
+        states: [Option<&State>; 2],
+    ) -> Couple {
         let (point, normal) = (touch.point, touch.normal);
         let states = states.map(|s| s.unwrap_or(&UNMOVED));
         let pivots = [0, 1].map(|k| [homes[k][0] + states[k].u, homes[k][1] + states[k].lift]);
@@ -178,6 +200,7 @@ impl Couple {
             normal: upright(normal, states[1].theta.sin_cos()),
             pivots: [Corner::Right; 2],
             middles: [[0.0; 2]; 2],
+            reach: pivots.map(|p| cross([point[0] - p[0], point[1] - p[1]], normal)),
         };
         let (mut corners, mut middles) = ([Corner::Right; 2], [[0.0; 2]; 2]);
         for k in 0..2 {
@@ -186,19 +209,21 @@ impl Couple {
                 middles[k] = [origin[0] - homes[k][0], origin[1] - homes[k][1]];
             }
         }
-        let couple = Couple {
+        Couple {
             pivots: corners,
             middles,
             ..couple
-        };
-        let reach = pivots.map(|p| cross([point[0] - p[0], point[1] - p[1]], normal));
-        let turns = (0..2).any(|k| bodies[k].is_some() && reach[k].abs() > tie_m);
-        turns.then_some(couple)
+        }
     }
 
     /// Side k's pivot's home (m).
     pub(super) fn home(&self, k: usize) -> [f64; 2] {
         self.homes[k]
+    }
+
+    /// Half the width of side k's base (m): from its pivot's home to the base's middle.
+    pub(super) fn half_base_m(&self, k: usize) -> f64 {
+        self.middles[k][0].abs()
     }
 
     /// The bodies of the couple (one where the other side is a fixed block).

@@ -16,7 +16,7 @@
 //! ends' at once (the engine's `lying_lands`), and the faces lie on each other on where both
 //! ends still press after it.
 
-use super::body::RockingBody;
+use super::abutting::{self, Abutting, Together};
 use super::clearance::{Side, Touch};
 use super::couple::{self, Couple, Member, Pushed};
 use super::modes::{self, Constraint, Equations, Guard, Inputs, Mode, Scales, State, Trajectory};
@@ -40,30 +40,44 @@ pub(super) struct Lying {
 impl Lying {
     /// The faces lying on each other at the contacts `ends` (each a corner of one body on the
     /// other's face), the bodies (`bodies`, in the first contact's order, with their pivots'
-    /// homes and their states); none where a contact's sides are not these bodies, or where its
-    /// push would turn neither body about its pivot, both arms zero to the bit (an end at both
-    /// pivots: two seated blocks face on face, their bottom corners together). A push whose
-    /// arms are not zero but too short to turn the bodies leaves the decision's matrix
-    /// singular, and [`Lying::decide`] says so.
+    /// homes and their states). A push whose arms are not zero but too short to turn the
+    /// bodies leaves the decision's matrix singular, and [`Lying::decide`] says so; where an
+    /// end's push turns neither body, both arms zero to the bit ([`Lying::turns`]), only two
+    /// seated bodies stay on each other.
     pub(super) fn new(
         ends: [&Touch; 2],
         bodies: [usize; 2],
         homes: [[f64; 2]; 2],
         states: [&State; 2],
-    ) -> Option<Lying> {
+    ) -> Lying {
         let couple = |t: &Touch| {
             let side = |s: Side| match s {
                 Side::Body(k, _) => bodies.iter().position(|&b| b == k),
                 _ => None,
             };
-            let order = [side(t.sides[0])?, side(t.sides[1])?];
+            let order = [side(t.sides[0]), side(t.sides[1])]
+                .map(|k| k.expect("an end of lying faces is between their bodies"));
             let placed = order.map(|k| Some(states[k]));
             let (ids, homes) = (order.map(|k| Some(bodies[k])), order.map(|k| homes[k]));
-            Couple::new(t, ids, homes, placed, 0.0)
+            Couple::placed(t, ids, homes, placed)
         };
-        Some(Lying {
-            ends: [couple(ends[0])?, couple(ends[1])?],
-        })
+        Lying {
+            ends: [couple(ends[0]), couple(ends[1])],
+        }
+    }
+
+    /// Whether each end's push moves a body in its mode (`members`): a body whose pivot slips,
+    /// or that is in flight or slides seated, moves under any push; one that rocks on a stuck
+    /// pivot or rests, only under a push with an arm about its pivot (an end at both pivots, as
+    /// where two blocks' bottom corners are together, turns neither).
+    pub(super) fn turns(&self, members: [Member; 2]) -> bool {
+        let translates = |m: &Member| {
+            matches!(
+                m,
+                Member::Moves(_, Mode::Slide(_) | Mode::SlideRock(..) | Mode::Flight(_), _)
+            )
+        };
+        members.iter().any(translates) || self.ends.iter().all(|end| end.turns(0.0))
     }
 
     /// The bodies, in the first contact's order.
@@ -72,9 +86,20 @@ impl Lying {
     }
 
     /// Both bodies' motion from their states in their modes (`members`, in the first
-    /// contact's order), and the two pushes.
+    /// contact's order), and the two pushes. Two seated bodies face on face rest each on its
+    /// own (the push left open), or slide together on the first contact's one push
+    /// ([`abutting`]).
     pub(super) fn motion(&self, members: [Member; 2], inputs: &Inputs) -> Pushed {
-        couple::pushed(&[&self.ends[0], &self.ends[1]], members, inputs)
+        match self.abutting(members) {
+            Some((_, Together::Rest)) => abutting::resting(members, inputs),
+            Some((_, Together::Slide(_))) => abutting::sliding(&self.ends[0], members, inputs),
+            None => couple::pushed(&[&self.ends[0], &self.ends[1]], members, inputs),
+        }
+    }
+
+    /// Both bodies seated face on face in `members`, moving together: the pair and how.
+    pub(super) fn abutting(&self, members: [Member; 2]) -> Option<(Abutting, Together)> {
+        Some((Abutting::of(&self.ends, members)?, Together::of(members)?))
     }
 
     /// Contact e's sides as the first contact's order numbers them (an involution).
@@ -153,6 +178,35 @@ impl Lying {
                 };
                 let slips =
                     |t: &[Trajectory; 2]| t.iter().any(|t| t.denominator.is_some_and(|d| d <= 0.0));
+                let alone = [0, 1].map(|k| match trial[k] {
+                    Member::Moves(body, mode, state) => {
+                        modes::trajectory(body, Equations::Exact, mode, state, now)
+                    }
+                    Member::Fixed => unreachable!("the bodies of lying faces move"),
+                });
+                let apart = (0..2).all(|e| leaves(e, &alone)) && kept(&alone);
+                if let Some(pair) = Abutting::of(&self.ends, trial) {
+                    // Two seated bodies stay face on face resting or sliding together, on the
+                    // pair's conditions (and a sliding pair's stop); else they part.
+                    let holds = |c: &Constraint| c.holds_after(first.time_scale_s());
+                    let together = match Together::of(trial) {
+                        Some(Together::Rest) => Some(pair.rest_conditions(now).iter().all(holds)),
+                        Some(Together::Slide(_)) => {
+                            let moved = abutting::sliding(&self.ends[0], trial, now);
+                            let stops = (0..2).all(|k| stop_kept(trial[k], &moved.bodies[k]));
+                            Some(stops && pair.sliding_conditions(&moved, now).iter().all(holds))
+                        }
+                        None => None,
+                    };
+                    tried += 1 + usize::from(together.is_some());
+                    if together == Some(true) {
+                        holding.push((picked, [true, true], named([true, true])));
+                    }
+                    if apart {
+                        holding.push((picked, [false, false], named([false, false])));
+                    }
+                    continue;
+                }
                 tried += 4;
                 let both = self.motion(trial, now);
                 let [[w00, w01], [w10, w11]] = both.compliance;
@@ -171,14 +225,7 @@ impl Lying {
                         holding.push((picked, pressed, named(pressed)));
                     }
                 }
-                let alone = [0, 1].map(|k| match trial[k] {
-                    Member::Moves(body, mode, state) => {
-                        modes::trajectory(body, Equations::Exact, mode, state, now)
-                    }
-                    Member::Fixed => unreachable!("the bodies of lying faces move"),
-                });
-                let apart = (0..2).all(|e| leaves(e, &alone));
-                if apart && kept(&alone) {
+                if apart {
                     holding.push((picked, [false, false], named([false, false])));
                 }
             }
@@ -195,6 +242,10 @@ impl Lying {
                 modes: *modes,
                 pressed: *pressed,
             }),
+            [] if !self.turns(members) => Err(format!(
+                "none of the {tried} ways of the pivots and the ends holds, an end of the faces' \
+                 overlap at both bodies' pivots, where its push would turn neither{friction}"
+            )),
             [] => Err(format!(
                 "none of the {tried} ways of the pivots and the ends holds{friction}: the rigid \
                  model with Coulomb friction has no motion here"
@@ -218,14 +269,43 @@ impl Lying {
         })
     }
 
-    /// The faces lie on each other while both pushes stay >= 0 (scaled by the weight of
-    /// `body`, the first).
-    pub(super) fn conditions(&self, body: &RockingBody, motion: &Pushed) -> [Constraint; 2] {
-        motion.pushes.map(|push| Constraint {
-            series: push,
-            scale: Scales::of(body).force,
-            guard: Guard::Parts,
-            strict: false,
-        })
+    /// The faces lie on each other while both pushes stay >= 0 (scaled by the weight of the
+    /// first body of `members`, their modes giving `motion`); two seated bodies face on face,
+    /// while the pair can rest, or, sliding together, while its push stays >= 0 and both stay
+    /// seated ([`Abutting`]).
+    pub(super) fn conditions(
+        &self,
+        members: [Member; 2],
+        motion: &Pushed,
+        inputs: &Inputs,
+    ) -> Vec<Constraint> {
+        match self.abutting(members) {
+            Some((pair, Together::Rest)) => pair.rest_conditions(inputs).to_vec(),
+            Some((pair, Together::Slide(_))) => pair.sliding_conditions(motion, inputs),
+            None => {
+                let Member::Moves(body, ..) = members[0] else {
+                    unreachable!("the bodies of lying faces move");
+                };
+                (motion.pushes.iter())
+                    .map(|&push| Constraint {
+                        series: push,
+                        scale: Scales::of(body).force,
+                        guard: Guard::Parts,
+                        strict: false,
+                    })
+                    .collect()
+            }
+        }
     }
+}
+
+/// Whether a seated body sliding in `member`'s mode keeps sliding just after now on `traj` (a
+/// resting body has no such condition).
+fn stop_kept(member: Member, traj: &Trajectory) -> bool {
+    let Member::Moves(body, ..) = member else {
+        return true;
+    };
+    (modes::constraints(body, Equations::Exact, traj).iter())
+        .filter(|c| c.guard == Guard::Stop)
+        .all(|c| c.holds_after(body.time_scale_s()))
 }

@@ -96,8 +96,7 @@ fn faces_lying_on_each_other_in_flight_obey_newton_euler_and_stay_on_each_other(
         [0, 1],
         [home_a, home_b],
         [&states[0], &states[1]],
-    )
-    .unwrap();
+    );
     let bodies = [&a, &b];
     let modes = [Mode::Flight(Corner::Right), Mode::Flight(Corner::Left)];
     let homes = [home_a, home_b];

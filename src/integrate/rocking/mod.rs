@@ -19,6 +19,9 @@
 //! | extremes of theta, u, u' | roots of their derivatives | recorded, nothing decided |
 //! | end of a ground-motion segment | the step stops there | `decide` if a_g jumps |
 
+mod abutting;
+#[cfg(test)]
+mod abutting_tests;
 mod body;
 mod chain;
 mod clearance;
@@ -60,6 +63,7 @@ use crate::integrate::event::{HandOff, Turned};
 use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
+use abutting::Abutting;
 use clearance::{Clearance, Meeting, Side, Touch};
 use couple::{Couple, Member};
 use layout::Layout;
@@ -491,6 +495,40 @@ impl<'a> Engine<'a> {
         }
     }
 
+    /// Two bodies whose blocks touch face on face where the run starts (`ends`: the contacts
+    /// at the ends of their overlap) lie on each other from there, seated at rest; returns the
+    /// first body. A body released from a tilt cannot start so.
+    fn abut(&mut self, ends: [Touch; 2]) -> Result<usize, SimulationError> {
+        let sides = ends[0].sides.map(|side| match side {
+            Side::Body(k, origin) => (k, origin),
+            _ => unreachable!("blocks face on face from the start are moved by bodies"),
+        });
+        let [a, b] = sides.map(|(k, _)| k);
+        let moved = |k: usize| {
+            let st = self.tracks[k].state;
+            (st.theta, st.omega, st.u, st.v, st.lift) != (0.0, 0.0, 0.0, 0.0, 0.0)
+        };
+        if let Some(k) = [a, b].into_iter().find(|&k| moved(k)) {
+            return Err(SimulationError::NotApplicable(format!(
+                "{} starts turned while its face lies on {}'s: blocks face on face are followed \
+                 from rest",
+                self.body(k).name,
+                self.body(a + b - k).name
+            )));
+        }
+        // A seated body's pivot is the corner the push would turn it on: away from the other.
+        let homes = [0, 1].map(|k| {
+            let push_x = [1.0, -1.0][k] * ends[0].normal[0];
+            self.home(sides[k].0, sides[k].1, Corner::of_sign(push_x))
+        });
+        let states = [State::default(); 2];
+        let lying = Lying::new(ends.each_ref(), [a, b], homes, states.each_ref());
+        for k in [a, b] {
+            (self.tracks[k].mode, self.tracks[k].lies) = (Mode::Rest, Some(lying));
+        }
+        Ok(a)
+    }
+
     /// The exact model stops following the scene here, for the reason `w` says: the run ends,
     /// or is handed over.
     fn stops(&mut self, w: Warning) {
@@ -697,13 +735,18 @@ impl<'a> Engine<'a> {
             self.rec.energy.initial_j +=
                 modes::kinetic_j(body, &traj, 0.0) + modes::potential_j(body, &traj, 0.0);
         }
+        // Where the bodies start, which blocks stand apart and which lie face on face: a pair
+        // seated so is decided again as one, its first mode as its rest's limits say.
         if !self.clearance.is_empty() {
             let trajs: Vec<Trajectory> = (0..self.tracks.len())
                 .map(|i| self.trajectory(i, &inputs))
                 .collect();
             let trajs: Vec<Option<&Trajectory>> = trajs.iter().map(Some).collect();
             let names = &self.layout.names;
-            self.clearance.start(self.scene.bodies, &trajs, names)?;
+            for ends in self.clearance.start(self.scene.bodies, &trajs, names)? {
+                let i = self.abut(ends)?;
+                self.relie(i, Guard::StickLimit, &inputs)?;
+            }
         }
         let dt = self.scene.settings.output_dt_s;
         // A history row at each stop that is an event or an output time (and at the start).
@@ -971,9 +1014,18 @@ impl<'a> Engine<'a> {
             // The couple's own condition, once: on its first body.
             conditions.push(couple.condition(body, &self.coupled(&couple, inputs)));
         }
-        if let Some(lying) = self.tracks[i].lies.filter(|l| l.bodies()[0] == Some(i)) {
-            let motion = lying.motion(self.members(&lying.ends[0]), inputs);
-            conditions.extend(lying.conditions(body, &motion));
+        if let Some(lying) = &self.tracks[i].lies {
+            let members = self.members(&lying.ends[0]);
+            if lying.abutting(members).is_some() {
+                // Seated face on face, the bodies rest or slide as one on the pair's conditions
+                // (their own are those of a block alone), the first's stop the pair's.
+                let first = lying.bodies()[0] == Some(i);
+                conditions.retain(|c| first && c.guard == Guard::Stop);
+            }
+            if lying.bodies()[0] == Some(i) {
+                let motion = lying.motion(members, inputs);
+                conditions.extend(lying.conditions(members, &motion, inputs));
+            }
         }
         // A body that may run into a block beside it is followed until it lies on its face or
         // strikes: a block can stop its fall.
@@ -1232,6 +1284,56 @@ impl<'a> Engine<'a> {
                 return Ok(Some(format!("{comes}, and {busy}")));
             }
         }
+        // A body that rocks upright to a round-off as its face comes flat on a seated block's
+        // has both corners of its base on the ground where it turns down onto its seat, or has
+        // just landed there and turns on into the face (an end of the faces approaching): they
+        // take their impulses with the faces' at once, as a landing while lying does
+        // ([`Engine::lying_lands`]).
+        let strikes = {
+            let index = |side: Side| match side {
+                Side::Body(k, _) => ids.iter().position(|&(j, _)| j == k),
+                _ => None,
+            };
+            let turning: Vec<collision::Turning> = (ids.iter())
+                .map(|&(k, origin)| self.turning(k, origin))
+                .collect();
+            ends.iter().any(|t| {
+                let contact = collision::Contact {
+                    point: t.point,
+                    normal: t.normal,
+                    restitution: 0.0,
+                };
+                let sides = t.sides.map(|side| index(side).map(|j| &turning[j]));
+                collision::approach(sides, &contact).0 < -t.tie_m_s
+            })
+        };
+        let upright = |k: usize| {
+            let tie = series::TIE * self.body(k).slenderness_rad();
+            self.tracks[k].mode.pivot().is_some() && self.tracks[k].state.theta.abs() <= tie
+        };
+        let landing = (ids.iter().map(|&(k, _)| k))
+            .find(|&k| self.lands_by_round_off(k) == Some(None) || (strikes && upright(k)));
+        let comes = match landing {
+            Some(k) => {
+                let why = match () {
+                    _ if self.scene.equations != Equations::Exact => {
+                        Some("the linearised equations do not follow blocks in contact")
+                    }
+                    _ if self.body(k).restitution_factor != 1.0 => Some(
+                        "a landing that keeps less than Housner's rate (a restitution factor \
+                         below one) with the faces' contacts is not followed",
+                    ),
+                    _ => None,
+                };
+                let comes = format!("{comes}, {} upright on its base", self.body(k).name);
+                if let Some(why) = why {
+                    return Ok(Some(format!("{comes}, and {why}")));
+                }
+                comes
+            }
+            None => comes,
+        };
+        let through = landing.map_or(Through::Approach, |k| Through::Landing(k, None));
         let index = |side: Side| match side {
             Side::Body(k, _) => ids.iter().position(|&(j, _)| j == k),
             _ => None,
@@ -1262,12 +1364,42 @@ impl<'a> Engine<'a> {
                 },
             },
         ];
-        let bodies: Vec<collision::Turning> = (ids.iter())
+        // The landing body's rotation rate before, and its base's contacts with the ground
+        // (where a refusal below stops the run, its tilt of round-off stays set to zero).
+        let landed = match landing {
+            Some(k) => Some((k, self.tracks[k].state.omega, self.grounded(k, None, now)?)),
+            None => None,
+        };
+        let mut bodies: Vec<collision::Turning> = (ids.iter())
             .map(|&(k, origin)| self.turning(k, origin))
             .collect();
+        let landed = landed.map(|(k, before, ground)| {
+            let j = ids
+                .iter()
+                .position(|&(b, _)| b == k)
+                .expect("the landing body's side");
+            bodies[j].ground = ground;
+            (k, j, before)
+        });
         let all = match collision::resolve_all(&bodies, &links) {
             Ok(all) => all,
             Err(refusal) => return Ok(Some(format!("{comes}, and {refusal}"))),
+        };
+        // The landing's event, logged where the run goes on from the impact.
+        let log_landing = |e: &mut Self| {
+            if let Some((k, j, before)) = landed {
+                let after = all.after[j].omega;
+                e.rec.rocking_event(
+                    e.t,
+                    EventKind::RockingImpact,
+                    &e.layout.outputs(k),
+                    Some((before, after)),
+                    format!(
+                        "{comes}, its base's contacts and the faces' plastic at once: theta' \
+                         {before:.6e} -> {after:.6e} rad/s"
+                    ),
+                );
+            }
         };
         let sides_of = |l: &collision::Link| l.sides.map(|k| k.map(|j| &bodies[j]));
         let (_, speed, _) = collision::approach(sides_of(&links[1]), &links[1].contact);
@@ -1319,11 +1451,12 @@ impl<'a> Engine<'a> {
         }
         if stays == [true, true] {
             let after = links[0].sides.map(|k| k.map(|j| all.after[j]));
-            match self.pressed_ends([t, held], &after, Through::Approach, now) {
+            match self.pressed_ends([t, held], &after, through, now) {
                 Ok((decision, lying, sides)) if decision.pressed == [true, true] => {
                     if let Some(i) = couple {
                         self.uncouple(i);
                     }
+                    log_landing(self);
                     self.rec.energy.impact_loss_j += all.loss_j;
                     self.rec.impacts += 1;
                     self.struck(t);
@@ -1408,7 +1541,11 @@ impl<'a> Engine<'a> {
                      leaves {f}'s face as the faces turn apart there"
                 ),
             };
-            return Ok(self.rests_against(&ends[e], &turning, &out, now, why, Through::Approach));
+            let stop = self.rests_against(&ends[e], &turning, &out, now, why, through);
+            if stop.is_none() {
+                log_landing(self);
+            }
+            return Ok(stop);
         }
         if stays[0] {
             // The corner's contact took no impulse: the strike's is the whole impact.
@@ -1423,7 +1560,11 @@ impl<'a> Engine<'a> {
                      corner leaves {face}'s face as the faces turn apart there"
                 ),
             };
-            return Ok(self.rests_against(t, &turning, &out, now, why, Through::Approach));
+            let stop = self.rests_against(t, &turning, &out, now, why, through);
+            if stop.is_none() {
+                log_landing(self);
+            }
+            return Ok(stop);
         }
         if stays[1] {
             // The strike parts at once: the corner's contact carries the whole impact.
@@ -1472,6 +1613,7 @@ impl<'a> Engine<'a> {
         self.rec.energy.impact_loss_j += all.loss_j;
         self.rec.impacts += 1;
         self.struck(t);
+        log_landing(self);
         let mut omega = None;
         let mut decide = Vec::new();
         for (j, &(k, _)) in ids.iter().enumerate() {
@@ -1519,13 +1661,7 @@ impl<'a> Engine<'a> {
             );
         };
         // Both ends are between the pair's blocks, the sides' bodies.
-        let Some(lying) = Lying::new(ends, [a, b], sides.homes, sides.states.each_ref()) else {
-            return Err(
-                "an end of the faces' overlap is at both bodies' pivots, where its push would \
-                 turn neither"
-                    .into(),
-            );
-        };
+        let lying = Lying::new(ends, [a, b], sides.homes, sides.states.each_ref());
         let members = [a, b].map(|i| self.body(i));
         let members = [0, 1].map(|k| Member::Moves(members[k], sides.modes[k], &sides.states[k]));
         let decision = lying.decide(members, now)?;
@@ -1709,13 +1845,17 @@ impl<'a> Engine<'a> {
     /// its mode alone; where the decision fails, the run stops, saying why. At a pivot's
     /// change, a body a round-off from landing lands now instead ([`Engine::lying_lands`]).
     fn relie(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
-        if matches!(guard, Guard::PivotStick | Guard::Stop) {
-            self.tracks[i].state.v = 0.0;
-        }
         let mut lying = self.tracks[i].lies.expect("a body of lying faces");
-        let bodies = lying
+        let mut bodies = lying
             .bodies()
             .map(|b| b.expect("the sides of lying faces are bodies"));
+        let abutting = lying.abutting(self.members(&lying.ends[0])).is_some();
+        if matches!(guard, Guard::PivotStick | Guard::Stop) {
+            // Seated face on face, the two slide as one and stop together.
+            for k in bodies.into_iter().filter(|&k| k == i || abutting) {
+                self.tracks[k].state.v = 0.0;
+            }
+        }
         if guard != Guard::Parts {
             let round_off = |j: usize| Some((j, self.lands_by_round_off(j)?));
             if let Some((j, corner)) = bodies.into_iter().find_map(round_off) {
@@ -1723,11 +1863,31 @@ impl<'a> Engine<'a> {
             }
         }
         let states = bodies.map(|k| self.tracks[k].state);
-        let touches = lying.touches_at(states.each_ref());
+        let mut touches = lying.touches_at(states.each_ref());
         let names = |t: &Touch| t.blocks.map(|b| self.layout.names[b].clone());
         let [a, b] = names(&touches[0]);
         let blocks = (touches[0].blocks[0], touches[0].blocks[1]);
-        if guard == Guard::Uplift {
+        if guard == Guard::Uplift && abutting {
+            // Both turn, if at all, toward where the ground's inertial force on them points;
+            // where their bottom corners are together, the contact there is the corner of the
+            // block that would lift it on the other's face.
+            let absolute = now.accel[0] + self.trajectory(i, now).v[1];
+            let pivot = Abutting::tipping_corner(absolute);
+            for t in touches.iter_mut() {
+                *t = abutting::lifting_corner(t, pivot);
+            }
+            let homes = [0, 1].map(|s| {
+                let Side::Body(k, origin) = lying.ends[0].touch.sides[s] else {
+                    unreachable!("a body's side of lying faces");
+                };
+                self.home(k, origin, pivot)
+            });
+            lying = Lying::new(touches.each_ref(), bodies, homes, states.each_ref());
+            bodies = lying
+                .bodies()
+                .map(|b| b.expect("the sides of lying faces are bodies"));
+        } else if guard == Guard::Uplift {
+            // A seated body lifts off the corner whose share of the load fell to zero.
             let pivot = self.lifts_on(i, now);
             let k = usize::from(bodies[1] == i);
             if lying.ends[0].pivots[k] != pivot {
@@ -1738,10 +1898,7 @@ impl<'a> Engine<'a> {
                     true => self.home(i, origin, pivot),
                     false => lying.ends[0].home(s),
                 });
-                lying = Lying::new(touches.each_ref(), bodies, homes, states.each_ref())
-                    .ok_or_else(|| {
-                        SimulationError::Bug("lying faces' ends change bodies".into())
-                    })?;
+                lying = Lying::new(touches.each_ref(), bodies, homes, states.each_ref());
             }
         }
         let decision = match lying.decide(self.members(&lying.ends[0]), now) {
@@ -1758,6 +1915,10 @@ impl<'a> Engine<'a> {
             // The push touched zero and presses on, or the pivots change under both pushes.
             for k in bodies {
                 self.tracks[k].lies = Some(lying);
+            }
+            if abutting {
+                // Its ends as the decision took them.
+                self.clearance.lie(touches[0].pair, Some(&touches));
             }
             self.retake(bodies.map(Some), modes, &within);
             self.close_lying(&lying, now);
@@ -2034,8 +2195,8 @@ impl<'a> Engine<'a> {
             _ => unreachable!("the sides of lying faces are bodies"),
         });
         let states = order.map(|k| self.tracks[k].state);
-        let Some(new) = Lying::new(ends.each_ref(), order, order.map(home), states.each_ref())
-        else {
+        let new = Lying::new(ends.each_ref(), order, order.map(home), states.each_ref());
+        if !new.turns(self.members(&new.ends[0])) {
             self.stops_meeting(
                 (old[0].blocks[0], old[0].blocks[1]),
                 format!(
@@ -2547,6 +2708,9 @@ impl<'a> Engine<'a> {
             };
             let old = self.tracks[k].mode;
             if let Some(kind) = transition(old, new, false) {
+                if matches!(kind, EventKind::Slip | EventKind::Stick) {
+                    self.rec.transitions += 1;
+                }
                 let blocks = self.layout.outputs(k);
                 let mut mode = new.name();
                 if kind == EventKind::Uplift {
@@ -3354,9 +3518,13 @@ impl<'a> Engine<'a> {
         let tie_m = series::TIE * size[0].max(size[1]);
         let placed = [0, 1].map(|k| bodies[k].map(|_| &states[k]));
         let Some(couple) = Couple::new(t, bodies, homes, placed, tie_m) else {
-            return Some(format!(
-                "{stays}, and the contact's push has no moment about a body's pivot"
-            ));
+            let sides = Sides {
+                bodies,
+                homes,
+                states,
+                modes,
+            };
+            return self.holds_nothing(t, out, now, stays, through, sides);
         };
         let members = [0, 1].map(|k| match bodies[k] {
             Some(i) => Member::Moves(self.body(i), modes[k], &states[k]),
@@ -3440,6 +3608,78 @@ impl<'a> Engine<'a> {
                 }
             }
         };
+        self.rec
+            .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
+        None
+    }
+
+    /// An impact `t` whose contact stays (`out`; `stays` says how) where its push has no moment
+    /// about either body's pivot (`sides`, as the impact leaves them): a corner both bodies turn
+    /// about, or that neither's motion moves, as where two blocks' bottom corners are together.
+    /// Where each body alone, in the mode the impact leaves it, does not close the contact just
+    /// after (its distance stays zero to a tie, or grows), it holds no push: each goes on alone,
+    /// the pair struck (they must part before they may strike again). Else the run stops, and the
+    /// reason is returned.
+    fn holds_nothing(
+        &mut self,
+        t: &Touch,
+        out: &collision::Outcome,
+        now: &Inputs,
+        stays: String,
+        through: Through,
+        sides: Sides,
+    ) -> Option<String> {
+        let Sides {
+            bodies,
+            homes,
+            states,
+            modes,
+        } = sides;
+        let placed = [0, 1].map(|k| bodies[k].map(|_| &states[k]));
+        let contact = Couple::placed(t, bodies, homes, placed);
+        let alone = [0, 1].map(|k| match bodies[k] {
+            Some(i) => modes::trajectory(self.body(i), Equations::Exact, modes[k], &states[k], now),
+            None => Trajectory::start(Mode::Rest, Equations::Exact, &State::default()),
+        });
+        let moving = bodies.iter().flatten().map(|&i| self.body(i));
+        let (size, scale_t) = moving.fold((0.0, f64::INFINITY), |(m, s), b| {
+            (b.size_m().max(m), b.time_scale_s().min(s))
+        });
+        if series::sign_after(&contact.gap(&alone), size, scale_t) < 0 {
+            return Some(format!(
+                "{stays}, and the contact's push has no moment about a body's pivot"
+            ));
+        }
+        self.rec.energy.impact_loss_j += out.loss_j;
+        let mut what = self.stays_in_contact(t, out, &stays, through);
+        let mut omega = None;
+        let mut settled = states;
+        for k in 0..2 {
+            let Some(i) = bodies[k] else {
+                continue;
+            };
+            settled[k] = settled_in(self.body(i), modes[k], states[k]);
+            if out.impulse_n_s > 0.0 {
+                self.rec.rocking_impact(t.blocks[k]);
+            }
+            let tr = &mut self.tracks[i];
+            omega.get_or_insert((tr.state.omega, settled[k].omega));
+            what += &format!(
+                "; {}: theta' {:.6e} -> {:.6e} rad/s, {}",
+                self.layout.names[t.blocks[k]],
+                tr.state.omega,
+                settled[k].omega,
+                in_mode(modes[k], &settled[k])
+            );
+            (tr.mode, tr.state) = (modes[k], settled[k]);
+        }
+        // What settling the impact law's round-off changes of the energies goes with its loss.
+        let (was, _) = self.energies_j(bodies, modes, &states, now);
+        let (is, _) = self.energies_j(bodies, modes, &settled, now);
+        self.rec.energy.impact_loss_j += was - is;
+        self.clearance.strike(t.pair);
+        what += "; their contact is at a corner both turn about, where it holds no push: each \
+                 goes on alone";
         self.rec
             .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
         None

@@ -2,6 +2,7 @@
 //! made of free columns or a trilith ([`Rocking`]), whether a run rocks ([`rocks_in_plane`], [`can_lift`]),
 //! and the sections of a wall across its plane run as rocking bodies ([`out_of_plane`]).
 
+use super::column::face_on_face;
 use super::{columns, run, Column, Equations, Finished, RockingBody, Scene};
 use crate::error::SimulationError;
 use crate::integrate::Settings;
@@ -341,6 +342,18 @@ pub fn rocks_in_plane(
             Ok((true, "asked for (--model slide-rock)".into()))
         }
         ModelChoice::Auto if wall.blocks.len() > 1 => {
+            if let (Some((a, b)), Ok(_)) = (face_on_face(wall, topo), columns(wall, topo)) {
+                // Seated face on face the exact model follows them where asked; by default,
+                // until it follows what their rocking meets (docs/rocking-walls.md), they slide.
+                return Ok((
+                    false,
+                    format!(
+                        "auto: {a} and {b} touch face on face, which the exact model follows \
+                         where asked (--model slide-rock); by default such walls slide, and the \
+                         warnings name the blocks that could rock"
+                    ),
+                ));
+            }
             let columns = match columns(wall, topo) {
                 Ok(columns) => columns,
                 // A trilith the exact frame cannot take says why it slides.

@@ -1,0 +1,147 @@
+//! Blocks seated face on face (`abutting`): two blocks alone in their columns that touch from
+//! the start rest together while a push between them can balance both, slide together as one,
+//! and part where one lifts away.
+
+use super::clearance_tests::never_overlap;
+use super::tie_tests::{balances, row, run};
+use crate::response::{EventKind, Response};
+
+/// The first event of `kind` for block `name`.
+fn first(r: &Response, kind: EventKind, name: &str) -> f64 {
+    (r.events.iter())
+        .find(|e| e.kind == kind && e.blocks.iter().any(|b| b == name))
+        .map(|e| e.time_s)
+        .unwrap_or_else(|| panic!("no {kind:?} of {name}: {:#?}", r.events))
+}
+
+/// A slab 0.3 x 1.2 m touching a block 0.8 x 1.2 m on its right (friction 0.6, no restitution)
+/// under a 0.5 g sine at 2.5 Hz. The ground accelerating to +x tips the slab away from the
+/// block, which cannot hold it, so the pair rests until the slab's own uplift, a_g = g b/h =
+/// g/4: t = 1/30 s exactly, found to round-off. The slab rocks away and back onto the block,
+/// comes upright as its face comes flat on the block's (its base and both ends of the faces
+/// taking their impulses at once), and the run goes on to its end: the blocks, drawn from the
+/// rows, never overlap, and the energy balance closes.
+#[test]
+fn a_slab_beside_a_block_rests_with_it_until_it_lifts_away_at_its_own_threshold() {
+    let model = row(
+        0.6,
+        0.0,
+        "(width_m: 0.3, name: \"S\"), (width_m: 0.8, name: \"W\")",
+    );
+    let r = run(&model, (0.5, 2.5, 0.0), 4.0);
+    let lifts = first(&r, EventKind::Uplift, "S");
+    assert!((lifts - 1.0 / 30.0).abs() <= 2e-17, "{lifts}");
+    assert_eq!(first(&r, EventKind::Separation, "S"), lifts);
+    assert!(
+        r.events.iter().any(|e| e
+            .mode
+            .as_ref()
+            .is_some_and(|m| m.contains("S upright on its base"))),
+        "{:#?}",
+        r.events
+    );
+    assert_eq!(r.summary.duration_s, 4.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    never_overlap(
+        &r,
+        [(0.15, (0.3, 1.2)), (0.7, (0.8, 1.2))],
+        1.2f64.hypot(1.2),
+    );
+    balances(&r);
+}
+
+/// Two squat blocks touching (1.2 x 1.2 m and 0.8 x 0.8 m, friction 0.3: neither can lift
+/// before it slides) under a 0.5 g sine at 1 Hz slide together, each as the large block alone
+/// does: with one friction the push between them stays zero, and every row of both is the lone
+/// block's to round-off (the pair's motion comes from the contact's equations, the lone
+/// block's from its own), its slips and sticks at the same instants to round-off.
+#[test]
+fn squat_blocks_touching_slide_together_as_one_of_them_alone() {
+    let pair = row(
+        0.3,
+        0.0,
+        "(width_m: 1.2, name: \"A\"), (width_m: 0.8, height_m: 0.8, name: \"B\")",
+    );
+    let alone = row(0.3, 0.0, "(width_m: 1.2, name: \"A\")");
+    let (two, one) = (
+        run(&pair, (0.5, 1.0, 0.0), 5.0),
+        run(&alone, (0.5, 1.0, 0.0), 5.0),
+    );
+    let (h2, h1) = (two.history.as_ref().unwrap(), one.history.as_ref().unwrap());
+    assert_eq!(h2.time_s.len(), h1.time_s.len());
+    let largest = |x: &[Vec<f64>]| x.iter().map(|r| r[0].abs()).fold(0.0, f64::max);
+    let (u, v) = (largest(&h1.displacement_m), largest(&h1.velocity_m_s));
+    assert!(u > 1e-3 && v > 1e-2, "{u} {v}");
+    for i in 0..h1.time_s.len() {
+        assert!((h2.time_s[i] - h1.time_s[i]).abs() <= 2e-16 * h1.time_s[i].max(1.0));
+        for k in 0..2 {
+            let (du, dv) = (
+                h2.displacement_m[i][k] - h1.displacement_m[i][0],
+                h2.velocity_m_s[i][k] - h1.velocity_m_s[i][0],
+            );
+            assert!(
+                du.abs() <= 1e-15 * u && dv.abs() <= 1e-15 * v,
+                "row {i}: {du} {dv}"
+            );
+            assert_eq!(h2.rotation_rad[i][k], 0.0);
+        }
+    }
+    let kinds = |r: &Response, name: &str| -> Vec<(EventKind, f64)> {
+        (r.events.iter())
+            .filter(|e| e.blocks.iter().any(|b| b == name))
+            .map(|e| (e.kind, e.time_s))
+            .collect()
+    };
+    let lone = kinds(&one, "A");
+    assert!(lone.len() >= 18, "{lone:?}");
+    for name in ["A", "B"] {
+        let each = kinds(&two, name);
+        assert_eq!(each.len(), lone.len(), "{name}");
+        for ((k, t), (k1, t1)) in each.iter().zip(&lone) {
+            assert_eq!(k, k1);
+            assert!((t - t1).abs() <= 2e-16 * t1, "{name}: {t} {t1}");
+        }
+    }
+    assert_eq!(
+        two.summary.stick_slip_transitions,
+        2 * one.summary.stick_slip_transitions
+    );
+}
+
+/// The shipped slab beside a block (walls/rocking/slab-beside-block.ron: touching, elastic
+/// faces) under a 0.3 g sine at 1 Hz: the slab lifts away at g/4, swings back and strikes the
+/// block flat, bouncing off its face, and the contact that stays is at the two blocks' bottom
+/// corners, together, where the slab turns: its push could turn neither body, and as neither
+/// body's own motion closes it there it holds none, each going on alone. Before, the run stopped
+/// there (0.552 s); it now runs to its end, never overlapping, its balance closing.
+#[test]
+fn a_contact_at_a_corner_both_blocks_turn_about_holds_no_push() {
+    let model = crate::model::Model::from_file("walls/rocking/slab-beside-block.ron").unwrap();
+    let r = run(&model, (0.3, 1.0, 0.0), 5.0);
+    let lifts = first(&r, EventKind::Uplift, "S");
+    let quarter_g = (0.25f64 / 0.3).asin() / (2.0 * std::f64::consts::PI);
+    assert!((lifts - quarter_g).abs() <= 1e-15, "{lifts} {quarter_g}");
+    let holds = |e: &&crate::response::EventRecord| {
+        e.mode.as_ref().is_some_and(|m| {
+            m.contains("their contact is at a corner both turn about, where it holds no push")
+        })
+    };
+    let first_holds = r
+        .events
+        .iter()
+        .find(holds)
+        .expect("a contact that holds no push");
+    assert!(
+        (first_holds.time_s - 0.552_388_768).abs() < 1e-8,
+        "{}",
+        first_holds.time_s
+    );
+    assert_eq!(r.summary.duration_s, 5.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    never_overlap(
+        &r,
+        [(0.15, (0.3, 1.2)), (0.9, (1.2, 1.2))],
+        1.2f64.hypot(1.2),
+    );
+    balances(&r);
+}
