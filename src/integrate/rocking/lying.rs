@@ -42,8 +42,8 @@ impl Lying {
     /// other's face), the bodies (`bodies`, in the first contact's order, with their pivots'
     /// homes and their states). A push whose arms are not zero but too short to turn the
     /// bodies leaves the decision's matrix singular, and [`Lying::decide`] says so; where an
-    /// end's push turns neither body, both arms zero to the bit ([`Lying::turns`]), only two
-    /// seated bodies stay on each other.
+    /// end's push moves neither body in its mode, both arms zero to the bit ([`Lying::turns`]),
+    /// only ways in which a body slips, flies, or both stay seated face on face can hold.
     pub(super) fn new(
         ends: [&Touch; 2],
         bodies: [usize; 2],
