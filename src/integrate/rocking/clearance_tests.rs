@@ -54,7 +54,7 @@ fn sine(amplitude_g: f64, phase_deg: f64) -> Motion {
     })
 }
 
-fn run(model: &Model, motion: &Motion, duration_s: f64, initial: f64) -> Response {
+pub(super) fn run(model: &Model, motion: &Motion, duration_s: f64, initial: f64) -> Response {
     let settings = Settings {
         output_dt_s: Some(1e-2),
         log_events: true,

@@ -8,7 +8,7 @@ use crate::model::Model;
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 
 /// El Centro 1940 (N-S) scaled to a peak of `pga_g` g.
-fn el_centro(pga_g: f64) -> Motion {
+pub(super) fn el_centro(pga_g: f64) -> Motion {
     let record = read_record(
         std::path::Path::new(crate::motion::EL_CENTRO),
         None,

@@ -1851,10 +1851,20 @@ impl<'a> Engine<'a> {
             .map(|b| b.expect("the sides of lying faces are bodies"));
         let abutting = lying.abutting(self.members(&lying.ends[0])).is_some();
         if matches!(guard, Guard::PivotStick | Guard::Stop) {
-            // Seated face on face, the two slide as one and stop together.
+            // Seated face on face, the two slide as one and stop together. What the slip of
+            // round-off carried of kinetic energy (with a turning body, a term of first order
+            // in it) counts as lost.
+            let modes = bodies.map(|k| self.tracks[k].mode);
+            let was = bodies.map(|k| self.tracks[k].state);
             for k in bodies.into_iter().filter(|&k| k == i || abutting) {
                 self.tracks[k].state.v = 0.0;
             }
+            let is = bodies.map(|k| self.tracks[k].state);
+            let ((before, _), (after, _)) = (
+                self.energies_j(bodies.map(Some), modes, &was, now),
+                self.energies_j(bodies.map(Some), modes, &is, now),
+            );
+            self.rec.energy.impact_loss_j += before - after;
         }
         if guard != Guard::Parts {
             let round_off = |j: usize| Some((j, self.lands_by_round_off(j)?));
