@@ -1139,7 +1139,7 @@ impl<'a> Engine<'a> {
             Guard::Impact => self.land(i, now),
             Guard::Land(corner) => self.land_from_flight(i, corner, now),
             Guard::Stop | Guard::PivotStick => {
-                self.tracks[i].state.v = 0.0;
+                self.stills([Some(i), None], |_| true, now);
                 self.decide(i, now, false)
             }
             Guard::StickLimit | Guard::Uplift | Guard::PivotSlip | Guard::Flight => {
@@ -1820,6 +1820,25 @@ impl<'a> Engine<'a> {
             .fold((0.0, 0.0), |(k, p), (dk, dp)| (k + dk, p + dp))
     }
 
+    /// The slips of the bodies `which` picks among `bodies` stop: each slip located to
+    /// round-off, set to zero. What it carried of kinetic energy (with a turning body a term of
+    /// first order in it, m v omega G_y) counts as lost, so the balance closes to round-off.
+    fn stills(&mut self, bodies: [Option<usize>; 2], which: impl Fn(usize) -> bool, now: &Inputs) {
+        let modes = bodies.map(|b| b.map_or(Mode::Rest, |k| self.tracks[k].mode));
+        let state =
+            |e: &Self, b: Option<usize>| b.map_or_else(State::default, |k| e.tracks[k].state);
+        let was = bodies.map(|b| state(self, b));
+        for k in bodies.into_iter().flatten().filter(|&k| which(k)) {
+            self.tracks[k].state.v = 0.0;
+        }
+        let is = bodies.map(|b| state(self, b));
+        let ((before, _), (after, _)) = (
+            self.energies_j(bodies, modes, &was, now),
+            self.energies_j(bodies, modes, &is, now),
+        );
+        self.rec.energy.impact_loss_j += before - after;
+    }
+
     /// A seated body (i) lifts off the corner whose share of the load fell to zero: the corner
     /// it turns on.
     fn lifts_on(&self, i: usize, now: &Inputs) -> Corner {
@@ -1851,20 +1870,8 @@ impl<'a> Engine<'a> {
             .map(|b| b.expect("the sides of lying faces are bodies"));
         let abutting = lying.abutting(self.members(&lying.ends[0])).is_some();
         if matches!(guard, Guard::PivotStick | Guard::Stop) {
-            // Seated face on face, the two slide as one and stop together. What the slip of
-            // round-off carried of kinetic energy (with a turning body, a term of first order
-            // in it) counts as lost.
-            let modes = bodies.map(|k| self.tracks[k].mode);
-            let was = bodies.map(|k| self.tracks[k].state);
-            for k in bodies.into_iter().filter(|&k| k == i || abutting) {
-                self.tracks[k].state.v = 0.0;
-            }
-            let is = bodies.map(|k| self.tracks[k].state);
-            let ((before, _), (after, _)) = (
-                self.energies_j(bodies.map(Some), modes, &was, now),
-                self.energies_j(bodies.map(Some), modes, &is, now),
-            );
-            self.rec.energy.impact_loss_j += before - after;
+            // Seated face on face, the two slide as one and stop together.
+            self.stills(bodies.map(Some), |k| k == i || abutting, now);
         }
         if guard != Guard::Parts {
             let round_off = |j: usize| Some((j, self.lands_by_round_off(j)?));
@@ -2637,10 +2644,10 @@ impl<'a> Engine<'a> {
     /// [`Engine::couple_lands`]); a body sliding along a fixed block's face whose pivot sticks
     /// rests there ([`lean`]); where no one mode holds, the run stops, saying why.
     fn recouple(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
-        if matches!(guard, Guard::PivotStick | Guard::Stop) {
-            self.tracks[i].state.v = 0.0;
-        }
         let mut couple = self.tracks[i].couple.expect("a body of a couple");
+        if matches!(guard, Guard::PivotStick | Guard::Stop) {
+            self.stills(couple.bodies, |k| k == i, now);
+        }
         if let Some((j, corner)) = couple
             .moving()
             .find_map(|j| Some((j, self.lands_by_round_off(j)?)))
