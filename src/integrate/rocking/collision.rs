@@ -194,18 +194,23 @@ pub fn approach(sides: [Option<&Turning>; 2], c: &Contact) -> (f64, f64, f64) {
 /// The side whose rotation moves the contact most, among those that may turn (`turns`: a
 /// seated body does not), and the change of its theta' (rad/s) that leaves the corner's normal
 /// velocity against the face zero: what closes the round-off (up to a tie, which no impulse
-/// takes up) at a contact that stays.
+/// takes up) at a contact that stays. None where no side's rotation moves the contact by more
+/// than a tie of its reach (a contact at the pivots, as where two blocks' bottom corners are
+/// together): a change of theta' there would be round-off divided by round-off.
 pub fn closing(
     sides: [Option<&Turning>; 2],
     c: &Contact,
     turns: [bool; 2],
 ) -> Option<(usize, f64)> {
     let (rate, ..) = approach(sides, c);
-    let (k, arm) = (0..2)
+    let (k, arm, reach) = (0..2)
         .filter(|&k| turns[k])
-        .filter_map(|k| Some((k, SIGN[k] * arms(sides[k]?, c)[1])))
+        .filter_map(|k| {
+            let b = sides[k]?;
+            Some((k, SIGN[k] * arms(b, c)[1], reach(b)))
+        })
         .max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))?;
-    (arm != 0.0).then_some((k, -rate / arm))
+    (arm.abs() > super::series::TIE * reach).then_some((k, -rate / arm))
 }
 
 /// The changes of the bodies' velocities (v, theta', w each, m/s and rad/s) that leave the

@@ -133,6 +133,17 @@ pub(super) enum Member<'a> {
     Fixed,
 }
 
+impl Member<'_> {
+    /// Whether any push moves it along the contact's normal without turning it: a body that
+    /// slides seated, rocks on a slipping pivot or flies.
+    pub(super) fn translates(&self) -> bool {
+        matches!(
+            self,
+            Member::Moves(_, Mode::Slide(_) | Mode::SlideRock(..) | Mode::Flight(_), _)
+        )
+    }
+}
+
 /// The state of a fixed block's side: never moved.
 const UNMOVED: State = State {
     theta: 0.0,
@@ -171,6 +182,13 @@ impl Couple {
     /// where the couple was placed.
     pub(super) fn turns(&self, tie_m: f64) -> bool {
         (0..2).any(|k| self.bodies[k].is_some() && self.reach[k].abs() > tie_m)
+    }
+
+    /// Whether the push moves a body in its mode (`members`): one that slides, flies or rocks
+    /// on a slipping pivot moves under any push; one that rests or rocks on a stuck pivot, only
+    /// under a push whose arm about its pivot is longer than `tie_m`.
+    pub(super) fn moves(&self, members: [Member; 2], tie_m: f64) -> bool {
+        members.iter().any(Member::translates) || self.turns(tie_m)
     }
 
     /// The same couple whether or not its push turns a body: the end of two faces lying on
@@ -268,11 +286,22 @@ impl Couple {
     /// (a push that falls to zero at the instant the corner would stop leaving), the orders
     /// after it say whether the corner leaves.
     pub(super) fn gap(&self, t: &[Trajectory; 2]) -> Coeffs {
+        self.distance(t, 2)
+    }
+
+    /// The same distance where the corner may move along the normal at the start: its rate
+    /// there kept.
+    pub(super) fn approach(&self, t: &[Trajectory; 2]) -> Coeffs {
+        self.distance(t, 1)
+    }
+
+    /// r_2 . n less its value at the start, from order `first` on.
+    fn distance(&self, t: &[Trajectory; 2], first: usize) -> Coeffs {
         let mut at = Geometry::default();
         let mut gap = ZERO;
         for (j, g) in gap.iter_mut().enumerate() {
             at.place(self, [&t[0], &t[1]], j);
-            if j > 1 {
+            if j >= first {
                 *g = mul_at(&at.r2[0], &at.n[0], j) + mul_at(&at.r2[1], &at.n[1], j);
             }
         }

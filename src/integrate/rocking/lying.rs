@@ -71,13 +71,7 @@ impl Lying {
     /// pivot or rests, only under a push with an arm about its pivot (an end at both pivots, as
     /// where two blocks' bottom corners are together, turns neither).
     pub(super) fn turns(&self, members: [Member; 2]) -> bool {
-        let translates = |m: &Member| {
-            matches!(
-                m,
-                Member::Moves(_, Mode::Slide(_) | Mode::SlideRock(..) | Mode::Flight(_), _)
-            )
-        };
-        members.iter().any(translates) || self.ends.iter().all(|end| end.turns(0.0))
+        members.iter().any(Member::translates) || self.ends.iter().all(|end| end.turns(0.0))
     }
 
     /// The bodies, in the first contact's order.

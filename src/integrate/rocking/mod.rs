@@ -1223,11 +1223,56 @@ impl<'a> Engine<'a> {
         now: &Inputs,
     ) -> Result<Option<String>, SimulationError> {
         let couple = self.tracks[i].couple.expect("a body of a couple");
+        if self.other_end_opens(&couple, t, now) {
+            // The face is flat on the other only at this instant, its other end leaving it:
+            // what met is the held corner, at an end of the face (as where two blocks' bottom
+            // corners are together), sliding off it.
+            self.part(i, now, true)?;
+            return Ok(None);
+        }
         let held = Touch {
             stays: true,
             ..couple.touch_at(couple.bodies.map(|b| b.map(|k| &self.tracks[k].state)))
         };
         self.lies_flat([*t, held], Some(i), now)
+    }
+
+    /// Whether the other end `t` of the faces of `couple` leaves its face just after now, the
+    /// bodies moving as the couple moves them.
+    fn other_end_opens(&self, couple: &Couple, t: &Touch, now: &Inputs) -> bool {
+        let slot = |s: Side| match s {
+            Side::Body(k, _) => couple.bodies.iter().position(|&b| b == Some(k)),
+            _ => None,
+        };
+        let Some(order) = [slot(t.sides[0]), slot(t.sides[1])]
+            .into_iter()
+            .collect::<Option<Vec<usize>>>()
+        else {
+            return false;
+        };
+        let bodies = [order[0], order[1]].map(|k| couple.bodies[k]);
+        let states = bodies.map(|b| b.map(|k| self.tracks[k].state));
+        let placed = Couple::placed(
+            t,
+            bodies,
+            [order[0], order[1]].map(|k| couple.home(k)),
+            states.each_ref().map(Option::as_ref),
+        );
+        let trajs = bodies.map(|b| match b {
+            Some(k) => self.trajectory(k, now),
+            None => Trajectory::start(Mode::Rest, Equations::Exact, &State::default()),
+        });
+        let (size, scale_t) = self.scales(bodies);
+        series::sign_after(&placed.approach(&trajs), size, scale_t) > 0
+    }
+
+    /// The larger size (m) and the shorter time scale (s) of the bodies among `bodies`: what
+    /// a contact's distance between them is told from zero by.
+    fn scales(&self, bodies: [Option<usize>; 2]) -> (f64, f64) {
+        let moving = bodies.iter().flatten().map(|&k| self.body(k));
+        moving.fold((0.0, f64::INFINITY), |(m, s), b| {
+            (b.size_m().max(m), b.time_scale_s().min(s))
+        })
     }
 
     /// A face comes down flat on a face, and the two ends of their overlap (`ends`) take their
@@ -3534,7 +3579,12 @@ impl<'a> Engine<'a> {
         let size = bodies.map(|b| b.map_or(0.0, |i| self.body(i).size_m()));
         let tie_m = series::TIE * size[0].max(size[1]);
         let placed = [0, 1].map(|k| bodies[k].map(|_| &states[k]));
-        let Some(couple) = Couple::new(t, bodies, homes, placed, tie_m) else {
+        let couple = Couple::placed(t, bodies, homes, placed);
+        let members = [0, 1].map(|k| match bodies[k] {
+            Some(i) => Member::Moves(self.body(i), modes[k], &states[k]),
+            None => Member::Fixed,
+        });
+        if !couple.moves(members, tie_m) {
             let sides = Sides {
                 bodies,
                 homes,
@@ -3542,11 +3592,7 @@ impl<'a> Engine<'a> {
                 modes,
             };
             return self.holds_nothing(t, out, now, stays, through, sides);
-        };
-        let members = [0, 1].map(|k| match bodies[k] {
-            Some(i) => Member::Moves(self.body(i), modes[k], &states[k]),
-            None => Member::Fixed,
-        });
+        }
         let given = (modes, states);
         let modes = match couple.decide(members, now) {
             Ok(modes) => modes,
@@ -3658,10 +3704,7 @@ impl<'a> Engine<'a> {
             Some(i) => modes::trajectory(self.body(i), Equations::Exact, modes[k], &states[k], now),
             None => Trajectory::start(Mode::Rest, Equations::Exact, &State::default()),
         });
-        let moving = bodies.iter().flatten().map(|&i| self.body(i));
-        let (size, scale_t) = moving.fold((0.0, f64::INFINITY), |(m, s), b| {
-            (b.size_m().max(m), b.time_scale_s().min(s))
-        });
+        let (size, scale_t) = self.scales(bodies);
         if series::sign_after(&contact.gap(&alone), size, scale_t) < 0 {
             return Some(format!(
                 "{stays}, and the contact's push has no moment about a body's pivot"
