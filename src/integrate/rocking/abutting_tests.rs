@@ -3,8 +3,19 @@
 //! and part where one lifts away.
 
 use super::clearance_tests::never_overlap;
-use super::tie_tests::{balances, row, run};
+use super::tie_tests::{balances, row, run, slab_and_block};
 use crate::response::{EventKind, Response};
+
+/// Asserts that the slab 0.3 x 1.2 m and the block (`w` x `h` m) touching it on its right,
+/// drawn from the rows of `r`, never overlap, and that the energy balance closes.
+fn whole(r: &Response, (w, h): (f64, f64)) {
+    never_overlap(
+        r,
+        [(0.15, (0.3, 1.2)), (0.3 + 0.5 * w, (w, h))],
+        1.2f64.hypot(1.2),
+    );
+    balances(r);
+}
 
 /// The first event of `kind` for block `name`.
 fn first(r: &Response, kind: EventKind, name: &str) -> f64 {
@@ -23,11 +34,7 @@ fn first(r: &Response, kind: EventKind, name: &str) -> f64 {
 /// rows, never overlap, and the energy balance closes.
 #[test]
 fn a_slab_beside_a_block_rests_with_it_until_it_lifts_away_at_its_own_threshold() {
-    let model = row(
-        0.6,
-        0.0,
-        "(width_m: 0.3, name: \"S\"), (width_m: 0.8, name: \"W\")",
-    );
+    let model = slab_and_block(0.6, 0.0, (0.8, 1.2, 0.0));
     let r = run(&model, (0.5, 2.5, 0.0), 4.0);
     let lifts = first(&r, EventKind::Uplift, "S");
     assert!((lifts - 1.0 / 30.0).abs() <= 2e-17, "{lifts}");
@@ -42,12 +49,7 @@ fn a_slab_beside_a_block_rests_with_it_until_it_lifts_away_at_its_own_threshold(
     );
     assert_eq!(r.summary.duration_s, 4.0, "{:?}", r.summary.warnings);
     assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
-    never_overlap(
-        &r,
-        [(0.15, (0.3, 1.2)), (0.7, (0.8, 1.2))],
-        1.2f64.hypot(1.2),
-    );
-    balances(&r);
+    whole(&r, (0.8, 1.2));
 }
 
 /// Two squat blocks touching (1.2 x 1.2 m and 0.8 x 0.8 m, friction 0.3: neither can lift
@@ -137,12 +139,7 @@ fn a_contact_at_two_blocks_bottom_corners_moves_a_slab_in_flight() {
     assert!(parts, "{:#?}", r.events);
     assert_eq!(r.summary.duration_s, 5.0, "{:?}", r.summary.warnings);
     assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
-    never_overlap(
-        &r,
-        [(0.15, (0.3, 1.2)), (0.9, (1.2, 1.2))],
-        1.2f64.hypot(1.2),
-    );
-    balances(&r);
+    whole(&r, (1.2, 1.2));
 }
 
 /// The slab touching the block 1.2 x 1.2 m (friction 0.9, no restitution) under El Centro at
@@ -155,11 +152,7 @@ fn a_contact_at_two_blocks_bottom_corners_moves_a_slab_in_flight() {
 fn a_pivot_that_sticks_under_lying_faces_books_what_its_slip_carried() {
     use super::clearance_tests::run;
     use super::handoff_tests::el_centro;
-    let model = row(
-        0.9,
-        0.0,
-        "(width_m: 0.3, name: \"S\"), (width_m: 1.2, name: \"W\")",
-    );
+    let model = slab_and_block(0.9, 0.0, (1.2, 1.2, 0.0));
     let r = run(&model, &el_centro(0.4), 2.4, 0.0);
     let sticks = (r.events.iter())
         .any(|e| e.kind == EventKind::PivotStick && (e.time_s - 2.313_794).abs() < 1e-6);
@@ -180,11 +173,7 @@ fn a_pivot_that_sticks_under_lying_faces_books_what_its_slip_carried() {
 fn a_pivot_that_sticks_alone_books_what_its_slip_carried() {
     use super::clearance_tests::run;
     use super::handoff_tests::el_centro;
-    let model = row(
-        0.6,
-        0.5,
-        "(width_m: 0.3, name: \"S\"), (width_m: 0.8, height_m: 0.9, name: \"W\")",
-    );
+    let model = slab_and_block(0.6, 0.5, (0.8, 0.9, 0.0));
     let r = run(&model, &el_centro(0.4), 15.0, 0.0);
     assert_eq!(r.summary.duration_s, 15.0);
     let sticks = (r.events.iter())
@@ -205,11 +194,7 @@ fn a_pivot_that_sticks_alone_books_what_its_slip_carried() {
 /// instant, the flat faces found again and again.
 #[test]
 fn a_corner_at_the_end_of_a_face_slides_off_it_as_the_faces_part() {
-    let model = row(
-        0.6,
-        0.5,
-        "(width_m: 0.3, name: \"S\"), (width_m: 0.5, height_m: 0.9, name: \"W\")",
-    );
+    let model = slab_and_block(0.6, 0.5, (0.5, 0.9, 0.0));
     let r = run(&model, (0.3, 1.0, 0.0), 4.0);
     assert_eq!(r.summary.duration_s, 4.0, "{:?}", r.summary.warnings);
     let off = (r.events.iter()).find(|e| {
@@ -218,12 +203,7 @@ fn a_corner_at_the_end_of_a_face_slides_off_it_as_the_faces_part() {
     });
     let off = off.unwrap_or_else(|| panic!("{:#?}", r.events));
     assert!((off.time_s - 0.552_388_768).abs() < 1e-9, "{}", off.time_s);
-    never_overlap(
-        &r,
-        [(0.15, (0.3, 1.2)), (0.55, (0.5, 0.9))],
-        1.2f64.hypot(1.2),
-    );
-    balances(&r);
+    whole(&r, (0.5, 0.9));
 }
 
 /// The slab beside a block 0.8 x 1.2 m (friction 0.6, restitution 0.5) under a 0.5 g sine at
@@ -235,22 +215,13 @@ fn a_corner_at_the_end_of_a_face_slides_off_it_as_the_faces_part() {
 /// the run goes to its end.
 #[test]
 fn a_contact_at_a_pivot_keeps_its_round_off() {
-    let model = row(
-        0.6,
-        0.5,
-        "(width_m: 0.3, name: \"S\"), (width_m: 0.8, name: \"W\")",
-    );
+    let model = slab_and_block(0.6, 0.5, (0.8, 1.2, 0.0));
     let r = run(&model, (0.5, 2.5, 0.0), 4.0);
     assert_eq!(r.summary.duration_s, 4.0, "{:?}", r.summary.warnings);
     let landed = (r.events.iter())
         .any(|e| e.kind == EventKind::BlocksImpact && (e.time_s - 1.125_498_676_6).abs() < 1e-9);
     assert!(landed, "{:#?}", r.events);
-    never_overlap(
-        &r,
-        [(0.15, (0.3, 1.2)), (0.7, (0.8, 1.2))],
-        1.2f64.hypot(1.2),
-    );
-    balances(&r);
+    whole(&r, (0.8, 1.2));
 }
 
 /// The slab touching a block 1.2 x 1.2 m (friction 0.9, restitution 0.5) under a 0.3 g sine at
@@ -261,11 +232,7 @@ fn a_contact_at_a_pivot_keeps_its_round_off() {
 /// face and no mode of the pivots holds).
 #[test]
 fn a_contact_at_a_corner_both_blocks_turn_about_holds_no_push() {
-    let model = row(
-        0.9,
-        0.5,
-        "(width_m: 0.3, name: \"S\"), (width_m: 1.2, name: \"W\")",
-    );
+    let model = slab_and_block(0.9, 0.5, (1.2, 1.2, 0.0));
     let r = run(&model, (0.3, 1.0, 0.0), 4.0);
     let holds = (r.events.iter()).find(|e| {
         e.mode.as_ref().is_some_and(|m| {
@@ -279,10 +246,5 @@ fn a_contact_at_a_corner_both_blocks_turn_about_holds_no_push() {
         "{:?}",
         r.summary.warnings
     );
-    never_overlap(
-        &r,
-        [(0.15, (0.3, 1.2)), (0.9, (1.2, 1.2))],
-        1.2f64.hypot(1.2),
-    );
-    balances(&r);
+    whole(&r, (1.2, 1.2));
 }
