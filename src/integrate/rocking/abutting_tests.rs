@@ -248,3 +248,31 @@ fn a_contact_at_a_corner_both_blocks_turn_about_holds_no_push() {
     );
     whole(&r, (1.2, 1.2));
 }
+
+/// The slab touching a block 0.5 x 0.9 m (friction 0.9, no restitution) under a 0.5 g sine at
+/// 2.5 Hz: from 0.34740 s both rock on their right corners, the block's corner on the slab's
+/// face, and each blow there lifts the block's pivot off the ground by a tenth of the blow's
+/// rate, the block landing 1e-5 s later and striking again: a series of blows accumulating at
+/// 0.3474702928 s. Its last blow leaves the block rising by round-off (5e-11 m/s), a round-off
+/// above the ground: it is on the ground, and lands there with the contact (both contacts
+/// plastic at once). Before, only a flight coming down landed so: the block stayed in flight,
+/// and as it would land no mode of the pivots held with the contact and the run stopped there.
+#[test]
+fn a_flight_of_round_off_rising_at_a_ties_rate_lands_with_the_contact() {
+    let model = slab_and_block(0.9, 0.0, (0.5, 0.9, 0.0));
+    let r = run(&model, (0.5, 2.5, 0.0), 4.0);
+    assert_eq!(r.summary.duration_s, 4.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    let lands = (r.events.iter()).find(|e| {
+        e.mode.as_deref().is_some_and(|m| {
+            m.contains("W lands from free flight on its right corner in contact with S, both")
+        })
+    });
+    let lands = lands.unwrap_or_else(|| panic!("{:#?}", r.events));
+    assert!(
+        (lands.time_s - 0.347_470_292_8).abs() < 1e-9,
+        "{}",
+        lands.time_s
+    );
+    whole(&r, (0.5, 0.9));
+}

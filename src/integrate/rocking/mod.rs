@@ -610,13 +610,14 @@ impl<'a> Engine<'a> {
     /// (`Some(None)`) where it turns down onto its seat from a round-off, or is turned and
     /// turning by round-off (a body that nothing meets settles there, [`Engine::decide`]; here
     /// the landing's impulse takes what is left); from flight (`Some(Some(corner))`) where the
-    /// corner it follows is a round-off above the ground and coming down.
+    /// corner it follows is a round-off above the ground and coming down, or rising at a tie's
+    /// rate (the end of a series of blows that each lift it by less: it is on the ground).
     fn lands_by_round_off(&self, i: usize) -> Option<Option<Corner>> {
         let (body, st) = (self.body(i), self.tracks[i].state);
         match self.tracks[i].mode {
-            Mode::Flight(c) => {
-                (st.lift <= series::TIE * body.size_m() && st.lift_v < 0.0).then_some(Some(c))
-            }
+            Mode::Flight(c) => (st.lift <= series::TIE * body.size_m()
+                && (st.lift_v < 0.0 || tie_speed(body, st.lift_v)))
+            .then_some(Some(c)),
             Mode::Rock(_) | Mode::SlideRock(..) => {
                 (self.seats_by_round_off(i) || still_by_round_off(body, &st)).then_some(None)
             }
