@@ -276,3 +276,31 @@ fn a_flight_of_round_off_rising_at_a_ties_rate_lands_with_the_contact() {
     );
     whole(&r, (0.5, 0.9));
 }
+
+/// The slab touching a block 1.2 x 0.9 m (friction 0.6, no restitution) under a 0.5 g sine at
+/// 2.5 Hz: at 0.3715324 s the block's corner strikes the slab's face (they have not parted since
+/// their last impact), and the blow leaves the block, which had lifted off its seat by 2.5e-12
+/// rad, turning down onto it at -2.9e-5 rad/s: a round-off from landing on its base, every way
+/// of the pivots broke at once (the block would land), and the run stopped. The block keeps the
+/// mode the blow left it in and lands at once with the contact (both contacts plastic at once),
+/// and the run goes to its end.
+#[test]
+fn a_blow_that_leaves_a_body_a_round_off_from_its_seat_lands_it_with_the_contact() {
+    let model = slab_and_block(0.6, 0.0, (1.2, 0.9, 0.0));
+    let r = run(&model, (0.5, 2.5, 0.0), 4.0);
+    assert_eq!(r.summary.duration_s, 4.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    let blow = (r.events.iter()).position(|e| {
+        e.kind == EventKind::BlocksImpact && (e.time_s - 0.371_532_420_4).abs() < 1e-9
+    });
+    let blow = blow.unwrap_or_else(|| panic!("{:#?}", r.events));
+    let lands = &r.events[blow + 1];
+    assert_eq!(lands.time_s, r.events[blow].time_s);
+    assert!(
+        (lands.mode.as_deref()).is_some_and(|m| {
+            m.starts_with("W lands on its base in contact with S, both contacts plastic at once")
+        }),
+        "{lands:#?}"
+    );
+    whole(&r, (1.2, 0.9));
+}

@@ -297,6 +297,33 @@ fn mode_after(after: &collision::After, mode: Mode, seated: bool) -> Result<Mode
     }
 }
 
+/// Whether a body in `mode` rocks on its pivot a round-off from its seat and turns down onto
+/// it (where a blow left it as it was landing): it lands now, as where its rotation reaches
+/// zero.
+fn seats_by_round_off(body: &RockingBody, mode: Mode, st: &State) -> bool {
+    matches!(mode, Mode::Rock(_) | Mode::SlideRock(..))
+        && st.theta * st.omega < 0.0
+        && st.theta.abs() <= series::TIE * body.slenderness_rad()
+}
+
+/// The landing a body in `mode` is a round-off from, where another body meets it: on its base
+/// (`Some(None)`) where it turns down onto its seat from a round-off, or is turned and turning
+/// by round-off (a body that nothing meets settles there, [`Engine::decide`]; here the
+/// landing's impulse takes what is left); from flight (`Some(Some(corner))`) where the corner
+/// it follows is a round-off above the ground and coming down, or rising at a tie's rate (the
+/// end of a series of blows that each lift it by less: it is on the ground).
+fn lands_by_round_off(body: &RockingBody, mode: Mode, st: &State) -> Option<Option<Corner>> {
+    match mode {
+        Mode::Flight(c) => (st.lift <= series::TIE * body.size_m()
+            && (st.lift_v < 0.0 || tie_speed(body, st.lift_v)))
+        .then_some(Some(c)),
+        Mode::Rock(_) | Mode::SlideRock(..) => {
+            (seats_by_round_off(body, mode, st) || still_by_round_off(body, st)).then_some(None)
+        }
+        _ => None,
+    }
+}
+
 /// A body's state as the mode decided for it just after an impact takes it: on the ground, a
 /// rise (and a slip) at a tie's rate is the impact law's round-off, and a seated body does not
 /// turn.
@@ -600,29 +627,12 @@ impl<'a> Engine<'a> {
     /// (where a blow left it as it was landing): it lands now, as where its rotation reaches
     /// zero.
     fn seats_by_round_off(&self, i: usize) -> bool {
-        let st = self.tracks[i].state;
-        matches!(self.tracks[i].mode, Mode::Rock(_) | Mode::SlideRock(..))
-            && st.theta * st.omega < 0.0
-            && st.theta.abs() <= series::TIE * self.body(i).slenderness_rad()
+        seats_by_round_off(self.body(i), self.tracks[i].mode, &self.tracks[i].state)
     }
 
-    /// The landing body i is a round-off from where another body meets it: on its base
-    /// (`Some(None)`) where it turns down onto its seat from a round-off, or is turned and
-    /// turning by round-off (a body that nothing meets settles there, [`Engine::decide`]; here
-    /// the landing's impulse takes what is left); from flight (`Some(Some(corner))`) where the
-    /// corner it follows is a round-off above the ground and coming down, or rising at a tie's
-    /// rate (the end of a series of blows that each lift it by less: it is on the ground).
+    /// The landing body i is a round-off from ([`lands_by_round_off`]).
     fn lands_by_round_off(&self, i: usize) -> Option<Option<Corner>> {
-        let (body, st) = (self.body(i), self.tracks[i].state);
-        match self.tracks[i].mode {
-            Mode::Flight(c) => (st.lift <= series::TIE * body.size_m()
-                && (st.lift_v < 0.0 || tie_speed(body, st.lift_v)))
-            .then_some(Some(c)),
-            Mode::Rock(_) | Mode::SlideRock(..) => {
-                (self.seats_by_round_off(i) || still_by_round_off(body, &st)).then_some(None)
-            }
-            _ => None,
-        }
+        lands_by_round_off(self.body(i), self.tracks[i].mode, &self.tracks[i].state)
     }
 
     /// Decides body i's mode now, from its state and the pivot it rocks on, and logs the
@@ -1587,7 +1597,7 @@ impl<'a> Engine<'a> {
                      leaves {f}'s face as the faces turn apart there"
                 ),
             };
-            let stop = self.rests_against(&ends[e], &turning, &out, now, why, through);
+            let stop = self.rests_against(&ends[e], &turning, &out, now, why, through)?;
             if stop.is_none() {
                 log_landing(self);
             }
@@ -1606,7 +1616,7 @@ impl<'a> Engine<'a> {
                      corner leaves {face}'s face as the faces turn apart there"
                 ),
             };
-            let stop = self.rests_against(t, &turning, &out, now, why, through);
+            let stop = self.rests_against(t, &turning, &out, now, why, through)?;
             if stop.is_none() {
                 log_landing(self);
             }
@@ -1622,7 +1632,7 @@ impl<'a> Engine<'a> {
                      end"
                 ),
             };
-            let stop = self.rests_against(held, &turning, &out, now, why, Through::Blow);
+            let stop = self.rests_against(held, &turning, &out, now, why, Through::Blow)?;
             if stop.is_none() {
                 self.clearance.strike(t.pair);
                 // The contact that stays counts the impact where it takes an impulse.
@@ -2185,7 +2195,7 @@ impl<'a> Engine<'a> {
                      end of the faces that lay on each other"
                 );
                 let through = Through::Landing(i, None);
-                if let Some(why) = self.rests_against(t, &sides, &out, now, why, through) {
+                if let Some(why) = self.rests_against(t, &sides, &out, now, why, through)? {
                     self.stops_meeting(pair, why);
                 }
             }
@@ -2513,7 +2523,7 @@ impl<'a> Engine<'a> {
         }
         let stays = format!("they stay in contact as {lands}");
         let through = Through::Landing(i, partner.map(|(j, _)| j));
-        if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, through) {
+        if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, through)? {
             self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
         }
         Ok(())
@@ -3142,7 +3152,8 @@ impl<'a> Engine<'a> {
             let turning = links[l].sides.map(|k| k.map(|j| bodies[j]));
             let stays = format!("they stay in contact as {corner}'s corner strikes {face}'s face");
             let touch = Touch { stays: true, ..*h };
-            if let Some(why) = self.rests_against(&touch, &turning, &out, now, stays, Through::Blow)
+            if let Some(why) =
+                self.rests_against(&touch, &turning, &out, now, stays, Through::Blow)?
             {
                 self.stops_meeting((h.blocks[0], h.blocks[1]), why);
                 return Ok(AtOnce::Done);
@@ -3196,19 +3207,12 @@ impl<'a> Engine<'a> {
                     loss_j: 0.0,
                 };
                 let why = "they touch without approaching faster than round-off";
-                return Ok(self.rests_against(
-                    t,
-                    &turning,
-                    &out,
-                    now,
-                    why.into(),
-                    Through::Approach,
-                ));
+                return self.rests_against(t, &turning, &out, now, why.into(), Through::Approach);
             }
             Err(refusal) => return Ok(Some(refusal.to_string())),
         };
         if t.stays || out.normal_m_s.1 <= t.tie_m_s {
-            return Ok(self.rests_against(t, &turning, &out, now, stays, Through::Approach));
+            return self.rests_against(t, &turning, &out, now, stays, Through::Approach);
         }
         self.clearance.strike(t.pair);
         self.rec.energy.impact_loss_j += out.loss_j;
@@ -3381,7 +3385,7 @@ impl<'a> Engine<'a> {
         now: &Inputs,
         stays: String,
         through: Through,
-    ) -> Option<String> {
+    ) -> Result<Option<String>, SimulationError> {
         let k = match t.sides {
             [Side::Body(..), Side::Fixed] => 0,
             [Side::Fixed, Side::Body(..)] => 1,
@@ -3396,20 +3400,20 @@ impl<'a> Engine<'a> {
         let name = self.layout.names[t.blocks[k]].clone();
         let body = self.body(i);
         if self.scene.equations != Equations::Exact {
-            return Some(format!(
+            return Ok(Some(format!(
                 "{stays}, and the linearised equations do not follow a body resting against a \
                  block"
-            ));
+            )));
         }
         let c = match mode_after(&after, self.tracks[i].mode, through.lands(i)) {
             Ok(Mode::Rock(c)) => c,
             // Its pivot slipping, or off the ground, it moves along the face, the corner on it.
             Ok(_) => return self.couples(t, out, now, stays, through),
             Err(what) => {
-                return Some(format!(
+                return Ok(Some(format!(
                     "{stays}, and {name} {what} against it: a contact that stays on a body \
                      that is not rocking on a pivot or in flight is not followed"
-                ))
+                )))
             }
         };
         let tie_m = series::TIE * body.size_m();
@@ -3417,9 +3421,9 @@ impl<'a> Engine<'a> {
         let pivot = self.home(i, origin, c);
         let pivot = [pivot[0] + self.tracks[i].state.u, pivot[1]];
         let Some(lean) = Lean::new(t, k, pivot, turns.centroid, tie_m) else {
-            return Some(format!(
+            return Ok(Some(format!(
                 "{stays}, and the contact's push has no moment about {name}'s pivot to hold it by"
-            ));
+            )));
         };
         // What the impact leaves of the body's motion is round-off: it rests, and that goes
         // with the impact's loss.
@@ -3452,7 +3456,7 @@ impl<'a> Engine<'a> {
             Some((before, 0.0)),
             what,
         );
-        None
+        Ok(None)
     }
 
     /// The words of an impact `t` (`out`) after which the blocks stay in contact (`stays` says
@@ -3557,11 +3561,11 @@ impl<'a> Engine<'a> {
         now: &Inputs,
         stays: String,
         through: Through,
-    ) -> Option<String> {
+    ) -> Result<Option<String>, SimulationError> {
         if self.scene.equations != Equations::Exact {
-            return Some(format!(
+            return Ok(Some(format!(
                 "{stays}, and the linearised equations do not follow two blocks in contact"
-            ));
+            )));
         }
         let Sides {
             bodies,
@@ -3571,10 +3575,10 @@ impl<'a> Engine<'a> {
         } = match self.sides_after(t, &out.after, through) {
             Ok(sides) => sides,
             Err(what) => {
-                return Some(format!(
+                return Ok(Some(format!(
                     "{stays}, and {what}: blocks in contact are followed only while each body is \
                      seated, rocks on a pivot or flies"
-                ))
+                )))
             }
         };
         let size = bodies.map(|b| b.map_or(0.0, |i| self.body(i).size_m()));
@@ -3592,12 +3596,29 @@ impl<'a> Engine<'a> {
                 states,
                 modes,
             };
-            return self.holds_nothing(t, out, now, stays, through, sides);
+            return Ok(self.holds_nothing(t, out, now, stays, through, sides));
         }
         let given = (modes, states);
-        let modes = match couple.decide(members, now) {
-            Ok(modes) => modes,
-            Err(why) => return Some(format!("{stays}, and {why}")),
+        // A body the impact leaves a round-off from landing (its pivot a round-off above the
+        // ground, or its tilt a round-off from its seat and closing) breaks every way at once:
+        // it keeps the mode the impact left it in, and lands with the contact at once after it
+        // (not after a landing's own law, which took every landing due).
+        let (modes, lands) = match couple.decide(members, now) {
+            Ok(modes) => (modes, None),
+            Err(why) => {
+                let landing = matches!(through, Through::Landing(..));
+                let lands = (0..2).filter(|_| !landing).find_map(|k| {
+                    let i = bodies[k]?;
+                    Some((
+                        i,
+                        lands_by_round_off(self.body(i), given.0[k], &given.1[k])?,
+                    ))
+                });
+                match lands {
+                    Some(lands) => ([0, 1].map(|k| bodies[k].map(|_| given.0[k])), Some(lands)),
+                    None => return Ok(Some(format!("{stays}, and {why}"))),
+                }
+            }
         };
         for k in 0..2 {
             if let (Some(i), Some(mode)) = (bodies[k], modes[k]) {
@@ -3674,7 +3695,10 @@ impl<'a> Engine<'a> {
         };
         self.rec
             .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
-        None
+        if let Some((i, corner)) = lands {
+            self.couple_lands(i, corner, now)?;
+        }
+        Ok(None)
     }
 
     /// An impact `t` whose contact stays (`out`; `stays` says how) where its push has no moment
