@@ -304,3 +304,17 @@ fn a_blow_that_leaves_a_body_a_round_off_from_its_seat_lands_it_with_the_contact
     );
     whole(&r, (1.2, 0.9));
 }
+
+/// The slab touching a block 1.2 x 1.2 m (friction 0.6, no restitution) under a 0.5 g sine at
+/// 2.5 Hz: at 0.3578 s the slab, whose face lies on the block's, comes down from free flight
+/// upright but for round-off, on both corners of its base at once. That landing stopped the run
+/// ("not followed with the faces' contacts"); the landing's law now takes both corners with the
+/// faces' contacts, and the run goes to its end (scan run 1606).
+#[test]
+fn a_flight_upright_by_round_off_lands_flat_with_lying_faces() {
+    let model = slab_and_block(0.6, 0.0, (1.2, 1.2, 0.0));
+    let r = run(&model, (0.5, 2.5, 0.0), 4.0);
+    assert_eq!(r.summary.duration_s, 4.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    whole(&r, (1.2, 1.2));
+}

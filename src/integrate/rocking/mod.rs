@@ -2056,7 +2056,6 @@ impl<'a> Engine<'a> {
         let comes = format!("{lands} while {a}'s face lies on {b}'s");
         let pair = (ends[0].blocks[0], ends[0].blocks[1]);
         let j = bodies[usize::from(bodies[0] == i)];
-        let st = self.tracks[i].state;
         let partner = self.landings.get(j).is_some_and(Option::is_some)
             || self.lands_by_round_off(j).is_some();
         let why = match () {
@@ -2068,11 +2067,6 @@ impl<'a> Engine<'a> {
                  with two contacts is not followed",
             ),
             _ if partner => Some("the other body lands at the same instant, which is not followed"),
-            // Upright but for round-off (its face on a seated body's face), it comes down on
-            // both corners at once.
-            _ if corner.is_some() && upright_by_round_off(self.body(i), &st) => Some(
-                "it comes down flat on its base, which is not followed with the faces' contacts",
-            ),
             _ => None,
         };
         if let Some(why) = why {
@@ -2562,7 +2556,13 @@ impl<'a> Engine<'a> {
                 }
                 tr.state.lift = 0.0;
                 tr.mode = Mode::Flight(c);
-                [Some((c, 0.0)), None]
+                if upright_by_round_off(body, &tr.state) {
+                    // Upright but for round-off, it comes down on both corners at once.
+                    tr.state.theta = 0.0;
+                    [Some((c, 0.0)), Some((c.other(), -2.0 * c.sign() * bp))]
+                } else {
+                    [Some((c, 0.0)), None]
+                }
             }
         };
         self.rec.energy.impact_loss_j +=
