@@ -116,8 +116,9 @@ fn slab_and_block_scenes_at_ties_of_round_off_run_to_their_end() {
 /// |W_tn| = mu W_tt: its sticking landing impulse on the cone's edge, once a "bug"), the slab's
 /// corner sliding off the top of its face five times (where it goes past the face's end and the
 /// block's corner, a round-off below the slab's, moves in along the slab's face, that corner
-/// strikes), until the slab lands from a flight flat on its base while its face lies on the
-/// block's (3.70 s); a block 0.9 m
+/// strikes), then lands from a flight flat on its base while its face lies on the block's (3.70
+/// s; that stopped the run until the landing took both corners, `abutting_tests.rs`) and goes on
+/// to its end; a block 0.9 m
 /// high (a blow leaving it 5e-14 rad off its seat, not turning) until the slab overturns; three
 /// blocks where the slab's landing parts it from the block to its right at the instant that
 /// block's own landing was due (the block was handled on the trajectory it had left, and the
@@ -133,19 +134,13 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
         (0.3, 1.5, 0.0),
         4.0,
     );
-    assert!(
-        meets(
-            &square,
-            "comes down flat on its base, which is not followed"
-        ),
-        "{:?}",
-        square.summary
-    );
+    assert_eq!(square.summary.duration_s, 4.0, "{:?}", square.summary);
+    assert!(square.summary.warnings.is_empty(), "{:?}", square.summary);
     let slides_off = |e: &&crate::response::EventRecord| {
-        (e.mode.as_deref()).is_some_and(|m| m.contains("slides off an end of W's face"))
+        e.time_s < 3.7
+            && (e.mode.as_deref()).is_some_and(|m| m.contains("slides off an end of W's face"))
     };
     assert_eq!(square.events.iter().filter(slides_off).count(), 5);
-    assert!(square.summary.duration_s > 3.7);
     balances(&square);
     let low = run(
         &slab_and_block(0.6, 0.0, (1.2, 0.9, 0.05)),
