@@ -317,3 +317,35 @@ fn a_flight_upright_by_round_off_lands_flat_with_lying_faces() {
     let r = to_end(&model, (0.5, 2.5, 0.0), 4.0);
     whole(&r, (1.2, 1.2));
 }
+
+/// The slab touching a block 0.8 x 0.9 m (friction 0.9, no restitution) under El Centro at
+/// 0.4 g (scan run 1604): at 2.3265067 s both bodies, rocking on their left corners with the
+/// slab's face lying on the block's, come down on their bases at the same instant. That landing
+/// stopped the run ("the other body lands at the same instant, which is not followed"); the
+/// landing's law now takes both bodies' ground contacts with both ends of the faces, plastic at
+/// once. A body then left at its seat, theta exactly zero, turning through it on its pivot (a
+/// contact's round-off closed by its rotation) lands there, where the run ended in an error
+/// (its tilt times its rotation, zero, read as not closing). The run goes on: to 2.4 s without a
+/// warning, never overlapping, its balance closing.
+#[test]
+fn both_bodies_under_lying_faces_land_on_their_bases_at_once() {
+    use super::clearance_tests::run;
+    use super::handoff_tests::el_centro;
+    let model = slab_and_block(0.9, 0.0, (0.8, 0.9, 0.0));
+    let r = run(&model, &el_centro(0.4), 2.4, 0.0);
+    assert_eq!(r.summary.duration_s, 2.4, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    let both = "S lands on its base and W lands on its base while S's face lies on W's, the four \
+                contacts plastic at once";
+    let landings: Vec<_> = (r.events.iter())
+        .filter(|e| e.mode.as_deref().is_some_and(|m| m.starts_with(both)))
+        .collect();
+    assert_eq!(landings.len(), 2, "{:#?}", r.events);
+    assert!(
+        (landings[0].time_s - 2.326_506_684).abs() < 1e-9,
+        "{}",
+        landings[0].time_s
+    );
+    assert!(landings.iter().all(|e| e.time_s == landings[0].time_s));
+    whole(&r, (0.8, 0.9));
+}

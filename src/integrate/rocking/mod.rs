@@ -297,12 +297,11 @@ fn mode_after(after: &collision::After, mode: Mode, seated: bool) -> Result<Mode
     }
 }
 
-/// Whether a body in `mode` rocks on its pivot a round-off from its seat and turns down onto
-/// it (where a blow left it as it was landing): it lands now, as where its rotation reaches
-/// zero.
+/// Whether a body in `mode` rocks on its pivot a round-off from its seat (or on it) and turns
+/// down onto it (where a blow left it as it was landing, or a contact's round-off closed by its
+/// rotation turned it so at its seat): it lands now, as where its rotation reaches zero.
 fn seats_by_round_off(body: &RockingBody, mode: Mode, st: &State) -> bool {
-    matches!(mode, Mode::Rock(_) | Mode::SlideRock(..))
-        && st.theta * st.omega < 0.0
+    mode.pivot().is_some_and(|c| st.omega * c.sign() < 0.0)
         && st.theta.abs() <= series::TIE * body.slenderness_rad()
 }
 
@@ -339,6 +338,33 @@ fn settled_in(body: &RockingBody, mode: Mode, state: State) -> State {
         (state.theta, state.omega) = (0.0, 0.0);
     }
     state
+}
+
+/// How far along the ground (m) a body whose face lies on another's, tilted by `theta` (rad)
+/// about its pivot (its home at rest `home`, its base moved by `u`) as it lands on its base,
+/// must be moved so that, turned back with the body to theta = 0, neither end of the faces
+/// (`ends`: each point, the face's normal pointing into the corner's block, and +1 where the
+/// body is the corner's block, -1 where it is the face's) moves into the other block: one end
+/// stays where it was along its normal and the other opens, by at most the tilt times the
+/// faces' overlap.
+fn lying_seat_shift_m(
+    ends: [([f64; 2], [f64; 2], f64); 2],
+    home: [f64; 2],
+    theta: f64,
+    u: f64,
+) -> f64 {
+    // How far each end opens (m) with the base moved by `shift`.
+    let opens = |shift: f64| {
+        ends.map(|(point, normal, side)| {
+            side * (shift - seat_shift_m(point, normal, home, theta, u)) * normal[0]
+        })
+    };
+    let keeps = ends.map(|(point, normal, _)| seat_shift_m(point, normal, home, theta, u));
+    let least = |shift: f64| opens(shift)[0].min(opens(shift)[1]);
+    match least(keeps[0]) >= least(keeps[1]) {
+        true => keeps[0],
+        false => keeps[1],
+    }
 }
 
 /// How far along the ground (m) a body that lands on its base, tilted by `theta` (rad) about
@@ -1367,29 +1393,47 @@ impl<'a> Engine<'a> {
             let tie = series::TIE * self.body(k).slenderness_rad();
             self.tracks[k].mode.pivot().is_some() && self.tracks[k].state.theta.abs() <= tie
         };
-        let landing = (ids.iter().map(|&(k, _)| k))
-            .find(|&k| self.lands_by_round_off(k) == Some(None) || (strikes && upright(k)));
+        // Both bodies, where both are upright so (a couple turning together onto both seats).
+        let mut landing = (ids.iter().map(|&(k, _)| k))
+            .filter(|&k| self.lands_by_round_off(k) == Some(None) || (strikes && upright(k)));
+        let landing = [landing.next(), landing.next()];
         let comes = match landing {
-            Some(k) => {
+            [Some(k), second] => {
                 let why = match () {
                     _ if self.scene.equations != Equations::Exact => {
                         Some("the linearised equations do not follow blocks in contact")
                     }
-                    _ if self.body(k).restitution_factor != 1.0 => Some(
-                        "a landing that keeps less than Housner's rate (a restitution factor \
-                         below one) with the faces' contacts is not followed",
-                    ),
+                    _ if landing
+                        .iter()
+                        .flatten()
+                        .any(|&j| self.body(j).restitution_factor != 1.0) =>
+                    {
+                        Some(
+                            "a landing that keeps less than Housner's rate (a restitution factor \
+                             below one) with the faces' contacts is not followed",
+                        )
+                    }
                     _ => None,
                 };
-                let comes = format!("{comes}, {} upright on its base", self.body(k).name);
+                let comes = match second {
+                    None => format!("{comes}, {} upright on its base", self.body(k).name),
+                    Some(j) => format!(
+                        "{comes}, {} and {} upright on their bases",
+                        self.body(k).name,
+                        self.body(j).name
+                    ),
+                };
                 if let Some(why) = why {
                     return Ok(Some(format!("{comes}, and {why}")));
                 }
                 comes
             }
-            None => comes,
+            _ => comes,
         };
-        let through = landing.map_or(Through::Approach, |k| Through::Landing(k, None));
+        let through = match landing {
+            [Some(k), second] => Through::Landing(k, second),
+            _ => Through::Approach,
+        };
         let index = |side: Side| match side {
             Side::Body(k, _) => ids.iter().position(|&(j, _)| j == k),
             _ => None,
@@ -1420,30 +1464,36 @@ impl<'a> Engine<'a> {
                 },
             },
         ];
-        // The landing body's rotation rate before, and its base's contacts with the ground
-        // (where a refusal below stops the run, its tilt of round-off stays set to zero).
-        let landed = match landing {
-            Some(k) => Some((k, self.tracks[k].state.omega, self.grounded(k, None, now)?)),
-            None => None,
-        };
+        // The landing bodies' rotation rates before, and their bases' contacts with the ground
+        // (where a refusal below stops the run, their tilts of round-off stay set to zero).
+        let mut landed = [None, None];
+        for (n, &k) in landing.iter().flatten().enumerate() {
+            landed[n] = Some((k, self.tracks[k].state.omega, self.grounded(k, None, now)?));
+        }
         let mut bodies: Vec<collision::Turning> = (ids.iter())
             .map(|&(k, origin)| self.turning(k, origin))
             .collect();
-        let landed = landed.map(|(k, before, ground)| {
-            let j = ids
-                .iter()
-                .position(|&(b, _)| b == k)
-                .expect("the landing body's side");
-            bodies[j].ground = ground;
-            (k, j, before)
+        let landed = landed.map(|l| {
+            l.map(|(k, before, ground)| {
+                let j = ids
+                    .iter()
+                    .position(|&(b, _)| b == k)
+                    .expect("the landing body's side");
+                bodies[j].ground = ground;
+                (k, j, before)
+            })
         });
         let all = match collision::resolve_all(&bodies, &links) {
             Ok(all) => all,
             Err(refusal) => return Ok(Some(format!("{comes}, and {refusal}"))),
         };
         // The landing's event, logged where the run goes on from the impact.
+        let bases = match landed {
+            [_, Some(_)] => "their bases'",
+            _ => "its base's",
+        };
         let log_landing = |e: &mut Self| {
-            if let Some((k, j, before)) = landed {
+            for &(k, j, before) in landed.iter().flatten() {
                 let after = all.after[j].omega;
                 e.rec.rocking_event(
                     e.t,
@@ -1451,7 +1501,7 @@ impl<'a> Engine<'a> {
                     &e.layout.outputs(k),
                     Some((before, after)),
                     format!(
-                        "{comes}, its base's contacts and the faces' plastic at once: theta' \
+                        "{comes}, {bases} contacts and the faces' plastic at once: theta' \
                          {before:.6e} -> {after:.6e} rad/s"
                     ),
                 );
@@ -2029,9 +2079,10 @@ impl<'a> Engine<'a> {
     /// is decided from the accelerations ([`Engine::pressed_ends`]); where both do, the faces
     /// lie on each other on, in the modes decided. Where both ends open (or none presses), the
     /// bodies part; where one stays (or presses), they turn on together on it (or the body
-    /// rests against the other, as after any impact that leaves a contact); where the other
-    /// body lands at the same instant, or the law or the decision has no outcome, the run
-    /// stops, saying why.
+    /// rests against the other, as after any impact that leaves a contact). The other body,
+    /// where its landing is due at this instant too or it is a round-off from landing, lands
+    /// with it: the law takes both bodies' ground contacts with both ends. Where the law or the
+    /// decision has no outcome, the run stops, saying why.
     fn lying_lands(
         &mut self,
         i: usize,
@@ -2048,43 +2099,83 @@ impl<'a> Engine<'a> {
             .map(|b| b.expect("the sides of lying faces are bodies"));
         let ends = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
         let [a, b] = ends[0].blocks.map(|k| self.layout.names[k].clone());
-        let name = self.body(i).name.clone();
-        let lands = match corner {
+        let landing = |name: &str, c: Option<Corner>| match c {
             None => format!("{name} lands on its base"),
             Some(c) => format!("{name} lands from free flight on its {} corner", c.name()),
         };
+        let j = bodies[usize::from(bodies[0] == i)];
+        // Due on the trajectory it had at this stop, where nothing has moved it since.
+        let due =
+            self.landings.get(j).copied().flatten().filter(|_| {
+                self.reached.get(j) == Some(&(self.tracks[j].mode, self.tracks[j].state))
+            });
+        let partner = due.or(self.lands_by_round_off(j));
+        let lands = match partner {
+            None => landing(&self.body(i).name, corner),
+            Some(c) => format!(
+                "{} and {}",
+                landing(&self.body(i).name, corner),
+                landing(&self.body(j).name, c)
+            ),
+        };
         let comes = format!("{lands} while {a}'s face lies on {b}'s");
         let pair = (ends[0].blocks[0], ends[0].blocks[1]);
-        let j = bodies[usize::from(bodies[0] == i)];
-        let partner = self.landings.get(j).is_some_and(Option::is_some)
-            || self.lands_by_round_off(j).is_some();
+        let housner = |k: usize| self.body(k).restitution_factor == 1.0;
         let why = match () {
             _ if self.scene.equations != Equations::Exact => {
                 Some("the linearised equations do not follow blocks in contact")
             }
-            _ if self.body(i).restitution_factor != 1.0 => Some(
+            _ if !housner(i) || (partner.is_some() && !housner(j)) => Some(
                 "a landing that keeps less than Housner's rate (a restitution factor below one) \
                  with two contacts is not followed",
             ),
-            _ if partner => Some("the other body lands at the same instant, which is not followed"),
             _ => None,
         };
         if let Some(why) = why {
             self.stops_meeting(pair, format!("{comes}, and {why}"));
             return Ok(());
         }
+        if partner.is_some() {
+            if let Some(due) = self.landings.get_mut(j) {
+                *due = None;
+            }
+        }
         for k in bodies {
             self.tracks[k].lies = None;
         }
         self.clearance.lie(ends[0].pair, None);
-        let before = self.tracks[i].state.omega;
-        let ground = self.grounded(i, corner, now)?;
+        let landed = [Some((i, corner)), partner.map(|c| (j, c))];
+        let before = landed.map(|l| l.map(|(k, _)| self.tracks[k].state.omega));
         let ids = ends[0].sides.map(|side| match side {
             Side::Body(k, origin) => (k, origin),
             _ => unreachable!("the sides of lying faces are bodies"),
         });
+        let mut grounds = [None, None];
+        for (n, &(k, c)) in landed.iter().flatten().enumerate() {
+            let (theta, pivot) = (
+                self.tracks[k].state.theta,
+                c.or(self.tracks[k].mode.pivot()),
+            );
+            grounds[n] = Some((k, self.grounded(k, c, now)?));
+            // A tilt of a tie set to zero turns the body's face under the other's: its base
+            // moves along the ground so that neither end of the faces goes into the other.
+            let sideways =
+                (ends.iter()).all(|t| t.normal[0].abs() > std::f64::consts::FRAC_1_SQRT_2);
+            if let (Some(p), true) = (pivot, sideways && self.tracks[k].state.theta == 0.0) {
+                let home = self.home(k, ids[usize::from(ids[0].0 != k)].1, p);
+                let side = |t: &Touch| match t.sides[0] {
+                    Side::Body(b, _) if b == k => 1.0,
+                    _ => -1.0,
+                };
+                let at = ends.each_ref().map(|t| (t.point, t.normal, side(t)));
+                let st = &mut self.tracks[k].state;
+                st.u += lying_seat_shift_m(at, home, theta, st.u);
+            }
+        }
         let mut turning = ids.map(|(k, origin)| self.turning(k, origin));
-        turning[usize::from(ids[0].0 != i)].ground = ground;
+        for (k, ground) in grounds.into_iter().flatten() {
+            turning[usize::from(ids[0].0 != k)].ground = ground;
+        }
         let index = |side: Side| match side {
             Side::Body(k, _) => ids.iter().position(|&(b, _)| b == k),
             _ => None,
@@ -2109,7 +2200,7 @@ impl<'a> Engine<'a> {
         let mut pressed = None;
         if stays == [true, true] {
             let after = links[0].sides.map(|k| k.map(|n| all.after[n]));
-            let through = Through::Landing(i, None);
+            let through = Through::Landing(i, partner.map(|_| j));
             match self.pressed_ends([&ends[0], &ends[1]], &after, through, now) {
                 Ok(decided) => {
                     stays = decided.0.pressed;
@@ -2126,14 +2217,24 @@ impl<'a> Engine<'a> {
                 }
             }
         }
-        let after = all.after[usize::from(ids[0].0 != i)].omega;
-        self.rec.rocking_event(
-            self.t,
-            EventKind::RockingImpact,
-            &self.layout.outputs(i),
-            Some((before, after)),
-            format!("{comes}, the three contacts plastic at once: theta' {before:.6e} -> {after:.6e} rad/s"),
-        );
+        let contacts = if partner.is_some() {
+            "the four"
+        } else {
+            "the three"
+        };
+        for (&(k, _), before) in landed.iter().flatten().zip(before.into_iter().flatten()) {
+            let after = all.after[usize::from(ids[0].0 != k)].omega;
+            self.rec.rocking_event(
+                self.t,
+                EventKind::RockingImpact,
+                &self.layout.outputs(k),
+                Some((before, after)),
+                format!(
+                    "{comes}, {contacts} contacts plastic at once: theta' {before:.6e} -> \
+                     {after:.6e} rad/s"
+                ),
+            );
+        }
         if let Some((decision, lying, sides)) = pressed.filter(|d| d.0.pressed == [true, true]) {
             self.rec.energy.impact_loss_j += all.loss_j;
             if all.impulse_n_s.iter().any(|&j| j > 0.0) {
@@ -2188,7 +2289,7 @@ impl<'a> Engine<'a> {
                     "they stay in contact as {lands}, {c}'s corner leaving {f}'s face at the other \
                      end of the faces that lay on each other"
                 );
-                let through = Through::Landing(i, None);
+                let through = Through::Landing(i, partner.map(|_| j));
                 if let Some(why) = self.rests_against(t, &sides, &out, now, why, through)? {
                     self.stops_meeting(pair, why);
                 }

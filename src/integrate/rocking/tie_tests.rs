@@ -619,6 +619,36 @@ fn a_body_seated_from_a_tie_keeps_its_contact_along_the_normal() {
     }
 }
 
+/// A body whose face lies on another's, landing on its base from a tilt, is moved along the
+/// ground so that neither end of the faces goes into the other block: a slab 0.3 x 1.2 m on its
+/// right corner, turned by theta, its right face (both its right corners) on a block's face,
+/// seated again: one end stays where it was along the normal to round-off and the other opens,
+/// by at most the tilt times the face; as the face's block (the normal its face's own) and as
+/// the corners' (the other face's normal, pointing into the slab), for a tie and a large tilt.
+#[test]
+fn a_body_seated_from_a_tie_under_lying_faces_moves_into_neither_end() {
+    use super::clearance_tests::block_corners;
+    use super::lying_seat_shift_m;
+    let (home, u) = ([0.3, 0.0], 0.01);
+    for theta in [1e-11, 0.2f64] {
+        let (sin, cos) = theta.sin_cos();
+        let turned = [0.0, 0.15 + u - 0.15 * cos, 0.0, theta, 0.0, 0.15 * sin];
+        let corners = block_corners(0.15, (0.3, 1.2), &turned);
+        let (p, q) = (corners[1], corners[2]);
+        for side in [-1.0, 1.0f64] {
+            // The face's outward normal, into the corners' block.
+            let n = [-side * cos, side * sin];
+            let shift = lying_seat_shift_m([(p, n, side), (q, n, side)], home, theta, u);
+            let seated = block_corners(0.15, (0.3, 1.2), &[0.0, u + shift, 0.0, 0.0, 0.0, 0.0]);
+            let opens = [(seated[1], p), (seated[2], q)]
+                .map(|(a, b)| side * ((a[0] - b[0]) * n[0] + (a[1] - b[1]) * n[1]));
+            let (least, most) = (opens[0].min(opens[1]), opens[0].max(opens[1]));
+            assert!(least.abs() < 1e-15, "{theta} {side}: {opens:?}");
+            assert!(most > 0.0 && most <= 1.2 * theta + 1e-15, "{opens:?}");
+        }
+    }
+}
+
 /// A meeting found while two bodies turned together, their couple ending at that instant by a
 /// body's event handled first, is found again by the next step, from the state after that
 /// event: a wall 1.2 m wide, a block 0.4 x 1.2 m and a squat block (friction 0.8, restitution
