@@ -1494,17 +1494,8 @@ impl<'a> Engine<'a> {
         };
         let log_landing = |e: &mut Self| {
             for &(k, j, before) in landed.iter().flatten() {
-                let after = all.after[j].omega;
-                e.rec.rocking_event(
-                    e.t,
-                    EventKind::RockingImpact,
-                    &e.layout.outputs(k),
-                    Some((before, after)),
-                    format!(
-                        "{comes}, {bases} contacts and the faces' plastic at once: theta' \
-                         {before:.6e} -> {after:.6e} rad/s"
-                    ),
-                );
+                let what = format!("{comes}, {bases} contacts and the faces' plastic at once");
+                e.logs_landing(k, (before, all.after[j].omega), &what);
             }
         };
         let sides_of = |l: &collision::Link| l.sides.map(|k| k.map(|j| &bodies[j]));
@@ -2224,16 +2215,8 @@ impl<'a> Engine<'a> {
         };
         for (&(k, _), before) in landed.iter().flatten().zip(before.into_iter().flatten()) {
             let after = all.after[usize::from(ids[0].0 != k)].omega;
-            self.rec.rocking_event(
-                self.t,
-                EventKind::RockingImpact,
-                &self.layout.outputs(k),
-                Some((before, after)),
-                format!(
-                    "{comes}, {contacts} contacts plastic at once: theta' {before:.6e} -> \
-                     {after:.6e} rad/s"
-                ),
-            );
+            let what = format!("{comes}, {contacts} contacts plastic at once");
+            self.logs_landing(k, (before, after), &what);
         }
         if let Some((decision, lying, sides)) = pressed.filter(|d| d.0.pressed == [true, true]) {
             self.rec.energy.impact_loss_j += all.loss_j;
@@ -2401,6 +2384,17 @@ impl<'a> Engine<'a> {
                 self.rec.rocking_impact(block);
             }
         }
+    }
+
+    /// Logs body k's landing, `what` it was, with its theta' before and after (rad/s).
+    fn logs_landing(&mut self, k: usize, (before, after): (f64, f64), what: &str) {
+        self.rec.rocking_event(
+            self.t,
+            EventKind::RockingImpact,
+            &self.layout.outputs(k),
+            Some((before, after)),
+            format!("{what}: theta' {before:.6e} -> {after:.6e} rad/s"),
+        );
     }
 
     /// The exact model stops where blocks a and b meet (or touch), for the reason `why`.
