@@ -349,3 +349,32 @@ fn both_bodies_under_lying_faces_land_on_their_bases_at_once() {
     assert!(landings.iter().all(|e| e.time_s == landings[0].time_s));
     whole(&r, (0.8, 0.9));
 }
+
+/// The slab touching a block 0.8 x 0.9 m (friction 0.6, restitution 0.5) under a 0.5 g sine at
+/// 2.5 Hz (scan run 1646): at 1.1839629 s the slab comes down flat on the block, upright on its
+/// base, the block's top corner strikes its face and parts, and the contact that stays is at the
+/// two bottom corners, on the line through both pivots (the slab seated, the block turning on
+/// its far corner): a push there turns neither body, and their motions alone close it. The run
+/// stopped there ("the contact's push has no moment about a body's pivot"). The mode is now
+/// decided among the ways a pivot slips or lifts, where such a push does move a body (here the
+/// block's pivot slipping, the one way that holds), a way whose push moves neither body holding
+/// no contact; its push falls at once and the two part. The run goes on to 1.5 s (it stops at
+/// 1.5416 s, where no mode holds with a contact after another flat landing), never
+/// overlapping, its balance closing.
+#[test]
+fn a_contact_on_the_line_through_both_pivots_that_closes_slips_a_pivot() {
+    let model = slab_and_block(0.6, 0.5, (0.8, 0.9, 0.0));
+    let r = to_end(&model, (0.5, 2.5, 0.0), 1.5);
+    let at = |e: &crate::response::EventRecord| (e.time_s - 1.183_962_86).abs() < 1e-9;
+    let slips = (r.events.iter()).find(|e| {
+        e.kind == EventKind::BlocksImpact
+            && at(e)
+            && e.mode.as_ref().is_some_and(|m| {
+                m.contains("W: theta' 0.000000e0 -> 4.187213e-1 rad/s, slipping at")
+            })
+    });
+    assert!(slips.is_some(), "{:#?}", r.events);
+    let parts = (r.events.iter()).any(|e| e.kind == EventKind::Separation && at(e));
+    assert!(parts, "{:#?}", r.events);
+    whole(&r, (0.8, 0.9));
+}

@@ -313,8 +313,10 @@ impl Couple {
     /// direction) or leave the ground is checked against the bodies' conditions just after now
     /// (none for a fixed block's side; a body off the ground stays in flight; a pivot leaves
     /// the ground only where its height grows just after now, not where it stays zero to a
-    /// tie). Where every way's effective mass is positive (each slipping body's D and the
-    /// push's compliance), exactly one must hold with the contact closed, the push's own
+    /// tie). A way whose push moves neither body (its compliance zero to a tie of a free body's,
+    /// as on stuck pivots both on the push's line) cannot hold the contact closed; it counts
+    /// only as one that opens it. Where every other way's effective mass is positive (each slipping body's D and
+    /// the push's compliance), exactly one must hold with the contact closed, the push's own
     /// condition not among them: where it falls at once, the blocks part at this instant. Where
     /// friction leaves one not positive (Painleve), the law may have no motion or several, so
     /// every way counts twice, with the contact closed and pressing and with it open (each
@@ -339,6 +341,14 @@ impl Couple {
             Member::Moves(body, ..) => Some(TIE * body.g_m_s2),
             Member::Fixed => None,
         });
+        // A push's compliance is told from zero against a free body's, 1/m.
+        let tie_compliance = TIE
+            * (members.iter())
+                .map(|m| match m {
+                    Member::Moves(body, ..) => 1.0 / body.mass_kg,
+                    Member::Fixed => 0.0,
+                })
+                .fold(0.0, f64::max);
         // Each way with the contact closed and its pivots' conditions met (and whether the push
         // presses), the others with what breaks; each way met with the contact open, the
         // bodies alone and the corner leaving the face; the ways whose effective mass is not
@@ -362,7 +372,10 @@ impl Couple {
                     each.collect::<Vec<_>>().join(" with ")
                 };
                 let motion = self.motion(trial, now);
-                if motion.compliance <= 0.0
+                // No push moves either body this way (its arm about each stuck pivot zero, as
+                // where the contact is on the line through both pivots).
+                let unmoved = motion.compliance.abs() <= tie_compliance;
+                if (!unmoved && motion.compliance < 0.0)
                     || (motion.bodies.iter()).any(|t| t.denominator.is_some_and(|d| d <= 0.0))
                 {
                     paradox.push(named());
@@ -376,6 +389,13 @@ impl Couple {
                 });
                 if alone && tie_accel.is_some_and(|tie| motion.leaving > tie) {
                     opening.push(named());
+                }
+                if unmoved {
+                    broken.push(format!(
+                        "{}: no push on the contact would move either block",
+                        named()
+                    ));
+                    continue;
                 }
                 match (0..2).find_map(|k| broken_by(trial[k], &motion.bodies[k])) {
                     None => holding.push((modes, named(), pressing(&motion))),

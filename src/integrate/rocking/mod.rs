@@ -3691,7 +3691,12 @@ impl<'a> Engine<'a> {
                 states,
                 modes,
             };
-            return Ok(self.holds_nothing(t, out, now, stays, through, sides));
+            // A push that moves neither body can hold a contact the bodies alone do not close;
+            // where they close it, only a way that slips or lifts a pivot can (decided below).
+            if !self.closes_alone(t, &sides, now) {
+                self.holds_nothing(t, out, now, stays, through, sides);
+                return Ok(None);
+            }
         }
         let given = (modes, states);
         // A body the impact leaves a round-off from landing (its pivot a round-off above the
@@ -3796,13 +3801,30 @@ impl<'a> Engine<'a> {
         Ok(None)
     }
 
+    /// Whether the bodies of the contact `t`, each alone in the mode the impact leaves it
+    /// (`sides`), close the contact just after (its distance falls below zero beyond a tie).
+    fn closes_alone(&self, t: &Touch, sides: &Sides, now: &Inputs) -> bool {
+        let Sides {
+            bodies,
+            homes,
+            states,
+            modes,
+        } = sides;
+        let placed = [0, 1].map(|k| bodies[k].map(|_| &states[k]));
+        let contact = Couple::placed(t, *bodies, *homes, placed);
+        let alone = [0, 1].map(|k| match bodies[k] {
+            Some(i) => modes::trajectory(self.body(i), Equations::Exact, modes[k], &states[k], now),
+            None => Trajectory::start(Mode::Rest, Equations::Exact, &State::default()),
+        });
+        let (size, scale_t) = self.scales(*bodies);
+        series::sign_after(&contact.gap(&alone), size, scale_t) < 0
+    }
+
     /// An impact `t` whose contact stays (`out`; `stays` says how) where its push has no moment
-    /// about either body's pivot (`sides`, as the impact leaves them): a corner both bodies turn
-    /// about, or that neither's motion moves, as where two blocks' bottom corners are together.
-    /// Where each body alone, in the mode the impact leaves it, does not close the contact just
-    /// after (its distance stays zero to a tie, or grows), it holds no push: each goes on alone,
-    /// the pair struck (they must part before they may strike again). Else the run stops, and the
-    /// reason is returned.
+    /// about either body's pivot (`sides`, as the impact leaves them) and each body alone does
+    /// not close it ([`Engine::closes_alone`]): a corner both bodies turn about, or that
+    /// neither's motion moves, as where two blocks' bottom corners are together. It holds no
+    /// push: each goes on alone, the pair struck (they must part before they may strike again).
     fn holds_nothing(
         &mut self,
         t: &Touch,
@@ -3811,25 +3833,13 @@ impl<'a> Engine<'a> {
         stays: String,
         through: Through,
         sides: Sides,
-    ) -> Option<String> {
+    ) {
         let Sides {
             bodies,
-            homes,
             states,
             modes,
+            ..
         } = sides;
-        let placed = [0, 1].map(|k| bodies[k].map(|_| &states[k]));
-        let contact = Couple::placed(t, bodies, homes, placed);
-        let alone = [0, 1].map(|k| match bodies[k] {
-            Some(i) => modes::trajectory(self.body(i), Equations::Exact, modes[k], &states[k], now),
-            None => Trajectory::start(Mode::Rest, Equations::Exact, &State::default()),
-        });
-        let (size, scale_t) = self.scales(bodies);
-        if series::sign_after(&contact.gap(&alone), size, scale_t) < 0 {
-            return Some(format!(
-                "{stays}, and the contact's push has no moment about a body's pivot"
-            ));
-        }
         self.rec.energy.impact_loss_j += out.loss_j;
         let mut what = self.stays_in_contact(t, out, &stays, through);
         let mut omega = None;
@@ -3862,7 +3872,6 @@ impl<'a> Engine<'a> {
                  goes on alone";
         self.rec
             .rocking_event(self.t, EventKind::BlocksImpact, &t.blocks, omega, what);
-        None
     }
 
     /// Condition k of body i's watch falls (`at_landing`: under a landing's impulse): a held
