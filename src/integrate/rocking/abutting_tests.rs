@@ -233,24 +233,28 @@ fn a_contact_at_a_pivot_keeps_its_round_off() {
 /// 1 Hz: at 0.6135 s the slab comes down flat on the block, upright on its base, and the contact
 /// that stays is at the two bottom corners, both bodies rocking on stuck pivots after it, which
 /// the push there turns neither: as neither body's own motion closes it, it holds no push and
-/// each goes on alone (the run stops 0.23 ms later, where the slab's corner turns on the block's
-/// face and no mode of the pivots holds).
+/// each goes on alone. At 0.6139 s the block lands on its base with the slab's corner again on
+/// its face at that point, the slab rocking on its corner there after the landing (left rising
+/// by 1e-19 m/s): no way of the pivots holds with a push, and the run stopped; there the slab's
+/// pivot stays on the ground, no push moves either body and their motions alone keep the
+/// contact, so it carries nothing and each goes on alone again (`Couple::unpushed`). The run
+/// goes on to 1.6139 s, where the two rattle; followed here to 1.6 s, without a warning.
 #[test]
 fn a_contact_at_a_corner_both_blocks_turn_about_holds_no_push() {
     let model = slab_and_block(0.9, 0.5, (1.2, 1.2, 0.0));
-    let r = run(&model, (0.3, 1.0, 0.0), 4.0);
-    let holds = (r.events.iter()).find(|e| {
-        e.mode.as_ref().is_some_and(|m| {
-            m.contains("their contact is at a corner both turn about, where it holds no push")
+    let r = to_end(&model, (0.3, 1.0, 0.0), 1.6);
+    let holds: Vec<f64> = (r.events.iter())
+        .filter(|e| {
+            e.mode.as_ref().is_some_and(|m| {
+                m.contains("their contact is at a corner both turn about, where it holds no push")
+            })
         })
-    });
-    let holds = holds.unwrap_or_else(|| panic!("{:#?}", r.events));
-    assert!((holds.time_s - 0.613_5).abs() < 1e-3, "{}", holds.time_s);
-    assert!(
-        r.summary.duration_s > holds.time_s,
-        "{:?}",
-        r.summary.warnings
-    );
+        .map(|e| e.time_s)
+        .collect();
+    assert!(holds.len() >= 2, "{:#?}", r.events);
+    assert!((holds[0] - 0.613_5).abs() < 1e-3, "{holds:?}");
+    let lands = 0.613_885_594_3;
+    assert!(holds.iter().any(|t| (t - lands).abs() < 1e-9), "{holds:?}");
     whole(&r, (1.2, 1.2));
 }
 

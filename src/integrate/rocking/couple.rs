@@ -341,67 +341,45 @@ impl Couple {
             Member::Moves(body, ..) => Some(TIE * body.g_m_s2),
             Member::Fixed => None,
         });
-        // A push's compliance is told from zero against a free body's, 1/m.
-        let tie_compliance = TIE
-            * (members.iter())
-                .map(|m| match m {
-                    Member::Moves(body, ..) => 1.0 / body.mass_kg,
-                    Member::Fixed => 0.0,
-                })
-                .fold(0.0, f64::max);
+        let tie_compliance = tie_compliance(members);
         // Each way with the contact closed and its pivots' conditions met (and whether the push
         // presses), the others with what breaks; each way met with the contact open, the
         // bodies alone and the corner leaving the face; the ways whose effective mass is not
         // positive.
         let (mut holding, mut broken, mut opening, mut paradox) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for first in ways(members[0], self.pivots[0]) {
-            for second in ways(members[1], self.pivots[1]) {
-                let modes = [first, second];
-                let trial = [0, 1].map(|k| match (members[k], modes[k]) {
-                    (Member::Moves(body, _, state), Some(mode)) => Member::Moves(body, mode, state),
-                    _ => Member::Fixed,
+        for (modes, trial) in self.trials(members) {
+            let named = || -> String {
+                let each = trial.iter().filter_map(|m| match m {
+                    Member::Moves(body, mode, _) => Some(format!("{} {}", body.name, mode.name())),
+                    Member::Fixed => None,
                 });
-                let named = || -> String {
-                    let each = trial.iter().filter_map(|m| match m {
-                        Member::Moves(body, mode, _) => {
-                            Some(format!("{} {}", body.name, mode.name()))
-                        }
-                        Member::Fixed => None,
-                    });
-                    each.collect::<Vec<_>>().join(" with ")
-                };
-                let motion = self.motion(trial, now);
-                // No push moves either body this way (its arm about each stuck pivot zero, as
-                // where the contact is on the line through both pivots).
-                let unmoved = motion.compliance.abs() <= tie_compliance;
-                if (!unmoved && motion.compliance < 0.0)
-                    || (motion.bodies.iter()).any(|t| t.denominator.is_some_and(|d| d <= 0.0))
-                {
-                    paradox.push(named());
-                }
-                let alone = (0..2).all(|k| match trial[k] {
-                    Member::Moves(body, mode, state) => {
-                        let traj = modes::trajectory(body, Equations::Exact, mode, state, now);
-                        broken_by(trial[k], &traj).is_none()
-                    }
-                    Member::Fixed => true,
-                });
-                if alone && tie_accel.is_some_and(|tie| motion.leaving > tie) {
-                    opening.push(named());
-                }
-                if unmoved {
-                    broken.push(format!(
-                        "{}: no push on the contact would move either block",
-                        named()
-                    ));
-                    continue;
-                }
-                match (0..2).find_map(|k| broken_by(trial[k], &motion.bodies[k])) {
-                    None => holding.push((modes, named(), pressing(&motion))),
-                    Some((body, guard)) => {
-                        broken.push(format!("{}: {body} would {}", named(), breaks(guard)));
-                    }
+                each.collect::<Vec<_>>().join(" with ")
+            };
+            let motion = self.motion(trial, now);
+            // No push moves either body this way (its arm about each stuck pivot zero, as
+            // where the contact is on the line through both pivots).
+            let unmoved = motion.compliance.abs() <= tie_compliance;
+            if (!unmoved && motion.compliance < 0.0)
+                || (motion.bodies.iter()).any(|t| t.denominator.is_some_and(|d| d <= 0.0))
+            {
+                paradox.push(named());
+            }
+            let (_, alone) = alone(trial, now);
+            if alone && tie_accel.is_some_and(|tie| motion.leaving > tie) {
+                opening.push(named());
+            }
+            if unmoved {
+                broken.push(format!(
+                    "{}: no push on the contact would move either block",
+                    named()
+                ));
+                continue;
+            }
+            match (0..2).find_map(|k| broken_by(trial[k], &motion.bodies[k])) {
+                None => holding.push((modes, named(), pressing(&motion))),
+                Some((body, guard)) => {
+                    broken.push(format!("{}: {body} would {}", named(), breaks(guard)));
                 }
             }
         }
@@ -460,6 +438,49 @@ impl Couple {
         }
     }
 
+    /// Every way of the couple's bodies (`members`): each side's mode in it (none for a fixed
+    /// block's) and the members in those modes.
+    fn trials<'m>(
+        &self,
+        members: [Member<'m>; 2],
+    ) -> impl Iterator<Item = ([Option<Mode>; 2], [Member<'m>; 2])> {
+        let seconds = ways(members[1], self.pivots[1]);
+        ways(members[0], self.pivots[0])
+            .into_iter()
+            .flat_map(move |first| seconds.clone().into_iter().map(move |s| [first, s]))
+            .map(move |modes| {
+                let trial = [0, 1].map(|k| match (members[k], modes[k]) {
+                    (Member::Moves(body, _, state), Some(mode)) => Member::Moves(body, mode, state),
+                    _ => Member::Fixed,
+                });
+                (modes, trial)
+            })
+    }
+
+    /// The one way of the bodies (`members`) in which no push on the contact moves either
+    /// body (its compliance zero to a tie, as on stuck pivots both on the push's line) while
+    /// each body alone meets its conditions and their motions alone do not close the contact:
+    /// there it carries nothing, and each body goes on alone. None where no way, or more than
+    /// one, is so.
+    pub(super) fn unpushed(&self, members: [Member; 2], now: &Inputs) -> Option<[Option<Mode>; 2]> {
+        let tie = tie_compliance(members);
+        let (size, scale_t) = (members.iter()).fold((0.0, f64::INFINITY), |(m, s), b| match b {
+            Member::Moves(body, ..) => (body.size_m().max(m), body.time_scale_s().min(s)),
+            Member::Fixed => (m, s),
+        });
+        let mut found = self.trials(members).filter(|&(_, trial)| {
+            if self.motion(trial, now).compliance.abs() > tie {
+                return false;
+            }
+            let (trajectories, holds) = alone(trial, now);
+            holds && sign_after(&self.gap(&trajectories), size, scale_t) >= 0
+        });
+        match (found.next(), found.next()) {
+            (Some((modes, _)), None) => Some(modes),
+            _ => None,
+        }
+    }
+
     /// The contact lasts while the push stays >= 0.
     pub(super) fn condition(&self, body: &RockingBody, motion: &Motion) -> Constraint {
         Constraint {
@@ -469,6 +490,30 @@ impl Couple {
             strict: false,
         }
     }
+}
+
+/// Each side of a way (`trial`) moving alone, without the contact, and whether each body's
+/// conditions hold so.
+fn alone(trial: [Member; 2], now: &Inputs) -> ([Trajectory; 2], bool) {
+    let trajectories = trial.map(|m| match m {
+        Member::Moves(body, mode, state) => {
+            modes::trajectory(body, Equations::Exact, mode, state, now)
+        }
+        Member::Fixed => Trajectory::start(Mode::Rest, Equations::Exact, &UNMOVED),
+    });
+    let holds = (0..2).all(|k| broken_by(trial[k], &trajectories[k]).is_none());
+    (trajectories, holds)
+}
+
+/// The compliance of a push (1/kg) told from zero: a tie of a free body's, 1/m, the lightest
+/// moving body's.
+fn tie_compliance(members: [Member; 2]) -> f64 {
+    TIE * (members.iter())
+        .map(|m| match m {
+            Member::Moves(body, ..) => 1.0 / body.mass_kg,
+            Member::Fixed => 0.0,
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The sides' motion where one or two contacts (`ends`) hold them together, and each

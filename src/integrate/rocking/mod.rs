@@ -3714,6 +3714,21 @@ impl<'a> Engine<'a> {
                         lands_by_round_off(self.body(i), given.0[k], &given.1[k])?,
                     ))
                 });
+                // Both pivots at one point, the contact there: where the bodies alone keep it,
+                // it carries nothing, and each goes on alone.
+                let unpushed = (lands.is_none())
+                    .then(|| couple.unpushed(members, now))
+                    .flatten();
+                if let Some(unpushed) = unpushed {
+                    let sides = Sides {
+                        bodies,
+                        homes,
+                        states: given.1,
+                        modes: unpushed.map(|m| m.unwrap_or(Mode::Rest)),
+                    };
+                    self.holds_nothing(t, out, now, stays, through, sides);
+                    return Ok(None);
+                }
                 match lands {
                     Some(lands) => ([0, 1].map(|k| bodies[k].map(|_| given.0[k])), Some(lands)),
                     None => return Ok(Some(format!("{stays}, and {why}"))),
