@@ -438,6 +438,21 @@ impl Couple {
         }
     }
 
+    /// Whether the bodies (`members`), each alone in its mode, close the contact just after
+    /// (its distance falls below zero beyond a tie).
+    pub(super) fn closed_alone(&self, members: [Member; 2], now: &Inputs) -> bool {
+        self.closes(&alone(members, now).0, members)
+    }
+
+    /// Whether the sides moving as `t` say (the bodies `members`) close the contact just after.
+    fn closes(&self, t: &[Trajectory; 2], members: [Member; 2]) -> bool {
+        let (size, scale_t) = (members.iter()).fold((0.0, f64::INFINITY), |(m, s), b| match b {
+            Member::Moves(body, ..) => (body.size_m().max(m), body.time_scale_s().min(s)),
+            Member::Fixed => (m, s),
+        });
+        sign_after(&self.gap(t), size, scale_t) < 0
+    }
+
     /// Every way of the couple's bodies (`members`): each side's mode in it (none for a fixed
     /// block's) and the members in those modes.
     fn trials<'m>(
@@ -464,16 +479,12 @@ impl Couple {
     /// one, is so.
     pub(super) fn unpushed(&self, members: [Member; 2], now: &Inputs) -> Option<[Option<Mode>; 2]> {
         let tie = tie_compliance(members);
-        let (size, scale_t) = (members.iter()).fold((0.0, f64::INFINITY), |(m, s), b| match b {
-            Member::Moves(body, ..) => (body.size_m().max(m), body.time_scale_s().min(s)),
-            Member::Fixed => (m, s),
-        });
         let mut found = self.trials(members).filter(|&(_, trial)| {
             if self.motion(trial, now).compliance.abs() > tie {
                 return false;
             }
             let (trajectories, holds) = alone(trial, now);
-            holds && sign_after(&self.gap(&trajectories), size, scale_t) >= 0
+            holds && !self.closes(&trajectories, trial)
         });
         match (found.next(), found.next()) {
             (Some((modes, _)), None) => Some(modes),

@@ -3684,19 +3684,17 @@ impl<'a> Engine<'a> {
             Some(i) => Member::Moves(self.body(i), modes[k], &states[k]),
             None => Member::Fixed,
         });
-        if !couple.moves(members, tie_m) {
+        // A push that moves neither body can hold a contact the bodies alone do not close;
+        // where they close it, only a way that slips or lifts a pivot can (decided below).
+        if !couple.moves(members, tie_m) && !couple.closed_alone(members, now) {
             let sides = Sides {
                 bodies,
                 homes,
                 states,
                 modes,
             };
-            // A push that moves neither body can hold a contact the bodies alone do not close;
-            // where they close it, only a way that slips or lifts a pivot can (decided below).
-            if !self.closes_alone(t, &sides, now) {
-                self.holds_nothing(t, out, now, stays, through, sides);
-                return Ok(None);
-            }
+            self.holds_nothing(t, out, now, stays, through, sides);
+            return Ok(None);
         }
         let given = (modes, states);
         // A body the impact leaves a round-off from landing (its pivot a round-off above the
@@ -3816,28 +3814,9 @@ impl<'a> Engine<'a> {
         Ok(None)
     }
 
-    /// Whether the bodies of the contact `t`, each alone in the mode the impact leaves it
-    /// (`sides`), close the contact just after (its distance falls below zero beyond a tie).
-    fn closes_alone(&self, t: &Touch, sides: &Sides, now: &Inputs) -> bool {
-        let Sides {
-            bodies,
-            homes,
-            states,
-            modes,
-        } = sides;
-        let placed = [0, 1].map(|k| bodies[k].map(|_| &states[k]));
-        let contact = Couple::placed(t, *bodies, *homes, placed);
-        let alone = [0, 1].map(|k| match bodies[k] {
-            Some(i) => modes::trajectory(self.body(i), Equations::Exact, modes[k], &states[k], now),
-            None => Trajectory::start(Mode::Rest, Equations::Exact, &State::default()),
-        });
-        let (size, scale_t) = self.scales(*bodies);
-        series::sign_after(&contact.gap(&alone), size, scale_t) < 0
-    }
-
     /// An impact `t` whose contact stays (`out`; `stays` says how) where its push has no moment
     /// about either body's pivot (`sides`, as the impact leaves them) and each body alone does
-    /// not close it ([`Engine::closes_alone`]): a corner both bodies turn about, or that
+    /// not close it ([`Couple::closed_alone`]): a corner both bodies turn about, or that
     /// neither's motion moves, as where two blocks' bottom corners are together. It holds no
     /// push: each goes on alone, the pair struck (they must part before they may strike again).
     fn holds_nothing(
