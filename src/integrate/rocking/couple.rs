@@ -315,14 +315,14 @@ impl Couple {
     /// the ground only where its height grows just after now, not where it stays zero to a
     /// tie). A way whose push moves neither body (its compliance zero to a tie of a free body's,
     /// as on stuck pivots both on the push's line) cannot hold the contact closed; it counts
-    /// only as one that opens it. Where every other way's effective mass is positive (each slipping body's D and
-    /// the push's compliance), exactly one must hold with the contact closed, the push's own
-    /// condition not among them: where it falls at once, the blocks part at this instant. Where
-    /// friction leaves one not positive (Painleve), the law may have no motion or several, so
-    /// every way counts twice, with the contact closed and pressing and with it open (each
-    /// body alone, the corner leaving the face), and exactly one must hold: closed, it is
-    /// taken; open, the one way that holds closed is, and parts them at once. Else why not, in
-    /// words, naming each way and what breaks it.
+    /// only as one that opens it. Where every other way's effective mass is positive (each
+    /// slipping body's D and the push's compliance), exactly one must hold with the contact
+    /// closed, the push's own condition not among them: where it falls at once, the blocks
+    /// part at this instant. Where friction leaves one not positive (Painleve), the law may
+    /// have no motion or several, so every way counts twice, with the contact closed and
+    /// pressing and with it open (each body alone, the corner leaving the face), and exactly
+    /// one must hold: closed, it is taken; open, the one way that holds closed is, and parts
+    /// them at once. Else why not, in words, naming each way and what breaks it.
     pub(super) fn decide(
         &self,
         members: [Member; 2],
