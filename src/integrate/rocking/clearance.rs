@@ -186,6 +186,52 @@ fn along(own: &Placed, e: usize, other: &Placed, j: usize) -> Coeffs {
     series::add(&series::product(&rx, &tx), &series::product(&ry, &ty), 1.0)
 }
 
+/// How a corner met at the line of a face crosses that line and moves in from the face's
+/// nearer end: the order and coefficient of the first term of each distance (outside the line;
+/// in from the end) that is not zero to the tie (`usize::MAX` where none is).
+#[derive(Debug, Clone, Copy)]
+struct Crossing {
+    across: (usize, f64),
+    inward: (usize, f64),
+}
+
+impl Crossing {
+    fn of(across: Option<(usize, f64)>, inward: Option<(usize, f64)>) -> Crossing {
+        let none = (usize::MAX, 0.0);
+        Crossing {
+            across: across.unwrap_or(none),
+            inward: inward.unwrap_or(none),
+        }
+    }
+
+    /// Of the contacts found where two corners meet (`all`), the one that strikes: the
+    /// corner that crosses its face's line first (at the lowest order, then the fastest; the
+    /// impact stops that approach, any other is slower) and, of those that cross alike, the
+    /// one that moves in from its face's end first (it lies on that face just after; the other
+    /// corners only graze the ends of theirs). None where that leaves a tie.
+    fn first(all: &[Crossing]) -> Option<usize> {
+        let earliest = |among: Vec<usize>, term: fn(&Crossing) -> (usize, f64)| {
+            let (order, size) = among.iter().map(|&c| term(&all[c])).fold(
+                (usize::MAX, 0.0_f64),
+                |(k, x), (l, y)| match l.cmp(&k) {
+                    std::cmp::Ordering::Less => (l, y.abs()),
+                    std::cmp::Ordering::Equal => (k, x.max(y.abs())),
+                    std::cmp::Ordering::Greater => (k, x),
+                },
+            );
+            let alike = |(l, y): (usize, f64)| l == order && size - y.abs() <= TIE * size;
+            (among.into_iter())
+                .filter(|&c| order < usize::MAX && alike(term(&all[c])))
+                .collect::<Vec<_>>()
+        };
+        let crossing = earliest((0..all.len()).collect(), |c| c.across);
+        match earliest(crossing, |c| c.inward).as_slice() {
+            [one] => Some(*one),
+            _ => None,
+        }
+    }
+}
+
 /// The outward normal of edge e of `own`, turned with it, at one instant.
 fn normal(own: &At, e: usize) -> [f64; 2] {
     let [n0x, n0y] = NORMALS[e];
@@ -698,8 +744,9 @@ impl Clearance {
     /// a corner's faces so met, the one whose line it crosses last. One such contact strikes;
     /// two that are the ends of two faces' overlap (both corners of one block, ending one of its
     /// faces, on a face of the other, or a corner of each on the other's face ending the face
-    /// the other corner lies on) meet as faces; none, or any other set, gives none (corner on
-    /// corner).
+    /// the other corner lies on) meet as faces; of any other set (corners at one point, each on
+    /// the other's faces), the one [`Crossing::first`] picks strikes, and where it picks none,
+    /// none does (corner on corner).
     fn elsewhere(
         &self,
         k: usize,
@@ -709,9 +756,10 @@ impl Clearance {
     ) -> Option<Meeting> {
         let pair = &self.pairs[k];
         let (tie, ts) = (self.tie_m(k), self.time_scale_s(k, bodies));
-        // Each contact's face (true: of b; its edge), corner, distance from the face's line (m)
-        // and contact.
-        let mut found: Vec<((bool, usize), usize, f64, Touch)> = Vec::new();
+        // Each contact's face (true: of b; its edge), corner, distance from the face's line
+        // (m), contact, and how its corner crosses the line and moves in from the nearer end.
+        type Found = ((bool, usize), usize, f64, Touch, Crossing);
+        let mut found: Vec<Found> = Vec::new();
         for (of_b, e) in (0..8).map(|m| (m >= 4, m % 4)) {
             let (face, corner, at_face, at_corner, pieces) = match of_b {
                 true => (pb, pa, at_b, at_a, [pair.a, pair.b]),
@@ -733,26 +781,37 @@ impl Clearance {
                 };
                 if d.abs() <= tie && x >= -tie && x <= length + tie && meets() {
                     let touch = self.contact(k, pieces, (j, e), *p, n, bodies);
-                    found.push(((of_b, e), j, d, touch));
+                    let from_start = along(face, e, corner, j);
+                    let inward = match x < 0.5 * length {
+                        true => from_start,
+                        false => series::plus(&series::scaled(&from_start, -1.0), length),
+                    };
+                    let lead =
+                        |c: &Coeffs| series::leading(&series::shifted(c, tau), tie / TIE, ts);
+                    let crossing = Crossing::of(lead(&gaps[j]), lead(&inward));
+                    found.push(((of_b, e), j, d, touch, crossing));
                 }
             }
         }
         // A corner at the other block's corner lies between the ends of both its faces: it
         // goes in across the line it crosses last, the one it lies furthest outside of.
-        let outermost = |&(f, j, d, _): &((bool, usize), usize, f64, Touch)| {
-            !found.iter().any(|g| g.0 .0 == f.0 && g.1 == j && g.2 > d)
-        };
+        let outermost =
+            |&(f, j, d, ..): &Found| !found.iter().any(|g| g.0 .0 == f.0 && g.1 == j && g.2 > d);
         let found: Vec<_> = found.iter().filter(|c| outermost(c)).collect();
         let ends = |c: usize, e: usize| c == e || c == (e + 1) % 4;
         match found.as_slice() {
-            [(_, _, _, t)] => Some(Meeting::Strikes(*t)),
-            [((f, e), j, _, s), ((g, m), i, _, t)] => {
+            [(_, _, _, t, _)] => return Some(Meeting::Strikes(*t)),
+            [((f, e), j, _, s, _), ((g, m), i, _, t, _)] => {
                 let same = f == g && e == m && (*i == (j + 1) % 4 || *j == (i + 1) % 4);
                 let crossed = f != g && ends(*j, *m) && ends(*i, *e);
-                (same || crossed).then_some(Meeting::Faces([*s, *t]))
+                if same || crossed {
+                    return Some(Meeting::Faces([*s, *t]));
+                }
             }
-            _ => None,
+            _ => {}
         }
+        let first = Crossing::first(&found.iter().map(|c| c.4).collect::<Vec<_>>())?;
+        Some(Meeting::Strikes(found[first].3))
     }
 
     /// How pair k meets at the instant its blocks are `at_a` and `at_b`: the one corner on

@@ -143,7 +143,7 @@ pub fn sign_after(c: &[f64], scale: f64, time_s: f64) -> i8 {
 }
 
 /// Index and value of the first coefficient that is not zero in the sense of [`TIE`].
-fn leading(c: &[f64], scale: f64, time_s: f64) -> Option<(usize, f64)> {
+pub fn leading(c: &[f64], scale: f64, time_s: f64) -> Option<(usize, f64)> {
     let mut tk = 1.0;
     for (k, &x) in c.iter().enumerate() {
         if x.abs() * tk > TIE * scale {

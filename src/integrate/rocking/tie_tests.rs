@@ -126,7 +126,9 @@ fn slab_and_block_scenes_at_ties_of_round_off_run_to_their_end() {
 /// contact stay on it, the impact lifting both bodies off the ground: both ends press, the faces
 /// lie on each other until a body lands (4.96 s), one end staying; the next time they lie on
 /// each other (6.16 s), the wall's landing leaves both ends staying and pressing with the wall
-/// on the ground, and they lie on each other on, until two corners meet (14.90 s).
+/// on the ground, and they lie on each other on, until two corners meet (14.90 s): the slab's
+/// corner strikes the wall's face there, slides off its end, the wall's corner strikes the
+/// slab's face, and the wall's face comes down flat on the slab's, where no way holds.
 #[test]
 fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     let square = run(
@@ -159,20 +161,23 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     );
     let r = run(&three, (0.35, 1.2, 90.0), 15.0);
     assert!(
-        meets(&r, "two corners meet")
-            && (r.events.iter()).any(|e| {
-                (e.mode.as_deref()).is_some_and(|m| {
-                    m.starts_with("S's face comes down flat on W's at the ends of their overlap")
-                        && m.contains("and both ends press: the faces lie on each other")
-                })
+        meets(
+            &r,
+            "W's face comes down flat on S's, and both ends of their contact stay"
+        ) && (r.events.iter()).any(|e| {
+            e.time_s == r.summary.duration_s
+                && (e.mode.as_deref()).is_some_and(|m| m.starts_with("S's corner strikes W's"))
+        }) && (r.events.iter()).any(|e| {
+            (e.mode.as_deref()).is_some_and(|m| {
+                m.starts_with("S's face comes down flat on W's at the ends of their overlap")
+                    && m.contains("and both ends press: the faces lie on each other")
             })
-            && (r.events.iter()).any(|e| {
-                (e.mode.as_deref()).is_some_and(|m| {
-                    m.contains("as W lands from free flight on its left corner")
-                        && m.contains("and both press: the faces lie on each other on")
-                })
+        }) && (r.events.iter()).any(|e| {
+            (e.mode.as_deref()).is_some_and(|m| {
+                m.contains("as W lands from free flight on its left corner")
+                    && m.contains("and both press: the faces lie on each other on")
             })
-            && r.summary.duration_s > 14.9,
+        }) && r.summary.duration_s > 14.9,
         "{:?}",
         r.summary
     );
