@@ -188,40 +188,28 @@ fn along(own: &Placed, e: usize, other: &Placed, j: usize) -> Coeffs {
 
 /// How a corner met at the line of a face crosses that line and moves in from the face's
 /// nearer end: the order and coefficient of the first term of each distance (outside the line;
-/// in from the end) that is not zero to the tie (`usize::MAX` where none is).
+/// in from the end) that is not zero to the tie.
 #[derive(Debug, Clone, Copy)]
 struct Crossing {
-    across: (usize, f64),
-    inward: (usize, f64),
+    across: Option<(usize, f64)>,
+    inward: Option<(usize, f64)>,
 }
 
 impl Crossing {
-    fn of(across: Option<(usize, f64)>, inward: Option<(usize, f64)>) -> Crossing {
-        let none = (usize::MAX, 0.0);
-        Crossing {
-            across: across.unwrap_or(none),
-            inward: inward.unwrap_or(none),
-        }
-    }
-
     /// Of the contacts found where two corners meet (`all`), the one that strikes: the
     /// corner that crosses its face's line first (at the lowest order, then the fastest; the
     /// impact stops that approach, any other is slower) and, of those that cross alike, the
     /// one that moves in from its face's end first (it lies on that face just after; the other
     /// corners only graze the ends of theirs). None where that leaves a tie.
     fn first(all: &[Crossing]) -> Option<usize> {
-        let earliest = |among: Vec<usize>, term: fn(&Crossing) -> (usize, f64)| {
-            let (order, size) = among.iter().map(|&c| term(&all[c])).fold(
-                (usize::MAX, 0.0_f64),
-                |(k, x), (l, y)| match l.cmp(&k) {
-                    std::cmp::Ordering::Less => (l, y.abs()),
-                    std::cmp::Ordering::Equal => (k, x.max(y.abs())),
-                    std::cmp::Ordering::Greater => (k, x),
-                },
-            );
-            let alike = |(l, y): (usize, f64)| l == order && size - y.abs() <= TIE * size;
-            (among.into_iter())
-                .filter(|&c| order < usize::MAX && alike(term(&all[c])))
+        let earliest = |among: Vec<usize>, term: fn(&Crossing) -> Option<(usize, f64)>| {
+            let terms = || among.iter().filter_map(|&c| term(&all[c]));
+            let order = terms().map(|(k, _)| k).min();
+            let size = (terms().filter(|&(k, _)| Some(k) == order))
+                .fold(0.0, |m: f64, (_, x)| m.max(x.abs()));
+            let alike = |(k, x): (usize, f64)| Some(k) == order && size - x.abs() <= TIE * size;
+            (among.iter().copied())
+                .filter(|&c| term(&all[c]).is_some_and(alike))
                 .collect::<Vec<_>>()
         };
         let crossing = earliest((0..all.len()).collect(), |c| c.across);
@@ -771,6 +759,7 @@ impl Clearance {
             let t = [(c1[0] - c0[0]) / length, (c1[1] - c0[1]) / length];
             let gaps = distances(face, e, corner);
             let after = |c: &Coeffs| series::sign_after(&series::shifted(c, tau), tie / TIE, ts);
+            let lead = |c: &Coeffs| series::leading(&series::shifted(c, tau), tie / TIE, ts);
             for (j, p) in at_corner.corners.iter().enumerate() {
                 let r = [p[0] - c0[0], p[1] - c0[1]];
                 let (d, x) = (r[0] * n[0] + r[1] * n[1], r[0] * t[0] + r[1] * t[1]);
@@ -786,9 +775,10 @@ impl Clearance {
                         true => from_start,
                         false => series::plus(&series::scaled(&from_start, -1.0), length),
                     };
-                    let lead =
-                        |c: &Coeffs| series::leading(&series::shifted(c, tau), tie / TIE, ts);
-                    let crossing = Crossing::of(lead(&gaps[j]), lead(&inward));
+                    let crossing = Crossing {
+                        across: lead(&gaps[j]),
+                        inward: lead(&inward),
+                    };
                     found.push(((of_b, e), j, d, touch, crossing));
                 }
             }
