@@ -387,9 +387,10 @@ fn a_contact_on_the_line_through_both_pivots_that_closes_slips_a_pivot() {
 /// at 1 Hz (scan run 1625): at 0.9368795 s the slab, tipping onto the block after a series of
 /// landings, brings its top corner to the block's, the two corners one point to the bit (the
 /// slab's a round-off below the block's top). Each corner lies on the other's two faces there,
-/// and the run stopped ("two corners meet"). The slab's corner crosses the line of the block's
-/// side face at first order, in from the top end of that face, and so strikes it: the one
-/// contact among four whose corner goes in across its face fastest and, of those, along it
+/// and the run stopped ("two corners meet"). On the top faces neither corner is a contact (each
+/// block lies below the other's top); on the side faces both cross the line at first order
+/// alike, and the block's corner moves in along the slab's face faster (at second order), so it
+/// strikes: the contact whose corner goes in across its face fastest and, of those, along it
 /// first. The blocks part at once and the run goes on to its end, never overlapping, its
 /// balance closing.
 #[test]
@@ -400,7 +401,7 @@ fn two_corners_at_one_point_strike_where_one_goes_in_fastest() {
         e.kind == EventKind::BlocksImpact
             && (e.time_s - 0.936_879_502).abs() < 1e-9
             && e.mode.as_ref().is_some_and(|m| {
-                m.starts_with("S's corner strikes W's face at 1.183135e-4 m/s, parting")
+                m.starts_with("W's corner strikes S's face at 1.183135e-4 m/s, parting")
             })
     });
     assert!(strikes, "{:#?}", r.events);

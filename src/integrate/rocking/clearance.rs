@@ -760,9 +760,16 @@ impl Clearance {
             let gaps = distances(face, e, corner);
             let after = |c: &Coeffs| series::sign_after(&series::shifted(c, tau), tie / TIE, ts);
             let lead = |c: &Coeffs| series::leading(&series::shifted(c, tau), tie / TIE, ts);
+            let off = |p: &[f64; 2]| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1];
+            // A block touching a face lies wholly outside its line (a corner inside it, the
+            // contact strictly within the face, would be inside the other block); at the face's
+            // end, a block that reaches inside the line touches the other face there instead.
+            if at_corner.corners.iter().any(|p| off(p) < -tie) {
+                continue;
+            }
             for (j, p) in at_corner.corners.iter().enumerate() {
                 let r = [p[0] - c0[0], p[1] - c0[1]];
-                let (d, x) = (r[0] * n[0] + r[1] * n[1], r[0] * t[0] + r[1] * t[1]);
+                let (d, x) = (off(p), r[0] * t[0] + r[1] * t[1]);
                 let meets = || {
                     let from_start = along(face, e, corner, j);
                     let from_end = series::plus(&series::scaled(&from_start, -1.0), length);
@@ -793,7 +800,9 @@ impl Clearance {
             [(_, _, _, t, _)] => return Some(Meeting::Strikes(*t)),
             [((f, e), j, _, s, _), ((g, m), i, _, t, _)] => {
                 let same = f == g && e == m && (*i == (j + 1) % 4 || *j == (i + 1) % 4);
-                let crossed = f != g && ends(*j, *m) && ends(*i, *e);
+                // Corners of each at one point end no overlap of faces.
+                let apart = (s.point[0] - t.point[0]).hypot(s.point[1] - t.point[1]) > tie;
+                let crossed = f != g && ends(*j, *m) && ends(*i, *e) && apart;
                 if same || crossed {
                     return Some(Meeting::Faces([*s, *t]));
                 }
