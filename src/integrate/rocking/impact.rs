@@ -154,8 +154,8 @@ pub fn rise_m_s(body: &RockingBody, theta: f64, corner: Corner, (yg0, omega): (f
 /// landing corner alone, plastic in its normal). Where friction holds the corner, the angular
 /// momentum about it is kept and the body rocks on it; where not, the corner slips through the
 /// impact with the friction impulse at its limit (Routh), turning its slip within the impact
-/// where it stops there ([`slip_turning`]). At theta = 0 both corners land:
-/// [`land_flat`]. The wall's restitution factor multiplies the velocities after, as it does
+/// where it stops there ([`slip_turning`]). At theta = 0 both corners land ([`land_flat`]),
+/// unless the other one rises: then `corner` alone does. The wall's restitution factor multiplies the velocities after, as it does
 /// Housner's. A corner that reaches the ground without coming down touches it ([`touches`]).
 /// (The landing at theta = 0 from rocking keeps [`land`], whose arithmetic every earlier run's
 /// outputs were computed with.)
@@ -174,7 +174,12 @@ pub fn land_from_flight(
     );
     let (ig, io) = (body.inertia_kg_m2, body.corner_inertia_kg_m2());
     let before = 0.5 * m * (xg0 * xg0 + yg0 * yg0) + 0.5 * ig * omega * omega;
-    if theta == 0.0 {
+    // Upright, both corners reach the ground; where the other one rises (an impact at a
+    // vertical face left the body turning up off it), this one alone lands.
+    let rises = |c: Corner| rise_m_s(body, theta, c, (yg0, omega)) > 0.0;
+    let other = corner.other();
+    let alone = rises(other) && !touches(body, theta, other, (yg0, omega));
+    if theta == 0.0 && !alone {
         return land_flat(body, xg0, yg0, omega, before, time_s);
     }
     // The centroid G_y above the corner and dx = dG_y/dtheta; turning about the corner, the
@@ -568,5 +573,34 @@ mod tests {
         assert!(!l.slipped);
         let before = 0.5 * body.corner_inertia_kg_m2() * 0.25;
         assert!((l.loss_j - before * (1.0 - r * r)).abs() < 1e-12 * before);
+    }
+
+    /// An upright body in flight whose one corner comes down while the other rises (an impact
+    /// at a vertical face left it turning up off its base: scan run 1148) lands on the falling
+    /// corner alone and rocks on it, the other corner going on up; taken as a flat landing, it
+    /// needed a pulling impulse at both corners and stopped the run. Where both come down, it
+    /// lands flat.
+    #[test]
+    fn an_upright_body_lands_on_the_corner_that_comes_down() {
+        let body = RockingBody::rectangle("B", 0.6, 1.2, 900.0, 0.8, 9.81);
+        let (m, b, h, ig) = (
+            body.mass_kg,
+            body.half_base_m,
+            body.centroid_height_m,
+            body.inertia_kg_m2,
+        );
+        let (xg, yg, omega) = (0.05, 0.2, -2.0);
+        assert!(rise_m_s(&body, 0.0, Corner::Left, (yg, omega)) < 0.0);
+        assert!(rise_m_s(&body, 0.0, Corner::Right, (yg, omega)) > 0.0);
+        let l = land_from_flight(&body, 0.0, Corner::Left, (xg, yg, omega), 0.0).unwrap();
+        assert_eq!(l.pivot, Some(Corner::Left));
+        let w = l.state.omega;
+        let (gy, dx) = (h, -b);
+        let (pt, pn) = (m * (l.state.v + gy * w - xg), m * (dx * w - yg));
+        assert!((ig * (w - omega) + gy * pt + dx * pn).abs() < 1e-12 * ig * omega.abs());
+        assert!(pn > 0.0 && pt.abs() <= body.friction * pn && l.loss_j > 0.0);
+        assert!(w < 0.0 && rise_m_s(&body, 0.0, Corner::Right, (dx * w, w)) > 0.0);
+        let flat = land_from_flight(&body, 0.0, Corner::Left, (xg, -0.5, 0.3), 0.0).unwrap();
+        assert_eq!((flat.pivot, flat.state.omega), (None, 0.0));
     }
 }

@@ -4086,10 +4086,17 @@ impl<'a> Engine<'a> {
         );
         let level = st.theta.abs() <= series::TIE * body.slenderness_rad();
         let other = corner.other();
-        let lower = corner.sign() * st.theta < 0.0
-            && impact::rise_m_s(body, st.theta, other, (yg, st.omega)) < 0.0
-            && !impact::touches(body, st.theta, other, (yg, st.omega));
-        let corner = if level && lower { other } else { corner };
+        let rise = |c: Corner| impact::rise_m_s(body, st.theta, c, (yg, st.omega));
+        let falls =
+            |c: Corner| rise(c) < 0.0 && !impact::touches(body, st.theta, c, (yg, st.omega));
+        let lower = corner.sign() * st.theta < 0.0 && falls(other);
+        // Upright, the corner that comes down lands, not the one that rises.
+        let upright = st.theta == 0.0 && falls(other) && rise(corner) > 0.0;
+        let corner = if (level && lower) || upright {
+            other
+        } else {
+            corner
+        };
         let landing = impact::land_from_flight(body, st.theta, corner, (xg, yg, st.omega), self.t)?;
         // The landing corner's displacement: the other corner lies 2 s b cos theta from the
         // one followed, 2 s b apart at rest (2 s b (1 - cos) = 4 s b sin^2(theta / 2)).
