@@ -734,7 +734,12 @@ impl Clearance {
     /// faces, on a face of the other, or a corner of each on the other's face ending the face
     /// the other corner lies on) meet as faces; of any other set (corners at one point, each on
     /// the other's faces), the one [`Crossing::first`] picks strikes, and where it picks none,
-    /// none does (corner on corner).
+    /// none does (corner on corner). Where no contact is found, a corner at the end of a face,
+    /// that goes across the face's line before it moves out past the end (its distance from the
+    /// end zero to the tie until an order above the crossing's), strikes that face if it lies
+    /// inside the face at the instant and no other such corner does (the top corners of two
+    /// blocks of one height, one tilting onto the other: its corner lies h (1 - cos theta) below
+    /// the other's, within any tie, and the other's corner beyond the end of its face).
     fn elsewhere(
         &self,
         k: usize,
@@ -748,6 +753,9 @@ impl Clearance {
         // (m), contact, and how its corner crosses the line and moves in from the nearer end.
         type Found = ((bool, usize), usize, f64, Touch, Crossing);
         let mut found: Vec<Found> = Vec::new();
+        // Corners that cross a face's line at an end they do not move in from (to the tie), and
+        // leave later if at all, with their distance inside the face from that end (m).
+        let mut at_ends: Vec<(Touch, f64)> = Vec::new();
         for (of_b, e) in (0..8).map(|m| (m >= 4, m % 4)) {
             let (face, corner, at_face, at_corner, pieces) = match of_b {
                 true => (pb, pa, at_b, at_a, [pair.a, pair.b]),
@@ -770,25 +778,44 @@ impl Clearance {
             for (j, p) in at_corner.corners.iter().enumerate() {
                 let r = [p[0] - c0[0], p[1] - c0[1]];
                 let (d, x) = (off(p), r[0] * t[0] + r[1] * t[1]);
-                let meets = || {
-                    let from_start = along(face, e, corner, j);
-                    let from_end = series::plus(&series::scaled(&from_start, -1.0), length);
-                    after(&gaps[j]) < 0 && after(&from_start) > 0 && after(&from_end) > 0
+                if d.abs() > tie || x < -tie || x > length + tie || after(&gaps[j]) >= 0 {
+                    continue;
+                }
+                let from_start = along(face, e, corner, j);
+                let from_end = series::plus(&series::scaled(&from_start, -1.0), length);
+                let (start, end) = (lead(&from_start), lead(&from_end));
+                let across = lead(&gaps[j]);
+                let moves_in = |l: Option<(usize, f64)>| l.is_some_and(|(_, v)| v > 0.0);
+                // It goes across the line before it leaves the end, if it does.
+                let stays = |l: Option<(usize, f64)>| {
+                    l.is_none_or(|(o, v)| v > 0.0 || across.is_some_and(|(a, _)| o > a))
                 };
-                if d.abs() <= tie && x >= -tie && x <= length + tie && meets() {
-                    let touch = self.contact(k, pieces, (j, e), *p, n, bodies);
-                    let from_start = along(face, e, corner, j);
-                    let inward = match x < 0.5 * length {
-                        true => from_start,
-                        false => series::plus(&series::scaled(&from_start, -1.0), length),
+                if !stays(start) || !stays(end) {
+                    continue;
+                }
+                let touch = self.contact(k, pieces, (j, e), *p, n, bodies);
+                if !moves_in(start) || !moves_in(end) {
+                    at_ends.push((touch, x.min(length - x)));
+                } else {
+                    let inward = if x < 0.5 * length {
+                        from_start
+                    } else {
+                        from_end
                     };
                     let crossing = Crossing {
-                        across: lead(&gaps[j]),
+                        across,
                         inward: lead(&inward),
                     };
                     found.push(((of_b, e), j, d, touch, crossing));
                 }
             }
+        }
+        if found.is_empty() {
+            let mut inside = at_ends.iter().filter(|(_, x)| *x > 0.0);
+            return match (inside.next(), inside.next()) {
+                (Some((touch, _)), None) => Some(Meeting::Strikes(*touch)),
+                _ => None,
+            };
         }
         // A corner at the other block's corner lies between the ends of both its faces: it
         // goes in across the line it crosses last, the one it lies furthest outside of.

@@ -14,7 +14,7 @@ use super::{Equations, Rocking};
 use crate::integrate::{Integrator, Scenario, Settings};
 use crate::model::Model;
 use crate::motion::{Motion, Sine};
-use crate::response::{CollapseCause, Response, Warning};
+use crate::response::{CollapseCause, EventKind, Response, Warning};
 
 /// A row of blocks 1.2 m high (0.5 m thick, 2,500 kg/m3): `blocks` as RON.
 pub(super) fn row(friction: f64, restitution: f64, blocks: &str) -> Model {
@@ -245,6 +245,40 @@ fn a_body_coming_upright_as_its_face_comes_flat_lands_with_both_ends_at_once() {
         never_overlap(&r, [placed(0), placed(1)], 1.2f64.hypot(1.2));
         balances(&r);
     }
+}
+
+/// The wall, the slab and the squat block of [`three_blocks`] (friction 0.8, restitution 0.8,
+/// the wall 0.6 m wide) under El Centro at 0.6 g (scan run 1162): at 4.1102843 s the wall, just
+/// landed on its near corner, and the slab, tilted 4.9e-8 rad onto it about its near corner,
+/// bring their top corners together, the slab's 1.6e-15 m below the wall's (h (1 - cos theta)).
+/// The slab's corner crosses the wall's side at first order and would leave the end of that
+/// face at second order only; the wall's corner lies beyond the end of the slab's face. The run
+/// stopped there ("two corners meet"); the slab's corner strikes, and the run goes on to its end
+/// without a warning, the wall and the slab never overlapping, the balance closing.
+#[test]
+fn top_corners_of_one_height_meet_where_the_tilting_block_goes_below() {
+    use super::clearance_tests::{never_overlap, run};
+    use super::handoff_tests::el_centro;
+    let model = three_blocks(0.8, 0.8, 0.6, 0.02);
+    let r = run(&model, &el_centro(0.6), 15.0, 0.0);
+    assert_eq!(r.summary.duration_s, 15.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    let strikes = r.events.iter().any(|e| {
+        e.kind == EventKind::BlocksImpact
+            && (e.time_s - 4.110_284_284_4).abs() < 1e-9
+            && e.mode.as_ref().is_some_and(|m| {
+                m.starts_with("S's corner strikes W's face at 7.746782e-5 m/s, parting")
+            })
+    });
+    assert!(strikes, "{:#?}", r.events);
+    let w = model.wall();
+    let placed = |k: usize| {
+        let b = &w.blocks[k];
+        let width = b.width.to_f64();
+        (b.x.to_f64() + width / 2.0, (width, b.height.to_f64()))
+    };
+    never_overlap(&r, [placed(0), placed(1)], 1.2f64.hypot(1.2));
+    balances(&r);
 }
 
 /// A wall W, a slab S and a squat block T 1.0 x 0.8 m, apart by `gap` m, 1.2 m high.
