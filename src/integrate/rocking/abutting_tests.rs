@@ -418,8 +418,9 @@ fn two_corners_at_one_point_strike_where_one_goes_in_fastest() {
 /// the slab's corner, inside the face at the instant and crossing it before it could leave,
 /// strikes, and the run goes on to its end (4 s), its balance closing. Followed here to 1.69 s,
 /// never overlapping: at 1.7001698 s a strike of the slab's corner meets the block's landing
-/// from a tilt of 3.8e-11 rad, seated flat at once, and the two overlap by 4.5e-12 m, within
-/// the tie of lengths but not the 1e-14 of the size asked of a drawing (not mended).
+/// from a tilt within the tie (under 6e-12 rad), seated flat at once, and the two overlap by
+/// 4.5e-12 m, within the tie of lengths but not the 1e-14 of the size asked of a drawing (not
+/// mended).
 #[test]
 fn a_corner_that_crosses_a_face_at_its_end_before_it_leaves_the_end_strikes() {
     let model = slab_and_block(0.6, 0.5, (0.8, 1.2, 0.0));
