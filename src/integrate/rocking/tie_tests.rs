@@ -209,7 +209,6 @@ fn meets(r: &Response, how: &str) -> bool {
 /// overlapping and the energy balance closing.
 #[test]
 fn a_body_coming_upright_as_its_face_comes_flat_lands_with_both_ends_at_once() {
-    use super::clearance_tests::never_overlap;
     let scenes = [
         (
             slab_and_block(0.6, 0.0, (0.8, 1.2, 0.05)),
@@ -235,14 +234,7 @@ fn a_body_coming_upright_as_its_face_comes_flat_lands_with_both_ends_at_once() {
         assert!(landed, "{motion:?}: {:#?}", r.events);
         assert_eq!(r.summary.duration_s, t, "{:?}", r.summary.warnings);
         assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
-        let w = model.wall();
-        let placed = |k: usize| {
-            let b = &w.blocks[k];
-            let width = b.width.to_f64();
-            (b.x.to_f64() + width / 2.0, (width, b.height.to_f64()))
-        };
-        // The first two blocks: S and W, or W and S.
-        never_overlap(&r, [placed(0), placed(1)], 1.2f64.hypot(1.2));
+        first_two_never_overlap(&model, &r);
         balances(&r);
     }
 }
@@ -257,7 +249,7 @@ fn a_body_coming_upright_as_its_face_comes_flat_lands_with_both_ends_at_once() {
 /// without a warning, the wall and the slab never overlapping, the balance closing.
 #[test]
 fn top_corners_of_one_height_meet_where_the_tilting_block_goes_below() {
-    use super::clearance_tests::{never_overlap, run};
+    use super::clearance_tests::run;
     use super::handoff_tests::el_centro;
     let model = three_blocks(0.8, 0.8, 0.6, 0.02);
     let r = run(&model, &el_centro(0.6), 15.0, 0.0);
@@ -271,14 +263,21 @@ fn top_corners_of_one_height_meet_where_the_tilting_block_goes_below() {
             })
     });
     assert!(strikes, "{:#?}", r.events);
+    first_two_never_overlap(&model, &r);
+    balances(&r);
+}
+
+/// Asserts that the first two blocks of `model` (S and W, or W and S), drawn from the rows of
+/// `r`, never overlap.
+fn first_two_never_overlap(model: &Model, r: &Response) {
+    use super::clearance_tests::never_overlap;
     let w = model.wall();
     let placed = |k: usize| {
         let b = &w.blocks[k];
         let width = b.width.to_f64();
         (b.x.to_f64() + width / 2.0, (width, b.height.to_f64()))
     };
-    never_overlap(&r, [placed(0), placed(1)], 1.2f64.hypot(1.2));
-    balances(&r);
+    never_overlap(r, [placed(0), placed(1)], 1.2f64.hypot(1.2));
 }
 
 /// A wall W, a slab S and a squat block T 1.0 x 0.8 m, apart by `gap` m, 1.2 m high.
