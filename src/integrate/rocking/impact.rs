@@ -155,8 +155,9 @@ pub fn rise_m_s(body: &RockingBody, theta: f64, corner: Corner, (yg0, omega): (f
 /// momentum about it is kept and the body rocks on it; where not, the corner slips through the
 /// impact with the friction impulse at its limit (Routh), turning its slip within the impact
 /// where it stops there ([`slip_turning`]). At theta = 0 both corners land ([`land_flat`]),
-/// unless the other one rises: then `corner` alone does. The wall's restitution factor multiplies the velocities after, as it does
-/// Housner's. A corner that reaches the ground without coming down touches it ([`touches`]).
+/// unless the other one rises: then `corner` alone does. The wall's restitution factor
+/// multiplies the velocities after, as it does Housner's. A corner that reaches the ground
+/// without coming down touches it ([`touches`]).
 /// (The landing at theta = 0 from rocking keeps [`land`], whose arithmetic every earlier run's
 /// outputs were computed with.)
 pub fn land_from_flight(
@@ -174,13 +175,15 @@ pub fn land_from_flight(
     );
     let (ig, io) = (body.inertia_kg_m2, body.corner_inertia_kg_m2());
     let before = 0.5 * m * (xg0 * xg0 + yg0 * yg0) + 0.5 * ig * omega * omega;
-    // Upright, both corners reach the ground; where the other one rises (an impact at a
-    // vertical face left the body turning up off it), this one alone lands.
-    let rises = |c: Corner| rise_m_s(body, theta, c, (yg0, omega)) > 0.0;
-    let other = corner.other();
-    let alone = rises(other) && !touches(body, theta, other, (yg0, omega));
-    if theta == 0.0 && !alone {
-        return land_flat(body, xg0, yg0, omega, before, time_s);
+    if theta == 0.0 {
+        // Upright, both corners reach the ground; where the other one rises (an impact at a
+        // vertical face left the body turning up off it), this one alone lands.
+        let other = corner.other();
+        let alone = rise_m_s(body, theta, other, (yg0, omega)) > 0.0
+            && !touches(body, theta, other, (yg0, omega));
+        if !alone {
+            return land_flat(body, xg0, yg0, omega, before, time_s);
+        }
     }
     // The centroid G_y above the corner and dx = dG_y/dtheta; turning about the corner, the
     // centroid moves at theta' (G_y, dx).
