@@ -456,7 +456,7 @@ mod tests {
             sides: [Side::Body(1, [0.9, 0.0]), Side::Body(0, [0.3, 0.0])],
             point: [0.6, 0.0],
             normal: [1.0, 0.0],
-            tie_m_s: 1e-12,
+            scales: (0.1, 1.0),
             pair: 0,
             corner: 0,
             edge: 1,

@@ -112,9 +112,9 @@ pub(super) struct Touch {
     pub point: [f64; 2],
     /// The face's outward normal, pointing into the corner's block.
     pub normal: [f64; 2],
-    /// The speed along the normal (m/s) the pair tells from round-off: the tie tolerance over
-    /// the bodies' shortest time scale.
-    pub tie_m_s: f64,
+    /// The size (m) and time (s) scales by which the pair tells a distance between its blocks
+    /// from zero ([`Clearance::scales`]): whatever decides on this contact takes them.
+    pub scales: (f64, f64),
     /// The pair, for [`Clearance::strike`].
     pub pair: usize,
     /// Which of its block's corners (counter-clockwise from the bottom left) the corner is.
@@ -124,6 +124,14 @@ pub(super) struct Touch {
     /// The pair was struck and has not parted since by more than the tie tolerance: the blocks
     /// stay in contact (the gap an elastic impact opens closes again within round-off).
     pub stays: bool,
+}
+
+impl Touch {
+    /// The speed along the normal (m/s) the pair tells from round-off: the tie tolerance over
+    /// the bodies' shortest time scale.
+    pub fn tie_m_s(&self) -> f64 {
+        TIE * self.scales.0 / self.scales.1
+    }
 }
 
 /// The pairs of blocks of a scene that stand apart, and the edge that keeps each apart.
@@ -395,10 +403,23 @@ impl Clearance {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// The size (m) and time (s) scales by which a distance between pair k's blocks is told
+    /// from zero in the sense of the tie ([`series::leading`]): every decision on that
+    /// distance, here or in the engine, takes these, or two of them may read one contact
+    /// differently (one finding it closing, the other opening, at one instant).
+    pub(super) fn scales(&self, k: usize, bodies: &[RockingBody]) -> (f64, f64) {
+        (self.size_m(k), self.time_scale_s(k, bodies))
+    }
+
+    /// The larger of pair k's blocks' sizes (m).
+    fn size_m(&self, k: usize) -> f64 {
+        let pair = &self.pairs[k];
+        self.pieces[pair.a].size_m.max(self.pieces[pair.b].size_m)
+    }
+
     /// The tie tolerance of pair k's distances (m).
     fn tie_m(&self, k: usize) -> f64 {
-        let pair = &self.pairs[k];
-        TIE * self.pieces[pair.a].size_m.max(self.pieces[pair.b].size_m)
+        TIE * self.size_m(k)
     }
 
     /// Each pair's edge from where the bodies start: the one that keeps it apart by most. Two
@@ -505,7 +526,7 @@ impl Clearance {
             else {
                 continue;
             };
-            let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
+            let (scale, ts) = self.scales(k, bodies);
             let mut consider = |g: &Coeffs| {
                 let g = if from > 0.0 {
                     series::shifted(g, from)
@@ -585,7 +606,7 @@ impl Clearance {
         tau: f64,
         bodies: &[RockingBody],
     ) -> Option<(bool, usize)> {
-        let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
+        let (scale, ts) = self.scales(k, bodies);
         let (at_a, at_b) = (pa.at(tau), pb.at(tau));
         (0..8)
             .filter_map(|m| {
@@ -643,7 +664,7 @@ impl Clearance {
             sides: [self.side(of), self.side(on)],
             point,
             normal,
-            tie_m_s: self.tie_m(k) / self.time_scale_s(k, bodies),
+            scales: self.scales(k, bodies),
         }
     }
 
@@ -663,7 +684,7 @@ impl Clearance {
         let pair = &self.pairs[k];
         let lies = pair.lies.expect("lying faces");
         let piece = |of_b: bool| if of_b { pair.b } else { pair.a };
-        let (scale, ts) = (self.tie_m(k) / TIE, self.time_scale_s(k, bodies));
+        let (scale, ts) = self.scales(k, bodies);
         let (at_a, at_b) = (&pa.at(tau), &pb.at(tau));
         // The end nearest an end of its face of those that go past it, and the corner of the
         // face there.
@@ -748,7 +769,7 @@ impl Clearance {
         bodies: &[RockingBody],
     ) -> Option<Meeting> {
         let pair = &self.pairs[k];
-        let (tie, ts) = (self.tie_m(k), self.time_scale_s(k, bodies));
+        let ((scale, ts), tie) = (self.scales(k, bodies), self.tie_m(k));
         // Each contact's face (true: of b; its edge), corner, distance from the face's line
         // (m), contact, and how its corner crosses the line and moves in from the nearer end.
         type Found = ((bool, usize), usize, f64, Touch, Crossing);
@@ -766,8 +787,8 @@ impl Clearance {
             let length = (c1[0] - c0[0]).hypot(c1[1] - c0[1]);
             let t = [(c1[0] - c0[0]) / length, (c1[1] - c0[1]) / length];
             let gaps = distances(face, e, corner);
-            let after = |c: &Coeffs| series::sign_after(&series::shifted(c, tau), tie / TIE, ts);
-            let lead = |c: &Coeffs| series::leading(&series::shifted(c, tau), tie / TIE, ts);
+            let after = |c: &Coeffs| series::sign_after(&series::shifted(c, tau), scale, ts);
+            let lead = |c: &Coeffs| series::leading(&series::shifted(c, tau), scale, ts);
             let off = |p: &[f64; 2]| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1];
             // A block touching a face lies wholly outside its line (a corner inside it, the
             // contact strictly within the face, would be inside the other block); at the face's

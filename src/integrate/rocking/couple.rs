@@ -441,15 +441,12 @@ impl Couple {
     /// Whether the bodies (`members`), each alone in its mode, close the contact just after
     /// (its distance falls below zero beyond a tie).
     pub(super) fn closed_alone(&self, members: [Member; 2], now: &Inputs) -> bool {
-        self.closes(&alone(members, now).0, members)
+        self.closes(&alone(members, now).0)
     }
 
-    /// Whether the sides moving as `t` say (the bodies `members`) close the contact just after.
-    fn closes(&self, t: &[Trajectory; 2], members: [Member; 2]) -> bool {
-        let (size, scale_t) = (members.iter()).fold((0.0, f64::INFINITY), |(m, s), b| match b {
-            Member::Moves(body, ..) => (body.size_m().max(m), body.time_scale_s().min(s)),
-            Member::Fixed => (m, s),
-        });
+    /// Whether the sides moving as `t` say close the contact just after.
+    fn closes(&self, t: &[Trajectory; 2]) -> bool {
+        let (size, scale_t) = self.touch.scales;
         sign_after(&self.gap(t), size, scale_t) < 0
     }
 
@@ -484,7 +481,7 @@ impl Couple {
                 return false;
             }
             let (trajectories, holds) = alone(trial, now);
-            holds && !self.closes(&trajectories, trial)
+            holds && !self.closes(&trajectories)
         });
         match (found.next(), found.next()) {
             (Some((modes, _)), None) => Some(modes),

@@ -131,7 +131,8 @@ impl Lying {
         // after the acceleration saying so where that is zero to a tie.
         let leaves = |e: usize, t: &[Trajectory; 2]| {
             let gap = self.ends[e].gap(&self.ordered(t, e));
-            series::sign_after(&gap, first.size_m(), first.time_scale_s()) > 0
+            let (size, scale_t) = self.ends[e].touch.scales;
+            series::sign_after(&gap, size, scale_t) > 0
         };
         // A push that W leaves undetermined (a singular matrix: no arm turns either body
         // about its pivot) presses nowhere.

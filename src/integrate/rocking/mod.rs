@@ -1299,17 +1299,8 @@ impl<'a> Engine<'a> {
             Some(k) => self.trajectory(k, now),
             None => Trajectory::start(Mode::Rest, Equations::Exact, &State::default()),
         });
-        let (size, scale_t) = self.scales(bodies);
+        let (size, scale_t) = t.scales;
         series::sign_after(&placed.approach(&trajs), size, scale_t) > 0
-    }
-
-    /// The larger size (m) and the shorter time scale (s) of the bodies among `bodies`: what
-    /// a contact's distance between them is told from zero by.
-    fn scales(&self, bodies: [Option<usize>; 2]) -> (f64, f64) {
-        let moving = bodies.iter().flatten().map(|&k| self.body(k));
-        moving.fold((0.0, f64::INFINITY), |(m, s), b| {
-            (b.size_m().max(m), b.time_scale_s().min(s))
-        })
     }
 
     /// A face comes down flat on a face, and the two ends of their overlap (`ends`) take their
@@ -1386,7 +1377,7 @@ impl<'a> Engine<'a> {
                     restitution: 0.0,
                 };
                 let sides = t.sides.map(|side| index(side).map(|j| &turning[j]));
-                collision::approach(sides, &contact).0 < -t.tie_m_s
+                collision::approach(sides, &contact).0 < -t.tie_m_s()
             })
         };
         let upright = |k: usize| {
@@ -1501,11 +1492,11 @@ impl<'a> Engine<'a> {
         let sides_of = |l: &collision::Link| l.sides.map(|k| k.map(|j| &bodies[j]));
         let (_, speed, _) = collision::approach(sides_of(&links[1]), &links[1].contact);
         let mut stays = [
-            all.normal_m_s[0].1 <= t.tie_m_s,
+            all.normal_m_s[0].1 <= t.tie_m_s(),
             all.normal_m_s[1].1
                 <= match couple {
                     Some(_) => series::TIE * speed,
-                    None => held.tie_m_s,
+                    None => held.tie_m_s(),
                 },
         ];
         // Where both ends are left at rest on each other, the words saying so and that the
@@ -2186,7 +2177,7 @@ impl<'a> Engine<'a> {
                 return Ok(());
             }
         };
-        let mut stays = [0, 1].map(|e| all.normal_m_s[e].1 <= ends[e].tie_m_s);
+        let mut stays = [0, 1].map(|e| all.normal_m_s[e].1 <= ends[e].tie_m_s());
         // Where both ends stay, which press decides how the faces go on.
         let mut pressed = None;
         if stays == [true, true] {
@@ -3167,7 +3158,7 @@ impl<'a> Engine<'a> {
             Ok(all) => all,
             Err(refusal) => return Ok(AtOnce::Stops(refusal.to_string())),
         };
-        if all.normal_m_s[0].1 <= t.tie_m_s {
+        if all.normal_m_s[0].1 <= t.tie_m_s() {
             return Ok(AtOnce::InTurn);
         }
         // The contacts that stay, and no body in two of them: taking each in turn would not end.
@@ -3306,7 +3297,7 @@ impl<'a> Engine<'a> {
             }
             Err(refusal) => return Ok(Some(refusal.to_string())),
         };
-        if t.stays || out.normal_m_s.1 <= t.tie_m_s {
+        if t.stays || out.normal_m_s.1 <= t.tie_m_s() {
             return self.rests_against(t, &turning, &out, now, stays, Through::Approach);
         }
         self.clearance.strike(t.pair);
