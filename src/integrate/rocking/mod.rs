@@ -387,6 +387,13 @@ fn upright_by_round_off(body: &RockingBody, state: &State) -> bool {
     state.theta.abs() <= tie && state.omega.abs() <= tie * body.frequency_parameter_rad_s()
 }
 
+/// Whether every coefficient of a trajectory's coordinates is a number.
+fn finite(t: &Trajectory) -> bool {
+    [&t.theta, &t.omega, &t.u, &t.v, &t.lift, &t.lift_v]
+        .iter()
+        .all(|c| c.iter().all(|x| x.is_finite()))
+}
+
 /// What a body does in `mode` from `state`, in words.
 fn in_mode(mode: Mode, state: &State) -> String {
     match mode {
@@ -810,6 +817,17 @@ impl<'a> Engine<'a> {
                     continue;
                 }
                 let traj = self.trajectory(i, &inputs);
+                // A motion that is not a number would send every search for its events down to
+                // round-off everywhere at once (the clearance's subdivision never rules a
+                // subinterval out): the run stops here instead, naming the body.
+                if !finite(&traj) {
+                    return Err(SimulationError::Bug(format!(
+                        "{}'s motion {} at t = {} s is not a number",
+                        self.body(i).name,
+                        in_mode(traj.mode, &self.tracks[i].state),
+                        self.t
+                    )));
+                }
                 if let Some((until, ..)) = self.tracks[i].settles {
                     // Seated through the rest of its series of landings.
                     let x = until - self.t;
