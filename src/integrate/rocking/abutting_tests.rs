@@ -416,15 +416,15 @@ fn two_corners_at_one_point_strike_where_one_goes_in_fastest() {
 /// second order (the slab's tilt slowing); the block's corner lies beyond the end of the slab's
 /// face. No corner was seen to move in from an end and the run stopped ("two corners meet");
 /// the slab's corner, inside the face at the instant and crossing it before it could leave,
-/// strikes, and the run goes on to its end (4 s), its balance closing. Followed here to 1.69 s,
-/// never overlapping: at 1.7001698 s a strike of the slab's corner meets the block's landing
-/// from a tilt within the tie (under 6e-12 rad), seated flat at once, and the two overlap by
-/// 4.5e-12 m, within the tie of lengths but not the 1e-14 of the size asked of a drawing (not
-/// mended).
+/// strikes, and the run goes on to its end (4 s), its balance closing, the two never
+/// overlapping: at 1.7001698 s a strike of the slab's corner meets the block's landing from a
+/// tilt within the tie (under 6e-12 rad), set to zero, which moved the block's face into the
+/// slab's corner by 4.5e-12 m; the block's base now moves along the ground by what keeps the
+/// corner where it was (`Engine::seat_shift_touching_m`).
 #[test]
 fn a_corner_that_crosses_a_face_at_its_end_before_it_leaves_the_end_strikes() {
     let model = slab_and_block(0.6, 0.5, (0.8, 1.2, 0.0));
-    let r = to_end(&model, (0.3, 1.0, 0.0), 1.69);
+    let r = to_end(&model, (0.3, 1.0, 0.0), 4.0);
     let strikes = (r.events.iter()).any(|e| {
         e.kind == EventKind::BlocksImpact
             && (e.time_s - 0.654_031_554_5).abs() < 1e-9

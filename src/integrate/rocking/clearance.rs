@@ -973,6 +973,52 @@ impl Clearance {
         }
     }
 
+    /// The contacts of body i's blocks with the other blocks at the instant the bodies'
+    /// trajectories `trajs` start from: each corner of one block of a pair (one of its blocks
+    /// moved by body i, the other not) within the tie of the line of a face of the other and
+    /// between that face's ends, to the tie. What a body set down from a tilt of a tie must not
+    /// move into.
+    pub(super) fn touching(
+        &self,
+        i: usize,
+        bodies: &[RockingBody],
+        trajs: &[Option<&Trajectory>],
+    ) -> Vec<Touch> {
+        let moved_by_i = |p: usize| self.pieces[p].body.is_some_and(|(b, _)| b == i);
+        let mut found = Vec::new();
+        for (k, pair) in self.pairs.iter().enumerate() {
+            if moved_by_i(pair.a) == moved_by_i(pair.b) {
+                continue;
+            }
+            let (Some(pa), Some(pb)) = (
+                self.placed(pair.a, bodies, trajs),
+                self.placed(pair.b, bodies, trajs),
+            ) else {
+                continue;
+            };
+            let (at_a, at_b, tie) = (pa.at(0.0), pb.at(0.0), self.tie_m(k));
+            for (face, corner, pieces) in [
+                (&at_a, &at_b, [pair.b, pair.a]),
+                (&at_b, &at_a, [pair.a, pair.b]),
+            ] {
+                for e in 0..4 {
+                    let n = normal(face, e);
+                    let (c0, c1) = (face.corners[e], face.corners[(e + 1) % 4]);
+                    let length = (c1[0] - c0[0]).hypot(c1[1] - c0[1]);
+                    let t = [(c1[0] - c0[0]) / length, (c1[1] - c0[1]) / length];
+                    for (j, p) in corner.corners.iter().enumerate() {
+                        let r = [p[0] - c0[0], p[1] - c0[1]];
+                        let (d, x) = (r[0] * n[0] + r[1] * n[1], r[0] * t[0] + r[1] * t[1]);
+                        if d.abs() <= tie && x >= -tie && x <= length + tie {
+                            found.push(self.contact(k, pieces, (j, e), *p, n, bodies));
+                        }
+                    }
+                }
+            }
+        }
+        found
+    }
+
     /// The blocks of `pair` took an impact: they must part before they may strike again.
     pub(super) fn strike(&mut self, pair: usize) {
         self.pairs[pair].struck = true;

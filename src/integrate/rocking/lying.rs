@@ -205,10 +205,15 @@ impl Lying {
                 tried += 4;
                 let both = self.motion(trial, now);
                 let [[w00, w01], [w10, w11]] = both.compliance;
-                if w00 <= 0.0 || w11 <= 0.0 || w00 * w11 - w01 * w10 <= 0.0 || slips(&both.bodies) {
+                let det = w00 * w11 - w01 * w10;
+                if w00 <= 0.0 || w11 <= 0.0 || det <= 0.0 || slips(&both.bodies) {
                     paradox.push(named([true, true]));
                 }
-                if both.pushes.iter().all(&presses) && kept(&both.bodies) {
+                // A matrix singular to a tie (the two ends constrain one motion, as on a body
+                // at rest and one on a stuck pivot) leaves the pushes undetermined, whatever
+                // its round-off solves them to: they press nowhere.
+                let determined = det > series::TIE * w00 * w11;
+                if determined && both.pushes.iter().all(&presses) && kept(&both.bodies) {
                     holding.push((picked, [true, true], named([true, true])));
                 }
                 for e in 0..2 {

@@ -340,31 +340,40 @@ fn settled_in(body: &RockingBody, mode: Mode, state: State) -> State {
     state
 }
 
-/// How far along the ground (m) a body whose face lies on another's, tilted by `theta` (rad)
-/// about its pivot (its home at rest `home`, its base moved by `u`) as it lands on its base,
-/// must be moved so that, turned back with the body to theta = 0, neither end of the faces
-/// (`ends`: each point, the face's normal pointing into the corner's block, and +1 where the
-/// body is the corner's block, -1 where it is the face's) moves into the other block: one end
-/// stays where it was along its normal and the other opens, by at most the tilt times the
-/// faces' overlap.
-fn lying_seat_shift_m(
-    ends: [([f64; 2], [f64; 2], f64); 2],
+/// How far along the ground (m) a body in contact with other blocks (`contacts`: each point,
+/// the face's normal pointing into the corner's block, and +1 where the body is the corner's
+/// block, -1 where it is the face's), tilted by `theta` (rad) about its pivot (its home at rest
+/// `home`, its base moved by `u`) as it lands, must be moved so that, turned back with the body
+/// to theta = 0, no contact moves into the other block where a shift can keep them all out: of
+/// the shifts that keep one contact where it was along its normal, the first that opens the
+/// others most. For faces lying on each other (their overlap's two ends) one end stays and the
+/// other opens, by at most the tilt times the overlap. None without a contact.
+fn seat_shift_among_m(
+    contacts: &[([f64; 2], [f64; 2], f64)],
     home: [f64; 2],
     theta: f64,
     u: f64,
 ) -> f64 {
-    // How far each end opens (m) with the base moved by `shift`.
-    let opens = |shift: f64| {
-        ends.map(|(point, normal, side)| {
-            side * (shift - seat_shift_m(point, normal, home, theta, u)) * normal[0]
-        })
+    // The least any contact opens (m) with the base moved by `shift`.
+    let least = |shift: f64| {
+        (contacts.iter())
+            .map(|&(point, normal, side)| {
+                side * (shift - seat_shift_m(point, normal, home, theta, u)) * normal[0]
+            })
+            .fold(f64::INFINITY, f64::min)
     };
-    let keeps = ends.map(|(point, normal, _)| seat_shift_m(point, normal, home, theta, u));
-    let least = |shift: f64| opens(shift)[0].min(opens(shift)[1]);
-    match least(keeps[0]) >= least(keeps[1]) {
-        true => keeps[0],
-        false => keeps[1],
-    }
+    let keeps = contacts
+        .iter()
+        .map(|&(point, normal, _)| seat_shift_m(point, normal, home, theta, u));
+    keeps
+        .fold(None, |best: Option<(f64, f64)>, shift| {
+            let opens = least(shift);
+            match best {
+                Some((_, most)) if most >= opens => best,
+                _ => Some((shift, opens)),
+            }
+        })
+        .map_or(0.0, |(shift, _)| shift)
 }
 
 /// How far along the ground (m) a body that lands on its base, tilted by `theta` (rad) about
@@ -2169,7 +2178,7 @@ impl<'a> Engine<'a> {
                 };
                 let at = ends.each_ref().map(|t| (t.point, t.normal, side(t)));
                 let st = &mut self.tracks[k].state;
-                st.u += lying_seat_shift_m(at, home, theta, st.u);
+                st.u += seat_shift_among_m(&at, home, theta, st.u);
             }
         }
         let mut turning = ids.map(|(k, origin)| self.turning(k, origin));
@@ -4005,6 +4014,7 @@ impl<'a> Engine<'a> {
         // is then seated at theta = 0: what potential energy it had there (m g b theta, up to
         // 5e-9 J for a 0.4 m block) goes with the landing's loss, or the balance would lose it.
         let dropped = modes::potential_j(body, &self.trajectory(i, now), 0.0);
+        let u = u + self.seat_shift_touching_m(i, pivot, now);
         self.install(i, &landing, u, dropped);
         let mut what = landing
             .pivot
@@ -4042,6 +4052,38 @@ impl<'a> Engine<'a> {
             }
         }
         self.decide(i, now, false)
+    }
+
+    /// How far along the ground (m) body i, landing alone from its tilt of a tie about `pivot`,
+    /// is moved so that no block touching one of its side faces at the instant (a corner just
+    /// struck on it, or one of its corners on another's face) is moved into as the tilt is set
+    /// to zero ([`seat_shift_among_m`]): setting down a tilt of 1e-11 rad moves the top of a
+    /// block 1.2 m high by about as much. None where nothing touches its sides.
+    fn seat_shift_touching_m(&self, i: usize, pivot: Corner, now: &Inputs) -> f64 {
+        let st = &self.tracks[i].state;
+        if st.theta == 0.0 || !self.clearance.watches(i) {
+            return 0.0;
+        }
+        let trajs: Vec<Option<Trajectory>> = (0..self.tracks.len())
+            .map(|k| (self.tracks[k].fallen.is_none()).then(|| self.trajectory(k, now)))
+            .collect();
+        let trajs: Vec<Option<&Trajectory>> = trajs.iter().map(Option::as_ref).collect();
+        let touching = self.clearance.touching(i, self.scene.bodies, &trajs);
+        let sideways = |t: &&Touch| t.normal[0].abs() > std::f64::consts::FRAC_1_SQRT_2;
+        let is_i = |s: Side| matches!(s, Side::Body(b, _) if b == i);
+        let (mut contacts, mut origin) = (Vec::new(), None);
+        for t in touching.iter().filter(sideways) {
+            // Body i is the corner's side (+1) or the face's (-1).
+            let k = usize::from(!is_i(t.sides[0]));
+            if let Side::Body(_, o) = t.sides[k] {
+                origin = Some(o);
+            }
+            contacts.push((t.point, t.normal, if k == 0 { 1.0 } else { -1.0 }));
+        }
+        let Some(origin) = origin else {
+            return 0.0;
+        };
+        seat_shift_among_m(&contacts, self.home(i, origin, pivot), st.theta, st.u)
     }
 
     /// Body i comes to rest, now, at the end of the series of landings a landing at `after`

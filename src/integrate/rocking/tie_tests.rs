@@ -172,8 +172,8 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
             &r,
             "they stay in contact as S lands on its base and W lands on its base, and no mode of \
              the pivots holds with the contact"
-        ) && at(14.908_367_793_9, "S's corner strikes W's face")
-            && at(14.908_367_793_9, "W's corner touches S's face")
+        ) && at(14.908_367_727_6, "S's corner strikes W's face")
+            && at(14.908_367_727_6, "W's corner touches S's face")
             && (r.events.iter()).any(|e| {
                 (e.mode.as_deref()).is_some_and(|m| {
                     m.starts_with("S's face comes down flat on W's at the ends of their overlap")
@@ -186,7 +186,7 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
                         && m.contains("and both press: the faces lie on each other on")
                 })
             })
-            && (r.summary.duration_s - 14.908_394_486).abs() < 1e-8,
+            && (r.summary.duration_s - 14.908_394_418).abs() < 1e-8,
         "{:?}",
         r.summary
     );
@@ -263,6 +263,35 @@ fn top_corners_of_one_height_meet_where_the_tilting_block_goes_below() {
             })
     });
     assert!(strikes, "{:#?}", r.events);
+    first_two_never_overlap(&model, &r);
+    balances(&r);
+}
+
+/// The wall, the slab and the squat block of [`three_blocks`] (friction 0.8, no restitution,
+/// the wall 0.6 m wide) under El Centro at 0.6 g (scan run 970): at 5.3712987 s the slab's face
+/// comes down flat on the wall's, the wall upright on its base, and both ends are left at rest
+/// on each other. Of the ways tried, the wall at rest with the slab on its stuck pivot pressing
+/// at both ends has a compliance matrix singular to round-off (the two ends constrain the one
+/// motion left); solved, its round-off gave pushes that passed as pressing and, with the
+/// blocks set down from their ties of tilt as they now are, a motion that was not a number.
+/// Such pushes are undetermined and press nowhere: no way holds, and the run stops there, by
+/// name, the wall and the slab never overlapping, the balance closing.
+#[test]
+fn pushes_a_singular_matrix_leaves_undetermined_press_nowhere() {
+    use super::clearance_tests::run;
+    use super::handoff_tests::el_centro;
+    let model = three_blocks(0.8, 0.0, 0.6, 0.02);
+    let r = run(&model, &el_centro(0.6), 15.0, 0.0);
+    assert!(
+        (r.summary.duration_s - 5.371_298_685_3).abs() < 1e-9,
+        "{:?}",
+        r.summary
+    );
+    assert!(
+        meets(&r, "none of the 112 ways of the pivots and the ends holds"),
+        "{:?}",
+        r.summary.warnings
+    );
     first_two_never_overlap(&model, &r);
     balances(&r);
 }
@@ -688,7 +717,7 @@ fn a_body_seated_from_a_tie_keeps_its_contact_along_the_normal() {
 #[test]
 fn a_body_seated_from_a_tie_under_lying_faces_moves_into_neither_end() {
     use super::clearance_tests::block_corners;
-    use super::lying_seat_shift_m;
+    use super::seat_shift_among_m;
     let (home, u) = ([0.3, 0.0], 0.01);
     for theta in [1e-11, 0.2f64] {
         let (sin, cos) = theta.sin_cos();
@@ -698,7 +727,7 @@ fn a_body_seated_from_a_tie_under_lying_faces_moves_into_neither_end() {
         for side in [-1.0, 1.0f64] {
             // The face's outward normal, into the corners' block.
             let n = [-side * cos, side * sin];
-            let shift = lying_seat_shift_m([(p, n, side), (q, n, side)], home, theta, u);
+            let shift = seat_shift_among_m(&[(p, n, side), (q, n, side)], home, theta, u);
             let seated = block_corners(0.15, (0.3, 1.2), &[0.0, u + shift, 0.0, 0.0, 0.0, 0.0]);
             let opens = [(seated[1], p), (seated[2], q)]
                 .map(|(a, b)| side * ((a[0] - b[0]) * n[0] + (a[1] - b[1]) * n[1]));
