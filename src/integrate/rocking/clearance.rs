@@ -228,6 +228,41 @@ impl Crossing {
     }
 }
 
+/// Edge e of a placed block at an instant, as points are measured against it.
+struct Line {
+    /// Its first corner (m).
+    c0: [f64; 2],
+    /// Its outward normal.
+    n: [f64; 2],
+    /// Its direction from the first corner to the second.
+    t: [f64; 2],
+    /// Its length (m).
+    length: f64,
+}
+
+impl Line {
+    fn of(own: &At, e: usize) -> Line {
+        let (c0, c1) = (own.corners[e], own.corners[(e + 1) % 4]);
+        let length = (c1[0] - c0[0]).hypot(c1[1] - c0[1]);
+        Line {
+            c0,
+            n: normal(own, e),
+            t: [(c1[0] - c0[0]) / length, (c1[1] - c0[1]) / length],
+            length,
+        }
+    }
+
+    /// How far point p stands outside the edge's line, and how far along it from the first
+    /// corner (m).
+    fn place(&self, p: &[f64; 2]) -> (f64, f64) {
+        let r = [p[0] - self.c0[0], p[1] - self.c0[1]];
+        (
+            r[0] * self.n[0] + r[1] * self.n[1],
+            r[0] * self.t[0] + r[1] * self.t[1],
+        )
+    }
+}
+
 /// The outward normal of edge e of `own`, turned with it, at one instant.
 fn normal(own: &At, e: usize) -> [f64; 2] {
     let [n0x, n0y] = NORMALS[e];
@@ -782,14 +817,12 @@ impl Clearance {
                 true => (pb, pa, at_b, at_a, [pair.a, pair.b]),
                 false => (pa, pb, at_a, at_b, [pair.b, pair.a]),
             };
-            let n = normal(at_face, e);
-            let (c0, c1) = (at_face.corners[e], at_face.corners[(e + 1) % 4]);
-            let length = (c1[0] - c0[0]).hypot(c1[1] - c0[1]);
-            let t = [(c1[0] - c0[0]) / length, (c1[1] - c0[1]) / length];
+            let line = Line::of(at_face, e);
+            let (n, length) = (line.n, line.length);
             let gaps = distances(face, e, corner);
             let after = |c: &Coeffs| series::sign_after(&series::shifted(c, tau), scale, ts);
             let lead = |c: &Coeffs| series::leading(&series::shifted(c, tau), scale, ts);
-            let off = |p: &[f64; 2]| (p[0] - c0[0]) * n[0] + (p[1] - c0[1]) * n[1];
+            let off = |p: &[f64; 2]| line.place(p).0;
             // A block touching a face lies wholly outside its line (a corner inside it, the
             // contact strictly within the face, would be inside the other block); at the face's
             // end, a block that reaches inside the line touches the other face there instead.
@@ -797,8 +830,7 @@ impl Clearance {
                 continue;
             }
             for (j, p) in at_corner.corners.iter().enumerate() {
-                let r = [p[0] - c0[0], p[1] - c0[1]];
-                let (d, x) = (off(p), r[0] * t[0] + r[1] * t[1]);
+                let (d, x) = line.place(p);
                 if d.abs() > tie || x < -tie || x > length + tie || after(&gaps[j]) >= 0 {
                     continue;
                 }
@@ -1002,15 +1034,11 @@ impl Clearance {
                 (&at_b, &at_a, [pair.a, pair.b]),
             ] {
                 for e in 0..4 {
-                    let n = normal(face, e);
-                    let (c0, c1) = (face.corners[e], face.corners[(e + 1) % 4]);
-                    let length = (c1[0] - c0[0]).hypot(c1[1] - c0[1]);
-                    let t = [(c1[0] - c0[0]) / length, (c1[1] - c0[1]) / length];
+                    let line = Line::of(face, e);
                     for (j, p) in corner.corners.iter().enumerate() {
-                        let r = [p[0] - c0[0], p[1] - c0[1]];
-                        let (d, x) = (r[0] * n[0] + r[1] * n[1], r[0] * t[0] + r[1] * t[1]);
-                        if d.abs() <= tie && x >= -tie && x <= length + tie {
-                            found.push(self.contact(k, pieces, (j, e), *p, n, bodies));
+                        let (d, x) = line.place(p);
+                        if d.abs() <= tie && x >= -tie && x <= line.length + tie {
+                            found.push(self.contact(k, pieces, (j, e), *p, line.n, bodies));
                         }
                     }
                 }
