@@ -75,6 +75,16 @@ struct Lies {
 /// Where two blocks meet: the instant within the step, their outputs and how.
 pub(super) type Meet = (f64, (usize, usize), Meeting);
 
+/// Where a pair's blocks stand at an instant (see [`Clearance::set_down`]).
+pub(super) enum Seated {
+    /// Apart by more than the tie tolerance, this edge keeping them apart by most.
+    Apart((bool, usize)),
+    /// Upright side by side, a face of each on the other's: the ends of their overlap.
+    FaceOnFace(Box<[Touch; 2]>),
+    /// Touching otherwise (or inside one another).
+    Touching,
+}
+
 /// How two blocks meet.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Meeting {
@@ -470,30 +480,87 @@ impl Clearance {
     ) -> Result<Vec<[Touch; 2]>, SimulationError> {
         let mut lying = Vec::new();
         for k in 0..self.pairs.len() {
-            let (a, b) = (self.pairs[k].a, self.pairs[k].b);
-            let (Some(pa), Some(pb)) =
-                (self.placed(a, bodies, trajs), self.placed(b, bodies, trajs))
-            else {
-                continue;
-            };
-            let (edge, margin) = widest(&pa.at(0.0), &pb.at(0.0));
-            if margin <= self.tie_m(k) {
-                if let Some(ends) = self.face_on_face(k, (&pa.at(0.0), &pb.at(0.0)), bodies) {
+            match self.seated(k, bodies, trajs) {
+                None => {}
+                Some(Seated::FaceOnFace(ends)) => {
                     self.lie(k, Some(&ends));
-                    lying.push(ends);
-                    continue;
+                    lying.push(*ends);
                 }
-                return Err(SimulationError::NotApplicable(format!(
-                    "{} and {} touch (or lie inside one another) where the run starts: the exact \
-                     rocking model follows blocks of different columns only while they stand \
-                     apart; run this wall sliding exactly (--model slide) or on time stepping \
-                     (--model slide-rock --method moreau --dt S)",
-                    names[self.pieces[a].output], names[self.pieces[b].output]
-                )));
+                Some(Seated::Apart(edge)) => self.pairs[k].edge = edge,
+                Some(Seated::Touching) => {
+                    let (a, b) = (self.pairs[k].a, self.pairs[k].b);
+                    return Err(SimulationError::NotApplicable(format!(
+                        "{} and {} touch (or lie inside one another) where the run starts: the \
+                         exact rocking model follows blocks of different columns only while they \
+                         stand apart; run this wall sliding exactly (--model slide) or on time \
+                         stepping (--model slide-rock --method moreau --dt S)",
+                        names[self.pieces[a].output], names[self.pieces[b].output]
+                    )));
+                }
             }
-            self.pairs[k].edge = edge;
         }
         Ok(lying)
+    }
+
+    /// Pair k's blocks where the bodies' trajectories `trajs` start (none where a body of theirs
+    /// lies fallen): apart by more than the tie tolerance (the edge that keeps them apart by
+    /// most), upright side by side with a face of each on the other's (the ends of their
+    /// overlap), or touching otherwise.
+    fn seated(
+        &self,
+        k: usize,
+        bodies: &[RockingBody],
+        trajs: &[Option<&Trajectory>],
+    ) -> Option<Seated> {
+        let (pa, pb) = (
+            self.placed(self.pairs[k].a, bodies, trajs)?,
+            self.placed(self.pairs[k].b, bodies, trajs)?,
+        );
+        let (at_a, at_b) = (pa.at(0.0), pb.at(0.0));
+        let (edge, margin) = widest(&at_a, &at_b);
+        Some(if margin > self.tie_m(k) {
+            Seated::Apart(edge)
+        } else if let Some(ends) = self.face_on_face(k, (&at_a, &at_b), bodies) {
+            Seated::FaceOnFace(Box::new(ends))
+        } else {
+            Seated::Touching
+        })
+    }
+
+    /// The pair of blocks `blocks` (outputs, either order), and the bodies that move its blocks
+    /// (in the pair's order; none for a block that stays with the ground).
+    pub(super) fn pair_of(&self, blocks: (usize, usize)) -> Option<(usize, [Option<usize>; 2])> {
+        let outputs = |pair: &Pair| (self.pieces[pair.a].output, self.pieces[pair.b].output);
+        let k = self.pairs.iter().position(|pair| {
+            let (a, b) = outputs(pair);
+            (a, b) == blocks || (b, a) == blocks
+        })?;
+        let body = |p: usize| self.pieces[p].body.map(|(i, _)| i);
+        Some((k, [body(self.pairs[k].a), body(self.pairs[k].b)]))
+    }
+
+    /// Pair k's blocks, both bodies set down seated where `trajs` start, as [`Clearance::start`]
+    /// finds a pair (none where a body lies fallen): lying face on face from here, or apart,
+    /// watched from the edge that keeps them apart by most; whatever the pair was held in
+    /// (a couple, faces lying on each other) has ended. Where they touch otherwise nothing is
+    /// changed and none is returned.
+    pub(super) fn set_down(
+        &mut self,
+        k: usize,
+        bodies: &[RockingBody],
+        trajs: &[Option<&Trajectory>],
+    ) -> Option<Seated> {
+        let seated = self.seated(k, bodies, trajs)?;
+        match &seated {
+            Seated::Touching => return None,
+            Seated::FaceOnFace(ends) => self.lie(k, Some(ends)),
+            Seated::Apart(edge) => {
+                self.lie(k, None);
+                self.pairs[k].edge = *edge;
+            }
+        }
+        (self.pairs[k].held, self.pairs[k].leaning) = (None, false);
+        Some(seated)
     }
 
     /// Pair k's blocks (placed as `at_a` and `at_b`), both moved by bodies, upright side by

@@ -64,7 +64,7 @@ use crate::integrate::{AfterCollapse, Settings};
 use crate::motion::{Motion, Segment, Shape};
 use crate::response::{Collapse, CollapseCause, EventKind, Recorder, Response, Warning};
 use abutting::Abutting;
-use clearance::{Clearance, Meeting, Side, Touch};
+use clearance::{Clearance, Meeting, Seated, Side, Touch};
 use couple::{Couple, Member};
 use layout::Layout;
 use lean::Lean;
@@ -564,9 +564,10 @@ impl<'a> Engine<'a> {
         }
     }
 
-    /// Two bodies whose blocks touch face on face where the run starts (`ends`: the contacts
-    /// at the ends of their overlap) lie on each other from there, seated at rest; returns the
-    /// first body. A body released from a tilt cannot start so.
+    /// Two bodies whose blocks touch face on face, seated at rest, where the run starts or where
+    /// they are set down ([`Engine::sets_down`]; `ends`: the contacts at the ends of their
+    /// overlap), lie on each other from there; returns the first body. A body released from a
+    /// tilt cannot start so.
     fn abut(&mut self, ends: [Touch; 2]) -> Result<usize, SimulationError> {
         let sides = ends[0].sides.map(|side| match side {
             Side::Body(k, origin) => (k, origin),
@@ -575,7 +576,7 @@ impl<'a> Engine<'a> {
         let [a, b] = sides.map(|(k, _)| k);
         let moved = |k: usize| {
             let st = self.tracks[k].state;
-            (st.theta, st.omega, st.u, st.v, st.lift) != (0.0, 0.0, 0.0, 0.0, 0.0)
+            (st.theta, st.omega, st.v, st.lift) != (0.0, 0.0, 0.0, 0.0)
         };
         if let Some(k) = [a, b].into_iter().find(|&k| moved(k)) {
             return Err(SimulationError::NotApplicable(format!(
@@ -590,7 +591,7 @@ impl<'a> Engine<'a> {
             let push_x = [1.0, -1.0][k] * ends[0].normal[0];
             self.home(sides[k].0, sides[k].1, Corner::of_sign(push_x))
         });
-        let states = [State::default(); 2];
+        let states = [a, b].map(|k| self.tracks[k].state);
         let lying = Lying::new(ends.each_ref(), [a, b], homes, states.each_ref());
         for k in [a, b] {
             (self.tracks[k].mode, self.tracks[k].lies) = (Mode::Rest, Some(lying));
@@ -1166,10 +1167,7 @@ impl<'a> Engine<'a> {
                 | Guard::Uplift => self.relie(i, guard, now),
                 Guard::Impact => self.lying_lands(i, None, now),
                 Guard::Land(corner) => self.lying_lands(i, Some(corner), now),
-                _ => {
-                    self.lying_gives(i, guard);
-                    Ok(())
-                }
+                _ => self.lying_gives(i, guard, now),
             };
         }
         if self.tracks[i].couple.is_some() {
@@ -1188,10 +1186,7 @@ impl<'a> Engine<'a> {
                 | Guard::Stop
                 | Guard::Uplift => self.recouple(i, guard, now),
                 Guard::Overturn => self.couple_overturns(i, traj, tau, now),
-                _ => {
-                    self.couple_gives(i, guard);
-                    Ok(())
-                }
+                _ => self.couple_gives(i, guard, now),
             };
         }
         match guard {
@@ -1273,8 +1268,7 @@ impl<'a> Engine<'a> {
                 Some(why) => why,
             },
         };
-        self.stops_meeting((a, b), why);
-        Ok(())
+        self.meeting_not_followed((a, b), why, now)
     }
 
     /// The face beside the corner of body i's couple comes down flat on the face the corner
@@ -2036,8 +2030,11 @@ impl<'a> Engine<'a> {
         let decision = match lying.decide(self.members(&lying.ends[0]), now) {
             Ok(decision) => decision,
             Err(why) => {
-                self.stops_meeting(blocks, format!("{a}'s face lies on {b}'s, and {why}"));
-                return Ok(());
+                return self.meeting_not_followed(
+                    blocks,
+                    format!("{a}'s face lies on {b}'s, and {why}"),
+                    now,
+                );
             }
         };
         self.rec.stats.mode_decisions += 1;
@@ -2141,8 +2138,7 @@ impl<'a> Engine<'a> {
             _ => None,
         };
         if let Some(why) = why {
-            self.stops_meeting(pair, format!("{comes}, and {why}"));
-            return Ok(());
+            return self.meeting_not_followed(pair, format!("{comes}, and {why}"), now);
         }
         if partner.is_some() {
             if let Some(due) = self.landings.get_mut(j) {
@@ -2200,8 +2196,7 @@ impl<'a> Engine<'a> {
         let all = match collision::resolve_all(&turning, &links) {
             Ok(all) => all,
             Err(refusal) => {
-                self.stops_meeting(pair, format!("{comes}, and {refusal}"));
-                return Ok(());
+                return self.meeting_not_followed(pair, format!("{comes}, and {refusal}"), now);
             }
         };
         let mut stays = [0, 1].map(|e| all.normal_m_s[e].1 <= ends[e].tie_m_s());
@@ -2221,8 +2216,7 @@ impl<'a> Engine<'a> {
                          {:.6e} N s), and {why}",
                         all.impulse_n_s[0], all.impulse_n_s[1]
                     );
-                    self.stops_meeting(pair, why);
-                    return Ok(());
+                    return self.meeting_not_followed(pair, why, now);
                 }
             }
         }
@@ -2292,7 +2286,7 @@ impl<'a> Engine<'a> {
                 );
                 let through = Through::Landing(i, partner.map(|_| j));
                 if let Some(why) = self.rests_against(t, &sides, &out, now, why, through)? {
-                    self.stops_meeting(pair, why);
+                    self.meeting_not_followed(pair, why, now)?;
                 }
             }
         }
@@ -2301,8 +2295,8 @@ impl<'a> Engine<'a> {
 
     /// Body i, whose face lies on another's, would change its mode otherwise than by a landing
     /// (`guard`: lie on its face): the exact model does not follow that; the run ends here and
-    /// says so.
-    fn lying_gives(&mut self, i: usize, guard: Guard) {
+    /// says so ([`Engine::meeting_not_followed`]).
+    fn lying_gives(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
         let lying = self.tracks[i].lies.expect("a body of lying faces");
         let blocks = lying.ends[0].touch.blocks;
         let [a, b] = blocks.map(|k| self.layout.names[k].as_str());
@@ -2312,7 +2306,7 @@ impl<'a> Engine<'a> {
             self.body(i).name,
             breaks(guard)
         );
-        self.stops_meeting((blocks[0], blocks[1]), why);
+        self.meeting_not_followed((blocks[0], blocks[1]), why, now)
     }
 
     /// The pair of faces lying on each other (`lying`) meets: an end of their overlap reaches
@@ -2366,15 +2360,15 @@ impl<'a> Engine<'a> {
         let states = order.map(|k| self.tracks[k].state);
         let new = Lying::new(ends.each_ref(), order, order.map(home), states.each_ref());
         if !new.turns(self.members(&new.ends[0])) {
-            self.stops_meeting(
+            return self.meeting_not_followed(
                 (old[0].blocks[0], old[0].blocks[1]),
                 format!(
                     "{a}'s and {b}'s faces lie on each other, and an end of their overlap passes \
                      to a corner that is both bodies' pivots: its push would turn neither body"
                 ),
+                now,
             );
-            return Ok(());
-        };
+        }
         for k in bodies {
             self.tracks[k].lies = Some(new);
         }
@@ -2413,6 +2407,144 @@ impl<'a> Engine<'a> {
             Some((before, after)),
             format!("{what}: theta' {before:.6e} -> {after:.6e} rad/s"),
         );
+    }
+
+    /// Where blocks a and b meet (or touch) and the exact model has no way on (`why`): both
+    /// bodies set down seated where both are within [`ZENO_ROTATION`] of their alpha from it
+    /// ([`Engine::sets_down`]), else the run stops there.
+    fn meeting_not_followed(
+        &mut self,
+        blocks: (usize, usize),
+        why: String,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
+        if !self.sets_down(blocks, &why, now)? {
+            self.stops_meeting(blocks, why);
+        }
+        Ok(())
+    }
+
+    /// Whether body i's motion is below what the model follows: what it has of kinetic and
+    /// potential energy beyond rest would turn it, against gravity alone, by at most
+    /// [`ZENO_ROTATION`] of its alpha (m g b ZENO_ROTATION alpha), and it is in contact with no
+    /// block but those of `other`'s body.
+    fn nearly_seated(&self, i: usize, other: usize, now: &Inputs) -> bool {
+        let (tr, body) = (&self.tracks[i], self.body(i));
+        let alone = |k: usize| k == i || k == other;
+        let contacts = tr.leans.is_none()
+            && tr.couple.is_none_or(|c| c.moving().all(alone))
+            && tr
+                .lies
+                .is_none_or(|l| l.bodies().into_iter().flatten().all(alone));
+        let free =
+            tr.fallen.is_none() && self.scene.watches.get(i).is_none_or(Watch::holds_nothing);
+        if !(contacts && free) {
+            return false;
+        }
+        let traj = modes::trajectory(body, Equations::Exact, tr.mode, &tr.state, now);
+        let energy = modes::kinetic_j(body, &traj, 0.0) + modes::potential_j(body, &traj, 0.0);
+        let zeno =
+            body.mass_kg * body.g_m_s2 * body.half_base_m * ZENO_ROTATION * body.slenderness_rad();
+        energy <= zeno
+    }
+
+    /// Where blocks a and b meet and the exact model has no way on (`why`), each moved by a
+    /// body within [`ZENO_ROTATION`] of its alpha from seated ([`Engine::nearly_seated`]), one
+    /// of them not seated yet: both are set down seated, at rest, and go on from there, lying
+    /// face on face where they touch so (decided as a pair at rest is, [`Engine::relie`]), else
+    /// each on its own. What they had of kinetic and potential energy beyond it counts as lost,
+    /// as what a body's series of landings leaves out does; counted with those series (`zeno`).
+    /// Where they would touch otherwise, or another block touches them, nothing is done: false.
+    fn sets_down(
+        &mut self,
+        blocks: (usize, usize),
+        why: &str,
+        now: &Inputs,
+    ) -> Result<bool, SimulationError> {
+        let Some((pair, [Some(a), Some(b)])) = self.clearance.pair_of(blocks) else {
+            return Ok(false);
+        };
+        let seated = |e: &Self, k: usize| {
+            let st = &e.tracks[k].state;
+            matches!(e.tracks[k].mode, Mode::Rest | Mode::Slide(_)) && st.v == 0.0
+        };
+        if a == b
+            || self.scene.equations != Equations::Exact
+            || !self.nearly_seated(a, b, now)
+            || !self.nearly_seated(b, a, now)
+            || (seated(self, a) && seated(self, b))
+        {
+            return Ok(false);
+        }
+        let pair_bodies = [a, b];
+        let down = pair_bodies.map(|k| State {
+            u: self.tracks[k].state.u,
+            ..State::default()
+        });
+        let trajs: Vec<Option<Trajectory>> = (0..self.tracks.len())
+            .map(|k| match pair_bodies.iter().position(|&j| j == k) {
+                Some(n) => Some(modes::trajectory(
+                    self.body(k),
+                    Equations::Exact,
+                    Mode::Rest,
+                    &down[n],
+                    now,
+                )),
+                None => (self.tracks[k].fallen.is_none()).then(|| self.trajectory(k, now)),
+            })
+            .collect();
+        let trajs: Vec<Option<&Trajectory>> = trajs.iter().map(Option::as_ref).collect();
+        let bodies = self.scene.bodies;
+        let elsewhere = pair_bodies
+            .iter()
+            .any(|&k| (self.clearance.touching(k, bodies, &trajs).iter()).any(|t| t.pair != pair));
+        if elsewhere {
+            return Ok(false);
+        }
+        let modes = pair_bodies.map(|k| self.tracks[k].mode);
+        let states = pair_bodies.map(|k| self.tracks[k].state);
+        let Some(lies) = self.clearance.set_down(pair, bodies, &trajs) else {
+            return Ok(false);
+        };
+        let ids = pair_bodies.map(Some);
+        let before = self.energies_j(ids, modes, &states, now);
+        let after = self.energies_j(ids, [Mode::Rest; 2], &down, now);
+        self.rec.energy.impact_loss_j += (before.0 - after.0) + (before.1 - after.1);
+        self.rec.zeno += 1;
+        for (n, &k) in pair_bodies.iter().enumerate() {
+            let other = self.body(pair_bodies[1 - n]).name.clone();
+            let tr = &mut self.tracks[k];
+            (tr.mode, tr.state, tr.couple, tr.lies) = (Mode::Rest, down[n], None, None);
+            tr.settles = None;
+            if let Some(due) = self.landings.get_mut(k) {
+                *due = None;
+            }
+            let st = &states[n];
+            self.rec.rocking_event(
+                self.t,
+                EventKind::Rest,
+                &self.layout.outputs(k),
+                Some((st.omega, 0.0)),
+                format!(
+                    "set down seated beside {other} (tilt {:.6e} rad, rate {:.6e} rad/s: what it \
+                     had beyond rest would turn it by less than {ZENO_ROTATION:e} of its alpha), \
+                     where {why}",
+                    st.theta, st.omega
+                ),
+            );
+        }
+        match lies {
+            Seated::FaceOnFace(ends) => {
+                let i = self.abut(*ends)?;
+                self.relie(i, Guard::StickLimit, now)?;
+            }
+            _ => {
+                for k in pair_bodies {
+                    self.decide(k, now, false)?;
+                }
+            }
+        }
+        Ok(true)
     }
 
     /// The exact model stops where blocks a and b meet (or touch), for the reason `why`.
@@ -2580,8 +2712,7 @@ impl<'a> Engine<'a> {
             Ok(out) => out,
             Err(refusal) => {
                 let why = format!("{lands} {with}, and {refusal}");
-                self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
-                return Ok(());
+                return self.meeting_not_followed((touch.blocks[0], touch.blocks[1]), why, now);
             }
         };
         let (_, speed, _) = collision::approach([sides[0].as_ref(), sides[1].as_ref()], &contact);
@@ -2631,7 +2762,7 @@ impl<'a> Engine<'a> {
         let stays = format!("they stay in contact as {lands}");
         let through = Through::Landing(i, partner.map(|(j, _)| j));
         if let Some(why) = self.rests_against(&touch, &sides, &out, now, stays, through)? {
-            self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
+            self.meeting_not_followed((touch.blocks[0], touch.blocks[1]), why, now)?;
         }
         Ok(())
     }
@@ -2749,11 +2880,10 @@ impl<'a> Engine<'a> {
         // turn would not end).
         if let Some(busy) = self.in_contact_elsewhere(&touch.sides) {
             let why = format!("they stay in contact as {cause}, and {busy}");
-            self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
-            return Ok(());
+            return self.meeting_not_followed((touch.blocks[0], touch.blocks[1]), why, now);
         }
         if let Some(why) = self.strike(&touch, now)? {
-            self.stops_meeting((touch.blocks[0], touch.blocks[1]), why);
+            self.meeting_not_followed((touch.blocks[0], touch.blocks[1]), why, now)?;
         }
         Ok(())
     }
@@ -2775,7 +2905,12 @@ impl<'a> Engine<'a> {
 
     /// Body i of a couple would fall flat (`guard`): the mechanism changes in a way the exact
     /// model does not follow.
-    fn couple_gives(&mut self, i: usize, guard: Guard) {
+    fn couple_gives(
+        &mut self,
+        i: usize,
+        guard: Guard,
+        now: &Inputs,
+    ) -> Result<(), SimulationError> {
         let couple = self.tracks[i].couple.expect("a body of a couple");
         let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].as_str());
         let why = format!(
@@ -2784,7 +2919,7 @@ impl<'a> Engine<'a> {
             self.body(i).name,
             breaks(guard)
         );
-        self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
+        self.meeting_not_followed((couple.touch.blocks[0], couple.touch.blocks[1]), why, now)
     }
 
     /// Body i of a couple lies on its face: it has overturned, as a body alone does
@@ -2854,8 +2989,11 @@ impl<'a> Engine<'a> {
                          about which the push has no moment",
                         self.body(i).name
                     );
-                    self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
-                    return Ok(());
+                    return self.meeting_not_followed(
+                        (couple.touch.blocks[0], couple.touch.blocks[1]),
+                        why,
+                        now,
+                    );
                 };
                 couple = again;
                 for j in couple.moving() {
@@ -2868,8 +3006,11 @@ impl<'a> Engine<'a> {
             Err(why) => {
                 let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].as_str());
                 let why = format!("{corner}'s corner turns on {face}'s face, and {why}");
-                self.stops_meeting((couple.touch.blocks[0], couple.touch.blocks[1]), why);
-                return Ok(());
+                return self.meeting_not_followed(
+                    (couple.touch.blocks[0], couple.touch.blocks[1]),
+                    why,
+                    now,
+                );
             }
         };
         self.rec.stats.mode_decisions += 1;
@@ -2968,8 +3109,7 @@ impl<'a> Engine<'a> {
                 "{own} rests against {other}'s face, its pivot would move, and the face's push \
                  has no moment about it to move it by"
             );
-            self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
-            return Ok(());
+            return self.meeting_not_followed((lean.blocks[0], lean.blocks[1]), why, now);
         };
         let members = [0, 1].map(|s| match s == k {
             true => Member::Moves(self.body(i), self.tracks[i].mode, &state),
@@ -3001,7 +3141,7 @@ impl<'a> Engine<'a> {
             Ok(_) => {}
             Err(why) => {
                 let why = format!("{own} rests against {other}'s face, and {why}");
-                self.stops_meeting((lean.blocks[0], lean.blocks[1]), why);
+                self.meeting_not_followed((lean.blocks[0], lean.blocks[1]), why, now)?;
             }
         }
         Ok(())
@@ -3268,7 +3408,7 @@ impl<'a> Engine<'a> {
             if let Some(why) =
                 self.rests_against(&touch, &turning, &out, now, stays, Through::Blow)?
             {
-                self.stops_meeting((h.blocks[0], h.blocks[1]), why);
+                self.meeting_not_followed((h.blocks[0], h.blocks[1]), why, now)?;
                 return Ok(AtOnce::Done);
             }
         }
