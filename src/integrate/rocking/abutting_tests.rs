@@ -191,7 +191,8 @@ fn set_downs(r: &Response) -> Vec<&crate::response::EventRecord> {
 /// beyond rest would turn it by less than 1e-9 of its alpha, so both are set down seated, face
 /// on face, and the run goes on to its end: every set-down within that bound (the kinetic
 /// energy of each body's rate before it, the only part an event reports, under the potential
-/// energy of a tilt of 1e-9 alpha), the blocks never overlapping, the balance closing.
+/// energy of a tilt of 1e-9 alpha), the blocks never overlapping, the balance closing. Bodies
+/// in motion where no mode holds still stop the run.
 #[test]
 fn bodies_within_a_billionth_of_alpha_of_rest_where_no_way_holds_are_set_down() {
     let model = slab_and_block(0.9, 0.0, (1.2, 1.2, 0.0));
@@ -226,6 +227,19 @@ fn bodies_within_a_billionth_of_alpha_of_rest_where_no_way_holds_are_set_down() 
         );
     }
     whole(&r, (1.2, 1.2));
+    // Bodies in motion where no mode holds are not set down: scan run 1646 (the slab turning at
+    // 0.73 rad/s as its face comes flat on the block's) stops there as it did.
+    let moving = run(
+        &slab_and_block(0.6, 0.5, (0.8, 0.9, 0.0)),
+        (0.5, 2.5, 0.0),
+        1.6,
+    );
+    assert!(
+        (moving.summary.duration_s - 1.541_559_545_6).abs() < 1e-9,
+        "{:?}",
+        moving.summary.warnings
+    );
+    assert!(set_downs(&moving).is_empty());
 }
 
 /// The slab of a slab touching a block (restitution 0.5) under El Centro at 0.4 g, alone after
