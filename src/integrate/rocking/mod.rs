@@ -2295,7 +2295,8 @@ impl<'a> Engine<'a> {
 
     /// Body i, whose face lies on another's, would change its mode otherwise than by a landing
     /// (`guard`: lie on its face): the exact model does not follow that; the run ends here and
-    /// says so ([`Engine::meeting_not_followed`]).
+    /// says so, unless both bodies are a billionth of their alpha from rest and are set down
+    /// ([`Engine::meeting_not_followed`]).
     fn lying_gives(&mut self, i: usize, guard: Guard, now: &Inputs) -> Result<(), SimulationError> {
         let lying = self.tracks[i].lies.expect("a body of lying faces");
         let blocks = lying.ends[0].touch.blocks;
