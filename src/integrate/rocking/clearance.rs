@@ -1205,8 +1205,10 @@ impl Clearance {
             }
             let (at_a, at_b) = (pa.at(x), pb.at(x));
             let (mut edge, margin) = widest(&at_a, &at_b);
-            // A pair in contact (`held`) parts only as the engine decides.
-            let touches = margin <= self.tie_m(k);
+            // A pair in contact (`held`) parts only as the engine decides: what the search
+            // finds for it (its corner at an end of the face, another corner at the face) is
+            // the engine's to meet, even where round-off has left the held corner a tie off it.
+            let touches = margin <= self.tie_m(k) || self.pairs[k].held.is_some();
             let opens = (touches && self.pairs[k].held.is_none())
                 .then(|| self.opening(k, (pa, pb), x, bodies))
                 .flatten();

@@ -74,7 +74,7 @@ pub(super) fn run(model: &Model, motion: &Motion, duration_s: f64, initial: f64)
 }
 
 /// Block k's rows: u, v, theta, theta', w.
-fn rows(r: &Response, k: usize) -> Vec<[f64; 6]> {
+pub(super) fn rows(r: &Response, k: usize) -> Vec<[f64; 6]> {
     let h = r.history.as_ref().unwrap();
     (0..h.time_s.len())
         .map(|i| {

@@ -155,7 +155,8 @@ pub fn rise_m_s(body: &RockingBody, theta: f64, corner: Corner, (yg0, omega): (f
 /// momentum about it is kept and the body rocks on it; where not, the corner slips through the
 /// impact with the friction impulse at its limit (Routh), turning its slip within the impact
 /// where it stops there ([`slip_turning`]). At theta = 0 both corners land ([`land_flat`]),
-/// unless the other one rises: then `corner` alone does. The wall's restitution factor
+/// unless the other one rises: then `corner` alone does; where landing flat would pull at a
+/// corner, the one corner whose landing leaves the other rising lands alone. The wall's restitution factor
 /// multiplies the velocities after, as it does Housner's. A corner that reaches the ground
 /// without coming down touches it ([`touches`]).
 /// (The landing at theta = 0 from rocking keeps [`land`], whose arithmetic every earlier run's
@@ -167,13 +168,7 @@ pub fn land_from_flight(
     (xg0, yg0, omega): (f64, f64, f64),
     time_s: f64,
 ) -> Result<Landing, SimulationError> {
-    let (m, b, h, mu) = (
-        body.mass_kg,
-        body.half_base_m,
-        body.centroid_height_m,
-        body.friction,
-    );
-    let (ig, io) = (body.inertia_kg_m2, body.corner_inertia_kg_m2());
+    let (m, ig) = (body.mass_kg, body.inertia_kg_m2);
     let before = 0.5 * m * (xg0 * xg0 + yg0 * yg0) + 0.5 * ig * omega * omega;
     if theta == 0.0 {
         // Upright, both corners reach the ground; where the other one rises (an impact at a
@@ -182,9 +177,70 @@ pub fn land_from_flight(
         let alone = rise_m_s(body, theta, other, (yg0, omega)) > 0.0
             && !touches(body, theta, other, (yg0, omega));
         if !alone {
-            return land_flat(body, xg0, yg0, omega, before, time_s);
+            return match flat(body, xg0, yg0, omega, before) {
+                Ok(landing) => Ok(landing),
+                Err(pull) => land_pulled_off(body, pull, (xg0, yg0, omega), before, time_s),
+            };
         }
     }
+    land_on_corner(body, theta, corner, (xg0, yg0, omega), before, time_s)
+}
+
+/// The contacts of an upright landing complementary: where landing flat would pull at a corner,
+/// one corner lands alone, which holds where that corner comes down and the landing leaves the
+/// other rising (or touching to a tie). Exactly one such corner must hold; with none, or both,
+/// no landing of the rigid model fits.
+fn land_pulled_off(
+    body: &RockingBody,
+    pull: Pull,
+    (xg0, yg0, omega): (f64, f64, f64),
+    before: f64,
+    time_s: f64,
+) -> Result<Landing, SimulationError> {
+    let mut holds = Vec::new();
+    for lands in [Corner::Left, Corner::Right] {
+        if rise_m_s(body, 0.0, lands, (yg0, omega)) >= 0.0 {
+            continue;
+        }
+        let landing = land_on_corner(body, 0.0, lands, (xg0, yg0, omega), before, time_s)?;
+        // After it the body turns about the landing corner: its centroid rises at s b theta'.
+        let w = landing.state.omega;
+        let yg = lands.sign() * body.half_base_m * w;
+        if rise_m_s(body, 0.0, lands.other(), (yg, w)) > 0.0
+            || touches(body, 0.0, lands.other(), (yg, w))
+        {
+            holds.push(landing);
+        }
+    }
+    match <[Landing; 1]>::try_from(holds) {
+        Ok([landing]) => Ok(landing),
+        Err(holds) => {
+            let alone = if holds.is_empty() {
+                ", and neither corner landing alone leaves the other off the ground"
+            } else {
+                ", and each corner landing alone leaves the other off the ground"
+            };
+            Err(pull.error(body, time_s, alone))
+        }
+    }
+}
+
+/// The landing of a body in free flight on `corner` alone (the rest of [`land_from_flight`]).
+fn land_on_corner(
+    body: &RockingBody,
+    theta: f64,
+    corner: Corner,
+    (xg0, yg0, omega): (f64, f64, f64),
+    before: f64,
+    time_s: f64,
+) -> Result<Landing, SimulationError> {
+    let (m, b, h, mu) = (
+        body.mass_kg,
+        body.half_base_m,
+        body.centroid_height_m,
+        body.friction,
+    );
+    let (ig, io) = (body.inertia_kg_m2, body.corner_inertia_kg_m2());
     // The centroid G_y above the corner and dx = dG_y/dtheta; turning about the corner, the
     // centroid moves at theta' (G_y, dx).
     let s = corner.sign();
@@ -321,6 +377,31 @@ fn land_flat(
     before: f64,
     time_s: f64,
 ) -> Result<Landing, SimulationError> {
+    flat(body, xg0, yg0, omega, before).map_err(|pull| pull.error(body, time_s, ""))
+}
+
+/// A flat landing that would need a pulling impulse: both corners' impulses (N s).
+struct Pull {
+    left: f64,
+    right: f64,
+}
+
+impl Pull {
+    /// The error, `alone` saying what single corners' landings did.
+    fn error(&self, body: &RockingBody, time_s: f64, alone: &str) -> SimulationError {
+        SimulationError::RigidModel {
+            at: format!("{} at t = {time_s} s", body.name),
+            why: format!(
+                "landing flat needs a pulling impulse at a corner (left {} N s, right {} \
+                 N s){alone}: no landing of the rigid model fits",
+                self.left, self.right
+            ),
+        }
+    }
+}
+
+/// [`land_flat`]'s impulses, or the corner where they would pull.
+fn flat(body: &RockingBody, xg0: f64, yg0: f64, omega: f64, before: f64) -> Result<Landing, Pull> {
     let (m, b, h, mu) = (
         body.mass_kg,
         body.half_base_m,
@@ -349,13 +430,7 @@ fn land_flat(
         (right, left)
     };
     if right < 0.0 || left < 0.0 {
-        return Err(SimulationError::RigidModel {
-            at: format!("{} at t = {time_s} s", body.name),
-            why: format!(
-                "landing flat needs a pulling impulse at a corner (left {left} N s, right \
-                 {right} N s): no landing of the rigid model fits"
-            ),
-        });
+        return Err(Pull { left, right });
     }
     let state = State {
         v: xg,
@@ -605,5 +680,37 @@ mod tests {
         assert!(w < 0.0 && rise_m_s(&body, 0.0, Corner::Right, (dx * w, w)) > 0.0);
         let flat = land_from_flight(&body, 0.0, Corner::Left, (xg, -0.5, 0.3), 0.0).unwrap();
         assert_eq!((flat.pivot, flat.state.omega), (None, 0.0));
+    }
+
+    /// A slender body that comes down upright on both corners, sliding: stopping its base by
+    /// friction would turn it harder than the ground's push can stop, so landing flat needs a
+    /// pulling impulse at one corner (as scan run 1592's slab did at 3.4112 s, and stopped the
+    /// run). It lands on one corner alone, the one whose landing leaves the other rising: its
+    /// angular momentum about that corner kept where friction holds it, the impulse pushing and
+    /// within Coulomb's cone, energy lost. Sliding the other way lands it on the other corner.
+    #[test]
+    fn an_upright_landing_that_would_pull_lands_on_one_corner() {
+        let body = RockingBody::rectangle("S", 0.3, 1.2, 450.0, 0.6, 9.81);
+        let (m, b, h, ig) = (
+            body.mass_kg,
+            body.half_base_m,
+            body.centroid_height_m,
+            body.inertia_kg_m2,
+        );
+        let (mut pivots, yg) = (Vec::new(), -0.1_f64);
+        for xg in [0.05_f64, -0.05] {
+            // Stuck flat, the impulses' moment about the centroid h m x_g outweighs b m |y_g|.
+            assert!(h * xg.abs() > b * yg.abs() && xg.abs() <= body.friction * yg.abs());
+            let l = land_from_flight(&body, 0.0, Corner::Left, (xg, yg, 0.0), 0.0).unwrap();
+            let c = l.pivot.expect("it rocks on a corner");
+            let (w, dx) = (l.state.omega, c.sign() * b);
+            let (pt, pn) = (m * (l.state.v + h * w - xg), m * (dx * w - yg));
+            assert!((ig * w + h * pt + dx * pn).abs() < 1e-12 * m * b * xg.abs());
+            assert!(pn > 0.0 && pt.abs() <= body.friction * pn && l.loss_j > 0.0);
+            assert!(!l.slipped && l.state.v == 0.0);
+            assert!(rise_m_s(&body, 0.0, c.other(), (dx * w, w)) > 0.0);
+            pivots.push(c);
+        }
+        assert_eq!(pivots, [Corner::Right, Corner::Left]);
     }
 }

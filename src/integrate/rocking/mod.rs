@@ -389,6 +389,12 @@ fn seat_shift_m(point: [f64; 2], normal: [f64; 2], home: [f64; 2], theta: f64, u
     -moved / normal[0]
 }
 
+/// Whether a body's corners, `half_base_m` from its base's middle, stand level to a tie of its
+/// size: tilted so little that which one is lower is round-off.
+fn level_by_round_off(body: &RockingBody, half_base_m: f64, theta: f64) -> bool {
+    2.0 * half_base_m * theta.abs() <= series::TIE * body.size_m()
+}
+
 /// Whether a body's tilt and rotation rate are round-off: a tie of its slenderness, and of
 /// the rate it would take to turn that far in its time scale.
 fn upright_by_round_off(body: &RockingBody, state: &State) -> bool {
@@ -1480,7 +1486,11 @@ impl<'a> Engine<'a> {
         // (where a refusal below stops the run, their tilts of round-off stay set to zero).
         let mut landed = [None, None];
         for (n, &k) in landing.iter().flatten().enumerate() {
+            let (theta, pivot) = (self.tracks[k].state.theta, self.tracks[k].mode.pivot());
             landed[n] = Some((k, self.tracks[k].state.omega, self.grounded(k, None, now)?));
+            if let (Some(p), Some(&(_, origin))) = (pivot, ids.iter().find(|&&(j, _)| j == k)) {
+                self.set_upright_clear(k, (origin, p), theta, [t, held]);
+            }
         }
         let mut bodies: Vec<collision::Turning> = (ids.iter())
             .map(|&(k, origin)| self.turning(k, origin))
@@ -2162,19 +2172,9 @@ impl<'a> Engine<'a> {
                 c.or(self.tracks[k].mode.pivot()),
             );
             grounds[n] = Some((k, self.grounded(k, c, now)?));
-            // A tilt of a tie set to zero turns the body's face under the other's: its base
-            // moves along the ground so that neither end of the faces goes into the other.
-            let sideways =
-                (ends.iter()).all(|t| t.normal[0].abs() > std::f64::consts::FRAC_1_SQRT_2);
-            if let (Some(p), true) = (pivot, sideways && self.tracks[k].state.theta == 0.0) {
-                let home = self.home(k, ids[usize::from(ids[0].0 != k)].1, p);
-                let side = |t: &Touch| match t.sides[0] {
-                    Side::Body(b, _) if b == k => 1.0,
-                    _ => -1.0,
-                };
-                let at = ends.each_ref().map(|t| (t.point, t.normal, side(t)));
-                let st = &mut self.tracks[k].state;
-                st.u += seat_shift_among_m(&at, home, theta, st.u);
+            if let Some(p) = pivot {
+                let origin = ids[usize::from(ids[0].0 != k)].1;
+                self.set_upright_clear(k, (origin, p), theta, ends.each_ref());
             }
         }
         let mut turning = ids.map(|(k, origin)| self.turning(k, origin));
@@ -2778,9 +2778,14 @@ impl<'a> Engine<'a> {
         now: &Inputs,
     ) -> Result<[Option<(Corner, f64)>; 2], SimulationError> {
         let body = self.body(i);
-        let dropped = modes::potential_j(body, &self.trajectory(i, now), 0.0);
+        let traj = self.trajectory(i, now);
+        let dropped = modes::potential_j(body, &traj, 0.0);
         let bp = self.layout.pivot_half_base_m(i);
         let tr = &mut self.tracks[i];
+        let (yg, omega) = (
+            tr.state.lift_v + traj.dx[0] * tr.state.omega,
+            tr.state.omega,
+        );
         let ground = match corner {
             None => {
                 tr.state.theta = 0.0;
@@ -2801,10 +2806,26 @@ impl<'a> Engine<'a> {
                 }
                 tr.state.lift = 0.0;
                 tr.mode = Mode::Flight(c);
+                let both = [Some((c, 0.0)), Some((c.other(), -2.0 * c.sign() * bp))];
                 if upright_by_round_off(body, &tr.state) {
                     // Upright but for round-off, it comes down on both corners at once.
                     tr.state.theta = 0.0;
-                    [Some((c, 0.0)), Some((c.other(), -2.0 * c.sign() * bp))]
+                    both
+                } else if c.sign() * tr.state.theta < 0.0
+                    && level_by_round_off(body, bp, tr.state.theta)
+                {
+                    // Tilted to the side its corner cannot rock on, its corners level to a
+                    // tie: the tilt's sign is round-off, and it lands upright, on both corners
+                    // where the other comes down too.
+                    tr.state.theta = 0.0;
+                    let other = c.other();
+                    let rises = impact::rise_m_s(body, 0.0, other, (yg, omega)) > 0.0
+                        || impact::touches(body, 0.0, other, (yg, omega));
+                    if rises {
+                        [Some((c, 0.0)), None]
+                    } else {
+                        both
+                    }
                 } else {
                     [Some((c, 0.0)), None]
                 }
@@ -4195,6 +4216,31 @@ impl<'a> Engine<'a> {
         self.decide(i, now, false)
     }
 
+    /// Body k, whose tilt of a tie `theta` about `pivot` has just been set to zero, its base's
+    /// middle at rest at `origin`: where it touches the other body at `ends` sideways, that
+    /// tilt turned its face under the other's, and its base moves along the ground so that
+    /// neither end goes into the other ([`seat_shift_among_m`]).
+    fn set_upright_clear(
+        &mut self,
+        k: usize,
+        (origin, pivot): ([f64; 2], Corner),
+        theta: f64,
+        ends: [&Touch; 2],
+    ) {
+        let sideways = (ends.iter()).all(|t| t.normal[0].abs() > std::f64::consts::FRAC_1_SQRT_2);
+        if !sideways || self.tracks[k].state.theta != 0.0 {
+            return;
+        }
+        let home = self.home(k, origin, pivot);
+        let side = |t: &Touch| match t.sides[0] {
+            Side::Body(b, _) if b == k => 1.0,
+            _ => -1.0,
+        };
+        let at = ends.map(|t| (t.point, t.normal, side(t)));
+        let st = &mut self.tracks[k].state;
+        st.u += seat_shift_among_m(&at, home, theta, st.u);
+    }
+
     /// How far along the ground (m) body i, landing alone from its tilt of a tie about `pivot`,
     /// is moved so that no block touching one of its side faces at the instant (a corner just
     /// struck on it, or one of its corners on another's face) is moved into as the tilt is set
@@ -4256,8 +4302,9 @@ impl<'a> Engine<'a> {
     }
 
     /// A body in free flight lands on `corner` ([`impact::land_from_flight`]), then the mode
-    /// after it. Tilted by a round-off the other way, its corners level to a tie, it lands on
-    /// the one that is lower to the bit.
+    /// after it. Tilted by a round-off the other way, its corners level to a tie of angle, it
+    /// lands on the one that is lower to the bit; tilted to the side `corner` cannot rock on,
+    /// its corners level to a tie of its size, the landing is decided upright.
     fn land_from_flight(
         &mut self,
         i: usize,
@@ -4289,15 +4336,36 @@ impl<'a> Engine<'a> {
         } else {
             corner
         };
-        let landing = impact::land_from_flight(body, st.theta, corner, (xg, yg, st.omega), self.t)?;
+        // Tilted to the side its corner cannot rock on, by a tilt that leaves the corners level
+        // to a tie: the tilt's sign is round-off, and the landing is decided upright (on the
+        // corner that comes down where the other rises, else flat, else on one corner alone).
+        // It keeps its tilt where it rocks on the corner the tilt lowers; else it is set upright
+        // (its height's change going with the loss below).
+        let wrong_side =
+            corner.sign() * st.theta < 0.0 && level_by_round_off(body, body.half_base_m, st.theta);
+        let landing = if wrong_side {
+            let mut upright =
+                impact::land_from_flight(body, 0.0, corner, (xg, yg, st.omega), self.t)?;
+            if upright.pivot.is_some_and(|c| c.sign() * st.theta >= 0.0) {
+                upright.state.theta = st.theta;
+            }
+            upright
+        } else {
+            impact::land_from_flight(body, st.theta, corner, (xg, yg, st.omega), self.t)?
+        };
+        let corner = landing.pivot.unwrap_or(corner);
         // The landing corner's displacement: the other corner lies 2 s b cos theta from the
         // one followed, 2 s b apart at rest (2 s b (1 - cos) = 4 s b sin^2(theta / 2)).
-        let u = if corner == followed {
+        let mut u = if corner == followed {
             st.u
         } else {
             let half = (0.5 * st.theta).sin();
             st.u + 4.0 * followed.sign() * body.half_base_m * half * half
         };
+        if landing.state.theta != st.theta {
+            // Set upright, it moves clear of what touches its sides, as a landing from rocking.
+            u += self.seat_shift_touching_m(i, corner, now);
+        }
         // Its height, zero to a tie where the landing was found, goes with the landing's loss
         // as a landing from rocking's tilt does.
         let dropped = modes::potential_j(body, &traj, 0.0)
