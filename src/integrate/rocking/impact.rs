@@ -156,9 +156,9 @@ pub fn rise_m_s(body: &RockingBody, theta: f64, corner: Corner, (yg0, omega): (f
 /// impact with the friction impulse at its limit (Routh), turning its slip within the impact
 /// where it stops there ([`slip_turning`]). At theta = 0 both corners land ([`land_flat`]),
 /// unless the other one rises: then `corner` alone does; where landing flat would pull at a
-/// corner, the one corner whose landing leaves the other rising lands alone. The wall's restitution factor
-/// multiplies the velocities after, as it does Housner's. A corner that reaches the ground
-/// without coming down touches it ([`touches`]).
+/// corner, the one corner whose landing leaves the other rising lands alone. The wall's
+/// restitution factor multiplies the velocities after, as it does Housner's. A corner that
+/// reaches the ground without coming down touches it ([`touches`]).
 /// (The landing at theta = 0 from rocking keeps [`land`], whose arithmetic every earlier run's
 /// outputs were computed with.)
 pub fn land_from_flight(
