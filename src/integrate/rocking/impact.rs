@@ -448,6 +448,17 @@ fn flat(body: &RockingBody, xg0: f64, yg0: f64, omega: f64, before: f64) -> Resu
 mod tests {
     use super::*;
 
+    /// A body's mass (kg), half base and centroid height (m) and inertia about its centroid
+    /// (kg m2), as the tests' formulas name them: m, b, h, I_G.
+    fn sizes(body: &RockingBody) -> (f64, f64, f64, f64) {
+        (
+            body.mass_kg,
+            body.half_base_m,
+            body.centroid_height_m,
+            body.inertia_kg_m2,
+        )
+    }
+
     /// Landings from free flight, over turned bodies and velocities that bring a corner down:
     /// the body rocks on the landing corner after; where that corner sticks, it is at rest and
     /// the angular momentum about it is kept; where it slips, its normal velocity is zero, the
@@ -457,12 +468,7 @@ mod tests {
     #[test]
     fn a_landing_from_flight_keeps_its_momenta_within_coulombs_cone() {
         let body = RockingBody::rectangle("B", 0.6, 1.2, 900.0, 0.5, 9.81);
-        let (m, b, h, ig) = (
-            body.mass_kg,
-            body.half_base_m,
-            body.centroid_height_m,
-            body.inertia_kg_m2,
-        );
+        let (m, b, h, ig) = sizes(&body);
         let io = body.corner_inertia_kg_m2();
         let mut kinds = [0, 0];
         for theta in [-0.3, -0.05, 0.02, 0.2, 0.45] {
@@ -582,12 +588,7 @@ mod tests {
         let mut kinds = [0, 0, 0];
         for (width, mu) in [(1.2, 0.6), (0.6, 0.3), (0.3, 0.6), (0.8, 0.15)] {
             let body = RockingBody::rectangle("B", width, 1.2, 900.0, mu, 9.81);
-            let (m, b, h, ig) = (
-                body.mass_kg,
-                body.half_base_m,
-                body.centroid_height_m,
-                body.inertia_kg_m2,
-            );
+            let (m, b, h, ig) = sizes(&body);
             for pivot in [Corner::Left, Corner::Right] {
                 let s = pivot.sign();
                 let dx = -s * b;
@@ -661,12 +662,7 @@ mod tests {
     #[test]
     fn an_upright_body_lands_on_the_corner_that_comes_down() {
         let body = RockingBody::rectangle("B", 0.6, 1.2, 900.0, 0.8, 9.81);
-        let (m, b, h, ig) = (
-            body.mass_kg,
-            body.half_base_m,
-            body.centroid_height_m,
-            body.inertia_kg_m2,
-        );
+        let (m, b, h, ig) = sizes(&body);
         let (xg, yg, omega) = (0.05, 0.2, -2.0);
         assert!(rise_m_s(&body, 0.0, Corner::Left, (yg, omega)) < 0.0);
         assert!(rise_m_s(&body, 0.0, Corner::Right, (yg, omega)) > 0.0);
@@ -691,12 +687,7 @@ mod tests {
     #[test]
     fn an_upright_landing_that_would_pull_lands_on_one_corner() {
         let body = RockingBody::rectangle("S", 0.3, 1.2, 450.0, 0.6, 9.81);
-        let (m, b, h, ig) = (
-            body.mass_kg,
-            body.half_base_m,
-            body.centroid_height_m,
-            body.inertia_kg_m2,
-        );
+        let (m, b, h, ig) = sizes(&body);
         let (mut pivots, yg) = (Vec::new(), -0.1_f64);
         for xg in [0.05_f64, -0.05] {
             // Stuck flat, the impulses' moment about the centroid h m x_g outweighs b m |y_g|.
