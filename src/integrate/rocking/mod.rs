@@ -1384,74 +1384,6 @@ impl<'a> Engine<'a> {
                 return Ok(Some(format!("{comes}, and {busy}")));
             }
         }
-        // A body that rocks upright to a round-off as its face comes flat on a seated block's
-        // has both corners of its base on the ground where it turns down onto its seat, or has
-        // just landed there and turns on into the face (an end of the faces approaching): they
-        // take their impulses with the faces' at once, as a landing while lying does
-        // ([`Engine::lying_lands`]).
-        let strikes = {
-            let index = |side: Side| match side {
-                Side::Body(k, _) => ids.iter().position(|&(j, _)| j == k),
-                _ => None,
-            };
-            let turning: Vec<collision::Turning> = (ids.iter())
-                .map(|&(k, origin)| self.turning(k, origin))
-                .collect();
-            ends.iter().any(|t| {
-                let contact = collision::Contact {
-                    point: t.point,
-                    normal: t.normal,
-                    restitution: 0.0,
-                };
-                let sides = t.sides.map(|side| index(side).map(|j| &turning[j]));
-                collision::approach(sides, &contact).0 < -t.tie_m_s()
-            })
-        };
-        let upright = |k: usize| {
-            let tie = series::TIE * self.body(k).slenderness_rad();
-            self.tracks[k].mode.pivot().is_some() && self.tracks[k].state.theta.abs() <= tie
-        };
-        // Both bodies, where both are upright so (a couple turning together onto both seats).
-        let mut landing = (ids.iter().map(|&(k, _)| k))
-            .filter(|&k| self.lands_by_round_off(k) == Some(None) || (strikes && upright(k)));
-        let landing = [landing.next(), landing.next()];
-        let comes = match landing {
-            [Some(k), second] => {
-                let why = match () {
-                    _ if self.scene.equations != Equations::Exact => {
-                        Some("the linearised equations do not follow blocks in contact")
-                    }
-                    _ if landing
-                        .iter()
-                        .flatten()
-                        .any(|&j| self.body(j).restitution_factor != 1.0) =>
-                    {
-                        Some(
-                            "a landing that keeps less than Housner's rate (a restitution factor \
-                             below one) with the faces' contacts is not followed",
-                        )
-                    }
-                    _ => None,
-                };
-                let comes = match second {
-                    None => format!("{comes}, {} upright on its base", self.body(k).name),
-                    Some(j) => format!(
-                        "{comes}, {} and {} upright on their bases",
-                        self.body(k).name,
-                        self.body(j).name
-                    ),
-                };
-                if let Some(why) = why {
-                    return Ok(Some(format!("{comes}, and {why}")));
-                }
-                comes
-            }
-            _ => comes,
-        };
-        let through = match landing {
-            [Some(k), second] => Through::Landing(k, second),
-            _ => Through::Approach,
-        };
         let index = |side: Side| match side {
             Side::Body(k, _) => ids.iter().position(|&(j, _)| j == k),
             _ => None,
@@ -1482,12 +1414,105 @@ impl<'a> Engine<'a> {
                 },
             },
         ];
+        // A body that rocks upright to a round-off as its face comes flat on a seated block's
+        // has both corners of its base on the ground where it turns down onto its seat, or has
+        // just landed there and turns on into the face (an end of the faces approaching): they
+        // take their impulses with the faces' at once, as a landing while lying does
+        // ([`Engine::lying_lands`]).
+        let turning: Vec<collision::Turning> = (ids.iter())
+            .map(|&(k, origin)| self.turning(k, origin))
+            .collect();
+        let strikes = ends.iter().any(|t| {
+            let contact = collision::Contact {
+                point: t.point,
+                normal: t.normal,
+                restitution: 0.0,
+            };
+            let sides = t.sides.map(|side| index(side).map(|j| &turning[j]));
+            collision::approach(sides, &contact).0 < -t.tie_m_s()
+        });
+        // What the faces' impulses alone leave of each body's velocities: a body in flight a
+        // tie above the ground that they leave coming down lands with them.
+        let alone = collision::resolve_all(&turning, &links).ok();
+        let pressed_down = |k: usize| {
+            let (body, lift) = (self.body(k), self.tracks[k].state.lift);
+            let j = ids.iter().position(|&(b, _)| b == k);
+            let after = j.zip(alone.as_ref()).map(|(j, all)| all.after[j].lift_v);
+            after.is_some_and(|w| {
+                lift <= series::TIE * body.size_m() && (w < 0.0 || tie_speed(body, w))
+            })
+        };
+        let upright = |k: usize| {
+            let tie = series::TIE * self.body(k).slenderness_rad();
+            self.tracks[k].mode.pivot().is_some() && self.tracks[k].state.theta.abs() <= tie
+        };
+        // Both bodies, where both are upright so (a couple turning together onto both seats),
+        // and a body in flight a round-off above the ground, coming down before the impact or
+        // after it: each with the corner it lands on from flight (none: on its base).
+        let lands = |k: usize| match (self.lands_by_round_off(k), self.tracks[k].mode) {
+            (None, _) if strikes && upright(k) => Some(None),
+            (None, Mode::Flight(c)) if pressed_down(k) => Some(Some(c)),
+            (found, _) => found,
+        };
+        let mut landing = (ids.iter()).filter_map(|&(k, _)| Some((k, lands(k)?)));
+        let landing = [landing.next(), landing.next()];
+        let comes = match landing {
+            [Some((k, corner)), second] => {
+                let why = match () {
+                    _ if self.scene.equations != Equations::Exact => {
+                        Some("the linearised equations do not follow blocks in contact")
+                    }
+                    _ if landing
+                        .iter()
+                        .flatten()
+                        .any(|&(j, _)| self.body(j).restitution_factor != 1.0) =>
+                    {
+                        Some(
+                            "a landing that keeps less than Housner's rate (a restitution factor \
+                             below one) with the faces' contacts is not followed",
+                        )
+                    }
+                    _ => None,
+                };
+                let on = |k: usize, corner: Option<Corner>| match corner {
+                    None => format!("{} upright on its base", self.body(k).name),
+                    Some(c) => format!(
+                        "{} landing from free flight on its {} corner",
+                        self.body(k).name,
+                        c.name()
+                    ),
+                };
+                let comes = match second {
+                    None => format!("{comes}, {}", on(k, corner)),
+                    Some((j, None)) if corner.is_none() => format!(
+                        "{comes}, {} and {} upright on their bases",
+                        self.body(k).name,
+                        self.body(j).name
+                    ),
+                    Some((j, other)) => format!("{comes}, {} and {}", on(k, corner), on(j, other)),
+                };
+                if let Some(why) = why {
+                    return Ok(Some(format!("{comes}, and {why}")));
+                }
+                comes
+            }
+            _ => comes,
+        };
+        let through = match landing {
+            [Some((k, _)), second] => Through::Landing(k, second.map(|(j, _)| j)),
+            _ => Through::Approach,
+        };
         // The landing bodies' rotation rates before, and their bases' contacts with the ground
         // (where a refusal below stops the run, their tilts of round-off stay set to zero).
         let mut landed = [None, None];
-        for (n, &k) in landing.iter().flatten().enumerate() {
-            let (theta, pivot) = (self.tracks[k].state.theta, self.tracks[k].mode.pivot());
-            landed[n] = Some((k, self.tracks[k].state.omega, self.grounded(k, None, now)?));
+        for (n, &(k, corner)) in landing.iter().flatten().enumerate() {
+            let theta = self.tracks[k].state.theta;
+            let pivot = corner.or(self.tracks[k].mode.pivot());
+            landed[n] = Some((
+                k,
+                self.tracks[k].state.omega,
+                self.grounded(k, corner, now)?,
+            ));
             if let (Some(p), Some(&(_, origin))) = (pivot, ids.iter().find(|&&(j, _)| j == k)) {
                 self.set_upright_clear(k, (origin, p), theta, [t, held]);
             }
@@ -1863,59 +1888,78 @@ impl<'a> Engine<'a> {
             );
         }
         self.clearance.lie(ends[0].pair, Some(ends));
-        self.close_lying(&lying, now);
+        self.close_contacts(&self.lying_touches(&lying), None, now);
         let [p0, p1] = lying.motion(self.members(&lying.ends[0]), now).pushes;
         what += &format!("; pushed by {:.6e} and {:.6e} N", p0[0], p1[0]);
         (what, omega)
     }
 
-    /// The faces of `lying` stay on each other from here: the normal velocities at both ends,
-    /// round-off where a decision made a rate at a tie zero (a slip, a rise), are made zero,
-    /// each body changing the velocities its mode leaves free by the least that does it
-    /// ([`collision::closing_all`]), so that the pushes do no work; what that changes of the
-    /// kinetic energy goes with the impacts' loss.
-    fn close_lying(&mut self, lying: &Lying, now: &Inputs) {
-        let bodies = lying
-            .bodies()
-            .map(|b| b.expect("the sides of lying faces are bodies"));
-        let origins = lying.ends[0].touch.sides.map(|side| match side {
-            Side::Body(_, origin) => origin,
-            _ => unreachable!("the sides of lying faces are bodies"),
+    /// The contacts `touches` stay closed from here (a couple's one contact, or both ends of
+    /// faces lying on each other): their normal velocities, round-off where a decision made a
+    /// rate at a tie zero (a slip, a rise), are made zero, each body changing the velocities its
+    /// mode leaves free by the least that does it ([`collision::closing_all`]; the slip of the
+    /// body `stuck`, whose pivot has just stuck, stays zero), so that the pushes do no work; what
+    /// that changes of the kinetic energy goes with the impacts' loss.
+    fn close_contacts(&mut self, touches: &[Touch], stuck: Option<usize>, now: &Inputs) {
+        let sides = touches[0].sides.map(|side| match side {
+            Side::Body(k, origin) => Some((k, origin)),
+            _ => None,
         });
-        let turning: Vec<collision::Turning> = (0..2)
-            .map(|k| self.turning(bodies[k], origins[k]))
+        let moving: Vec<(usize, [f64; 2])> = sides.into_iter().flatten().collect();
+        let turning: Vec<collision::Turning> = (moving.iter())
+            .map(|&(k, origin)| self.turning(k, origin))
             .collect();
-        let touches = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
-        let links = [0, 1].map(|e| collision::Link {
-            sides: lying.order(e).map(Some),
-            contact: collision::Contact {
-                point: touches[e].point,
-                normal: touches[e].normal,
-                restitution: 0.0,
-            },
-        });
-        let free: Vec<[bool; 3]> = (bodies.iter())
-            .map(|&k| match self.tracks[k].mode {
-                Mode::Rest => [false; 3],
-                Mode::Slide(_) => [true, false, false],
-                Mode::Rock(_) => [false, true, false],
-                Mode::SlideRock(..) => [true, true, false],
-                Mode::Flight(_) => [true; 3],
+        let index = |side: Side| match side {
+            Side::Body(k, _) => moving.iter().position(|&(j, _)| j == k),
+            _ => None,
+        };
+        let links: Vec<collision::Link> = (touches.iter())
+            .map(|t| collision::Link {
+                sides: t.sides.map(index),
+                contact: collision::Contact {
+                    point: t.point,
+                    normal: t.normal,
+                    restitution: 0.0,
+                },
+            })
+            .collect();
+        let free: Vec<[bool; 3]> = (moving.iter())
+            .map(|&(k, _)| {
+                let slips = stuck != Some(k);
+                match self.tracks[k].mode {
+                    Mode::Rest => [false; 3],
+                    Mode::Slide(_) => [slips, false, false],
+                    Mode::Rock(_) => [false, true, false],
+                    Mode::SlideRock(..) => [slips, true, false],
+                    Mode::Flight(_) => [true; 3],
+                }
             })
             .collect();
         let Some(change) = collision::closing_all(&turning, &links, &free) else {
             return;
         };
-        let states = bodies.map(|k| self.tracks[k].state);
-        let modes = bodies.map(|k| self.tracks[k].mode);
-        let (was, _) = self.energies_j(bodies.map(Some), modes, &states, now);
-        for (k, [dv, domega, dw]) in bodies.into_iter().zip(change) {
+        let bodies = sides.map(|side| side.map(|(k, _)| k));
+        let modes = bodies.map(|b| b.map_or(Mode::Rest, |k| self.tracks[k].mode));
+        let (was, _) = self.energies_j(bodies, modes, &self.states_of(bodies), now);
+        for (&(k, _), [dv, domega, dw]) in moving.iter().zip(change) {
             let st = &mut self.tracks[k].state;
             (st.v, st.omega, st.lift_v) = (st.v + dv, st.omega + domega, st.lift_v + dw);
         }
-        let states = bodies.map(|k| self.tracks[k].state);
-        let (is, _) = self.energies_j(bodies.map(Some), modes, &states, now);
+        let (is, _) = self.energies_j(bodies, modes, &self.states_of(bodies), now);
         self.rec.energy.impact_loss_j += was - is;
+    }
+
+    /// Both ends of `lying` where its bodies are now, as touches.
+    fn lying_touches(&self, lying: &Lying) -> [Touch; 2] {
+        let bodies = lying
+            .bodies()
+            .map(|b| b.expect("the sides of lying faces are bodies"));
+        lying.touches_at(bodies.map(|k| &self.tracks[k].state))
+    }
+
+    /// The states of `bodies` (a fixed block's side: at rest).
+    fn states_of(&self, bodies: [Option<usize>; 2]) -> [State; 2] {
+        bodies.map(|b| b.map_or_else(State::default, |k| self.tracks[k].state))
     }
 
     /// The bodies' kinetic and potential energies (J) in `modes` and `states` (none for a
@@ -1944,13 +1988,11 @@ impl<'a> Engine<'a> {
     /// first order in it, m v omega G_y) counts as lost, so the balance closes to round-off.
     fn stills(&mut self, bodies: [Option<usize>; 2], which: impl Fn(usize) -> bool, now: &Inputs) {
         let modes = bodies.map(|b| b.map_or(Mode::Rest, |k| self.tracks[k].mode));
-        let state =
-            |e: &Self, b: Option<usize>| b.map_or_else(State::default, |k| e.tracks[k].state);
-        let was = bodies.map(|b| state(self, b));
+        let was = self.states_of(bodies);
         for k in bodies.into_iter().flatten().filter(|&k| which(k)) {
             self.tracks[k].state.v = 0.0;
         }
-        let is = bodies.map(|b| state(self, b));
+        let is = self.states_of(bodies);
         let ((before, _), (after, _)) = (
             self.energies_j(bodies, modes, &was, now),
             self.energies_j(bodies, modes, &is, now),
@@ -2060,7 +2102,7 @@ impl<'a> Engine<'a> {
                 self.clearance.lie(touches[0].pair, Some(&touches));
             }
             self.retake(bodies.map(Some), modes, &within);
-            self.close_lying(&lying, now);
+            self.close_contacts(&self.lying_touches(&lying), None, now);
             return Ok(());
         }
         for k in bodies {
@@ -2973,6 +3015,9 @@ impl<'a> Engine<'a> {
         let mut couple = self.tracks[i].couple.expect("a body of a couple");
         if matches!(guard, Guard::PivotStick | Guard::Stop) {
             self.stills(couple.bodies, |k| k == i, now);
+            // The contact's normal rate, left at the slip's round-off, closes.
+            let states = couple.bodies.map(|b| b.map(|k| &self.tracks[k].state));
+            self.close_contacts(&[couple.touch_at(states)], Some(i), now);
         }
         if let Some((j, corner)) = couple
             .moving()

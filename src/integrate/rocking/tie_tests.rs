@@ -171,7 +171,7 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     };
     let set_down = |name: &str| {
         (r.events.iter()).any(|e| {
-            (e.time_s - 14.908_394_105).abs() < 1e-8
+            (e.time_s - 14.908_394_079_6).abs() < 1e-9
                 && e.blocks == [name]
                 && (e.mode.as_deref()).is_some_and(|m| {
                     m.starts_with("set down seated beside")
@@ -185,8 +185,8 @@ fn scenes_at_ties_of_round_off_end_where_the_model_does() {
     assert!(
         set_down("S")
             && set_down("W")
-            && at(14.908_367_727_6, "S's corner strikes W's face")
-            && at(14.908_367_727_6, "W's corner touches S's face")
+            && at(14.908_367_702_6, "S's corner strikes W's face")
+            && at(14.908_367_702_6, "W's corner touches S's face")
             && (r.events.iter()).any(|e| {
                 (e.mode.as_deref()).is_some_and(|m| {
                     m.starts_with("S's face comes down flat on W's at the ends of their overlap")
@@ -281,33 +281,87 @@ fn top_corners_of_one_height_meet_where_the_tilting_block_goes_below() {
     balances(&r);
 }
 
-/// The wall, the slab and the squat block of [`three_blocks`] (friction 0.8, no restitution,
-/// the wall 0.6 m wide) under El Centro at 0.6 g (scan run 970): at 5.3712987 s the slab's face
-/// comes down flat on the wall's, the wall upright on its base, and both ends are left at rest
-/// on each other. Of the ways tried, the wall at rest with the slab on its stuck pivot pressing
-/// at both ends has a compliance matrix singular to round-off (the two ends constrain the one
-/// motion left); solved, its round-off gave pushes that passed as pressing and, with the
-/// blocks set down from their ties of tilt as they now are, a motion that was not a number.
-/// Such pushes are undetermined and press nowhere: no way holds, said by name, and both
-/// bodies, a billionth of their alpha from rest, are set down seated there (the run stopped
-/// there before), the wall and the slab never overlapping, the balance closing through the
-/// next half second. (The run goes on to 5.9128 s, where the two rattle at the scale of
-/// round-off, as lying faces on two pivots do.)
+/// Faces that come down flat on each other while a body in flight is a round-off above the
+/// ground (its pivot within a tie of its size) and comes down, before the faces' impulses or
+/// after them: the body lands with the faces, the ground's impulses and both ends' at once. Taken
+/// in flight, the faces' impulses left it so, and no way of the pivots and the ends held (its
+/// flight ends at once: none of the 4 ways, where the runs stopped). A slab touching a block
+/// 0.5 x 1.2 m (friction 0.9, no restitution) under a 0.3 g sine at 1 Hz (scan run 1577): at
+/// 1.9233541 s the slab is 1.3e-13 m above the ground coming down at 6e-6 m/s; both ends press
+/// and the faces lie on each other, until at 1.9235043 s the block's face comes down flat again
+/// and several ways hold, where the run stops. The wall, slab and squat block of
+/// [`three_blocks`] (friction 0.8, restitution 0.8) under a 0.45 g sine at 2 Hz (scan run
+/// 1164): at 11.4150839 s the wall is 1.5e-12 m up, rising, and the faces' impulses alone would
+/// leave it coming down at 3.5e-5 m/s; the run goes on to its end. In both the blocks never
+/// overlap and the balance closes.
 #[test]
-fn pushes_a_singular_matrix_leaves_undetermined_press_nowhere() {
+fn a_body_a_round_off_above_the_ground_lands_as_faces_come_down_flat() {
+    let scenes = [
+        (
+            slab_and_block(0.9, 0.0, (0.5, 1.2, 0.0)),
+            (0.3, 1.0, 0.0),
+            1.923_354_085_6,
+            "S's face comes down flat on W's, S landing from free flight on its right corner",
+            1.923_504_348_3,
+        ),
+        (
+            three_blocks(0.8, 0.8, 0.6, 0.02),
+            (0.45, 2.0, 270.0),
+            11.415_083_937_4,
+            "W's face comes down flat on S's, W landing from free flight on its left corner",
+            15.0,
+        ),
+    ];
+    for (model, motion, landing, comes, ends) in scenes {
+        let r = run(&model, motion, if ends < 15.0 { 4.0 } else { ends });
+        let at = |kind: EventKind, also: &str| {
+            (r.events.iter()).any(|e| {
+                e.kind == kind
+                    && (e.time_s - landing).abs() < 1e-9
+                    && (e.mode.as_deref()).is_some_and(|m| m.starts_with(comes) && m.contains(also))
+            })
+        };
+        assert!(
+            at(
+                EventKind::RockingImpact,
+                "its base's contacts and the faces' plastic at once"
+            ) && at(
+                EventKind::BlocksImpact,
+                "both ends press: the faces lie on each other"
+            ),
+            "{motion:?}: {:#?}",
+            r.events
+        );
+        let stop = "several ways of the pivots and the ends hold";
+        assert!(
+            (r.summary.duration_s - ends).abs() < 1e-9
+                && (ends == 15.0 && r.summary.warnings.is_empty() || meets(&r, stop)),
+            "{:?}",
+            r.summary.warnings
+        );
+        first_two_never_overlap(&model, &r);
+        balances(&r);
+    }
+}
+
+/// A slab touching a block 0.8 x 1.2 m (friction 0.9, no restitution) under El Centro at 0.4 g
+/// (scan run 1596): the two turn on together on the slab's corner again and again, and where a
+/// pivot sticks its slip, a tie's rate, is set to zero. That left the contact's normal rate at
+/// the slip's round-off (1e-11 m/s), and the push (4e3 N) worked against it: the balance
+/// closed only to 3.6e-12 of the energies. The contact closes with the stop (the velocities
+/// its mode leaves free, the stopped slip held), what that changes of the kinetic energy going
+/// with the impacts' loss: the run goes to its end, the blocks never overlapping, the balance
+/// closing to round-off.
+#[test]
+fn a_couple_whose_pivot_sticks_closes_its_contact() {
     use super::clearance_tests::run;
     use super::handoff_tests::el_centro;
-    let model = three_blocks(0.8, 0.0, 0.6, 0.02);
-    let r = run(&model, &el_centro(0.6), 5.5, 0.0);
-    let set_down = (r.events.iter()).any(|e| {
-        (e.time_s - 5.371_298_685_3).abs() < 1e-9
-            && (e.mode.as_deref()).is_some_and(|m| {
-                m.starts_with("set down seated beside")
-                    && m.contains("none of the 112 ways of the pivots and the ends holds")
-            })
-    });
-    assert!(set_down, "{:#?}", r.events);
-    assert_eq!(r.summary.duration_s, 5.5, "{:?}", r.summary.warnings);
+    let model = slab_and_block(0.9, 0.0, (0.8, 1.2, 0.0));
+    let r = run(&model, &el_centro(0.4), 15.0, 0.0);
+    assert_eq!(r.summary.duration_s, 15.0, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    let sticks = |e: &&crate::response::EventRecord| e.kind == EventKind::PivotStick;
+    assert!(r.events.iter().filter(sticks).count() > 10);
     first_two_never_overlap(&model, &r);
     balances(&r);
 }
