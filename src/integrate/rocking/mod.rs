@@ -1720,8 +1720,14 @@ impl<'a> Engine<'a> {
                      end"
                 ),
             };
-            let stop = self.rests_against(held, &turning, &out, now, why, Through::Blow)?;
+            // A body landing with the faces lands through it all the same.
+            let through = match through {
+                Through::Landing(..) => through,
+                _ => Through::Blow,
+            };
+            let stop = self.rests_against(held, &turning, &out, now, why, through)?;
             if stop.is_none() {
+                log_landing(self);
                 self.clearance.strike(t.pair);
                 // The contact that stays counts the impact where it takes an impulse.
                 if all.impulse_n_s[1] <= 0.0 {
