@@ -78,6 +78,12 @@ use series::Coeffs;
 /// would go on for ever, each a history row).
 const STALL_STOPS: usize = 10_000;
 
+/// How many times a pair may part at one instant, its push falling at once, before a contact
+/// whose push falls at once again stops the run: a pair that touches and parts again as it did
+/// (alone, the bodies come back to the contact at the instant) would do so without end, where
+/// other events of the instant may come between the first partings.
+const PARTINGS: usize = 3;
+
 /// See [`STALL_STOPS`]: well above the steps of any series of events the model sums or follows
 /// (a series of landings is summed in closed form once a rise is below 1e-9 of alpha).
 const CRAWL: f64 = 1e-6;
@@ -218,6 +224,9 @@ struct Engine<'a> {
     /// The landings due at a step's stop, per body (on its base: `Some(None)`; from flight, on
     /// a corner: `Some(Some(corner))`); a body of a couple taking both takes the other's.
     landings: Vec<Option<Option<Corner>>>,
+    /// The pair whose couple last parted because its push fell to zero, when (s), and how
+    /// many times it did at that instant.
+    parted: Option<(usize, f64, usize)>,
 }
 
 /// Where a block is at a hand-over: its centroid's horizontal displacement (m) and velocity
@@ -567,6 +576,7 @@ impl<'a> Engine<'a> {
                 .unwrap_or_default(),
             reached: Vec::new(),
             landings: Vec::new(),
+            parted: None,
         }
     }
 
@@ -2649,6 +2659,14 @@ impl<'a> Engine<'a> {
     /// gives, and the pair must part before it may strike again.
     fn part(&mut self, i: usize, now: &Inputs, off_end: bool) -> Result<(), SimulationError> {
         let couple = self.uncouple(i);
+        if !off_end {
+            let (pair, t) = (couple.touch.pair, self.t);
+            let again = match self.parted {
+                Some((p, at, n)) if (p, at) == (pair, t) => n,
+                _ => 0,
+            };
+            self.parted = Some((pair, t, again + 1));
+        }
         let [corner, face] = couple.touch.blocks.map(|k| self.layout.names[k].clone());
         let how = match off_end {
             true => format!("{corner}'s corner slides off an end of {face}'s face: the two part"),
@@ -3967,6 +3985,27 @@ impl<'a> Engine<'a> {
         for k in 0..2 {
             if let (Some(i), Some(mode)) = (bodies[k], modes[k]) {
                 states[k] = settled_in(self.body(i), mode, states[k]);
+            }
+        }
+        // A push that falls at once parts the pair at this instant; where it parted so at
+        // this instant again and again, alone the bodies coming back to the contact each time,
+        // the pair would touch and part without end.
+        if self.parted == Some((t.pair, self.t, PARTINGS)) {
+            let members = [0, 1].map(|k| match (bodies[k], modes[k]) {
+                (Some(i), Some(mode)) => Member::Moves(self.body(i), mode, &states[k]),
+                _ => Member::Fixed,
+            });
+            let push = couple.motion(members, now).push;
+            let body = self.body(bodies.into_iter().flatten().next().expect("a moving side"));
+            let force = modes::Scales::of(body).force;
+            if series::sign_after(&push, force, body.time_scale_s()) < 0 {
+                return Ok(Some(format!(
+                    "{stays}, and the one mode of the pivots that holds with the contact has a \
+                     push that falls at once ({:.6e} N), where they parted {PARTINGS} times at \
+                     this instant and alone came back to it each time: the rigid model with \
+                     Coulomb friction has no motion here",
+                    push[0]
+                )));
             }
         }
         self.rec.energy.impact_loss_j += out.loss_j;
