@@ -78,15 +78,15 @@ use series::Coeffs;
 /// would go on for ever, each a history row).
 const STALL_STOPS: usize = 10_000;
 
+/// See [`STALL_STOPS`]: well above the steps of any series of events the model sums or follows
+/// (a series of landings is summed in closed form once a rise is below 1e-9 of alpha).
+const CRAWL: f64 = 1e-6;
+
 /// How many times a pair may part at one instant, its push falling at once, before a contact
 /// whose push falls at once again stops the run: a pair that touches and parts again as it did
 /// (alone, the bodies come back to the contact at the instant) would do so without end, where
 /// other events of the instant may come between the first partings.
 const PARTINGS: usize = 3;
-
-/// See [`STALL_STOPS`]: well above the steps of any series of events the model sums or follows
-/// (a series of landings is summed in closed form once a rise is below 1e-9 of alpha).
-const CRAWL: f64 = 1e-6;
 
 /// A landing after which the body would rise by less than this fraction of alpha starts a series
 /// of landings that is summed in closed form (Zeno). It must lie well above [`series::TIE`]: an
