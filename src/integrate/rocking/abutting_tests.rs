@@ -3,7 +3,7 @@
 //! and part where one lifts away.
 
 use super::clearance_tests::never_overlap;
-use super::tie_tests::{balances, row, run, slab_and_block};
+use super::tie_tests::{balances, el_centro_to_end, row, run, slab_and_block};
 use crate::response::{EventKind, Response};
 
 /// Asserts that the slab 0.3 x 1.2 m and the block (`w` x `h` m) touching it on its right,
@@ -405,12 +405,8 @@ fn a_flight_upright_by_round_off_lands_flat_with_lying_faces() {
 /// warning, never overlapping, its balance closing.
 #[test]
 fn both_bodies_under_lying_faces_land_on_their_bases_at_once() {
-    use super::clearance_tests::run;
-    use super::handoff_tests::el_centro;
     let model = slab_and_block(0.9, 0.0, (0.8, 0.9, 0.0));
-    let r = run(&model, &el_centro(0.4), 2.4, 0.0);
-    assert_eq!(r.summary.duration_s, 2.4, "{:?}", r.summary.warnings);
-    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    let r = el_centro_to_end(&model, 0.4, 2.4);
     let both = "S lands on its base and W lands on its base while S's face lies on W's, the four \
                 contacts plastic at once";
     let landings: Vec<_> = (r.events.iter())

@@ -2171,7 +2171,7 @@ impl<'a> Engine<'a> {
         let bodies = lying
             .bodies()
             .map(|b| b.expect("the sides of lying faces are bodies"));
-        let ends = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
+        let ends = self.lying_touches(&lying);
         let [a, b] = ends[0].blocks.map(|k| self.layout.names[k].clone());
         let landing = |name: &str, c: Option<Corner>| match c {
             None => format!("{name} lands on its base"),
@@ -2381,7 +2381,7 @@ impl<'a> Engine<'a> {
         let bodies = lying
             .bodies()
             .map(|b| b.expect("the sides of lying faces are bodies"));
-        let old = lying.touches_at(bodies.map(|k| &self.tracks[k].state));
+        let old = self.lying_touches(&lying);
         let [a, b] = old[0].blocks.map(|k| self.layout.names[k].clone());
         let ends = match meeting {
             Meeting::Faces(ends) => ends,

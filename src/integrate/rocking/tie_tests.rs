@@ -71,6 +71,17 @@ pub(super) fn run(
     rocking.run(&scenario).unwrap()
 }
 
+/// Runs `model` under El Centro scaled to `pga_g` for `duration_s` exactly, and asserts that the
+/// run reaches its end without a warning.
+pub(super) fn el_centro_to_end(model: &Model, pga_g: f64, duration_s: f64) -> Response {
+    use super::clearance_tests::run;
+    use super::handoff_tests::el_centro;
+    let r = run(model, &el_centro(pga_g), duration_s, 0.0);
+    assert_eq!(r.summary.duration_s, duration_s, "{:?}", r.summary.warnings);
+    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    r
+}
+
 /// The energy balance closes to round-off of what went in and out.
 pub(super) fn balances(r: &Response) {
     let e = &r.summary.energy;
@@ -263,12 +274,8 @@ fn a_body_coming_upright_as_its_face_comes_flat_lands_with_both_ends_at_once() {
 /// without a warning, the wall and the slab never overlapping, the balance closing.
 #[test]
 fn top_corners_of_one_height_meet_where_the_tilting_block_goes_below() {
-    use super::clearance_tests::run;
-    use super::handoff_tests::el_centro;
     let model = three_blocks(0.8, 0.8, 0.6, 0.02);
-    let r = run(&model, &el_centro(0.6), 15.0, 0.0);
-    assert_eq!(r.summary.duration_s, 15.0, "{:?}", r.summary.warnings);
-    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    let r = el_centro_to_end(&model, 0.6, 15.0);
     let strikes = r.events.iter().any(|e| {
         e.kind == EventKind::BlocksImpact
             && (e.time_s - 4.110_284_284_4).abs() < 1e-9
@@ -362,10 +369,8 @@ fn a_body_a_round_off_above_the_ground_lands_as_faces_come_down_flat() {
 /// run goes on (to a rattle at 5.9128 s), the blocks never overlapping, the balance closing.
 #[test]
 fn a_landing_with_faces_that_part_at_one_end_is_decided_as_a_landing() {
-    use super::clearance_tests::run;
-    use super::handoff_tests::el_centro;
     let model = three_blocks(0.8, 0.0, 0.6, 0.02);
-    let r = run(&model, &el_centro(0.6), 5.5, 0.0);
+    let r = el_centro_to_end(&model, 0.6, 5.5);
     let comes = "S's face comes down flat on W's, S landing from free flight on its left corner";
     let at = |kind: EventKind, starts: &str, also: &str| {
         (r.events.iter()).any(|e| {
@@ -386,8 +391,6 @@ fn a_landing_with_faces_that_part_at_one_end_is_decided_as_a_landing() {
         "{:#?}",
         r.events
     );
-    assert_eq!(r.summary.duration_s, 5.5, "{:?}", r.summary.warnings);
-    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
     first_two_never_overlap(&model, &r);
     balances(&r);
 }
@@ -429,12 +432,8 @@ fn a_pair_that_parts_and_touches_again_at_one_instant_stops_saying_why() {
 /// closing to round-off.
 #[test]
 fn a_couple_whose_pivot_sticks_closes_its_contact() {
-    use super::clearance_tests::run;
-    use super::handoff_tests::el_centro;
     let model = slab_and_block(0.9, 0.0, (0.8, 1.2, 0.0));
-    let r = run(&model, &el_centro(0.4), 15.0, 0.0);
-    assert_eq!(r.summary.duration_s, 15.0, "{:?}", r.summary.warnings);
-    assert!(r.summary.warnings.is_empty(), "{:?}", r.summary.warnings);
+    let r = el_centro_to_end(&model, 0.4, 15.0);
     let sticks = |e: &&crate::response::EventRecord| e.kind == EventKind::PivotStick;
     assert!(r.events.iter().filter(sticks).count() > 10);
     first_two_never_overlap(&model, &r);
