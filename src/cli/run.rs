@@ -17,6 +17,7 @@ use pirqa::{ContactSolver, Direction, Equations, Model, ModelChoice, RunSettings
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Ground motion options shared by the commands that run simulations.
 #[derive(clap::Args, Debug, Clone)]
@@ -908,6 +909,17 @@ pub fn simulated_time_bar(duration_s: f64, what: &str) -> (ProgressBar, Progress
     );
     bar.set_message(what.to_string());
     let moved = bar.clone();
-    let progress = Progress::new(move |t| moved.set_position(ms(t))).with_stop(super::stop_flag());
+    // The bar moves by a thousandth of the run at least, either way (a fallback starts again
+    // from 0): a record's run reports at each of its samples, and moving the bar costs more
+    // than the run does between two of them.
+    let step_s = duration_s / 1000.0;
+    let shown_s = AtomicU64::new(f64::NEG_INFINITY.to_bits());
+    let progress = Progress::new(move |t| {
+        if (t - f64::from_bits(shown_s.load(Ordering::Relaxed))).abs() >= step_s {
+            shown_s.store(t.to_bits(), Ordering::Relaxed);
+            moved.set_position(ms(t));
+        }
+    })
+    .with_stop(super::stop_flag());
     (bar, progress)
 }

@@ -463,14 +463,20 @@ impl Motion {
 
     /// Ground velocity at t (m/s), from rest at t = 0.
     pub fn velocity(&self, t: f64) -> f64 {
-        let s = self.segment_at(t);
-        s.v0 + s.dv(t - s.t0)
+        self.velocity_displacement(t).0
     }
 
     /// Ground displacement at t (m), from rest at t = 0.
     pub fn displacement(&self, t: f64) -> f64 {
+        self.velocity_displacement(t).1
+    }
+
+    /// Ground velocity (m/s) and displacement (m) at t, from rest at t = 0, from one lookup of
+    /// the segment holding t (a record's is a search of its samples).
+    pub fn velocity_displacement(&self, t: f64) -> (f64, f64) {
         let s = self.segment_at(t);
-        s.d0 + s.v0 * (t - s.t0) + s.dd(t - s.t0)
+        let x = t - s.t0;
+        (s.v0 + s.dv(x), s.d0 + s.v0 * x + s.dd(x))
     }
 }
 
@@ -578,7 +584,9 @@ fn pulse_segment(p: &Pulse, t: f64) -> Segment {
 /// The sample interval [k dt, (k + 1) dt) holding t; n (the record's length) past its end.
 fn record_index(r: &Record, t: f64) -> usize {
     let n = r.accel_m_s2.len();
-    let k = ((t / r.dt_s).floor() as usize).min(n);
+    // A float-to-integer cast rounds towards zero and takes negatives and NaN to 0: the floor's
+    // index for every t, without the call to floor (a library function on this target).
+    let k = ((t / r.dt_s) as usize).min(n);
     // Round-off in t / dt can land one step off; correct it.
     if k > 0 && t < k as f64 * r.dt_s {
         k - 1
@@ -830,5 +838,36 @@ mod tests {
             (lo + 4.0).abs() < 1e-14 && (hi - 4.0).abs() < 1e-14,
             "{lo} {hi}"
         );
+    }
+
+    #[test]
+    fn a_record_time_is_in_the_sample_interval_that_holds_it() {
+        // The index is the floor of t / dt, corrected where that quotient rounds across a
+        // sample: the segment holding t starts at or before it and ends after it, at every
+        // sample time, a float either side of it and between samples; before the record it
+        // is the first, from its end on the last.
+        let dt = 0.01;
+        let r = Record::new("r", dt, (0..400).map(|k| (k as f64 * 0.37).sin()).collect()).unwrap();
+        let n = r.accel_m_s2.len();
+        for k in 0..n {
+            let t = k as f64 * dt;
+            for x in [t.next_down(), t, t.next_up(), t + 0.3 * dt, t + 0.999 * dt] {
+                let i = record_index(&r, x);
+                if x < 0.0 {
+                    assert_eq!(i, 0, "{x}");
+                    continue;
+                }
+                assert!(i <= n, "{x}");
+                if i < n {
+                    assert!(i as f64 * dt <= x && x < (i + 1) as f64 * dt, "{x}: {i}");
+                } else {
+                    assert!(x >= n as f64 * dt, "{x}: {i}");
+                }
+            }
+        }
+        for x in [-1.0, -1e-300, -0.0, f64::NAN] {
+            assert_eq!(record_index(&r, x), 0, "{x}");
+        }
+        assert_eq!(record_index(&r, 1e300), n);
     }
 }

@@ -923,8 +923,9 @@ fn motion_bounds(m: &Motion, t_end: f64) -> (f64, f64) {
             let steps = 2000;
             for k in 0..=steps {
                 let t = t_end * k as f64 / steps as f64;
-                v = v.max(m.velocity(t).abs());
-                d = d.max(m.displacement(t).abs());
+                let (vt, dt) = m.velocity_displacement(t);
+                v = v.max(vt.abs());
+                d = d.max(dt.abs());
             }
             (2.0 * v, 2.0 * d + v * t_end / steps as f64)
         }

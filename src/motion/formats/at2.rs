@@ -2,7 +2,7 @@
 //! `NPTS=  4000, DT= .0100 SEC` or `4164  0.0100  NPTS, DT`), then accelerations in g, several
 //! per line, in free format.
 
-use super::numbers::free_format;
+use super::numbers::{free_format, free_format_into};
 use super::{ReadOptions, RecordFormat};
 use crate::error::MotionError;
 use crate::motion::Record;
@@ -108,9 +108,8 @@ impl RecordFormat for At2 {
             if values.len() >= npts {
                 break;
             }
-            let v = free_format(line)
+            free_format_into(line, &mut values)
                 .map_err(|e| line_err(k + 1, format!("{e}: expected accelerations")))?;
-            values.extend(v);
             last_line = k + 1;
         }
         if values.len() < npts {

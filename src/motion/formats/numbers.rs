@@ -6,33 +6,58 @@
 /// a new number, so values written without spaces between them are still read.
 pub fn free_format(line: &str) -> Result<Vec<f64>, String> {
     let mut out = Vec::new();
-    let mut current = String::new();
-    let flush = |current: &mut String, out: &mut Vec<f64>| -> Result<(), String> {
-        if !current.is_empty() {
-            let v: f64 = current
-                .parse()
-                .map_err(|_| format!("\"{current}\" is not a number"))?;
-            if !v.is_finite() {
-                return Err(format!("\"{current}\" is not a finite number"));
-            }
-            out.push(v);
-            current.clear();
-        }
-        Ok(())
-    };
-    for c in line.chars() {
+    free_format_into(line, &mut out)?;
+    Ok(out)
+}
+
+/// [`free_format`] appending to `out`: a reader of thousands of lines fills one vector.
+pub fn free_format_into(line: &str, out: &mut Vec<f64>) -> Result<(), String> {
+    // Numbers are read where they lie in the line; every byte that ends or starts one is
+    // ASCII, so each is a slice of whole characters.
+    let bytes = line.as_bytes();
+    let mut start = None;
+    for (i, &c) in bytes.iter().enumerate() {
         match c {
-            ' ' | '\t' | ',' | ';' => flush(&mut current, &mut out)?,
-            '+' | '-' if !current.is_empty() && !current.ends_with(['e', 'E', 'd', 'D']) => {
-                flush(&mut current, &mut out)?;
-                current.push(c);
+            b' ' | b'\t' | b',' | b';' => {
+                if let Some(s) = start.take() {
+                    out.push(number(&line[s..i])?);
+                }
             }
-            'd' | 'D' => current.push('e'),
-            _ => current.push(c),
+            b'+' | b'-' => match start {
+                Some(s) if !matches!(bytes[i - 1], b'e' | b'E' | b'd' | b'D') => {
+                    out.push(number(&line[s..i])?);
+                    start = Some(i);
+                }
+                Some(_) => {}
+                None => start = Some(i),
+            },
+            _ => {
+                start.get_or_insert(i);
+            }
         }
     }
-    flush(&mut current, &mut out)?;
-    Ok(out)
+    if let Some(s) = start {
+        out.push(number(&line[s..])?);
+    }
+    Ok(())
+}
+
+/// One free-format number, a Fortran double's exponent letter `d` read as `e`.
+fn number(text: &str) -> Result<f64, String> {
+    let spelled;
+    let text = if text.bytes().any(|b| matches!(b, b'd' | b'D')) {
+        spelled = text.replace(['d', 'D'], "e");
+        spelled.as_str()
+    } else {
+        text
+    };
+    let v: f64 = text
+        .parse()
+        .map_err(|_| format!("\"{text}\" is not a number"))?;
+    if !v.is_finite() {
+        return Err(format!("\"{text}\" is not a finite number"));
+    }
+    Ok(v)
 }
 
 /// A Fortran edit descriptor such as `(8F10.5)`, `(10I8)`, `(1P5E15.7)`: values per line and
@@ -117,6 +142,23 @@ mod tests {
         assert_eq!(free_format("1.0D-3").unwrap(), vec![0.001]);
         assert!(free_format("1.2.3").is_err());
         assert!(free_format("NaN").is_err());
+    }
+
+    #[test]
+    fn free_format_appends_each_line_to_the_values_read_before() {
+        let mut values = vec![1.0];
+        free_format_into(" 2.5D+01,-3-4 ", &mut values).unwrap();
+        free_format_into("", &mut values).unwrap();
+        free_format_into(".5e-1;6", &mut values).unwrap();
+        assert_eq!(values, vec![1.0, 25.0, -3.0, -4.0, 0.05, 6.0]);
+        assert_eq!(
+            free_format_into("7 8x 9", &mut values),
+            Err("\"8x\" is not a number".to_string())
+        );
+        assert_eq!(
+            free_format("1d999"),
+            Err("\"1e999\" is not a finite number".to_string())
+        );
     }
 
     #[test]
