@@ -292,6 +292,19 @@ def test_a_run_releases_the_gil(root):
     assert longest < 0.5 * run_s, f"paused {longest:.4f} s during a run of {run_s:.4f} s"
 
 
+def test_a_run_the_exact_model_stops_says_where(root):
+    """Under a 0.9 g, 2 Hz sine the stack under the rocking top of slender-on-stack.ron would
+    slip at 0.106 s: the exact model stops following the wall there, and the run ends with its
+    summary saying where; under 0.3 g it runs to its end and says nothing of the kind."""
+    wall = pirqa.Wall.from_file(root / "walls/rocking/slender-on-stack.ron")
+    stopped = pirqa.run(wall, pirqa.Motion.sine("0.9g", frequency_hz=2.0, duration_s=3.0)).summary
+    assert stopped["stopped_at_s"] == stopped["duration_s"]
+    assert 0.105 < stopped["stopped_at_s"] < 0.106
+    whole = pirqa.run(wall, pirqa.Motion.sine("0.3g", frequency_hz=1.5, duration_s=1.0)).summary
+    assert whole.get("stopped_at_s") is None
+    assert whole["duration_s"] == 1.0
+
+
 def test_an_interrupt_stops_a_run_and_keeps_what_it_reached(root, interruptible):
     """An interrupt (what Ctrl-C or a notebook's "interrupt the kernel" sends) half a second into
     a run that would take half a minute: KeyboardInterrupt, carrying the run up to where it

@@ -689,6 +689,14 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
              (summary.json: interrupted_at_s)"
         );
     }
+    if let Some(at) = s.stopped_at_s {
+        let _ = writeln!(
+            t,
+            "  STOPPED at t = {at} s, where the exact model stops following the wall (the warning \
+             below says why): every number below is of the motion up to then (summary.json: \
+             stopped_at_s)"
+        );
+    }
     let m = &s.model;
     let _ = writeln!(
         t,
@@ -754,7 +762,12 @@ fn terminal_summary(r: &Response, out: Option<&Path>) -> String {
             );
         }
         None => {
-            let _ = writeln!(t, "  no collapse");
+            let ended_early = s.stopped_at_s.or(s.interrupted_at_s).is_some();
+            let _ = writeln!(
+                t,
+                "  no collapse{}",
+                if ended_early { " up to then" } else { "" }
+            );
         }
     }
     if let Some(loss) = s.max_overlap_loss {

@@ -342,6 +342,12 @@ pub struct Summary {
     /// every number here is of the motion up to it. Absent for a run that went to its end.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interrupted_at_s: Option<f64>,
+    /// The exact model stopped following the wall at this time (s), before the run's duration,
+    /// and the run ended there (a warning says why): every number here is of the motion up to
+    /// it. Absent for a run that went to its end, and for one that time stepping carried on
+    /// from the stop (`--after-stop moreau`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped_at_s: Option<f64>,
     /// Per block.
     pub blocks: Vec<BlockSummary>,
     /// Per horizontal joint (`joints` in summary.json, its name there since the first release).

@@ -57,6 +57,8 @@ pub struct Recorder {
     pub warnings: Vec<Warning>,
     /// The run was asked to stop and ended at this time (s).
     pub interrupted_at_s: Option<f64>,
+    /// The exact model stopped following the wall and the run ended at this time (s).
+    pub stopped_at_s: Option<f64>,
     /// The model that ran.
     pub model: ModelUsed,
     /// The uplift check, when asked for.
@@ -158,6 +160,7 @@ impl Recorder {
             stats: Stats::default(),
             warnings: Vec::new(),
             interrupted_at_s: None,
+            stopped_at_s: None,
             model: ModelUsed::default(),
             uplift_check: None,
             overlap_loss: None,
@@ -488,6 +491,7 @@ impl Recorder {
                 motion_processing: Vec::new(),
                 duration_s: t_end,
                 interrupted_at_s: self.interrupted_at_s,
+                stopped_at_s: self.stopped_at_s,
                 blocks,
                 horizontal_joints,
                 impacts: self.impacts,

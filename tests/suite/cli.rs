@@ -2127,7 +2127,8 @@ fn after_the_first_uplift_time_stepping_with_rotations_takes_over() {
 /// upper drum would lift off the lower one's corner (6.22 s), then every block steps with its
 /// rotation from there: one history whose rows up to the stop are the exact run's own, to the
 /// last digit, and go on past it; the summary names both methods and where the exact model
-/// stopped, and carries no warning that the run ended there. The upper drum, leaning by 1 rad
+/// stopped, and carries no warning that the run ended there, nor the exact run's
+/// `stopped_at_s`. The upper drum, leaning by 1 rad
 /// with its centroid dropped by more than half its height, has fallen by the stepper's
 /// criterion at the stop itself: it falls there, and the lower one steps on
 /// (`--after-collapse continue`). A run the exact model finishes is
@@ -2154,6 +2155,11 @@ fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
     let (exact, handed) = (out_dir("exact"), out_dir("handed"));
     let (ok, out, err) = run(column, "0.5g", &["--out", &exact]);
     assert!(ok && out.contains("stops there"), "{out}{err}");
+    // Its numbers are of the motion up to the stop, and it says so before them.
+    assert!(
+        out.contains("  STOPPED at t = 6.22") && out.contains("  no collapse up to then\n"),
+        "{out}"
+    );
     let more = [
         "--after-stop",
         "moreau",
@@ -2187,6 +2193,8 @@ fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
         serde_json::from_str(&text).unwrap()
     };
     let (stop, fell) = (summary("exact"), summary("handed"));
+    assert_eq!(stop["stopped_at_s"], stop["duration_s"]);
+    assert!(fell.get("stopped_at_s").is_none(), "{fell}");
     assert_eq!(
         fell["collapse"]["time_s"], stop["duration_s"],
         "{}",
@@ -2195,7 +2203,10 @@ fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
     assert_eq!(fell["collapse"]["block"], "Drum2");
     let (ok, out, err) = run(column, "0.3g", &["--after-stop", "moreau"]);
     assert!(
-        ok && out.contains("| event |") && out.contains("followed the wall to the end"),
+        ok && out.contains("| event |")
+            && out.contains("followed the wall to the end")
+            && out.contains("  no collapse\n")
+            && !out.contains("STOPPED"),
         "{out}{err}"
     );
     for (wall, more, says) in [

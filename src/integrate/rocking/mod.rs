@@ -4649,6 +4649,7 @@ impl<'a> Engine<'a> {
     /// `placed` (the last row and the energies are written: the energies go to the balance of
     /// what follows, which counts the blocks' own again at its end).
     fn summary(mut self, u: &[f64], v: &[f64], placed: Vec<Placed>) -> Finished {
+        let stopped = self.stop.is_some();
         if let (true, Some(why)) = (self.hand_off, self.stop.take()) {
             let e = &mut self.rec.energy;
             let mechanical_j = e.kinetic_j + e.potential_j;
@@ -4677,6 +4678,9 @@ impl<'a> Engine<'a> {
         }
         let motion = self.scene.motion.describe();
         let t = self.t;
+        if stopped {
+            self.rec.stopped_at_s = Some(t);
+        }
         let name = self
             .scene
             .bodies
