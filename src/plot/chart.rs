@@ -407,18 +407,22 @@ impl Envelope {
 /// The data of charts as CSV: one row per point, with chart, series, x and y (titles and
 /// labels quoted, so any text round-trips; numbers as the shortest decimal that reads back).
 pub fn to_csv(charts: &[Chart]) -> String {
-    let mut w = csv::WriterBuilder::new()
-        .quote_style(csv::QuoteStyle::NonNumeric)
-        .from_writer(Vec::new());
+    use std::fmt::Write;
+    // The csv crate quotes a field unless it reads as a number, which it finds by parsing the
+    // field: every point's two numbers, a run's response.csv being most of its output's cost.
+    // The names are quoted by it once per series; the numbers are written as they are, which
+    // that check leaves unquoted (a float's `Display` always reads back as a number).
+    let mut out = String::from("chart,series,x,y\n");
     for c in charts {
+        let title = crate::table::non_numeric(&c.title);
         for ser in &c.series {
+            let label = crate::table::non_numeric(&ser.label);
             for (x, y) in &ser.points {
-                w.write_record([&c.title, &ser.label, &x.to_string(), &y.to_string()])
-                    .unwrap_or_else(|e| unreachable!("memory takes every write: {e}"));
+                let _ = writeln!(out, "{title},{label},{x},{y}");
             }
         }
     }
-    String::from("chart,series,x,y\n") + &crate::table::text(w)
+    out
 }
 
 #[cfg(test)]
@@ -500,5 +504,57 @@ mod tests {
         ] {
             assert_eq!(tick(&v), s, "{v}");
         }
+    }
+
+    /// The data of a chart is what the csv crate writes with every field quoted but numbers:
+    /// names with quotes, commas, line breaks, none, or that read as numbers, and points of
+    /// every kind of float.
+    #[test]
+    fn chart_data_is_what_the_csv_crate_writes() {
+        use super::{to_csv, Series};
+        let points = vec![
+            (0.0, -0.0),
+            (0.025, 1e-300),
+            (-1.5e22, f64::NAN),
+            (f64::INFINITY, f64::NEG_INFINITY),
+            (std::f64::consts::PI, 5e-324),
+        ];
+        let names = [
+            "ground acceleration",
+            "",
+            "a, \"b\"",
+            "1",
+            "-2.5e3",
+            "NaN",
+            "line\nbreak",
+        ];
+        let charts: Vec<Chart> = names
+            .iter()
+            .map(|title| Chart {
+                title: title.to_string(),
+                series: names
+                    .iter()
+                    .map(|label| Series {
+                        label: label.to_string(),
+                        points: points.clone(),
+                        ..Default::default()
+                    })
+                    .collect(),
+                ..Default::default()
+            })
+            .collect();
+        let mut w = csv::WriterBuilder::new()
+            .quote_style(csv::QuoteStyle::NonNumeric)
+            .from_writer(Vec::new());
+        for c in &charts {
+            for s in &c.series {
+                for (x, y) in &s.points {
+                    w.write_record([&c.title, &s.label, &x.to_string(), &y.to_string()])
+                        .unwrap();
+                }
+            }
+        }
+        let expected = String::from("chart,series,x,y\n") + &crate::table::text(w);
+        assert_eq!(to_csv(&charts), expected);
     }
 }
