@@ -8,7 +8,7 @@ use crate::integrate::baselines::{
 };
 use crate::integrate::event::{Ended, EventDriven, Params};
 use crate::integrate::rocking::{self, Equations, Finished, ModelChoice, Rocking};
-use crate::integrate::stepping::{positive, time_step};
+use crate::integrate::stepping::{positive, steps_fit, time_step};
 use crate::integrate::{AfterCollapse, Integrator, Progress, Scenario, Settings};
 use crate::model::Model;
 use crate::motion::Motion;
@@ -179,6 +179,18 @@ impl RunSettings {
         match &self.method {
             Method::Paper { dt_s } | Method::Moreau { dt_s } => positive("time step", *dt_s, " s")?,
             Method::Event | Method::Regularized(_) => {}
+        }
+        // With the duration known, a step that cannot take the run is refused here, before a
+        // caller estimates (and announces) the run's size from it.
+        if let Some(d) = self.duration_s {
+            let after_stop = match self.after_stop {
+                AfterStop::Moreau { dt_s } => Some(dt_s),
+                AfterStop::End => None,
+            };
+            let steps = [self.method.step_s(), self.after_uplift.step_s(), after_stop];
+            for dt_s in steps.into_iter().flatten() {
+                steps_fit(dt_s, d)?;
+            }
         }
         for (name, theta) in &self.initial_rotation {
             if !(theta.is_finite() && theta.abs() < std::f64::consts::FRAC_PI_2) {

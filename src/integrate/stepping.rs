@@ -13,9 +13,15 @@ use crate::topology::{Base, VerticalId};
 /// enough steps (`bounds::MAX_STEPS`) that the run ends; the run's own settings checked too.
 pub fn time_step(sc: &Scenario, dt_s: f64) -> Result<(), SimulationError> {
     sc.settings.validate(sc.wall.blocks.len())?;
+    steps_fit(dt_s, sc.settings.duration_s)
+}
+
+/// A time step `dt_s` that can take a run of `duration_s`: positive, no longer than the run,
+/// and few enough steps (`bounds::MAX_STEPS`) that the run ends.
+pub fn steps_fit(dt_s: f64, duration_s: f64) -> Result<(), SimulationError> {
     positive("time step", dt_s, " s")?;
-    within_run(dt_s, sc.settings.duration_s)?;
-    if sc.settings.duration_s / dt_s > crate::bounds::MAX_STEPS {
+    within_run(dt_s, duration_s)?;
+    if duration_s / dt_s > crate::bounds::MAX_STEPS {
         return Err(SimulationError::Setting {
             what: "time step".into(),
             value: dt_s,
@@ -28,7 +34,7 @@ pub fn time_step(sc: &Scenario, dt_s: f64) -> Result<(), SimulationError> {
 
 /// A time step `dt_s` no longer than a run of `duration_s`: a longer one would take one step for
 /// the whole motion.
-pub fn within_run(dt_s: f64, duration_s: f64) -> Result<(), SimulationError> {
+fn within_run(dt_s: f64, duration_s: f64) -> Result<(), SimulationError> {
     if dt_s > duration_s {
         return Err(SimulationError::Setting {
             what: "time step".into(),

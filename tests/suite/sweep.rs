@@ -115,6 +115,12 @@ fn bad_sweep_files_get_errors_that_say_what_to_fix() {
         );
         // The same step within the run is taken.
         sweep(&text.replace("6.0", "5.0")).unwrap();
+        // A step so short that the run would take more than 1e9 of them is refused as well.
+        let e = sweep(&text.replace("6.0", "1e-9")).unwrap_err().to_string();
+        assert!(
+            e.contains(key) && e.contains("more than 1e9 steps") && e.contains("(motion "),
+            "{e}"
+        );
     }
 }
 

@@ -15,7 +15,7 @@ use crate::error::{Error, MotionError, SimulationError, SweepError};
 use crate::exact::Q;
 use crate::integrate::baselines::{ContactSolver, HANDED_OFF};
 use crate::integrate::rocking::ModelChoice;
-use crate::integrate::stepping::within_run;
+use crate::integrate::stepping::steps_fit;
 use crate::integrate::{Progress, Scenario, Settings};
 use crate::motion::{read_record, Motion, ReadOptions, Sine};
 use crate::response::Response;
@@ -632,8 +632,8 @@ impl Sweep {
             return Err(field(origin, "walls", "empty: name at least one".into()));
         }
         let motions = resolve_motions(&d.motion, base, origin, &mut hash)?;
-        // The runs' own rule on a step (`stepping::within_run`), asked of the file before any
-        // case runs.
+        // The runs' own rule on a step (`stepping::steps_fit`: within the run, and few enough
+        // steps that it ends), asked of the file before any case runs.
         let steps = [
             ("method", d.method.method().step_s()),
             ("fallback", d.fallback.step_s()),
@@ -641,7 +641,7 @@ impl Sweep {
         ];
         for (name, dt_s) in steps.iter().filter_map(|&(n, dt)| Some((n, dt?))) {
             for m in &motions {
-                within_run(dt_s, m.duration_s).map_err(|e| {
+                steps_fit(dt_s, m.duration_s).map_err(|e| {
                     field(
                         origin,
                         name,
