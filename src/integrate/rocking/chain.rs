@@ -671,6 +671,7 @@ impl Engine<'_> {
     pub(super) fn chain_can_follow(&self, i: usize, k: usize) -> bool {
         self.tracks.len() == 1
             && self.clearance.is_empty()
+            && self.tracks[i].displaced.is_still()
             && k % 4 >= 2
             && matches!(self.tracks[i].mode, Mode::Rock(_))
             && self.scene.equations == super::Equations::Exact

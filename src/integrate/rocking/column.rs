@@ -14,10 +14,11 @@
 
 use super::body::RockingBody;
 use super::frame::{trilith, Frame, Recognised};
-use super::modes::{Constraint, Corner, Guard, Inputs, Mode, Trajectory, Velocity};
+use super::modes::{Constraint, Corner, Guard, Inputs, Mode, Slip, Trajectory, Velocity};
 use super::series::{
     add_to, constant, derivative, plus, product, sin_cos_at, Coeffs, ORDER, TIE, ZERO,
 };
+use super::stack::{Displaced, Stack};
 use crate::error::SimulationError;
 use crate::exact::Q;
 use crate::topology::{Base, BlockId, Topology};
@@ -238,9 +239,45 @@ impl Watch {
         (joint.name.clone(), HOW[k % 4], joint.upper)
     }
 
+    /// The stack that slides where condition `k` falls, if it is a slip of a held joint below
+    /// the body: the blocks from the one on that joint up to the body's, moving as one
+    /// (`u_start_m`: the body's u now).
+    pub(crate) fn stack_on(&self, k: usize, u_start_m: f64) -> Option<Stack> {
+        if self.frame.is_some() || k % 4 >= 2 {
+            return None;
+        }
+        let joint = self.joints.get(k / 4).filter(|j| !j.inside)?;
+        let held = self.pieces[joint.upper..].iter().filter(|p| !p.moving);
+        Some(Stack {
+            joint: k / 4,
+            first: joint.upper,
+            mass_kg: held.map(|p| p.mass_kg).sum(),
+            friction: joint.friction,
+            // Condition 4 j slips the block on the joint towards -x, 4 j + 1 towards +x.
+            slip: if k.is_multiple_of(4) {
+                Slip::Backward
+            } else {
+                Slip::Forward
+            },
+            u_start_m,
+        })
+    }
+
+    /// The column's held blocks (indices in the column, bottom first).
+    pub(crate) fn held_blocks(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.pieces.len()).filter(|&p| !self.pieces[p].moving)
+    }
+
     /// The held joints' conditions along a trajectory of the body: each series must stay
-    /// non-negative, with guard `Guard::Held` naming it.
-    pub(crate) fn conditions(&self, traj: &Trajectory, inputs: &Inputs) -> Vec<Constraint> {
+    /// non-negative, with guard `Guard::Held` naming it. Held blocks stand where `shift` has
+    /// them; the joint a stack slides on keeps its two tipping conditions (its slip is the
+    /// stack's own).
+    pub(crate) fn conditions(
+        &self,
+        traj: &Trajectory,
+        inputs: &Inputs,
+        shift: &Displaced,
+    ) -> Vec<Constraint> {
         if let Some(frame) = &self.frame {
             return frame.conditions(traj, inputs);
         }
@@ -273,12 +310,15 @@ impl Watch {
         let motion: Vec<Kinematics> = self
             .pieces
             .iter()
-            .map(|p| {
+            .enumerate()
+            .map(|(k, p)| {
                 if !p.moving {
+                    let (mut x, slides) = shift.block(k, traj);
+                    x[0] += p.x0;
                     return Kinematics {
-                        x: constant(p.x0),
+                        x,
                         y: constant(p.y0),
-                        ax: inputs.accel,
+                        ax: if slides { base_acc } else { inputs.accel },
                         ay: ZERO,
                     };
                 }
@@ -312,7 +352,10 @@ impl Watch {
                     add_to(&mut x, &rx, 1.0);
                     (x, ry)
                 } else {
-                    (constant(x0), constant(y0))
+                    // The contact moves with the block on it.
+                    let (mut x, _) = shift.block(joint.upper, traj);
+                    x[0] += x0;
+                    (x, constant(y0))
                 }
             });
             // Moments about each end of the forces the joint passes up: the d'Alembert
@@ -355,7 +398,12 @@ impl Watch {
             let mut right = moments[1];
             right.iter_mut().for_each(|c| *c = -*c);
             let series = [forward, backward, moments[0], right];
-            for (c, series) in series.into_iter().enumerate() {
+            let slides = shift.sliding.is_some_and(|st| st.joint == j);
+            for (c, series) in series
+                .into_iter()
+                .enumerate()
+                .skip(if slides { 2 } else { 0 })
+            {
                 let scale = if c < 2 {
                     self.force_scale
                 } else {
@@ -377,7 +425,13 @@ impl Watch {
     /// `after` (the new pivot or none, and the same), at theta = 0, with the body displaced
     /// by `u`. The impulses passed through a held joint must lie in its friction cone and
     /// their resultant within its contact, as the forces must between events.
-    pub(crate) fn landing(&self, u: f64, before: Velocity, after: Velocity) -> Option<usize> {
+    pub(crate) fn landing(
+        &self,
+        u: f64,
+        before: Velocity,
+        after: Velocity,
+        shift: &Displaced,
+    ) -> Option<usize> {
         if let Some(frame) = &self.frame {
             return frame.landing(before, after);
         }
@@ -389,14 +443,21 @@ impl Watch {
             mass * ((before.1.abs() + after.1.abs()) * height + before.2.abs() + after.2.abs());
         let tol = [1.0, 1.0, height, height].map(|k| TIE * impulse * k);
         self.joints.iter().enumerate().find_map(|(j, joint)| {
-            let margins = self.impulse_margins(joint, u, before, after);
+            let margins = self.impulse_margins(joint, u, before, after, shift);
             (0..4).position(|c| margins[c] < -tol[c]).map(|c| 4 * j + c)
         })
     }
 
     /// What a joint has to spare through a landing, as [`Watch::conditions`] orders them:
     /// mu J_n -+ J_t and the moments of the impulses about its two ends.
-    fn impulse_margins(&self, joint: &Held, u: f64, before: Velocity, after: Velocity) -> [f64; 4] {
+    fn impulse_margins(
+        &self,
+        joint: &Held,
+        u: f64,
+        before: Velocity,
+        after: Velocity,
+        shift: &Displaced,
+    ) -> [f64; 4] {
         let velocity = |(pivot, omega, v): Velocity, p: &Piece| {
             let s = pivot.map_or(0.0, Corner::sign);
             (v + omega * p.y0, -omega * (p.x0 - s * self.half_base_m))
@@ -414,7 +475,8 @@ impl Watch {
             jx += p.mass_kg * dvx;
             jy += p.mass_kg * dvy;
             for (m, &(ex, ey)) in moments.iter_mut().zip(&joint.ends) {
-                let ex = ex + if joint.inside { u } else { 0.0 };
+                let moved = shift.by_m.get(joint.upper).copied().unwrap_or(0.0);
+                let ex = ex + if joint.inside { u } else { moved };
                 *m += p.mass_kg * ((p.x0 + u - ex) * dvy - (p.y0 - ey) * dvx)
                     - p.inertia_kg_m2 * spin;
             }

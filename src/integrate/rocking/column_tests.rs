@@ -85,7 +85,7 @@ fn the_watch_balances_the_bodys_own_contact_forces() {
         ];
         for (mode, state) in cases {
             let t = modes::trajectory(&c.body, Equations::Exact, mode, &state, &inputs);
-            let cond = w.conditions(&t, &inputs);
+            let cond = w.conditions(&t, &inputs, &Displaced::default());
             let force = c.body.mass_kg * c.body.g_m_s2;
             for tau in [0.0, 0.01, 0.03] {
                 let at = |k: usize| crate::integrate::rocking::series::eval(&cond[k].series, tau);
@@ -162,7 +162,7 @@ fn a_landing_passes_its_impulse_through_the_new_pivot() {
         assert_eq!(landing.pivot, Some(Corner::Left));
         let before = (Some(Corner::Right), -0.4, 0.0);
         let after = (landing.pivot, landing.state.omega, landing.state.v);
-        let m = w.impulse_margins(&w.joints[0], 0.0, before, after);
+        let m = w.impulse_margins(&w.joints[0], 0.0, before, after, &Displaced::default());
         let b = c.body.half_base_m;
         let h = c.body.centroid_height_m;
         // v_Gy = -omega x_G about the pivot: x_G = -b about the right corner, +b about the left.
@@ -173,6 +173,6 @@ fn a_landing_passes_its_impulse_through_the_new_pivot() {
             (-m[3] / (-2.0 * b) - jn).abs() <= 1e-12 * scale / b,
             "{m:?} {jn}"
         );
-        assert_eq!(w.landing(0.0, before, after), None);
+        assert_eq!(w.landing(0.0, before, after, &Displaced::default()), None);
     }
 }

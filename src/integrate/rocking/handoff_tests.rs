@@ -234,9 +234,10 @@ fn handed_over(
 }
 
 /// The ways the exact model stops, each on its wall under El Centro at 0.5 g: a chain's pivot
-/// lifting off (the two-block column), a trilith's lintel slipping on its columns, a held joint
-/// slipping under a rocking body (the standing stone, its plinth on little friction), a slab
-/// meeting the low block beside it and staying against it (no restitution).
+/// lifting off (the two-block column), a trilith's lintel slipping on its columns, a slab
+/// meeting the low block beside it and staying against it (no restitution); and at 0.8 g a
+/// body landing on the stack that slides under it (the standing stone, its plinth on little
+/// friction: the stack handed over sliding).
 #[test]
 fn a_hand_off_places_every_block_where_the_exact_run_leaves_it() {
     let stone = Model::from_ron_str(
@@ -263,13 +264,13 @@ fn a_hand_off_places_every_block_where_the_exact_run_leaves_it() {
             (width_m: 0.2, gap_m: 0.05, name: \"A\")])])",
     )
     .unwrap();
-    for (model, how) in [
-        (&column, "would lift off"),
-        (&trilith, "would slip"),
-        (&stone, "Plinth/ground would slip"),
-        (&beside, "B meets A"),
+    for (model, pga_g, how) in [
+        (&column, 0.5, "would lift off"),
+        (&trilith, 0.5, "would slip"),
+        (&stone, 0.8, "Plinth/ground slides while Huanca lands"),
+        (&beside, 0.5, "B meets A"),
     ] {
-        let why = handed_over(model, &el_centro(0.5), 20.0, 0.5 * 9.81);
+        let why = handed_over(model, &el_centro(pga_g), 20.0, pga_g * 9.81);
         assert!(
             why.as_ref().is_some_and(|(w, _)| w.contains(how)),
             "{}: {why:?}",
@@ -280,8 +281,9 @@ fn a_hand_off_places_every_block_where_the_exact_run_leaves_it() {
 
 /// Columns of two and three blocks of several proportions and frictions under sines of several
 /// strengths and frequencies: wherever the exact model stops, whatever stops it, the state it
-/// hands over is the exact run's (as above); the stops met include a held joint slipping and
-/// opening, a chain's pivot slipping and lifting off.
+/// hands over is the exact run's (as above); the stops met include a held joint opening, a
+/// stack sliding under a body that lands on it or whose pivot would slip on it, a chain's pivot
+/// slipping and lifting off.
 #[test]
 fn every_stop_of_generated_columns_hands_over_the_exact_state() {
     let mut kinds = std::collections::BTreeMap::new();

@@ -16,6 +16,8 @@
 //! | landing from free flight (a corner reaches the ground) | a `Land` constraint | `impact::land_from_flight`, then `decide` |
 //! | overturning | theta reaches pi/2, or alpha with the ground at rest from then on | `Engine::overturn` |
 //! | a column's held joint opens under the rocking body | its watch's condition falls | `chain`: the column's blocks rock on each other until it is one body again |
+//! | a column's held joint below the rocking body slips | its watch's condition falls | `stack`: the blocks above it slide under the body until their slip stops |
+//! | a sliding stack stops | its `Stop` constraint | `Engine::stack_stops`, then `decide` |
 //! | extremes of theta, u, u' | roots of their derivatives | recorded, nothing decided |
 //! | end of a ground-motion segment | the step stops there | `decide` if a_g jumps |
 
@@ -46,6 +48,7 @@ mod lying_tests;
 mod modes;
 mod scenes;
 mod series;
+mod stack;
 #[cfg(test)]
 mod tie_tests;
 
@@ -71,6 +74,7 @@ use lean::Lean;
 use lying::{Decision, Lying};
 use modes::{Corner, Guard, Inputs, Mode, Scales, Slip, State, Trajectory};
 use series::Coeffs;
+use stack::Displaced;
 
 /// Stops at one instant (events that do not move the time) before a run is declared stuck; the
 /// same number of stops in a row that each move it by less than [`CRAWL`] of the bodies'
@@ -122,6 +126,8 @@ struct Track {
     /// Its face lies on another body's, pressed at both ends of their overlap, until an end
     /// lets go.
     lies: Option<Lying>,
+    /// Where its column's held blocks are, and the stack under it that slides, if one does.
+    displaced: Displaced,
 }
 
 /// Bodies to run side by side, and how.
@@ -232,6 +238,10 @@ struct Engine<'a> {
 /// Where a block is at a hand-over: its centroid's horizontal displacement (m) and velocity
 /// (m/s), its rise and rotation.
 type Placed = (f64, f64, Turned);
+
+/// A held block a stack moved: its u (m), u' (m/s) and, while it slides, its acceleration
+/// relative to the ground (m/s2).
+type Moved = (f64, f64, Option<f64>);
 
 /// Every output's state at one instant: u (m), u' (m/s), theta (rad), theta' (rad/s), the
 /// rise w (m) and the absolute acceleration (m/s2; none for a body that lies fallen).
@@ -556,6 +566,7 @@ impl<'a> Engine<'a> {
                 leans: None,
                 couple: None,
                 lies: None,
+                displaced: Displaced::default(),
             })
             .collect();
         Engine {
@@ -655,6 +666,9 @@ impl<'a> Engine<'a> {
             } else {
                 second
             };
+        }
+        if let (Some(stack), Mode::Rock(c)) = (&tr.displaced.sliding, tr.mode) {
+            return stack::trajectory(self.body(i), stack, c, &tr.state, inputs).0;
         }
         let mut t = modes::trajectory(
             self.body(i),
@@ -945,7 +959,10 @@ impl<'a> Engine<'a> {
             for (i, plan) in plans.iter().enumerate() {
                 let Some((traj, _)) = plan else { continue };
                 let body = self.body(i);
-                let (input, friction) = modes::power_series(body, traj, &inputs);
+                let (input, friction) = match &self.tracks[i].displaced.sliding {
+                    Some(st) => stack::power_series(body, st, traj, &inputs),
+                    None => modes::power_series(body, traj, &inputs),
+                };
                 self.rec.energy.input_j += series::integral(&input, tau);
                 self.rec.energy.friction_j += series::integral(&friction, tau);
                 let st = &mut self.tracks[i].state;
@@ -1083,7 +1100,11 @@ impl<'a> Engine<'a> {
         };
         let mut conditions = modes::constraints(body, self.scene.equations, traj);
         if let Some(watch) = self.scene.watches.get(i) {
-            conditions.extend(watch.conditions(traj, inputs));
+            conditions.extend(watch.conditions(traj, inputs, &self.tracks[i].displaced));
+        }
+        if let (Some(st), Mode::Rock(c)) = (&self.tracks[i].displaced.sliding, traj.mode) {
+            let (_, den) = stack::trajectory(body, st, c, &self.tracks[i].state, inputs);
+            conditions.extend(stack::constraints(body, st, traj, &den));
         }
         if let Some(lean) = &self.tracks[i].leans {
             conditions.push(lean.condition(body, inputs));
@@ -1153,6 +1174,10 @@ impl<'a> Engine<'a> {
             extreme(&v, sc.velocity);
             extreme(&series::derivative(&v), sc.velocity * p);
         }
+        if self.tracks[i].displaced.sliding.is_some() {
+            // The stack's displacement peaks where it stops (an event); its velocity here.
+            extreme(&series::derivative(&traj.v), sc.velocity * p);
+        }
         (h, best.filter(|(x, _)| *x <= h))
     }
 
@@ -1168,6 +1193,16 @@ impl<'a> Engine<'a> {
         let Some(guard) = guard else {
             return Ok(());
         };
+        if self.tracks[i].displaced.sliding.is_some() {
+            return match guard {
+                Guard::Stop => self.stack_stops(i, now),
+                Guard::Overturn => self.overturn(i, traj, tau),
+                _ => {
+                    self.stack_gives(i, guard);
+                    Ok(())
+                }
+            };
+        }
         if self.tracks[i].lies.is_some() {
             if self.stop.is_some() {
                 // The other body stopped the run at this instant.
@@ -1222,9 +1257,14 @@ impl<'a> Engine<'a> {
             }
             Guard::Held(k) if self.chain_can_follow(i, k) => self.open_chain(k),
             Guard::Held(k) => {
-                self.gives(i, k, false);
+                if !self.stack_slides(i, k, now) {
+                    self.gives(i, k, false);
+                }
                 Ok(())
             }
+            Guard::Indeterminate => Err(SimulationError::Bug(
+                "an indeterminate stack's motion met by a body on no sliding stack".into(),
+            )),
             Guard::Settled => {
                 let (_, after, tail) = self.tracks[i].settles.take().expect("a series of landings");
                 self.settled(i, after, tail);
@@ -4253,6 +4293,7 @@ impl<'a> Engine<'a> {
                 u,
                 (Some(pivot), omega, v),
                 (landing.pivot, after, landing.state.v),
+                &self.tracks[i].displaced,
             )
         });
         if let Some(k) = breaks {
@@ -4556,6 +4597,13 @@ impl<'a> Engine<'a> {
                     .is_some()
                     .then(|| a_g + series::eval(&series::derivative(&base_v), at));
             }
+            for (k, (du, dv, da)) in self.held_moved(i, traj, at, plan.is_none()) {
+                u[k] = du;
+                v[k] = dv;
+                if let Some(da) = da {
+                    accel[k] = Some(a_g + da);
+                }
+            }
             if row {
                 let pivot = traj.mode.corner();
                 let theta = series::eval(&traj.theta, at);
@@ -4569,6 +4617,42 @@ impl<'a> Engine<'a> {
             }
         }
         self.record(&r, t, row);
+    }
+
+    /// The held blocks of body i's column that a stack moved or moves, each with its output
+    /// and where it is `tau` along `traj` (`fallen`: the body lies fallen, the stack where the
+    /// body's state left it).
+    fn held_moved(
+        &self,
+        i: usize,
+        traj: &Trajectory,
+        tau: f64,
+        fallen: bool,
+    ) -> Vec<(usize, Moved)> {
+        let tr = &self.tracks[i];
+        let Some(watch) = self
+            .scene
+            .watches
+            .get(i)
+            .filter(|_| !tr.displaced.is_still())
+        else {
+            return Vec::new();
+        };
+        watch
+            .held_blocks()
+            .map(|p| {
+                let k = self.layout.column_output(i, p);
+                let (x, slides) = tr.displaced.block(p, traj);
+                if fallen {
+                    let v = if slides { tr.state.v } else { 0.0 };
+                    return (k, (x[0], v, None));
+                }
+                let xv = series::derivative(&x);
+                let xa = series::derivative(&xv);
+                let acc = slides.then(|| series::eval(&xa, tau));
+                (k, (series::eval(&x, tau), series::eval(&xv, tau), acc))
+            })
+            .collect()
     }
 
     /// Notes every output's extremes from `r` and, when `row`, writes it as the history row
@@ -4628,6 +4712,15 @@ impl<'a> Engine<'a> {
             for (k, base) in self.layout.series(i, body, traj) {
                 u[k] = base[0];
                 v[k] = base[1];
+            }
+            for (k, (du, dv, _)) in self.held_moved(i, traj, 0.0, plan.is_none()) {
+                u[k] = du;
+                v[k] = dv;
+                placed[k] = (du, dv, Turned::default());
+            }
+            if let Some(stack) = &self.tracks[i].displaced.sliding {
+                let v = self.tracks[i].state.v;
+                self.rec.energy.kinetic_j += 0.5 * stack.mass_kg * v * v;
             }
             if plan.is_some() {
                 self.rec.energy.kinetic_j += modes::kinetic_j(body, traj, 0.0);

@@ -275,6 +275,22 @@ impl Trajectory {
     }
 }
 
+impl Trajectory {
+    /// Coefficient k + 1 of each position and velocity from coefficient k of the velocities and
+    /// of the accelerations (theta'', u'', lift''): the series integrated one order on.
+    pub(super) fn integrate(&mut self, k: usize, acc_theta: f64, acc_u: f64, acc_lift: f64) {
+        if k < ORDER {
+            let kk = (k + 1) as f64;
+            self.theta[k + 1] = self.omega[k] / kk;
+            self.omega[k + 1] = acc_theta / kk;
+            self.u[k + 1] = self.v[k] / kk;
+            self.v[k + 1] = acc_u / kk;
+            self.lift[k + 1] = self.lift_v[k] / kk;
+            self.lift_v[k + 1] = acc_lift / kk;
+        }
+    }
+}
+
 /// Coefficient k of s b sin(theta) + h_c cos(theta) and s b cos(theta) - h_c sin(theta).
 pub(super) fn arms(body: &RockingBody, s: f64, sin: &Coeffs, cos: &Coeffs, k: usize) -> (f64, f64) {
     let (b, h) = (body.half_base_m, body.centroid_height_m);
@@ -365,15 +381,7 @@ pub fn trajectory(
                     - a[k];
             }
         }
-        if k < ORDER {
-            let kk = (k + 1) as f64;
-            t.theta[k + 1] = t.omega[k] / kk;
-            t.omega[k + 1] = acc_theta[k] / kk;
-            t.u[k + 1] = t.v[k] / kk;
-            t.v[k + 1] = acc_u[k] / kk;
-            t.lift[k + 1] = t.lift_v[k] / kk;
-            t.lift_v[k + 1] = acc_lift[k] / kk;
-        }
+        t.integrate(k, acc_theta[k], acc_u[k], acc_lift[k]);
     }
     if let Mode::SlideRock(..) = mode {
         t.denominator = Some(den[0]);
@@ -429,6 +437,9 @@ pub enum Guard {
     /// A body resting against a fixed block (`lean`), or two bodies turning together
     /// (`couple`): the contact's push falls to zero, the bodies parting.
     Parts,
+    /// A body rocking on a sliding stack (`stack`): the effective mass of their coupled motion
+    /// falls to zero, friction making the accelerations indeterminate (Painleve's paradox).
+    Indeterminate,
 }
 
 /// One condition of a mode: a series that must stay non-negative (positive just after the

@@ -1,0 +1,152 @@
+//! Tests of a body rocking on a sliding stack: its equations against slide-rock's as the
+//! stack's mass goes to zero and against a body on a base that friction alone decelerates as it
+//! grows without bound, and the energy balance of body and stack along their motion.
+use super::*;
+use crate::integrate::rocking::modes::test_inputs_at;
+
+/// The slender block of walls/rocking/slender-on-stack.ron (0.2 by 0.8 m, 416 kg).
+fn top(friction: f64) -> RockingBody {
+    RockingBody::rectangle("Top", 0.2, 0.8, 416.0, friction, 9.81)
+}
+
+fn stack(mass_kg: f64, slip: Slip) -> Stack {
+    Stack {
+        joint: 0,
+        first: 0,
+        mass_kg,
+        friction: 0.6,
+        slip,
+        u_start_m: 0.0,
+    }
+}
+
+/// Rocking on the left corner, turning back, the stack sliding forward; and the mirror case:
+/// each stack fast enough to slide through the 0.05 s the tests follow.
+fn cases() -> [(Corner, Slip, State); 2] {
+    let state = |theta: f64, omega: f64, v: f64| State {
+        theta,
+        omega,
+        u: 0.01,
+        v,
+        ..State::default()
+    };
+    [
+        (Corner::Left, Slip::Forward, state(-0.05, 0.3, 0.5)),
+        (Corner::Right, Slip::Backward, state(0.12, 0.7, -0.6)),
+    ]
+}
+
+/// Series values along the first 0.05 s, where they are compared.
+fn along(c: &Coeffs) -> Vec<f64> {
+    (0..=10)
+        .map(|k| series::eval(c, 0.005 * k as f64))
+        .collect()
+}
+
+fn close(a: &[f64], b: &[f64], tol: f64, what: &str) {
+    for (x, y) in a.iter().zip(b) {
+        assert!(
+            (x - y).abs() <= tol,
+            "{what}: {x} against {y} ({:e})",
+            x - y
+        );
+    }
+}
+
+/// With M = 0 the stack is the body's own slipping base: the motion is slide-rock's on a
+/// joint of the stack's friction, to round-off.
+#[test]
+fn a_stack_without_mass_is_slide_rock() {
+    let body = top(0.6);
+    for (c, slip, state) in cases() {
+        let inputs = test_inputs_at(0.37);
+        let (on_stack, _) = trajectory(&body, &stack(0.0, slip), c, &state, &inputs);
+        let own = modes::trajectory(
+            &body,
+            Equations::Exact,
+            Mode::SlideRock(c, slip),
+            &state,
+            &inputs,
+        );
+        close(&along(&on_stack.theta), &along(&own.theta), 1e-16, "theta");
+        close(&along(&on_stack.omega), &along(&own.omega), 1e-14, "theta'");
+        close(&along(&on_stack.u), &along(&own.u), 1e-17, "u");
+        close(&along(&on_stack.v), &along(&own.v), 1e-15, "u'");
+        close(&along(&on_stack.normal), &along(&own.normal), 1e-11, "N");
+        close(
+            &along(&on_stack.tangential),
+            &along(&own.tangential),
+            1e-11,
+            "F",
+        );
+    }
+}
+
+/// With M far above m the stack decelerates by friction alone, u'' + a_g = -mu_s sigma g
+/// lambda, and the body rocks on it as on a base moving so: Housner's rocking equation with
+/// that acceleration in place of the ground's, to m / M (here 4e-16: round-off).
+#[test]
+fn a_stack_of_unbounded_mass_is_a_base_that_friction_decelerates() {
+    let body = top(0.8);
+    for (c, slip, state) in cases() {
+        let inputs = test_inputs_at(0.37);
+        let big = stack(1e18, slip);
+        let (on_stack, _) = trajectory(&body, &big, c, &state, &inputs);
+        let mut base = inputs.clone();
+        base.accel = series::scaled(&inputs.lambda, -big.friction * slip.sign() * 9.81);
+        let rocking = modes::trajectory(&body, Equations::Exact, Mode::Rock(c), &state, &base);
+        close(
+            &along(&on_stack.theta),
+            &along(&rocking.theta),
+            1e-15,
+            "theta",
+        );
+        close(
+            &along(&on_stack.omega),
+            &along(&rocking.omega),
+            1e-12,
+            "theta'",
+        );
+        let stack_acc = series::add(&base.accel, &inputs.accel, -1.0);
+        close(
+            &along(&series::derivative(&on_stack.v)),
+            &along(&stack_acc),
+            1e-11,
+            "u''",
+        );
+    }
+}
+
+/// The kinetic and potential energy of body and stack change by the work of the ground's
+/// inertial forces on both less the friction dissipated on the joint the stack slides on (the
+/// pivot's force is inside the system), to round-off of the energies.
+#[test]
+fn body_and_stack_balance_their_energy() {
+    let body = top(0.8);
+    for (c, slip, state) in cases() {
+        for m_stack in [100.0, 2600.0, 1e5] {
+            let inputs = test_inputs_at(1.1);
+            let st = stack(m_stack, slip);
+            let (t, _) = trajectory(&body, &st, c, &state, &inputs);
+            let energy = |tau: f64| {
+                modes::kinetic_j(&body, &t, tau)
+                    + kinetic_j(&st, &t, tau)
+                    + modes::potential_j(&body, &t, tau)
+            };
+            let (input, friction) = power_series(&body, &st, &t, &inputs);
+            for tau in [0.01, 0.03, 0.05] {
+                let work = series::integral(&input, tau) - series::integral(&friction, tau);
+                let change = energy(tau) - energy(0.0);
+                let scale = energy(0.0).abs() + series::integral(&friction, tau).abs();
+                assert!(
+                    (change - work).abs() <= 1e-13 * scale,
+                    "M = {m_stack} kg at {tau} s: {change} J against {work} J"
+                );
+                assert!(
+                    series::integral(&friction, tau) > 0.0,
+                    "friction dissipates"
+                );
+            }
+        }
+    }
+}
