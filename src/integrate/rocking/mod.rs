@@ -668,7 +668,7 @@ impl<'a> Engine<'a> {
             };
         }
         if let (Some(stack), Mode::Rock(c)) = (&tr.displaced.sliding, tr.mode) {
-            return stack::trajectory(self.body(i), stack, c, &tr.state, inputs).0;
+            return stack::trajectory(self.body(i), stack, c, &tr.state, inputs);
         }
         let mut t = modes::trajectory(
             self.body(i),
@@ -1102,9 +1102,8 @@ impl<'a> Engine<'a> {
         if let Some(watch) = self.scene.watches.get(i) {
             conditions.extend(watch.conditions(traj, inputs, &self.tracks[i].displaced));
         }
-        if let (Some(st), Mode::Rock(c)) = (&self.tracks[i].displaced.sliding, traj.mode) {
-            let (_, den) = stack::trajectory(body, st, c, &self.tracks[i].state, inputs);
-            conditions.extend(stack::constraints(body, st, traj, &den));
+        if let Some(st) = &self.tracks[i].displaced.sliding {
+            conditions.extend(stack::constraints(body, st, traj));
         }
         if let Some(lean) = &self.tracks[i].leans {
             conditions.push(lean.condition(body, inputs));

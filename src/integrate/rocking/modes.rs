@@ -240,6 +240,9 @@ pub struct Trajectory {
     /// Slide-rock: I_G + m dx^2 - m mu sigma G_y dx, which must stay positive (where it does
     /// not, friction makes the acceleration indeterminate: Painleve's paradox).
     pub denominator: Option<f64>,
+    /// A body on a sliding stack: the denominator of its theta'' as a series, which must stay
+    /// positive along the motion (`stack`).
+    pub stack_denominator: Option<Coeffs>,
     /// G_y = height of the centroid above the pivot while rocking (h_c seated).
     pub gy: Coeffs,
     /// dx = dG_y/dtheta: horizontal arm of the pivot's normal force about the centroid.
@@ -262,6 +265,7 @@ impl Trajectory {
             normal: ZERO,
             corners: None,
             denominator: None,
+            stack_denominator: None,
             gy: ZERO,
             dx: ZERO,
         };

@@ -93,7 +93,7 @@ pub fn trajectory(
     c: Corner,
     state: &State,
     inputs: &Inputs,
-) -> (Trajectory, Coeffs) {
+) -> Trajectory {
     let (m, big, g) = (body.mass_kg, stack.mass_kg, body.g_m_s2);
     let (mu, sigma) = (stack.friction, stack.slip.sign());
     let rho = m / (m + big);
@@ -123,34 +123,29 @@ pub fn trajectory(
         t.tangential[k] = m * (absolute + reach);
         t.integrate(k, acc_theta[k], absolute - a[k], 0.0);
     }
-    (t, den)
+    t.stack_denominator = Some(den);
+    t
 }
 
-/// The stack's own conditions along `traj`: its slip goes on (sigma u' > 0, strict: a stack
-/// whose slip would not begin does not slide) and the coupled motion stays determinate (`den`
-/// positive: where it falls to zero friction makes the acceleration indeterminate, Painleve's
-/// paradox).
-pub fn constraints(
-    body: &RockingBody,
-    stack: &Stack,
-    traj: &Trajectory,
-    den: &Coeffs,
-) -> [Constraint; 2] {
+/// The stack's own conditions along `traj` (its [`trajectory`]): its slip goes on (sigma u' > 0,
+/// strict: a stack whose slip would not begin does not slide) and the coupled motion stays
+/// determinate (the denominator positive: where it falls to zero friction makes the
+/// acceleration indeterminate, Painleve's paradox).
+pub fn constraints(body: &RockingBody, stack: &Stack, traj: &Trajectory) -> Vec<Constraint> {
     let sc = Scales::of(body);
-    [
-        Constraint {
-            series: series::scaled(&traj.v, stack.slip.sign()),
-            scale: sc.velocity,
-            guard: Guard::Stop,
-            strict: true,
-        },
-        Constraint {
-            series: *den,
-            scale: body.inertia_kg_m2,
-            guard: Guard::Indeterminate,
-            strict: true,
-        },
-    ]
+    let slips = Constraint {
+        series: series::scaled(&traj.v, stack.slip.sign()),
+        scale: sc.velocity,
+        guard: Guard::Stop,
+        strict: true,
+    };
+    let determinate = traj.stack_denominator.map(|den| Constraint {
+        series: den,
+        scale: body.inertia_kg_m2,
+        guard: Guard::Indeterminate,
+        strict: true,
+    });
+    std::iter::once(slips).chain(determinate).collect()
 }
 
 /// The work rates of body and stack together: the input (the body's, and -M a_g u' on the
@@ -211,11 +206,11 @@ impl Engine<'_> {
             return false;
         };
         let body = self.body(i);
-        let (traj, den) = trajectory(body, &stack, c, &tr.state, now);
+        let traj = trajectory(body, &stack, c, &tr.state, now);
         let mut shift = tr.displaced.clone();
         shift.sliding = Some(stack);
         let scale_t = body.time_scale_s();
-        let own = constraints(body, &stack, &traj, &den);
+        let own = constraints(body, &stack, &traj);
         let rocking = modes::constraints(body, Equations::Exact, &traj);
         let held = watch.conditions(&traj, now, &shift);
         if !own

@@ -60,7 +60,7 @@ fn a_stack_without_mass_is_slide_rock() {
     let body = top(0.6);
     for (c, slip, state) in cases() {
         let inputs = test_inputs_at(0.37);
-        let (on_stack, _) = trajectory(&body, &stack(0.0, slip), c, &state, &inputs);
+        let on_stack = trajectory(&body, &stack(0.0, slip), c, &state, &inputs);
         let own = modes::trajectory(
             &body,
             Equations::Exact,
@@ -91,7 +91,7 @@ fn a_stack_of_unbounded_mass_is_a_base_that_friction_decelerates() {
     for (c, slip, state) in cases() {
         let inputs = test_inputs_at(0.37);
         let big = stack(1e18, slip);
-        let (on_stack, _) = trajectory(&body, &big, c, &state, &inputs);
+        let on_stack = trajectory(&body, &big, c, &state, &inputs);
         let mut base = inputs.clone();
         base.accel = series::scaled(&inputs.lambda, -big.friction * slip.sign() * 9.81);
         let rocking = modes::trajectory(&body, Equations::Exact, Mode::Rock(c), &state, &base);
@@ -127,7 +127,7 @@ fn body_and_stack_balance_their_energy() {
         for m_stack in [100.0, 2600.0, 1e5] {
             let inputs = test_inputs_at(1.1);
             let st = stack(m_stack, slip);
-            let (t, _) = trajectory(&body, &st, c, &state, &inputs);
+            let t = trajectory(&body, &st, c, &state, &inputs);
             let energy = |tau: f64| {
                 modes::kinetic_j(&body, &t, tau)
                     + kinetic_j(&st, &t, tau)
