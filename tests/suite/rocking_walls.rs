@@ -354,6 +354,56 @@ fn a_stack_sliding_under_a_rocking_block_is_what_time_stepping_converges_to() {
     assert!(last.0 < 2e-6 && last.1 < 1e-2, "{last:?}");
 }
 
+/// The same wall at 2.0 g: the top lands on the sliding stack at 1.842 s and the impact stops
+/// the stack (the landing on a moving base, the stack's joint passing the impulse within its
+/// friction); the run goes on to 2.412 s, where the stack would slip back while the top
+/// slide-rocks, balancing its energy to round-off; Moreau-Jean run to that instant agrees with
+/// it as the step falls.
+#[test]
+fn a_landing_on_a_sliding_stack_is_what_time_stepping_converges_to() {
+    let model = Model::from_file("walls/rocking/slender-on-stack.ron").unwrap();
+    let motion = crate::engine::el_centro_first_s(5, 2.0 * 9.81);
+    let settings = RunSettings {
+        log_events: true,
+        ..RunSettings::default()
+    };
+    let r = pirqa::run(&model, &motion, &settings).unwrap();
+    let s = &r.summary;
+    let landed = r
+        .events
+        .iter()
+        .find(|e| {
+            e.mode
+                .as_deref()
+                .is_some_and(|m| m.contains("on the sliding stack"))
+        })
+        .expect("a landing on the sliding stack");
+    assert!((landed.time_s - 1.8418).abs() < 1e-4, "{landed:?}");
+    let end = s.stopped_at_s.expect("the run stops further on");
+    assert!(end > 2.4 && end < 2.42, "{end}");
+    let e = &s.energy;
+    let scale = e.input_j.abs() + e.friction_j + e.kinetic_j;
+    assert!(e.residual_j.abs() <= 1e-13 * scale, "{e:?}");
+    let mut last = f64::INFINITY;
+    for dt_s in [1e-3, 1e-4, 2.5e-5] {
+        let settings = RunSettings {
+            model: ModelChoice::SlideRock,
+            method: Method::Moreau { dt_s },
+            duration_s: Some(end),
+            ..RunSettings::default()
+        };
+        let m = pirqa::run(&model, &motion, &settings).unwrap().summary;
+        let slid = (m.blocks[0].final_displacement_m - s.blocks[0].final_displacement_m).abs();
+        let turned = (m.blocks[2].max_abs_rotation_rad - s.blocks[2].max_abs_rotation_rad).abs();
+        assert!(
+            slid < 1e-4 && turned < 5e-3,
+            "dt {dt_s}: {slid} m, {turned} rad"
+        );
+        last = slid;
+    }
+    assert!(last < 5e-6, "{last}");
+}
+
 /// A squat block sliding on another (joint friction 0.2) that stands on the ground (0.3), both
 /// of mass m, under 0.5 g sin(2 pi t): the top slides from a_g = 0.2 g with its friction
 /// pushing it forward, so the ground joint carries m a_g + 0.2 m g, which reaches its capacity

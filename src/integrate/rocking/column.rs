@@ -444,7 +444,11 @@ impl Watch {
         let tol = [1.0, 1.0, height, height].map(|k| TIE * impulse * k);
         self.joints.iter().enumerate().find_map(|(j, joint)| {
             let margins = self.impulse_margins(joint, u, before, after, shift);
-            (0..4).position(|c| margins[c] < -tol[c]).map(|c| 4 * j + c)
+            // The joint a stack slides on keeps its tipping conditions alone.
+            let slides = shift.sliding.is_some_and(|st| st.joint == j);
+            (if slides { 2 } else { 0 }..4)
+                .find(|&c| margins[c] < -tol[c])
+                .map(|c| 4 * j + c)
         })
     }
 
@@ -465,20 +469,29 @@ impl Watch {
         let spin = after.1 - before.1;
         let (mut jx, mut jy) = (0.0, 0.0);
         let mut moments = [0.0; 2];
+        let ends = joint.ends.map(|(ex, ey)| {
+            let moved = if joint.inside {
+                u
+            } else {
+                shift.at(joint.upper, u)
+            };
+            (ex + moved, ey)
+        });
         for &i in &joint.above {
             let p = &self.pieces[i];
-            if !p.moving {
+            // The body's blocks jump with its velocities; a sliding stack's with the stack's.
+            let (dvx, dvy, turn, x) = if p.moving {
+                let (a, b) = (velocity(after, p), velocity(before, p));
+                (a.0 - b.0, a.1 - b.1, spin, p.x0 + u)
+            } else if shift.slides(i) {
+                (after.2 - before.2, 0.0, 0.0, p.x0 + shift.at(i, u))
+            } else {
                 continue;
-            }
-            let (a, b) = (velocity(after, p), velocity(before, p));
-            let (dvx, dvy) = (a.0 - b.0, a.1 - b.1);
+            };
             jx += p.mass_kg * dvx;
             jy += p.mass_kg * dvy;
-            for (m, &(ex, ey)) in moments.iter_mut().zip(&joint.ends) {
-                let moved = shift.by_m.get(joint.upper).copied().unwrap_or(0.0);
-                let ex = ex + if joint.inside { u } else { moved };
-                *m += p.mass_kg * ((p.x0 + u - ex) * dvy - (p.y0 - ey) * dvx)
-                    - p.inertia_kg_m2 * spin;
+            for (m, &(ex, ey)) in moments.iter_mut().zip(&ends) {
+                *m += p.mass_kg * ((x - ex) * dvy - (p.y0 - ey) * dvx) - p.inertia_kg_m2 * turn;
             }
         }
         let mu = joint.friction;

@@ -235,9 +235,9 @@ fn handed_over(
 
 /// The ways the exact model stops, each on its wall under El Centro at 0.5 g: a chain's pivot
 /// lifting off (the two-block column), a trilith's lintel slipping on its columns, a slab
-/// meeting the low block beside it and staying against it (no restitution); and at 0.8 g a
-/// body landing on the stack that slides under it (the standing stone, its plinth on little
-/// friction: the stack handed over sliding).
+/// meeting the low block beside it and staying against it (no restitution); and at 0.8 g the
+/// stack that slides under a rocking body as the body's pivot would slip on it too (the
+/// standing stone, its plinth on little friction: the stack handed over sliding).
 #[test]
 fn a_hand_off_places_every_block_where_the_exact_run_leaves_it() {
     let stone = Model::from_ron_str(
@@ -267,7 +267,11 @@ fn a_hand_off_places_every_block_where_the_exact_run_leaves_it() {
     for (model, pga_g, how) in [
         (&column, 0.5, "would lift off"),
         (&trilith, 0.5, "would slip"),
-        (&stone, 0.8, "Plinth/ground slides while Huanca lands"),
+        (
+            &stone,
+            0.8,
+            "Plinth/ground slides while the corner Huanca rocks on would slip",
+        ),
         (&beside, 0.5, "B meets A"),
     ] {
         let why = handed_over(model, &el_centro(pga_g), 20.0, pga_g * 9.81);

@@ -27,7 +27,7 @@ pub struct Landing {
 }
 
 /// Kinetic energy at theta = 0 rocking on the corner of sign `c` (0 when seated).
-fn kinetic(body: &RockingBody, c: f64, omega: f64, v: f64) -> f64 {
+pub(super) fn kinetic(body: &RockingBody, c: f64, omega: f64, v: f64) -> f64 {
     let (m, b, h) = (body.mass_kg, body.half_base_m, body.centroid_height_m);
     let (xg, yg) = (v + h * omega, c * b * omega);
     0.5 * m * (xg * xg + yg * yg) + 0.5 * body.inertia_kg_m2 * omega * omega

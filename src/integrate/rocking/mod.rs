@@ -1196,6 +1196,10 @@ impl<'a> Engine<'a> {
             return match guard {
                 Guard::Stop => self.stack_stops(i, now),
                 Guard::Overturn => self.overturn(i, traj, tau),
+                Guard::Impact => {
+                    self.stack_lands(i, now);
+                    Ok(())
+                }
                 _ => {
                     self.stack_gives(i, guard);
                     Ok(())

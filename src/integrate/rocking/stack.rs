@@ -59,6 +59,20 @@ impl Displaced {
         }
     }
 
+    /// Whether block p slides with the stack now.
+    pub fn slides(&self, p: usize) -> bool {
+        self.sliding.is_some_and(|st| p >= st.first)
+    }
+
+    /// Block p's displacement (m) where the body's u is `u_m`.
+    pub fn at(&self, p: usize, u_m: f64) -> f64 {
+        let moved = self.by_m.get(p).copied().unwrap_or(0.0);
+        match self.sliding {
+            Some(st) if p >= st.first => moved + u_m - st.u_start_m,
+            _ => moved,
+        }
+    }
+
     /// Whether no held block has moved or moves.
     pub fn is_still(&self) -> bool {
         self.sliding.is_none() && self.by_m.iter().all(|&x| x == 0.0)
@@ -170,6 +184,73 @@ pub fn power_series(
         stack.friction * stack.slip.sign(),
     );
     (input, friction)
+}
+
+/// What a body's landing on the stack sliding under it leaves: its angular velocity and the
+/// stack's velocity after (rad/s, m/s; 0 where the stack stops), and the kinetic energy lost
+/// (J).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Landing {
+    pub omega: f64,
+    pub v: f64,
+    pub loss_j: f64,
+}
+
+/// The landing of a body rocking on `pivot` that reaches theta = 0 at `omega`, the stack under
+/// it sliding at `v_s`: Housner's assumption on a base that moves (the impulse (P_t, P_n) at the
+/// new corner alone, plastic in its normal, the corner sticking on the stack within mu P_n;
+/// the stack's joint passing P_n, its friction impulse P_f within mu_s P_n). Either the stack
+/// slides on through the impact, P_f = -mu_s sigma P_n: with Delta = omega' - omega and
+/// P_n = -m s b (2 omega + Delta), I_O Delta + m h_c dv = -2 m b^2 omega and (m + M) dv =
+/// -m h_c Delta + mu_s sigma m s b (2 omega + Delta), Housner's law as M grows without bound;
+/// or the impact stops it: the body lands as on a held base moving at v_s (its angular momentum
+/// about the new corner kept), and P_f = P_t - M v_s. The first that holds is the landing.
+/// `None` where neither does (the corner pushed apart or slipping, the stack turning within
+/// the impact, the body landing flat) or the wall's restitution factor is not 1: the landings
+/// the model does not follow on a sliding stack.
+pub fn landing(
+    body: &RockingBody,
+    stack: &Stack,
+    pivot: Corner,
+    omega: f64,
+    v_s: f64,
+) -> Option<Landing> {
+    if body.restitution_factor != 1.0 {
+        return None;
+    }
+    let (m, big, ig) = (body.mass_kg, stack.mass_kg, body.inertia_kg_m2);
+    let (b, h) = (body.half_base_m, body.centroid_height_m);
+    let (s, sigma, mu_s) = (pivot.sign(), stack.slip.sign(), stack.friction);
+    let io = body.corner_inertia_kg_m2();
+    let energy =
+        |c: f64, omega: f64, v: f64| super::impact::kinetic(body, c, omega, v) + 0.5 * big * v * v;
+    // The impulses at the new corner for omega' and the stack's velocity after, and whether
+    // they press, stick and carry the rotation onto it.
+    let lands = |w: f64, v: f64| {
+        let normal = -m * s * b * (w + omega);
+        let tangential = m * (v - v_s + h * (w - omega));
+        let holds = normal >= 0.0 && tangential.abs() <= body.friction * normal && w * -s > 0.0;
+        (holds, tangential, normal)
+    };
+    let share = m / (m + big);
+    let lhs = io - h * share * (m * h - mu_s * sigma * m * s * b);
+    let delta = -2.0 * m * b * omega * (b + share * h * mu_s * sigma * s) / lhs;
+    let dv = share * (-h * delta + mu_s * sigma * s * b * (2.0 * omega + delta));
+    let (w, v) = (omega + delta, v_s + dv);
+    if lhs > 0.0 && sigma * v > 0.0 && lands(w, v).0 {
+        return Some(Landing {
+            omega: w,
+            v,
+            loss_j: energy(s, omega, v_s) - energy(-s, w, v),
+        });
+    }
+    let w = ((ig + m * (h * h - b * b)) * omega + m * h * v_s) / io;
+    let (holds, tangential, normal) = lands(w, 0.0);
+    (holds && (tangential - big * v_s).abs() <= mu_s * normal).then(|| Landing {
+        omega: w,
+        v: 0.0,
+        loss_j: energy(s, omega, v_s) - energy(-s, w, 0.0),
+    })
 }
 
 /// The stack's kinetic energy (J) at tau along `traj`.
@@ -325,5 +406,64 @@ impl Engine<'_> {
         blocks.extend(self.layout.outputs(i));
         // A landing stops with the state just before the impact, which it does not resolve.
         self.held_joint_gives(i, &blocks, joint, &how, guard == Guard::Impact);
+    }
+}
+
+impl Engine<'_> {
+    /// Body i lands on the stack sliding under it: where the new corner sticks and the stack
+    /// slides on ([`landing`]) and every held joint passes the impulses (the stack's blocks
+    /// jumping with it), the body rocks on on its new corner, the stack still sliding; any
+    /// other landing stops the run just before the impact.
+    pub(super) fn stack_lands(&mut self, i: usize, now: &Inputs) {
+        let body = self.body(i);
+        let scene = self.scene;
+        let watch = &scene.watches[i];
+        let tr = &self.tracks[i];
+        let stack = tr.displaced.sliding.expect("a stack that slides");
+        let Mode::Rock(pivot) = tr.mode else {
+            self.stack_gives(i, Guard::Impact);
+            return;
+        };
+        let (omega, v) = (tr.state.omega, tr.state.v);
+        let Some(l) = landing(body, &stack, pivot, omega, v) else {
+            self.stack_gives(i, Guard::Impact);
+            return;
+        };
+        let next = pivot.other();
+        let before = (Some(pivot), omega, v);
+        let after = (Some(next), l.omega, l.v);
+        if let Some(k) = watch.landing(tr.state.u, before, after, &tr.displaced) {
+            self.gives(i, k, true);
+            return;
+        }
+        // Found at theta = 0 to a tie and seated at 0 on the new corner: the potential energy
+        // of that tilt goes with the landing's loss, as at a landing on a held base.
+        let dropped = modes::potential_j(body, &self.trajectory(i, now), 0.0);
+        self.rec.energy.impact_loss_j += l.loss_j + dropped;
+        for k in self.layout.outputs(i) {
+            self.rec.rocking_impact(k);
+        }
+        self.rec.impacts += 1;
+        let held = watch.held_blocks().count();
+        let tr = &mut self.tracks[i];
+        (tr.state.theta, tr.state.omega, tr.state.v) = (0.0, l.omega, l.v);
+        tr.mode = Mode::Rock(next);
+        if l.v == 0.0 {
+            // The impact stopped the stack: held again where it is.
+            tr.displaced.stops(tr.state.u, held);
+            self.rec.transitions += 1;
+        }
+        self.rec.rocking_event(
+            self.t,
+            EventKind::RockingImpact,
+            &self.layout.outputs(i),
+            Some((omega, l.omega)),
+            format!(
+                "on the {} corner, on the sliding stack (its velocity {v:.6e} -> {:.6e} m/s{})",
+                next.name(),
+                l.v,
+                if l.v == 0.0 { ": it stops" } else { "" }
+            ),
+        );
     }
 }

@@ -150,3 +150,71 @@ fn body_and_stack_balance_their_energy() {
         }
     }
 }
+
+/// The angular momentum of a body about its new corner, I_G omega + m (h_c x_G' - s b y_G') with
+/// s the old pivot's sign (the landing's impulse acts at that corner: it is kept).
+fn about_new_corner(body: &RockingBody, s: f64, omega: f64, (xg, yg): (f64, f64)) -> f64 {
+    let (m, b, h) = (body.mass_kg, body.half_base_m, body.centroid_height_m);
+    body.inertia_kg_m2 * omega + m * (h * xg - s * b * yg)
+}
+
+/// A landing on a sliding stack keeps the body's angular momentum about its new corner; the
+/// horizontal momentum of body and stack changes by the friction impulse of the stack's joint,
+/// at its limit where the stack slides on and within it where the impact stops the stack; kinetic
+/// energy is lost; and a stack of unbounded mass is a base moving steadily, on which the landing
+/// is Housner's.
+#[test]
+fn a_landing_on_a_sliding_stack_keeps_momentum_about_the_new_corner() {
+    let body = top(0.8);
+    let (m, b, h) = (body.mass_kg, body.half_base_m, body.centroid_height_m);
+    let mut kinds = [0, 0];
+    for (pivot, omega) in [(Corner::Right, -1.3), (Corner::Left, 0.9)] {
+        let s = pivot.sign();
+        for (slip, v_s) in [
+            (Slip::Forward, 0.4),
+            (Slip::Backward, -0.4),
+            (Slip::Forward, 0.004),
+        ] {
+            for m_stack in [100.0, 2600.0, 1e5] {
+                let st = stack(m_stack, slip);
+                let l = landing(&body, &st, pivot, omega, v_s).expect("a landing it follows");
+                let (before, after) = (
+                    (v_s + h * omega, s * b * omega),
+                    (l.v + h * l.omega, -s * b * l.omega),
+                );
+                let kept = about_new_corner(&body, s, omega, before);
+                let now = about_new_corner(&body, s, l.omega, after);
+                assert!((kept - now).abs() <= 1e-12 * kept.abs(), "{kept} {now}");
+                let normal = m * (after.1 - before.1);
+                let friction = m * (after.0 - before.0) + m_stack * (l.v - v_s);
+                if l.v == 0.0 {
+                    kinds[1] += 1;
+                    assert!(
+                        friction.abs() <= st.friction * normal,
+                        "{friction} {normal}"
+                    );
+                } else {
+                    kinds[0] += 1;
+                    let limit = -st.friction * slip.sign() * normal;
+                    assert!(
+                        (friction - limit).abs() <= 1e-12 * normal,
+                        "{friction} {limit}"
+                    );
+                }
+                assert!(l.loss_j > 0.0);
+            }
+        }
+        let steady = landing(&body, &stack(1e18, Slip::Forward), pivot, omega, 0.3).unwrap();
+        let housner = crate::integrate::rocking::impact::land(
+            &body,
+            Equations::Exact,
+            pivot,
+            omega,
+            0.0,
+            0.0,
+        )
+        .unwrap();
+        assert!((steady.omega - housner.state.omega).abs() <= 1e-15 * omega.abs());
+    }
+    assert!(kinds[0] > 0 && kinds[1] > 0, "{kinds:?}");
+}
