@@ -48,15 +48,10 @@ impl Displaced {
     /// Block p's displacement as a series along `traj`, and whether it slides with the stack
     /// now (its acceleration then the stack's).
     pub fn block(&self, p: usize, traj: &Trajectory) -> (Coeffs, bool) {
-        let mut out = series::constant(self.by_m.get(p).copied().unwrap_or(0.0));
-        match self.sliding {
-            Some(st) if p >= st.first => {
-                series::add_to(&mut out, &traj.u, 1.0);
-                out[0] -= st.u_start_m;
-                (out, true)
-            }
-            _ => (out, false),
-        }
+        let slides = self.slides(p);
+        let mut out = if slides { traj.u } else { ZERO };
+        out[0] = self.at(p, traj.u[0]);
+        (out, slides)
     }
 
     /// Whether block p slides with the stack now.
