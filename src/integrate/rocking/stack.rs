@@ -172,7 +172,7 @@ pub fn power_series(
         &series::product(&inputs.accel, &traj.v),
         -stack.mass_kg,
     );
-    let mut load = series::scaled(&traj.normal, 1.0);
+    let mut load = traj.normal;
     series::add_to(&mut load, &inputs.lambda, stack.mass_kg * body.g_m_s2);
     let friction = series::scaled(
         &series::product(&load, &traj.v),
