@@ -260,6 +260,7 @@ impl Watch {
                 Slip::Forward
             },
             u_start_m,
+            apart: None,
         })
     }
 
@@ -293,6 +294,12 @@ impl Watch {
         let w2 = product(&traj.omega, &traj.omega);
         let mut base_acc = derivative(&traj.v);
         add_to(&mut base_acc, &inputs.accel, 1.0);
+        // A stack the body's pivot slips on moves by its own acceleration.
+        let stack_acc = traj.stack.as_ref().map(|[_, v_s]| {
+            let mut acc = derivative(v_s);
+            add_to(&mut acc, &inputs.accel, 1.0);
+            acc
+        });
         let pivot_x = plus(&traj.u, s * self.half_base_m);
         // Where a point of the body that lies at (x0, y0) at rest is now: the pivot (or the
         // base's middle) plus the turned offset (theta > 0 turns clockwise).
@@ -318,7 +325,11 @@ impl Watch {
                     return Kinematics {
                         x,
                         y: constant(p.y0),
-                        ax: if slides { base_acc } else { inputs.accel },
+                        ax: match (slides, stack_acc) {
+                            (true, Some(acc)) => acc,
+                            (true, None) => base_acc,
+                            (false, _) => inputs.accel,
+                        },
                         ay: ZERO,
                     };
                 }

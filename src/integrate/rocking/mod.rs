@@ -521,6 +521,7 @@ fn breaks(guard: Guard) -> &'static str {
         Guard::Flight => "leave the ground at its pivot",
         Guard::Overturn => "lie on its face",
         Guard::Impact => "land on its base",
+        Guard::Indeterminate => "have its acceleration made indeterminate by friction",
         _ => "change its mode",
     }
 }
@@ -667,8 +668,14 @@ impl<'a> Engine<'a> {
                 second
             };
         }
-        if let (Some(stack), Mode::Rock(c)) = (&tr.displaced.sliding, tr.mode) {
-            return stack::trajectory(self.body(i), stack, c, &tr.state, inputs);
+        match (&tr.displaced.sliding, tr.mode) {
+            (Some(stack), Mode::Rock(c)) => {
+                return stack::trajectory(self.body(i), stack, c, &tr.state, inputs);
+            }
+            (Some(stack), Mode::SlideRock(c, relative)) => {
+                return stack::slide_rocking(self.body(i), stack, c, relative, &tr.state, inputs);
+            }
+            _ => {}
         }
         let mut t = modes::trajectory(
             self.body(i),
@@ -965,6 +972,11 @@ impl<'a> Engine<'a> {
                 };
                 self.rec.energy.input_j += series::integral(&input, tau);
                 self.rec.energy.friction_j += series::integral(&friction, tau);
+                if let (Some(stack), Some([u_s, v_s])) =
+                    (&mut self.tracks[i].displaced.sliding, &traj.stack)
+                {
+                    stack.apart = Some([series::eval(u_s, tau), series::eval(v_s, tau)]);
+                }
                 let st = &mut self.tracks[i].state;
                 st.theta = series::eval(&traj.theta, tau);
                 st.omega = series::eval(&traj.omega, tau);
@@ -1083,13 +1095,20 @@ impl<'a> Engine<'a> {
         let sc = Scales::of(body);
         let p = body.frequency_parameter_rad_s();
         let ts = body.time_scale_s();
-        let h = series::step_size(&[
+        let mut h = series::step_size(&[
             (&traj.theta, 1.0),
             (&traj.omega, p),
             (&traj.u, body.size_m()),
             (&traj.v, sc.velocity),
-        ])
-        .min(span);
+        ]);
+        if let Some([u_s, v_s]) = &traj.stack {
+            // A stack that moves on its own is followed to round-off too.
+            h = h.min(series::step_size(&[
+                (u_s, body.size_m()),
+                (v_s, sc.velocity),
+            ]));
+        }
+        let h = h.min(span);
         let mut best: Option<Stop> = None;
         let mut consider = |x: Option<f64>, what: Option<Guard>| {
             if let Some(x) = x {
@@ -1103,7 +1122,7 @@ impl<'a> Engine<'a> {
             conditions.extend(watch.conditions(traj, inputs, &self.tracks[i].displaced));
         }
         if let Some(st) = &self.tracks[i].displaced.sliding {
-            conditions.extend(stack::constraints(body, st, traj));
+            stack::conditions(body, st, traj, &mut conditions);
         }
         if let Some(lean) = &self.tracks[i].leans {
             conditions.push(lean.condition(body, inputs));
@@ -1175,7 +1194,8 @@ impl<'a> Engine<'a> {
         }
         if self.tracks[i].displaced.sliding.is_some() {
             // The stack's displacement peaks where it stops (an event); its velocity here.
-            extreme(&series::derivative(&traj.v), sc.velocity * p);
+            let v_s = traj.stack.as_ref().map_or(&traj.v, |[_, v]| v);
+            extreme(&series::derivative(v_s), sc.velocity * p);
         }
         (h, best.filter(|(x, _)| *x <= h))
     }
@@ -1195,6 +1215,14 @@ impl<'a> Engine<'a> {
         if self.tracks[i].displaced.sliding.is_some() {
             return match guard {
                 Guard::Stop => self.stack_stops(i, now),
+                Guard::PivotSlip => {
+                    self.stack_parts(i, now);
+                    Ok(())
+                }
+                Guard::PivotStick => {
+                    self.stack_rejoins(i, now);
+                    Ok(())
+                }
                 Guard::Overturn => self.overturn(i, traj, tau),
                 Guard::Impact => {
                     self.stack_lands(i, now);
@@ -1265,14 +1293,33 @@ impl<'a> Engine<'a> {
                 }
                 Ok(())
             }
-            Guard::Indeterminate => Err(SimulationError::Bug(
-                "an indeterminate stack's motion met by a body on no sliding stack".into(),
-            )),
+            Guard::Indeterminate => Err(self.indeterminate(i)),
             Guard::Settled => {
                 let (_, after, tail) = self.tracks[i].settles.take().expect("a series of landings");
                 self.settled(i, after, tail);
                 self.decide(i, now, false)
             }
+        }
+    }
+
+    /// Body i slide-rocks and the effective mass of its slipping corner falls to zero: from
+    /// here friction makes its acceleration indeterminate (Painleve's paradox), as a decision
+    /// refuses a slide-rock whose denominator starts not positive ([`modes::decide`]).
+    fn indeterminate(&self, i: usize) -> SimulationError {
+        let body = self.body(i);
+        let st = &self.tracks[i].state;
+        SimulationError::RigidModel {
+            at: format!(
+                "{} at t = {} s (theta = {} rad, theta' = {} rad/s, slip velocity {} m/s)",
+                body.name, self.t, st.theta, st.omega, st.v
+            ),
+            why: format!(
+                "Painleve's paradox: in {}, friction {} makes the effective mass of its \
+                 slipping corner fall to zero (I_G + m dx^2 - m mu sigma G_y dx = 0); the rigid \
+                 model with Coulomb friction cannot go on",
+                self.tracks[i].mode.name(),
+                body.friction
+            ),
         }
     }
 
@@ -4647,7 +4694,10 @@ impl<'a> Engine<'a> {
                 let k = self.layout.column_output(i, p);
                 let (x, slides) = tr.displaced.block(p, traj);
                 if fallen {
-                    let v = if slides { tr.state.v } else { 0.0 };
+                    let v = match tr.displaced.sliding {
+                        Some(stack) if slides => stack.velocity_m_s(tr.state.v),
+                        _ => 0.0,
+                    };
                     return (k, (x[0], v, None));
                 }
                 let xv = series::derivative(&x);
@@ -4722,7 +4772,7 @@ impl<'a> Engine<'a> {
                 placed[k] = (du, dv, Turned::default());
             }
             if let Some(stack) = &self.tracks[i].displaced.sliding {
-                let v = self.tracks[i].state.v;
+                let v = stack.velocity_m_s(self.tracks[i].state.v);
                 self.rec.energy.kinetic_j += 0.5 * stack.mass_kg * v * v;
             }
             if plan.is_some() {

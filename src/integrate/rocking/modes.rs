@@ -237,12 +237,16 @@ pub struct Trajectory {
     pub normal: Coeffs,
     /// Seated: the normal force at each corner (left, right), from the moment balance.
     pub corners: Option<(Coeffs, Coeffs)>,
-    /// Slide-rock: I_G + m dx^2 - m mu sigma G_y dx, which must stay positive (where it does
-    /// not, friction makes the acceleration indeterminate: Painleve's paradox).
+    /// Slide-rock: I_G + m dx^2 - m mu sigma G_y dx at the start, which must be positive
+    /// (where it is not, friction makes the acceleration indeterminate: Painleve's paradox).
     pub denominator: Option<f64>,
-    /// A body on a sliding stack: the denominator of its theta'' as a series, which must stay
-    /// positive along the motion (`stack`).
-    pub stack_denominator: Option<Coeffs>,
+    /// Where friction enters the denominator of theta'' (slide-rock; a body on a sliding
+    /// stack, `stack`): that denominator as a series, which must stay positive along the
+    /// motion ([`Guard::Indeterminate`]).
+    pub denominator_series: Option<Coeffs>,
+    /// A body slide-rocking on a sliding stack (`stack`): the stack's displacement since it
+    /// began (m) and its velocity (m/s), as series.
+    pub stack: Option<[Coeffs; 2]>,
     /// G_y = height of the centroid above the pivot while rocking (h_c seated).
     pub gy: Coeffs,
     /// dx = dG_y/dtheta: horizontal arm of the pivot's normal force about the centroid.
@@ -265,7 +269,8 @@ impl Trajectory {
             normal: ZERO,
             corners: None,
             denominator: None,
-            stack_denominator: None,
+            denominator_series: None,
+            stack: None,
             gy: ZERO,
             dx: ZERO,
         };
@@ -388,7 +393,7 @@ pub fn trajectory(
         t.integrate(k, acc_theta[k], acc_u[k], acc_lift[k]);
     }
     if let Mode::SlideRock(..) = mode {
-        t.denominator = Some(den[0]);
+        (t.denominator, t.denominator_series) = (Some(den[0]), Some(den));
     }
     if matches!(mode, Mode::Rest | Mode::Slide(_)) {
         // Seated: F = m (u'' + a_g), N = m g lambda; the moment about the centroid gives
@@ -441,8 +446,9 @@ pub enum Guard {
     /// A body resting against a fixed block (`lean`), or two bodies turning together
     /// (`couple`): the contact's push falls to zero, the bodies parting.
     Parts,
-    /// A body rocking on a sliding stack (`stack`): the effective mass of their coupled motion
-    /// falls to zero, friction making the accelerations indeterminate (Painleve's paradox).
+    /// A slide-rocking body, or a body rocking on a sliding stack (`stack`): the effective mass
+    /// of the motion (the denominator of theta'') falls to zero, friction making the
+    /// accelerations indeterminate (Painleve's paradox).
     Indeterminate,
 }
 
@@ -582,6 +588,9 @@ pub fn constraints(body: &RockingBody, equations: Equations, t: &Trajectory) -> 
             );
         }
     }
+    if let Some(den) = t.denominator_series {
+        push(den, body.inertia_kg_m2, Guard::Indeterminate, true);
+    }
     out
 }
 
@@ -690,8 +699,10 @@ pub fn decide(
             continue;
         }
         let t = trajectory(body, equations, mode, state, inputs);
+        // The denominator at the start is judged below, as the paradox it would be.
         let ok = constraints(body, equations, &t)
             .iter()
+            .filter(|c| c.guard != Guard::Indeterminate)
             .all(|c| c.holds_after(scale_t));
         if t.denominator.is_some_and(|d| d <= 0.0) {
             if ok {

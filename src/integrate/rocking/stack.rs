@@ -30,8 +30,30 @@ pub struct Stack {
     pub friction: f64,
     /// Its slip's direction (sigma).
     pub slip: Slip,
-    /// The body's u when it began (m): the stack has moved by u - this since.
+    /// The body's u when it began (m): while the body's pivot sticks on it, the stack has
+    /// moved by u - this since.
     pub u_start_m: f64,
+    /// While the body's pivot slips on it (the body slide-rocks on the stack): the stack's own
+    /// displacement since it began (m) and velocity (m/s); `None` while the pivot sticks.
+    pub apart: Option<[f64; 2]>,
+}
+
+impl Stack {
+    /// How far it has slid (m) where the body's u is `u_m`.
+    pub fn moved_m(&self, u_m: f64) -> f64 {
+        match self.apart {
+            Some([moved, _]) => moved,
+            None => u_m - self.u_start_m,
+        }
+    }
+
+    /// Its slip velocity (m/s) where the body's pivot slips at `v_m_s`.
+    pub fn velocity_m_s(&self, v_m_s: f64) -> f64 {
+        match self.apart {
+            Some([_, v]) => v,
+            None => v_m_s,
+        }
+    }
 }
 
 /// Where a column's held blocks are: each block's displacement (m, bottom first; a stack that
@@ -49,7 +71,11 @@ impl Displaced {
     /// now (its acceleration then the stack's).
     pub fn block(&self, p: usize, traj: &Trajectory) -> (Coeffs, bool) {
         let slides = self.slides(p);
-        let mut out = if slides { traj.u } else { ZERO };
+        let mut out = match (slides, &traj.stack) {
+            (false, _) => ZERO,
+            (true, Some([moved, _])) => *moved,
+            (true, None) => traj.u,
+        };
         out[0] = self.at(p, traj.u[0]);
         (out, slides)
     }
@@ -63,7 +89,13 @@ impl Displaced {
     pub fn at(&self, p: usize, u_m: f64) -> f64 {
         let moved = self.by_m.get(p).copied().unwrap_or(0.0);
         match self.sliding {
-            Some(st) if p >= st.first => moved + u_m - st.u_start_m,
+            Some(st @ Stack { apart: None, .. }) if p >= st.first => moved + u_m - st.u_start_m,
+            Some(
+                st @ Stack {
+                    apart: Some([d, _]),
+                    ..
+                },
+            ) if p >= st.first => moved + d,
             _ => moved,
         }
     }
@@ -81,7 +113,7 @@ impl Displaced {
         };
         self.by_m.resize(body_first, 0.0);
         for d in &mut self.by_m[st.first..] {
-            *d += u_m - st.u_start_m;
+            *d += st.moved_m(u_m);
         }
     }
 }
@@ -132,52 +164,92 @@ pub fn trajectory(
         t.tangential[k] = m * (absolute + reach);
         t.integrate(k, acc_theta[k], absolute - a[k], 0.0);
     }
-    t.stack_denominator = Some(den);
+    t.denominator_series = Some(den);
     t
 }
 
-/// The stack's own conditions along `traj` (its [`trajectory`]): its slip goes on (sigma u' > 0,
-/// strict: a stack whose slip would not begin does not slide) and the coupled motion stays
-/// determinate (the denominator positive: where it falls to zero friction makes the
-/// acceleration indeterminate, Painleve's paradox).
-pub fn constraints(body: &RockingBody, stack: &Stack, traj: &Trajectory) -> Vec<Constraint> {
-    let sc = Scales::of(body);
-    let slips = Constraint {
-        series: series::scaled(&traj.v, stack.slip.sign()),
-        scale: sc.velocity,
-        guard: Guard::Stop,
-        strict: true,
-    };
-    let determinate = traj.stack_denominator.map(|den| Constraint {
-        series: den,
-        scale: body.inertia_kg_m2,
-        guard: Guard::Indeterminate,
-        strict: true,
-    });
-    std::iter::once(slips).chain(determinate).collect()
+/// The body slide-rocking on corner `c` on the sliding stack, its pivot slipping on the stack
+/// towards `relative`, from `state` (the stack's own in `stack.apart`). The pivot's force on the
+/// body is F = -mu sigma_r N (sigma_r the sign of its slip relative to the stack), so the
+/// body's motion is slide-rock's as on a held base (the stack's acceleration does not enter
+/// it); the stack moves by M (u_s'' + a_g) = -F - mu_s sigma (N + M g lambda), its slip
+/// stopping where u_s' reaches zero.
+pub fn slide_rocking(
+    body: &RockingBody,
+    stack: &Stack,
+    c: Corner,
+    relative: Slip,
+    state: &State,
+    inputs: &Inputs,
+) -> Trajectory {
+    let mode = Mode::SlideRock(c, relative);
+    let mut t = modes::trajectory(body, Equations::Exact, mode, state, inputs);
+    let [moved, v] = stack.apart.expect("a stack apart from the body's pivot");
+    let (big, mu, sigma) = (stack.mass_kg, stack.friction, stack.slip.sign());
+    let g = body.g_m_s2;
+    let (mut u_s, mut v_s) = (ZERO, ZERO);
+    (u_s[0], v_s[0]) = (moved, v);
+    for k in 0..ORDER {
+        let load = t.normal[k] + big * g * inputs.lambda[k];
+        let acc = (-t.tangential[k] - mu * sigma * load) / big - inputs.accel[k];
+        let kk = (k + 1) as f64;
+        u_s[k + 1] = v_s[k] / kk;
+        v_s[k + 1] = acc / kk;
+    }
+    t.stack = Some([u_s, v_s]);
+    t
 }
 
-/// The work rates of body and stack together: the input (the body's, and -M a_g u' on the
-/// stack) and the friction dissipated on the joint the stack slides on (-f u'). The force at
-/// the pivot is inside the system: its work on the body and on the stack cancel.
+/// The stack's velocity along `traj` as a series: its own where the body's pivot slips on it,
+/// else the body's pivot's.
+fn velocity(traj: &Trajectory) -> &Coeffs {
+    traj.stack.as_ref().map_or(&traj.v, |[_, v]| v)
+}
+
+/// The stack's own conditions along `traj`, added to the body's in `out`: its slip goes on
+/// (sigma u_s' > 0, strict: a stack whose slip would not begin does not slide); where the
+/// body's pivot slips on it ([`slide_rocking`]) that slip's condition is relative to the
+/// stack, sigma_r (u' - u_s') > 0. That the coupled motion stays determinate (the denominator
+/// positive: where it falls to zero friction makes the acceleration indeterminate, Painleve's
+/// paradox) is among the body's conditions (`modes::constraints`, from the denominator's
+/// series).
+pub fn conditions(body: &RockingBody, stack: &Stack, traj: &Trajectory, out: &mut Vec<Constraint>) {
+    if let (Mode::SlideRock(_, relative), Some([_, v_s])) = (traj.mode, &traj.stack) {
+        for c in out.iter_mut().filter(|c| c.guard == Guard::PivotStick) {
+            c.series = series::scaled(&series::add(&traj.v, v_s, -1.0), relative.sign());
+        }
+    }
+    out.push(Constraint {
+        series: series::scaled(velocity(traj), stack.slip.sign()),
+        scale: Scales::of(body).velocity,
+        guard: Guard::Stop,
+        strict: true,
+    });
+}
+
+/// The work rates of body and stack together: the input (the body's, and -M a_g u_s' on the
+/// stack) and the friction dissipated on the joint the stack slides on (-f u_s'), and where
+/// the body's pivot slips on the stack, on the pivot (-F (u' - u_s')). Where the pivot sticks
+/// its force is inside the system: its work on the body and on the stack cancel.
 pub fn power_series(
     body: &RockingBody,
     stack: &Stack,
     traj: &Trajectory,
     inputs: &Inputs,
 ) -> (Coeffs, Coeffs) {
-    let (input, _) = modes::power_series(body, traj, inputs);
-    let input = series::add(
-        &input,
-        &series::product(&inputs.accel, &traj.v),
-        -stack.mass_kg,
-    );
+    let v_s = velocity(traj);
+    let (input, pivot) = modes::power_series(body, traj, inputs);
+    let input = series::add(&input, &series::product(&inputs.accel, v_s), -stack.mass_kg);
     let mut load = traj.normal;
     series::add_to(&mut load, &inputs.lambda, stack.mass_kg * body.g_m_s2);
-    let friction = series::scaled(
-        &series::product(&load, &traj.v),
+    let mut friction = series::scaled(
+        &series::product(&load, v_s),
         stack.friction * stack.slip.sign(),
     );
+    if traj.stack.is_some() {
+        series::add_to(&mut friction, &pivot, 1.0);
+        series::add_to(&mut friction, &series::product(&traj.tangential, v_s), 1.0);
+    }
     (input, friction)
 }
 
@@ -250,7 +322,7 @@ pub fn landing(
 
 /// The stack's kinetic energy (J) at tau along `traj`.
 pub fn kinetic_j(stack: &Stack, traj: &Trajectory, tau: f64) -> f64 {
-    let v = series::eval(&traj.v, tau);
+    let v = series::eval(velocity(traj), tau);
     0.5 * stack.mass_kg * v * v
 }
 
@@ -260,13 +332,16 @@ mod tests;
 
 impl Engine<'_> {
     /// Condition k of body i's watch falls: where it is a held joint below the body that
-    /// slips, and the body rocks on its stuck pivot (one column, exact equations, nothing
-    /// beside it), the stack above that joint slides from here, if every condition of that
-    /// motion holds just after now; else `false` (the run stops as before).
+    /// slips, and the body rocks on its pivot, stuck or slipping (one column, exact equations,
+    /// nothing beside it), the stack above that joint slides from here, the body on it as the
+    /// one way that holds says ([`Engine::stack_ways`]); else `false` (the run stops as
+    /// before).
     pub(super) fn stack_slides(&mut self, i: usize, k: usize, now: &Inputs) -> bool {
         let tr = &self.tracks[i];
-        let (Mode::Rock(c), None) = (tr.mode, &tr.displaced.sliding) else {
-            return false;
+        let (c, slipping) = match (tr.mode, &tr.displaced.sliding) {
+            (Mode::Rock(c), None) => (c, None),
+            (Mode::SlideRock(c, relative), None) => (c, (tr.state.v != 0.0).then_some(relative)),
+            _ => return false,
         };
         if self.tracks.len() != 1
             || !self.clearance.is_empty()
@@ -281,23 +356,15 @@ impl Engine<'_> {
         let Some(stack) = watch.stack_on(k, tr.state.u) else {
             return false;
         };
-        let body = self.body(i);
-        let traj = trajectory(body, &stack, c, &tr.state, now);
-        let mut shift = tr.displaced.clone();
-        shift.sliding = Some(stack);
-        let scale_t = body.time_scale_s();
-        let own = constraints(body, &stack, &traj);
-        let rocking = modes::constraints(body, Equations::Exact, &traj);
-        let held = watch.conditions(&traj, now, &shift);
-        if !own
-            .iter()
-            .chain(&rocking)
-            .chain(&held)
-            .all(|c| c.holds_after(scale_t))
-        {
+        // The stack at rest as it begins.
+        let stack = Stack {
+            apart: Some([0.0, 0.0]),
+            ..stack
+        };
+        let [way] = self.stack_ways(i, stack, c, slipping, now)[..] else {
             return false;
-        }
-        self.tracks[i].displaced = shift;
+        };
+        let (stack, mode, _) = way;
         let (joint, _, _) = watch.describe(4 * stack.joint);
         let mut blocks: Vec<usize> = watch
             .held_blocks()
@@ -309,8 +376,7 @@ impl Engine<'_> {
             .map(|&b| self.layout.names[b].as_str())
             .collect();
         let what = format!(
-            "{} slide on {joint} towards {}x (M = {} kg, mu = {}) under {} rocking on its {} \
-             corner",
+            "{} slide on {joint} towards {}x (M = {} kg, mu = {}) under {} {} on its {} corner",
             names.join("+"),
             if stack.slip == Slip::Forward {
                 "+"
@@ -319,13 +385,18 @@ impl Engine<'_> {
             },
             stack.mass_kg,
             stack.friction,
-            body.name,
+            self.body(i).name,
+            match mode {
+                Mode::SlideRock(..) => "slide-rocking",
+                _ => "rocking",
+            },
             c.name()
         );
         blocks.extend(self.layout.outputs(i));
         self.rec.transitions += 1;
         self.rec
             .rocking_event(self.t, EventKind::Slip, &blocks, None, what);
+        self.stack_switches(i, way, now);
         true
     }
 
@@ -342,11 +413,14 @@ impl Engine<'_> {
             modes::kinetic_j(body, &t, 0.0) + kinetic_j(&stack, &t, 0.0)
         };
         let (joint, _, _) = watch.describe(4 * stack.joint);
-        let moved = tr.state.u - stack.u_start_m;
+        let moved = stack.moved_m(tr.state.u);
         let held = watch.held_blocks().count();
         let tr = &mut self.tracks[i];
         tr.displaced.stops(tr.state.u, held);
-        tr.state.v = 0.0;
+        if stack.apart.is_none() {
+            // The pivot stuck on the stack: the body's slip was the stack's.
+            tr.state.v = 0.0;
+        }
         let after = modes::kinetic_j(body, &self.trajectory(i, now), 0.0);
         self.rec.energy.impact_loss_j += before - after;
         let mut blocks: Vec<usize> = watch
@@ -364,6 +438,143 @@ impl Engine<'_> {
             format!("stops on {joint}, having slid {moved:.6e} m"),
         );
         self.decide(i, now, false)
+    }
+
+    /// The pivot of body i, rocking on the sliding stack, reaches the limit of its friction:
+    /// it slips on the stack from here (the body slide-rocks on it, [`slide_rocking`]) where
+    /// that motion holds just after now; else the run stops there.
+    pub(super) fn stack_parts(&mut self, i: usize, now: &Inputs) {
+        let tr = &self.tracks[i];
+        let stack = tr.displaced.sliding.expect("a stack that slides");
+        let Mode::Rock(c) = tr.mode else {
+            self.stack_gives(i, Guard::PivotSlip);
+            return;
+        };
+        // F = -mu sigma_r N at the limit: the pivot slips against the force it needed.
+        let needed = self.trajectory(i, now).tangential[0];
+        let relative = if needed > 0.0 {
+            Slip::Backward
+        } else {
+            Slip::Forward
+        };
+        let apart = Stack {
+            apart: Some([stack.moved_m(tr.state.u), tr.state.v]),
+            ..stack
+        };
+        match self.stack_ways(i, apart, c, Some(relative), now)[..] {
+            [way] => self.stack_switches(i, way, now),
+            _ => self.stack_gives(i, Guard::PivotSlip),
+        }
+    }
+
+    /// The pivot of body i, slide-rocking on the sliding stack, stops slipping on it: the one
+    /// way that holds from there ([`Engine::stack_ways`]: rocking on the pivot stuck on the
+    /// stack, or slipping on it either way) goes on; else the run stops there.
+    pub(super) fn stack_rejoins(&mut self, i: usize, now: &Inputs) {
+        let tr = &self.tracks[i];
+        let stack = tr.displaced.sliding.expect("a stack that slides");
+        let (Mode::SlideRock(c, _), Some(_)) = (tr.mode, stack.apart) else {
+            self.stack_gives(i, Guard::PivotStick);
+            return;
+        };
+        match self.stack_ways(i, stack, c, None, now)[..] {
+            [way] => self.stack_switches(i, way, now),
+            _ => self.stack_gives(i, Guard::PivotStick),
+        }
+    }
+
+    /// The ways body i can move on the sliding `stack` (its own state in `apart`: how far it
+    /// has slid and its velocity now) that meet every condition just after now (the body's,
+    /// the stack's and the held joints'): rocking on its pivot stuck on the stack, where the
+    /// pivot moves with it (`slipping` none; the body's slip velocity then the stack's), and
+    /// slide-rocking on it, the pivot slipping on the stack the way `slipping` says, or either
+    /// way from relative rest. Where the effective masses are positive at most one holds (a
+    /// stuck pivot within its friction cone, or the slip its limit force drives); several, or
+    /// none, stop the run.
+    fn stack_ways(
+        &self,
+        i: usize,
+        stack: Stack,
+        c: Corner,
+        slipping: Option<Slip>,
+        now: &Inputs,
+    ) -> Vec<(Stack, Mode, State)> {
+        let tr = &self.tracks[i];
+        let [moved, v_s] = stack.apart.expect("the stack's own state");
+        let mut ways = Vec::with_capacity(3);
+        if slipping.is_none() {
+            let joined = Stack {
+                apart: None,
+                u_start_m: tr.state.u - moved,
+                ..stack
+            };
+            ways.push((joined, Mode::Rock(c), State { v: v_s, ..tr.state }));
+        }
+        let slips = match slipping {
+            Some(relative) => vec![relative],
+            None => vec![Slip::Forward, Slip::Backward],
+        };
+        ways.extend(
+            (slips.into_iter()).map(|relative| (stack, Mode::SlideRock(c, relative), tr.state)),
+        );
+        ways.retain(|(stack, mode, state)| self.stack_motion_holds(i, stack, *mode, state, now));
+        ways
+    }
+
+    /// Whether body i in `mode` from `state` on `stack` meets every condition of that motion
+    /// (its own, the stack's and the held joints') just after now.
+    fn stack_motion_holds(
+        &self,
+        i: usize,
+        stack: &Stack,
+        mode: Mode,
+        state: &State,
+        now: &Inputs,
+    ) -> bool {
+        let body = self.body(i);
+        let traj = match mode {
+            Mode::SlideRock(c, relative) => slide_rocking(body, stack, c, relative, state, now),
+            Mode::Rock(c) => trajectory(body, stack, c, state, now),
+            _ => return false,
+        };
+        let mut shift = self.tracks[i].displaced.clone();
+        shift.sliding = Some(*stack);
+        let mut all = modes::constraints(body, Equations::Exact, &traj);
+        conditions(body, stack, &traj, &mut all);
+        all.extend(self.scene.watches[i].conditions(&traj, now, &shift));
+        let scale_t = body.time_scale_s();
+        all.iter().all(|c| c.holds_after(scale_t))
+    }
+
+    /// Body i goes on in `way` (the stack, the body's mode and state) on the sliding stack,
+    /// a change of its mode logged; what its state changes by (a relative slip of round-off
+    /// where its pivot sticks on the stack), with its energy, goes with the impact losses, as
+    /// where the stack stops.
+    fn stack_switches(
+        &mut self,
+        i: usize,
+        (stack, mode, state): (Stack, Mode, State),
+        now: &Inputs,
+    ) {
+        let body = self.body(i);
+        let energy = |engine: &Self| {
+            let t = engine.trajectory(i, now);
+            let on = engine.tracks[i].displaced.sliding;
+            modes::kinetic_j(body, &t, 0.0) + on.map_or(0.0, |st| kinetic_j(&st, &t, 0.0))
+        };
+        let changed = self.tracks[i].state != state;
+        let before = if changed { energy(self) } else { 0.0 };
+        let old = self.tracks[i].mode;
+        let tr = &mut self.tracks[i];
+        (tr.displaced.sliding, tr.mode, tr.state) = (Some(stack), mode, state);
+        if changed {
+            self.rec.energy.impact_loss_j += before - energy(self);
+        }
+        if let Some(kind) = super::transition(old, mode, false) {
+            let what = format!("{} on the stack", mode.name());
+            self.rec
+                .rocking_event(self.t, kind, &self.layout.outputs(i), None, what);
+        }
     }
 
     /// Body i on its sliding stack meets `guard`, which the exact model does not follow there:
@@ -385,8 +596,14 @@ impl Engine<'_> {
                  followed)"
             ),
             Guard::PivotSlip => format!(
-                "slides while the corner {name} rocks on would slip on the stack it carries \
-                 (two joints slipping at once are not followed)"
+                "slides while the corner {name} rocks on would slip on the stack it carries, \
+                 and that slip's conditions do not hold (a second joint slipping, a flight off \
+                 the stack: not followed)"
+            ),
+            Guard::PivotStick => format!(
+                "slides while the corner {name} slide-rocks on stops slipping on the stack it \
+                 carries, and no way on holds (stuck on it, slipping either way: a second joint \
+                 slipping, a flight off the stack, are not followed)"
             ),
             Guard::Flight => format!("slides while {name} would leave the stack it carries"),
             Guard::Indeterminate => format!(

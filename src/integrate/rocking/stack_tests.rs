@@ -17,6 +17,7 @@ fn stack(mass_kg: f64, slip: Slip) -> Stack {
         friction: 0.6,
         slip,
         u_start_m: 0.0,
+        apart: None,
     }
 }
 
@@ -117,6 +118,25 @@ fn a_stack_of_unbounded_mass_is_a_base_that_friction_decelerates() {
     }
 }
 
+/// The energy of body and stack along `t` changes by the input less the friction dissipated,
+/// to 1e-13 of the energies, at each of `taus`.
+fn assert_balance(body: &RockingBody, st: &Stack, t: &Trajectory, inputs: &Inputs, taus: &[f64]) {
+    let energy = |tau: f64| {
+        modes::kinetic_j(body, t, tau) + kinetic_j(st, t, tau) + modes::potential_j(body, t, tau)
+    };
+    let (input, friction) = power_series(body, st, t, inputs);
+    for &tau in taus {
+        let work = series::integral(&input, tau) - series::integral(&friction, tau);
+        let change = energy(tau) - energy(0.0);
+        let scale = energy(0.0).abs() + series::integral(&friction, tau).abs();
+        assert!(
+            (change - work).abs() <= 1e-13 * scale,
+            "M = {} kg at {tau} s: {change} J against {work} J",
+            st.mass_kg
+        );
+    }
+}
+
 /// The kinetic and potential energy of body and stack change by the work of the ground's
 /// inertial forces on both less the friction dissipated on the joint the stack slides on (the
 /// pivot's force is inside the system), to round-off of the energies.
@@ -128,25 +148,91 @@ fn body_and_stack_balance_their_energy() {
             let inputs = test_inputs_at(1.1);
             let st = stack(m_stack, slip);
             let t = trajectory(&body, &st, c, &state, &inputs);
-            let energy = |tau: f64| {
-                modes::kinetic_j(&body, &t, tau)
-                    + kinetic_j(&st, &t, tau)
-                    + modes::potential_j(&body, &t, tau)
-            };
-            let (input, friction) = power_series(&body, &st, &t, &inputs);
-            for tau in [0.01, 0.03, 0.05] {
-                let work = series::integral(&input, tau) - series::integral(&friction, tau);
-                let change = energy(tau) - energy(0.0);
-                let scale = energy(0.0).abs() + series::integral(&friction, tau).abs();
-                assert!(
-                    (change - work).abs() <= 1e-13 * scale,
-                    "M = {m_stack} kg at {tau} s: {change} J against {work} J"
-                );
+            let taus = [0.01, 0.03, 0.05];
+            assert_balance(&body, &st, &t, &inputs, &taus);
+            let (_, friction) = power_series(&body, &st, &t, &inputs);
+            for tau in taus {
                 assert!(
                     series::integral(&friction, tau) > 0.0,
                     "friction dissipates"
                 );
             }
+        }
+    }
+}
+
+/// A body slide-rocking on a sliding stack, its pivot slipping on the stack: both ways
+/// relative to it, for the cases above (the stack's own velocity a third of the pivot's, so the
+/// pivot slips on it). The energy of body and stack changes by the input less what both joints
+/// dissipate (each positive), and their horizontal momentum, m x_G' + M u_s', by the ground's
+/// inertial force and the stack joint's friction alone: the pivot's force is internal.
+#[test]
+fn a_body_slide_rocking_on_a_sliding_stack_balances_energy_and_momentum() {
+    let body = top(0.5);
+    let (m, g) = (body.mass_kg, body.g_m_s2);
+    for (c, slip, state) in cases() {
+        for m_stack in [100.0, 2600.0] {
+            let inputs = test_inputs_at(1.1);
+            let st = Stack {
+                apart: Some([0.002, state.v / 3.0]),
+                ..stack(m_stack, slip)
+            };
+            let relative = if state.v > state.v / 3.0 {
+                Slip::Forward
+            } else {
+                Slip::Backward
+            };
+            let t = slide_rocking(&body, &st, c, relative, &state, &inputs);
+            let (_, friction) = power_series(&body, &st, &t, &inputs);
+            let [_, v_s] = t.stack.expect("the stack's own series");
+            // m x_G' = m (u' + G_y theta'); its rate is F, the stack's M u_s'' + M a_g is
+            // -F + f; so d/dt (m x_G' + M u_s') = -(m + M) a_g + f.
+            let momentum = |tau: f64| {
+                let x_g = series::eval(&t.v, tau)
+                    + series::eval(&t.gy, tau) * series::eval(&t.omega, tau);
+                m * x_g + m_stack * series::eval(&v_s, tau)
+            };
+            let mut load = t.normal;
+            series::add_to(&mut load, &inputs.lambda, m_stack * g);
+            let mut force = series::scaled(&load, -st.friction * slip.sign());
+            series::add_to(&mut force, &inputs.accel, -(m + m_stack));
+            // Along the step the engine takes on these series (accurate to round-off).
+            let sc = Scales::of(&body);
+            let p = body.frequency_parameter_rad_s();
+            let [u_s, _] = t.stack.expect("the stack's own series");
+            let h = series::step_size(&[
+                (&t.theta, 1.0),
+                (&t.omega, p),
+                (&t.u, body.size_m()),
+                (&t.v, sc.velocity),
+                (&u_s, body.size_m()),
+                (&v_s, sc.velocity),
+            ]);
+            let taus = [h / 3.0, 2.0 * h / 3.0, h];
+            assert_balance(&body, &st, &t, &inputs, &taus);
+            for tau in taus {
+                let impulse = series::integral(&force, tau);
+                let moved = momentum(tau) - momentum(0.0);
+                assert!(
+                    (moved - impulse).abs() <= 1e-12 * (momentum(0.0).abs() + impulse.abs()),
+                    "M = {m_stack} kg at {tau} s: {moved} N s against {impulse} N s"
+                );
+            }
+            // Each joint dissipates over the first 5 ms, both slips going on (friction stops
+            // the stack within the step).
+            let pivot = series::add(&t.v, &v_s, -1.0);
+            let tau = 0.005_f64.min(h);
+            assert!(series::eval(&pivot, tau) * relative.sign() > 0.0);
+            assert!(series::eval(&v_s, tau) * slip.sign() > 0.0);
+            let on_pivot = series::scaled(&series::product(&t.tangential, &pivot), -1.0);
+            assert!(
+                series::integral(&on_pivot, tau) > 0.0,
+                "the pivot dissipates"
+            );
+            assert!(
+                series::integral(&friction, tau) > series::integral(&on_pivot, tau),
+                "the stack's joint dissipates"
+            );
         }
     }
 }
