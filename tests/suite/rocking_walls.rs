@@ -303,6 +303,21 @@ fn the_top_of_a_stack_rocks_as_the_free_block_on_a_held_stack() {
     }
 }
 
+/// The exact run of `model` under `motion` with its events logged, which must run to `block`'s
+/// overturning (not stop before it): the run and the instant it falls (s).
+fn overturns(model: &Model, motion: &Motion, block: &str) -> (pirqa::Response, f64) {
+    let settings = RunSettings {
+        log_events: true,
+        ..RunSettings::default()
+    };
+    let r = pirqa::run(model, motion, &settings).unwrap();
+    assert_eq!(r.summary.stopped_at_s, None, "{:?}", r.summary.warnings);
+    let fell = r.summary.collapse.as_ref().expect("a block overturns");
+    assert_eq!(fell.block, block);
+    let fell_s = fell.time_s;
+    (r, fell_s)
+}
+
 /// walls/rocking/slender-on-stack.ron under El Centro at 1.0 g: where the ground joint under
 /// the rocking top reaches its friction, the stack (Base and Middle, as one) slides on the
 /// ground and stops, twice, the top rocking on it, until the top overturns; the run balances
@@ -312,15 +327,8 @@ fn the_top_of_a_stack_rocks_as_the_free_block_on_a_held_stack() {
 fn a_stack_sliding_under_a_rocking_block_is_what_time_stepping_converges_to() {
     let model = Model::from_file("walls/rocking/slender-on-stack.ron").unwrap();
     let motion = crate::engine::el_centro_first_s(5, 9.81);
-    let settings = RunSettings {
-        log_events: true,
-        ..RunSettings::default()
-    };
-    let r = pirqa::run(&model, &motion, &settings).unwrap();
+    let (r, fell_s) = overturns(&model, &motion, "Top");
     let s = &r.summary;
-    assert_eq!(s.stopped_at_s, None, "{:?}", s.warnings);
-    let fell = s.collapse.as_ref().expect("the top overturns");
-    assert_eq!(fell.block, "Top");
     let on_ground = |kind: pirqa::response::EventKind| {
         r.events
             .iter()
@@ -344,7 +352,7 @@ fn a_stack_sliding_under_a_rocking_block_is_what_time_stepping_converges_to() {
     for dt_s in [1e-3, 3e-4, 1e-4] {
         let m = stepped(&model, &motion, dt_s);
         let slid = (m.blocks[0].final_displacement_m - base.final_displacement_m).abs();
-        let late = (m.collapse.as_ref().unwrap().time_s - fell.time_s).abs();
+        let late = (m.collapse.as_ref().unwrap().time_s - fell_s).abs();
         assert!(
             slid < last.0 && late < last.1,
             "dt {dt_s}: {slid} m, {late} s"
@@ -411,6 +419,55 @@ fn a_landing_on_a_sliding_stack_is_what_time_stepping_converges_to() {
         last = (slid, turned);
     }
     assert!(last.0 < 5e-6 && last.1 < 5e-4, "{last:?}");
+}
+
+/// A slender top on two blocks whose joints slip under it (friction 0.4 on the ground, 0.35
+/// between them) under El Centro at 1.6 g: the stack under the top splits where the joint
+/// inside it slips (M sliding on P as P slides), joins again where that slip stops, and gains a
+/// stack at its bottom where the lower joint slips under the upper one's slide; the top
+/// overturns at 3.3315 s, the energy balancing to round-off, and Moreau-Jean converges to it.
+#[test]
+fn stacks_that_split_and_join_under_a_rocking_block_are_what_time_stepping_converges_to() {
+    let model = Model::from_ron_str(
+        r#"(version: 1, name: "top on two slipping blocks", thickness_m: 0.5,
+    density_kg_m3: 2600, friction: 0.6, joint_friction: {"P/ground": 0.4, "M/P": 0.35},
+    rows: [(height_m: 0.4, blocks: [(width_m: 1.4, name: "P")]),
+           (height_m: 0.4, x_m: 0.2, blocks: [(width_m: 1.0, name: "M")]),
+           (height_m: 1.6, x_m: 0.5, blocks: [(width_m: 0.4, name: "T")])])"#,
+    )
+    .unwrap();
+    let motion = crate::engine::el_centro_first_s(5, 1.6 * 9.81);
+    let (r, fell_s) = overturns(&model, &motion, "T");
+    let s = &r.summary;
+    for what in [
+        "on P, sliding too",
+        "sliding on with the stack under it",
+        "under the stacks sliding on it",
+    ] {
+        assert!(
+            (r.events.iter()).any(|e| e.mode.as_deref().is_some_and(|m| m.contains(what))),
+            "{what}"
+        );
+    }
+    let e = &s.energy;
+    let scale = e.input_j.abs() + e.friction_j + e.fallen_j.abs();
+    assert!(e.residual_j.abs() <= 1e-13 * scale, "{e:?}");
+    let mut last = [f64::INFINITY; 2];
+    for dt_s in [1e-3, 3e-4, 1e-4] {
+        let m = stepped(&model, &motion, dt_s);
+        let errors = [0, 1]
+            .map(|k| (m.blocks[k].final_displacement_m - s.blocks[k].final_displacement_m).abs());
+        assert!(
+            errors[0] < last[0] && errors[1] < last[1],
+            "dt {dt_s}: {errors:?} m"
+        );
+        last = errors;
+        if dt_s == 1e-4 {
+            let late = (m.collapse.as_ref().unwrap().time_s - fell_s).abs();
+            assert!(late < 5e-4, "dt {dt_s}: falls {late} s apart");
+        }
+    }
+    assert!(last[0] < 2e-5 && last[1] < 5e-5, "{last:?}");
 }
 
 /// A squat block sliding on another (joint friction 0.2) that stands on the ground (0.3), both

@@ -294,12 +294,7 @@ impl Watch {
         let w2 = product(&traj.omega, &traj.omega);
         let mut base_acc = derivative(&traj.v);
         add_to(&mut base_acc, &inputs.accel, 1.0);
-        // A stack the body's pivot slips on moves by its own acceleration.
-        let stack_acc = traj.stack.as_ref().map(|[_, v_s]| {
-            let mut acc = derivative(v_s);
-            add_to(&mut acc, &inputs.accel, 1.0);
-            acc
-        });
+
         let pivot_x = plus(&traj.u, s * self.half_base_m);
         // Where a point of the body that lies at (x0, y0) at rest is now: the pivot (or the
         // base's middle) plus the turned offset (theta > 0 turns clockwise).
@@ -325,7 +320,8 @@ impl Watch {
                     return Kinematics {
                         x,
                         y: constant(p.y0),
-                        ax: match (slides, stack_acc) {
+                        // A stack that moves on its own by its own acceleration.
+                        ax: match (slides, shift.acceleration(k, traj, inputs)) {
                             (true, Some(acc)) => acc,
                             (true, None) => base_acc,
                             (false, _) => inputs.accel,
@@ -409,7 +405,7 @@ impl Watch {
             let mut right = moments[1];
             right.iter_mut().for_each(|c| *c = -*c);
             let series = [forward, backward, moments[0], right];
-            let slides = shift.sliding.is_some_and(|st| st.joint == j);
+            let slides = shift.slides_on(j);
             for (c, series) in series
                 .into_iter()
                 .enumerate()
@@ -456,7 +452,7 @@ impl Watch {
         self.joints.iter().enumerate().find_map(|(j, joint)| {
             let margins = self.impulse_margins(joint, u, before, after, shift);
             // The joint a stack slides on keeps its tipping conditions alone.
-            let slides = shift.sliding.is_some_and(|st| st.joint == j);
+            let slides = shift.slides_on(j);
             (if slides { 2 } else { 0 }..4)
                 .find(|&c| margins[c] < -tol[c])
                 .map(|c| 4 * j + c)

@@ -18,6 +18,9 @@
 //! | a column's held joint opens under the rocking body | its watch's condition falls | `chain`: the column's blocks rock on each other until it is one body again |
 //! | a column's held joint below the rocking body slips | its watch's condition falls | `stack`: the blocks above it slide under the body until their slip stops |
 //! | a sliding stack stops | its `Stop` constraint | `Engine::stack_stops`, then `decide` |
+//! | the pivot slips on the sliding stack, or stops slipping on it | `PivotSlip`, `PivotStick` | `Engine::stack_parts`, `Engine::stack_rejoins` |
+//! | a held joint inside or below the sliding stacks slips | its watch's condition falls | `Engine::stack_splits` |
+//! | a stack stops slipping on the stack beneath it | `Stop`, `Beneath` | `Engine::stack_joins` |
 //! | extremes of theta, u, u' | roots of their derivatives | recorded, nothing decided |
 //! | end of a ground-motion segment | the step stops there | `decide` if a_g jumps |
 
@@ -668,14 +671,10 @@ impl<'a> Engine<'a> {
                 second
             };
         }
-        match (&tr.displaced.sliding, tr.mode) {
-            (Some(stack), Mode::Rock(c)) => {
-                return stack::trajectory(self.body(i), stack, c, &tr.state, inputs);
+        if tr.displaced.sliding.is_some() {
+            if let Some(t) = stack::on(self.body(i), &tr.displaced, tr.mode, &tr.state, inputs) {
+                return t;
             }
-            (Some(stack), Mode::SlideRock(c, relative)) => {
-                return stack::slide_rocking(self.body(i), stack, c, relative, &tr.state, inputs);
-            }
-            _ => {}
         }
         let mut t = modes::trajectory(
             self.body(i),
@@ -966,16 +965,19 @@ impl<'a> Engine<'a> {
             for (i, plan) in plans.iter().enumerate() {
                 let Some((traj, _)) = plan else { continue };
                 let body = self.body(i);
-                let (input, friction) = match &self.tracks[i].displaced.sliding {
-                    Some(st) => stack::power_series(body, st, traj, &inputs),
+                let displaced = &self.tracks[i].displaced;
+                let (input, friction) = match displaced.sliding {
+                    Some(_) => stack::power_series(body, displaced, traj, &inputs),
                     None => modes::power_series(body, traj, &inputs),
                 };
                 self.rec.energy.input_j += series::integral(&input, tau);
                 self.rec.energy.friction_j += series::integral(&friction, tau);
-                if let (Some(stack), Some([u_s, v_s])) =
-                    (&mut self.tracks[i].displaced.sliding, &traj.stack)
-                {
+                let displaced = &mut self.tracks[i].displaced;
+                if let (Some(stack), Some([u_s, v_s])) = (&mut displaced.sliding, &traj.stack) {
                     stack.apart = Some([series::eval(u_s, tau), series::eval(v_s, tau)]);
+                }
+                for (st, [u_s, v_s]) in displaced.beneath.iter_mut().zip(&traj.beneath) {
+                    st.apart = Some([series::eval(u_s, tau), series::eval(v_s, tau)]);
                 }
                 let st = &mut self.tracks[i].state;
                 st.theta = series::eval(&traj.theta, tau);
@@ -1101,7 +1103,7 @@ impl<'a> Engine<'a> {
             (&traj.u, body.size_m()),
             (&traj.v, sc.velocity),
         ]);
-        if let Some([u_s, v_s]) = &traj.stack {
+        for [u_s, v_s] in traj.stack.iter().chain(&traj.beneath) {
             // A stack that moves on its own is followed to round-off too.
             h = h.min(series::step_size(&[
                 (u_s, body.size_m()),
@@ -1121,9 +1123,7 @@ impl<'a> Engine<'a> {
         if let Some(watch) = self.scene.watches.get(i) {
             conditions.extend(watch.conditions(traj, inputs, &self.tracks[i].displaced));
         }
-        if let Some(st) = &self.tracks[i].displaced.sliding {
-            stack::conditions(body, st, traj, &mut conditions);
-        }
+        stack::conditions(body, &self.tracks[i].displaced, traj, &mut conditions);
         if let Some(lean) = &self.tracks[i].leans {
             conditions.push(lean.condition(body, inputs));
         }
@@ -1193,9 +1193,12 @@ impl<'a> Engine<'a> {
             extreme(&series::derivative(&v), sc.velocity * p);
         }
         if self.tracks[i].displaced.sliding.is_some() {
-            // The stack's displacement peaks where it stops (an event); its velocity here.
+            // A stack's displacement peaks where it stops (an event); its velocity here.
             let v_s = traj.stack.as_ref().map_or(&traj.v, |[_, v]| v);
             extreme(&series::derivative(v_s), sc.velocity * p);
+            for [_, v] in &traj.beneath {
+                extreme(&series::derivative(v), sc.velocity * p);
+            }
         }
         (h, best.filter(|(x, _)| *x <= h))
     }
@@ -1213,7 +1216,22 @@ impl<'a> Engine<'a> {
             return Ok(());
         };
         if self.tracks[i].displaced.sliding.is_some() {
+            let beneath = !self.tracks[i].displaced.beneath.is_empty();
             return match guard {
+                Guard::Stop if beneath => {
+                    self.stack_joins(i, None, now);
+                    Ok(())
+                }
+                Guard::Beneath(k) => {
+                    self.stack_joins(i, Some(k), now);
+                    Ok(())
+                }
+                Guard::Held(k) => {
+                    if !self.stack_splits(i, k, now) {
+                        self.gives(i, k, false);
+                    }
+                    Ok(())
+                }
                 Guard::Stop => self.stack_stops(i, now),
                 Guard::PivotSlip => {
                     self.stack_parts(i, now);
@@ -1294,6 +1312,9 @@ impl<'a> Engine<'a> {
                 Ok(())
             }
             Guard::Indeterminate => Err(self.indeterminate(i)),
+            Guard::Beneath(_) => Err(SimulationError::Bug(
+                "a stack beneath another's stop met by a body on no sliding stack".into(),
+            )),
             Guard::Settled => {
                 let (_, after, tail) = self.tracks[i].settles.take().expect("a series of landings");
                 self.settled(i, after, tail);
@@ -4694,10 +4715,7 @@ impl<'a> Engine<'a> {
                 let k = self.layout.column_output(i, p);
                 let (x, slides) = tr.displaced.block(p, traj);
                 if fallen {
-                    let v = match tr.displaced.sliding {
-                        Some(stack) if slides => stack.velocity_m_s(tr.state.v),
-                        _ => 0.0,
-                    };
+                    let v = tr.displaced.velocity_m_s(p, tr.state.v);
                     return (k, (x[0], v, None));
                 }
                 let xv = series::derivative(&x);
@@ -4771,8 +4789,9 @@ impl<'a> Engine<'a> {
                 v[k] = dv;
                 placed[k] = (du, dv, Turned::default());
             }
-            if let Some(stack) = &self.tracks[i].displaced.sliding {
-                let v = stack.velocity_m_s(self.tracks[i].state.v);
+            let tr = &self.tracks[i];
+            for stack in tr.displaced.sliding.iter().chain(&tr.displaced.beneath) {
+                let v = stack.velocity_m_s(tr.state.v);
                 self.rec.energy.kinetic_j += 0.5 * stack.mass_kg * v * v;
             }
             if plan.is_some() {

@@ -247,6 +247,9 @@ pub struct Trajectory {
     /// A body slide-rocking on a sliding stack (`stack`): the stack's displacement since it
     /// began (m) and its velocity (m/s), as series.
     pub stack: Option<[Coeffs; 2]>,
+    /// The stacks sliding beneath that one (`stack::Displaced::beneath`): each one's
+    /// displacement since it began and its velocity, as series.
+    pub beneath: Vec<[Coeffs; 2]>,
     /// G_y = height of the centroid above the pivot while rocking (h_c seated).
     pub gy: Coeffs,
     /// dx = dG_y/dtheta: horizontal arm of the pivot's normal force about the centroid.
@@ -271,6 +274,7 @@ impl Trajectory {
             denominator: None,
             denominator_series: None,
             stack: None,
+            beneath: Vec::new(),
             gy: ZERO,
             dx: ZERO,
         };
@@ -446,6 +450,9 @@ pub enum Guard {
     /// A body resting against a fixed block (`lean`), or two bodies turning together
     /// (`couple`): the contact's push falls to zero, the bodies parting.
     Parts,
+    /// A stack beneath the one under a body (`stack::Displaced::beneath`, its index there)
+    /// stops slipping on what is under it.
+    Beneath(usize),
     /// A slide-rocking body, or a body rocking on a sliding stack (`stack`): the effective mass
     /// of the motion (the denominator of theta'') falls to zero, friction making the
     /// accelerations indeterminate (Painleve's paradox).

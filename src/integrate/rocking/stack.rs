@@ -1,10 +1,13 @@
-//! A column's body rocking on its stuck pivot while the stack under it slides: a held joint
-//! below the body that gave way by slipping. The blocks between that joint and the body's move
-//! as one rigid stack of mass M, translating on the joint with friction mu_s against its slip
-//! (sigma its sign); the body rocks on the stack's top as it rocks on a held base, the stack's
-//! acceleration and the joint's friction coupling the two. From here the body's u (its pivot's
-//! displacement relative to the ground) is the stack's too, up to a constant: the pivot sticks.
-//! The stack stops where its slip velocity returns to zero, and is held again, displaced; the
+//! A column's body rocking while the stack under it slides: a held joint below the body that
+//! gave way by slipping. The blocks between that joint and the body's move as one rigid stack of
+//! mass M, translating on the joint with friction mu_s against its slip (sigma its sign). Where
+//! the body's pivot sticks, the body rocks on the stack's top as it rocks on a held base, the
+//! stack's acceleration and the joint's friction coupling the two, and the body's u (its pivot's
+//! displacement relative to the ground) is the stack's too, up to a constant; where the pivot
+//! slips on the stack, the body slide-rocks as on a held base and the stack has its own state.
+//! A joint inside or below the sliding stack that slips too makes stacks slide on stacks, each
+//! below the top one with its own state. A stack stops where its slip on what is under it
+//! returns to zero: it slides on with the stack under it, or is held again, displaced; the
 //! displacement stays with its blocks and the joints in it (their contacts move with them: the
 //! overlaps of seated blocks are those of the initial configuration, docs/rocking-walls.md).
 
@@ -57,46 +60,95 @@ impl Stack {
 }
 
 /// Where a column's held blocks are: each block's displacement (m, bottom first; a stack that
-/// slid and was held again), and the stack sliding now.
+/// slid and was held again), the stack sliding now under the body, and the stacks sliding
+/// under that one, each on the next (a held joint inside a sliding stack that slipped too).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Displaced {
     /// Per block of the column; empty while nothing has moved.
     pub by_m: Vec<f64>,
-    /// The stack sliding now.
+    /// The stack sliding now under the body.
     pub sliding: Option<Stack>,
+    /// The stacks sliding under it, top first, each with its own state (`Stack::apart`), each
+    /// slipping on the next (the last on a held joint).
+    pub beneath: Vec<Stack>,
+}
+
+/// Which stack carries a held block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Owner {
+    /// The stack under the body.
+    Top,
+    /// A stack beneath it (index in `Displaced::beneath`).
+    Beneath(usize),
 }
 
 impl Displaced {
-    /// Block p's displacement as a series along `traj`, and whether it slides with the stack
-    /// now (its acceleration then the stack's).
-    pub fn block(&self, p: usize, traj: &Trajectory) -> (Coeffs, bool) {
-        let slides = self.slides(p);
-        let mut out = match (slides, &traj.stack) {
-            (false, _) => ZERO,
-            (true, Some([moved, _])) => *moved,
-            (true, None) => traj.u,
-        };
-        out[0] = self.at(p, traj.u[0]);
-        (out, slides)
+    /// The stack block p slides with, if any.
+    fn owner(&self, p: usize) -> Option<Owner> {
+        if p >= self.sliding?.first {
+            return Some(Owner::Top);
+        }
+        (self.beneath.iter())
+            .position(|st| p >= st.first)
+            .map(Owner::Beneath)
     }
 
-    /// Whether block p slides with the stack now.
+    /// Block p's displacement as a series along `traj`, and whether it slides with a stack
+    /// now (its acceleration then the stack's, [`Displaced::acceleration`]).
+    pub fn block(&self, p: usize, traj: &Trajectory) -> (Coeffs, bool) {
+        let owner = self.owner(p);
+        let mut out = match (owner, &traj.stack) {
+            (None, _) => ZERO,
+            // A trajectory without the stacks' series (the body fallen) leaves them where they
+            // are.
+            (Some(Owner::Beneath(k)), _) => traj.beneath.get(k).map_or(ZERO, |[u, _]| *u),
+            (Some(Owner::Top), Some([moved, _])) => *moved,
+            (Some(Owner::Top), None) => traj.u,
+        };
+        out[0] = self.at(p, traj.u[0]);
+        (out, owner.is_some())
+    }
+
+    /// The absolute acceleration of block p along `traj` where it slides with a stack that
+    /// moves on its own (the body's pivot slipping on it, or a stack beneath); `None` where it
+    /// slides with the body's pivot or does not slide.
+    pub fn acceleration(&self, p: usize, traj: &Trajectory, inputs: &Inputs) -> Option<Coeffs> {
+        let v = match self.owner(p)? {
+            Owner::Beneath(k) => &traj.beneath.get(k)?[1],
+            Owner::Top => &traj.stack.as_ref()?[1],
+        };
+        let mut acc = series::derivative(v);
+        series::add_to(&mut acc, &inputs.accel, 1.0);
+        Some(acc)
+    }
+
+    /// Whether block p slides with a stack now.
     pub fn slides(&self, p: usize) -> bool {
-        self.sliding.is_some_and(|st| p >= st.first)
+        self.owner(p).is_some()
+    }
+
+    /// Whether a stack slides on joint j (its index among the watch's held joints).
+    pub fn slides_on(&self, j: usize) -> bool {
+        (self.sliding.iter().chain(&self.beneath)).any(|st| st.joint == j)
     }
 
     /// Block p's displacement (m) where the body's u is `u_m`.
     pub fn at(&self, p: usize, u_m: f64) -> f64 {
         let moved = self.by_m.get(p).copied().unwrap_or(0.0);
-        match self.sliding {
-            Some(st @ Stack { apart: None, .. }) if p >= st.first => moved + u_m - st.u_start_m,
-            Some(
-                st @ Stack {
-                    apart: Some([d, _]),
-                    ..
-                },
-            ) if p >= st.first => moved + d,
+        match (self.owner(p), self.sliding) {
+            (Some(Owner::Beneath(k)), _) => moved + self.beneath[k].moved_m(u_m),
+            (Some(Owner::Top), Some(st @ Stack { apart: None, .. })) => moved + u_m - st.u_start_m,
+            (Some(Owner::Top), Some(st)) => moved + st.moved_m(u_m),
             _ => moved,
+        }
+    }
+
+    /// Block p's velocity (m/s) where the body's pivot slips at `v_m_s`.
+    pub fn velocity_m_s(&self, p: usize, v_m_s: f64) -> f64 {
+        match (self.owner(p), self.sliding) {
+            (Some(Owner::Beneath(k)), _) => self.beneath[k].velocity_m_s(v_m_s),
+            (Some(Owner::Top), Some(st)) => st.velocity_m_s(v_m_s),
+            _ => 0.0,
         }
     }
 
@@ -115,6 +167,62 @@ impl Displaced {
         for d in &mut self.by_m[st.first..] {
             *d += st.moved_m(u_m);
         }
+    }
+
+    /// Every stack's blocks keep what it has slid (the body's u `u_m` and its pivot's slip
+    /// velocity `v_m_s` now), and every stack goes on from there, moving as it moves: where
+    /// stacks split or join, each block keeps its place.
+    pub fn settle(&mut self, u_m: f64, v_m_s: f64, body_first: usize) {
+        self.by_m.resize(body_first, 0.0);
+        for p in 0..body_first {
+            self.by_m[p] = self.at(p, u_m);
+        }
+        if let Some(top) = &mut self.sliding {
+            match top.apart {
+                None => top.u_start_m = u_m,
+                Some([_, v]) => top.apart = Some([0.0, v]),
+            }
+        }
+        for st in &mut self.beneath {
+            st.apart = Some([0.0, st.velocity_m_s(v_m_s)]);
+        }
+    }
+}
+
+/// The series of the stacks beneath the top one along `traj` (the top one's, the body's and
+/// its pivot's forces already in it): each is driven by the friction of the stack above
+/// slipping on it at its limit, +mu_a sigma_a L_a, and held back by its own joint's,
+/// -mu sigma L (L the normal load each joint carries: the body's N and the weight of the
+/// stacks above it), so M (u'' + a_g) = mu_a sigma_a L_a - mu sigma L; none depends on the
+/// accelerations below it.
+pub fn beneath_series(
+    body: &RockingBody,
+    displaced: &Displaced,
+    traj: &mut Trajectory,
+    inputs: &Inputs,
+) {
+    let Some(top) = displaced.sliding else {
+        return;
+    };
+    let g = body.g_m_s2;
+    let load = |above: &Coeffs, mass: f64| series::add(above, &inputs.lambda, mass * g);
+    let mut carried = load(&traj.normal, top.mass_kg);
+    let mut passed = series::scaled(&carried, top.friction * top.slip.sign());
+    traj.beneath.clear();
+    for st in &displaced.beneath {
+        let [moved, v] = st.apart.expect("a stack beneath moves on its own");
+        carried = load(&carried, st.mass_kg);
+        let held = series::scaled(&carried, st.friction * st.slip.sign());
+        let (mut u_s, mut v_s) = (ZERO, ZERO);
+        (u_s[0], v_s[0]) = (moved, v);
+        for k in 0..ORDER {
+            let acc = (passed[k] - held[k]) / st.mass_kg - inputs.accel[k];
+            let kk = (k + 1) as f64;
+            u_s[k + 1] = v_s[k] / kk;
+            v_s[k + 1] = acc / kk;
+        }
+        traj.beneath.push([u_s, v_s]);
+        passed = held;
     }
 }
 
@@ -200,55 +308,118 @@ pub fn slide_rocking(
     t
 }
 
+/// Body's motion in `mode` from `state` on the stacks `displaced` has sliding (rocking on its
+/// pivot stuck on the stack under it, [`trajectory`], or slipping on it, [`slide_rocking`]),
+/// with the series of the stacks beneath ([`beneath_series`]); `None` in another mode.
+pub fn on(
+    body: &RockingBody,
+    displaced: &Displaced,
+    mode: Mode,
+    state: &State,
+    inputs: &Inputs,
+) -> Option<Trajectory> {
+    let top = displaced.sliding.as_ref()?;
+    let mut traj = match mode {
+        Mode::Rock(c) => trajectory(body, top, c, state, inputs),
+        Mode::SlideRock(c, relative) => slide_rocking(body, top, c, relative, state, inputs),
+        _ => return None,
+    };
+    beneath_series(body, displaced, &mut traj, inputs);
+    Some(traj)
+}
+
 /// The stack's velocity along `traj` as a series: its own where the body's pivot slips on it,
 /// else the body's pivot's.
 fn velocity(traj: &Trajectory) -> &Coeffs {
     traj.stack.as_ref().map_or(&traj.v, |[_, v]| v)
 }
 
-/// The stack's own conditions along `traj`, added to the body's in `out`: its slip goes on
-/// (sigma u_s' > 0, strict: a stack whose slip would not begin does not slide); where the
-/// body's pivot slips on it ([`slide_rocking`]) that slip's condition is relative to the
+/// The stacks' own conditions along `traj`, added to the body's in `out`: each stack's slip
+/// on what is under it goes on (sigma (u_s' - u_b') > 0, strict: a slip that would not begin
+/// does not happen; u_b' the velocity of the stack beneath, zero on a held joint), guarded by
+/// `Stop` for the stack under the body and `Beneath(k)` for the k-th beneath it; where the
+/// body's pivot slips on the stack ([`slide_rocking`]) that slip's condition is relative to the
 /// stack, sigma_r (u' - u_s') > 0. That the coupled motion stays determinate (the denominator
 /// positive: where it falls to zero friction makes the acceleration indeterminate, Painleve's
 /// paradox) is among the body's conditions (`modes::constraints`, from the denominator's
 /// series).
-pub fn conditions(body: &RockingBody, stack: &Stack, traj: &Trajectory, out: &mut Vec<Constraint>) {
+pub fn conditions(
+    body: &RockingBody,
+    displaced: &Displaced,
+    traj: &Trajectory,
+    out: &mut Vec<Constraint>,
+) {
+    let Some(top) = displaced.sliding else {
+        return;
+    };
     if let (Mode::SlideRock(_, relative), Some([_, v_s])) = (traj.mode, &traj.stack) {
         for c in out.iter_mut().filter(|c| c.guard == Guard::PivotStick) {
             c.series = series::scaled(&series::add(&traj.v, v_s, -1.0), relative.sign());
         }
     }
-    out.push(Constraint {
-        series: series::scaled(velocity(traj), stack.slip.sign()),
-        scale: Scales::of(body).velocity,
-        guard: Guard::Stop,
-        strict: true,
-    });
+    let scale = Scales::of(body).velocity;
+    let velocities: Vec<&Coeffs> = std::iter::once(velocity(traj))
+        .chain(traj.beneath.iter().map(|[_, v]| v))
+        .collect();
+    let stacks = std::iter::once(&top).chain(&displaced.beneath);
+    for (k, st) in stacks.enumerate() {
+        let slip = match velocities.get(k + 1) {
+            Some(under) => series::add(velocities[k], under, -1.0),
+            None => *velocities[k],
+        };
+        out.push(Constraint {
+            series: series::scaled(&slip, st.slip.sign()),
+            scale,
+            guard: if k == 0 {
+                Guard::Stop
+            } else {
+                Guard::Beneath(k - 1)
+            },
+            strict: true,
+        });
+    }
 }
 
-/// The work rates of body and stack together: the input (the body's, and -M a_g u_s' on the
-/// stack) and the friction dissipated on the joint the stack slides on (-f u_s'), and where
-/// the body's pivot slips on the stack, on the pivot (-F (u' - u_s')). Where the pivot sticks
-/// its force is inside the system: its work on the body and on the stack cancel.
+/// The work rates of body and stacks together: the input (the body's, and -M a_g u_s' on each
+/// stack) and the friction dissipated on each joint a stack slides on (mu sigma L times its
+/// slip velocity on what is under it), and where the body's pivot slips on the stack, on the
+/// pivot (-F (u' - u_s')). Where the pivot sticks its force is inside the system: its work on
+/// the body and on the stack cancel; so does each stack joint's between the two stacks it
+/// joins, but for what its slip dissipates.
 pub fn power_series(
     body: &RockingBody,
-    stack: &Stack,
+    displaced: &Displaced,
     traj: &Trajectory,
     inputs: &Inputs,
 ) -> (Coeffs, Coeffs) {
+    let top = displaced.sliding.expect("a stack that slides");
     let v_s = velocity(traj);
     let (input, pivot) = modes::power_series(body, traj, inputs);
-    let input = series::add(&input, &series::product(&inputs.accel, v_s), -stack.mass_kg);
+    let mut input = series::add(&input, &series::product(&inputs.accel, v_s), -top.mass_kg);
     let mut load = traj.normal;
-    series::add_to(&mut load, &inputs.lambda, stack.mass_kg * body.g_m_s2);
+    series::add_to(&mut load, &inputs.lambda, top.mass_kg * body.g_m_s2);
+    let slip = match traj.beneath.first() {
+        Some([_, under]) => series::add(v_s, under, -1.0),
+        None => *v_s,
+    };
     let mut friction = series::scaled(
-        &series::product(&load, v_s),
-        stack.friction * stack.slip.sign(),
+        &series::product(&load, &slip),
+        top.friction * top.slip.sign(),
     );
     if traj.stack.is_some() {
         series::add_to(&mut friction, &pivot, 1.0);
         series::add_to(&mut friction, &series::product(&traj.tangential, v_s), 1.0);
+    }
+    for (k, st) in displaced.beneath.iter().enumerate() {
+        let v = &traj.beneath[k][1];
+        series::add_to(&mut input, &series::product(&inputs.accel, v), -st.mass_kg);
+        series::add_to(&mut load, &inputs.lambda, st.mass_kg * body.g_m_s2);
+        let slip = match traj.beneath.get(k + 1) {
+            Some([_, under]) => series::add(v, under, -1.0),
+            None => *v,
+        };
+        let work = series::product(&load, &slip);
+        series::add_to(&mut friction, &work, st.friction * st.slip.sign());
     }
     (input, friction)
 }
@@ -320,10 +491,17 @@ pub fn landing(
     })
 }
 
-/// The stack's kinetic energy (J) at tau along `traj`.
-pub fn kinetic_j(stack: &Stack, traj: &Trajectory, tau: f64) -> f64 {
+/// The stacks' kinetic energy (J) at tau along `traj`.
+pub fn kinetic_j(displaced: &Displaced, traj: &Trajectory, tau: f64) -> f64 {
+    let Some(top) = displaced.sliding else {
+        return 0.0;
+    };
     let v = series::eval(velocity(traj), tau);
-    0.5 * stack.mass_kg * v * v
+    let beneath = (displaced.beneath.iter().zip(&traj.beneath)).map(|(st, [_, v])| {
+        let v = series::eval(v, tau);
+        0.5 * st.mass_kg * v * v
+    });
+    0.5 * top.mass_kg * v * v + beneath.sum::<f64>()
 }
 
 #[cfg(test)]
@@ -361,12 +539,17 @@ impl Engine<'_> {
             apart: Some([0.0, 0.0]),
             ..stack
         };
-        let [way] = self.stack_ways(i, stack, c, slipping, now)[..] else {
+        let base = Displaced {
+            sliding: Some(stack),
+            ..tr.displaced.clone()
+        };
+        let ways = self.stack_ways(i, &base, c, slipping, now);
+        let [way] = &ways[..] else {
             return false;
         };
-        let (stack, mode, _) = way;
+        let (stack, mode) = (way.0.sliding.expect("a stack that slides"), way.1);
         let (joint, _, _) = watch.describe(4 * stack.joint);
-        let mut blocks: Vec<usize> = watch
+        let blocks: Vec<usize> = watch
             .held_blocks()
             .filter(|&p| p >= stack.first)
             .map(|p| self.layout.column_output(i, p))
@@ -392,11 +575,7 @@ impl Engine<'_> {
             },
             c.name()
         );
-        blocks.extend(self.layout.outputs(i));
-        self.rec.transitions += 1;
-        self.rec
-            .rocking_event(self.t, EventKind::Slip, &blocks, None, what);
-        self.stack_switches(i, way, now);
+        self.stack_starts(i, blocks, what, way.clone(), now);
         true
     }
 
@@ -410,7 +589,7 @@ impl Engine<'_> {
         let stack = tr.displaced.sliding.expect("a stack that slides");
         let before = {
             let t = self.trajectory(i, now);
-            modes::kinetic_j(body, &t, 0.0) + kinetic_j(&stack, &t, 0.0)
+            modes::kinetic_j(body, &t, 0.0) + kinetic_j(&tr.displaced, &t, 0.0)
         };
         let (joint, _, _) = watch.describe(4 * stack.joint);
         let moved = stack.moved_m(tr.state.u);
@@ -457,13 +636,16 @@ impl Engine<'_> {
         } else {
             Slip::Forward
         };
-        let apart = Stack {
-            apart: Some([stack.moved_m(tr.state.u), tr.state.v]),
-            ..stack
+        let base = Displaced {
+            sliding: Some(Stack {
+                apart: Some([stack.moved_m(tr.state.u), tr.state.v]),
+                ..stack
+            }),
+            ..tr.displaced.clone()
         };
-        match self.stack_ways(i, apart, c, Some(relative), now)[..] {
-            [way] => self.stack_switches(i, way, now),
-            _ => self.stack_gives(i, Guard::PivotSlip),
+        match <[_; 1]>::try_from(self.stack_ways(i, &base, c, Some(relative), now)) {
+            Ok([way]) => self.stack_switches(i, way, now),
+            Err(_) => self.stack_gives(i, Guard::PivotSlip),
         }
     }
 
@@ -477,29 +659,31 @@ impl Engine<'_> {
             self.stack_gives(i, Guard::PivotStick);
             return;
         };
-        match self.stack_ways(i, stack, c, None, now)[..] {
-            [way] => self.stack_switches(i, way, now),
-            _ => self.stack_gives(i, Guard::PivotStick),
+        let base = tr.displaced.clone();
+        match <[_; 1]>::try_from(self.stack_ways(i, &base, c, None, now)) {
+            Ok([way]) => self.stack_switches(i, way, now),
+            Err(_) => self.stack_gives(i, Guard::PivotStick),
         }
     }
 
-    /// The ways body i can move on the sliding `stack` (its own state in `apart`: how far it
-    /// has slid and its velocity now) that meet every condition just after now (the body's,
-    /// the stack's and the held joints'): rocking on its pivot stuck on the stack, where the
-    /// pivot moves with it (`slipping` none; the body's slip velocity then the stack's), and
-    /// slide-rocking on it, the pivot slipping on the stack the way `slipping` says, or either
-    /// way from relative rest. Where the effective masses are positive at most one holds (a
-    /// stuck pivot within its friction cone, or the slip its limit force drives); several, or
-    /// none, stop the run.
+    /// The ways body i can move on the stacks `base` has sliding (the stack under the body
+    /// with its own state in `apart`: how far it has slid and its velocity now) that meet every
+    /// condition just after now (the body's, the stacks' and the held joints'): rocking on its
+    /// pivot stuck on the stack, where the pivot moves with it (`slipping` none; the body's slip
+    /// velocity then the stack's), and slide-rocking on it, the pivot slipping on the stack the
+    /// way `slipping` says, or either way from relative rest. Where the effective masses are
+    /// positive at most one holds (a stuck pivot within its friction cone, or the slip its
+    /// limit force drives); several, or none, stop the run.
     fn stack_ways(
         &self,
         i: usize,
-        stack: Stack,
+        base: &Displaced,
         c: Corner,
         slipping: Option<Slip>,
         now: &Inputs,
-    ) -> Vec<(Stack, Mode, State)> {
+    ) -> Vec<(Displaced, Mode, State)> {
         let tr = &self.tracks[i];
+        let stack = base.sliding.expect("a stack that slides");
         let [moved, v_s] = stack.apart.expect("the stack's own state");
         let mut ways = Vec::with_capacity(3);
         if slipping.is_none() {
@@ -508,65 +692,83 @@ impl Engine<'_> {
                 u_start_m: tr.state.u - moved,
                 ..stack
             };
-            ways.push((joined, Mode::Rock(c), State { v: v_s, ..tr.state }));
+            let on = Displaced {
+                sliding: Some(joined),
+                ..base.clone()
+            };
+            ways.push((on, Mode::Rock(c), State { v: v_s, ..tr.state }));
         }
         let slips = match slipping {
             Some(relative) => vec![relative],
             None => vec![Slip::Forward, Slip::Backward],
         };
         ways.extend(
-            (slips.into_iter()).map(|relative| (stack, Mode::SlideRock(c, relative), tr.state)),
+            (slips.into_iter())
+                .map(|relative| (base.clone(), Mode::SlideRock(c, relative), tr.state)),
         );
-        ways.retain(|(stack, mode, state)| self.stack_motion_holds(i, stack, *mode, state, now));
+        ways.retain(|(on, mode, state)| self.holds_on(i, on, *mode, state, now));
         ways
     }
 
-    /// Whether body i in `mode` from `state` on `stack` meets every condition of that motion
-    /// (its own, the stack's and the held joints') just after now.
-    fn stack_motion_holds(
+    /// Whether body i in `mode` from `state`, its column's held blocks as `displaced` has them
+    /// (its stacks sliding), meets every condition of that motion just after now.
+    fn holds_on(
         &self,
         i: usize,
-        stack: &Stack,
+        displaced: &Displaced,
         mode: Mode,
         state: &State,
         now: &Inputs,
     ) -> bool {
         let body = self.body(i);
-        let traj = match mode {
-            Mode::SlideRock(c, relative) => slide_rocking(body, stack, c, relative, state, now),
-            Mode::Rock(c) => trajectory(body, stack, c, state, now),
-            _ => return false,
+        let Some(traj) = on(body, displaced, mode, state, now) else {
+            return false;
         };
-        let mut shift = self.tracks[i].displaced.clone();
-        shift.sliding = Some(*stack);
         let mut all = modes::constraints(body, Equations::Exact, &traj);
-        conditions(body, stack, &traj, &mut all);
-        all.extend(self.scene.watches[i].conditions(&traj, now, &shift));
+        conditions(body, displaced, &traj, &mut all);
+        all.extend(self.scene.watches[i].conditions(&traj, now, displaced));
         let scale_t = body.time_scale_s();
         all.iter().all(|c| c.holds_after(scale_t))
     }
 
-    /// Body i goes on in `way` (the stack, the body's mode and state) on the sliding stack,
+    /// A stack starts to slide under body i: a `slip` event naming it (`blocks`, with the
+    /// body's, and `what`), then the body goes on in `way` ([`Engine::stack_switches`]).
+    fn stack_starts(
+        &mut self,
+        i: usize,
+        mut blocks: Vec<usize>,
+        what: String,
+        way: (Displaced, Mode, State),
+        now: &Inputs,
+    ) {
+        blocks.extend(self.layout.outputs(i));
+        self.rec.transitions += 1;
+        self.rec
+            .rocking_event(self.t, EventKind::Slip, &blocks, None, what);
+        self.stack_switches(i, way, now);
+    }
+
+    /// Body i goes on in `way` (its column's held blocks, the body's mode and state) on the
+    /// sliding stacks,
     /// a change of its mode logged; what its state changes by (a relative slip of round-off
     /// where its pivot sticks on the stack), with its energy, goes with the impact losses, as
     /// where the stack stops.
     fn stack_switches(
         &mut self,
         i: usize,
-        (stack, mode, state): (Stack, Mode, State),
+        (displaced, mode, state): (Displaced, Mode, State),
         now: &Inputs,
     ) {
         let body = self.body(i);
         let energy = |engine: &Self| {
             let t = engine.trajectory(i, now);
-            let on = engine.tracks[i].displaced.sliding;
-            modes::kinetic_j(body, &t, 0.0) + on.map_or(0.0, |st| kinetic_j(&st, &t, 0.0))
+            modes::kinetic_j(body, &t, 0.0) + kinetic_j(&engine.tracks[i].displaced, &t, 0.0)
         };
         let changed = self.tracks[i].state != state;
         let before = if changed { energy(self) } else { 0.0 };
         let old = self.tracks[i].mode;
         let tr = &mut self.tracks[i];
-        (tr.displaced.sliding, tr.mode, tr.state) = (Some(stack), mode, state);
+        (tr.displaced, tr.mode, tr.state) = (displaced, mode, state);
         if changed {
             self.rec.energy.impact_loss_j += before - energy(self);
         }
@@ -575,6 +777,193 @@ impl Engine<'_> {
             self.rec
                 .rocking_event(self.t, kind, &self.layout.outputs(i), None, what);
         }
+    }
+
+    /// Condition k of body i's watch falls while a stack slides under it: a held joint below
+    /// the body that slips, inside a sliding stack (which splits: the blocks above the joint
+    /// slide on those below it, each part with its own state) or below every sliding stack (a
+    /// new stack at the bottom, starting from rest), if every condition of that motion holds
+    /// just after now; else `false` (the run stops as before). The blocks keep their places:
+    /// what each stack slid so far stays with its blocks.
+    pub(super) fn stack_splits(&mut self, i: usize, k: usize, now: &Inputs) -> bool {
+        let scene = self.scene;
+        let watch = &scene.watches[i];
+        let tr = &self.tracks[i];
+        let Some(new) = watch.stack_on(k, tr.state.u) else {
+            return false;
+        };
+        let mut shift = tr.displaced.clone();
+        shift.settle(tr.state.u, tr.state.v, watch.held_blocks().count());
+        let top = shift.sliding.expect("a stack that slides");
+        let stacks: Vec<Stack> = std::iter::once(top).chain(shift.beneath.clone()).collect();
+        let above = |s: usize| stacks[..s].iter().map(|st| st.mass_kg).sum::<f64>();
+        // The stack that starts to slip, and the one under it (none on a held joint).
+        let (moving, under) = match stacks.iter().position(|st| st.first < new.first) {
+            Some(s) => {
+                let whole = stacks[s];
+                let upper = Stack {
+                    joint: new.joint,
+                    first: new.first,
+                    mass_kg: new.mass_kg - above(s),
+                    friction: new.friction,
+                    slip: new.slip,
+                    ..whole
+                };
+                let lower = Stack {
+                    mass_kg: whole.mass_kg - upper.mass_kg,
+                    apart: Some([0.0, whole.velocity_m_s(tr.state.v)]),
+                    ..whole
+                };
+                match s {
+                    0 => shift.sliding = Some(upper),
+                    _ => shift.beneath[s - 1] = upper,
+                }
+                shift.beneath.insert(s, lower);
+                (upper, Some(lower))
+            }
+            None => {
+                let bottom = Stack {
+                    mass_kg: new.mass_kg - above(stacks.len()),
+                    apart: Some([0.0, 0.0]),
+                    ..new
+                };
+                shift.beneath.push(bottom);
+                (bottom, None)
+            }
+        };
+        // The body on the stack under it, its pivot stuck or slipping on it, the joint slipping
+        // or, the body's pivot slipping instead, not: as the one way that holds says.
+        let (Mode::Rock(c) | Mode::SlideRock(c, _)) = tr.mode else {
+            return false;
+        };
+        let top = shift.sliding.expect("a stack that slides");
+        let v_top = top.velocity_m_s(tr.state.v);
+        let slipping = match tr.mode {
+            Mode::SlideRock(_, relative) if tr.state.v != v_top => Some(relative),
+            _ => None,
+        };
+        let own = |d: &Displaced| {
+            let top = d.sliding.expect("a stack that slides");
+            Displaced {
+                sliding: Some(Stack {
+                    apart: Some([top.moved_m(tr.state.u), v_top]),
+                    ..top
+                }),
+                ..d.clone()
+            }
+        };
+        let mut ways = self.stack_ways(i, &own(&shift), c, slipping, now);
+        ways.extend(self.stack_ways(i, &own(&tr.displaced), c, slipping, now));
+        let [way] = &ways[..] else {
+            return false;
+        };
+        if way.0.beneath.len() == tr.displaced.beneath.len() {
+            self.stack_switches(i, way.clone(), now);
+            return true;
+        }
+        let (joint, _, _) = watch.describe(4 * new.joint);
+        let body_first = watch.held_blocks().count();
+        let firsts: Vec<usize> = (shift.sliding.iter().chain(&shift.beneath))
+            .map(|st| st.first)
+            .collect();
+        let names = |from: usize| {
+            // A stack's blocks reach up to the next stack's, or to the body's.
+            let to = (firsts.iter().copied())
+                .filter(|&f| f > from)
+                .min()
+                .unwrap_or(body_first);
+            (from..to)
+                .map(|p| self.layout.names[self.layout.column_output(i, p)].as_str())
+                .collect::<Vec<_>>()
+                .join("+")
+        };
+        let what = format!(
+            "{} slide on {joint} towards {}x (M = {} kg, mu = {}) {}",
+            names(new.first),
+            if new.slip == Slip::Forward { "+" } else { "-" },
+            moving.mass_kg,
+            new.friction,
+            match under {
+                Some(lower) => format!("on {}, sliding too", names(lower.first)),
+                None => "under the stacks sliding on it".to_string(),
+            }
+        );
+        let blocks: Vec<usize> = (watch.held_blocks())
+            .filter(|&p| p >= new.first)
+            .map(|p| self.layout.column_output(i, p))
+            .collect();
+        self.stack_starts(i, blocks, what, way.clone(), now);
+        true
+    }
+
+    /// A stack under body i stops slipping on the stack beneath it (`which`: none for the stack
+    /// under the body, else the k-th beneath it, [`Guard::Beneath`]): the two slide on as one
+    /// from here at the lower one's velocity (the body's pivot, where it sticks on the upper,
+    /// with them), or, for the lowest, it stops on its held joint; where the conditions of that
+    /// motion do not hold just after now the run stops. The velocity of round-off between them,
+    /// with its energy, goes with the impact losses, as where a stack stops.
+    pub(super) fn stack_joins(&mut self, i: usize, which: Option<usize>, now: &Inputs) {
+        let scene = self.scene;
+        let watch = &scene.watches[i];
+        let tr = &self.tracks[i];
+        let mut shift = tr.displaced.clone();
+        shift.settle(tr.state.u, tr.state.v, watch.held_blocks().count());
+        let mut state = tr.state;
+        let top = shift.sliding.expect("a stack that slides");
+        let (stopped, on) = match which {
+            None => {
+                let b = shift.beneath.remove(0);
+                let v_b = b.velocity_m_s(0.0);
+                shift.sliding = Some(Stack {
+                    joint: b.joint,
+                    first: b.first,
+                    mass_kg: top.mass_kg + b.mass_kg,
+                    friction: b.friction,
+                    slip: b.slip,
+                    u_start_m: state.u,
+                    apart: top.apart.map(|_| [0.0, v_b]),
+                });
+                if top.apart.is_none() {
+                    state.v = v_b;
+                }
+                (top, Some(b))
+            }
+            Some(k) => {
+                let b = shift.beneath.remove(k);
+                let under = shift.beneath.get_mut(k).map(|under| {
+                    under.first = b.first;
+                    under.mass_kg += b.mass_kg;
+                    *under
+                });
+                (b, under)
+            }
+        };
+        let body = self.body(i);
+        if !self.holds_on(i, &shift, tr.mode, &state, now) {
+            self.stack_gives(i, which.map_or(Guard::Stop, Guard::Beneath));
+            return;
+        }
+        let energy = |engine: &Self| {
+            let t = engine.trajectory(i, now);
+            modes::kinetic_j(body, &t, 0.0) + kinetic_j(&engine.tracks[i].displaced, &t, 0.0)
+        };
+        let before = energy(self);
+        let tr = &mut self.tracks[i];
+        (tr.displaced, tr.state) = (shift, state);
+        self.rec.energy.impact_loss_j += before - energy(self);
+        let (joint, _, _) = watch.describe(4 * stopped.joint);
+        let blocks: Vec<usize> = (watch.held_blocks())
+            .filter(|&p| p >= stopped.first)
+            .map(|p| self.layout.column_output(i, p))
+            .chain(self.layout.outputs(i))
+            .collect();
+        let what = match on {
+            Some(_) => format!("stops slipping on {joint}, sliding on with the stack under it"),
+            None => format!("stops on {joint}"),
+        };
+        self.rec.transitions += 1;
+        self.rec
+            .rocking_event(self.t, EventKind::Stick, &blocks, None, what);
     }
 
     /// Body i on its sliding stack meets `guard`, which the exact model does not follow there:
@@ -606,6 +995,10 @@ impl Engine<'_> {
                  slipping, a flight off the stack, are not followed)"
             ),
             Guard::Flight => format!("slides while {name} would leave the stack it carries"),
+            Guard::Stop | Guard::Beneath(_) => format!(
+                "slides while a stack on it stops slipping, and the stacks cannot go on as one \
+                 under {name} (their conditions do not hold just after)"
+            ),
             Guard::Indeterminate => format!(
                 "slides while friction makes the accelerations of {name} and the stack it \
                  carries indeterminate (the effective mass of their motion is not positive: \
@@ -632,7 +1025,7 @@ impl Engine<'_> {
         let watch = &scene.watches[i];
         let tr = &self.tracks[i];
         let stack = tr.displaced.sliding.expect("a stack that slides");
-        let Mode::Rock(pivot) = tr.mode else {
+        let (Mode::Rock(pivot), true) = (tr.mode, tr.displaced.beneath.is_empty()) else {
             self.stack_gives(i, Guard::Impact);
             return;
         };

@@ -21,6 +21,14 @@ fn stack(mass_kg: f64, slip: Slip) -> Stack {
     }
 }
 
+/// The column's held blocks with `st` sliding alone under the body.
+fn alone(st: Stack) -> Displaced {
+    Displaced {
+        sliding: Some(st),
+        ..Displaced::default()
+    }
+}
+
 /// Rocking on the left corner, turning back, the stack sliding forward; and the mirror case:
 /// each stack fast enough to slide through the 0.05 s the tests follow.
 fn cases() -> [(Corner, Slip, State); 2] {
@@ -120,19 +128,24 @@ fn a_stack_of_unbounded_mass_is_a_base_that_friction_decelerates() {
 
 /// The energy of body and stack along `t` changes by the input less the friction dissipated,
 /// to 1e-13 of the energies, at each of `taus`.
-fn assert_balance(body: &RockingBody, st: &Stack, t: &Trajectory, inputs: &Inputs, taus: &[f64]) {
+fn assert_balance(
+    body: &RockingBody,
+    on: &Displaced,
+    t: &Trajectory,
+    inputs: &Inputs,
+    taus: &[f64],
+) {
     let energy = |tau: f64| {
-        modes::kinetic_j(body, t, tau) + kinetic_j(st, t, tau) + modes::potential_j(body, t, tau)
+        modes::kinetic_j(body, t, tau) + kinetic_j(on, t, tau) + modes::potential_j(body, t, tau)
     };
-    let (input, friction) = power_series(body, st, t, inputs);
+    let (input, friction) = power_series(body, on, t, inputs);
     for &tau in taus {
         let work = series::integral(&input, tau) - series::integral(&friction, tau);
         let change = energy(tau) - energy(0.0);
         let scale = energy(0.0).abs() + series::integral(&friction, tau).abs();
         assert!(
             (change - work).abs() <= 1e-13 * scale,
-            "M = {} kg at {tau} s: {change} J against {work} J",
-            st.mass_kg
+            "{on:?} at {tau} s: {change} J against {work} J"
         );
     }
 }
@@ -149,8 +162,8 @@ fn body_and_stack_balance_their_energy() {
             let st = stack(m_stack, slip);
             let t = trajectory(&body, &st, c, &state, &inputs);
             let taus = [0.01, 0.03, 0.05];
-            assert_balance(&body, &st, &t, &inputs, &taus);
-            let (_, friction) = power_series(&body, &st, &t, &inputs);
+            assert_balance(&body, &alone(st), &t, &inputs, &taus);
+            let (_, friction) = power_series(&body, &alone(st), &t, &inputs);
             for tau in taus {
                 assert!(
                     series::integral(&friction, tau) > 0.0,
@@ -183,7 +196,7 @@ fn a_body_slide_rocking_on_a_sliding_stack_balances_energy_and_momentum() {
                 Slip::Backward
             };
             let t = slide_rocking(&body, &st, c, relative, &state, &inputs);
-            let (_, friction) = power_series(&body, &st, &t, &inputs);
+            let (_, friction) = power_series(&body, &alone(st), &t, &inputs);
             let [_, v_s] = t.stack.expect("the stack's own series");
             // m x_G' = m (u' + G_y theta'); its rate is F, the stack's M u_s'' + M a_g is
             // -F + f; so d/dt (m x_G' + M u_s') = -(m + M) a_g + f.
@@ -209,7 +222,7 @@ fn a_body_slide_rocking_on_a_sliding_stack_balances_energy_and_momentum() {
                 (&v_s, sc.velocity),
             ]);
             let taus = [h / 3.0, 2.0 * h / 3.0, h];
-            assert_balance(&body, &st, &t, &inputs, &taus);
+            assert_balance(&body, &alone(st), &t, &inputs, &taus);
             for tau in taus {
                 let impulse = series::integral(&force, tau);
                 let moved = momentum(tau) - momentum(0.0);
@@ -233,6 +246,78 @@ fn a_body_slide_rocking_on_a_sliding_stack_balances_energy_and_momentum() {
                 series::integral(&friction, tau) > series::integral(&on_pivot, tau),
                 "the stack's joint dissipates"
             );
+        }
+    }
+}
+
+/// A stack sliding on another that slides on a held joint, under a body rocking on its stuck
+/// pivot and under one slide-rocking on the upper stack: the energy of body and both stacks
+/// changes by the input less what every joint dissipates, and their horizontal momentum,
+/// m x_G' + M_1 u_1' + M_2 u_2', by the ground's inertial force and the lowest joint's friction
+/// alone (every other force is internal).
+#[test]
+fn stacks_sliding_on_each_other_balance_energy_and_momentum() {
+    let body = top(0.5);
+    let (m, g) = (body.mass_kg, body.g_m_s2);
+    for (c, slip, state) in cases() {
+        for (m_top, m_under) in [(400.0, 2200.0), (2200.0, 400.0)] {
+            for slipping in [false, true] {
+                let inputs = test_inputs_at(1.1);
+                let upper = Stack {
+                    apart: slipping.then_some([0.001, state.v / 3.0]),
+                    ..stack(m_top, slip)
+                };
+                let lower = Stack {
+                    first: 0,
+                    apart: Some([0.002, state.v / 6.0]),
+                    friction: 0.4,
+                    ..stack(m_under, slip)
+                };
+                let held = Displaced {
+                    sliding: Some(Stack { first: 1, ..upper }),
+                    beneath: vec![lower],
+                    ..Displaced::default()
+                };
+                let mode = if slipping {
+                    // The pivot slips on the upper stack the way it moves on it.
+                    Mode::SlideRock(c, slip)
+                } else {
+                    Mode::Rock(c)
+                };
+                let t = on(&body, &held, mode, &state, &inputs).expect("a rocking mode");
+                let [u_1, v_1] = t.stack.unwrap_or([t.u, t.v]);
+                let [u_2, v_2] = t.beneath[0];
+                let sc = Scales::of(&body);
+                let h = series::step_size(&[
+                    (&t.theta, 1.0),
+                    (&t.omega, body.frequency_parameter_rad_s()),
+                    (&t.u, body.size_m()),
+                    (&t.v, sc.velocity),
+                    (&u_1, body.size_m()),
+                    (&v_1, sc.velocity),
+                    (&u_2, body.size_m()),
+                    (&v_2, sc.velocity),
+                ]);
+                let taus = [h / 3.0, 2.0 * h / 3.0, h];
+                assert_balance(&body, &held, &t, &inputs, &taus);
+                let momentum = |tau: f64| {
+                    let x_g = series::eval(&t.v, tau)
+                        + series::eval(&t.gy, tau) * series::eval(&t.omega, tau);
+                    m * x_g + m_top * series::eval(&v_1, tau) + m_under * series::eval(&v_2, tau)
+                };
+                let mut load = t.normal;
+                series::add_to(&mut load, &inputs.lambda, (m_top + m_under) * g);
+                let mut force = series::scaled(&load, -lower.friction * slip.sign());
+                series::add_to(&mut force, &inputs.accel, -(m + m_top + m_under));
+                for tau in taus {
+                    let impulse = series::integral(&force, tau);
+                    let moved = momentum(tau) - momentum(0.0);
+                    assert!(
+                        (moved - impulse).abs() <= 1e-12 * (momentum(0.0).abs() + impulse.abs()),
+                        "{held:?} at {tau} s: {moved} N s against {impulse} N s"
+                    );
+                }
+            }
         }
     }
 }
