@@ -264,6 +264,14 @@ impl Watch {
         })
     }
 
+    /// The slip conditions (numbered as [`Watch::conditions`] numbers them) of the held joints
+    /// below block `first` of the column: each joint's two, towards -x and towards +x.
+    pub(crate) fn slips_below(&self, first: usize) -> impl Iterator<Item = usize> + '_ {
+        (self.joints.iter().enumerate())
+            .filter(move |(_, joint)| !joint.inside && joint.upper < first)
+            .flat_map(|(j, _)| [4 * j, 4 * j + 1])
+    }
+
     /// The column's held blocks (indices in the column, bottom first).
     pub(crate) fn held_blocks(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.pieces.len()).filter(|&p| !self.pieces[p].moving)

@@ -511,9 +511,11 @@ mod tests;
 impl Engine<'_> {
     /// Condition k of body i's watch falls: where it is a held joint below the body that
     /// slips, and the body rocks on its pivot, stuck or slipping (one column, exact equations,
-    /// nothing beside it), the stack above that joint slides from here, the body on it as the
-    /// one way that holds says ([`Engine::stack_ways`]); else `false` (the run stops as
-    /// before).
+    /// nothing beside it), the stack above that joint slides from here, alone or on a stack
+    /// that starts to slide at the same instant on a joint below it, or the stack on that
+    /// joint below slides instead (the force that broke the condition is the one of the motion
+    /// before, with every joint held), the body on it as the one way of all these that holds
+    /// says ([`Engine::stack_ways`]); else `false` (the run stops as before).
     pub(super) fn stack_slides(&mut self, i: usize, k: usize, now: &Inputs) -> bool {
         let tr = &self.tracks[i];
         let (c, slipping) = match (tr.mode, &tr.displaced.sliding) {
@@ -543,10 +545,37 @@ impl Engine<'_> {
             sliding: Some(stack),
             ..tr.displaced.clone()
         };
-        let ways = self.stack_ways(i, &base, c, slipping, now);
+        let mut ways = self.stack_ways(i, &base, c, slipping, now);
+        for low in watch.slips_below(stack.first) {
+            let Some(all) = watch.stack_on(low, tr.state.u) else {
+                continue;
+            };
+            let bottom = Stack {
+                mass_kg: all.mass_kg - stack.mass_kg,
+                apart: Some([0.0, 0.0]),
+                ..all
+            };
+            let with = Displaced {
+                beneath: vec![bottom],
+                ..base.clone()
+            };
+            ways.extend(self.stack_ways(i, &with, c, slipping, now));
+            // Or that joint alone slipping, the one whose condition fell holding after all.
+            let instead = Displaced {
+                sliding: Some(Stack {
+                    apart: Some([0.0, 0.0]),
+                    ..all
+                }),
+                ..tr.displaced.clone()
+            };
+            ways.extend(self.stack_ways(i, &instead, c, slipping, now));
+        }
         let [way] = &ways[..] else {
             return false;
         };
+        if let Some(bottom) = way.0.beneath.first() {
+            self.stack_under(i, bottom);
+        }
         let (stack, mode) = (way.0.sliding.expect("a stack that slides"), way.1);
         let (joint, _, _) = watch.describe(4 * stack.joint);
         let blocks: Vec<usize> = watch
@@ -729,6 +758,28 @@ impl Engine<'_> {
         all.extend(self.scene.watches[i].conditions(&traj, now, displaced));
         let scale_t = body.time_scale_s();
         all.iter().all(|c| c.holds_after(scale_t))
+    }
+
+    /// A stack starts to slide under the stacks on it, at the bottom of body i's column: a
+    /// `slip` event naming it.
+    fn stack_under(&mut self, i: usize, bottom: &Stack) {
+        let watch = &self.scene.watches[i];
+        let (joint, _, _) = watch.describe(4 * bottom.joint);
+        let blocks: Vec<usize> = (watch.held_blocks())
+            .filter(|&p| p >= bottom.first)
+            .map(|p| self.layout.column_output(i, p))
+            .collect();
+        let what =
+            format!(
+            "{} slide on {joint} towards {}x (M = {} kg, mu = {}) under the stacks sliding on it",
+            self.layout.names[blocks[0]],
+            if bottom.slip == Slip::Forward { "+" } else { "-" },
+            bottom.mass_kg,
+            bottom.friction
+        );
+        self.rec.transitions += 1;
+        self.rec
+            .rocking_event(self.t, EventKind::Slip, &blocks, None, what);
     }
 
     /// A stack starts to slide under body i: a `slip` event naming it (`blocks`, with the
