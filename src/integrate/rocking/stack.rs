@@ -137,6 +137,8 @@ impl Displaced {
         let moved = self.by_m.get(p).copied().unwrap_or(0.0);
         match (self.owner(p), self.sliding) {
             (Some(Owner::Beneath(k)), _) => moved + self.beneath[k].moved_m(u_m),
+            // (moved + u) - u_start: the rounding of every run before stacks had their own
+            // state, kept so that their displacements stay the same to the bit.
             (Some(Owner::Top), Some(st @ Stack { apart: None, .. })) => moved + u_m - st.u_start_m,
             (Some(Owner::Top), Some(st)) => moved + st.moved_m(u_m),
             _ => moved,
@@ -213,15 +215,9 @@ pub fn beneath_series(
         let [moved, v] = st.apart.expect("a stack beneath moves on its own");
         carried = load(&carried, st.mass_kg);
         let held = series::scaled(&carried, st.friction * st.slip.sign());
-        let (mut u_s, mut v_s) = (ZERO, ZERO);
-        (u_s[0], v_s[0]) = (moved, v);
-        for k in 0..ORDER {
-            let acc = (passed[k] - held[k]) / st.mass_kg - inputs.accel[k];
-            let kk = (k + 1) as f64;
-            u_s[k + 1] = v_s[k] / kk;
-            v_s[k + 1] = acc / kk;
-        }
-        traj.beneath.push([u_s, v_s]);
+        let force = series::add(&passed, &held, -1.0);
+        traj.beneath
+            .push(slid([moved, v], &force, st.mass_kg, inputs));
         passed = held;
     }
 }
@@ -292,20 +288,27 @@ pub fn slide_rocking(
 ) -> Trajectory {
     let mode = Mode::SlideRock(c, relative);
     let mut t = modes::trajectory(body, Equations::Exact, mode, state, inputs);
-    let [moved, v] = stack.apart.expect("a stack apart from the body's pivot");
-    let (big, mu, sigma) = (stack.mass_kg, stack.friction, stack.slip.sign());
-    let g = body.g_m_s2;
-    let (mut u_s, mut v_s) = (ZERO, ZERO);
-    (u_s[0], v_s[0]) = (moved, v);
-    for k in 0..ORDER {
-        let load = t.normal[k] + big * g * inputs.lambda[k];
-        let acc = (-t.tangential[k] - mu * sigma * load) / big - inputs.accel[k];
-        let kk = (k + 1) as f64;
-        u_s[k + 1] = v_s[k] / kk;
-        v_s[k + 1] = acc / kk;
-    }
-    t.stack = Some([u_s, v_s]);
+    let start = stack.apart.expect("a stack apart from the body's pivot");
+    let mut load = t.normal;
+    series::add_to(&mut load, &inputs.lambda, stack.mass_kg * body.g_m_s2);
+    let mut force = series::scaled(&t.tangential, -1.0);
+    series::add_to(&mut force, &load, -stack.friction * stack.slip.sign());
+    t.stack = Some(slid(start, &force, stack.mass_kg, inputs));
     t
+}
+
+/// A stack of mass `mass_kg` from `start` (how far it has slid, m, and its velocity, m/s)
+/// under the horizontal force `force` (N, a series) in the ground's frame, M (u'' + a_g) = force:
+/// its displacement and velocity as series.
+fn slid(start: [f64; 2], force: &Coeffs, mass_kg: f64, inputs: &Inputs) -> [Coeffs; 2] {
+    let (mut u, mut v) = (ZERO, ZERO);
+    (u[0], v[0]) = (start[0], start[1]);
+    for k in 0..ORDER {
+        let kk = (k + 1) as f64;
+        u[k + 1] = v[k] / kk;
+        v[k + 1] = (force[k] / mass_kg - inputs.accel[k]) / kk;
+    }
+    [u, v]
 }
 
 /// Body's motion in `mode` from `state` on the stacks `displaced` has sliding (rocking on its
