@@ -421,21 +421,14 @@ fn a_landing_on_a_sliding_stack_is_what_time_stepping_converges_to() {
     assert!(last.0 < 5e-6 && last.1 < 5e-4, "{last:?}");
 }
 
-/// A slender top on two blocks whose joints slip under it (friction 0.4 on the ground, 0.35
-/// between them) under El Centro at 1.6 g: the stack under the top splits where the joint
+/// walls/rocking/top-on-slipping-blocks.ron, a slender top on two blocks whose joints slip
+/// under it (friction 0.4 on the ground, 0.35 between them), under El Centro at 1.6 g: the stack under the top splits where the joint
 /// inside it slips (M sliding on P as P slides), joins again where that slip stops, and gains a
 /// stack at its bottom where the lower joint slips under the upper one's slide; the top
 /// overturns at 3.3315 s, the energy balancing to round-off, and Moreau-Jean converges to it.
 #[test]
 fn stacks_that_split_and_join_under_a_rocking_block_are_what_time_stepping_converges_to() {
-    let model = Model::from_ron_str(
-        r#"(version: 1, name: "top on two slipping blocks", thickness_m: 0.5,
-    density_kg_m3: 2600, friction: 0.6, joint_friction: {"P/ground": 0.4, "M/P": 0.35},
-    rows: [(height_m: 0.4, blocks: [(width_m: 1.4, name: "P")]),
-           (height_m: 0.4, x_m: 0.2, blocks: [(width_m: 1.0, name: "M")]),
-           (height_m: 1.6, x_m: 0.5, blocks: [(width_m: 0.4, name: "T")])])"#,
-    )
-    .unwrap();
+    let model = Model::from_file("walls/rocking/top-on-slipping-blocks.ron").unwrap();
     let motion = crate::engine::el_centro_first_s(5, 1.6 * 9.81);
     let (r, fell_s) = overturns(&model, &motion, "T");
     let s = &r.summary;

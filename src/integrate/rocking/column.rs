@@ -265,10 +265,14 @@ impl Watch {
     }
 
     /// The slip conditions (numbered as [`Watch::conditions`] numbers them) of the held joints
-    /// below block `first` of the column: each joint's two, towards -x and towards +x.
-    pub(crate) fn slips_below(&self, first: usize) -> impl Iterator<Item = usize> + '_ {
+    /// under the column's blocks `blocks` (bottom first): each joint's two, towards -x and
+    /// towards +x.
+    pub(crate) fn slips_under(
+        &self,
+        blocks: std::ops::Range<usize>,
+    ) -> impl Iterator<Item = usize> + '_ {
         (self.joints.iter().enumerate())
-            .filter(move |(_, joint)| !joint.inside && joint.upper < first)
+            .filter(move |(_, joint)| !joint.inside && blocks.contains(&joint.upper))
             .flat_map(|(j, _)| [4 * j, 4 * j + 1])
     }
 

@@ -549,7 +549,27 @@ impl Engine<'_> {
             ..tr.displaced.clone()
         };
         let mut ways = self.stack_ways(i, &base, c, slipping, now);
-        for low in watch.slips_below(stack.first) {
+        // Or a joint inside it slipping at the same instant: the blocks above that joint
+        // sliding on the rest of the stack.
+        let body_first = watch.held_blocks().count();
+        for inside in watch.slips_under(stack.first + 1..body_first) {
+            let Some(upper) = watch.stack_on(inside, tr.state.u) else {
+                continue;
+            };
+            let split = Displaced {
+                sliding: Some(Stack {
+                    apart: Some([0.0, 0.0]),
+                    ..upper
+                }),
+                beneath: vec![Stack {
+                    mass_kg: stack.mass_kg - upper.mass_kg,
+                    ..stack
+                }],
+                ..tr.displaced.clone()
+            };
+            ways.extend(self.stack_ways(i, &split, c, slipping, now));
+        }
+        for low in watch.slips_under(0..stack.first) {
             let Some(all) = watch.stack_on(low, tr.state.u) else {
                 continue;
             };
