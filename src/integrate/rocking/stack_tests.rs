@@ -21,6 +21,60 @@ fn stack(mass_kg: f64, slip: Slip) -> Stack {
     }
 }
 
+/// Three instants along the step the engine takes on `t`'s series (the body's and every
+/// stack's, accurate to round-off there).
+fn along_step(body: &RockingBody, t: &Trajectory) -> [f64; 3] {
+    let sc = Scales::of(body);
+    let mut series = vec![
+        (&t.theta, 1.0),
+        (&t.omega, body.frequency_parameter_rad_s()),
+        (&t.u, body.size_m()),
+        (&t.v, sc.velocity),
+    ];
+    for [u, v] in t.stack.iter().chain(&t.beneath) {
+        series.extend([(u, body.size_m()), (v, sc.velocity)]);
+    }
+    let h = series::step_size(&series);
+    [h / 3.0, 2.0 * h / 3.0, h]
+}
+
+/// The horizontal momentum of body and stacks along `t`, m x_G' + sum M u_s' (x_G' = u' +
+/// G_y theta'), changes by the ground's inertial force and the lowest joint's friction alone,
+/// -(m + sum M) a_g - mu sigma (N + sum M g lambda): every other force is internal. To 1e-12.
+fn assert_momentum(
+    body: &RockingBody,
+    on: &Displaced,
+    t: &Trajectory,
+    inputs: &Inputs,
+    taus: &[f64],
+) {
+    let stacks: Vec<&Stack> = on.sliding.iter().chain(&on.beneath).collect();
+    let velocities: Vec<&Coeffs> = std::iter::once(velocity(t))
+        .chain(t.beneath.iter().map(|[_, v]| v))
+        .collect();
+    let momentum = |tau: f64| {
+        let x_g = series::eval(&t.v, tau) + series::eval(&t.gy, tau) * series::eval(&t.omega, tau);
+        let carried = (stacks.iter().zip(&velocities))
+            .map(|(st, v)| st.mass_kg * series::eval(*v, tau))
+            .sum::<f64>();
+        body.mass_kg * x_g + carried
+    };
+    let mass: f64 = stacks.iter().map(|st| st.mass_kg).sum();
+    let lowest = stacks.last().expect("a stack that slides");
+    let mut load = t.normal;
+    series::add_to(&mut load, &inputs.lambda, mass * body.g_m_s2);
+    let mut force = series::scaled(&load, -lowest.friction * lowest.slip.sign());
+    series::add_to(&mut force, &inputs.accel, -(body.mass_kg + mass));
+    for &tau in taus {
+        let impulse = series::integral(&force, tau);
+        let moved = momentum(tau) - momentum(0.0);
+        assert!(
+            (moved - impulse).abs() <= 1e-12 * (momentum(0.0).abs() + impulse.abs()),
+            "{on:?} at {tau} s: {moved} N s against {impulse} N s"
+        );
+    }
+}
+
 /// The column's held blocks with `st` sliding alone under the body.
 fn alone(st: Stack) -> Displaced {
     Displaced {
@@ -182,7 +236,6 @@ fn body_and_stack_balance_their_energy() {
 #[test]
 fn a_body_slide_rocking_on_a_sliding_stack_balances_energy_and_momentum() {
     let body = top(0.5);
-    let (m, g) = (body.mass_kg, body.g_m_s2);
     for (c, slip, state) in cases() {
         for m_stack in [100.0, 2600.0] {
             let inputs = test_inputs_at(1.1);
@@ -198,43 +251,13 @@ fn a_body_slide_rocking_on_a_sliding_stack_balances_energy_and_momentum() {
             let t = slide_rocking(&body, &st, c, relative, &state, &inputs);
             let (_, friction) = power_series(&body, &alone(st), &t, &inputs);
             let [_, v_s] = t.stack.expect("the stack's own series");
-            // m x_G' = m (u' + G_y theta'); its rate is F, the stack's M u_s'' + M a_g is
-            // -F + f; so d/dt (m x_G' + M u_s') = -(m + M) a_g + f.
-            let momentum = |tau: f64| {
-                let x_g = series::eval(&t.v, tau)
-                    + series::eval(&t.gy, tau) * series::eval(&t.omega, tau);
-                m * x_g + m_stack * series::eval(&v_s, tau)
-            };
-            let mut load = t.normal;
-            series::add_to(&mut load, &inputs.lambda, m_stack * g);
-            let mut force = series::scaled(&load, -st.friction * slip.sign());
-            series::add_to(&mut force, &inputs.accel, -(m + m_stack));
-            // Along the step the engine takes on these series (accurate to round-off).
-            let sc = Scales::of(&body);
-            let p = body.frequency_parameter_rad_s();
-            let [u_s, _] = t.stack.expect("the stack's own series");
-            let h = series::step_size(&[
-                (&t.theta, 1.0),
-                (&t.omega, p),
-                (&t.u, body.size_m()),
-                (&t.v, sc.velocity),
-                (&u_s, body.size_m()),
-                (&v_s, sc.velocity),
-            ]);
-            let taus = [h / 3.0, 2.0 * h / 3.0, h];
+            let taus = along_step(&body, &t);
             assert_balance(&body, &alone(st), &t, &inputs, &taus);
-            for tau in taus {
-                let impulse = series::integral(&force, tau);
-                let moved = momentum(tau) - momentum(0.0);
-                assert!(
-                    (moved - impulse).abs() <= 1e-12 * (momentum(0.0).abs() + impulse.abs()),
-                    "M = {m_stack} kg at {tau} s: {moved} N s against {impulse} N s"
-                );
-            }
+            assert_momentum(&body, &alone(st), &t, &inputs, &taus);
             // Each joint dissipates over the first 5 ms, both slips going on (friction stops
             // the stack within the step).
             let pivot = series::add(&t.v, &v_s, -1.0);
-            let tau = 0.005_f64.min(h);
+            let tau = 0.005_f64.min(taus[2]);
             assert!(series::eval(&pivot, tau) * relative.sign() > 0.0);
             assert!(series::eval(&v_s, tau) * slip.sign() > 0.0);
             let on_pivot = series::scaled(&series::product(&t.tangential, &pivot), -1.0);
@@ -258,7 +281,6 @@ fn a_body_slide_rocking_on_a_sliding_stack_balances_energy_and_momentum() {
 #[test]
 fn stacks_sliding_on_each_other_balance_energy_and_momentum() {
     let body = top(0.5);
-    let (m, g) = (body.mass_kg, body.g_m_s2);
     for (c, slip, state) in cases() {
         for (m_top, m_under) in [(400.0, 2200.0), (2200.0, 400.0)] {
             for slipping in [false, true] {
@@ -285,38 +307,9 @@ fn stacks_sliding_on_each_other_balance_energy_and_momentum() {
                     Mode::Rock(c)
                 };
                 let t = on(&body, &held, mode, &state, &inputs).expect("a rocking mode");
-                let [u_1, v_1] = t.stack.unwrap_or([t.u, t.v]);
-                let [u_2, v_2] = t.beneath[0];
-                let sc = Scales::of(&body);
-                let h = series::step_size(&[
-                    (&t.theta, 1.0),
-                    (&t.omega, body.frequency_parameter_rad_s()),
-                    (&t.u, body.size_m()),
-                    (&t.v, sc.velocity),
-                    (&u_1, body.size_m()),
-                    (&v_1, sc.velocity),
-                    (&u_2, body.size_m()),
-                    (&v_2, sc.velocity),
-                ]);
-                let taus = [h / 3.0, 2.0 * h / 3.0, h];
+                let taus = along_step(&body, &t);
                 assert_balance(&body, &held, &t, &inputs, &taus);
-                let momentum = |tau: f64| {
-                    let x_g = series::eval(&t.v, tau)
-                        + series::eval(&t.gy, tau) * series::eval(&t.omega, tau);
-                    m * x_g + m_top * series::eval(&v_1, tau) + m_under * series::eval(&v_2, tau)
-                };
-                let mut load = t.normal;
-                series::add_to(&mut load, &inputs.lambda, (m_top + m_under) * g);
-                let mut force = series::scaled(&load, -lower.friction * slip.sign());
-                series::add_to(&mut force, &inputs.accel, -(m + m_top + m_under));
-                for tau in taus {
-                    let impulse = series::integral(&force, tau);
-                    let moved = momentum(tau) - momentum(0.0);
-                    assert!(
-                        (moved - impulse).abs() <= 1e-12 * (momentum(0.0).abs() + impulse.abs()),
-                        "{held:?} at {tau} s: {moved} N s against {impulse} N s"
-                    );
-                }
+                assert_momentum(&body, &held, &t, &inputs, &taus);
             }
         }
     }
