@@ -362,21 +362,49 @@ fn a_stack_sliding_under_a_rocking_block_is_what_time_stepping_converges_to() {
     assert!(last.0 < 2e-6 && last.1 < 1e-2, "{last:?}");
 }
 
+/// Moreau-Jean with every block's rotation run to the instant the exact run's top falls, at
+/// each of `steps`: the differences of the stack's final u (m) and of the top's peak speed
+/// (m/s) from the exact run's must both fall with the step and end below `bounds`.
+fn converges_to_the_fall(
+    model: &Model,
+    motion: &Motion,
+    exact: &Summary,
+    fell_s: f64,
+    steps: [f64; 3],
+    bounds: (f64, f64),
+) {
+    let mut last = (f64::INFINITY, f64::INFINITY);
+    for dt_s in steps {
+        let settings = RunSettings {
+            model: ModelChoice::SlideRock,
+            method: Method::Moreau { dt_s },
+            duration_s: Some(fell_s),
+            ..RunSettings::default()
+        };
+        let m = pirqa::run(model, motion, &settings).unwrap().summary;
+        let slid = (m.blocks[0].final_displacement_m - exact.blocks[0].final_displacement_m).abs();
+        let speed = (m.blocks[2].max_abs_velocity_m_s - exact.blocks[2].max_abs_velocity_m_s).abs();
+        assert!(
+            slid < last.0 && speed < last.1,
+            "dt {dt_s}: {slid} m, {speed} m/s"
+        );
+        last = (slid, speed);
+    }
+    assert!(last.0 < bounds.0 && last.1 < bounds.1, "{last:?}");
+}
+
 /// The same wall at 2.0 g: the top lands on the sliding stack at 1.842 s and the impact stops
 /// the stack (the landing on a moving base, the stack's joint passing the impulse within its
 /// friction); from 2.412 s the stack slides twice under the top as it slide-rocks, its pivot
-/// slipping on the stack (until 2026-12-07 the run stopped there), and the run goes on to
-/// 2.475 s, where Middle would slip on Base as well, balancing its energy to round-off;
-/// Moreau-Jean run to that instant agrees with it as the step falls.
+/// slipping on the stack (until 2026-12-07 the run stopped there); from 2.475 s the pivot
+/// slips on the stack the way the stack slides, Middle/Base exactly at its limit (until
+/// 2026-12-07 the run stopped there too), and the top overturns at 2.489 s, the energy
+/// balancing to round-off. Moreau-Jean run to that instant converges to it.
 #[test]
 fn a_landing_on_a_sliding_stack_is_what_time_stepping_converges_to() {
     let model = Model::from_file("walls/rocking/slender-on-stack.ron").unwrap();
     let motion = crate::engine::el_centro_first_s(5, 2.0 * 9.81);
-    let settings = RunSettings {
-        log_events: true,
-        ..RunSettings::default()
-    };
-    let r = pirqa::run(&model, &motion, &settings).unwrap();
+    let (r, fell_s) = overturns(&model, &motion, "Top");
     let s = &r.summary;
     let landed = r
         .events
@@ -394,31 +422,44 @@ fn a_landing_on_a_sliding_stack_is_what_time_stepping_converges_to() {
             .is_some_and(|m| m.contains("under Top slide-rocking"))
     };
     assert_eq!(r.events.iter().filter(under).count(), 2);
-    let end = s.stopped_at_s.expect("the run stops further on");
-    assert!(end > 2.47 && end < 2.48, "{end}");
+    assert!(fell_s > 2.48 && fell_s < 2.49, "{fell_s}");
     let e = &s.energy;
-    let scale = e.input_j.abs() + e.friction_j + e.kinetic_j;
+    let scale = e.input_j.abs() + e.friction_j + e.fallen_j.abs();
     assert!(e.residual_j.abs() <= 1e-13 * scale, "{e:?}");
-    // The top turns at 4.2 rad/s near 1.51 rad at the end, where Moreau-Jean's first-order
-    // error at dt = 1e-3 s is 6e-3 rad: both differences must fall with the step.
-    let mut last = (f64::INFINITY, f64::INFINITY);
-    for dt_s in [1e-3, 1e-4, 2.5e-5] {
-        let settings = RunSettings {
-            model: ModelChoice::SlideRock,
-            method: Method::Moreau { dt_s },
-            duration_s: Some(end),
-            ..RunSettings::default()
-        };
-        let m = pirqa::run(&model, &motion, &settings).unwrap().summary;
-        let slid = (m.blocks[0].final_displacement_m - s.blocks[0].final_displacement_m).abs();
-        let turned = (m.blocks[2].max_abs_rotation_rad - s.blocks[2].max_abs_rotation_rad).abs();
-        assert!(
-            slid < last.0 && turned < last.1,
-            "dt {dt_s}: {slid} m, {turned} rad"
-        );
-        last = (slid, turned);
-    }
-    assert!(last.0 < 5e-6 && last.1 < 5e-4, "{last:?}");
+    // The top's peak speed is 1.09 m/s, Moreau-Jean's first-order error at dt = 1e-3 s 7e-3.
+    converges_to_the_fall(&model, &motion, s, fell_s, [1e-3, 1e-4, 1e-5], (1e-6, 1e-4));
+}
+
+/// The same wall at 1.2 g: from 2.616 s Base+Middle slide on the ground towards -x under the
+/// top slide-rocking on its left corner, its pivot slipping on Middle towards -x too, every
+/// joint at friction 0.8: Middle/Base passes up exactly its limit as long as both slip, its
+/// holding and its slipping one motion (until 2026-12-07 the run stopped there, at 2.64 s).
+/// The stack stops at 2.643 s and the top overturns at 2.672 s, the energy balancing to
+/// round-off; Moreau-Jean run to that instant converges to it.
+#[test]
+fn a_joint_at_its_limit_inside_a_sliding_stack_is_what_time_stepping_converges_to() {
+    let model = Model::from_file("walls/rocking/slender-on-stack.ron").unwrap();
+    let motion = crate::engine::el_centro_first_s(5, 1.2 * 9.81);
+    let (r, fell_s) = overturns(&model, &motion, "Top");
+    let s = &r.summary;
+    let with =
+        |what: &str| (r.events.iter()).any(|e| e.mode.as_deref().is_some_and(|m| m.contains(what)));
+    assert!(with("slipping -x on the stack"));
+    assert!(with(
+        "towards -x (M = 2600 kg, mu = 0.8) under Top slide-rocking"
+    ));
+    assert!(fell_s > 2.67 && fell_s < 2.68, "{fell_s}");
+    let e = &s.energy;
+    let scale = e.input_j.abs() + e.friction_j + e.fallen_j.abs();
+    assert!(e.residual_j.abs() <= 1e-13 * scale, "{e:?}");
+    converges_to_the_fall(
+        &model,
+        &motion,
+        s,
+        fell_s,
+        [1e-3, 1e-4, 2.5e-5],
+        (5e-7, 1e-3),
+    );
 }
 
 /// walls/rocking/top-on-slipping-blocks.ron, a slender top on two blocks whose joints slip

@@ -142,10 +142,14 @@ pub fn sign_after(c: &[f64], scale: f64, time_s: f64) -> i8 {
     leading(c, scale, time_s).map_or(0, |(_, x)| if x > 0.0 { 1 } else { -1 })
 }
 
-/// Index and value of the first coefficient that is not zero in the sense of [`TIE`].
+/// Index and value of the first coefficient that is not zero in the sense of [`TIE`]. The last
+/// one, c_N, does not decide: a series built from a derivative lacks it ([`derivative`] has no
+/// c_{N+1} to take it from), so where the conditions of a motion hold with equality for good
+/// (a joint exactly at its friction limit as the motion goes on) c_N is the truncation of one
+/// term against the whole of another, of any sign and size, and not the motion's.
 pub fn leading(c: &[f64], scale: f64, time_s: f64) -> Option<(usize, f64)> {
     let mut tk = 1.0;
-    for (k, &x) in c.iter().enumerate() {
+    for (k, &x) in c.iter().take(ORDER).enumerate() {
         if x.abs() * tk > TIE * scale {
             return Some((k, x));
         }
