@@ -293,19 +293,19 @@ def test_a_run_releases_the_gil(root):
 
 
 def test_a_run_the_exact_model_stops_says_where(root):
-    """Under El Centro at 1.0 g the slender top of top-on-slipping-blocks.ron lands, at 2.238 s,
-    on the two blocks under it as they slide one on the other, a landing the exact model does
+    """Under El Centro at 0.6 g the upper drum of two-block-column.ron would lift off the corner
+    of the lower one it turns on at 5.846 s, as the column falls, which the exact model does
     not follow: it stops following the wall there, and the run ends with its summary saying
     where and why; slender-on-stack.ron under 0.3 g runs to its end and says nothing of the
     kind."""
-    wall = pirqa.Wall.from_file(root / "walls/rocking/top-on-slipping-blocks.ron")
+    wall = pirqa.Wall.from_file(root / "walls/rocking/two-block-column.ron")
     record = pirqa.Motion.from_file(
-        root / "records/elcentro1940_IELC180_peer_dt0p01_g.AT2", pga="1.0g"
+        root / "records/elcentro1940_IELC180_peer_dt0p01_g.AT2", pga="0.6g"
     )
     stopped = pirqa.run(wall, record).summary
     assert stopped["stopped_at_s"] == stopped["duration_s"]
-    assert 2.237 < stopped["stopped_at_s"] < 2.238
-    assert any("M/P slides while T lands" in w for w in stopped["warnings"])
+    assert 5.845 < stopped["stopped_at_s"] < 5.846
+    assert any("Drum2/Drum1 would lift off" in w for w in stopped["warnings"])
     wall = pirqa.Wall.from_file(root / "walls/rocking/slender-on-stack.ron")
     whole = pirqa.run(wall, pirqa.Motion.sine("0.3g", frequency_hz=1.5, duration_s=1.0)).summary
     assert whole.get("stopped_at_s") is None

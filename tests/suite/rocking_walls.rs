@@ -504,6 +504,137 @@ fn stacks_that_split_and_join_under_a_rocking_block_are_what_time_stepping_conve
     assert!(last[0] < 2e-5 && last[1] < 5e-5, "{last:?}");
 }
 
+/// How far Moreau-Jean with every block's rotation at `dt_s` is from an exact run: the largest
+/// difference of the blocks' displacements at `at_s` (the exact run's summary to then given)
+/// and of the instant a block falls (`fell_s` the exact one's; infinite where none falls).
+fn stepped_apart(
+    model: &Model,
+    motion: &Motion,
+    (exact, at_s): (&Summary, f64),
+    fell_s: f64,
+    dt_s: f64,
+) -> (f64, f64) {
+    let settings = RunSettings {
+        model: ModelChoice::SlideRock,
+        method: Method::Moreau { dt_s },
+        ..RunSettings::default()
+    };
+    let fell = pirqa::run(model, motion, &settings)
+        .unwrap()
+        .summary
+        .collapse;
+    let late = fell.map_or(f64::INFINITY, |c| (c.time_s - fell_s).abs());
+    let upto = RunSettings {
+        duration_s: Some(at_s),
+        ..settings
+    };
+    let m = pirqa::run(model, motion, &upto).unwrap().summary;
+    let moved = (m.blocks.iter().zip(&exact.blocks))
+        .map(|(a, b)| (a.final_displacement_m - b.final_displacement_m).abs())
+        .fold(0.0, f64::max);
+    (moved, late)
+}
+
+/// walls/rocking/top-on-slipping-blocks.ron under El Centro at 1.0 g: at 2.238 s the top lands
+/// on the two blocks under it as M slides on P and P on the ground, and the impact stops both
+/// slips (until 2026-12-07 the run stopped there, the landing not followed); the top overturns
+/// at 5.003 s, the energy balancing to round-off. Moreau-Jean converges to it: the three
+/// blocks' displacements at 3 s, after the landing, and the instant the top falls.
+#[test]
+fn a_landing_on_stacks_sliding_on_stacks_is_what_time_stepping_converges_to() {
+    let model = Model::from_file("walls/rocking/top-on-slipping-blocks.ron").unwrap();
+    let motion = crate::engine::el_centro_first_s(6, 9.81);
+    let (r, fell_s) = overturns(&model, &motion, "T");
+    let landed = (r.events.iter())
+        .find(|e| {
+            e.mode
+                .as_deref()
+                .is_some_and(|m| m.contains("on the sliding stacks"))
+        })
+        .expect("a landing on stacks sliding on stacks");
+    assert!((landed.time_s - 2.2379).abs() < 1e-4, "{landed:?}");
+    let what = landed.mode.as_deref().unwrap_or_default();
+    assert!(
+        what.contains("the slip on M/P and P/ground stops"),
+        "{what}"
+    );
+    assert!((fell_s - 5.003).abs() < 1e-3, "{fell_s}");
+    let e = &r.summary.energy;
+    let scale = e.input_j.abs() + e.friction_j + e.fallen_j.abs();
+    assert!(e.residual_j.abs() <= 1e-13 * scale, "{e:?}");
+    let settings = RunSettings {
+        duration_s: Some(3.0),
+        ..RunSettings::default()
+    };
+    let exact = pirqa::run(&model, &motion, &settings).unwrap().summary;
+    let mut last = (f64::INFINITY, f64::INFINITY);
+    for dt_s in [1e-3, 1e-4, 2.5e-5] {
+        let (moved, late) = stepped_apart(&model, &motion, (&exact, 3.0), fell_s, dt_s);
+        if dt_s < 1e-3 {
+            assert!(
+                moved < last.0 && late < last.1,
+                "dt {dt_s}: {moved} m, {late} s"
+            );
+        }
+        last = (moved, late);
+    }
+    assert!(last.0 < 3e-5 && last.1 < 1e-3, "{last:?}");
+}
+
+/// A slender top (0.2 by 0.8 m) on two squat blocks (1.0 by 0.5 m; friction 0.4 on the ground,
+/// 0.35 between them) under El Centro at 1.4 g: at 1.758 s the top lands on the two as the
+/// upper slides on the lower and the lower on the ground, the impact stopping the upper's slip
+/// alone (the two slide on as one); at 2.480 s the upper stops slipping on the lower and at
+/// once slips again, the other way, the force on it beyond the joint's friction (until
+/// 2026-12-07 both stopped the run). The top overturns at 2.533 s, the energy balancing to
+/// round-off, and Moreau-Jean converges to it: every block's displacement at that instant and
+/// the instant it falls.
+#[test]
+fn a_stack_that_stops_slipping_and_slips_back_at_once_is_what_time_stepping_converges_to() {
+    let model = Model::from_ron_str(
+        "(version: 1, thickness_m: 1.0, density_kg_m3: 2600, friction: 0.8,
+          joint_friction: {\"D0/ground\": 0.4, \"D1/D0\": 0.35},
+          rows: [(height_m: 0.5, blocks: [(width_m: 1.0, name: \"D0\")]),
+                 (height_m: 0.5, blocks: [(width_m: 1.0, name: \"D1\")]),
+                 (height_m: 0.8, x_m: 0.4, blocks: [(width_m: 0.2, name: \"D2\")])])",
+    )
+    .unwrap();
+    let motion = crate::engine::el_centro_first_s(4, 1.4 * 9.81);
+    let (r, fell_s) = overturns(&model, &motion, "D2");
+    let at = |what: &str| {
+        (r.events.iter())
+            .filter(|e| e.mode.as_deref().is_some_and(|m| m.contains(what)))
+            .map(|e| e.time_s)
+            .collect::<Vec<_>>()
+    };
+    let landed = at("the slip on D1/D0 stops");
+    assert!(
+        landed.len() == 1 && (landed[0] - 1.7580).abs() < 1e-4,
+        "{landed:?}"
+    );
+    let stopped = at("stops slipping on D1/D0");
+    assert!(!stopped.is_empty());
+    let again = at("D1 slide on D1/D0 towards -x");
+    assert!(
+        stopped.iter().any(|t| again.contains(t)),
+        "{stopped:?} {again:?}"
+    );
+    assert!((fell_s - 2.5334).abs() < 1e-4, "{fell_s}");
+    let e = &r.summary.energy;
+    let scale = e.input_j.abs() + e.friction_j + e.fallen_j.abs();
+    assert!(e.residual_j.abs() <= 1e-13 * scale, "{e:?}");
+    let mut last = (f64::INFINITY, f64::INFINITY);
+    for dt_s in [1e-3, 1e-4, 2.5e-5] {
+        let (moved, late) = stepped_apart(&model, &motion, (&r.summary, fell_s), fell_s, dt_s);
+        assert!(
+            moved < last.0 && late < last.1,
+            "dt {dt_s}: {moved} m, {late} s"
+        );
+        last = (moved, late);
+    }
+    assert!(last.0 < 1e-5 && last.1 < 2e-4, "{last:?}");
+}
+
 /// A squat block sliding on another (joint friction 0.2) that stands on the ground (0.3), both
 /// of mass m, under 0.5 g sin(2 pi t): the top slides from a_g = 0.2 g with its friction
 /// pushing it forward, so the ground joint carries m a_g + 0.2 m g, which reaches its capacity

@@ -442,14 +442,17 @@ impl Watch {
     /// The first held joint's condition that the impulses of a landing break, if any: every
     /// piece's velocity jumps from `before` (pivot, angular velocity, pivot slip velocity) to
     /// `after` (the new pivot or none, and the same), at theta = 0, with the body displaced
-    /// by `u`. The impulses passed through a held joint must lie in its friction cone and
-    /// their resultant within its contact, as the forces must between events.
+    /// by `u`, and the blocks of sliding stacks from their velocities in `shift` to those in
+    /// `shifted` (the stacks after the landing). The impulses passed through a held joint must
+    /// lie in its friction cone and their resultant within its contact, as the forces must
+    /// between events.
     pub(crate) fn landing(
         &self,
         u: f64,
         before: Velocity,
         after: Velocity,
         shift: &Displaced,
+        shifted: &Displaced,
     ) -> Option<usize> {
         if let Some(frame) = &self.frame {
             return frame.landing(before, after);
@@ -462,7 +465,7 @@ impl Watch {
             mass * ((before.1.abs() + after.1.abs()) * height + before.2.abs() + after.2.abs());
         let tol = [1.0, 1.0, height, height].map(|k| TIE * impulse * k);
         self.joints.iter().enumerate().find_map(|(j, joint)| {
-            let margins = self.impulse_margins(joint, u, before, after, shift);
+            let margins = self.impulse_margins(joint, u, (before, after), (shift, shifted));
             // The joint a stack slides on keeps its tipping conditions alone.
             let slides = shift.slides_on(j);
             (if slides { 2 } else { 0 }..4)
@@ -477,9 +480,8 @@ impl Watch {
         &self,
         joint: &Held,
         u: f64,
-        before: Velocity,
-        after: Velocity,
-        shift: &Displaced,
+        (before, after): (Velocity, Velocity),
+        (shift, shifted): (&Displaced, &Displaced),
     ) -> [f64; 4] {
         let velocity = |(pivot, omega, v): Velocity, p: &Piece| {
             let s = pivot.map_or(0.0, Corner::sign);
@@ -503,7 +505,8 @@ impl Watch {
                 let (a, b) = (velocity(after, p), velocity(before, p));
                 (a.0 - b.0, a.1 - b.1, spin, p.x0 + u)
             } else if shift.slides(i) {
-                (after.2 - before.2, 0.0, 0.0, p.x0 + shift.at(i, u))
+                let jump = shifted.velocity_m_s(i, after.2) - shift.velocity_m_s(i, before.2);
+                (jump, 0.0, 0.0, p.x0 + shift.at(i, u))
             } else {
                 continue;
             };

@@ -162,7 +162,8 @@ fn a_landing_passes_its_impulse_through_the_new_pivot() {
         assert_eq!(landing.pivot, Some(Corner::Left));
         let before = (Some(Corner::Right), -0.4, 0.0);
         let after = (landing.pivot, landing.state.omega, landing.state.v);
-        let m = w.impulse_margins(&w.joints[0], 0.0, before, after, &Displaced::default());
+        let still = Displaced::default();
+        let m = w.impulse_margins(&w.joints[0], 0.0, (before, after), (&still, &still));
         let b = c.body.half_base_m;
         let h = c.body.centroid_height_m;
         // v_Gy = -omega x_G about the pivot: x_G = -b about the right corner, +b about the left.
@@ -173,6 +174,15 @@ fn a_landing_passes_its_impulse_through_the_new_pivot() {
             (-m[3] / (-2.0 * b) - jn).abs() <= 1e-12 * scale / b,
             "{m:?} {jn}"
         );
-        assert_eq!(w.landing(0.0, before, after, &Displaced::default()), None);
+        assert_eq!(
+            w.landing(
+                0.0,
+                before,
+                after,
+                &Displaced::default(),
+                &Displaced::default()
+            ),
+            None
+        );
     }
 }

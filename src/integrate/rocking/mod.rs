@@ -20,7 +20,8 @@
 //! | a sliding stack stops | its `Stop` constraint | `Engine::stack_stops`, then `decide` |
 //! | the pivot slips on the sliding stack, or stops slipping on it | `PivotSlip`, `PivotStick` | `Engine::stack_parts`, `Engine::stack_rejoins` |
 //! | a held joint inside or below the sliding stacks slips | its watch's condition falls | `Engine::stack_splits` |
-//! | a stack stops slipping on the stack beneath it | `Stop`, `Beneath` | `Engine::stack_joins` |
+//! | a stack stops slipping on the stack beneath it | `Stop`, `Beneath` | `Engine::stack_joins` (slipping back at once: `Engine::stack_splits`) |
+//! | landing on the sliding stacks | the `Impact` constraint | `stack::landing`, `Engine::stack_lands` |
 //! | extremes of theta, u, u' | roots of their derivatives | recorded, nothing decided |
 //! | end of a ground-motion segment | the step stops there | `decide` if a_g jumps |
 
@@ -4364,6 +4365,7 @@ impl<'a> Engine<'a> {
                 u,
                 (Some(pivot), omega, v),
                 (landing.pivot, after, landing.state.v),
+                &self.tracks[i].displaced,
                 &self.tracks[i].displaced,
             )
         });

@@ -6,10 +6,12 @@
 //! displacement relative to the ground) is the stack's too, up to a constant; where the pivot
 //! slips on the stack, the body slide-rocks as on a held base and the stack has its own state.
 //! A joint inside or below the sliding stack that slips too makes stacks slide on stacks, each
-//! below the top one with its own state. A stack stops where its slip on what is under it
-//! returns to zero: it slides on with the stack under it, or is held again, displaced; the
-//! displacement stays with its blocks and the joints in it (their contacts move with them: the
-//! overlaps of seated blocks are those of the initial configuration, docs/rocking-walls.md).
+//! below the top one with its own state. The body landing on them is one impact of body and
+//! stacks, each joint's slip going on through it or stopped by it. A stack stops where its slip
+//! on what is under it returns to zero: it slides on with the stack under it (or slips back at
+//! once), or is held again, displaced; the displacement stays with its blocks and the joints in
+//! it (their contacts move with them: the overlaps of seated blocks are those of the initial
+//! configuration, docs/rocking-walls.md).
 
 use super::body::RockingBody;
 use super::modes::{
@@ -169,6 +171,41 @@ impl Displaced {
         for d in &mut self.by_m[st.first..] {
             *d += st.moved_m(u_m);
         }
+    }
+
+    /// The stacks after a landing on them ([`landing`]): each at its velocity in `v` (the one
+    /// under the body first, whose own is the body's pivot's), and where the impact stopped a
+    /// joint's slip (`stuck`), the stack on it sliding on with the one under it as one, or, the
+    /// lowest, held again; each block keeps its place.
+    pub fn landed(&mut self, u_m: f64, v: &[f64], stuck: &[bool], body_first: usize) {
+        for (st, &v) in self.beneath.iter_mut().zip(&v[1..]) {
+            st.apart = Some([st.moved_m(u_m), v]);
+        }
+        if stuck == [true] {
+            // The one stack held: what every run before stacks on stacks did, to the bit.
+            self.stops(u_m, body_first);
+            return;
+        }
+        if !stuck.contains(&true) {
+            return;
+        }
+        self.settle(u_m, v[0], body_first);
+        let mut stacks: Vec<Stack> = (self.sliding.take().into_iter())
+            .chain(self.beneath.drain(..))
+            .collect();
+        for k in (0..stacks.len()).rev().filter(|&k| stuck[k]) {
+            let upper = stacks.remove(k);
+            if let Some(under) = stacks.get_mut(k) {
+                under.mass_kg += upper.mass_kg;
+                if k == 0 {
+                    // Under the body now: its pivot sticks on it.
+                    (under.apart, under.u_start_m) = (None, u_m);
+                }
+            }
+        }
+        let mut rest = stacks.into_iter();
+        self.sliding = rest.next();
+        self.beneath = rest.collect();
     }
 
     /// Every stack's blocks keep what it has slid (the body's u `u_m` and its pivot's slip
@@ -427,71 +464,120 @@ pub fn power_series(
     (input, friction)
 }
 
-/// What a body's landing on the stack sliding under it leaves: its angular velocity and the
-/// stack's velocity after (rad/s, m/s; 0 where the stack stops), and the kinetic energy lost
-/// (J).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What a body's landing on the stacks sliding under it leaves: its angular velocity, each
+/// stack's velocity after (m/s, the one under the body first; 0 where it stops), whether the
+/// impact stopped the slip of each stack's joint, and the kinetic energy lost (J).
+#[derive(Debug, Clone, PartialEq)]
 pub struct Landing {
     pub omega: f64,
-    pub v: f64,
+    pub v: Vec<f64>,
+    pub stuck: Vec<bool>,
     pub loss_j: f64,
 }
 
-/// The landing of a body rocking on `pivot` that reaches theta = 0 at `omega`, the stack under
-/// it sliding at `v_s`: Housner's assumption on a base that moves (the impulse (P_t, P_n) at the
-/// new corner alone, plastic in its normal, the corner sticking on the stack within mu P_n;
-/// the stack's joint passing P_n, its friction impulse P_f within mu_s P_n). Either the stack
-/// slides on through the impact, P_f = -mu_s sigma P_n: with Delta = omega' - omega and
-/// P_n = -m s b (2 omega + Delta), I_O Delta + m h_c dv = -2 m b^2 omega and (m + M) dv =
-/// -m h_c Delta + mu_s sigma m s b (2 omega + Delta), Housner's law as M grows without bound;
-/// or the impact stops it: the body lands as on a held base moving at v_s (its angular momentum
-/// about the new corner kept), and P_f = P_t - M v_s. The first that holds is the landing.
-/// `None` where neither does (the corner pushed apart or slipping, the stack turning within
-/// the impact, the body landing flat) or the wall's restitution factor is not 1: the landings
-/// the model does not follow on a sliding stack.
+/// The landing of a body rocking on `pivot` that reaches theta = 0 at `omega` on the stacks
+/// `stacks` sliding under it (the one under the body first, each slipping on the next, the
+/// last on a held joint) at velocities `v`: Housner's assumption on bases that move (the
+/// impulse (P_t, P_n) at the new corner alone, plastic in its normal, the corner sticking on
+/// the stack under it within mu P_n; every joint passing P_n and a friction impulse P_f,k
+/// within mu_k P_n). Each joint either slides on through the impact, P_f,k = -mu_k sigma_k P_n
+/// with sigma_k (v_k' - v_k+1') > 0, or the impact stops its slip, v_k' = v_k+1' (v' = 0
+/// under the lowest) with |P_f,k| <= mu_k P_n: of the 2^n choices exactly one must meet every
+/// condition. A choice makes clusters of stacks that leave at one velocity. The one under the
+/// body, of mass M and momentum p before, slides on the joint under it (mu, sigma) or stops:
+/// with Delta = omega' - omega and dv = V - v_1, P_n = -m s b (2 omega + Delta), the angular
+/// momentum about the new corner kept, I_O Delta + m h_c dv = -2 m b^2 omega, and
+/// (m + M) dv = -m h_c Delta + mu sigma m s b (2 omega + Delta) + (p - M v_1), Housner's law
+/// as M grows without bound; where it stops, the body lands as on a held base moving at v_1.
+/// Each cluster below takes its momentum and the two joints' impulses at their limits. `None`
+/// where no choice holds, or several (the corner pushed apart or slipping, a stack turning
+/// within the impact, the body landing flat), the wall's restitution factor is not 1, or more
+/// than 16 stacks slide (2^n choices): the landings the model does not follow on sliding
+/// stacks.
 pub fn landing(
     body: &RockingBody,
-    stack: &Stack,
+    stacks: &[Stack],
+    v: &[f64],
     pivot: Corner,
     omega: f64,
-    v_s: f64,
 ) -> Option<Landing> {
-    if body.restitution_factor != 1.0 {
+    let n = stacks.len();
+    if body.restitution_factor != 1.0 || n == 0 || n != v.len() || n > 16 {
         return None;
     }
-    let (m, big, ig) = (body.mass_kg, stack.mass_kg, body.inertia_kg_m2);
+    let (m, ig) = (body.mass_kg, body.inertia_kg_m2);
     let (b, h) = (body.half_base_m, body.centroid_height_m);
-    let (s, sigma, mu_s) = (pivot.sign(), stack.slip.sign(), stack.friction);
+    let s = pivot.sign();
     let io = body.corner_inertia_kg_m2();
-    let energy =
-        |c: f64, omega: f64, v: f64| super::impact::kinetic(body, c, omega, v) + 0.5 * big * v * v;
-    // The impulses at the new corner for omega' and the stack's velocity after, and whether
-    // they press, stick and carry the rotation onto it.
-    let lands = |w: f64, v: f64| {
-        let normal = -m * s * b * (w + omega);
-        let tangential = m * (v - v_s + h * (w - omega));
-        let holds = normal >= 0.0 && tangential.abs() <= body.friction * normal && w * -s > 0.0;
-        (holds, tangential, normal)
+    let energy = |c: f64, omega: f64, v: &[f64]| {
+        let carried = (stacks.iter().zip(v)).map(|(st, v)| 0.5 * st.mass_kg * v * v);
+        super::impact::kinetic(body, c, omega, v[0]) + carried.sum::<f64>()
     };
-    let share = m / (m + big);
-    let lhs = io - h * share * (m * h - mu_s * sigma * m * s * b);
-    let delta = -2.0 * m * b * omega * (b + share * h * mu_s * sigma * s) / lhs;
-    let dv = share * (-h * delta + mu_s * sigma * s * b * (2.0 * omega + delta));
-    let (w, v) = (omega + delta, v_s + dv);
-    if lhs > 0.0 && sigma * v > 0.0 && lands(w, v).0 {
-        return Some(Landing {
-            omega: w,
-            v,
-            loss_j: energy(s, omega, v_s) - energy(-s, w, v),
+    // Mass and momentum of stacks from..=to.
+    let cluster = |from: usize, to: usize| {
+        (stacks[from..=to].iter().zip(&v[from..=to])).fold((0.0, 0.0), |(mass, p), (st, v)| {
+            (mass + st.mass_kg, p + st.mass_kg * v)
+        })
+    };
+    // mu sigma of joint k.
+    let limit = |k: usize| stacks[k].friction * stacks[k].slip.sign();
+    let mut holding = Vec::new();
+    for choice in 0..1u32 << n {
+        let stuck: Vec<bool> = (0..n).map(|k| choice >> k & 1 == 1).collect();
+        let mut after = vec![0.0; n];
+        let w = match stuck.iter().position(|&stuck| !stuck) {
+            // Stopped: the body lands as on a held base moving at v_1.
+            None => ((ig + m * (h * h - b * b)) * omega + m * h * v[0]) / io,
+            Some(a) => {
+                let (big, p) = cluster(0, a);
+                let (mu_sigma, share) = (limit(a), m / (m + big));
+                let lhs = io - h * share * (m * h - mu_sigma * m * s * b);
+                if lhs <= 0.0 {
+                    continue;
+                }
+                let q = (p - big * v[0]) / (m + big);
+                let delta =
+                    (-2.0 * m * b * omega * (b + share * h * mu_sigma * s) - m * h * q) / lhs;
+                let dv = share * (-h * delta + mu_sigma * s * b * (2.0 * omega + delta)) + q;
+                after[..=a].fill(v[0] + dv);
+                omega + delta
+            }
+        };
+        let normal = -m * s * b * (w + omega);
+        // Each cluster below the body's: its momentum and its joints' impulses at their limits.
+        let mut from = stuck.iter().position(|&stuck| !stuck).map_or(n, |a| a + 1);
+        while from < n {
+            let Some(to) = (from..n).find(|&k| !stuck[k]) else {
+                break;
+            };
+            let (mass, p) = cluster(from, to);
+            after[from..=to].fill((p + (limit(from - 1) - limit(to)) * normal) / mass);
+            from = to + 1;
+        }
+        let tangential = m * (after[0] - v[0] + h * (w - omega));
+        let lands = normal >= 0.0 && tangential.abs() <= body.friction * normal && w * -s > 0.0;
+        // The friction impulse joint k passes: P_t and the momentum the stacks above it gained.
+        let mut passed = tangential;
+        let joints = (0..n).all(|k| {
+            passed += stacks[k].mass_kg * (after[k] - v[k]);
+            let under = after.get(k + 1).copied().unwrap_or(0.0);
+            if stuck[k] {
+                passed.abs() <= stacks[k].friction * normal
+            } else {
+                stacks[k].slip.sign() * (after[k] - under) > 0.0
+            }
         });
+        if lands && joints {
+            holding.push(Landing {
+                omega: w,
+                loss_j: energy(s, omega, v) - energy(-s, w, &after),
+                v: after,
+                stuck,
+            });
+        }
     }
-    let w = ((ig + m * (h * h - b * b)) * omega + m * h * v_s) / io;
-    let (holds, tangential, normal) = lands(w, 0.0);
-    (holds && (tangential - big * v_s).abs() <= mu_s * normal).then(|| Landing {
-        omega: w,
-        v: 0.0,
-        loss_j: energy(s, omega, v_s) - energy(-s, w, 0.0),
-    })
+    let [one] = <[Landing; 1]>::try_from(holding).ok()?;
+    Some(one)
 }
 
 /// The stacks' kinetic energy (J) at tau along `traj`.
@@ -772,15 +858,32 @@ impl Engine<'_> {
         state: &State,
         now: &Inputs,
     ) -> bool {
+        self.breaks_on(i, displaced, mode, state, now)
+            .is_some_and(|broken| broken.is_empty())
+    }
+
+    /// The conditions of that motion (as [`Engine::holds_on`]) that do not hold just after
+    /// now; `None` where body i has no such motion.
+    fn breaks_on(
+        &self,
+        i: usize,
+        displaced: &Displaced,
+        mode: Mode,
+        state: &State,
+        now: &Inputs,
+    ) -> Option<Vec<Guard>> {
         let body = self.body(i);
-        let Some(traj) = on(body, displaced, mode, state, now) else {
-            return false;
-        };
+        let traj = on(body, displaced, mode, state, now)?;
         let mut all = modes::constraints(body, Equations::Exact, &traj);
         conditions(body, displaced, &traj, &mut all);
         all.extend(self.scene.watches[i].conditions(&traj, now, displaced));
         let scale_t = body.time_scale_s();
-        all.iter().all(|c| c.holds_after(scale_t))
+        Some(
+            (all.iter())
+                .filter(|c| !c.holds_after(scale_t))
+                .map(|c| c.guard)
+                .collect(),
+        )
     }
 
     /// A stack starts to slide under the stacks on it, at the bottom of body i's column: a
@@ -973,9 +1076,11 @@ impl Engine<'_> {
     /// A stack under body i stops slipping on the stack beneath it (`which`: none for the stack
     /// under the body, else the k-th beneath it, [`Guard::Beneath`]): the two slide on as one
     /// from here at the lower one's velocity (the body's pivot, where it sticks on the upper,
-    /// with them), or, for the lowest, it stops on its held joint; where the conditions of that
-    /// motion do not hold just after now the run stops. The velocity of round-off between them,
-    /// with its energy, goes with the impact losses, as where a stack stops.
+    /// with them), or, for the lowest, it stops on its held joint; where a held joint of that
+    /// motion breaks at once it slips ([`Engine::stack_splits`]: the stack that stopped slips
+    /// back), and where another of its conditions does not hold just after now the run stops.
+    /// The velocity of round-off between them, with its energy, goes with the impact losses,
+    /// as where a stack stops.
     pub(super) fn stack_joins(&mut self, i: usize, which: Option<usize>, now: &Inputs) {
         let scene = self.scene;
         let watch = &scene.watches[i];
@@ -1005,7 +1110,6 @@ impl Engine<'_> {
             Some(k) => {
                 let b = shift.beneath.remove(k);
                 let under = shift.beneath.get_mut(k).map(|under| {
-                    under.first = b.first;
                     under.mass_kg += b.mass_kg;
                     *under
                 });
@@ -1013,10 +1117,28 @@ impl Engine<'_> {
             }
         };
         let body = self.body(i);
-        if !self.holds_on(i, &shift, tr.mode, &state, now) {
-            self.stack_gives(i, which.map_or(Guard::Stop, Guard::Beneath));
-            return;
-        }
+        let given = which.map_or(Guard::Stop, Guard::Beneath);
+        // A held joint of the stacks as one that breaks at once: the stack that stopped slips
+        // again (the other way), or another joint does, as that joint's slip decides
+        // ([`Engine::stack_splits`], which tries the body's ways on the stacks split and not).
+        let broken = self.breaks_on(i, &shift, tr.mode, &state, now);
+        let slips = match broken.as_deref() {
+            Some([]) => None,
+            Some(broken) => match broken.iter().find_map(|g| match g {
+                Guard::Held(k) => Some(*k),
+                _ => None,
+            }) {
+                Some(k) => Some(k),
+                None => {
+                    self.stack_gives(i, given);
+                    return;
+                }
+            },
+            None => {
+                self.stack_gives(i, given);
+                return;
+            }
+        };
         let energy = |engine: &Self| {
             let t = engine.trajectory(i, now);
             modes::kinetic_j(body, &t, 0.0) + kinetic_j(&engine.tracks[i].displaced, &t, 0.0)
@@ -1038,6 +1160,9 @@ impl Engine<'_> {
         self.rec.transitions += 1;
         self.rec
             .rocking_event(self.t, EventKind::Stick, &blocks, None, what);
+        if slips.is_some_and(|k| !self.stack_splits(i, k, now)) {
+            self.stack_gives(i, given);
+        }
     }
 
     /// Body i on its sliding stack meets `guard`, which the exact model does not follow there:
@@ -1089,29 +1214,37 @@ impl Engine<'_> {
 }
 
 impl Engine<'_> {
-    /// Body i lands on the stack sliding under it: where the new corner sticks and the stack
-    /// slides on ([`landing`]) and every held joint passes the impulses (the stack's blocks
-    /// jumping with it), the body rocks on on its new corner, the stack still sliding; any
-    /// other landing stops the run just before the impact.
+    /// Body i lands on the stacks sliding under it: where the new corner sticks and each stack
+    /// slides on or is stopped by the impact as the one landing that holds says ([`landing`]),
+    /// and every held joint passes the impulses (the stacks' blocks jumping with them), the
+    /// body rocks on on its new corner, the stacks whose slip the impact stopped joined to the
+    /// one under them or held ([`Displaced::landed`]); any other landing stops the run just
+    /// before the impact.
     pub(super) fn stack_lands(&mut self, i: usize, now: &Inputs) {
         let body = self.body(i);
         let scene = self.scene;
         let watch = &scene.watches[i];
         let tr = &self.tracks[i];
-        let stack = tr.displaced.sliding.expect("a stack that slides");
-        let (Mode::Rock(pivot), true) = (tr.mode, tr.displaced.beneath.is_empty()) else {
+        let Mode::Rock(pivot) = tr.mode else {
             self.stack_gives(i, Guard::Impact);
             return;
         };
-        let (omega, v) = (tr.state.omega, tr.state.v);
-        let Some(l) = landing(body, &stack, pivot, omega, v) else {
+        let (omega, v, u) = (tr.state.omega, tr.state.v, tr.state.u);
+        let stacks: Vec<Stack> = (tr.displaced.sliding.iter())
+            .chain(&tr.displaced.beneath)
+            .copied()
+            .collect();
+        let before: Vec<f64> = stacks.iter().map(|st| st.velocity_m_s(v)).collect();
+        let Some(l) = landing(body, &stacks, &before, pivot, omega) else {
             self.stack_gives(i, Guard::Impact);
             return;
         };
+        let held = watch.held_blocks().count();
+        let mut after = tr.displaced.clone();
+        after.landed(u, &l.v, &l.stuck, held);
         let next = pivot.other();
-        let before = (Some(pivot), omega, v);
-        let after = (Some(next), l.omega, l.v);
-        if let Some(k) = watch.landing(tr.state.u, before, after, &tr.displaced) {
+        let velocities = ((Some(pivot), omega, v), (Some(next), l.omega, l.v[0]));
+        if let Some(k) = watch.landing(u, velocities.0, velocities.1, &tr.displaced, &after) {
             self.gives(i, k, true);
             return;
         }
@@ -1123,26 +1256,46 @@ impl Engine<'_> {
             self.rec.rocking_impact(k);
         }
         self.rec.impacts += 1;
-        let held = watch.held_blocks().count();
+        self.rec.transitions += l.stuck.iter().filter(|&&s| s).count() as u64;
+        let stopped: Vec<String> = (stacks.iter().zip(&l.stuck))
+            .filter(|(_, &stuck)| stuck)
+            .map(|(st, _)| watch.describe(4 * st.joint).0)
+            .collect();
         let tr = &mut self.tracks[i];
-        (tr.state.theta, tr.state.omega, tr.state.v) = (0.0, l.omega, l.v);
+        (tr.state.theta, tr.state.omega, tr.state.v) = (0.0, l.omega, l.v[0]);
         tr.mode = Mode::Rock(next);
-        if l.v == 0.0 {
-            // The impact stopped the stack: held again where it is.
-            tr.displaced.stops(tr.state.u, held);
-            self.rec.transitions += 1;
-        }
+        tr.displaced = after;
+        let list = |v: &[f64]| {
+            v.iter()
+                .map(|v| format!("{v:.6e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let what = match (&l.stuck[..], &stopped[..]) {
+            ([stuck], _) => format!(
+                "on the {} corner, on the sliding stack (its velocity {v:.6e} -> {:.6e} m/s{})",
+                next.name(),
+                l.v[0],
+                if *stuck { ": it stops" } else { "" }
+            ),
+            (_, stopped) => format!(
+                "on the {} corner, on the sliding stacks (their velocities {} -> {} m/s{})",
+                next.name(),
+                list(&before),
+                list(&l.v),
+                if stopped.is_empty() {
+                    String::new()
+                } else {
+                    format!(": the slip on {} stops", stopped.join(" and "))
+                }
+            ),
+        };
         self.rec.rocking_event(
             self.t,
             EventKind::RockingImpact,
             &self.layout.outputs(i),
             Some((omega, l.omega)),
-            format!(
-                "on the {} corner, on the sliding stack (its velocity {v:.6e} -> {:.6e} m/s{})",
-                next.name(),
-                l.v,
-                if l.v == 0.0 { ": it stops" } else { "" }
-            ),
+            what,
         );
     }
 }

@@ -404,17 +404,17 @@ fn a_landing_on_a_sliding_stack_keeps_momentum_about_the_new_corner() {
         ] {
             for m_stack in [100.0, 2600.0, 1e5] {
                 let st = stack(m_stack, slip);
-                let l = landing(&body, &st, pivot, omega, v_s).expect("a landing it follows");
+                let l = landing(&body, &[st], &[v_s], pivot, omega).expect("a landing it follows");
                 let (before, after) = (
                     (v_s + h * omega, s * b * omega),
-                    (l.v + h * l.omega, -s * b * l.omega),
+                    (l.v[0] + h * l.omega, -s * b * l.omega),
                 );
                 let kept = about_new_corner(&body, s, omega, before);
                 let now = about_new_corner(&body, s, l.omega, after);
                 assert!((kept - now).abs() <= 1e-12 * kept.abs(), "{kept} {now}");
                 let normal = m * (after.1 - before.1);
-                let friction = m * (after.0 - before.0) + m_stack * (l.v - v_s);
-                if l.v == 0.0 {
+                let friction = m * (after.0 - before.0) + m_stack * (l.v[0] - v_s);
+                if l.v[0] == 0.0 {
                     kinds[1] += 1;
                     assert!(
                         friction.abs() <= st.friction * normal,
@@ -431,7 +431,7 @@ fn a_landing_on_a_sliding_stack_keeps_momentum_about_the_new_corner() {
                 assert!(l.loss_j > 0.0);
             }
         }
-        let steady = landing(&body, &stack(1e18, Slip::Forward), pivot, omega, 0.3).unwrap();
+        let steady = landing(&body, &[stack(1e18, Slip::Forward)], &[0.3], pivot, omega).unwrap();
         let housner = crate::integrate::rocking::impact::land(
             &body,
             Equations::Exact,
@@ -444,4 +444,77 @@ fn a_landing_on_a_sliding_stack_keeps_momentum_about_the_new_corner() {
         assert!((steady.omega - housner.state.omega).abs() <= 1e-15 * omega.abs());
     }
     assert!(kinds[0] > 0 && kinds[1] > 0, "{kinds:?}");
+}
+
+/// A landing on two stacks, one sliding on the other: the body's angular momentum about its
+/// new corner is kept; each joint passes the friction impulse the momenta above it say (the
+/// body's and the stacks'), at its limit against its slip where the slip goes on, within it
+/// where the impact stopped the slip (the two sides then at one velocity exactly, or the
+/// lowest at rest); kinetic energy is lost; and every one of the four ways is met.
+#[test]
+fn a_landing_on_stacks_sliding_on_stacks_keeps_each_joints_law() {
+    let body = top(0.8);
+    let (m, b, h) = (body.mass_kg, body.half_base_m, body.centroid_height_m);
+    let mut kinds = std::collections::BTreeSet::new();
+    for (pivot, omega) in [
+        (Corner::Right, -1.3),
+        (Corner::Left, 0.9),
+        (Corner::Left, 0.3),
+    ] {
+        let s = pivot.sign();
+        for (v1, v2) in [
+            (0.4, 0.1),
+            (-0.6, -0.5),
+            (0.01, 0.008),
+            (0.5, 0.02),
+            (-0.05, -0.3),
+        ] {
+            for (m1, m2) in [(300.0, 2000.0), (2000.0, 300.0)] {
+                let slip = |v: f64| {
+                    if v > 0.0 {
+                        Slip::Forward
+                    } else {
+                        Slip::Backward
+                    }
+                };
+                let upper = Stack {
+                    first: 1,
+                    friction: 0.35,
+                    ..stack(m1, slip(v1 - v2))
+                };
+                let lower = Stack {
+                    friction: 0.4,
+                    ..stack(m2, slip(v2))
+                };
+                let Some(l) = landing(&body, &[upper, lower], &[v1, v2], pivot, omega) else {
+                    continue;
+                };
+                kinds.insert(l.stuck.clone());
+                let (before, after) = (
+                    (v1 + h * omega, s * b * omega),
+                    (l.v[0] + h * l.omega, -s * b * l.omega),
+                );
+                let kept = about_new_corner(&body, s, omega, before);
+                let now = about_new_corner(&body, s, l.omega, after);
+                assert!((kept - now).abs() <= 1e-12 * kept.abs(), "{kept} {now}");
+                let normal = m * (after.1 - before.1);
+                assert!(normal >= 0.0);
+                let mut passed = m * (after.0 - before.0);
+                for (k, (st, v)) in [(upper, v1), (lower, v2)].into_iter().enumerate() {
+                    passed += st.mass_kg * (l.v[k] - v);
+                    let under = l.v.get(k + 1).copied().unwrap_or(0.0);
+                    if l.stuck[k] {
+                        assert_eq!(l.v[k], under, "{l:?}");
+                        assert!(passed.abs() <= st.friction * normal, "{passed} {normal}");
+                    } else {
+                        assert!(st.slip.sign() * (l.v[k] - under) > 0.0, "{l:?}");
+                        let limit = -st.friction * st.slip.sign() * normal;
+                        assert!((passed - limit).abs() <= 1e-12 * normal, "{passed} {limit}");
+                    }
+                }
+                assert!(l.loss_j > 0.0, "{l:?}");
+            }
+        }
+    }
+    assert_eq!(kinds.len(), 4, "{kinds:?}");
 }
