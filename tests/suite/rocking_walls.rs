@@ -581,8 +581,9 @@ fn a_landing_on_stacks_sliding_on_stacks_is_what_time_stepping_converges_to() {
     assert!(last.0 < 3e-5 && last.1 < 1e-3, "{last:?}");
 }
 
-/// A slender top (0.2 by 0.8 m) on two squat blocks (1.0 by 0.5 m; friction 0.4 on the ground,
-/// 0.35 between them) under El Centro at 1.4 g: at 1.758 s the top lands on the two as the
+/// walls/rocking/slender-on-slipping-blocks.ron, a slender top (0.2 by 0.8 m) on two squat
+/// blocks (1.0 by 0.5 m; friction 0.4 on the ground, 0.35 between them) under El Centro at
+/// 1.4 g: at 1.758 s the top lands on the two as the
 /// upper slides on the lower and the lower on the ground, the impact stopping the upper's slip
 /// alone (the two slide on as one); at 2.480 s the upper stops slipping on the lower and at
 /// once slips again, the other way, the force on it beyond the joint's friction (until
@@ -591,14 +592,7 @@ fn a_landing_on_stacks_sliding_on_stacks_is_what_time_stepping_converges_to() {
 /// the instant it falls.
 #[test]
 fn a_stack_that_stops_slipping_and_slips_back_at_once_is_what_time_stepping_converges_to() {
-    let model = Model::from_ron_str(
-        "(version: 1, thickness_m: 1.0, density_kg_m3: 2600, friction: 0.8,
-          joint_friction: {\"D0/ground\": 0.4, \"D1/D0\": 0.35},
-          rows: [(height_m: 0.5, blocks: [(width_m: 1.0, name: \"D0\")]),
-                 (height_m: 0.5, blocks: [(width_m: 1.0, name: \"D1\")]),
-                 (height_m: 0.8, x_m: 0.4, blocks: [(width_m: 0.2, name: \"D2\")])])",
-    )
-    .unwrap();
+    let model = Model::from_file("walls/rocking/slender-on-slipping-blocks.ron").unwrap();
     let motion = crate::engine::el_centro_first_s(4, 1.4 * 9.81);
     let (r, fell_s) = overturns(&model, &motion, "D2");
     let at = |what: &str| {
