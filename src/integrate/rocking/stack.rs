@@ -488,7 +488,9 @@ pub struct Landing {
 /// with Delta = omega' - omega and dv = V - v_1, P_n = -m s b (2 omega + Delta), the angular
 /// momentum about the new corner kept, I_O Delta + m h_c dv = -2 m b^2 omega, and
 /// (m + M) dv = -m h_c Delta + mu sigma m s b (2 omega + Delta) + (p - M v_1), Housner's law
-/// as M grows without bound; where it stops, the body lands as on a held base moving at v_1.
+/// as M grows without bound, the choice taken only where the factor of Delta, I_O - h_c m
+/// (m h_c - mu sigma m s b) / (m + M), is positive; where it stops, the body lands as on a
+/// held base moving at v_1.
 /// Each cluster below takes its momentum and the two joints' impulses at their limits. `None`
 /// where no choice holds, or several (the corner pushed apart or slipping, a stack turning
 /// within the impact, the body landing flat), the wall's restitution factor is not 1, or more
@@ -525,7 +527,9 @@ pub fn landing(
     for choice in 0..1u32 << n {
         let stuck: Vec<bool> = (0..n).map(|k| choice >> k & 1 == 1).collect();
         let mut after = vec![0.0; n];
-        let w = match stuck.iter().position(|&stuck| !stuck) {
+        // The joint the body's cluster slides on, if any.
+        let slides_on = stuck.iter().position(|&stuck| !stuck);
+        let w = match slides_on {
             // Stopped: the body lands as on a held base moving at v_1.
             None => ((ig + m * (h * h - b * b)) * omega + m * h * v[0]) / io,
             Some(a) => {
@@ -545,7 +549,7 @@ pub fn landing(
         };
         let normal = -m * s * b * (w + omega);
         // Each cluster below the body's: its momentum and its joints' impulses at their limits.
-        let mut from = stuck.iter().position(|&stuck| !stuck).map_or(n, |a| a + 1);
+        let mut from = slides_on.map_or(n, |a| a + 1);
         while from < n {
             let Some(to) = (from..n).find(|&k| !stuck[k]) else {
                 break;
