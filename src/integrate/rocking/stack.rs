@@ -1125,24 +1125,18 @@ impl Engine<'_> {
         // A held joint of the stacks as one that breaks at once: the stack that stopped slips
         // again (the other way), or another joint does, as that joint's slip decides
         // ([`Engine::stack_splits`], which tries the body's ways on the stacks split and not).
-        let broken = self.breaks_on(i, &shift, tr.mode, &state, now);
-        let slips = match broken.as_deref() {
-            Some([]) => None,
-            Some(broken) => match broken.iter().find_map(|g| match g {
-                Guard::Held(k) => Some(*k),
-                _ => None,
-            }) {
-                Some(k) => Some(k),
-                None => {
-                    self.stack_gives(i, given);
-                    return;
-                }
-            },
-            None => {
-                self.stack_gives(i, given);
-                return;
-            }
+        let Some(broken) = self.breaks_on(i, &shift, tr.mode, &state, now) else {
+            self.stack_gives(i, given);
+            return;
         };
+        let slips = broken.iter().find_map(|g| match g {
+            Guard::Held(k) => Some(*k),
+            _ => None,
+        });
+        if slips.is_none() && !broken.is_empty() {
+            self.stack_gives(i, given);
+            return;
+        }
         let energy = |engine: &Self| {
             let t = engine.trajectory(i, now);
             modes::kinetic_j(body, &t, 0.0) + kinetic_j(&engine.tracks[i].displaced, &t, 0.0)
