@@ -658,6 +658,16 @@ impl Engine<'_> {
                 ..tr.displaced.clone()
             };
             ways.extend(self.stack_ways(i, &split, c, slipping, now));
+            // Or that joint alone slipping: the joint whose condition fell, no longer passing
+            // the inertia of the blocks above it, holding after all.
+            let alone = Displaced {
+                sliding: Some(Stack {
+                    apart: Some([0.0, 0.0]),
+                    ..upper
+                }),
+                ..tr.displaced.clone()
+            };
+            ways.extend(self.stack_ways(i, &alone, c, slipping, now));
         }
         for low in watch.slips_under(0..stack.first) {
             let Some(all) = watch.stack_on(low, tr.state.u) else {
