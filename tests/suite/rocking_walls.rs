@@ -517,15 +517,85 @@ fn stepped_apart(
         .summary
         .collapse;
     let late = fell.map_or(f64::INFINITY, |c| (c.time_s - fell_s).abs());
-    let upto = RunSettings {
+    (moved_apart(model, motion, (exact, at_s), dt_s), late)
+}
+
+/// The largest difference of the blocks' displacements at `at_s` between Moreau-Jean with
+/// every block's rotation at `dt_s` and an exact run (its summary to then; its blocks, from
+/// the bottom, are those compared).
+fn moved_apart(model: &Model, motion: &Motion, (exact, at_s): (&Summary, f64), dt_s: f64) -> f64 {
+    let settings = RunSettings {
+        model: ModelChoice::SlideRock,
+        method: Method::Moreau { dt_s },
         duration_s: Some(at_s),
-        ..settings
+        ..RunSettings::default()
     };
-    let m = pirqa::run(model, motion, &upto).unwrap().summary;
-    let moved = (m.blocks.iter().zip(&exact.blocks))
+    let m = pirqa::run(model, motion, &settings).unwrap().summary;
+    (m.blocks.iter().zip(&exact.blocks))
         .map(|(a, b)| (a.final_displacement_m - b.final_displacement_m).abs())
-        .fold(0.0, f64::max);
-    (moved, late)
+        .fold(0.0, f64::max)
+}
+
+/// A chain of open joints on a joint that slips: walls/rocking/rough-tapered-column.ron under
+/// a 1.5 g, 2 Hz sine tips on the ground as its top rocks on the middle block, and the
+/// column's pivot corner slips on the ground from 0.058 s to 0.278 s (59.8 mm);
+/// walls/rocking/stepped-column.ron under a 1.1 g, 2 Hz sine rocks on the middle block's
+/// joint and its top's, and the plinth under the chain slides on the ground from 0.083 s to
+/// 0.215 s (6.7 mm). Until 2026-12-07 both runs stopped where the slip began. Each now stops
+/// later, where the chain meets what it does not follow (the top's pivot slipping; a landing's
+/// impulse opening the plinth's joint), its energy balanced to round-off, and Moreau-Jean
+/// converges to it: every block's displacement just before the exact run stops.
+#[test]
+fn a_chain_on_a_slipping_joint_is_what_time_stepping_converges_to() {
+    for (wall, amplitude_g, stops_s, at_s, slid_m, bound_m) in [
+        (
+            "rough-tapered-column",
+            1.5,
+            0.28901,
+            0.27,
+            -5.984333e-2,
+            5e-6,
+        ),
+        ("stepped-column", 1.1, 0.22416, 0.21, -6.705228e-3, 2e-6),
+    ] {
+        let model = Model::from_file(format!("walls/rocking/{wall}.ron")).unwrap();
+        let motion = sine(amplitude_g * 9.81, 2.0, 2.0);
+        let settings = RunSettings {
+            log_events: true,
+            ..RunSettings::default()
+        };
+        let r = pirqa::run(&model, &motion, &settings).unwrap();
+        let stopped = r.summary.stopped_at_s.expect("a stop beyond the chain");
+        assert!((stopped - stops_s).abs() < 1e-5, "{wall}: {stopped}");
+        let slid: Vec<&str> = (r.events.iter())
+            .filter(|e| {
+                matches!(
+                    e.kind,
+                    pirqa::response::EventKind::Slip | pirqa::response::EventKind::Stick
+                )
+            })
+            .filter_map(|e| e.mode.as_deref())
+            .filter(|m| m.contains("the chain"))
+            .collect();
+        assert_eq!(slid.len(), 2, "{wall}: {slid:?}");
+        let stop = format!("having slid {slid_m:.6e} m");
+        assert!(slid[1].contains(&stop), "{wall}: {slid:?}");
+        let e = &r.summary.energy;
+        let scale = e.input_j.abs() + e.friction_j;
+        assert!(e.residual_j.abs() <= 1e-13 * scale, "{wall}: {e:?}");
+        let upto = RunSettings {
+            duration_s: Some(at_s),
+            ..RunSettings::default()
+        };
+        let exact = pirqa::run(&model, &motion, &upto).unwrap().summary;
+        let mut last = f64::INFINITY;
+        for dt_s in [1e-4, 2.5e-5, 1e-5] {
+            let moved = moved_apart(&model, &motion, (&exact, at_s), dt_s);
+            assert!(moved < last, "{wall}, dt {dt_s}: {moved} m");
+            last = moved;
+        }
+        assert!(last < bound_m, "{wall}: {last} m");
+    }
 }
 
 /// walls/rocking/top-on-slipping-blocks.ron under El Centro at 1.0 g: at 2.238 s the top lands

@@ -9,8 +9,11 @@
 //! linear system whose matrix is the mass matrix of the instant. Landings keep the angular
 //! momentum of the part above each open joint about its pivot after the landing (the new
 //! corner for the joint that lands: Housner's law for a single body, Psycharis's for two). The
-//! pivots stick: where one would slip or lift off, or a closed joint slip, the exact model
-//! ends the run there and says so, as a column's held joints do (docs/rocking-walls.md).
+//! lowest pivot, or a held joint below it, may slip: everything above the joint then translates
+//! on it, one more unknown of each order and one more equation, the joint's friction at its
+//! limit ([`Slide`]). Where another pivot would slip or one lift off, a closed joint above the
+//! lowest open one slip, or an open joint land while a joint slips, the exact model ends the run
+//! there and says so, as a column's held joints do (docs/rocking-walls.md).
 //!
 //! The engine hands the column to the chain when a held joint opens under a rocking body and
 //! takes it back when the chain is down to the body's own joint again, or seated.
@@ -42,17 +45,41 @@ pub(super) struct Pose {
     pub(super) open: Vec<Open>,
     pub(super) phi: Vec<f64>,
     pub(super) omega: Vec<f64>,
+    /// A joint at or below the lowest open one that slips now, if one does.
+    pub(super) slide: Option<Slide>,
+    /// What each block (from the bottom) has slid since the chain began, with slips that
+    /// stopped (m; empty while none has).
+    pub(super) moved: Vec<f64>,
+}
+
+/// A joint under the chain that slips: a held joint below the lowest open joint (the blocks
+/// between them sliding on it as one stack that carries the chain), or the lowest open joint
+/// itself (its pivot, a corner of the block on it, slipping on the face under it). Everything
+/// above the joint translates with the slip; the joint passes the limit of its friction against
+/// it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Slide {
+    /// The joint (the index of the block on it).
+    pub(super) joint: usize,
+    /// The slip's sign (+1: towards +x).
+    pub(super) sigma: f64,
+    /// How far the blocks above the joint have slid since the slip began (m), and their
+    /// velocity relative to the ground (m/s).
+    pub(super) u: f64,
+    pub(super) v: f64,
 }
 
 /// A column as the chain moves it: the watch's blocks and joints at rest, those on and above the
-/// body's own joint displaced by the slip `shift` the body had when the chain began (no joint
-/// slips while the chain runs).
+/// body's own joint displaced by the slip `shift` the body had when the chain began, those
+/// below it by what they slid with stacks that were held again (`held`, per block from the
+/// bottom; none: they did not move). No joint slips while the chain runs.
 pub(super) struct Links<'w> {
     watch: &'w Watch,
     joints: Vec<&'w Held>,
     /// The joint the column's body moves on.
     body_joint: usize,
     shift: f64,
+    held: Vec<f64>,
 }
 
 /// A chain's motion over a step, as series: per body its rotation, rate, angular acceleration,
@@ -74,6 +101,8 @@ pub(super) struct Path {
     centroid: Vec<[Coeffs; 2]>,
     accel: Vec<[Coeffs; 2]>,
     base: Vec<[Coeffs; 2]>,
+    /// The slipping joint, and the slip's displacement and velocity.
+    slide: Option<(usize, Coeffs, Coeffs)>,
 }
 
 /// What ends a chain's step.
@@ -88,6 +117,10 @@ pub(super) enum Cut {
     Closed(usize, usize),
     /// Open joint c turns to a right angle: the part above it has fallen.
     Overturn(usize),
+    /// The slipping joint's slip stops.
+    Stop,
+    /// The slipping pivot's normal force falls to zero.
+    Lift,
 }
 
 /// A condition of the chain: a series that must stay non-negative, its scale, what it guards.
@@ -103,14 +136,16 @@ fn turned(x: f64, y: f64, sin: &Coeffs, cos: &Coeffs, k: usize) -> [f64; 2] {
 }
 
 impl<'w> Links<'w> {
-    /// The chain of a column's watch, its body displaced by `shift` (none for a trilith).
-    pub(super) fn of(watch: &'w Watch, shift: f64) -> Option<Links<'w>> {
+    /// The chain of a column's watch, its body displaced by `shift` and its held blocks by
+    /// `held` (none for a trilith).
+    pub(super) fn of(watch: &'w Watch, shift: f64, held: Vec<f64>) -> Option<Links<'w>> {
         let body_joint = watch.moving.as_ref()?.upper;
         Some(Links {
             joints: watch.all_joints(),
             watch,
             body_joint,
             shift,
+            held,
         })
     }
 
@@ -122,7 +157,7 @@ impl<'w> Links<'w> {
         if index >= self.body_joint {
             self.shift
         } else {
-            0.0
+            self.held.get(index).copied().unwrap_or(0.0)
         }
     }
 
@@ -144,6 +179,13 @@ impl<'w> Links<'w> {
         [x + self.dx(j), y]
     }
 
+    /// The end of joint j on side s at rest, moved with what the block on it has slid in the
+    /// chain's slips that stopped.
+    fn end_in(&self, moved: &[f64], j: usize, s: f64) -> [f64; 2] {
+        let [x, y] = self.end(j, s);
+        [x + moved.get(j).copied().unwrap_or(0.0), y]
+    }
+
     /// The body each block belongs to (none: held to the ground below every open joint).
     fn bodies(&self, open: &[Open]) -> Vec<Option<usize>> {
         (0..self.blocks())
@@ -157,7 +199,24 @@ impl<'w> Links<'w> {
         let n = pose.open.len();
         let nb = self.blocks();
         let body = self.bodies(&pose.open);
-        let rest: Vec<[f64; 2]> = pose.open.iter().map(|o| self.end(o.joint, o.s)).collect();
+        let moved = |p: usize| pose.moved.get(p).copied().unwrap_or(0.0);
+        let rest: Vec<[f64; 2]> = (pose.open.iter())
+            .map(|o| self.end_in(&pose.moved, o.joint, o.s))
+            .collect();
+        // Blocks from the slipping joint up translate with the slip, u_s'' = a_s, one more
+        // unknown of each order, and the joint's friction at its limit one more equation:
+        // sum m a_x = -mu sigma sum m (a_y + g lambda) over those blocks.
+        let slide = pose
+            .slide
+            .map(|sl| (sl, self.joints[sl.joint].friction * sl.sigma));
+        let (mut us, mut vs) = (ZERO, ZERO);
+        if let Some((sl, _)) = slide {
+            us[0] = sl.u;
+            us[1] = sl.v;
+            vs[0] = sl.v;
+        }
+        let slides = |p: usize| slide.is_some_and(|(sl, _)| p >= sl.joint);
+        let unknowns = n + usize::from(slide.is_some());
         // Each body's arm to the next pivot, and each block's arms to its centroid and the
         // middle of its base, from the body's pivot at rest.
         let link: Vec<[f64; 2]> = (1..n)
@@ -167,7 +226,11 @@ impl<'w> Links<'w> {
             .map(|p| {
                 let r = body[p].map_or([0.0; 2], |c| rest[c]);
                 let (g, b) = (self.centroid(p), self.base(p));
-                [[g[0] - r[0], g[1] - r[1]], [b[0] - r[0], b[1] - r[1]]]
+                let dx = moved(p);
+                [
+                    [g[0] + dx - r[0], g[1] - r[1]],
+                    [b[0] + dx - r[0], b[1] - r[1]],
+                ]
             })
             .collect();
         let mut phi = vec![ZERO; n];
@@ -199,7 +262,8 @@ impl<'w> Links<'w> {
                 l[1][k] = y;
             }
             for c in 0..n {
-                let start = if k == 0 { rest[0] } else { [0.0; 2] };
+                let mut start = if k == 0 { rest[0] } else { [0.0; 2] };
+                start[0] += us[k];
                 for a in 0..2 {
                     pivot[c][a][k] = if c == 0 {
                         start[a]
@@ -211,11 +275,16 @@ impl<'w> Links<'w> {
             // Positions, and accelerations without this order's angular accelerations.
             for p in 0..nb {
                 let Some(cp) = body[p] else {
-                    let (g, b) = (self.centroid(p), self.base(p));
+                    let (mut g, mut b) = (self.centroid(p), self.base(p));
+                    g[0] += moved(p);
+                    b[0] += moved(p);
+                    let slip = if slides(p) { us[k] } else { 0.0 };
                     for a in 0..2 {
                         centroid[p][a][k] = if k == 0 { g[a] } else { 0.0 };
                         base[p][a][k] = if k == 0 { b[a] } else { 0.0 };
                     }
+                    centroid[p][0][k] += slip;
+                    base[p][0][k] += slip;
                     accel[p][0][k] = inputs.accel[k];
                     accel[p][1][k] = glam[k];
                     continue;
@@ -250,8 +319,24 @@ impl<'w> Links<'w> {
                 [r[0][0], r[1][0]]
             };
             if solver.is_none() {
-                let mass = DMatrix::from_fn(n, n, |b, c| {
+                let mass = DMatrix::from_fn(unknowns, unknowns, |b, c| {
                     let mut x = 0.0;
+                    if let (true, Some((sl, mu_sigma))) = (b == n, slide) {
+                        // The slip's equation: how each unknown moves the blocks above the
+                        // joint, sum m (a_x + mu sigma a_y).
+                        for p in (sl.joint..nb).filter(|&p| c == n || body[p] >= Some(c)) {
+                            let r = if c == n { [0.0, 1.0] } else { arm0(p, c) };
+                            x += w.pieces[p].mass_kg * (r[1] - mu_sigma * r[0]);
+                        }
+                        return x;
+                    }
+                    if c == n {
+                        // a_s moves every block above pivot b along x.
+                        for p in (0..nb).filter(|&p| body[p].is_some_and(|cp| cp >= b)) {
+                            x -= w.pieces[p].mass_kg * (centroid[p][1][0] - pivot[b][1][0]);
+                        }
+                        return x;
+                    }
                     for p in (0..nb).filter(|&p| body[p].is_some_and(|cp| cp >= b && cp >= c)) {
                         let q = &w.pieces[p];
                         let d = [
@@ -270,7 +355,13 @@ impl<'w> Links<'w> {
             }
             // The moment about each pivot of what the part above it needs, without this
             // order's angular accelerations: sum m ((x - P_x) (a_y + g lambda) - (y - P_y) a_x).
-            let rhs = DVector::from_fn(n, |b, _| {
+            let rhs = DVector::from_fn(unknowns, |b, _| {
+                if let (true, Some((sl, mu_sigma))) = (b == n, slide) {
+                    let known = (sl.joint..nb).map(|p| {
+                        w.pieces[p].mass_kg * (accel[p][0][k] + mu_sigma * accel[p][1][k])
+                    });
+                    return -known.sum::<f64>();
+                }
                 let mut m = 0.0;
                 for p in (0..nb).filter(|&p| body[p].is_some_and(|cp| cp >= b)) {
                     let (g, a) = (&centroid[p], &accel[p]);
@@ -284,7 +375,11 @@ impl<'w> Links<'w> {
             });
             let lu = solver.as_ref().expect("factorised at order 0");
             // Nothing open (a chain seated by its last landing): every block rests.
-            let a = if n == 0 { Some(rhs) } else { lu.solve(&rhs) };
+            let a = if unknowns == 0 {
+                Some(rhs)
+            } else {
+                lu.solve(&rhs)
+            };
             let a = a.ok_or_else(|| {
                 SimulationError::Bug(format!(
                     "the mass matrix of the chain of open joints {:?} is singular",
@@ -298,6 +393,18 @@ impl<'w> Links<'w> {
                 }
                 if k + 2 <= ORDER {
                     phi[c][k + 2] = a[c] / ((k + 1) * (k + 2)) as f64;
+                }
+            }
+            if slide.is_some() {
+                let a_s = a[n];
+                if k < ORDER {
+                    vs[k + 1] = a_s / (k + 1) as f64;
+                }
+                if k + 2 <= ORDER {
+                    us[k + 2] = a_s / ((k + 1) * (k + 2)) as f64;
+                }
+                for p in (0..nb).filter(|&p| slides(p)) {
+                    accel[p][0][k] += a_s;
                 }
             }
             for p in 0..nb {
@@ -322,12 +429,14 @@ impl<'w> Links<'w> {
             centroid,
             accel,
             base,
+            slide: slide.map(|(sl, _)| (sl.joint, us, vs)),
         })
     }
 
     /// Every condition of the chain along `path`: each open joint's landing, overturning and
     /// pivot, each closed joint's friction and contact (as the watch's held joints').
-    fn conditions(&self, pose: &Pose, path: &Path, angle: f64) -> Vec<Condition> {
+    fn conditions(&self, pose: &Pose, path: &Path, sc: &Scales) -> Vec<Condition> {
+        let angle = sc.angle;
         let w = self.watch;
         let nb = self.blocks();
         let mut out = Vec::new();
@@ -386,6 +495,16 @@ impl<'w> Links<'w> {
                 series::add(&series::scaled(&n, mu), &t, -1.0),
                 series::add(&series::scaled(&n, mu), &t, 1.0),
             ];
+            let slipping = pose.slide.is_some_and(|sl| sl.joint == j);
+            if let (Some(_), true) = (open, slipping) {
+                // Its pivot slips, the force at its friction's limit: it must stay pressed.
+                out.push(Condition {
+                    series: n,
+                    scale: w.force_scale,
+                    cut: Cut::Lift,
+                });
+                continue;
+            }
             if let Some(c) = open {
                 for (i, series) in cone.into_iter().enumerate() {
                     out.push(Condition {
@@ -397,10 +516,10 @@ impl<'w> Links<'w> {
                 continue;
             }
             let ends = [-1.0, 1.0].map(|s| {
-                let e = self.end(j, s);
+                let e = self.end_in(&pose.moved, j, s);
                 match path.body[j] {
                     Some(c) => {
-                        let r = self.end(pose.open[c].joint, pose.open[c].s);
+                        let r = self.end_in(&pose.moved, pose.open[c].joint, pose.open[c].s);
                         let (dx, dy) = (e[0] - r[0], e[1] - r[1]);
                         [0, 1].map(|a| {
                             let mut x = path.pivot[c][a];
@@ -410,7 +529,13 @@ impl<'w> Links<'w> {
                             x
                         })
                     }
-                    None => e.map(series::constant),
+                    None => {
+                        let mut e = e.map(series::constant);
+                        if let Some((_, u, _)) = path.slide.as_ref().filter(|sl| j >= sl.0) {
+                            series::add_to(&mut e[0], u, 1.0);
+                        }
+                        e
+                    }
                 }
             });
             let [left, right] = ends.map(|e| self.moment(path, j, &e));
@@ -418,6 +543,7 @@ impl<'w> Links<'w> {
                 .into_iter()
                 .chain([left, right.map(|x| -x)])
                 .enumerate()
+                .skip(if slipping { 2 } else { 0 })
             {
                 out.push(Condition {
                     series,
@@ -426,7 +552,27 @@ impl<'w> Links<'w> {
                 });
             }
         }
+        if let (Some(sl), Some((_, _, v))) = (pose.slide, &path.slide) {
+            out.push(Condition {
+                series: v.map(|x| sl.sigma * x),
+                scale: sc.velocity,
+                cut: Cut::Stop,
+            });
+        }
         out
+    }
+
+    /// The power the slipping joint's friction dissipates, mu N |u_s'|, as a series (zero
+    /// where nothing slips).
+    fn friction_power(&self, pose: &Pose, path: &Path) -> Coeffs {
+        let (Some(sl), Some((j, _, v))) = (pose.slide, &path.slide) else {
+            return ZERO;
+        };
+        let (_, normal) = self.passed(path, *j);
+        series::scaled(
+            &series::product(&normal, v),
+            self.joints[*j].friction * sl.sigma,
+        )
     }
 
     /// The force joint j passes up (H, V): what the blocks above it need, sum m (a_x, a_y + g
@@ -473,7 +619,11 @@ impl<'w> Links<'w> {
             .map(|p| {
                 let q = &self.watch.pieces[p];
                 let Some(c) = path.body[p] else {
-                    return (0.0, 0.0);
+                    let Some((_, _, v)) = path.slide.as_ref().filter(|sl| p >= sl.0) else {
+                        return (0.0, 0.0);
+                    };
+                    let v = eval(v, tau);
+                    return (0.5 * q.mass_kg * v * v, 0.0);
                 };
                 let vx = eval(&derivative(&path.centroid[p][0]), tau);
                 let vy = eval(&derivative(&path.centroid[p][1]), tau);
@@ -494,7 +644,8 @@ impl<'w> Links<'w> {
         let g = self.watch.g_m_s2;
         let mut power = ZERO;
         let extra = series::plus(&inputs.lambda, -1.0);
-        for p in (0..self.blocks()).filter(|&p| path.body[p].is_some()) {
+        let slides = |p: usize| path.slide.as_ref().is_some_and(|sl| p >= sl.0);
+        for p in (0..self.blocks()).filter(|&p| path.body[p].is_some() || slides(p)) {
             let m = self.watch.pieces[p].mass_kg;
             let vx = derivative(&path.centroid[p][0]);
             let vy = derivative(&path.centroid[p][1]);
@@ -587,6 +738,7 @@ impl<'w> Links<'w> {
 /// The chain's geometry at one instant: each body's rotation and pivot, each block's centroid.
 struct Instant {
     open: Vec<Open>,
+    moved: Vec<f64>,
     phi: Vec<f64>,
     pivot: Vec<[f64; 2]>,
     centroid: Vec<[f64; 2]>,
@@ -596,6 +748,7 @@ impl Instant {
     fn of(pose: &Pose, path: &Path, tau: f64) -> Instant {
         Instant {
             open: pose.open.clone(),
+            moved: pose.moved.clone(),
             phi: path.phi.iter().map(|c| eval(c, tau)).collect(),
             pivot: path
                 .pivot
@@ -613,12 +766,12 @@ impl Instant {
     /// Where the end of joint j on side s is now: a point of the body below the joint (or of
     /// the blocks held to the ground).
     fn point(&self, links: &Links, j: usize, s: f64) -> [f64; 2] {
-        let e = links.end(j, s);
+        let e = links.end_in(&self.moved, j, s);
         let Some(c) = self.open.iter().rposition(|o| o.joint < j) else {
             return e;
         };
         let o = self.open[c];
-        let r = links.end(o.joint, o.s);
+        let r = links.end_in(&self.moved, o.joint, o.s);
         let (sin, cos) = self.phi[c].sin_cos();
         let (dx, dy) = (e[0] - r[0], e[1] - r[1]);
         [
@@ -632,8 +785,8 @@ impl Instant {
 enum Next {
     /// In the chain, from this pose.
     Chain(Pose),
-    /// Back to the column's body (its state and mode).
-    Body(State, Mode),
+    /// Back to the column's body (its state and mode, and what its held blocks slid).
+    Body(State, Mode, Vec<f64>),
     /// The run ends here.
     End,
 }
@@ -661,6 +814,14 @@ fn how(cut: Cut, n_positive: bool) -> &'static str {
         }
         Cut::Overturn(_) => "has turned to a right angle on its joint",
         Cut::Closed(..) => "gives way",
+        Cut::Stop => {
+            "would stop slipping and slip again at once, or hold, both or neither (beyond the \
+             chain)"
+        }
+        Cut::Lift => {
+            "would lift off the corner it turns on as that corner slips (the exact model follows \
+             the chain while its pivots stay pressed)"
+        }
     }
 }
 
@@ -671,7 +832,7 @@ impl Engine<'_> {
     pub(super) fn chain_can_follow(&self, i: usize, k: usize) -> bool {
         self.tracks.len() == 1
             && self.clearance.is_empty()
-            && self.tracks[i].displaced.is_still()
+            && !self.tracks[i].displaced.any_slides()
             && k % 4 >= 2
             && matches!(self.tracks[i].mode, Mode::Rock(_))
             && self.scene.equations == super::Equations::Exact
@@ -688,7 +849,8 @@ impl Engine<'_> {
         let watch: &Watch = &self.scene.watches[0];
         let (_, _, upper) = watch.describe(k);
         let st = self.tracks[0].state;
-        let links = Links::of(watch, st.u).expect("a column's watch");
+        let held = self.tracks[0].displaced.by_m.clone();
+        let links = Links::of(watch, st.u, held).expect("a column's watch");
         let pivot = self.tracks[0].mode.pivot().expect("a rocking body");
         let body = Open {
             joint: links.body_joint,
@@ -703,19 +865,23 @@ impl Engine<'_> {
                 open: vec![body, new],
                 phi: vec![st.theta; 2],
                 omega: vec![st.omega; 2],
+                slide: None,
+                moved: Vec::new(),
             }
         } else {
             Pose {
                 open: vec![new, body],
                 phi: vec![0.0, st.theta],
                 omega: vec![0.0, st.omega],
+                slide: None,
+                moved: Vec::new(),
             }
         };
         self.opened(&links, upper);
         let (_, now) = self.inputs_at(self.t);
         match self.settle(&links, pose, &now)? {
             Next::Chain(pose) => self.run_chain(&links, pose),
-            Next::Body(state, mode) => self.resume(state, mode),
+            Next::Body(state, mode, moved) => self.resume(state, mode, moved),
             Next::End => Ok(()),
         }
     }
@@ -751,20 +917,84 @@ impl Engine<'_> {
         now: &Inputs,
     ) -> Result<Next, SimulationError> {
         let body = &self.scene.bodies[0];
-        let (angle, ts) = (Scales::of(body).angle, body.time_scale_s());
-        for _ in 0..=links.blocks() {
+        let (sc, ts) = (Scales::of(body), body.time_scale_s());
+        for _ in 0..=2 * links.blocks() {
             if let Some(next) = self.handed_back(links, &pose) {
-                return Ok(next);
+                if pose.slide.is_none() {
+                    return Ok(next);
+                }
+                let path = links.path(&pose, now)?;
+                let how = "slips under the column's body alone again (a chain that ends on a \
+                           slipping joint is beyond the exact model)";
+                let j = pose.slide.map_or(0, |sl| sl.joint);
+                self.chain_ends_at(links, (&path, 0.0), j, how, None);
+                return Ok(Next::End);
             }
             let path = links.path(&pose, now)?;
             let falls = links
-                .conditions(&pose, &path, angle)
+                .conditions(&pose, &path, &sc)
                 .into_iter()
                 .find(|c| sign_after(&c.series, c.scale, ts) < 0);
             let Some(cond) = falls else {
                 return Ok(Next::Chain(pose));
             };
             self.rec.stats.mode_decisions += 1;
+            let slips = match cond.cut {
+                Cut::Closed(j, i @ (0 | 1)) => Some((j, i)),
+                Cut::Pivot(0, i) if eval(&links.passed(&path, pose.open[0].joint).1, 0.0) > 0.0 => {
+                    Some((pose.open[0].joint, i))
+                }
+                _ => None,
+            };
+            if let (Some((j, i)), None) = (slips, pose.slide) {
+                let ways = links.slide_ways(&pose, now, &sc, ts)?;
+                let [way] = &ways[..] else {
+                    let how = if ways.is_empty() {
+                        "would slip where no joint under the chain can slip alone (beyond the \
+                         chain)"
+                    } else {
+                        "would slip where several joints under the chain could slip (beyond \
+                         the chain)"
+                    };
+                    self.chain_ends_at(links, (&path, 0.0), j, how, None);
+                    return Ok(Next::End);
+                };
+                pose = way.clone();
+                let sl = pose.slide.expect("a slip");
+                let blocks = self.chain_outputs(sl.joint, links.blocks());
+                let pieces = &links.watch.pieces[sl.joint..pose.open[0].joint];
+                let what = if pieces.is_empty() {
+                    "the chain's lowest pivot slips".to_string()
+                } else {
+                    let names: Vec<&str> = (sl.joint..pose.open[0].joint)
+                        .map(|p| links.watch.outputs[p].name.as_str())
+                        .collect();
+                    let mass: f64 = pieces.iter().map(|q| q.mass_kg).sum();
+                    let verb = if names.len() == 1 { "slides" } else { "slide" };
+                    format!(
+                        "{} (M = {mass:.0} kg) {verb} under the chain",
+                        names.join("+")
+                    )
+                };
+                self.rec.rocking_event(
+                    self.t,
+                    EventKind::Slip,
+                    &blocks,
+                    None,
+                    format!(
+                        "{what} on {} towards {} (mu = {}){}",
+                        links.joints[sl.joint].name,
+                        if sl.sigma > 0.0 { "+x" } else { "-x" },
+                        links.joints[sl.joint].friction,
+                        if sl.joint == j && i == usize::from(sl.sigma > 0.0) {
+                            ""
+                        } else {
+                            ", the joint whose condition fell holding"
+                        }
+                    ),
+                );
+                continue;
+            }
             match cond.cut {
                 Cut::Closed(j, i @ (2 | 3)) => {
                     let c = pose
@@ -797,11 +1027,12 @@ impl Engine<'_> {
     /// seated: its body's state is then the chain's.
     fn handed_back(&self, links: &Links, pose: &Pose) -> Option<Next> {
         let seated = State {
-            u: links.shift,
+            u: links.shift + pose.moved.get(links.body_joint).copied().unwrap_or(0.0),
             ..State::default()
         };
+        let held = pose.moved[..pose.moved.len().min(links.body_joint)].to_vec();
         match pose.open.as_slice() {
-            [] => Some(Next::Body(seated, Mode::Rest)),
+            [] => Some(Next::Body(seated, Mode::Rest, held)),
             [o] if o.joint == links.body_joint => Some(Next::Body(
                 State {
                     theta: pose.phi[0],
@@ -809,14 +1040,21 @@ impl Engine<'_> {
                     ..seated
                 },
                 Mode::Rock(Corner::of_sign(o.s)),
+                held,
             )),
             _ => None,
         }
     }
 
-    /// The body takes over again from `state` in `mode`, its mode decided now.
-    fn resume(&mut self, state: State, mode: Mode) -> Result<(), SimulationError> {
+    /// The body takes over again from `state` in `mode`, its mode decided now; its column's
+    /// held blocks keep what they slid in the chain (`moved`, from the bottom).
+    fn resume(&mut self, state: State, mode: Mode, moved: Vec<f64>) -> Result<(), SimulationError> {
         let tr = &mut self.tracks[0];
+        if moved.iter().any(|&d| d != 0.0) {
+            let by = &mut tr.displaced.by_m;
+            by.resize(by.len().max(moved.len()), 0.0);
+            by.iter_mut().zip(&moved).for_each(|(b, d)| *b += d);
+        }
         tr.state = state;
         tr.mode = mode;
         let (_, now) = self.inputs_at(self.t);
@@ -837,6 +1075,7 @@ impl Engine<'_> {
         let j = match cut {
             Cut::Land(c) | Cut::Pivot(c, _) | Cut::Overturn(c) => pose.open[c].joint,
             Cut::Closed(j, _) => j,
+            Cut::Stop | Cut::Lift => pose.slide.map_or(pose.open[0].joint, |sl| sl.joint),
         };
         let pressed = match cut {
             Cut::Pivot(..) => eval(&links.passed(path, j).1, tau) > 0.0,
@@ -851,8 +1090,24 @@ impl Engine<'_> {
                 "would open at its left end while the column turns on another corner below it \
                  (beyond the chain)"
             }
+            Cut::Land(_) if pose.slide.is_some() => {
+                "lands while a joint under the chain slips (beyond the chain)"
+            }
             _ => how(cut, pressed),
         };
+        self.chain_ends_at(links, (path, tau), j, how, landing);
+    }
+
+    /// The exact model ends the run at tau on `path` (or just before a landing's impact,
+    /// `landing`), joint j giving way as `how` says.
+    fn chain_ends_at(
+        &mut self,
+        links: &Links,
+        (path, tau): (&Path, f64),
+        j: usize,
+        how: &str,
+        landing: Option<(&Path, f64)>,
+    ) {
         let blocks = self.chain_outputs(j, links.blocks());
         let joint = links.joints[j].name.clone();
         self.held_joint_gives(0, &blocks, joint, how, landing.is_some());
@@ -956,6 +1211,9 @@ impl Engine<'_> {
             for b in &path.base {
                 steps.push((&b[0], size));
             }
+            if let Some((_, u, _)) = &path.slide {
+                steps.push((u, size));
+            }
             let h = series::step_size(&steps).min(span);
             let mut best: Option<(f64, Option<Cut>)> = None;
             let mut consider = |x: Option<f64>, what: Option<Cut>| {
@@ -965,7 +1223,7 @@ impl Engine<'_> {
                     }
                 }
             };
-            for c in links.conditions(&pose, &path, sc.angle) {
+            for c in links.conditions(&pose, &path, &sc) {
                 consider(series::first_fall(&c.series, c.scale, ts, h), Some(c.cut));
             }
             // Extremes of each body's rotation and of each block's u and u'.
@@ -1017,8 +1275,13 @@ impl Engine<'_> {
                 self.next_out = (self.outputs + 1) as f64 * dt.unwrap_or(f64::INFINITY);
             }
             self.rec.energy.input_j += integral(&links.input_power(&path, &inputs), tau);
+            self.rec.energy.friction_j += integral(&links.friction_power(&pose, &path), tau);
             pose.phi = path.phi.iter().map(|c| eval(c, tau)).collect();
             pose.omega = path.omega.iter().map(|c| eval(c, tau)).collect();
+            if let (Some(sl), Some((_, u, v))) = (&mut pose.slide, &path.slide) {
+                sl.u = eval(u, tau);
+                sl.v = eval(v, tau);
+            }
             self.t = t_new;
             if self.t >= self.next_out {
                 self.outputs += 1;
@@ -1043,7 +1306,7 @@ impl Engine<'_> {
             };
             match next {
                 Next::Chain(next) => pose = next,
-                Next::Body(state, mode) => return self.resume(state, mode),
+                Next::Body(state, mode, moved) => return self.resume(state, mode, moved),
                 Next::End => return Ok(()),
             }
         }
@@ -1060,8 +1323,35 @@ impl Engine<'_> {
         now: &Inputs,
     ) -> Result<Next, SimulationError> {
         match cut {
+            Cut::Land(_) if pose.slide.is_some() => {
+                self.chain_stops(links, (&pose, path, tau), cut, None);
+                Ok(Next::End)
+            }
             Cut::Land(c) => self.chain_lands(links, pose, path, tau, c, now),
-            Cut::Closed(_, 2 | 3) => self.settle(links, pose, now),
+            Cut::Closed(..) => self.settle(links, pose, now),
+            Cut::Pivot(c, _)
+                if c == 0 && eval(&links.passed(path, pose.open[0].joint).1, tau) > 0.0 =>
+            {
+                self.settle(links, pose, now)
+            }
+            Cut::Stop => {
+                let mut pose = pose;
+                let sl = pose.slide.take().expect("a slip that stops");
+                pose.moved.resize(links.blocks(), 0.0);
+                pose.moved[sl.joint..].iter_mut().for_each(|d| *d += sl.u);
+                let blocks = self.chain_outputs(sl.joint, links.blocks());
+                self.rec.rocking_event(
+                    self.t,
+                    EventKind::Stick,
+                    &blocks,
+                    None,
+                    format!(
+                        "stops on {} under the chain, having slid {:.6e} m",
+                        links.joints[sl.joint].name, sl.u
+                    ),
+                );
+                self.settle(links, pose, now)
+            }
             Cut::Overturn(c) => {
                 let j = pose.open[c].joint;
                 let blocks = self.chain_outputs(j, links.blocks());
@@ -1241,6 +1531,42 @@ impl Engine<'_> {
 }
 
 impl Links<'_> {
+    /// The ways a joint under `pose`'s chain can start to slip, each the chain with that slip
+    /// whose every condition holds just after now: a held joint below the lowest open one, or
+    /// that joint's pivot where it is a corner of the block on it, either way.
+    fn slide_ways(
+        &self,
+        pose: &Pose,
+        now: &Inputs,
+        sc: &Scales,
+        ts: f64,
+    ) -> Result<Vec<Pose>, SimulationError> {
+        let lowest = pose.open[0];
+        let pivot_slips = self.joints[lowest.joint].upper_corner[usize::from(lowest.s > 0.0)];
+        let joints = (0..lowest.joint).chain(pivot_slips.then_some(lowest.joint));
+        let mut ways = Vec::new();
+        for joint in joints {
+            for sigma in [-1.0, 1.0] {
+                let way = Pose {
+                    slide: Some(Slide {
+                        joint,
+                        sigma,
+                        u: 0.0,
+                        v: 0.0,
+                    }),
+                    ..pose.clone()
+                };
+                let path = self.path(&way, now)?;
+                let holds = (self.conditions(&way, &path, sc).iter())
+                    .all(|c| sign_after(&c.series, c.scale, ts) >= 0);
+                if holds {
+                    ways.push(way);
+                }
+            }
+        }
+        Ok(ways)
+    }
+
     /// The column's height (m): the moment scale over the force scale.
     fn height(&self) -> f64 {
         self.watch.moment_scale / self.watch.force_scale

@@ -16,6 +16,7 @@
 //! | landing from free flight (a corner reaches the ground) | a `Land` constraint | `impact::land_from_flight`, then `decide` |
 //! | overturning | theta reaches pi/2, or alpha with the ground at rest from then on | `Engine::overturn` |
 //! | a column's held joint opens under the rocking body | its watch's condition falls | `chain`: the column's blocks rock on each other until it is one body again |
+//! | the chain's lowest pivot, or a held joint below it, slips; the slip stops | its condition falls | `chain`: the blocks above the joint translate on it (`chain::Slide`) |
 //! | a column's held joint below the rocking body slips | its watch's condition falls | `stack`: the blocks above it slide under the body until their slip stops |
 //! | a sliding stack stops | its `Stop` constraint | `Engine::stack_stops`, then `decide` |
 //! | the pivot slips on the sliding stack, or stops slipping on it | `PivotSlip`, `PivotStick` | `Engine::stack_parts`, `Engine::stack_rejoins` |

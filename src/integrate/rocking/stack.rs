@@ -156,6 +156,11 @@ impl Displaced {
         }
     }
 
+    /// Whether any stack slides now.
+    pub fn any_slides(&self) -> bool {
+        self.sliding.is_some() || !self.beneath.is_empty()
+    }
+
     /// Whether no held block has moved or moves.
     pub fn is_still(&self) -> bool {
         self.sliding.is_none() && self.by_m.iter().all(|&x| x == 0.0)
