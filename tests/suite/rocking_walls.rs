@@ -737,6 +737,49 @@ fn a_joint_inside_a_stack_slipping_alone_after_a_landing_is_what_time_stepping_c
     assert!(last.0 < 1e-5 && last.1 < 2e-4, "{last:?}");
 }
 
+/// walls/rocking/stepped-column.ron under a 1.5 g, 2 Hz sine: the middle block's joint opens
+/// under the rocking top at 0.051 s and the plinth slides under the chain from 0.055 s; at
+/// 0.237 s the middle block lands seated on the sliding plinth, the slip going on through the
+/// impact at the ground joint's friction limit (until 2026-12-07 the run stopped there), and
+/// the chain, down to the top's joint, hands the column back to the stack model: the plinth and
+/// the middle block slide under the rocking top, stop and slide again until the top overturns
+/// at 0.912 s. The energy balances to round-off, and Moreau-Jean converges to it: every block's
+/// displacement at 0.85 s and the instant the top falls.
+#[test]
+fn a_chain_landing_on_its_sliding_plinth_is_what_time_stepping_converges_to() {
+    let model = Model::from_file("walls/rocking/stepped-column.ron").unwrap();
+    let motion = sine(1.5 * 9.81, 2.0, 2.0);
+    let (r, fell_s) = overturns(&model, &motion, "D2");
+    assert!((fell_s - 0.91220).abs() < 1e-5, "{fell_s}");
+    let landed: Vec<f64> = (r.events.iter())
+        .filter(|e| e.mode.as_deref() == Some("D1/D0 lands seated"))
+        .map(|e| e.time_s)
+        .collect();
+    assert!(
+        landed.len() == 1 && (landed[0] - 0.23738).abs() < 1e-5,
+        "{landed:?}"
+    );
+    let stack = (r.events.iter())
+        .filter_map(|e| e.mode.as_deref())
+        .any(|m| m.starts_with("D0+D1 slide on D0/ground"));
+    assert!(stack);
+    let settings = RunSettings {
+        duration_s: Some(0.85),
+        ..RunSettings::default()
+    };
+    let before = pirqa::run(&model, &motion, &settings).unwrap().summary;
+    let mut last = (f64::INFINITY, f64::INFINITY);
+    for dt_s in [1e-4, 2.5e-5, 1e-5] {
+        let (moved, late) = stepped_apart(&model, &motion, (&before, 0.85), fell_s, dt_s);
+        assert!(
+            moved < last.0 && late < last.1,
+            "dt {dt_s}: {moved} m, {late} s"
+        );
+        last = (moved, late);
+    }
+    assert!(last.0 < 1e-5 && last.1 < 5e-5, "{last:?}");
+}
+
 /// A squat block sliding on another (joint friction 0.2) that stands on the ground (0.3), both
 /// of mass m, under 0.5 g sin(2 pi t): the top slides from a_g = 0.2 g with its friction
 /// pushing it forward, so the ground joint carries m a_g + 0.2 m g, which reaches its capacity

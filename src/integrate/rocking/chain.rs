@@ -21,10 +21,11 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::column::{Held, Watch};
-use super::modes::{Corner, Inputs, Mode, Scales, State};
+use super::modes::{Corner, Inputs, Mode, Scales, Slip, State};
 use super::series::{
     self, derivative, eval, integral, mul_at, sign_after, sin_cos_at, Coeffs, ORDER, TIE, ZERO,
 };
+use super::stack::Stack;
 use super::{Engine, ZENO_ROTATION};
 use crate::error::SimulationError;
 use crate::integrate::event::Turned;
@@ -657,22 +658,30 @@ impl<'w> Links<'w> {
 
     /// The post-landing rates of the bodies of `open` (positions those of the instant, the
     /// blocks' velocities `before`, each body's rate `before_omega` by block): the angular
-    /// momentum of the part above each open joint about its pivot is kept. Also each block's
-    /// velocity after, from the rates.
+    /// momentum of the part above each open joint about its pivot is kept. Where `slide` names
+    /// a joint (its index and the sign of its slip), everything above it leaves with one more
+    /// unknown horizontal velocity w, and that joint passes its friction's limit against the slip
+    /// (the momentum the blocks above it gain, sum m dv_x = -mu sigma sum m dv_y); else the
+    /// joints below the chain hold (w = 0). Also w and each block's velocity after.
     fn momentum_balance(
         &self,
         open: &[Open],
+        slide: Option<(usize, f64)>,
         at: &Instant,
         before: &[[f64; 2]],
         spin_before: &[f64],
-    ) -> Option<(Vec<f64>, Vec<[f64; 2]>)> {
+    ) -> Option<(Vec<f64>, f64, Vec<[f64; 2]>)> {
         let nb = self.blocks();
         let n = open.len();
         let body = self.bodies(open);
         let pivots: Vec<[f64; 2]> = open.iter().map(|o| at.point(self, o.joint, o.s)).collect();
         // Block p's velocity per unit rate of body c: c turns p about c's pivot, carrying it
-        // with the next pivot when p lies above c.
+        // with the next pivot when p lies above c; per unit w, every block above the slipping
+        // joint moves along x.
         let jacobian = |p: usize, c: usize| -> [f64; 2] {
+            if c == n {
+                return [1.0, 0.0];
+            }
             let cp = body[p].expect("a moving block");
             let r = if c < cp {
                 [
@@ -690,9 +699,21 @@ impl<'w> Links<'w> {
         let cross = |r: [f64; 2], v: [f64; 2]| r[1] * v[0] - r[0] * v[1];
         let body = &body;
         let above = |b: usize| (0..nb).filter(move |&p| body[p].is_some_and(|cp| cp >= b));
-        let matrix = DMatrix::from_fn(n, n, |b, c| {
+        let moves = |p: usize, c: usize| c == n || body[p].is_some_and(|cp| cp >= c);
+        let unknowns = n + usize::from(slide.is_some());
+        let mu_sigma = slide.map_or(0.0, |(j, sigma)| self.joints[j].friction * sigma);
+        let sliding = slide.map_or(nb, |(j, _)| j)..nb;
+        let matrix = DMatrix::from_fn(unknowns, unknowns, |b, c| {
+            if b == n {
+                return (sliding.clone().filter(|&p| moves(p, c)))
+                    .map(|p| {
+                        let v = jacobian(p, c);
+                        self.watch.pieces[p].mass_kg * (v[0] + mu_sigma * v[1])
+                    })
+                    .sum();
+            }
             let mut x = 0.0;
-            for p in above(b).filter(|&p| body[p].is_some_and(|cp| cp >= c)) {
+            for p in above(b).filter(|&p| moves(p, c)) {
                 let q = &self.watch.pieces[p];
                 let d = [
                     at.centroid[p][0] - pivots[b][0],
@@ -705,7 +726,14 @@ impl<'w> Links<'w> {
             }
             x
         });
-        let rhs = DVector::from_fn(n, |b, _| {
+        let rhs = DVector::from_fn(unknowns, |b, _| {
+            if b == n {
+                return (sliding.clone())
+                    .map(|p| {
+                        self.watch.pieces[p].mass_kg * (before[p][0] + mu_sigma * before[p][1])
+                    })
+                    .sum();
+            }
             above(b)
                 .map(|p| {
                     let q = &self.watch.pieces[p];
@@ -717,21 +745,29 @@ impl<'w> Links<'w> {
                 })
                 .sum()
         });
-        let rates = if n == 0 {
+        let x = if unknowns == 0 {
             rhs
         } else {
             matrix.lu().solve(&rhs)?
         };
+        let w = if slide.is_some() { x[n] } else { 0.0 };
         let after = (0..nb)
-            .map(|p| match body[p] {
-                None => [0.0; 2],
-                Some(cp) => (0..=cp).fold([0.0; 2], |v, c| {
-                    let j = jacobian(p, c);
-                    [v[0] + rates[c] * j[0], v[1] + rates[c] * j[1]]
-                }),
+            .map(|p| {
+                let base = if sliding.contains(&p) {
+                    [w, 0.0]
+                } else {
+                    [0.0; 2]
+                };
+                match body[p] {
+                    None => base,
+                    Some(cp) => (0..=cp).fold(base, |v, c| {
+                        let j = jacobian(p, c);
+                        [v[0] + x[c] * j[0], v[1] + x[c] * j[1]]
+                    }),
+                }
             })
             .collect();
-        Some((rates.iter().copied().collect(), after))
+        Some((x.iter().take(n).copied().collect(), w, after))
     }
 }
 
@@ -785,10 +821,20 @@ impl Instant {
 enum Next {
     /// In the chain, from this pose.
     Chain(Pose),
-    /// Back to the column's body (its state and mode, and what its held blocks slid).
-    Body(State, Mode, Vec<f64>),
+    /// Back to the column's body (its state and mode, what its held blocks slid, and the stack
+    /// that slides under it with how far it has slid).
+    Body(State, Mode, Vec<f64>, Option<(Stack, f64)>),
     /// The run ends here.
     End,
+}
+
+/// "+x" or "-x", the direction of a slip of sign `sigma`.
+fn towards(sigma: f64) -> &'static str {
+    if sigma > 0.0 {
+        "+x"
+    } else {
+        "-x"
+    }
 }
 
 /// How a chain's condition reads in the event log and warning.
@@ -881,7 +927,7 @@ impl Engine<'_> {
         let (_, now) = self.inputs_at(self.t);
         match self.settle(&links, pose, &now)? {
             Next::Chain(pose) => self.run_chain(&links, pose),
-            Next::Body(state, mode, moved) => self.resume(state, mode, moved),
+            Next::Body(state, mode, moved, stack) => self.resume((state, mode), moved, stack),
             Next::End => Ok(()),
         }
     }
@@ -899,6 +945,12 @@ impl Engine<'_> {
             None,
             format!("opens: {}", links.joints[j].name),
         );
+    }
+
+    /// Logs an event of the joint j that slips under the chain (its blocks and those above).
+    fn slide_event(&mut self, links: &Links, j: usize, kind: EventKind, what: String) {
+        let blocks = self.chain_outputs(j, links.blocks());
+        self.rec.rocking_event(self.t, kind, &blocks, None, what);
     }
 
     /// The outputs of blocks j and above of the column.
@@ -919,13 +971,14 @@ impl Engine<'_> {
         let body = &self.scene.bodies[0];
         let (sc, ts) = (Scales::of(body), body.time_scale_s());
         for _ in 0..=2 * links.blocks() {
-            if let Some(next) = self.handed_back(links, &pose) {
-                if pose.slide.is_none() {
+            if let Some(back) = self.handed_back(links, &pose) {
+                if let Some(next) = back {
                     return Ok(next);
                 }
                 let path = links.path(&pose, now)?;
-                let how = "slips under the column's body alone again (a chain that ends on a \
-                           slipping joint is beyond the exact model)";
+                let how =
+                    "slips as the chain ends, the column seated or on no stack the model slides \
+                           (beyond the chain)";
                 let j = pose.slide.map_or(0, |sl| sl.joint);
                 self.chain_ends_at(links, (&path, 0.0), j, how, None);
                 return Ok(Next::End);
@@ -940,7 +993,7 @@ impl Engine<'_> {
             };
             self.rec.stats.mode_decisions += 1;
             let slips = match cond.cut {
-                Cut::Closed(j, i @ (0 | 1)) => Some((j, i)),
+                Cut::Closed(j, i @ (0 | 1)) if j < pose.open[0].joint => Some((j, i)),
                 Cut::Pivot(0, i) if eval(&links.passed(&path, pose.open[0].joint).1, 0.0) > 0.0 => {
                     Some((pose.open[0].joint, i))
                 }
@@ -950,18 +1003,17 @@ impl Engine<'_> {
                 let ways = links.slide_ways(&pose, now, &sc, ts)?;
                 let [way] = &ways[..] else {
                     let how = if ways.is_empty() {
-                        "would slip where no joint under the chain can slip alone (beyond the \
-                         chain)"
+                        "would slip, and no way of a joint under the chain slipping holds \
+                         (beyond the chain)"
                     } else {
-                        "would slip where several joints under the chain could slip (beyond \
-                         the chain)"
+                        "would slip, and several ways of the joints under the chain slipping \
+                         hold (beyond the chain)"
                     };
                     self.chain_ends_at(links, (&path, 0.0), j, how, None);
                     return Ok(Next::End);
                 };
                 pose = way.clone();
                 let sl = pose.slide.expect("a slip");
-                let blocks = self.chain_outputs(sl.joint, links.blocks());
                 let pieces = &links.watch.pieces[sl.joint..pose.open[0].joint];
                 let what = if pieces.is_empty() {
                     "the chain's lowest pivot slips".to_string()
@@ -976,23 +1028,18 @@ impl Engine<'_> {
                         names.join("+")
                     )
                 };
-                self.rec.rocking_event(
-                    self.t,
-                    EventKind::Slip,
-                    &blocks,
-                    None,
-                    format!(
-                        "{what} on {} towards {} (mu = {}){}",
-                        links.joints[sl.joint].name,
-                        if sl.sigma > 0.0 { "+x" } else { "-x" },
-                        links.joints[sl.joint].friction,
-                        if sl.joint == j && i == usize::from(sl.sigma > 0.0) {
-                            ""
-                        } else {
-                            ", the joint whose condition fell holding"
-                        }
-                    ),
+                let why = if sl.joint == j && i == usize::from(sl.sigma > 0.0) {
+                    ""
+                } else {
+                    ", the joint whose condition fell holding"
+                };
+                let what = format!(
+                    "{what} on {} towards {} (mu = {}){why}",
+                    links.joints[sl.joint].name,
+                    towards(sl.sigma),
+                    links.joints[sl.joint].friction,
                 );
+                self.slide_event(links, sl.joint, EventKind::Slip, what);
                 continue;
             }
             match cond.cut {
@@ -1024,31 +1071,58 @@ impl Engine<'_> {
     }
 
     /// The engine takes the column back when the chain is down to the body's own joint, or
-    /// seated: its body's state is then the chain's.
-    fn handed_back(&self, links: &Links, pose: &Pose) -> Option<Next> {
-        let seated = State {
-            u: links.shift + pose.moved.get(links.body_joint).copied().unwrap_or(0.0),
+    /// seated: its body's state is then the chain's (`Some`), and where a joint slips under it,
+    /// the body rocking on the stack that slides (or, its own joint slipping, slide-rocking);
+    /// `Some(None)` where the engine cannot take it so (a seated column riding a slip).
+    fn handed_back(&self, links: &Links, pose: &Pose) -> Option<Option<Next>> {
+        let slid = pose.slide.map_or(0.0, |sl| sl.u);
+        let state = State {
+            u: links.shift + pose.moved.get(links.body_joint).copied().unwrap_or(0.0) + slid,
+            v: pose.slide.map_or(0.0, |sl| sl.v),
             ..State::default()
         };
-        let held = pose.moved[..pose.moved.len().min(links.body_joint)].to_vec();
-        match pose.open.as_slice() {
-            [] => Some(Next::Body(seated, Mode::Rest, held)),
-            [o] if o.joint == links.body_joint => Some(Next::Body(
-                State {
-                    theta: pose.phi[0],
-                    omega: pose.omega[0],
-                    ..seated
-                },
-                Mode::Rock(Corner::of_sign(o.s)),
+        // What the held blocks slid in the chain (a slip going on is the stack's own).
+        let mut held = pose.moved.clone();
+        held.resize(links.body_joint, 0.0);
+        let corner = match pose.open.as_slice() {
+            [] if pose.slide.is_none() => {
+                return Some(Some(Next::Body(state, Mode::Rest, held, None)))
+            }
+            [] => return Some(None),
+            [o] if o.joint == links.body_joint => Corner::of_sign(o.s),
+            _ => return None,
+        };
+        let state = State {
+            theta: pose.phi[0],
+            omega: pose.omega[0],
+            ..state
+        };
+        let Some(sl) = pose.slide else {
+            return Some(Some(Next::Body(state, Mode::Rock(corner), held, None)));
+        };
+        let slip = Slip::of_sign(sl.sigma);
+        if sl.joint == links.body_joint {
+            return Some(Some(Next::Body(
+                state,
+                Mode::SlideRock(corner, slip),
                 held,
-            )),
-            _ => None,
+                None,
+            )));
         }
+        // The stack from the slipping joint up to the body slides on under it.
+        let k = (links.watch.slips_under(sl.joint..sl.joint + 1)).nth(usize::from(sl.sigma > 0.0));
+        let stack = k.and_then(|k| links.watch.stack_on(k, state.u - slid));
+        Some(stack.map(|stack| Next::Body(state, Mode::Rock(corner), held, Some((stack, slid)))))
     }
 
     /// The body takes over again from `state` in `mode`, its mode decided now; its column's
     /// held blocks keep what they slid in the chain (`moved`, from the bottom).
-    fn resume(&mut self, state: State, mode: Mode, moved: Vec<f64>) -> Result<(), SimulationError> {
+    fn resume(
+        &mut self,
+        (state, mode): (State, Mode),
+        moved: Vec<f64>,
+        stack: Option<(Stack, f64)>,
+    ) -> Result<(), SimulationError> {
         let tr = &mut self.tracks[0];
         if moved.iter().any(|&d| d != 0.0) {
             let by = &mut tr.displaced.by_m;
@@ -1058,7 +1132,23 @@ impl Engine<'_> {
         tr.state = state;
         tr.mode = mode;
         let (_, now) = self.inputs_at(self.t);
-        self.decide(0, &now, false)
+        let (Some((stack, slid)), Some(c)) = (stack, mode.pivot()) else {
+            return self.decide(0, &now, false);
+        };
+        if !self.stack_carries(0, (stack, slid), c, &now) {
+            let watch = &self.scene.watches[0];
+            let (joint, _, _) = watch.describe(4 * stack.joint);
+            let blocks = self.chain_outputs(stack.first, watch.pieces.len());
+            self.held_joint_gives(
+                0,
+                &blocks,
+                joint,
+                "slips under the body as the chain ends, where no way of the body on the \
+                 sliding stack holds, or several do",
+                false,
+            );
+        }
+        Ok(())
     }
 
     /// The chain's condition `cut` of `pose` falls at tau on `path`: the exact model ends
@@ -1089,9 +1179,6 @@ impl Engine<'_> {
             Cut::Closed(_, 3) => {
                 "would open at its left end while the column turns on another corner below it \
                  (beyond the chain)"
-            }
-            Cut::Land(_) if pose.slide.is_some() => {
-                "lands while a joint under the chain slips (beyond the chain)"
             }
             _ => how(cut, pressed),
         };
@@ -1306,7 +1393,9 @@ impl Engine<'_> {
             };
             match next {
                 Next::Chain(next) => pose = next,
-                Next::Body(state, mode, moved) => return self.resume(state, mode, moved),
+                Next::Body(state, mode, moved, stack) => {
+                    return self.resume((state, mode), moved, stack)
+                }
                 Next::End => return Ok(()),
             }
         }
@@ -1323,10 +1412,6 @@ impl Engine<'_> {
         now: &Inputs,
     ) -> Result<Next, SimulationError> {
         match cut {
-            Cut::Land(_) if pose.slide.is_some() => {
-                self.chain_stops(links, (&pose, path, tau), cut, None);
-                Ok(Next::End)
-            }
             Cut::Land(c) => self.chain_lands(links, pose, path, tau, c, now),
             Cut::Closed(..) => self.settle(links, pose, now),
             Cut::Pivot(c, _)
@@ -1339,17 +1424,11 @@ impl Engine<'_> {
                 let sl = pose.slide.take().expect("a slip that stops");
                 pose.moved.resize(links.blocks(), 0.0);
                 pose.moved[sl.joint..].iter_mut().for_each(|d| *d += sl.u);
-                let blocks = self.chain_outputs(sl.joint, links.blocks());
-                self.rec.rocking_event(
-                    self.t,
-                    EventKind::Stick,
-                    &blocks,
-                    None,
-                    format!(
-                        "stops on {} under the chain, having slid {:.6e} m",
-                        links.joints[sl.joint].name, sl.u
-                    ),
+                let what = format!(
+                    "stops on {} under the chain, having slid {:.6e} m",
+                    links.joints[sl.joint].name, sl.u
                 );
+                self.slide_event(links, sl.joint, EventKind::Stick, what);
                 self.settle(links, pose, now)
             }
             Cut::Overturn(c) => {
@@ -1389,7 +1468,10 @@ impl Engine<'_> {
 
     /// Open joint c lands: on its other corner if the part above it turns on onto it after the
     /// impulse, else seated; the momentum balance decides the rates after, and the impulses
-    /// every joint passes are checked against its friction and contact.
+    /// every joint passes are checked against its friction and contact. The joints under the
+    /// chain either hold through the impact (a slip before it stopped by it) or one slips at its
+    /// friction's limit (the one slipping before, on; or, where none did, one that can slip
+    /// under the chain, either way; a restitution factor of 1): exactly one way must hold.
     fn chain_lands(
         &mut self,
         links: &Links,
@@ -1400,7 +1482,6 @@ impl Engine<'_> {
         now: &Inputs,
     ) -> Result<Next, SimulationError> {
         let body = &self.scene.bodies[0];
-        let nb = links.blocks();
         let energy_before: f64 = links.energies(path, tau).iter().map(|(k, p)| k + p).sum();
         let at = Instant::of(&pose, path, tau);
         let velocity: Vec<[f64; 2]> = path
@@ -1413,80 +1494,60 @@ impl Engine<'_> {
             .iter()
             .map(|b| b.map_or(0.0, |b| eval(&path.omega[b], tau)))
             .collect();
-        let rel = |omega: &[f64], c: usize| omega[c] - if c > 0 { omega[c - 1] } else { 0.0 };
-        let before = rel(&pose.omega, c);
-        let o = pose.open[c];
-        // The other corner, seated at theta = 0 exactly.
-        let mut flipped = pose.clone();
-        flipped.open[c].s = -o.s;
-        flipped.phi[c] = if c > 0 { pose.phi[c - 1] } else { 0.0 };
         // A rise after the landing below ZENO_ROTATION alpha ends the series of landings there
         // (seated), as a single body's does.
         let zeno = ZENO_ROTATION.sqrt()
             * 2f64.sqrt()
             * Scales::of(body).angle
             * body.frequency_parameter_rad_s();
-        let on_corner = links
-            .momentum_balance(&flipped.open, &at, &velocity, &spin)
-            .filter(|(rates, _)| -o.s * rel(rates, c) > 0.0);
-        // The landings of a joint accumulate: what the sum leaves out, the rest of the series
-        // (its duration, which is of the order of the rate over the joint's angular
-        // acceleration, under a microsecond at this size, is not added), is counted as lost.
-        let accumulates = on_corner
-            .as_ref()
-            .is_some_and(|(rates, _)| -o.s * rel(rates, c) <= zeno);
-        let on_corner = on_corner.filter(|_| !accumulates);
-        let (next, rates, after) = match on_corner {
-            Some((rates, after)) => {
-                let f = body.restitution_factor;
-                let rates: Vec<f64> = rates.iter().map(|w| w * f).collect();
-                let after = after.iter().map(|v| v.map(|x| x * f)).collect();
-                (flipped, rates, after)
+        let f = body.restitution_factor;
+        let land = |base| links.landed(&pose, c, base, (&at, &velocity, &spin), (zeno, f));
+        let held = land(None).ok_or_else(|| {
+            SimulationError::Bug("a chain's landing has no momentum balance".into())
+        })?;
+        let j = pose.open[c].joint;
+        let bases: Vec<(usize, f64)> = match pose.slide {
+            _ if f != 1.0 => Vec::new(),
+            Some(sl) => vec![(sl.joint, sl.sigma)],
+            None => (0..=pose.open[0].joint)
+                .flat_map(|k| [(k, -1.0), (k, 1.0)])
+                .collect(),
+        };
+        // A landing that starts a series that accumulates is taken seated, the joints under
+        // the chain held, as every landing of the series was.
+        let slips: Vec<Landed> = (bases.into_iter())
+            .filter(|_| !held.accumulates)
+            .filter_map(|base| land(Some(base)))
+            .filter(|way| way.breaks.is_none())
+            .collect();
+        let held_holds = held.breaks.is_none() || held.accumulates;
+        let way = match (held_holds, slips.len()) {
+            (true, 0) => held,
+            (false, 1) => slips.into_iter().next().expect("one way"),
+            (false, 0) => {
+                // The landing's impulses would break a joint, so the impact is not the one the
+                // model has: the run stops at the instant before it (where a hand-off's time
+                // stepping resolves it), not after an impact it does not believe.
+                let new_path = links.path(&held.next, now)?;
+                let cut = held.breaks.expect("a broken condition");
+                self.chain_stops(links, (&held.next, &new_path, 0.0), cut, Some((path, tau)));
+                return Ok(Next::End);
             }
-            None => {
-                let mut seated = pose.clone();
-                seated.open.remove(c);
-                seated.phi.remove(c);
-                seated.omega.remove(c);
-                let (rates, after) = links
-                    .momentum_balance(&seated.open, &at, &velocity, &spin)
-                    .ok_or_else(|| {
-                        SimulationError::Bug("a chain's landing has no momentum balance".into())
-                    })?;
-                (seated, rates, after)
+            _ => {
+                let how = "lands where the joints under the chain could hold or slip in several \
+                           ways (beyond the chain)";
+                self.chain_ends_at(links, (path, tau), j, how, Some((path, tau)));
+                return Ok(Next::End);
             }
         };
-        let mut next = next;
-        next.omega = rates;
-        // The impulses: each joint passes up what the blocks above it gain.
-        let gain: Vec<[f64; 2]> = (0..nb)
-            .map(|p| {
-                let m = links.watch.pieces[p].mass_kg;
-                [
-                    m * (after[p][0] - velocity[p][0]),
-                    m * (after[p][1] - velocity[p][1]),
-                ]
-            })
-            .collect();
-        let new_body = links.bodies(&next.open);
-        let spin_gain: Vec<f64> = (0..nb)
-            .map(|p| {
-                let w = new_body[p].map_or(0.0, |b| next.omega[b]);
-                links.watch.pieces[p].inertia_kg_m2 * (w - spin[p])
-            })
-            .collect();
-        let scale: f64 = gain.iter().map(|g| g[0].abs() + g[1].abs()).sum::<f64>()
-            + spin_gain.iter().map(|x| x.abs()).sum::<f64>() / links.height();
-        let breaks = links.impulse_breaks(&next, &at, &gain, &spin_gain, scale);
+        let Landed {
+            next, accumulates, ..
+        } = way;
         let new_path = links.path(&next, now)?;
-        if let (Some(cut), false) = (breaks, accumulates) {
-            // The landing's impulses would break a joint, so the impact is not the one the
-            // model has: the run stops at the instant before it (where a hand-off's time
-            // stepping resolves it), not after an impact it does not believe.
-            self.chain_stops(links, (&next, &new_path, 0.0), cut, Some((path, tau)));
-            return Ok(Next::End);
-        }
-        let j = o.joint;
+        let o = pose.open[c];
+        let rel = |omega: &[f64], c: usize| omega[c] - if c > 0 { omega[c - 1] } else { 0.0 };
+        let before = rel(&pose.omega, c);
+        let nb = links.blocks();
         let blocks = self.chain_outputs(j, nb);
         for &b in &blocks {
             self.rec.rocking_impact(b);
@@ -1514,6 +1575,25 @@ impl Engine<'_> {
                 format!("{} lands seated", links.joints[j].name)
             },
         );
+        match (pose.slide, next.slide) {
+            (Some(sl), None) => {
+                let what = format!(
+                    "the landing stops the slip on {} under the chain, having slid {:.6e} m",
+                    links.joints[sl.joint].name, sl.u
+                );
+                self.slide_event(links, sl.joint, EventKind::Stick, what);
+            }
+            (None, Some(sl)) => {
+                let what = format!(
+                    "{} slips under the chain through the landing, towards {} at {:.6e} m/s",
+                    links.joints[sl.joint].name,
+                    towards(sl.sigma),
+                    sl.v
+                );
+                self.slide_event(links, sl.joint, EventKind::Slip, what);
+            }
+            _ => {}
+        }
         let energy_after: f64 = links
             .energies(&new_path, 0.0)
             .iter()
@@ -1524,13 +1604,131 @@ impl Engine<'_> {
             // Every landing of the series kept its impulses in the joint's cone and contact;
             // the seat they end in is their limit, not one impulse.
             self.rec.zeno += 1;
-            return self.settle(links, next, now);
         }
         self.settle(links, next, now)
     }
 }
 
+/// One way a chain's landing can go (`Links::landed`).
+struct Landed {
+    /// The chain after the impact.
+    next: Pose,
+    /// The landing joint's landings accumulate: it lands seated, its impulses not checked.
+    accumulates: bool,
+    /// The first condition the impulses break, if one does.
+    breaks: Option<Cut>,
+}
+
 impl Links<'_> {
+    /// The joints that can start to slip under `pose`'s chain: each held joint below the
+    /// lowest open one, and that joint where its pivot is a corner of the block on it.
+    fn slip_joints(&self, pose: &Pose) -> impl Iterator<Item = usize> {
+        let lowest = pose.open[0];
+        let pivot_slips = self.joints[lowest.joint].upper_corner[usize::from(lowest.s > 0.0)];
+        (0..lowest.joint).chain(pivot_slips.then_some(lowest.joint))
+    }
+
+    /// Open joint c of `pose` lands at `at` (the blocks' velocities and spins before), the
+    /// joints under the chain held (`base` none) or joint `base.0` slipping at its friction's
+    /// limit against the sign `base.1`: the chain after (on the other corner where the part
+    /// above turns on onto it, else seated; rates times the restitution factor `f` on the
+    /// other corner), and what its impulses break. A slip that would not go the way it is
+    /// assumed to breaks `Cut::Stop`. None where the momentum balance has no solution.
+    fn landed(
+        &self,
+        pose: &Pose,
+        c: usize,
+        base: Option<(usize, f64)>,
+        (at, velocity, spin): (&Instant, &[[f64; 2]], &[f64]),
+        (zeno, f): (f64, f64),
+    ) -> Option<Landed> {
+        let nb = self.blocks();
+        let rel = |omega: &[f64], c: usize| omega[c] - if c > 0 { omega[c - 1] } else { 0.0 };
+        let o = pose.open[c];
+        // The other corner, seated at theta = 0 exactly.
+        let mut flipped = pose.clone();
+        flipped.open[c].s = -o.s;
+        flipped.phi[c] = if c > 0 { pose.phi[c - 1] } else { 0.0 };
+        let on_corner = self
+            .momentum_balance(&flipped.open, base, at, velocity, spin)
+            .filter(|(rates, ..)| -o.s * rel(rates, c) > 0.0);
+        // The landings of a joint accumulate: what the sum leaves out, the rest of the series
+        // (its duration, which is of the order of the rate over the joint's angular
+        // acceleration, under a microsecond at this size, is not added), is counted as lost.
+        let accumulates = on_corner
+            .as_ref()
+            .is_some_and(|(rates, ..)| -o.s * rel(rates, c) <= zeno);
+        let (mut next, rates, w, after) = match on_corner.filter(|_| !accumulates) {
+            Some((rates, w, after)) => {
+                let rates = rates.iter().map(|w| w * f).collect();
+                let after = after.iter().map(|v| v.map(|x| x * f)).collect();
+                (flipped, rates, w * f, after)
+            }
+            None => {
+                let mut seated = pose.clone();
+                seated.open.remove(c);
+                seated.phi.remove(c);
+                seated.omega.remove(c);
+                let (rates, w, after) =
+                    self.momentum_balance(&seated.open, base, at, velocity, spin)?;
+                (seated, rates, w, after)
+            }
+        };
+        next.omega = rates;
+        // A joint slips under the chain after the impact only where one can (its lowest pivot
+        // the landing's new corner, where the joint that lands is the lowest).
+        if let Some((joint, _)) = base {
+            if next.open.is_empty() || !self.slip_joints(&next).any(|k| k == joint) {
+                return None;
+            }
+        }
+        // The joints under the chain after the impact: a slip on, or begun, or stopped (the
+        // blocks keeping what it slid).
+        next.slide = base.map(|(joint, sigma)| match pose.slide {
+            Some(sl) if sl.joint == joint => Slide { v: w, ..sl },
+            _ => Slide {
+                joint,
+                sigma,
+                u: 0.0,
+                v: w,
+            },
+        });
+        if let (Some(sl), None) = (pose.slide, base) {
+            next.moved.resize(nb, 0.0);
+            next.moved[sl.joint..].iter_mut().for_each(|d| *d += sl.u);
+        }
+        // The impulses: each joint passes up what the blocks above it gain.
+        let gain: Vec<[f64; 2]> = (0..nb)
+            .map(|p| {
+                let m = self.watch.pieces[p].mass_kg;
+                [
+                    m * (after[p][0] - velocity[p][0]),
+                    m * (after[p][1] - velocity[p][1]),
+                ]
+            })
+            .collect();
+        let new_body = self.bodies(&next.open);
+        let spin_gain: Vec<f64> = (0..nb)
+            .map(|p| {
+                let w = new_body[p].map_or(0.0, |b| next.omega[b]);
+                self.watch.pieces[p].inertia_kg_m2 * (w - spin[p])
+            })
+            .collect();
+        let scale: f64 = gain.iter().map(|g| g[0].abs() + g[1].abs()).sum::<f64>()
+            + spin_gain.iter().map(|x| x.abs()).sum::<f64>() / self.height();
+        let goes = base.is_none_or(|(_, sigma)| sigma * w > 0.0);
+        let breaks = if goes {
+            self.impulse_breaks(&next, at, &gain, &spin_gain, scale)
+        } else {
+            Some(Cut::Stop)
+        };
+        Some(Landed {
+            next,
+            accumulates,
+            breaks,
+        })
+    }
+
     /// The ways a joint under `pose`'s chain can start to slip, each the chain with that slip
     /// whose every condition holds just after now: a held joint below the lowest open one, or
     /// that joint's pivot where it is a corner of the block on it, either way.
@@ -1541,11 +1739,8 @@ impl Links<'_> {
         sc: &Scales,
         ts: f64,
     ) -> Result<Vec<Pose>, SimulationError> {
-        let lowest = pose.open[0];
-        let pivot_slips = self.joints[lowest.joint].upper_corner[usize::from(lowest.s > 0.0)];
-        let joints = (0..lowest.joint).chain(pivot_slips.then_some(lowest.joint));
         let mut ways = Vec::new();
-        for joint in joints {
+        for joint in self.slip_joints(pose) {
             for sigma in [-1.0, 1.0] {
                 let way = Pose {
                     slide: Some(Slide {
@@ -1601,7 +1796,12 @@ impl Links<'_> {
             let (n, t) = (jx * sin + jy * cos, jx * cos - jy * sin);
             let mu = joint.friction;
             let cone = [mu * n - t, mu * n + t];
-            if let Some(i) = cone.iter().position(|&x| x < -tol) {
+            // A joint that slips passes its friction's limit by its law; it must press.
+            let slipping = pose.slide.is_some_and(|sl| sl.joint == j);
+            if slipping && n < -tol {
+                return Some(Cut::Lift);
+            }
+            if let Some(i) = cone.iter().position(|&x| x < -tol).filter(|_| !slipping) {
                 return Some(match open {
                     Some(c) => Cut::Pivot(c, i),
                     None => Cut::Closed(j, i),

@@ -260,6 +260,74 @@ fn a_chain_keeps_its_energy_and_no_moment_at_its_pivots() {
     }
 }
 
+/// A landing while the joint under the chain slips: C lands on B's other corner as B turns on
+/// A, and A slides on the ground, each way. The rates and A's velocity after keep the angular
+/// momentum of the part above each open joint about its pivot, and the ground joint passes the
+/// limit of its friction against the slip (what the three blocks gain), to 1e-12; A moves with
+/// the slip alone.
+#[test]
+fn a_landing_on_a_slipping_joint_keeps_momenta_and_the_friction_limit() {
+    let column = three_blocks();
+    let links = Links::of(&column.watch, 0.0, Vec::new()).unwrap();
+    let pieces = &column.watch.pieces;
+    for sigma in [-1.0, 1.0] {
+        let pose = Pose {
+            open: vec![Open { joint: 1, s: 1.0 }, Open { joint: 2, s: -1.0 }],
+            phi: vec![0.01, 0.01],
+            omega: vec![0.3, 0.9],
+            slide: Some(Slide {
+                joint: 0,
+                sigma,
+                u: 0.002,
+                v: 0.2 * sigma,
+            }),
+            moved: Vec::new(),
+        };
+        let path = links.path(&pose, &still()).unwrap();
+        let at = Instant::of(&pose, &path, 0.0);
+        let before: Vec<[f64; 2]> = (path.centroid.iter())
+            .map(|g| g.map(|x| derivative(&x)[0]))
+            .collect();
+        let spin = [0.0, 0.3, 0.9];
+        let mut flipped = pose.open.clone();
+        flipped[1].s = 1.0;
+        let (rates, w, after) = links
+            .momentum_balance(&flipped, Some((0, sigma)), &at, &before, &spin)
+            .unwrap();
+        assert_eq!(after[0], [w, 0.0]);
+        let spin_after = [0.0, rates[0], rates[1]];
+        let cross = |r: [f64; 2], v: [f64; 2]| r[1] * v[0] - r[0] * v[1];
+        for (b, o) in flipped.iter().enumerate() {
+            let pivot = at.point(&links, o.joint, o.s);
+            let momentum = |v: &[[f64; 2]], spin: &[f64]| -> f64 {
+                (o.joint..3)
+                    .map(|p| {
+                        let d = [at.centroid[p][0] - pivot[0], at.centroid[p][1] - pivot[1]];
+                        pieces[p].mass_kg * cross(d, v[p]) + pieces[p].inertia_kg_m2 * spin[p]
+                    })
+                    .sum()
+            };
+            let (kept, had) = (momentum(&after, &spin_after), momentum(&before, &spin));
+            assert!(close(kept, had, 1.0), "{sigma} {b}: {kept} {had}");
+        }
+        let gained = (0..3).fold([0.0; 2], |g, p| {
+            let m = pieces[p].mass_kg;
+            [
+                g[0] + m * (after[p][0] - before[p][0]),
+                g[1] + m * (after[p][1] - before[p][1]),
+            ]
+        });
+        let mu = links.joints[0].friction;
+        let limit = gained[0] + mu * sigma * gained[1];
+        assert!(
+            limit.abs() < 1e-12 * (gained[0].abs() + gained[1].abs()),
+            "{sigma}: {gained:?}"
+        );
+        // The impulse is not nothing: the check can fail.
+        assert!(gained[1].abs() > 1.0, "{gained:?}");
+    }
+}
+
 /// A landing of the upper drum on the lower one's other corner while the lower rocks on the
 /// ground: the rates after keep each part's angular momentum about its pivot. Checked against
 /// Newton-Euler for each drum with an impulse at the ground pivot and one at the new corner,
@@ -286,8 +354,8 @@ fn landings_keep_the_momentum_newton_euler_impulses_give() {
     let spin = [0.2, -0.5];
     let mut flipped = pose.open.clone();
     flipped[1].s = -1.0;
-    let (rates, _) = links
-        .momentum_balance(&flipped, &at, &velocity, &spin)
+    let (rates, _, _) = links
+        .momentum_balance(&flipped, None, &at, &velocity, &spin)
         .unwrap();
     // Unknowns: v1 (2), w1, v2 (2), w2, P (2, ground on the lower), Q (2, lower on upper).
     let p = &column.watch.pieces;
@@ -359,14 +427,20 @@ fn landings_keep_the_momentum_newton_euler_impulses_give() {
         .iter()
         .map(|g| g.map(|x| derivative(&x)[0]))
         .collect();
-    let (rates, _) = links
-        .momentum_balance(&[Open { joint: 0, s: -1.0 }], &at, &velocity, &[-0.4, -0.4])
+    let (rates, _, _) = links
+        .momentum_balance(
+            &[Open { joint: 0, s: -1.0 }],
+            None,
+            &at,
+            &velocity,
+            &[-0.4, -0.4],
+        )
         .unwrap();
     let r = column.body.housner_restitution();
     assert!(close(rates[0], -0.4 * r, 1e-2), "{} {}", rates[0], -0.4 * r);
     // Seated by the landing: no body left, every block at rest.
-    let (rates, after) = links
-        .momentum_balance(&[], &at, &velocity, &[-0.4, -0.4])
+    let (rates, _, after) = links
+        .momentum_balance(&[], None, &at, &velocity, &[-0.4, -0.4])
         .unwrap();
     assert!(rates.is_empty() && after.iter().all(|v| *v == [0.0; 2]));
     let seated = Pose {

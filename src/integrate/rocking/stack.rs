@@ -736,6 +736,40 @@ impl Engine<'_> {
         true
     }
 
+    /// Body i, rocking on corner `c` with its state set (its u' the stack's), takes over from a
+    /// chain of open joints that ends on `stack` sliding under it, slid by `slid` (m) since it
+    /// began: its way on the stack (its pivot stuck on it, or slipping either way) that holds
+    /// just after now goes on; false where none or several do, the body left stuck on the
+    /// stack as the chain left it.
+    pub(super) fn stack_carries(
+        &mut self,
+        i: usize,
+        (stack, slid): (Stack, f64),
+        c: Corner,
+        now: &Inputs,
+    ) -> bool {
+        let v_s = self.tracks[i].state.v;
+        let base = Displaced {
+            sliding: Some(Stack {
+                apart: Some([slid, v_s]),
+                ..stack
+            }),
+            ..self.tracks[i].displaced.clone()
+        };
+        let ways = self.stack_ways(i, &base, c, None, now);
+        if let [way] = &ways[..] {
+            self.stack_switches(i, way.clone(), now);
+            return true;
+        }
+        let u = self.tracks[i].state.u;
+        self.tracks[i].displaced.sliding = Some(Stack {
+            apart: None,
+            u_start_m: u - slid,
+            ..stack
+        });
+        false
+    }
+
     /// The stack under body i stops sliding: held again where it is, the body decided anew on
     /// it (a slip velocity of round-off left, with its energy, goes with the impact losses).
     pub(super) fn stack_stops(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
