@@ -634,15 +634,15 @@ impl Engine<'_> {
         let Some(stack) = watch.stack_on(k, tr.state.u) else {
             return false;
         };
-        // The stack at rest as it begins.
-        let stack = Stack {
-            apart: Some([0.0, 0.0]),
-            ..stack
-        };
-        let base = Displaced {
-            sliding: Some(stack),
+        // Each stack at rest as it begins, sliding alone on the column's held blocks.
+        let alone = |stack: Stack| Displaced {
+            sliding: Some(Stack {
+                apart: Some([0.0, 0.0]),
+                ..stack
+            }),
             ..tr.displaced.clone()
         };
+        let base = alone(stack);
         let mut ways = self.stack_ways(i, &base, c, slipping, now);
         // Or a joint inside it slipping at the same instant: the blocks above that joint
         // sliding on the rest of the stack.
@@ -652,27 +652,17 @@ impl Engine<'_> {
                 continue;
             };
             let split = Displaced {
-                sliding: Some(Stack {
-                    apart: Some([0.0, 0.0]),
-                    ..upper
-                }),
                 beneath: vec![Stack {
                     mass_kg: stack.mass_kg - upper.mass_kg,
+                    apart: Some([0.0, 0.0]),
                     ..stack
                 }],
-                ..tr.displaced.clone()
+                ..alone(upper)
             };
             ways.extend(self.stack_ways(i, &split, c, slipping, now));
             // Or that joint alone slipping: the joint whose condition fell, no longer passing
             // the inertia of the blocks above it, holding after all.
-            let alone = Displaced {
-                sliding: Some(Stack {
-                    apart: Some([0.0, 0.0]),
-                    ..upper
-                }),
-                ..tr.displaced.clone()
-            };
-            ways.extend(self.stack_ways(i, &alone, c, slipping, now));
+            ways.extend(self.stack_ways(i, &alone(upper), c, slipping, now));
         }
         for low in watch.slips_under(0..stack.first) {
             let Some(all) = watch.stack_on(low, tr.state.u) else {
@@ -689,14 +679,7 @@ impl Engine<'_> {
             };
             ways.extend(self.stack_ways(i, &with, c, slipping, now));
             // Or that joint alone slipping, the one whose condition fell holding after all.
-            let instead = Displaced {
-                sliding: Some(Stack {
-                    apart: Some([0.0, 0.0]),
-                    ..all
-                }),
-                ..tr.displaced.clone()
-            };
-            ways.extend(self.stack_ways(i, &instead, c, slipping, now));
+            ways.extend(self.stack_ways(i, &alone(all), c, slipping, now));
         }
         let [way] = &ways[..] else {
             return false;
