@@ -563,8 +563,9 @@ fn moved_apart(model: &Model, motion: &Motion, (exact, at_s): (&Summary, f64), d
 /// walls/rocking/stepped-column.ron under a 1.1 g, 2 Hz sine rocks on the middle block's
 /// joint and its top's, and the plinth under the chain slides on the ground from 0.083 s to
 /// 0.215 s (6.7 mm). Until 2026-12-07 both runs stopped where the slip began. Each now stops
-/// later, where the chain meets what it does not follow (the top's pivot slipping; a landing's
-/// impulse opening the plinth's joint), its energy balanced to round-off, and Moreau-Jean
+/// later, where the chain meets what it does not follow (the top's pivot slipping; the middle
+/// block's pivot slipping just after a landing whose impulse tips the plinth), its energy
+/// balanced to round-off, and Moreau-Jean
 /// converges to it: every block's displacement just before the exact run stops.
 #[test]
 fn a_chain_on_a_slipping_joint_is_what_time_stepping_converges_to() {
@@ -793,6 +794,100 @@ fn a_chain_landing_on_its_sliding_plinth_is_what_time_stepping_converges_to() {
         [1e-4, 2.5e-5, 1e-5],
     );
     assert!(last.0 < 1e-5 && last.1 < 5e-5, "{last:?}");
+}
+
+/// walls/rocking/column-on-plinth.ron under a 1.1 g, 2 Hz sine: the column rocks on the
+/// plinth sliding under it, and at 1.433 s and 2.215 s lands on it with an impulse that tips
+/// the plinth on a corner, the slip going on through the impact (until 2026-12-07 the run
+/// stopped at the first, the impact not followed); each time the plinth lands seated a few
+/// milliseconds later. The run goes to its end with nothing falling, the energy balancing to
+/// round-off, and Moreau-Jean converges to it: both blocks' displacements at 1.6 s, after the
+/// first landing.
+#[test]
+fn a_landing_that_tips_the_sliding_plinth_is_what_time_stepping_converges_to() {
+    let model = Model::from_file("walls/rocking/column-on-plinth.ron").unwrap();
+    let motion = sine(1.1 * 9.81, 2.0, 3.0);
+    let settings = RunSettings {
+        log_events: true,
+        ..RunSettings::default()
+    };
+    let r = pirqa::run(&model, &motion, &settings).unwrap();
+    let s = &r.summary;
+    assert!(s.stopped_at_s.is_none() && s.collapse.is_none(), "{s:?}");
+    let at = |what: &str| {
+        (r.events.iter())
+            .filter(|e| e.mode.as_deref().is_some_and(|m| m.starts_with(what)))
+            .map(|e| e.time_s)
+            .collect::<Vec<_>>()
+    };
+    let opened = at("opens through the landing: Plinth/ground");
+    let [first, second] = opened[..] else {
+        panic!("{opened:?}");
+    };
+    assert!((first - 1.43341).abs() < 1e-5 && (second - 2.21484).abs() < 1e-5);
+    let landed = at("Column/Plinth lands on its");
+    assert!(
+        landed.contains(&first) && landed.contains(&second),
+        "{landed:?}"
+    );
+    let seated = at("Plinth/ground lands seated");
+    assert!(seated.len() == 2 && seated[0] - first < 3e-3 && seated[1] - second < 4e-3);
+    let e = &s.energy;
+    let scale = e.input_j.abs() + e.friction_j;
+    assert!(e.residual_j.abs() <= 1e-13 * scale, "{e:?}");
+    let upto = RunSettings {
+        duration_s: Some(1.6),
+        ..RunSettings::default()
+    };
+    let exact = pirqa::run(&model, &motion, &upto).unwrap().summary;
+    let mut last = f64::INFINITY;
+    for dt_s in [1e-4, 2.5e-5, 1e-5] {
+        let moved = moved_apart(&model, &motion, (&exact, 1.6), dt_s);
+        assert!(moved < last, "dt {dt_s}: {moved} m");
+        last = moved;
+    }
+    assert!(last < 5e-6, "{last} m");
+}
+
+/// walls/rocking/stepped-column.ron under El Centro at 1.0 g: at 2.144 s the top lands on the
+/// plinth and block sliding under it, the impact stopping their slip, and at once the ground
+/// joint would slip again where the block on the plinth would tip; the plinth slides alone
+/// under the chain, the block's joint on it opening as the slip begins (until 2026-12-07 the
+/// run stopped there, no way of the sliding stack holding). The top overturns at 3.061 s, the
+/// energy balancing to round-off, and Moreau-Jean converges to it: every block's displacement
+/// at 2.5 s, and the instant the top falls within 1e-4 s at the finest step.
+#[test]
+fn a_slip_that_opens_the_joint_above_it_is_what_time_stepping_converges_to() {
+    let model = Model::from_file("walls/rocking/stepped-column.ron").unwrap();
+    let motion = crate::engine::el_centro_first_s(4, 9.81);
+    let (r, fell_s) = overturns(&model, &motion, "D2");
+    let at = |what: &str| {
+        (r.events.iter())
+            .filter(|e| e.mode.as_deref().is_some_and(|m| m.starts_with(what)))
+            .map(|e| e.time_s)
+            .collect::<Vec<_>>()
+    };
+    let slips = at("D0 (M = 1560 kg) slides under the chain on D0/ground towards +x");
+    assert!(
+        slips.len() == 1 && (slips[0] - 2.14419).abs() < 1e-5,
+        "{slips:?}"
+    );
+    assert_eq!(at("opens as the slip begins: D1/D0"), slips);
+    assert!((fell_s - 3.06069).abs() < 1e-5, "{fell_s}");
+    let settings = RunSettings {
+        duration_s: Some(2.5),
+        ..RunSettings::default()
+    };
+    let exact = pirqa::run(&model, &motion, &settings).unwrap().summary;
+    let mut last = f64::INFINITY;
+    for dt_s in [1e-4, 2.5e-5, 1e-5] {
+        let moved = moved_apart(&model, &motion, (&exact, 2.5), dt_s);
+        assert!(moved < last, "dt {dt_s}: {moved} m");
+        last = moved;
+    }
+    assert!(last < 1e-6, "{last} m");
+    let (_, late) = stepped_apart(&model, &motion, (&exact, 2.5), fell_s, 1e-5);
+    assert!(late < 1e-4, "{late} s");
 }
 
 /// A squat block sliding on another (joint friction 0.2) that stands on the ground (0.3), both

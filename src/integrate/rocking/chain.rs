@@ -8,15 +8,17 @@
 //! built order by order like a single body's: each order's angular accelerations solve one small
 //! linear system whose matrix is the mass matrix of the instant. Landings keep the angular
 //! momentum of the part above each open joint about its pivot after the landing (the new
-//! corner for the joint that lands: Housner's law for a single body, Psycharis's for two). The
-//! lowest pivot, or a held joint below it, may slip: everything above the joint then translates
-//! on it, one more unknown of each order and one more equation, the joint's friction at its
-//! limit ([`Slide`]). Where another pivot would slip or one lift off, a closed joint above the
-//! lowest open one slip, or an open joint land while a joint slips, the exact model ends the run
-//! there and says so, as a column's held joints do (docs/rocking-walls.md).
+//! corner for the joint that lands: Housner's law for a single body, Psycharis's for two), a
+//! closed joint opening through the impact where its impulse must. The lowest pivot, or a held
+//! joint below it, may slip: everything above the joint then translates on it, one more unknown
+//! of each order and one more equation, the joint's friction at its limit ([`Slide`]). Where
+//! another pivot would slip or one lift off, or a closed joint above the lowest open one slip,
+//! the exact model ends the run there and says so, as a column's held joints do
+//! (docs/rocking-walls.md).
 //!
-//! The engine hands the column to the chain when a held joint opens under a rocking body and
-//! takes it back when the chain is down to the body's own joint again, or seated.
+//! The engine hands the column to the chain when a held joint opens under a rocking body, or a
+//! landing's impulse would break one, and takes it back when the chain is down to the body's own
+//! joint again (on a stack sliding under it where the body has a way on it), or seated.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -775,6 +777,8 @@ impl<'w> Links<'w> {
 struct Instant {
     open: Vec<Open>,
     moved: Vec<f64>,
+    /// The joint that slips, and how far the blocks above it have slid (m).
+    slid: Option<(usize, f64)>,
     phi: Vec<f64>,
     pivot: Vec<[f64; 2]>,
     centroid: Vec<[f64; 2]>,
@@ -785,6 +789,7 @@ impl Instant {
         Instant {
             open: pose.open.clone(),
             moved: pose.moved.clone(),
+            slid: pose.slide.map(|sl| (sl.joint, sl.u)),
             phi: path.phi.iter().map(|c| eval(c, tau)).collect(),
             pivot: path
                 .pivot
@@ -800,11 +805,16 @@ impl Instant {
     }
 
     /// Where the end of joint j on side s is now: a point of the body below the joint (or of
-    /// the blocks held to the ground).
+    /// the blocks held to the ground, with the slip under them).
     fn point(&self, links: &Links, j: usize, s: f64) -> [f64; 2] {
         let e = links.end_in(&self.moved, j, s);
         let Some(c) = self.open.iter().rposition(|o| o.joint < j) else {
-            return e;
+            // The end moves with the slip where the block on the slipping joint carries it.
+            let carried = |joint: usize| {
+                joint < j || (joint == j && links.joints[j].upper_corner[usize::from(s > 0.0)])
+            };
+            let slip = (self.slid.filter(|&(joint, _)| carried(joint))).map_or(0.0, |(_, u)| u);
+            return [e[0] + slip, e[1]];
         };
         let o = self.open[c];
         let r = links.end_in(&self.moved, o.joint, o.s);
@@ -871,7 +881,7 @@ fn how(cut: Cut, n_positive: bool) -> &'static str {
     }
 }
 
-impl Engine<'_> {
+impl<'a> Engine<'a> {
     /// Whether condition k of the watch, falling under body i, opens a joint the chain can
     /// follow: the body rocks on a sticking pivot, alone in the scene with nothing standing
     /// apart from it, on exact equations.
@@ -923,7 +933,7 @@ impl Engine<'_> {
                 moved: Vec::new(),
             }
         };
-        self.opened(&links, upper);
+        self.opened(&links, upper, "opens");
         let (_, now) = self.inputs_at(self.t);
         match self.settle(&links, pose, &now)? {
             Next::Chain(pose) => self.run_chain(&links, pose),
@@ -932,8 +942,139 @@ impl Engine<'_> {
         }
     }
 
-    /// Logs the opening of joint j: the part above it lifts.
-    fn opened(&mut self, links: &Links, j: usize) {
+    /// Body 0 lands where the impulses of its landing would break a held joint of its column
+    /// (the column held, or a stack sliding under the body on its corner): the landing is then
+    /// the chain's, with the joints under the body holding, slipping or opening through the
+    /// impact as the one way that holds says ([`Engine::chain_lands`]). False where the chain
+    /// cannot take the column (the caller stops the run there).
+    pub(super) fn lands_as_chain(&mut self, now: &Inputs) -> Result<bool, SimulationError> {
+        let Some((links, pose)) = self.as_chain() else {
+            return Ok(false);
+        };
+        let path = links.path(&pose, now)?;
+        match self.chain_lands(&links, pose, &path, 0.0, 0, now)? {
+            Next::Chain(pose) => self.run_chain(&links, pose)?,
+            Next::Body(state, mode, moved, stack) => self.resume((state, mode), moved, stack)?,
+            Next::End => {}
+        }
+        Ok(true)
+    }
+
+    /// Column 0 as a chain of one open joint, its body's, rocking on a stuck pivot on a held
+    /// base or on a stack that slides under it (a slip under the chain); none where the chain
+    /// cannot take it (several bodies, neighbours, stacks on stacks, a slipping pivot, the
+    /// linearised equations, no column).
+    fn as_chain(&self) -> Option<(Links<'a>, Pose)> {
+        let (tr, scene) = (&self.tracks[0], self.scene);
+        let (Some(watch), Mode::Rock(pivot)) = (scene.watches.first(), tr.mode) else {
+            return None;
+        };
+        let follows = self.tracks.len() == 1
+            && self.clearance.is_empty()
+            && tr.displaced.beneath.is_empty()
+            && self.scene.equations == super::Equations::Exact;
+        let st = tr.state;
+        let (slide, slid) = match tr.displaced.sliding {
+            _ if !follows => return None,
+            None => (None, 0.0),
+            Some(stack @ Stack { apart: None, .. }) => {
+                let slid = stack.moved_m(st.u);
+                let sigma = stack.slip.sign();
+                let (joint, v) = (stack.first, st.v);
+                (
+                    Some(Slide {
+                        joint,
+                        sigma,
+                        u: slid,
+                        v,
+                    }),
+                    slid,
+                )
+            }
+            Some(_) => return None,
+        };
+        let links = Links::of(watch, st.u - slid, tr.displaced.by_m.clone())?;
+        let pose = Pose {
+            open: vec![Open {
+                joint: links.body_joint,
+                s: pivot.sign(),
+            }],
+            phi: vec![st.theta],
+            omega: vec![st.omega],
+            slide,
+            moved: Vec::new(),
+        };
+        Some((links, pose))
+    }
+
+    /// A slip begins under the chain, which goes from `pose` to `way` (condition i of joint j
+    /// having fallen): its event, and that of a joint opening with it.
+    fn slip_begins(&mut self, links: &Links, pose: &Pose, way: &Pose, (j, i): (usize, usize)) {
+        let sl = way.slide.expect("a slip");
+        let lowest = way.open[0].joint;
+        let pieces = &links.watch.pieces[sl.joint..lowest];
+        let what = if pieces.is_empty() {
+            "the chain's lowest pivot slips".to_string()
+        } else {
+            let names: Vec<&str> = (sl.joint..lowest)
+                .map(|p| links.watch.outputs[p].name.as_str())
+                .collect();
+            let mass: f64 = pieces.iter().map(|q| q.mass_kg).sum();
+            let verb = if names.len() == 1 { "slides" } else { "slide" };
+            format!(
+                "{} (M = {mass:.0} kg) {verb} under the chain",
+                names.join("+")
+            )
+        };
+        let why = if sl.joint == j && i == usize::from(sl.sigma > 0.0) {
+            ""
+        } else {
+            ", the joint whose condition fell holding"
+        };
+        let what = format!(
+            "{what} on {} towards {} (mu = {}){why}",
+            links.joints[sl.joint].name,
+            towards(sl.sigma),
+            links.joints[sl.joint].friction,
+        );
+        self.slide_event(links, sl.joint, EventKind::Slip, what);
+        for new in way.open.iter().filter(|x| !pose.open.contains(x)) {
+            self.opened(links, new.joint, "opens as the slip begins");
+        }
+    }
+
+    /// Condition k of the watch (a held joint below body 0 that would slip) falls where the
+    /// sliding stack above it has no way: where the chain, the body its one open joint, has
+    /// exactly one way of a joint under it slipping (a joint opening with it, or not), the
+    /// column runs as that chain from here. False where it has none or several (the caller
+    /// stops the run there).
+    pub(super) fn slips_as_chain(
+        &mut self,
+        k: usize,
+        now: &Inputs,
+    ) -> Result<bool, SimulationError> {
+        let Some((links, pose)) = self.as_chain() else {
+            return Ok(false);
+        };
+        let body = &self.scene.bodies[0];
+        let (sc, ts) = (Scales::of(body), body.time_scale_s());
+        let ways = links.slide_ways(&pose, now, &sc, ts)?;
+        let [way] = &ways[..] else {
+            return Ok(false);
+        };
+        let (_, _, upper) = links.watch.describe(k);
+        self.rec.stats.mode_decisions += 1;
+        self.slip_begins(&links, &pose, way, (upper, k % 4));
+        match self.settle(&links, way.clone(), now)? {
+            Next::Chain(pose) => self.run_chain(&links, pose)?,
+            Next::Body(state, mode, moved, stack) => self.resume((state, mode), moved, stack)?,
+            Next::End => {}
+        }
+        Ok(true)
+    }
+
+    /// Logs the opening of joint j: the part above it lifts (`how`: "opens", or how else).
+    fn opened(&mut self, links: &Links, j: usize, how: &str) {
         let blocks = self.chain_outputs(j, links.blocks());
         for &b in &blocks {
             self.rec.uplift(b, self.t);
@@ -943,7 +1084,7 @@ impl Engine<'_> {
             EventKind::Uplift,
             &blocks,
             None,
-            format!("opens: {}", links.joints[j].name),
+            format!("{how}: {}", links.joints[j].name),
         );
     }
 
@@ -971,7 +1112,16 @@ impl Engine<'_> {
         let body = &self.scene.bodies[0];
         let (sc, ts) = (Scales::of(body), body.time_scale_s());
         for _ in 0..=2 * links.blocks() {
-            if let Some(back) = self.handed_back(links, &pose) {
+            let back = self.handed_back(links, &pose);
+            // Where the body on the stack would have no way, the chain goes on with it.
+            let stranded = match &back {
+                Some(Some(Next::Body(state, mode, moved, Some(stack)))) => {
+                    let c = mode.pivot().expect("a rocking body");
+                    self.stack_would_carry(0, (state, c), moved, *stack, now) == 0
+                }
+                _ => false,
+            };
+            if let Some(back) = back.filter(|_| !stranded) {
                 if let Some(next) = back {
                     return Ok(next);
                 }
@@ -1012,34 +1162,8 @@ impl Engine<'_> {
                     self.chain_ends_at(links, (&path, 0.0), j, how, None);
                     return Ok(Next::End);
                 };
+                self.slip_begins(links, &pose, way, (j, i));
                 pose = way.clone();
-                let sl = pose.slide.expect("a slip");
-                let pieces = &links.watch.pieces[sl.joint..pose.open[0].joint];
-                let what = if pieces.is_empty() {
-                    "the chain's lowest pivot slips".to_string()
-                } else {
-                    let names: Vec<&str> = (sl.joint..pose.open[0].joint)
-                        .map(|p| links.watch.outputs[p].name.as_str())
-                        .collect();
-                    let mass: f64 = pieces.iter().map(|q| q.mass_kg).sum();
-                    let verb = if names.len() == 1 { "slides" } else { "slide" };
-                    format!(
-                        "{} (M = {mass:.0} kg) {verb} under the chain",
-                        names.join("+")
-                    )
-                };
-                let why = if sl.joint == j && i == usize::from(sl.sigma > 0.0) {
-                    ""
-                } else {
-                    ", the joint whose condition fell holding"
-                };
-                let what = format!(
-                    "{what} on {} towards {} (mu = {}){why}",
-                    links.joints[sl.joint].name,
-                    towards(sl.sigma),
-                    links.joints[sl.joint].friction,
-                );
-                self.slide_event(links, sl.joint, EventKind::Slip, what);
                 continue;
             }
             match cond.cut {
@@ -1057,7 +1181,7 @@ impl Engine<'_> {
                     pose.open.insert(c, Open { joint: j, s });
                     pose.phi.insert(c, phi);
                     pose.omega.insert(c, omega);
-                    self.opened(links, j);
+                    self.opened(links, j, "opens");
                 }
                 cut => {
                     self.chain_stops(links, (&pose, &path, 0.0), cut, None);
@@ -1124,11 +1248,7 @@ impl Engine<'_> {
         stack: Option<(Stack, f64)>,
     ) -> Result<(), SimulationError> {
         let tr = &mut self.tracks[0];
-        if moved.iter().any(|&d| d != 0.0) {
-            let by = &mut tr.displaced.by_m;
-            by.resize(by.len().max(moved.len()), 0.0);
-            by.iter_mut().zip(&moved).for_each(|(b, d)| *b += d);
-        }
+        tr.displaced.shift(&moved);
         tr.state = state;
         tr.mode = mode;
         let (_, now) = self.inputs_at(self.t);
@@ -1143,8 +1263,8 @@ impl Engine<'_> {
                 0,
                 &blocks,
                 joint,
-                "slips under the body as the chain ends, where no way of the body on the \
-                 sliding stack holds, or several do",
+                "slips under the body as the chain ends, where several ways of the body on \
+                 the sliding stack hold",
                 false,
             );
         }
@@ -1501,8 +1621,8 @@ impl Engine<'_> {
             * Scales::of(body).angle
             * body.frequency_parameter_rad_s();
         let f = body.restitution_factor;
-        let land = |base| links.landed(&pose, c, base, (&at, &velocity, &spin), (zeno, f));
-        let held = land(None).ok_or_else(|| {
+        let land = |way| links.landed(&pose, c, way, (&at, &velocity, &spin), (zeno, f));
+        let held = land((None, None)).ok_or_else(|| {
             SimulationError::Bug("a chain's landing has no momentum balance".into())
         })?;
         let j = pose.open[c].joint;
@@ -1513,11 +1633,23 @@ impl Engine<'_> {
                 .flat_map(|k| [(k, -1.0), (k, 1.0)])
                 .collect(),
         };
+        // Every closed joint may open through the impact at either end, the joints under the
+        // chain holding or slipping (a restitution factor of 1, as for slips).
+        let opens: Vec<Open> = (0..links.blocks())
+            .filter(|&k| f == 1.0 && pose.open.iter().all(|o| o.joint != k))
+            .flat_map(|joint| [-1.0, 1.0].map(|s| Open { joint, s }))
+            .collect();
+        let bases_or_held = || std::iter::once(None).chain(bases.iter().copied().map(Some));
+        let others = (bases.iter().map(|&b| (Some(b), None))).chain(
+            opens
+                .iter()
+                .flat_map(|&o| bases_or_held().map(move |b| (b, Some(o)))),
+        );
         // A landing that starts a series that accumulates is taken seated, the joints under
         // the chain held, as every landing of the series was.
-        let slips: Vec<Landed> = (bases.into_iter())
+        let slips: Vec<Landed> = others
             .filter(|_| !held.accumulates)
-            .filter_map(|base| land(Some(base)))
+            .filter_map(land)
             .filter(|way| way.breaks.is_none())
             .collect();
         let held_holds = held.breaks.is_none() || held.accumulates;
@@ -1534,8 +1666,8 @@ impl Engine<'_> {
                 return Ok(Next::End);
             }
             _ => {
-                let how = "lands where the joints under the chain could hold or slip in several \
-                           ways (beyond the chain)";
+                let how = "lands where the joints under the chain could hold, slip or open in \
+                           several ways (beyond the chain)";
                 self.chain_ends_at(links, (path, tau), j, how, Some((path, tau)));
                 return Ok(Next::End);
             }
@@ -1553,14 +1685,14 @@ impl Engine<'_> {
             self.rec.rocking_impact(b);
         }
         self.rec.impacts += 1;
-        let landed = next.open.iter().any(|x| x.joint == j);
-        let after_rel = if landed { rel(&next.omega, c) } else { 0.0 };
+        let landed = next.open.iter().position(|x| x.joint == j);
+        let after_rel = landed.map_or(0.0, |c| rel(&next.omega, c));
         self.rec.rocking_event(
             self.t,
             EventKind::RockingImpact,
             &blocks,
             Some((before, after_rel)),
-            if landed {
+            if landed.is_some() {
                 format!(
                     "{} lands on its {} corner",
                     links.joints[j].name,
@@ -1575,6 +1707,13 @@ impl Engine<'_> {
                 format!("{} lands seated", links.joints[j].name)
             },
         );
+        for new in next
+            .open
+            .iter()
+            .filter(|x| !pose.open.iter().any(|o| o.joint == x.joint))
+        {
+            self.opened(links, new.joint, "opens through the landing");
+        }
         match (pose.slide, next.slide) {
             (Some(sl), None) => {
                 let what = format!(
@@ -1630,15 +1769,17 @@ impl Links<'_> {
 
     /// Open joint c of `pose` lands at `at` (the blocks' velocities and spins before), the
     /// joints under the chain held (`base` none) or joint `base.0` slipping at its friction's
-    /// limit against the sign `base.1`: the chain after (on the other corner where the part
-    /// above turns on onto it, else seated; rates times the restitution factor `f` on the
-    /// other corner), and what its impulses break. A slip that would not go the way it is
-    /// assumed to breaks `Cut::Stop`. None where the momentum balance has no solution.
+    /// limit against the sign `base.1`, and a closed joint opening through the impact where
+    /// `opens` names it: the chain after (on the other corner where the part above turns on
+    /// onto it, else seated; rates times the restitution factor `f` on the other corner), and
+    /// what its impulses break. A slip that would not go the way it is assumed to breaks
+    /// `Cut::Stop`; a joint that would not open the way it is assumed to, `Cut::Closed` with
+    /// its condition. None where the momentum balance has no solution.
     fn landed(
         &self,
         pose: &Pose,
         c: usize,
-        base: Option<(usize, f64)>,
+        (base, opens): (Option<(usize, f64)>, Option<Open>),
         (at, velocity, spin): (&Instant, &[[f64; 2]], &[f64]),
         (zeno, f): (f64, f64),
     ) -> Option<Landed> {
@@ -1649,15 +1790,28 @@ impl Links<'_> {
         let mut flipped = pose.clone();
         flipped.open[c].s = -o.s;
         flipped.phi[c] = if c > 0 { pose.phi[c - 1] } else { 0.0 };
+        // The joint that opens turns from the rotation of the body it belonged to.
+        let opened = |mut p: Pose| {
+            if let Some(new) = opens {
+                let k = p.open.partition_point(|x| x.joint < new.joint);
+                let phi = if k > 0 { p.phi[k - 1] } else { 0.0 };
+                p.open.insert(k, new);
+                p.phi.insert(k, phi);
+                p.omega.insert(k, 0.0);
+            }
+            p
+        };
+        let flipped = opened(flipped);
+        let shift = usize::from(opens.is_some_and(|new| new.joint < o.joint));
         let on_corner = self
             .momentum_balance(&flipped.open, base, at, velocity, spin)
-            .filter(|(rates, ..)| -o.s * rel(rates, c) > 0.0);
+            .filter(|(rates, ..)| -o.s * rel(rates, c + shift) > 0.0);
         // The landings of a joint accumulate: what the sum leaves out, the rest of the series
         // (its duration, which is of the order of the rate over the joint's angular
         // acceleration, under a microsecond at this size, is not added), is counted as lost.
         let accumulates = on_corner
             .as_ref()
-            .is_some_and(|(rates, ..)| -o.s * rel(rates, c) <= zeno);
+            .is_some_and(|(rates, ..)| -o.s * rel(rates, c + shift) <= zeno);
         let (mut next, rates, w, after) = match on_corner.filter(|_| !accumulates) {
             Some((rates, w, after)) => {
                 let rates = rates.iter().map(|w| w * f).collect();
@@ -1669,12 +1823,19 @@ impl Links<'_> {
                 seated.open.remove(c);
                 seated.phi.remove(c);
                 seated.omega.remove(c);
+                let seated = opened(seated);
                 let (rates, w, after) =
                     self.momentum_balance(&seated.open, base, at, velocity, spin)?;
                 (seated, rates, w, after)
             }
         };
         next.omega = rates;
+        // A joint opened by the impulse leaves its seat: the part above it turns onto its pivot.
+        let opening = opens.and_then(|new| {
+            let k = next.open.iter().position(|x| *x == new)?;
+            (new.s * rel(&next.omega, k) <= 0.0)
+                .then_some(Cut::Closed(new.joint, 2 + usize::from(new.s > 0.0)))
+        });
         // A joint slips under the chain after the impact only where one can (its lowest pivot
         // the landing's new corner, where the joint that lands is the lowest).
         if let Some((joint, _)) = base {
@@ -1717,10 +1878,10 @@ impl Links<'_> {
         let scale: f64 = gain.iter().map(|g| g[0].abs() + g[1].abs()).sum::<f64>()
             + spin_gain.iter().map(|x| x.abs()).sum::<f64>() / self.height();
         let goes = base.is_none_or(|(_, sigma)| sigma * w > 0.0);
-        let breaks = if goes {
-            self.impulse_breaks(&next, at, &gain, &spin_gain, scale)
-        } else {
+        let breaks = if !goes {
             Some(Cut::Stop)
+        } else {
+            opening.or_else(|| self.impulse_breaks(&next, at, &gain, &spin_gain, scale))
         };
         Some(Landed {
             next,
@@ -1731,7 +1892,8 @@ impl Links<'_> {
 
     /// The ways a joint under `pose`'s chain can start to slip, each the chain with that slip
     /// whose every condition holds just after now: a held joint below the lowest open one, or
-    /// that joint's pivot where it is a corner of the block on it, either way.
+    /// that joint's pivot where it is a corner of the block on it, either way, with the chain as
+    /// it is or with one closed joint opening at either end at the same instant.
     fn slide_ways(
         &self,
         pose: &Pose,
@@ -1739,23 +1901,44 @@ impl Links<'_> {
         sc: &Scales,
         ts: f64,
     ) -> Result<Vec<Pose>, SimulationError> {
+        // A closed joint may open as the slip begins: its part turns from the rotation of the
+        // body it belonged to, at its rate.
+        let opened = |new: Open| {
+            let mut p = pose.clone();
+            let k = p.open.partition_point(|x| x.joint < new.joint);
+            let (phi, omega) = match k {
+                0 => (0.0, 0.0),
+                _ => (p.phi[k - 1], p.omega[k - 1]),
+            };
+            p.open.insert(k, new);
+            p.phi.insert(k, phi);
+            p.omega.insert(k, omega);
+            p
+        };
+        let poses = std::iter::once(pose.clone()).chain(
+            (0..self.blocks())
+                .filter(|&j| pose.open.iter().all(|o| o.joint != j))
+                .flat_map(|joint| [-1.0, 1.0].map(|s| opened(Open { joint, s }))),
+        );
         let mut ways = Vec::new();
-        for joint in self.slip_joints(pose) {
-            for sigma in [-1.0, 1.0] {
-                let way = Pose {
-                    slide: Some(Slide {
-                        joint,
-                        sigma,
-                        u: 0.0,
-                        v: 0.0,
-                    }),
-                    ..pose.clone()
-                };
-                let path = self.path(&way, now)?;
-                let holds = (self.conditions(&way, &path, sc).iter())
-                    .all(|c| sign_after(&c.series, c.scale, ts) >= 0);
-                if holds {
-                    ways.push(way);
+        for p in poses {
+            for joint in self.slip_joints(&p) {
+                for sigma in [-1.0, 1.0] {
+                    let way = Pose {
+                        slide: Some(Slide {
+                            joint,
+                            sigma,
+                            u: 0.0,
+                            v: 0.0,
+                        }),
+                        ..p.clone()
+                    };
+                    let path = self.path(&way, now)?;
+                    let holds = (self.conditions(&way, &path, sc).iter())
+                        .all(|c| sign_after(&c.series, c.scale, ts) >= 0);
+                    if holds {
+                        ways.push(way);
+                    }
                 }
             }
         }

@@ -269,7 +269,6 @@ fn a_chain_keeps_its_energy_and_no_moment_at_its_pivots() {
 fn a_landing_on_a_slipping_joint_keeps_momenta_and_the_friction_limit() {
     let column = three_blocks();
     let links = Links::of(&column.watch, 0.0, Vec::new()).unwrap();
-    let pieces = &column.watch.pieces;
     for sigma in [-1.0, 1.0] {
         let pose = Pose {
             open: vec![Open { joint: 1, s: 1.0 }, Open { joint: 2, s: -1.0 }],
@@ -296,36 +295,58 @@ fn a_landing_on_a_slipping_joint_keeps_momenta_and_the_friction_limit() {
             .unwrap();
         assert_eq!(after[0], [w, 0.0]);
         let spin_after = [0.0, rates[0], rates[1]];
-        let cross = |r: [f64; 2], v: [f64; 2]| r[1] * v[0] - r[0] * v[1];
-        for (b, o) in flipped.iter().enumerate() {
-            let pivot = at.point(&links, o.joint, o.s);
-            let momentum = |v: &[[f64; 2]], spin: &[f64]| -> f64 {
-                (o.joint..3)
-                    .map(|p| {
-                        let d = [at.centroid[p][0] - pivot[0], at.centroid[p][1] - pivot[1]];
-                        pieces[p].mass_kg * cross(d, v[p]) + pieces[p].inertia_kg_m2 * spin[p]
-                    })
-                    .sum()
-            };
-            let (kept, had) = (momentum(&after, &spin_after), momentum(&before, &spin));
-            assert!(close(kept, had, 1.0), "{sigma} {b}: {kept} {had}");
-        }
-        let gained = (0..3).fold([0.0; 2], |g, p| {
-            let m = pieces[p].mass_kg;
-            [
-                g[0] + m * (after[p][0] - before[p][0]),
-                g[1] + m * (after[p][1] - before[p][1]),
-            ]
-        });
-        let mu = links.joints[0].friction;
-        let limit = gained[0] + mu * sigma * gained[1];
-        assert!(
-            limit.abs() < 1e-12 * (gained[0].abs() + gained[1].abs()),
-            "{sigma}: {gained:?}"
+        let normal = kept_and_at_the_limit(
+            &links,
+            &at,
+            &flipped,
+            [(&before, &spin), (&after, &spin_after)],
+            sigma,
         );
         // The impulse is not nothing: the check can fail.
-        assert!(gained[1].abs() > 1.0, "{gained:?}");
+        assert!(normal.abs() > 1.0, "{normal}");
     }
+}
+
+/// The two balances of a landing on the slipping ground joint of `three_blocks`, checked apart
+/// from the law: the angular momentum of the part above each joint of `open` about its pivot
+/// at `at`, kept from the blocks' velocities and spins before to those after, and the ground
+/// joint's impulse (what the three blocks gain) at its friction's limit against the slip
+/// sigma, to 1e-12. Returns the vertical impulse.
+fn kept_and_at_the_limit(
+    links: &Links,
+    at: &Instant,
+    open: &[Open],
+    [before, after]: [(&[[f64; 2]], &[f64]); 2],
+    sigma: f64,
+) -> f64 {
+    let pieces = &links.watch.pieces;
+    let cross = |r: [f64; 2], v: [f64; 2]| r[1] * v[0] - r[0] * v[1];
+    for o in open {
+        let pivot = at.point(links, o.joint, o.s);
+        let momentum = |(v, spin): (&[[f64; 2]], &[f64])| -> f64 {
+            (o.joint..3)
+                .map(|p| {
+                    let d = [at.centroid[p][0] - pivot[0], at.centroid[p][1] - pivot[1]];
+                    pieces[p].mass_kg * cross(d, v[p]) + pieces[p].inertia_kg_m2 * spin[p]
+                })
+                .sum()
+        };
+        let (kept, had) = (momentum(after), momentum(before));
+        assert!(close(kept, had, 1.0), "{sigma} {o:?}: {kept} {had}");
+    }
+    let gained = (0..3).fold([0.0; 2], |g, p| {
+        let m = pieces[p].mass_kg;
+        [
+            g[0] + m * (after.0[p][0] - before.0[p][0]),
+            g[1] + m * (after.0[p][1] - before.0[p][1]),
+        ]
+    });
+    let limit = gained[0] + links.joints[0].friction * sigma * gained[1];
+    assert!(
+        limit.abs() < 1e-12 * (gained[0].abs() + gained[1].abs()),
+        "{sigma}: {gained:?}"
+    );
+    gained[1]
 }
 
 /// A landing of the upper drum on the lower one's other corner while the lower rocks on the
@@ -452,4 +473,85 @@ fn landings_keep_the_momentum_newton_euler_impulses_give() {
     };
     let path = links.path(&seated, &test_inputs_at(0.37)).unwrap();
     assert!(links.energies(&path, 0.0).iter().all(|e| *e == (0.0, 0.0)));
+}
+
+/// A landing that opens a held joint through the impact: C lands on B's other corner while A,
+/// under both, slides on the ground, and the ground joint opens at A's left or right end, its
+/// pivot slipping on. The rates and A's velocity after keep the angular momentum of the part
+/// above each open joint about its pivot (A's corner where the slip has carried it), and the
+/// ground joint passes the limit of its friction, to 1e-12; a joint that would close as it
+/// opens is reported as the condition it breaks.
+#[test]
+fn a_landing_that_opens_a_held_joint_keeps_momenta_about_the_new_pivot() {
+    let column = three_blocks();
+    let links = Links::of(&column.watch, 0.0, Vec::new()).unwrap();
+    let pose = Pose {
+        open: vec![Open { joint: 2, s: 1.0 }],
+        phi: vec![1e-3],
+        omega: vec![-2.0],
+        slide: Some(Slide {
+            joint: 0,
+            sigma: -1.0,
+            u: -0.03,
+            v: -0.3,
+        }),
+        moved: Vec::new(),
+    };
+    let path = links.path(&pose, &still()).unwrap();
+    let at = Instant::of(&pose, &path, 0.0);
+    // The slip carries A's corners: the points of the instant are where the path has them.
+    let rest = links.end(0, -1.0);
+    assert_eq!(at.point(&links, 0, -1.0), [rest[0] - 0.03, rest[1]]);
+    let before: Vec<[f64; 2]> = (path.centroid.iter())
+        .map(|g| g.map(|x| derivative(&x)[0]))
+        .collect();
+    let spin = [0.0, 0.0, -2.0];
+    let mut opened = 0;
+    for s in [-1.0, 1.0] {
+        let new = Open { joint: 0, s };
+        let way = links
+            .landed(
+                &pose,
+                0,
+                (Some((0, -1.0)), Some(new)),
+                (&at, &before, &spin),
+                (0.0, 1.0),
+            )
+            .unwrap();
+        let next = &way.next;
+        assert_eq!(next.open, vec![new, Open { joint: 2, s: -1.0 }]);
+        let w = next.slide.expect("the slip goes on").v;
+        // Each body turns clockwise about its pivot, carrying the next pivot along.
+        let pivots: Vec<[f64; 2]> = (next.open.iter())
+            .map(|o| at.point(&links, o.joint, o.s))
+            .collect();
+        let after: Vec<[f64; 2]> = (0..3)
+            .map(|p| {
+                let on = next.open.iter().rposition(|o| o.joint <= p).unwrap();
+                (0..=on).fold([w, 0.0], |v, c| {
+                    let to = if c < on {
+                        pivots[c + 1]
+                    } else {
+                        at.centroid[p]
+                    };
+                    let r = [to[0] - pivots[c][0], to[1] - pivots[c][1]];
+                    [v[0] + next.omega[c] * r[1], v[1] - next.omega[c] * r[0]]
+                })
+            })
+            .collect();
+        let spin_after = [next.omega[0], next.omega[0], next.omega[1]];
+        let normal = kept_and_at_the_limit(
+            &links,
+            &at,
+            &next.open,
+            [(&before, &spin), (&after, &spin_after)],
+            -1.0,
+        );
+        assert!(normal.abs() > 1.0, "{s}: {normal}");
+        let opens = s * next.omega[0] > 0.0;
+        opened += usize::from(opens);
+        let closing = Cut::Closed(0, 2 + usize::from(s > 0.0));
+        assert_eq!(way.breaks == Some(closing), !opens, "{s}: {:?}", way.breaks);
+    }
+    assert!(opened >= 1);
 }

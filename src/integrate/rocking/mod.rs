@@ -1244,10 +1244,7 @@ impl<'a> Engine<'a> {
                     Ok(())
                 }
                 Guard::Overturn => self.overturn(i, traj, tau),
-                Guard::Impact => {
-                    self.stack_lands(i, now);
-                    Ok(())
-                }
+                Guard::Impact => self.stack_lands(i, now),
                 _ => {
                     self.stack_gives(i, guard);
                     Ok(())
@@ -1308,7 +1305,7 @@ impl<'a> Engine<'a> {
             }
             Guard::Held(k) if self.chain_can_follow(i, k) => self.open_chain(k),
             Guard::Held(k) => {
-                if !self.stack_slides(i, k, now) {
+                if !self.stack_slides(i, k, now) && !self.slips_as_chain(k, now)? {
                     self.gives(i, k, false);
                 }
                 Ok(())
@@ -4372,9 +4369,12 @@ impl<'a> Engine<'a> {
         });
         if let Some(k) = breaks {
             // The landing's impulse would break a held joint, so the impact is not the one the
-            // model has: the run stops at the instant before it (where a hand-off's time
-            // stepping resolves it), not after an impact it does not believe.
-            self.gives(i, k, true);
+            // body's law has: the chain's law takes it, or the run stops at the instant before
+            // it (where a hand-off's time stepping resolves it), not after an impact it does not
+            // believe.
+            if !self.lands_as_chain(now)? {
+                self.gives(i, k, true);
+            }
             return Ok(());
         }
         // A landing is found where theta is zero to a tie (series::TIE of alpha), and the body

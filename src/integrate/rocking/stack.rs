@@ -156,6 +156,14 @@ impl Displaced {
         }
     }
 
+    /// Each block displaced by `moved` more (m, from the bottom).
+    pub fn shift(&mut self, moved: &[f64]) {
+        if moved.iter().any(|&d| d != 0.0) {
+            self.by_m.resize(self.by_m.len().max(moved.len()), 0.0);
+            self.by_m.iter_mut().zip(moved).for_each(|(b, d)| *b += d);
+        }
+    }
+
     /// Whether any stack slides now.
     pub fn any_slides(&self) -> bool {
         self.sliding.is_some() || !self.beneath.is_empty()
@@ -724,6 +732,29 @@ impl Engine<'_> {
     /// began: its way on the stack (its pivot stuck on it, or slipping either way) that holds
     /// just after now goes on; false where none or several do, the body left stuck on the
     /// stack as the chain left it.
+    /// How many ways body i would have on `stack` sliding under it (slid by `slid`), rocking
+    /// on corner `c` from `state` with its held blocks displaced by `moved` more: those
+    /// [`Engine::stack_carries`] would choose from, none taken.
+    pub(super) fn stack_would_carry(
+        &self,
+        i: usize,
+        (state, c): (&State, Corner),
+        moved: &[f64],
+        (stack, slid): (Stack, f64),
+        now: &Inputs,
+    ) -> usize {
+        let mut displaced = self.tracks[i].displaced.clone();
+        displaced.shift(moved);
+        let base = Displaced {
+            sliding: Some(Stack {
+                apart: Some([slid, state.v]),
+                ..stack
+            }),
+            ..displaced
+        };
+        self.ways_from(i, state, &base, c, None, now).len()
+    }
+
     pub(super) fn stack_carries(
         &mut self,
         i: usize,
@@ -856,21 +887,33 @@ impl Engine<'_> {
         slipping: Option<Slip>,
         now: &Inputs,
     ) -> Vec<(Displaced, Mode, State)> {
-        let tr = &self.tracks[i];
+        self.ways_from(i, &self.tracks[i].state, base, c, slipping, now)
+    }
+
+    /// [`Engine::stack_ways`] from `state` rather than body i's own.
+    fn ways_from(
+        &self,
+        i: usize,
+        state: &State,
+        base: &Displaced,
+        c: Corner,
+        slipping: Option<Slip>,
+        now: &Inputs,
+    ) -> Vec<(Displaced, Mode, State)> {
         let stack = base.sliding.expect("a stack that slides");
         let [moved, v_s] = stack.apart.expect("the stack's own state");
         let mut ways = Vec::with_capacity(3);
         if slipping.is_none() {
             let joined = Stack {
                 apart: None,
-                u_start_m: tr.state.u - moved,
+                u_start_m: state.u - moved,
                 ..stack
             };
             let on = Displaced {
                 sliding: Some(joined),
                 ..base.clone()
             };
-            ways.push((on, Mode::Rock(c), State { v: v_s, ..tr.state }));
+            ways.push((on, Mode::Rock(c), State { v: v_s, ..*state }));
         }
         let slips = match slipping {
             Some(relative) => vec![relative],
@@ -878,7 +921,7 @@ impl Engine<'_> {
         };
         ways.extend(
             (slips.into_iter())
-                .map(|relative| (base.clone(), Mode::SlideRock(c, relative), tr.state)),
+                .map(|relative| (base.clone(), Mode::SlideRock(c, relative), *state)),
         );
         ways.retain(|(on, mode, state)| self.holds_on(i, on, *mode, state, now));
         ways
@@ -1250,14 +1293,14 @@ impl Engine<'_> {
     /// body rocks on on its new corner, the stacks whose slip the impact stopped joined to the
     /// one under them or held ([`Displaced::landed`]); any other landing stops the run just
     /// before the impact.
-    pub(super) fn stack_lands(&mut self, i: usize, now: &Inputs) {
+    pub(super) fn stack_lands(&mut self, i: usize, now: &Inputs) -> Result<(), SimulationError> {
         let body = self.body(i);
         let scene = self.scene;
         let watch = &scene.watches[i];
         let tr = &self.tracks[i];
         let Mode::Rock(pivot) = tr.mode else {
             self.stack_gives(i, Guard::Impact);
-            return;
+            return Ok(());
         };
         let (omega, v, u) = (tr.state.omega, tr.state.v, tr.state.u);
         let stacks: Vec<Stack> = (tr.displaced.sliding.iter())
@@ -1265,9 +1308,14 @@ impl Engine<'_> {
             .copied()
             .collect();
         let before: Vec<f64> = stacks.iter().map(|st| st.velocity_m_s(v)).collect();
+        // Where the body's law on the stacks finds no landing, or one whose impulses break a
+        // held joint, the chain's law takes it (the joints holding, slipping or opening
+        // through the impact), or the run stops just before it.
         let Some(l) = landing(body, &stacks, &before, pivot, omega) else {
-            self.stack_gives(i, Guard::Impact);
-            return;
+            if !self.lands_as_chain(now)? {
+                self.stack_gives(i, Guard::Impact);
+            }
+            return Ok(());
         };
         let held = watch.held_blocks().count();
         let mut after = tr.displaced.clone();
@@ -1275,8 +1323,10 @@ impl Engine<'_> {
         let next = pivot.other();
         let velocities = ((Some(pivot), omega, v), (Some(next), l.omega, l.v[0]));
         if let Some(k) = watch.landing(u, velocities.0, velocities.1, &tr.displaced, &after) {
-            self.gives(i, k, true);
-            return;
+            if !self.lands_as_chain(now)? {
+                self.gives(i, k, true);
+            }
+            return Ok(());
         }
         // Found at theta = 0 to a tie and seated at 0 on the new corner: the potential energy
         // of that tilt goes with the landing's loss, as at a landing on a held base.
@@ -1327,5 +1377,6 @@ impl Engine<'_> {
             Some((omega, l.omega)),
             what,
         );
+        Ok(())
     }
 }
