@@ -557,6 +557,24 @@ fn moved_apart(model: &Model, motion: &Motion, (exact, at_s): (&Summary, f64), d
         .fold(0.0, f64::max)
 }
 
+/// The exact run of `model` to `at_s`, and Moreau-Jean's distance from it there
+/// ([`moved_apart`]) at steps of 1e-4, 2.5e-5 and 1e-5 s, which must fall with the step: the
+/// exact run's summary and the last distance (m). `what` names the case in a failure.
+fn moved_apart_falls(model: &Model, motion: &Motion, at_s: f64, what: &str) -> (Summary, f64) {
+    let upto = RunSettings {
+        duration_s: Some(at_s),
+        ..RunSettings::default()
+    };
+    let exact = pirqa::run(model, motion, &upto).unwrap().summary;
+    let mut last = f64::INFINITY;
+    for dt_s in [1e-4, 2.5e-5, 1e-5] {
+        let moved = moved_apart(model, motion, (&exact, at_s), dt_s);
+        assert!(moved < last, "{what}, dt {dt_s}: {moved} m");
+        last = moved;
+    }
+    (exact, last)
+}
+
 /// A chain of open joints on a joint that slips: walls/rocking/rough-tapered-column.ron under
 /// a 1.5 g, 2 Hz sine tips on the ground as its top rocks on the middle block, and the
 /// column's pivot corner slips on the ground from 0.058 s to 0.278 s (59.8 mm);
@@ -605,17 +623,7 @@ fn a_chain_on_a_slipping_joint_is_what_time_stepping_converges_to() {
         let e = &r.summary.energy;
         let scale = e.input_j.abs() + e.friction_j;
         assert!(e.residual_j.abs() <= 1e-13 * scale, "{wall}: {e:?}");
-        let upto = RunSettings {
-            duration_s: Some(at_s),
-            ..RunSettings::default()
-        };
-        let exact = pirqa::run(&model, &motion, &upto).unwrap().summary;
-        let mut last = f64::INFINITY;
-        for dt_s in [1e-4, 2.5e-5, 1e-5] {
-            let moved = moved_apart(&model, &motion, (&exact, at_s), dt_s);
-            assert!(moved < last, "{wall}, dt {dt_s}: {moved} m");
-            last = moved;
-        }
+        let (_, last) = moved_apart_falls(&model, &motion, at_s, wall);
         assert!(last < bound_m, "{wall}: {last} m");
     }
 }
@@ -835,17 +843,7 @@ fn a_landing_that_tips_the_sliding_plinth_is_what_time_stepping_converges_to() {
     let e = &s.energy;
     let scale = e.input_j.abs() + e.friction_j;
     assert!(e.residual_j.abs() <= 1e-13 * scale, "{e:?}");
-    let upto = RunSettings {
-        duration_s: Some(1.6),
-        ..RunSettings::default()
-    };
-    let exact = pirqa::run(&model, &motion, &upto).unwrap().summary;
-    let mut last = f64::INFINITY;
-    for dt_s in [1e-4, 2.5e-5, 1e-5] {
-        let moved = moved_apart(&model, &motion, (&exact, 1.6), dt_s);
-        assert!(moved < last, "dt {dt_s}: {moved} m");
-        last = moved;
-    }
+    let (_, last) = moved_apart_falls(&model, &motion, 1.6, "column on a plinth");
     assert!(last < 5e-6, "{last} m");
 }
 
@@ -874,17 +872,7 @@ fn a_slip_that_opens_the_joint_above_it_is_what_time_stepping_converges_to() {
     );
     assert_eq!(at("opens as the slip begins: D1/D0"), slips);
     assert!((fell_s - 3.06069).abs() < 1e-5, "{fell_s}");
-    let settings = RunSettings {
-        duration_s: Some(2.5),
-        ..RunSettings::default()
-    };
-    let exact = pirqa::run(&model, &motion, &settings).unwrap().summary;
-    let mut last = f64::INFINITY;
-    for dt_s in [1e-4, 2.5e-5, 1e-5] {
-        let moved = moved_apart(&model, &motion, (&exact, 2.5), dt_s);
-        assert!(moved < last, "dt {dt_s}: {moved} m");
-        last = moved;
-    }
+    let (exact, last) = moved_apart_falls(&model, &motion, 2.5, "stepped column");
     assert!(last < 1e-6, "{last} m");
     let (_, late) = stepped_apart(&model, &motion, (&exact, 2.5), fell_s, 1e-5);
     assert!(late < 1e-4, "{late} s");

@@ -935,8 +935,14 @@ impl<'a> Engine<'a> {
         };
         self.opened(&links, upper, "opens");
         let (_, now) = self.inputs_at(self.t);
-        match self.settle(&links, pose, &now)? {
-            Next::Chain(pose) => self.run_chain(&links, pose),
+        let next = self.settle(&links, pose, &now)?;
+        self.go_on(&links, next)
+    }
+
+    /// The column goes on as `next` says: as the chain, back to its body, or not at all.
+    fn go_on(&mut self, links: &Links, next: Next) -> Result<(), SimulationError> {
+        match next {
+            Next::Chain(pose) => self.run_chain(links, pose),
             Next::Body(state, mode, moved, stack) => self.resume((state, mode), moved, stack),
             Next::End => Ok(()),
         }
@@ -952,11 +958,8 @@ impl<'a> Engine<'a> {
             return Ok(false);
         };
         let path = links.path(&pose, now)?;
-        match self.chain_lands(&links, pose, &path, 0.0, 0, now)? {
-            Next::Chain(pose) => self.run_chain(&links, pose)?,
-            Next::Body(state, mode, moved, stack) => self.resume((state, mode), moved, stack)?,
-            Next::End => {}
-        }
+        let next = self.chain_lands(&links, pose, &path, 0.0, 0, now)?;
+        self.go_on(&links, next)?;
         Ok(true)
     }
 
@@ -1065,11 +1068,8 @@ impl<'a> Engine<'a> {
         let (_, _, upper) = links.watch.describe(k);
         self.rec.stats.mode_decisions += 1;
         self.slip_begins(&links, &pose, way, (upper, k % 4));
-        match self.settle(&links, way.clone(), now)? {
-            Next::Chain(pose) => self.run_chain(&links, pose)?,
-            Next::Body(state, mode, moved, stack) => self.resume((state, mode), moved, stack)?,
-            Next::End => {}
-        }
+        let next = self.settle(&links, way.clone(), now)?;
+        self.go_on(&links, next)?;
         Ok(true)
     }
 
