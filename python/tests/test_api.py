@@ -294,8 +294,8 @@ def test_a_run_releases_the_gil(root):
 
 def test_a_run_the_exact_model_stops_says_where(root):
     """Under El Centro at 0.6 g the upper drum of two-block-column.ron would lift off the corner
-    of the lower one it turns on at 5.846 s, as the column falls, which the exact model does
-    not follow: it stops following the wall there, and the run ends with its summary saying
+    of the lower one it turns on at 5.862 s, as the column falls and that corner slips, which
+    the exact model does not follow: it stops following the wall there, and the run ends with its summary saying
     where and why; slender-on-stack.ron under 0.3 g runs to its end and says nothing of the
     kind."""
     wall = pirqa.Wall.from_file(root / "walls/rocking/two-block-column.ron")
@@ -304,7 +304,7 @@ def test_a_run_the_exact_model_stops_says_where(root):
     )
     stopped = pirqa.run(wall, record).summary
     assert stopped["stopped_at_s"] == stopped["duration_s"]
-    assert 5.845 < stopped["stopped_at_s"] < 5.846
+    assert 5.861 < stopped["stopped_at_s"] < 5.862
     assert any("Drum2/Drum1 would lift off" in w for w in stopped["warnings"])
     wall = pirqa.Wall.from_file(root / "walls/rocking/slender-on-stack.ron")
     whole = pirqa.run(wall, pirqa.Motion.sine("0.3g", frequency_hz=1.5, duration_s=1.0)).summary

@@ -2124,8 +2124,8 @@ fn after_the_first_uplift_time_stepping_with_rotations_takes_over() {
 }
 
 /// `--after-stop moreau`: the two-block column under El Centro at 0.5 g runs exactly until its
-/// upper drum would lift off the lower one's corner (6.22 s), then every block steps with its
-/// rotation from there: one history whose rows up to the stop are the exact run's own, to the
+/// upper drum would lift off the lower one's corner as it slips (6.24 s), then every block
+/// steps with its rotation from there: one history whose rows up to the stop are the exact run's own, to the
 /// last digit, and go on past it; the summary names both methods and where the exact model
 /// stopped, and carries no warning that the run ended there, nor the exact run's
 /// `stopped_at_s`. The upper drum, leaning by 1 rad
@@ -2157,7 +2157,7 @@ fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
     assert!(ok && out.contains("stops there"), "{out}{err}");
     // Its numbers are of the motion up to the stop, and it says so before them.
     assert!(
-        out.contains("  STOPPED at t = 6.22") && out.contains("  no collapse up to then\n"),
+        out.contains("  STOPPED at t = 6.23") && out.contains("  no collapse up to then\n"),
         "{out}"
     );
     let more = [
@@ -2174,7 +2174,7 @@ fn where_the_exact_rocking_model_stops_time_stepping_goes_on() {
     assert!(ok, "{err}");
     assert!(
         out.contains("| event+moreau |")
-            && out.contains("with --after-stop moreau: the exact model to t = 6.22")
+            && out.contains("with --after-stop moreau: the exact model to t = 6.23")
             && out.contains("would lift off the corner it turns on")
             && out.contains("Drum2 fell")
             && !out.contains("stops there"),

@@ -9,12 +9,14 @@
 //! linear system whose matrix is the mass matrix of the instant. Landings keep the angular
 //! momentum of the part above each open joint about its pivot after the landing (the new
 //! corner for the joint that lands: Housner's law for a single body, Psycharis's for two), a
-//! closed joint opening through the impact where its impulse must. The lowest pivot, or a held
-//! joint below it, may slip: everything above the joint then translates on it, one more unknown
-//! of each order and one more equation, the joint's friction at its limit ([`Slide`]). Where
-//! another pivot would slip or one lift off, or a closed joint above the lowest open one slip,
-//! the exact model ends the run there and says so, as a column's held joints do
-//! (docs/rocking-walls.md).
+//! closed joint opening through the impact where its impulse must. One joint may slip at a time
+//! ([`Slide`]): the lowest pivot or a held joint below it, everything above the joint then
+//! translating on it, or a joint inside the chain (a closed joint above the lowest open one, or
+//! a higher pivot on a corner of the block on it), the blocks above it translating along the
+//! turned face of the body under it; either way one more unknown of each order and one more
+//! equation, the joint's friction at its limit. Where a second joint would slip, a pivot lift
+//! off, or a landing come while a joint inside the chain slips, the exact model ends the run
+//! there and says so, as a column's held joints do (docs/rocking-walls.md).
 //!
 //! The engine hands the column to the chain when a held joint opens under a rocking body, or a
 //! landing's impulse would break one, and takes it back when the chain is down to the body's own
@@ -55,9 +57,11 @@ pub(super) struct Pose {
     pub(super) moved: Vec<f64>,
 }
 
-/// A joint under the chain that slips: a held joint below the lowest open joint (the blocks
-/// between them sliding on it as one stack that carries the chain), or the lowest open joint
-/// itself (its pivot, a corner of the block on it, slipping on the face under it). Everything
+/// A joint of the column that slips: a held joint below the lowest open joint (the blocks
+/// between them sliding on it as one stack that carries the chain), the lowest open joint
+/// itself (its pivot, a corner of the block on it, slipping on the face under it), or a joint
+/// inside the chain (a closed joint above the lowest open one, or a higher open joint's pivot
+/// on a corner of the block on it), along the turned face of the body under it. Everything
 /// above the joint translates with the slip; the joint passes the limit of its friction against
 /// it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -106,6 +110,9 @@ pub(super) struct Path {
     base: Vec<[Coeffs; 2]>,
     /// The slipping joint, and the slip's displacement and velocity.
     slide: Option<(usize, Coeffs, Coeffs)>,
+    /// The body whose face the slip runs along where it is inside the chain (none: on the
+    /// ground or held blocks, along x).
+    inner: Option<usize>,
 }
 
 /// What ends a chain's step.
@@ -218,7 +225,18 @@ impl<'w> Links<'w> {
             us[1] = sl.v;
             vs[0] = sl.v;
         }
-        let slides = |p: usize| slide.is_some_and(|(sl, _)| p >= sl.joint);
+        // A slip inside the chain (a closed joint above its lowest open one, or the pivot of a
+        // higher open joint) carries the blocks above it along the face of the body under it,
+        // `inner`: by u_s along x in that body's frame at rest, so the link from its pivot to
+        // the next and the arms of its blocks above the joint lengthen by u_s, turned with it.
+        let inner = slide.and_then(|(sl, _)| {
+            let lowest = pose.open.first()?;
+            (sl.joint > lowest.joint).then(|| body[sl.joint - 1].expect("a body under the slip"))
+        });
+        let carried = |p: usize| inner.is_some() && slide.is_some_and(|(sl, _)| p >= sl.joint);
+        let slides = |p: usize| inner.is_none() && slide.is_some_and(|(sl, _)| p >= sl.joint);
+        let mut accs = ZERO;
+        let mut along = [ZERO; 2];
         let unknowns = n + usize::from(slide.is_some());
         // Each body's arm to the next pivot, and each block's arms to its centroid and the
         // middle of its base, from the body's pivot at rest.
@@ -259,14 +277,24 @@ impl<'w> Links<'w> {
                 sin_cos_at(&phi[c], &mut sin[c], &mut cos[c], k);
                 w2[c][k] = mul_at(&omega[c], &omega[c], k);
             }
+            // The inner slip's displacement along the turned face, u_s (cos, -sin), and its
+            // velocity there, u_s' (cos, -sin).
+            let slid = inner.map(|b| [mul_at(&us, &cos[b], k), -mul_at(&us, &sin[b], k)]);
+            if let Some(b) = inner {
+                along[0][k] = mul_at(&vs, &cos[b], k);
+                along[1][k] = -mul_at(&vs, &sin[b], k);
+            }
             for (c, l) in links.iter_mut().enumerate() {
                 let [x, y] = turned(link[c][0], link[c][1], &sin[c], &cos[c], k);
-                l[0][k] = x;
-                l[1][k] = y;
+                let [dx, dy] = slid.filter(|_| inner == Some(c)).unwrap_or([0.0; 2]);
+                l[0][k] = x + dx;
+                l[1][k] = y + dy;
             }
             for c in 0..n {
                 let mut start = if k == 0 { rest[0] } else { [0.0; 2] };
-                start[0] += us[k];
+                if inner.is_none() {
+                    start[0] += us[k];
+                }
                 for a in 0..2 {
                     pivot[c][a][k] = if c == 0 {
                         start[a]
@@ -292,8 +320,11 @@ impl<'w> Links<'w> {
                     accel[p][1][k] = glam[k];
                     continue;
                 };
-                let [rx, ry] = turned(arms[p][0][0], arms[p][0][1], &sin[cp], &cos[cp], k);
-                let [bx, by] = turned(arms[p][1][0], arms[p][1][1], &sin[cp], &cos[cp], k);
+                let [mut rx, mut ry] = turned(arms[p][0][0], arms[p][0][1], &sin[cp], &cos[cp], k);
+                let [mut bx, mut by] = turned(arms[p][1][0], arms[p][1][1], &sin[cp], &cos[cp], k);
+                if let Some([dx, dy]) = slid.filter(|_| carried(p) && inner == Some(cp)) {
+                    (rx, ry, bx, by) = (rx + dx, ry + dy, bx + dx, by + dy);
+                }
                 rho[p][0][k] = rx;
                 rho[p][1][k] = ry;
                 centroid[p][0][k] = pivot[cp][0][k] + rx;
@@ -307,6 +338,12 @@ impl<'w> Links<'w> {
                     let r = if c < cp { &links[c] } else { &rho[p] };
                     ax += mul_at(&alpha[c], &r[1], k) - mul_at(&w2[c], &r[0], k);
                     ay += -mul_at(&alpha[c], &r[0], k) - mul_at(&w2[c], &r[1], k);
+                }
+                // Carried by the inner slip: its acceleration along the turned face, u_s''
+                // (cos, -sin), and Coriolis's, 2 omega (along_y, -along_x).
+                if let Some(b) = inner.filter(|_| carried(p)) {
+                    ax += mul_at(&accs, &cos[b], k) + 2.0 * mul_at(&omega[b], &along[1], k);
+                    ay += -mul_at(&accs, &sin[b], k) - 2.0 * mul_at(&omega[b], &along[0], k);
                 }
                 accel[p][0][k] = ax;
                 accel[p][1][k] = ay;
@@ -322,8 +359,37 @@ impl<'w> Links<'w> {
                 [r[0][0], r[1][0]]
             };
             if solver.is_none() {
+                // The inner slip's direction and the face's normal at the instant.
+                let face = inner.map(|b| ([cos[b][0], -sin[b][0]], [sin[b][0], cos[b][0]]));
                 let mass = DMatrix::from_fn(unknowns, unknowns, |b, c| {
                     let mut x = 0.0;
+                    if let (true, Some((sl, mu_sigma)), Some((t, nn))) = (b == n, slide, face) {
+                        // The inner slip's equation, in the face's frame: sum m (a . t + mu
+                        // sigma a . n) over the blocks above the joint.
+                        for p in (sl.joint..nb).filter(|&p| c == n || body[p] >= Some(c)) {
+                            let v = if c == n {
+                                t
+                            } else {
+                                let r = arm0(p, c);
+                                [r[1], -r[0]]
+                            };
+                            let along = v[0] * t[0] + v[1] * t[1];
+                            let across = v[0] * nn[0] + v[1] * nn[1];
+                            x += w.pieces[p].mass_kg * (along + mu_sigma * across);
+                        }
+                        return x;
+                    }
+                    if let (true, Some((t, _))) = (c == n, face) {
+                        // a_s moves the blocks it carries along the face.
+                        for p in (0..nb).filter(|&p| carried(p) && body[p] >= Some(b)) {
+                            let d = [
+                                centroid[p][0][0] - pivot[b][0][0],
+                                centroid[p][1][0] - pivot[b][1][0],
+                            ];
+                            x += w.pieces[p].mass_kg * (d[0] * t[1] - d[1] * t[0]);
+                        }
+                        return x;
+                    }
                     if let (true, Some((sl, mu_sigma))) = (b == n, slide) {
                         // The slip's equation: how each unknown moves the blocks above the
                         // joint, sum m (a_x + mu sigma a_y).
@@ -359,6 +425,16 @@ impl<'w> Links<'w> {
             // The moment about each pivot of what the part above it needs, without this
             // order's angular accelerations: sum m ((x - P_x) (a_y + g lambda) - (y - P_y) a_x).
             let rhs = DVector::from_fn(unknowns, |b, _| {
+                if let (true, Some((sl, mu_sigma)), Some(f)) = (b == n, slide, inner) {
+                    let (sin, cos) = (&sin[f], &cos[f]);
+                    let known = (sl.joint..nb).map(|p| {
+                        let a = &accel[p];
+                        let along = mul_at(&a[0], cos, k) - mul_at(&a[1], sin, k);
+                        let across = mul_at(&a[0], sin, k) + mul_at(&a[1], cos, k);
+                        w.pieces[p].mass_kg * (along + mu_sigma * across)
+                    });
+                    return -known.sum::<f64>();
+                }
                 if let (true, Some((sl, mu_sigma))) = (b == n, slide) {
                     let known = (sl.joint..nb).map(|p| {
                         w.pieces[p].mass_kg * (accel[p][0][k] + mu_sigma * accel[p][1][k])
@@ -409,6 +485,13 @@ impl<'w> Links<'w> {
                 for p in (0..nb).filter(|&p| slides(p)) {
                     accel[p][0][k] += a_s;
                 }
+                if let Some(b) = inner {
+                    accs[k] = a_s;
+                    for p in (0..nb).filter(|&p| carried(p)) {
+                        accel[p][0][k] += a_s * cos[b][0];
+                        accel[p][1][k] -= a_s * sin[b][0];
+                    }
+                }
             }
             for p in 0..nb {
                 let Some(cp) = body[p] else { continue };
@@ -433,6 +516,7 @@ impl<'w> Links<'w> {
             accel,
             base,
             slide: slide.map(|(sl, _)| (sl.joint, us, vs)),
+            inner,
         })
     }
 
@@ -518,16 +602,24 @@ impl<'w> Links<'w> {
                 }
                 continue;
             }
+            // A joint the inner slip carries has its ends moved along the turned face.
+            let carried = (path.slide.as_ref())
+                .filter(|sl| path.inner.is_some() && path.inner == path.body[j] && j >= sl.0)
+                .map(|(_, u, _)| u);
             let ends = [-1.0, 1.0].map(|s| {
                 let e = self.end_in(&pose.moved, j, s);
                 match path.body[j] {
                     Some(c) => {
                         let r = self.end_in(&pose.moved, pose.open[c].joint, pose.open[c].s);
                         let (dx, dy) = (e[0] - r[0], e[1] - r[1]);
+                        let (sin, cos) = (&path.sin[c], &path.cos[c]);
                         [0, 1].map(|a| {
                             let mut x = path.pivot[c][a];
                             for (k, x) in x.iter_mut().enumerate() {
-                                *x += turned(dx, dy, &path.sin[c], &path.cos[c], k)[a];
+                                *x += turned(dx, dy, sin, cos, k)[a];
+                                if let Some(u) = carried {
+                                    *x += [mul_at(u, cos, k), -mul_at(u, sin, k)][a];
+                                }
                             }
                             x
                         })
@@ -571,7 +663,16 @@ impl<'w> Links<'w> {
         let (Some(sl), Some((j, _, v))) = (pose.slide, &path.slide) else {
             return ZERO;
         };
-        let (_, normal) = self.passed(path, *j);
+        let (h, v_passed) = self.passed(path, *j);
+        let normal = match path.inner {
+            // Normal to the face the slip runs along.
+            Some(b) => {
+                let mut n = series::product(&h, &path.sin[b]);
+                series::add_to(&mut n, &series::product(&v_passed, &path.cos[b]), 1.0);
+                n
+            }
+            None => v_passed,
+        };
         series::scaled(
             &series::product(&normal, v),
             self.joints[*j].friction * sl.sigma,
@@ -631,8 +732,15 @@ impl<'w> Links<'w> {
                 let vx = eval(&derivative(&path.centroid[p][0]), tau);
                 let vy = eval(&derivative(&path.centroid[p][1]), tau);
                 let w = eval(&path.omega[c], tau);
-                let dy = (0..c).map(|b| rise(path.link[b], phi[b])).sum::<f64>()
-                    + rise(path.arm[p], phi[c]);
+                // An inner slip lengthens the link and the arms it carries along x at rest.
+                let lengthened = |[x, y]: [f64; 2], b: usize| match (&path.slide, path.inner) {
+                    (Some((j, u, _)), Some(f)) if f == b && p >= *j => [x + eval(u, tau), y],
+                    _ => [x, y],
+                };
+                let dy = (0..c)
+                    .map(|b| rise(lengthened(path.link[b], b), phi[b]))
+                    .sum::<f64>()
+                    + rise(lengthened(path.arm[p], c), phi[c]);
                 (
                     0.5 * q.mass_kg * (vx * vx + vy * vy) + 0.5 * q.inertia_kg_m2 * w * w,
                     q.mass_kg * g * dy,
@@ -825,6 +933,13 @@ impl Instant {
             self.pivot[c][1] - dx * sin + dy * cos,
         ]
     }
+}
+
+/// Whether the joint that slips in `pose` is inside the chain: above its lowest open joint.
+fn inside(pose: &Pose) -> bool {
+    let lowest = pose.open.first().map(|o| o.joint);
+    pose.slide
+        .is_some_and(|sl| lowest.is_some_and(|j| sl.joint > j))
 }
 
 /// How a chain's run goes on after an event.
@@ -1142,13 +1257,52 @@ impl<'a> Engine<'a> {
                 return Ok(Next::Chain(pose));
             };
             self.rec.stats.mode_decisions += 1;
+            let lowest = pose.open.first().map_or(0, |o| o.joint);
             let slips = match cond.cut {
-                Cut::Closed(j, i @ (0 | 1)) if j < pose.open[0].joint => Some((j, i)),
-                Cut::Pivot(0, i) if eval(&links.passed(&path, pose.open[0].joint).1, 0.0) > 0.0 => {
-                    Some((pose.open[0].joint, i))
+                Cut::Closed(j, i @ (0 | 1)) if j < lowest => Some((j, i)),
+                Cut::Pivot(0, i) if eval(&links.passed(&path, lowest).1, 0.0) > 0.0 => {
+                    Some((lowest, i))
                 }
                 _ => None,
             };
+            // A closed joint above the lowest open one, or a pressed pivot above it on a corner
+            // of the block on it, that would slip: the chain goes on with it slipping.
+            let inner = match cond.cut {
+                Cut::Closed(j, 0 | 1) if !pose.open.is_empty() && j > lowest => Some(j),
+                Cut::Pivot(c, _) if links.inner_pivot(&pose, &path, (c, 0.0)) => {
+                    Some(pose.open[c].joint)
+                }
+                _ => None,
+            };
+            if let (Some(j), None) = (inner, pose.slide) {
+                let ways = links.inner_ways(&pose, j, now, &sc, ts)?;
+                let [way] = &ways[..] else {
+                    let how = if ways.is_empty() {
+                        "would slip inside the chain, and neither way of its slipping holds \
+                         (beyond the chain)"
+                    } else {
+                        "would slip inside the chain, and both ways of its slipping hold \
+                         (beyond the chain)"
+                    };
+                    self.chain_ends_at(links, (&path, 0.0), j, how, None);
+                    return Ok(Next::End);
+                };
+                let sigma = way.slide.expect("a slip").sigma;
+                let what = format!(
+                    "{} slip on {} inside the chain towards {} (mu = {})",
+                    links.watch.outputs[j..]
+                        .iter()
+                        .map(|o| o.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join("+"),
+                    links.joints[j].name,
+                    towards(sigma),
+                    links.joints[j].friction,
+                );
+                self.slide_event(links, j, EventKind::Slip, what);
+                pose = way.clone();
+                continue;
+            }
             if let (Some((j, i)), None) = (slips, pose.slide) {
                 let ways = links.slide_ways(&pose, now, &sc, ts)?;
                 let [way] = &ways[..] else {
@@ -1199,6 +1353,12 @@ impl<'a> Engine<'a> {
     /// the body rocking on the stack that slides (or, its own joint slipping, slide-rocking);
     /// `Some(None)` where the engine cannot take it so (a seated column riding a slip).
     fn handed_back(&self, links: &Links, pose: &Pose) -> Option<Option<Next>> {
+        // A slip inside the chain, or blocks of the body that slid on each other in one, are
+        // not the body's: the chain goes on.
+        let body_moved = pose.moved.get(links.body_joint..).unwrap_or(&[]);
+        if inside(pose) || body_moved.windows(2).any(|w| w[0] != w[1]) {
+            return None;
+        }
         let slid = pose.slide.map_or(0.0, |sl| sl.u);
         let state = State {
             u: links.shift + pose.moved.get(links.body_joint).copied().unwrap_or(0.0) + slid,
@@ -1539,13 +1699,19 @@ impl<'a> Engine<'a> {
             {
                 self.settle(links, pose, now)
             }
+            Cut::Pivot(c, _) if links.inner_pivot(&pose, path, (c, tau)) => {
+                self.settle(links, pose, now)
+            }
             Cut::Stop => {
                 let mut pose = pose;
+                let place = if inside(&pose) { "inside" } else { "under" };
                 let sl = pose.slide.take().expect("a slip that stops");
+                // What it slid stays with the blocks above it, in the frame of the body under
+                // the joint.
                 pose.moved.resize(links.blocks(), 0.0);
                 pose.moved[sl.joint..].iter_mut().for_each(|d| *d += sl.u);
                 let what = format!(
-                    "stops on {} under the chain, having slid {:.6e} m",
+                    "stops on {} {place} the chain, having slid {:.6e} m",
                     links.joints[sl.joint].name, sl.u
                 );
                 self.slide_event(links, sl.joint, EventKind::Stick, what);
@@ -1601,6 +1767,12 @@ impl<'a> Engine<'a> {
         c: usize,
         now: &Inputs,
     ) -> Result<Next, SimulationError> {
+        if inside(&pose) {
+            let how = "lands while a joint inside the chain slips (beyond the chain)";
+            let j = pose.open[c].joint;
+            self.chain_ends_at(links, (path, tau), j, how, Some((path, tau)));
+            return Ok(Next::End);
+        }
         let body = &self.scene.bodies[0];
         let energy_before: f64 = links.energies(path, tau).iter().map(|(k, p)| k + p).sum();
         let at = Instant::of(&pose, path, tau);
@@ -1890,6 +2062,61 @@ impl Links<'_> {
         })
     }
 
+    /// Whether open joint c (above the lowest) turns on a corner of the block on it that
+    /// presses the face under it at tau on `path` (its normal force, in that face's frame,
+    /// positive): a pivot that can slip inside the chain.
+    fn inner_pivot(&self, pose: &Pose, path: &Path, (c, tau): (usize, f64)) -> bool {
+        let Some(b) = c.checked_sub(1) else {
+            return false;
+        };
+        let o = pose.open[c];
+        let (h, v) = self.passed(path, o.joint);
+        let (sin, cos) = (eval(&path.sin[b], tau), eval(&path.cos[b], tau));
+        self.joints[o.joint].upper_corner[usize::from(o.s > 0.0)]
+            && eval(&h, tau) * sin + eval(&v, tau) * cos > 0.0
+    }
+
+    /// Whether every condition of the chain in `way` holds just after now.
+    fn holds_after(
+        &self,
+        way: &Pose,
+        now: &Inputs,
+        (sc, ts): (&Scales, f64),
+    ) -> Result<bool, SimulationError> {
+        let path = self.path(way, now)?;
+        let conditions = self.conditions(way, &path, sc);
+        Ok((conditions.iter()).all(|c| sign_after(&c.series, c.scale, ts) >= 0))
+    }
+
+    /// The ways joint j inside `pose`'s chain (a closed joint above the lowest open one, or a
+    /// higher open joint's pivot) can start to slip, either way: those whose every condition
+    /// holds just after now.
+    fn inner_ways(
+        &self,
+        pose: &Pose,
+        j: usize,
+        now: &Inputs,
+        sc: &Scales,
+        ts: f64,
+    ) -> Result<Vec<Pose>, SimulationError> {
+        let mut ways = Vec::new();
+        for sigma in [-1.0, 1.0] {
+            let way = Pose {
+                slide: Some(Slide {
+                    joint: j,
+                    sigma,
+                    u: 0.0,
+                    v: 0.0,
+                }),
+                ..pose.clone()
+            };
+            if self.holds_after(&way, now, (sc, ts))? {
+                ways.push(way);
+            }
+        }
+        Ok(ways)
+    }
+
     /// The ways a joint under `pose`'s chain can start to slip, each the chain with that slip
     /// whose every condition holds just after now: a held joint below the lowest open one, or
     /// that joint's pivot where it is a corner of the block on it, either way, with the chain as
@@ -1933,10 +2160,7 @@ impl Links<'_> {
                         }),
                         ..p.clone()
                     };
-                    let path = self.path(&way, now)?;
-                    let holds = (self.conditions(&way, &path, sc).iter())
-                        .all(|c| sign_after(&c.series, c.scale, ts) >= 0);
-                    if holds {
+                    if self.holds_after(&way, now, (sc, ts))? {
                         ways.push(way);
                     }
                 }

@@ -555,3 +555,73 @@ fn a_landing_that_opens_a_held_joint_keeps_momenta_about_the_new_pivot() {
     }
     assert!(opened >= 1);
 }
+
+/// A joint inside the chain that slips: C slides on B inside the body turning on the ground, B
+/// and C slide on A in a body turning on the ground under C's own open joint, and C's pivot
+/// slips on B while A and B turn on the ground or B alone on A. Along a step the energy
+/// changes by the ground's work less the friction's, mu N |u_s'| (1e-12), the force the joint
+/// passes up lies at its friction's limit in the frame of the face it slides on, and what each
+/// open joint passes up has no moment about its pivot (1e-12).
+#[test]
+fn a_joint_slipping_inside_the_chain_balances_energy_and_its_friction() {
+    let column = three_blocks();
+    let w = &column.watch;
+    let links = Links::of(&column.watch, 0.0, Vec::new()).unwrap();
+    let inputs = test_inputs_at(0.37);
+    let open = |joint, s| Open { joint, s };
+    for (opens, joint, sigma) in [
+        (vec![open(0, 1.0)], 2, 1.0),
+        (vec![open(0, -1.0)], 2, -1.0),
+        (vec![open(0, 1.0), open(2, -1.0)], 1, 1.0),
+        (vec![open(0, 1.0), open(2, 1.0)], 2, -1.0),
+        (vec![open(1, -1.0), open(2, -1.0)], 2, 1.0),
+    ] {
+        let n = opens.len();
+        let pose = Pose {
+            phi: [0.01 * opens[0].s, 0.03 * opens[n - 1].s][..n].to_vec(),
+            omega: [0.1 * opens[0].s, 0.4 * opens[n - 1].s][..n].to_vec(),
+            open: opens,
+            slide: Some(Slide {
+                joint,
+                sigma,
+                u: 0.002,
+                v: 0.6 * sigma,
+            }),
+            moved: vec![0.0, 0.001, 0.001],
+        };
+        let path = links.path(&pose, &inputs).unwrap();
+        let b = path.inner.expect("a slip inside the chain");
+        let energy =
+            |tau: f64| -> f64 { links.energies(&path, tau).iter().map(|(k, p)| k + p).sum() };
+        let power = links.input_power(&path, &inputs);
+        let friction = links.friction_power(&pose, &path);
+        let scale = w.moment_scale * 0.1;
+        let mu = links.joints[joint].friction;
+        for tau in [0.005, 0.01, 0.02] {
+            let (_, _, v) = path.slide.as_ref().unwrap();
+            assert!(
+                sigma * eval(v, tau) > 0.0,
+                "{:?} {joint}: still slipping at {tau}",
+                pose.open
+            );
+            let change = energy(tau) - energy(0.0);
+            let gained = integral(&power, tau) - integral(&friction, tau);
+            assert!(
+                (change - gained).abs() < 1e-12 * scale,
+                "{:?} {joint}: {change} J against {gained} J at {tau} s",
+                pose.open
+            );
+            let (h, v) = links.passed(&path, joint);
+            let (h, v) = (eval(&h, tau), eval(&v, tau));
+            let (sin, cos) = (eval(&path.sin[b], tau), eval(&path.cos[b], tau));
+            let limit = (h * cos - v * sin) + mu * sigma * (h * sin + v * cos);
+            assert!(limit.abs() < 1e-12 * w.force_scale, "{joint}: {limit} N");
+            for (c, o) in pose.open.iter().enumerate() {
+                let e = [0, 1].map(|a| path.pivot[c][a]);
+                let m = eval(&links.moment(&path, o.joint, &e), tau);
+                assert!(m.abs() < 1e-12 * w.moment_scale, "{c}: {m} N m");
+            }
+        }
+        assert!(integral(&friction, 0.02) > 1e-3 * scale);
+    }
+}

@@ -34,8 +34,8 @@ const EXACT: Rocking = Rocking {
 /// velocities, which no row carries). The rows up to the stop, and the row at the stop, are the
 /// exact run's. Where the exact model stopped at a landing whose impulse a held joint could not
 /// pass, that row and the state are the ones just before the impact, for the time stepping to
-/// resolve it; at any other stop (but one where a corner lands on the ground within the first
-/// step) Moreau-Jean, going on from the state, must change no velocity by more than three times
+/// resolve it; at any other stop (but one where a corner comes down on the face under it before
+/// the stepper's next row) Moreau-Jean, going on from the state, must change no velocity by more than three times
 /// (g + peak ground acceleration) times the time it runs (a state its contacts accept, not one
 /// an impulse must mend). Returns why the exact model stopped, and
 /// whether it stopped at a landing.
@@ -139,6 +139,8 @@ fn handed_over(
     }
     let (u, v, turned) = state;
     let (mut mechanical, mut scale, mut imminent) = (0.0, 0.0, false);
+    // The time stepping's first row after the hand-off, which the check below reads.
+    let window_s = rows.time_s.get(last + 1).map_or(0.0, |t| t - t0);
     for (i, b) in wall.blocks.iter().enumerate() {
         let t = &turned[i];
         let (half, width) = (0.5 * b.height.to_f64(), b.width.to_f64());
@@ -179,14 +181,46 @@ fn handed_over(
                 ((t.rise_m + ry + half).abs() < 1e-9).then_some(t.rise_m_s + t.omega_rad_s * rx)
             })
             .collect();
-        // A corner above the ground coming down on it within the stepper's first step: an
-        // impact the stepper resolves at once (the exact model's next event).
-        if b.y.to_f64() == 0.0 {
-            imminent |= [-0.5 * width, 0.5 * width].into_iter().any(|x| {
-                let (rx, ry) = (x * cos + half * sin, x * sin - half * cos);
-                let (gap, up) = (t.rise_m + ry + half, t.rise_m_s + t.omega_rad_s * rx);
-                gap > 0.0 && gap < -up * STEP_S
-            });
+        // A bottom corner above the face it rests on at rest (the ground's, or a block's top
+        // face, moved and turned with that block) coming down on it before the stepper's next
+        // row, at its speed now: an impact the stepper resolves (the exact model's next event).
+        let moving = |k: usize| {
+            let (b, t) = (&wall.blocks[k], &turned[k]);
+            let h = 0.5 * b.height.to_f64();
+            let centre = [
+                b.x.to_f64() + 0.5 * b.width.to_f64() + u[k],
+                b.y.to_f64() + h + t.rise_m,
+            ];
+            (centre, [v[k], t.rise_m_s], t.phi_rad, t.omega_rad_s, h)
+        };
+        // Each face: a point on it, its normal, and its block's centre, velocity and rate.
+        let ground = ([0.0; 2], [0.0, 1.0], ([0.0; 2], [0.0; 2], 0.0));
+        let faces: Vec<_> = if b.y.to_f64() == 0.0 {
+            vec![ground]
+        } else {
+            (0..wall.blocks.len())
+                .filter(|&j| resting(j))
+                .map(|j| {
+                    let (c, w, phi, omega, h) = moving(j);
+                    let (s, co) = phi.sin_cos();
+                    ([c[0] - h * s, c[1] + h * co], [-s, co], (c, w, omega))
+                })
+                .collect()
+        };
+        let (centre, velocity, _, omega, _) = moving(i);
+        for x in [-0.5 * width, 0.5 * width] {
+            let r = [x * cos + half * sin, x * sin - half * cos];
+            let corner = [centre[0] + r[0], centre[1] + r[1]];
+            let speed = [velocity[0] - omega * r[1], velocity[1] + omega * r[0]];
+            for &(point, normal, (c, w, om)) in &faces {
+                let under = [
+                    w[0] - om * (corner[1] - c[1]),
+                    w[1] + om * (corner[0] - c[0]),
+                ];
+                let gap = (corner[0] - point[0]) * normal[0] + (corner[1] - point[1]) * normal[1];
+                let closing = (speed[0] - under[0]) * normal[0] + (speed[1] - under[1]) * normal[1];
+                imminent |= gap > 0.0 && gap < -closing * window_s;
+            }
         }
         let still = ups.iter().map(|x| x.abs()).fold(f64::INFINITY, f64::min);
         assert!(
